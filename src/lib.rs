@@ -1,1 +1,8 @@
+//! cosserat-check: a derivation checker for continuum mechanics.
+//!
+//! Its first corpus is Papanicolopoulos & Veveakis, *Sliding and rolling dissipation
+//! in Cosserat plasticity*. Every checkable statement of the paper is a claim in a
+//! file under `derivations/`; the checker decides each claim and reports a verdict
+//! with its evidence. Data flows one way: file → parse/validate → decide → report.
 
+pub mod kernel;

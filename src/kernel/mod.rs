@@ -1,0 +1,16 @@
+//! The trusted kernel: the few things every verdict depends on.
+//!
+//! Exact rationals, canonical sparse polynomials, dense tensors generic over the
+//! scalar with δ and ε, and the exact isotropic moments of a unit vector. Everything
+//! else in the crate reaches a verdict only through these types, so they are kept
+//! small and are tested hardest (unit tests here, cross-checks in `tests/`).
+
+pub mod moments;
+pub mod poly;
+pub mod rational;
+pub mod tensor;
+
+pub use moments::{monomial_moment, tensor_moment};
+pub use poly::{Monomial, Poly, PolyError, Var, VarTable};
+pub use rational::Rational;
+pub use tensor::{assignments, permutation_sign, Tensor};

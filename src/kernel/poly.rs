@@ -1,0 +1,578 @@
+//! Sparse multivariate (Laurent) polynomials with exact rational coefficients, in a
+//! canonical form: two equal polynomials have identical representations.
+//!
+//! This is where an exact proof happens: both sides of a claim are expanded into a
+//! `Poly` and compared structurally. Canonical form is kept by construction:
+//! monomials are sorted `(variable, exponent)` lists without zero exponents, and the
+//! term map never holds a zero coefficient. Exponents may be negative so that division
+//! by a single term (`S/V`, `1/R_g`) stays exact and canonical; division by a sum is
+//! not a polynomial operation and is refused.
+
+use super::moments::monomial_moment;
+use super::rational::Rational;
+use num_traits::{One, Zero};
+use std::collections::{BTreeMap, HashMap};
+use std::fmt::Write as _;
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// A polynomial variable: an index into a [`VarTable`].
+pub type Var = u32;
+
+/// A product of powers of variables: sorted by variable, no zero exponent.
+#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug, Default)]
+pub struct Monomial(Vec<(Var, i32)>);
+
+impl Monomial {
+    /// The empty product, 1.
+    pub fn one() -> Self {
+        Monomial(Vec::new())
+    }
+
+    /// `v^e`.
+    pub fn var(v: Var, e: i32) -> Self {
+        Monomial::from_factors(vec![(v, e)])
+    }
+
+    /// Builds the canonical monomial from factors in any order, merging repeats.
+    pub fn from_factors(mut factors: Vec<(Var, i32)>) -> Self {
+        factors.sort_unstable_by_key(|&(v, _)| v);
+        let mut out: Vec<(Var, i32)> = Vec::with_capacity(factors.len());
+        for (v, e) in factors {
+            match out.last_mut() {
+                Some((lv, le)) if *lv == v => *le += e,
+                _ => out.push((v, e)),
+            }
+        }
+        out.retain(|&(_, e)| e != 0);
+        Monomial(out)
+    }
+
+    pub fn factors(&self) -> &[(Var, i32)] {
+        &self.0
+    }
+
+    pub fn is_one(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// Exponent of `v` (0 when absent).
+    pub fn exponent(&self, v: Var) -> i32 {
+        self.0
+            .binary_search_by_key(&v, |&(w, _)| w)
+            .map_or(0, |k| self.0[k].1)
+    }
+
+    pub fn total_degree(&self) -> i32 {
+        self.0.iter().map(|&(_, e)| e).sum()
+    }
+
+    /// The product of two monomials (a linear merge of sorted lists).
+    pub fn mul(&self, other: &Monomial) -> Monomial {
+        let (a, b) = (&self.0, &other.0);
+        let mut out = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].0.cmp(&b[j].0) {
+                std::cmp::Ordering::Less => {
+                    out.push(a[i]);
+                    i += 1;
+                }
+                std::cmp::Ordering::Greater => {
+                    out.push(b[j]);
+                    j += 1;
+                }
+                std::cmp::Ordering::Equal => {
+                    let e = a[i].1 + b[j].1;
+                    if e != 0 {
+                        out.push((a[i].0, e));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend_from_slice(&b[j..]);
+        Monomial(out)
+    }
+
+    /// `self^e` for any integer `e`.
+    pub fn pow(&self, e: i32) -> Monomial {
+        Monomial::from_factors(self.0.iter().map(|&(v, k)| (v, k * e)).collect())
+    }
+
+    /// Splits off the exponents of `vars` (in that order), returning them and the rest.
+    fn split(&self, vars: &[Var]) -> (Vec<i32>, Monomial) {
+        let exps = vars.iter().map(|&v| self.exponent(v)).collect();
+        let rest = self
+            .0
+            .iter()
+            .copied()
+            .filter(|(v, _)| !vars.contains(v))
+            .collect();
+        (exps, Monomial(rest))
+    }
+}
+
+/// Names of polynomial variables, interned in order of first use.
+#[derive(Clone, Debug, Default)]
+pub struct VarTable {
+    names: Vec<String>,
+    index: HashMap<String, Var>,
+}
+
+impl VarTable {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The variable called `name`, created on first use.
+    pub fn intern(&mut self, name: &str) -> Var {
+        if let Some(&v) = self.index.get(name) {
+            return v;
+        }
+        let v = Var::try_from(self.names.len()).expect("fewer than 2^32 variables");
+        self.names.push(name.to_owned());
+        self.index.insert(name.to_owned(), v);
+        v
+    }
+
+    pub fn name(&self, v: Var) -> &str {
+        self.names.get(v as usize).map_or("?", String::as_str)
+    }
+
+    pub fn lookup(&self, name: &str) -> Option<Var> {
+        self.index.get(name).copied()
+    }
+
+    pub fn len(&self) -> usize {
+        self.names.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.names.is_empty()
+    }
+}
+
+/// Why a polynomial operation could not be carried out exactly.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum PolyError {
+    #[error("division by zero")]
+    DivisionByZero,
+    #[error("division by a sum of several terms is not a polynomial operation; multiply it out or use a numeric strategy")]
+    DivisionBySum,
+    #[error("a negative power of a component of the normal cannot be averaged or reduced on the unit sphere")]
+    NegativeNormalPower,
+}
+
+/// A sparse Laurent polynomial with exact rational coefficients, in canonical form.
+#[derive(Clone, PartialEq, Eq, Hash, Debug, Default)]
+pub struct Poly {
+    terms: BTreeMap<Monomial, Rational>,
+}
+
+impl Poly {
+    pub fn constant(q: Rational) -> Self {
+        let mut p = Poly::default();
+        p.add_term(Monomial::one(), q);
+        p
+    }
+
+    pub fn var(v: Var) -> Self {
+        Poly::term(Monomial::var(v, 1), Rational::one())
+    }
+
+    pub fn term(m: Monomial, c: Rational) -> Self {
+        let mut p = Poly::default();
+        p.add_term(m, c);
+        p
+    }
+
+    /// Adds `c * m`, keeping the canonical form (no zero coefficient stored).
+    pub fn add_term(&mut self, m: Monomial, c: Rational) {
+        if c.is_zero() {
+            return;
+        }
+        match self.terms.entry(m) {
+            std::collections::btree_map::Entry::Vacant(e) => {
+                e.insert(c);
+            }
+            std::collections::btree_map::Entry::Occupied(mut e) => {
+                *e.get_mut() += &c;
+                if e.get().is_zero() {
+                    e.remove();
+                }
+            }
+        }
+    }
+
+    pub fn terms(&self) -> impl Iterator<Item = (&Monomial, &Rational)> {
+        self.terms.iter()
+    }
+
+    pub fn num_terms(&self) -> usize {
+        self.terms.len()
+    }
+
+    /// The value when the polynomial is a constant.
+    pub fn as_constant(&self) -> Option<Rational> {
+        match self.terms.len() {
+            0 => Some(Rational::zero()),
+            1 => self
+                .terms
+                .iter()
+                .next()
+                .filter(|(m, _)| m.is_one())
+                .map(|(_, c)| c.clone()),
+            _ => None,
+        }
+    }
+
+    /// `self / d` when `d` is a single nonzero term (exact in Laurent polynomials).
+    pub fn checked_div(&self, d: &Poly) -> Result<Poly, PolyError> {
+        let mut it = d.terms.iter();
+        let (m, c) = match (it.next(), it.next()) {
+            (None, _) => return Err(PolyError::DivisionByZero),
+            (Some(t), None) => t,
+            _ => return Err(PolyError::DivisionBySum),
+        };
+        let inv = Poly::term(
+            m.pow(-1),
+            c.recip().expect("stored coefficients are nonzero"),
+        );
+        Ok(self * &inv)
+    }
+
+    pub fn pow(&self, e: u32) -> Poly {
+        (0..e).fold(Poly::one(), |acc, _| &acc * self)
+    }
+
+    /// Evaluates at a point; `None` when a negative power meets a zero value.
+    pub fn eval(&self, value: &dyn Fn(Var) -> Rational) -> Option<Rational> {
+        let mut total = Rational::zero();
+        for (m, c) in &self.terms {
+            let mut t = c.clone();
+            for &(v, e) in m.factors() {
+                t = &t * &value(v).pow(e)?;
+            }
+            total += &t;
+        }
+        Some(total)
+    }
+
+    /// Evaluates in `f64` (for numeric cross-checks only).
+    pub fn eval_f64(&self, value: &dyn Fn(Var) -> f64) -> f64 {
+        self.terms
+            .iter()
+            .map(|(m, c)| {
+                m.factors()
+                    .iter()
+                    .fold(c.to_f64(), |t, &(v, e)| t * value(v).powi(e))
+            })
+            .sum()
+    }
+
+    /// The exact average over a unit vector `n = (vars[0], …, vars[d-1])` uniformly
+    /// distributed on the unit circle (d = 2) or sphere (d = 3): every monomial
+    /// `n^α · rest` becomes `⟨n^α⟩ · rest`, with the moments of
+    /// [`monomial_moment`]. Eqs. (25)–(26) are the first two instances.
+    pub fn average_over_normal(&self, vars: &[Var]) -> Result<Poly, PolyError> {
+        let mut out = Poly::default();
+        for (m, c) in &self.terms {
+            let (exps, rest) = m.split(vars);
+            if exps.iter().any(|&e| e < 0) {
+                return Err(PolyError::NegativeNormalPower);
+            }
+            let exps: Vec<u32> = exps.iter().map(|&e| e as u32).collect();
+            let moment = monomial_moment(vars.len(), &exps);
+            out.add_term(rest, c * &moment);
+        }
+        Ok(out)
+    }
+
+    /// The canonical normal form modulo `n·n − 1` (the normal is a unit vector).
+    ///
+    /// `{n·n − 1}` is a Gröbner basis of its ideal for any order in which the last
+    /// component's square leads, so rewriting `n_d² → 1 − n_1² − … − n_{d−1}²` until no
+    /// monomial contains `n_d²` yields the unique remainder. Two polynomials agree on
+    /// the unit sphere (for all values of the other variables) iff their normal forms
+    /// are identical: the sphere is Zariski-dense in the complex variety of the
+    /// irreducible `n·n − 1` for d ≥ 2.
+    pub fn reduce_on_sphere(&self, vars: &[Var]) -> Result<Poly, PolyError> {
+        let Some((&last, others)) = vars.split_last() else {
+            return Ok(self.clone());
+        };
+        let mut out = Poly::default();
+        let mut stack: Vec<(Monomial, Rational)> = self
+            .terms
+            .iter()
+            .map(|(m, c)| (m.clone(), c.clone()))
+            .collect();
+        while let Some((m, c)) = stack.pop() {
+            if vars.iter().any(|&v| m.exponent(v) < 0) {
+                return Err(PolyError::NegativeNormalPower);
+            }
+            if m.exponent(last) < 2 {
+                out.add_term(m, c);
+                continue;
+            }
+            let lowered = m.mul(&Monomial::var(last, -2));
+            for &v in others {
+                stack.push((lowered.mul(&Monomial::var(v, 2)), -&c));
+            }
+            stack.push((lowered, c));
+        }
+        Ok(out)
+    }
+
+    /// Plain-text form with variable names, highest total degree first.
+    pub fn display(&self, names: &VarTable) -> String {
+        self.render(names, false)
+    }
+
+    /// LaTeX form, highest total degree first.
+    pub fn latex(&self, names: &VarTable) -> String {
+        self.render(names, true)
+    }
+
+    fn render(&self, names: &VarTable, latex: bool) -> String {
+        if self.terms.is_empty() {
+            return "0".into();
+        }
+        let mut terms: Vec<_> = self.terms.iter().collect();
+        terms.sort_by(|a, b| graded_lex_desc(a.0, b.0));
+        let mut s = String::new();
+        for (k, (m, c)) in terms.into_iter().enumerate() {
+            let neg = c.is_negative();
+            if k == 0 {
+                if neg {
+                    s.push('-');
+                }
+            } else {
+                s.push_str(if neg { " - " } else { " + " });
+            }
+            let abs = if neg { -c } else { c.clone() };
+            let coeff = if latex { abs.latex() } else { abs.to_string() };
+            let mut parts: Vec<String> = Vec::new();
+            if !abs.is_one() || m.is_one() {
+                parts.push(coeff);
+            }
+            for &(v, e) in m.factors() {
+                let name = names.name(v);
+                parts.push(match (e, latex) {
+                    (1, _) => name.to_owned(),
+                    (_, true) => format!("{name}^{{{e}}}"),
+                    (_, false) => format!("{name}^{e}"),
+                });
+            }
+            let _ = write!(s, "{}", parts.join(if latex { " " } else { "*" }));
+        }
+        s
+    }
+}
+
+/// Graded lexicographic order, largest first: higher total degree first, then the
+/// larger exponent of the earliest variable (`x^3 + 3*x^2*y + …`).
+fn graded_lex_desc(a: &Monomial, b: &Monomial) -> std::cmp::Ordering {
+    b.total_degree().cmp(&a.total_degree()).then_with(|| {
+        let mut vars: Vec<Var> = a.0.iter().chain(&b.0).map(|&(v, _)| v).collect();
+        vars.sort_unstable();
+        vars.dedup();
+        vars.iter()
+            .map(|&v| b.exponent(v).cmp(&a.exponent(v)))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    })
+}
+
+impl Zero for Poly {
+    fn zero() -> Self {
+        Poly::default()
+    }
+    fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+}
+
+impl One for Poly {
+    fn one() -> Self {
+        Poly::constant(Rational::one())
+    }
+}
+
+impl Add<&Poly> for &Poly {
+    type Output = Poly;
+    fn add(self, rhs: &Poly) -> Poly {
+        let mut out = self.clone();
+        for (m, c) in &rhs.terms {
+            out.add_term(m.clone(), c.clone());
+        }
+        out
+    }
+}
+
+impl Sub<&Poly> for &Poly {
+    type Output = Poly;
+    fn sub(self, rhs: &Poly) -> Poly {
+        let mut out = self.clone();
+        for (m, c) in &rhs.terms {
+            out.add_term(m.clone(), -c);
+        }
+        out
+    }
+}
+
+impl Mul<&Poly> for &Poly {
+    type Output = Poly;
+    fn mul(self, rhs: &Poly) -> Poly {
+        let mut out = Poly::default();
+        for (m1, c1) in &self.terms {
+            for (m2, c2) in &rhs.terms {
+                out.add_term(m1.mul(m2), c1 * c2);
+            }
+        }
+        out
+    }
+}
+
+impl Neg for &Poly {
+    type Output = Poly;
+    fn neg(self) -> Poly {
+        Poly {
+            terms: self.terms.iter().map(|(m, c)| (m.clone(), -c)).collect(),
+        }
+    }
+}
+
+macro_rules! owned_ops {
+    ($($tr:ident $method:ident),*) => {$(
+        impl $tr for Poly {
+            type Output = Poly;
+            fn $method(self, rhs: Poly) -> Poly {
+                (&self).$method(&rhs)
+            }
+        }
+    )*};
+}
+owned_ops!(Add add, Sub sub, Mul mul);
+
+impl Neg for Poly {
+    type Output = Poly;
+    fn neg(self) -> Poly {
+        -&self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> Rational {
+        Rational::ratio(n, d).unwrap()
+    }
+
+    fn vars(names: &[&str]) -> (VarTable, Vec<Poly>) {
+        let mut t = VarTable::new();
+        let ps = names.iter().map(|n| Poly::var(t.intern(n))).collect();
+        (t, ps)
+    }
+
+    #[test]
+    fn equal_polynomials_have_identical_representations() {
+        let (_, v) = vars(&["x", "y"]);
+        let (x, y) = (&v[0], &v[1]);
+        let lhs = &(x + y) * &(x - y);
+        let rhs = &(x * x) - &(y * y);
+        assert_eq!(lhs, rhs);
+        assert_eq!(format!("{lhs:?}"), format!("{rhs:?}"));
+        // Built in a different order, still identical.
+        let rhs2 = &(&(y * y) * &Poly::constant(q(-1, 1))) + &(x * x);
+        assert_eq!(lhs, rhs2);
+    }
+
+    #[test]
+    fn cancellation_leaves_no_zero_terms() {
+        let (_, v) = vars(&["x"]);
+        let z = &v[0] - &v[0];
+        assert!(z.is_zero());
+        assert_eq!(z.num_terms(), 0);
+        assert_eq!(z, Poly::zero());
+    }
+
+    #[test]
+    fn binomial_expansion() {
+        let (names, v) = vars(&["x", "y"]);
+        let p = (&v[0] + &v[1]).pow(3);
+        assert_eq!(p.num_terms(), 4);
+        assert_eq!(p.display(&names), "x^3 + 3*x^2*y + 3*x*y^2 + y^3");
+    }
+
+    #[test]
+    fn division_by_a_term_is_exact_and_by_a_sum_refused() {
+        let (names, v) = vars(&["S", "V", "R"]);
+        let (s, vv, r) = (&v[0], &v[1], &v[2]);
+        let two_r = &Poly::constant(q(2, 1)) * r;
+        let ratio = (&two_r * s).checked_div(vv).unwrap();
+        assert_eq!(ratio.display(&names), "2*S*V^-1*R");
+        assert_eq!(&ratio * vv, &two_r * s);
+        assert_eq!(s.checked_div(&(s + vv)), Err(PolyError::DivisionBySum));
+        assert_eq!(s.checked_div(&Poly::zero()), Err(PolyError::DivisionByZero));
+    }
+
+    #[test]
+    fn sphere_reduction_is_canonical() {
+        let (mut names, v) = vars(&["n1", "n2", "n3"]);
+        let n: Vec<Var> = (0..3).map(|k| k as Var).collect();
+        let norm2 = &(&(&v[0] * &v[0]) + &(&v[1] * &v[1])) + &(&v[2] * &v[2]);
+        let a = names.intern("a");
+        let pa = Poly::var(a);
+        // a (n·n)^2 ≡ a on the sphere.
+        let lhs = (&pa * &norm2.pow(2)).reduce_on_sphere(&n).unwrap();
+        assert_eq!(lhs, pa);
+        // n3^4 reduces to a polynomial without n3^2.
+        let r = v[2].pow(4).reduce_on_sphere(&n).unwrap();
+        assert!(r.terms().all(|(m, _)| m.exponent(2) < 2));
+        // … and it agrees with n3^4 on a rational point of the sphere (2/3, 2/3, 1/3).
+        let pt = [q(2, 3), q(2, 3), q(1, 3)];
+        let val = |w: Var| pt[w as usize].clone();
+        assert_eq!(r.eval(&val), v[2].pow(4).eval(&val));
+        // n·n − 1 vanishes on the sphere; n·n does not, and keeps a nonzero normal form.
+        assert!((&norm2 - &Poly::one())
+            .reduce_on_sphere(&n)
+            .unwrap()
+            .is_zero());
+        assert!(!norm2.reduce_on_sphere(&n).unwrap().is_zero());
+    }
+
+    #[test]
+    fn averages_use_exact_moments() {
+        let (_, v) = vars(&["n1", "n2", "n3"]);
+        let n: Vec<Var> = (0..3).map(|k| k as Var).collect();
+        assert_eq!(
+            v[0].pow(2).average_over_normal(&n).unwrap(),
+            Poly::constant(q(1, 3))
+        );
+        assert_eq!(
+            v[0].pow(4).average_over_normal(&n).unwrap(),
+            Poly::constant(q(1, 5))
+        );
+        assert_eq!(
+            (&v[0].pow(2) * &v[1].pow(2))
+                .average_over_normal(&n)
+                .unwrap(),
+            Poly::constant(q(1, 15))
+        );
+        assert!(v[0].pow(3).average_over_normal(&n).unwrap().is_zero());
+    }
+
+    #[test]
+    fn evaluation_at_a_point() {
+        let (_, v) = vars(&["x", "y"]);
+        let p = &(&v[0] * &v[0]) - &Poly::constant(q(1, 2));
+        let val = |w: Var| if w == 0 { q(3, 1) } else { q(0, 1) };
+        assert_eq!(p.eval(&val), Some(q(17, 2)));
+        let inv = Poly::one().checked_div(&v[1]).unwrap();
+        assert_eq!(inv.eval(&val), None);
+        assert!((p.eval_f64(&|w| if w == 0 { 3.0 } else { 0.0 }) - 8.5).abs() < 1e-15);
+    }
+}

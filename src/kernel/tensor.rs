@@ -1,0 +1,289 @@
+//! Dense tensors over the index range 1..=d (d = 2 or 3), of any rank, generic over
+//! the scalar: `f64`, num-dual numbers, [`Rational`](super::Rational) and
+//! [`Poly`](super::Poly) all work. Each operation asks only for the arithmetic it
+//! needs (nalgebra's style): storage needs nothing, δ needs `Zero + One`, ε also `Neg`.
+//!
+//! Indices are 0-based in code and 1-based in everything shown to a user.
+
+use num_traits::{One, Zero};
+use std::ops::{Add, Mul, Neg};
+
+/// Every assignment of `rank` indices in `0..dim`, in row-major order. Rank 0 yields
+/// exactly one (empty) assignment.
+pub fn assignments(dim: usize, rank: usize) -> impl Iterator<Item = Vec<usize>> {
+    let count = dim.checked_pow(rank as u32).unwrap_or(0);
+    (0..count).map(move |mut flat| {
+        let mut idx = vec![0; rank];
+        for slot in idx.iter_mut().rev() {
+            *slot = flat % dim;
+            flat /= dim;
+        }
+        idx
+    })
+}
+
+/// A dense tensor of the given rank over `0..dim` in every slot, stored row-major.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tensor<T> {
+    dim: usize,
+    rank: usize,
+    data: Vec<T>,
+}
+
+impl<T> Tensor<T> {
+    /// Builds a tensor from its components.
+    pub fn from_fn(dim: usize, rank: usize, mut f: impl FnMut(&[usize]) -> T) -> Self {
+        let data = assignments(dim, rank).map(|idx| f(&idx)).collect();
+        Tensor { dim, rank, data }
+    }
+
+    /// A rank-0 tensor.
+    pub fn scalar(dim: usize, x: T) -> Self {
+        Tensor {
+            dim,
+            rank: 0,
+            data: vec![x],
+        }
+    }
+
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    pub fn rank(&self) -> usize {
+        self.rank
+    }
+
+    fn offset(&self, idx: &[usize]) -> usize {
+        assert_eq!(idx.len(), self.rank, "index count must equal the rank");
+        idx.iter().fold(0, |acc, &i| {
+            assert!(i < self.dim, "index {i} out of range 0..{}", self.dim);
+            acc * self.dim + i
+        })
+    }
+
+    /// The component at 0-based indices `idx`.
+    pub fn get(&self, idx: &[usize]) -> &T {
+        &self.data[self.offset(idx)]
+    }
+
+    pub fn get_mut(&mut self, idx: &[usize]) -> &mut T {
+        let k = self.offset(idx);
+        &mut self.data[k]
+    }
+
+    /// Components in row-major order.
+    pub fn components(&self) -> &[T] {
+        &self.data
+    }
+
+    /// Consumes a rank-0 tensor into its value.
+    pub fn into_scalar(mut self) -> Option<T> {
+        (self.rank == 0).then(|| self.data.remove(0))
+    }
+
+    pub fn map<U>(&self, f: impl FnMut(&T) -> U) -> Tensor<U> {
+        Tensor {
+            dim: self.dim,
+            rank: self.rank,
+            data: self.data.iter().map(f).collect(),
+        }
+    }
+
+    /// Fallible map: the first error stops it.
+    pub fn try_map<U, E>(&self, f: impl FnMut(&T) -> Result<U, E>) -> Result<Tensor<U>, E> {
+        Ok(Tensor {
+            dim: self.dim,
+            rank: self.rank,
+            data: self.data.iter().map(f).collect::<Result<_, _>>()?,
+        })
+    }
+
+    /// The tensor with slots reordered: `result[j_0..] = self[i]` where
+    /// `i[perm[k]] = j[k]`, i.e. slot k of the result is slot `perm[k]` of `self`.
+    pub fn permuted(&self, perm: &[usize]) -> Self
+    where
+        T: Clone,
+    {
+        assert_eq!(perm.len(), self.rank);
+        Tensor::from_fn(self.dim, self.rank, |j| {
+            let mut i = vec![0; self.rank];
+            for (k, &p) in perm.iter().enumerate() {
+                i[p] = j[k];
+            }
+            self.get(&i).clone()
+        })
+    }
+}
+
+impl<T: Zero + One> Tensor<T> {
+    /// The Kronecker delta δ_ij.
+    pub fn delta(dim: usize) -> Self {
+        Tensor::from_fn(dim, 2, |i| if i[0] == i[1] { T::one() } else { T::zero() })
+    }
+}
+
+/// The sign of a permutation of `0..n` (0 when an entry repeats).
+pub fn permutation_sign(p: &[usize]) -> i8 {
+    let mut sign = 1;
+    for a in 0..p.len() {
+        for b in a + 1..p.len() {
+            if p[a] == p[b] {
+                return 0;
+            }
+            if p[a] > p[b] {
+                sign = -sign;
+            }
+        }
+    }
+    sign
+}
+
+impl<T: Zero + One + Neg<Output = T>> Tensor<T> {
+    /// The Levi-Civita (permutation) symbol of rank `dim`, with ε_12 = 1 in 2D and
+    /// ε_123 = 1 in 3D (the paper's e_ijk).
+    pub fn levi_civita(dim: usize) -> Self {
+        Tensor::from_fn(dim, dim, |i| match permutation_sign(i) {
+            1 => T::one(),
+            -1 => -T::one(),
+            _ => T::zero(),
+        })
+    }
+}
+
+impl<T: Clone + Zero + Add<Output = T> + Mul<Output = T>> Tensor<T> {
+    /// The outer product `self ⊗ other` (slots of `self` first).
+    pub fn outer(&self, other: &Self) -> Self {
+        assert_eq!(self.dim, other.dim, "dimensions must agree");
+        let n = other.data.len();
+        let data = self
+            .data
+            .iter()
+            .flat_map(|a| other.data.iter().map(move |b| a.clone() * b.clone()))
+            .collect::<Vec<_>>();
+        debug_assert_eq!(data.len(), self.data.len() * n);
+        Tensor {
+            dim: self.dim,
+            rank: self.rank + other.rank,
+            data,
+        }
+    }
+
+    /// Sums over slots `a` and `b` set equal (a trace), lowering the rank by two.
+    pub fn contract(&self, a: usize, b: usize) -> Self {
+        assert!(
+            a != b && a < self.rank && b < self.rank,
+            "two distinct slots"
+        );
+        let rank = self.rank - 2;
+        Tensor::from_fn(self.dim, rank, |rest| {
+            let mut full = Vec::with_capacity(self.rank);
+            let mut it = rest.iter();
+            for s in 0..self.rank {
+                full.push(if s == a || s == b {
+                    0
+                } else {
+                    *it.next().unwrap()
+                });
+            }
+            (0..self.dim).fold(T::zero(), |acc, k| {
+                full[a] = k;
+                full[b] = k;
+                acc + self.get(&full).clone()
+            })
+        })
+    }
+
+    /// Component-wise sum.
+    pub fn add(&self, other: &Self) -> Self {
+        assert_eq!((self.dim, self.rank), (other.dim, other.rank));
+        Tensor {
+            dim: self.dim,
+            rank: self.rank,
+            data: self
+                .data
+                .iter()
+                .zip(&other.data)
+                .map(|(a, b)| a.clone() + b.clone())
+                .collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::{Poly, Rational};
+    use approx::assert_relative_eq;
+    use num_dual::Dual64;
+
+    #[test]
+    fn assignments_cover_every_index_once() {
+        assert_eq!(
+            assignments(3, 0).collect::<Vec<_>>(),
+            vec![Vec::<usize>::new()]
+        );
+        assert_eq!(assignments(2, 2).count(), 4);
+        let all: Vec<_> = assignments(3, 6).collect();
+        assert_eq!(all.len(), 729);
+        assert_eq!(all[1], vec![0, 0, 0, 0, 0, 1]);
+        assert_eq!(all[728], vec![2; 6]);
+    }
+
+    #[test]
+    fn epsilon_delta_identity_in_3d() {
+        // ε_ijk ε_imn = δ_jm δ_kn − δ_jn δ_km, checked over all 81 components.
+        let e = Tensor::<i64>::levi_civita(3);
+        let d = Tensor::<i64>::delta(3);
+        let lhs = e.outer(&e).contract(0, 3);
+        let rhs = Tensor::from_fn(3, 4, |x| {
+            d.get(&[x[0], x[2]]) * d.get(&[x[1], x[3]])
+                - d.get(&[x[0], x[3]]) * d.get(&[x[1], x[2]])
+        });
+        assert_eq!(lhs, rhs);
+        // Contracting once more: ε_ijk ε_ijn = 2 δ_kn.
+        assert_eq!(lhs.contract(0, 2), d.map(|x| 2 * x));
+    }
+
+    #[test]
+    fn epsilon_in_2d_and_signs() {
+        let e = Tensor::<i64>::levi_civita(2);
+        assert_eq!(e.components(), &[0, 1, -1, 0]);
+        assert_eq!(*Tensor::<i64>::levi_civita(3).get(&[2, 1, 0]), -1);
+        assert_eq!(permutation_sign(&[1, 2, 0]), 1);
+        assert_eq!(permutation_sign(&[0, 0, 1]), 0);
+    }
+
+    #[test]
+    fn permutation_moves_slots() {
+        let t = Tensor::from_fn(3, 3, |i| (100 * i[0] + 10 * i[1] + i[2]) as i64);
+        let p = t.permuted(&[2, 0, 1]);
+        // slot 0 of p is slot 2 of t: p[a,b,c] = t[b,c,a].
+        assert_eq!(*p.get(&[1, 2, 0]), *t.get(&[2, 0, 1]));
+        assert_eq!(p.permuted(&[1, 2, 0]), t);
+    }
+
+    #[test]
+    fn generic_over_rationals_polynomials_and_floats() {
+        let d = Tensor::<Rational>::delta(3);
+        assert_eq!(d.contract(0, 1).into_scalar(), Some(Rational::int(3)));
+        let dp = Tensor::<Poly>::delta(2);
+        assert_eq!(
+            dp.contract(0, 1).into_scalar(),
+            Some(Poly::constant(Rational::int(2)))
+        );
+        let v = Tensor::from_fn(3, 1, |i| (i[0] + 1) as f64);
+        let norm2 = v.outer(&v).contract(0, 1).into_scalar().unwrap();
+        assert_relative_eq!(norm2, 14.0, epsilon = 1e-15);
+    }
+
+    #[test]
+    fn generic_over_dual_numbers_carries_derivatives() {
+        // |v|² with v = (x, 2x, 3x): d/dx at x = 1 is 2·14·x = 28.
+        let x = Dual64::from(1.0).derivative();
+        let v = Tensor::from_fn(3, 1, |i| x * ((i[0] + 1) as f64));
+        let norm2 = v.outer(&v).contract(0, 1).into_scalar().unwrap();
+        assert_relative_eq!(norm2.re, 14.0, epsilon = 1e-15);
+        assert_relative_eq!(norm2.eps, 28.0, epsilon = 1e-12);
+    }
+}
