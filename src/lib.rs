@@ -6,3 +6,4 @@
 //! with its evidence. Data flows one way: file → parse/validate → decide → report.
 
 pub mod kernel;
+pub mod lang;

@@ -1,0 +1,532 @@
+//! Name resolution and index validation: turns a parsed [`Expr`] into a checked
+//! [`Node`] whose free indices are known, or explains precisely what is wrong.
+//!
+//! Rules (Einstein summation, as in the paper's Section 2):
+//! - in a product, each index letter occurs once (free) or twice (summed), never more;
+//! - a letter summed inside a factor (a parenthesised sum, an `avg`, a definition) may
+//!   not appear again elsewhere in the same product;
+//! - all terms of a sum have the same free indices;
+//! - divisors, powers and `sqrt` take scalars (no free index);
+//! - a name carries exactly as many indices as its rank; fixed indices run 1..=d;
+//!   `eps` has rank d.
+
+use super::diag::Span;
+use super::parser::{ErrorKind, Expr, ExprKind, Func, IndexTok, LangError};
+use crate::kernel::Rational;
+use std::collections::BTreeMap;
+
+/// The names declared by a derivation file.
+#[derive(Clone, Debug, Default)]
+pub struct Decls {
+    /// Dimension d of the index range 1..=d (2 or 3).
+    pub dim: usize,
+    /// The name of the unit contact normal averaged over by `avg(…)`, if any.
+    pub normal: Option<String>,
+    /// Declared symbols and their ranks (0 for scalars such as `R_g`).
+    pub symbols: BTreeMap<String, usize>,
+}
+
+/// A definition visible in a scope: its name and formal index letters.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DefSig {
+    pub name: String,
+    pub formal: Vec<char>,
+}
+
+/// What a name refers to.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Target {
+    Symbol(String),
+    Def(String),
+    Delta,
+    Eps,
+    Normal,
+}
+
+/// One index slot of a leaf.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot {
+    Letter(char),
+    /// A fixed component, 0-based.
+    Fixed(usize),
+}
+
+/// A checked expression node. `free` is sorted by letter and gives, for each free
+/// index, where it occurs; `bound` lists letters summed anywhere inside the node.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Node {
+    pub kind: NodeKind,
+    pub free: Vec<(char, Span)>,
+    pub bound: Vec<char>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum NodeKind {
+    Const(Rational),
+    Leaf { target: Target, slots: Vec<Slot> },
+    Sum(Vec<Node>),
+    /// Indices that occur in two factors are summed over.
+    Product(Vec<Node>),
+    Div(Box<Node>, Box<Node>),
+    Neg(Box<Node>),
+    Pow(Box<Node>, u32),
+    Sqrt(Box<Node>),
+    Avg(Box<Node>),
+}
+
+impl Node {
+    /// The free index letters, sorted.
+    pub fn free_letters(&self) -> Vec<char> {
+        self.free.iter().map(|&(c, _)| c).collect()
+    }
+}
+
+/// Formats a list of index letters for messages: `i, l` or `none`.
+pub fn letters(ls: &[char]) -> String {
+    if ls.is_empty() {
+        "none".into()
+    } else {
+        ls.iter()
+            .map(char::to_string)
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// Names that cannot be declared: built-ins and functions.
+pub const RESERVED: [&str; 4] = ["delta", "eps", "sqrt", "avg"];
+
+/// Resolves and validates expressions against declarations and visible definitions.
+pub struct Scope<'a> {
+    pub decls: &'a Decls,
+    pub defs: &'a [DefSig],
+}
+
+impl Scope<'_> {
+    pub fn check(&self, e: &Expr) -> Result<Node, LangError> {
+        match &e.kind {
+            ExprKind::Number(q) => Ok(leafless(NodeKind::Const(q.clone()), e.span)),
+            ExprKind::Name {
+                full,
+                base,
+                indices,
+            } => self.name(full, base, indices, e.span),
+            ExprKind::Neg(a) => {
+                let a = self.check(a)?;
+                Ok(wrap(a, e.span, |a| NodeKind::Neg(Box::new(a))))
+            }
+            ExprKind::Add(..) | ExprKind::Sub(..) => self.sum(e),
+            ExprKind::Mul(..) => self.product(e),
+            ExprKind::Div(a, b) => {
+                let num = self.check(a)?;
+                let den = self.check(b)?;
+                if let Some(&(c, span)) = den.free.first() {
+                    return Err(LangError::new(
+                        ErrorKind::Index,
+                        span,
+                        format!(
+                            "a divisor must be a scalar, but this one has free index {}",
+                            letters(&den.free_letters())
+                        ),
+                    )
+                    .help(format!("sum over `{c}` inside the divisor, or multiply instead")));
+                }
+                reject_reuse(&[&num, &den])?;
+                let mut bound = num.bound.clone();
+                bound.extend(&den.bound);
+                Ok(Node {
+                    free: num.free.clone(),
+                    bound,
+                    span: e.span,
+                    kind: NodeKind::Div(Box::new(num), Box::new(den)),
+                })
+            }
+            ExprKind::Pow(a, k) => {
+                let a = self.scalar_arg(a, "a power")?;
+                let k = *k;
+                Ok(wrap(a, e.span, |a| NodeKind::Pow(Box::new(a), k)))
+            }
+            ExprKind::Call(Func::Sqrt, a) => {
+                let a = self.scalar_arg(a, "sqrt")?;
+                Ok(wrap(a, e.span, |a| NodeKind::Sqrt(Box::new(a))))
+            }
+            ExprKind::Call(Func::Avg, a) => {
+                if self.decls.normal.is_none() {
+                    return Err(LangError::new(
+                        ErrorKind::Name,
+                        e.span,
+                        "avg(…) needs a contact normal, and this file declares none",
+                    )
+                    .help("add `normal = \"n\"` at the top of the file"));
+                }
+                let a = self.check(a)?;
+                Ok(wrap(a, e.span, |a| NodeKind::Avg(Box::new(a))))
+            }
+        }
+    }
+
+    fn scalar_arg(&self, a: &Expr, what: &str) -> Result<Node, LangError> {
+        let a = self.check(a)?;
+        if let Some(&(c, span)) = a.free.first() {
+            return Err(LangError::new(
+                ErrorKind::Index,
+                span,
+                format!("{what} takes a scalar, but this has free index {}", letters(&a.free_letters())),
+            )
+            .help(format!("contract `{c}` first, e.g. x_{c} x_{c} instead of x_{c}^2")));
+        }
+        Ok(a)
+    }
+
+    fn name(&self, full: &str, base: &str, indices: &[IndexTok], span: Span) -> Result<Node, LangError> {
+        let dim = self.decls.dim;
+        let def = |n: &str| self.defs.iter().rev().find(|d| d.name == n);
+        // A whole token such as `R_g` may itself be a scalar's name.
+        if !indices.is_empty() {
+            if self.decls.symbols.get(full) == Some(&0) {
+                return Ok(leaf(Target::Symbol(full.into()), vec![], vec![], span));
+            }
+            if def(full).is_some_and(|d| d.formal.is_empty()) {
+                return Ok(leaf(Target::Def(full.into()), vec![], vec![], span));
+            }
+        }
+        let (target, rank) = match base {
+            "delta" => (Target::Delta, 2),
+            "eps" => (Target::Eps, dim),
+            _ if self.decls.normal.as_deref() == Some(base) => (Target::Normal, 1),
+            _ => {
+                if let Some(d) = def(base) {
+                    (Target::Def(base.into()), d.formal.len())
+                } else if let Some(&r) = self.decls.symbols.get(base) {
+                    (Target::Symbol(base.into()), r)
+                } else {
+                    return Err(self.unknown(base, span));
+                }
+            }
+        };
+        if indices.len() != rank {
+            let what = match &target {
+                Target::Eps => format!("eps has {rank} indices in {dim}D"),
+                _ if rank == 0 => format!("`{base}` is a scalar and takes no indices"),
+                _ => format!(
+                    "`{base}` has rank {rank} but is written with {} ind{}",
+                    indices.len(),
+                    if indices.len() == 1 { "ex" } else { "ices" }
+                ),
+            };
+            let kind = if matches!(target, Target::Eps) {
+                ErrorKind::Dimension
+            } else {
+                ErrorKind::Index
+            };
+            return Err(LangError::new(kind, span, what).help(format!(
+                "write {base}{}{}",
+                if rank == 0 { "" } else { "_" },
+                &"ijklmnpqrs"[..rank.min(10)]
+            )));
+        }
+        let mut slots = Vec::with_capacity(rank);
+        let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
+        for t in indices {
+            if let Some(d) = t.ch.to_digit(10) {
+                let d = d as usize;
+                if d == 0 || d > dim {
+                    return Err(LangError::new(
+                        ErrorKind::Dimension,
+                        t.span,
+                        format!("fixed index {d} is outside 1..={dim} in {dim}D"),
+                    )
+                    .help(format!("components run from 1 to {dim}")));
+                }
+                slots.push(Slot::Fixed(d - 1));
+            } else {
+                slots.push(Slot::Letter(t.ch));
+                counts.entry(t.ch).or_default().push(t.span);
+            }
+        }
+        let (free, bound) = tally(counts)?;
+        Ok(leaf(target, slots, free, span).with_bound(bound))
+    }
+
+    fn unknown(&self, base: &str, span: Span) -> LangError {
+        let mut known: Vec<String> = self.decls.symbols.keys().cloned().collect();
+        known.extend(self.defs.iter().map(|d| d.name.clone()));
+        known.extend(self.decls.normal.iter().cloned());
+        known.sort();
+        known.dedup();
+        let close = known
+            .iter()
+            .filter(|k| k.eq_ignore_ascii_case(base) || k.starts_with(base) || base.starts_with(k.as_str()))
+            .cloned()
+            .collect::<Vec<_>>();
+        let help = if close.is_empty() {
+            format!(
+                "declare it in `tensors`/`scalars`, or define it in `define`; known names: {}",
+                known.join(", ")
+            )
+        } else {
+            format!("did you mean {}?", close.join(" or "))
+        };
+        LangError::new(ErrorKind::Name, span, format!("unknown name `{base}`")).help(help)
+    }
+
+    fn sum(&self, e: &Expr) -> Result<Node, LangError> {
+        let mut terms = Vec::new();
+        flatten_sum(e, false, &mut terms);
+        let mut nodes: Vec<Node> = Vec::with_capacity(terms.len());
+        for (neg, t) in terms {
+            let n = self.check(t)?;
+            if let Some(first) = nodes.first() {
+                if first.free_letters() != n.free_letters() {
+                    return Err(LangError::new(
+                        ErrorKind::Index,
+                        n.span,
+                        format!(
+                            "free indices differ between terms: {} here, {} in the first term",
+                            letters(&n.free_letters()),
+                            letters(&first.free_letters())
+                        ),
+                    )
+                    .help("every term of a sum must have the same free indices"));
+                }
+            }
+            nodes.push(if neg {
+                let span = n.span;
+                wrap(n, span, |n| NodeKind::Neg(Box::new(n)))
+            } else {
+                n
+            });
+        }
+        let free = nodes[0].free.clone();
+        let bound = nodes.iter().flat_map(|n| n.bound.iter().copied()).collect();
+        Ok(Node {
+            kind: NodeKind::Sum(nodes),
+            free,
+            bound,
+            span: e.span,
+        })
+    }
+
+    fn product(&self, e: &Expr) -> Result<Node, LangError> {
+        let mut factors = Vec::new();
+        flatten_product(e, &mut factors);
+        let nodes = factors
+            .into_iter()
+            .map(|f| self.check(f))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
+        for n in &nodes {
+            for &(c, s) in &n.free {
+                counts.entry(c).or_default().push(s);
+            }
+        }
+        reject_reuse(&nodes.iter().collect::<Vec<_>>())?;
+        let (free, mut bound) = tally(counts)?;
+        bound.extend(nodes.iter().flat_map(|n| n.bound.iter().copied()));
+        Ok(Node {
+            kind: NodeKind::Product(nodes),
+            free,
+            bound,
+            span: e.span,
+        })
+    }
+}
+
+/// Splits index occurrences into free (once) and summed (twice); a third occurrence is
+/// an error pointing at it.
+fn tally(counts: BTreeMap<char, Vec<Span>>) -> Result<(Vec<(char, Span)>, Vec<char>), LangError> {
+    let mut free = Vec::new();
+    let mut bound = Vec::new();
+    for (c, spans) in counts {
+        match spans.len() {
+            1 => free.push((c, spans[0])),
+            2 => bound.push(c),
+            n => {
+                return Err(LangError::new(
+                    ErrorKind::Index,
+                    spans[2],
+                    format!("index `{c}` occurs {n} times in one product"),
+                )
+                .help("an index may occur once (free) or twice (summed); rename one summed pair"))
+            }
+        }
+    }
+    Ok((free, bound))
+}
+
+/// A letter summed inside one factor must not occur in another factor.
+fn reject_reuse(nodes: &[&Node]) -> Result<(), LangError> {
+    for (a, na) in nodes.iter().enumerate() {
+        for &c in &na.bound {
+            for (b, nb) in nodes.iter().enumerate() {
+                if a == b {
+                    continue;
+                }
+                if let Some(&(_, span)) = nb.free.iter().find(|(d, _)| *d == c) {
+                    return Err(LangError::new(
+                        ErrorKind::Index,
+                        span,
+                        format!("index `{c}` is summed inside another factor of this product and used again here"),
+                    )
+                    .help(format!("rename the summed `{c}` inside the other factor")));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn flatten_sum<'e>(e: &'e Expr, neg: bool, out: &mut Vec<(bool, &'e Expr)>) {
+    match &e.kind {
+        ExprKind::Add(a, b) => {
+            flatten_sum(a, neg, out);
+            flatten_sum(b, neg, out);
+        }
+        ExprKind::Sub(a, b) => {
+            flatten_sum(a, neg, out);
+            flatten_sum(b, !neg, out);
+        }
+        _ => out.push((neg, e)),
+    }
+}
+
+fn flatten_product<'e>(e: &'e Expr, out: &mut Vec<&'e Expr>) {
+    match &e.kind {
+        ExprKind::Mul(a, b) => {
+            flatten_product(a, out);
+            flatten_product(b, out);
+        }
+        _ => out.push(e),
+    }
+}
+
+fn leafless(kind: NodeKind, span: Span) -> Node {
+    Node {
+        kind,
+        free: vec![],
+        bound: vec![],
+        span,
+    }
+}
+
+fn leaf(target: Target, slots: Vec<Slot>, free: Vec<(char, Span)>, span: Span) -> Node {
+    Node {
+        kind: NodeKind::Leaf { target, slots },
+        free,
+        bound: vec![],
+        span,
+    }
+}
+
+impl Node {
+    fn with_bound(mut self, bound: Vec<char>) -> Self {
+        self.bound = bound;
+        self
+    }
+}
+
+fn wrap(inner: Node, span: Span, f: impl FnOnce(Node) -> NodeKind) -> Node {
+    let free = inner.free.clone();
+    let bound = inner.bound.clone();
+    Node {
+        kind: f(inner),
+        free,
+        bound,
+        span,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lang::parser::parse_expr;
+
+    fn decls() -> Decls {
+        Decls {
+            dim: 3,
+            normal: Some("n".into()),
+            symbols: [("sigma", 2), ("mu", 2), ("R_g", 0), ("V", 0), ("x", 1)]
+                .into_iter()
+                .map(|(k, v)| (k.to_string(), v))
+                .collect(),
+        }
+    }
+
+    fn check(src: &str) -> Result<Node, LangError> {
+        let d = decls();
+        let defs = vec![DefSig {
+            name: "t".into(),
+            formal: vec!['i'],
+        }];
+        Scope { decls: &d, defs: &defs }.check(&parse_expr(src).unwrap())
+    }
+
+    fn free(src: &str) -> String {
+        check(src).unwrap().free_letters().into_iter().collect()
+    }
+
+    fn err(src: &str) -> (ErrorKind, String, Span) {
+        let e = check(src).unwrap_err();
+        (e.kind, e.message, e.span)
+    }
+
+    #[test]
+    fn free_and_summed_indices() {
+        assert_eq!(free("sigma_ki n_k"), "i");
+        assert_eq!(free("sigma_ki n_k (delta_il - n_i n_l)"), "l");
+        assert_eq!(free("sigma_kk"), "");
+        assert_eq!(free("eps_ijk x_j n_k"), "i");
+        assert_eq!(free("R_g^2 sigma_ij / V"), "ij");
+        assert_eq!(free("avg(n_i n_j n_k n_l)"), "ijkl");
+        assert_eq!(free("t_i t_i"), "");
+        assert_eq!(free("sigma_1k n_k"), "");
+    }
+
+    #[test]
+    fn an_index_three_times_is_refused_at_the_third() {
+        let (kind, msg, span) = err("sigma_ki n_k n_k");
+        assert_eq!(kind, ErrorKind::Index);
+        assert_eq!(msg, "index `k` occurs 3 times in one product");
+        assert_eq!(span, Span::new(15, 16));
+    }
+
+    #[test]
+    fn mismatched_terms_are_refused() {
+        let (kind, msg, span) = err("n_i + sigma_ki n_k n_l");
+        assert_eq!(kind, ErrorKind::Index);
+        assert!(msg.contains("i, l here, i in the first term"), "{msg}");
+        assert_eq!(span, Span::new(6, 22));
+    }
+
+    #[test]
+    fn scalars_only_where_scalars_belong() {
+        assert_eq!(err("x_i / n_i").1, "a divisor must be a scalar, but this one has free index i");
+        assert!(err("x_i^2").1.contains("a power takes a scalar"));
+        assert!(err("sqrt(n_i)").1.contains("sqrt takes a scalar"));
+        assert!(err("n_i / (x_i x_i)").1.contains("summed inside another factor"));
+        let (_, msg, span) = err("x_j (x_j n_j + 1)");
+        assert!(msg.contains("summed inside another factor"), "{msg}");
+        assert_eq!(span, Span::new(2, 3));
+    }
+
+    #[test]
+    fn ranks_and_dimensions() {
+        assert_eq!(err("sigma_i").1, "`sigma` has rank 2 but is written with 1 index");
+        assert_eq!(err("eps_ij").0, ErrorKind::Dimension);
+        let (kind, msg, span) = err("sigma_14");
+        assert_eq!(kind, ErrorKind::Dimension);
+        assert_eq!(msg, "fixed index 4 is outside 1..=3 in 3D");
+        assert_eq!(span, Span::new(7, 8));
+        assert_eq!(err("V_i").1, "`V` is a scalar and takes no indices");
+    }
+
+    #[test]
+    fn unknown_names_get_suggestions() {
+        let (kind, msg, _) = err("sigm_ij");
+        assert_eq!(kind, ErrorKind::Name);
+        assert_eq!(msg, "unknown name `sigm`");
+        let e = check("sigm_ij").unwrap_err();
+        assert_eq!(e.help.as_deref(), Some("did you mean sigma?"));
+    }
+}

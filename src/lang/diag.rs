@@ -1,0 +1,184 @@
+//! Diagnostics that point at a file, line and column, with the line shown and a caret
+//! under the offending token (rustc's layout, which users already read fluently).
+
+use std::fmt;
+use std::sync::Arc;
+
+/// A byte range in some text (an expression's own text, or a whole file).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Span {
+    pub start: usize,
+    pub end: usize,
+}
+
+impl Span {
+    pub fn new(start: usize, end: usize) -> Self {
+        Span { start, end }
+    }
+
+    /// The smallest span covering both.
+    pub fn to(self, other: Span) -> Span {
+        Span::new(self.start.min(other.start), self.end.max(other.end))
+    }
+}
+
+/// A file that diagnostics can point into.
+#[derive(Debug)]
+pub struct SourceFile {
+    pub path: String,
+    pub text: String,
+}
+
+impl SourceFile {
+    pub fn new(path: impl Into<String>, text: impl Into<String>) -> Arc<Self> {
+        Arc::new(SourceFile {
+            path: path.into(),
+            text: text.into(),
+        })
+    }
+
+    /// 1-based line and column (in characters) of a byte offset.
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        let offset = floor_char_boundary(&self.text, offset.min(self.text.len()));
+        let before = &self.text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |k| k + 1);
+        let col = self.text[line_start..offset].chars().count() + 1;
+        (line, col)
+    }
+
+    /// A diagnostic at a byte span of this file.
+    pub fn diagnostic(&self, span: Span, message: impl Into<String>) -> Diagnostic {
+        let start = floor_char_boundary(&self.text, span.start.min(self.text.len()));
+        let (line, col) = self.line_col(start);
+        let line_start = self.text[..start].rfind('\n').map_or(0, |k| k + 1);
+        let line_end = self.text[start..]
+            .find('\n')
+            .map_or(self.text.len(), |k| start + k);
+        let line_text = self.text[line_start..line_end].trim_end_matches('\r');
+        let end = floor_char_boundary(&self.text, span.end.clamp(start, line_end));
+        let width = self.text[start..end].chars().count().max(1);
+        Diagnostic {
+            path: self.path.clone(),
+            line,
+            col,
+            width,
+            line_text: line_text.to_owned(),
+            message: message.into(),
+            help: None,
+        }
+    }
+}
+
+fn floor_char_boundary(s: &str, mut k: usize) -> usize {
+    while k > 0 && !s.is_char_boundary(k) {
+        k -= 1;
+    }
+    k
+}
+
+/// Where an expression's text lives in its file: byte `k` of the expression is byte
+/// `map[k]` of the file (a TOML string may contain escapes, so the map is explicit).
+#[derive(Clone, Debug)]
+pub struct Origin {
+    pub file: Arc<SourceFile>,
+    pub map: Vec<usize>,
+}
+
+impl Origin {
+    /// An origin for text that is itself the whole file (tests, command-line input).
+    pub fn whole(file: Arc<SourceFile>) -> Self {
+        let map = (0..=file.text.len()).collect();
+        Origin { file, map }
+    }
+
+    /// The file span of an expression span.
+    pub fn file_span(&self, span: Span) -> Span {
+        let at = |k: usize| {
+            self.map
+                .get(k)
+                .or(self.map.last())
+                .copied()
+                .unwrap_or(0)
+        };
+        let start = at(span.start);
+        let end = if span.end > span.start {
+            at(span.end - 1) + 1
+        } else {
+            start
+        };
+        Span::new(start, end.max(start))
+    }
+
+    pub fn diagnostic(&self, span: Span, message: impl Into<String>) -> Diagnostic {
+        self.file.diagnostic(self.file_span(span), message)
+    }
+}
+
+/// A user-facing error located in a file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    pub path: String,
+    pub line: usize,
+    pub col: usize,
+    pub width: usize,
+    pub line_text: String,
+    pub message: String,
+    pub help: Option<String>,
+}
+
+impl Diagnostic {
+    pub fn with_help(mut self, help: impl Into<String>) -> Self {
+        self.help = Some(help.into());
+        self
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let num = self.line.to_string();
+        let pad = " ".repeat(num.len());
+        writeln!(f, "error: {}", self.message)?;
+        writeln!(f, "{pad} --> {}:{}:{}", self.path, self.line, self.col)?;
+        writeln!(f, "{pad} |")?;
+        writeln!(f, "{num} | {}", self.line_text)?;
+        let lead: String = self
+            .line_text
+            .chars()
+            .take(self.col - 1)
+            .map(|c| if c == '\t' { '\t' } else { ' ' })
+            .collect();
+        write!(f, "{pad} | {lead}{}", "^".repeat(self.width))?;
+        if let Some(help) = &self.help {
+            write!(f, "\n{pad} = help: {help}")?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn caret_points_at_the_span() {
+        let file = SourceFile::new("x.toml", "a = 1\nsides = [\"sigma_ki n_k n_k\"]\n");
+        let at = file.text.find("n_k n_k").unwrap() + 4;
+        let d = file.diagnostic(Span::new(at, at + 3), "index `k` occurs three times");
+        assert_eq!((d.line, d.col), (2, 24));
+        let text = d.with_help("rename one pair").to_string();
+        assert_eq!(
+            text,
+            "error: index `k` occurs three times\n  --> x.toml:2:24\n  |\n2 | sides = [\"sigma_ki n_k n_k\"]\n  |                        ^^^\n  = help: rename one pair"
+        );
+    }
+
+    #[test]
+    fn out_of_range_spans_do_not_panic() {
+        let file = SourceFile::new("y", "ab\u{e9}");
+        let d = file.diagnostic(Span::new(3, 99), "m");
+        assert_eq!(d.line, 1);
+        let o = Origin::whole(file);
+        let _ = o.diagnostic(Span::new(50, 60), "m").to_string();
+    }
+}

@@ -1,0 +1,11 @@
+//! The index-notation language of the derivation files: lexer and parser
+//! ([`parser`]), name resolution and index validation ([`check`]), and diagnostics
+//! that point at file, line and column ([`diag`]).
+
+pub mod check;
+pub mod diag;
+pub mod parser;
+
+pub use check::{Decls, DefSig, Node, NodeKind, Scope, Slot, Target};
+pub use diag::{Diagnostic, Origin, SourceFile, Span};
+pub use parser::{parse_expr, ErrorKind, Expr, LangError};

@@ -1,0 +1,488 @@
+//! Lexer and parser of the index-notation expression language.
+//!
+//! Grammar (juxtaposition is multiplication, as on paper):
+//!
+//! ```text
+//! expr   := term (('+' | '-') term)*
+//! term   := unary (('*' | '/') unary | unary)*      -- `a b` means `a * b`
+//! unary  := '-' unary | power
+//! power  := atom ('^' integer)?
+//! atom   := number | name | ('sqrt' | 'avg') '(' expr ')' | '(' expr ')'
+//! name   := letter alnum* ('_' alnum+)?             -- sigma_ki, n_k, R_g, delta_ij
+//! ```
+//!
+//! A name's suffix after `_` is its index list (one character per slot, a digit being a
+//! fixed component 1..=d) unless the whole name is a declared scalar such as `R_g`;
+//! that is resolved later, in [`super::check`], where the declarations are known.
+
+use super::diag::Span;
+use crate::kernel::Rational;
+
+/// An index slot as written: a letter (free or summed) or a digit (a fixed component).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct IndexTok {
+    pub ch: char,
+    pub span: Span,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Func {
+    Sqrt,
+    Avg,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExprKind {
+    Number(Rational),
+    /// `full` is the whole token (`R_g`), `base` the part before `_` (`R`), and
+    /// `indices` the characters after it.
+    Name {
+        full: String,
+        base: String,
+        indices: Vec<IndexTok>,
+    },
+    Neg(Box<Expr>),
+    Add(Box<Expr>, Box<Expr>),
+    Sub(Box<Expr>, Box<Expr>),
+    Mul(Box<Expr>, Box<Expr>),
+    Div(Box<Expr>, Box<Expr>),
+    Pow(Box<Expr>, u32),
+    Call(Func, Box<Expr>),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+/// What kind of mistake a language error is: a printed statement transcribed verbatim
+/// may be ill-formed in its indices (that is a finding about the paper), but never in
+/// its syntax or names (that is a mistake in the derivation file).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ErrorKind {
+    Syntax,
+    Name,
+    Index,
+    Dimension,
+}
+
+/// An error inside one expression's text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LangError {
+    pub kind: ErrorKind,
+    pub span: Span,
+    pub message: String,
+    pub help: Option<String>,
+}
+
+impl LangError {
+    pub fn new(kind: ErrorKind, span: Span, message: impl Into<String>) -> Self {
+        LangError {
+            kind,
+            span,
+            message: message.into(),
+            help: None,
+        }
+    }
+
+    pub fn help(mut self, help: impl Into<String>) -> Self {
+        self.help = Some(help.into());
+        self
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Tok {
+    Num(Rational),
+    Name {
+        full: String,
+        base: String,
+        indices: Vec<IndexTok>,
+    },
+    Op(char),
+    End,
+}
+
+/// Longest exponent accepted by `^`; larger powers are almost certainly a typo and
+/// would only make the expansion explode.
+const MAX_POWER: u32 = 64;
+
+fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
+    let bytes = src.as_bytes();
+    let mut out = Vec::new();
+    let mut k = 0;
+    while k < src.len() {
+        let c = src[k..].chars().next().expect("k is a char boundary");
+        let start = k;
+        if c.is_whitespace() {
+            k += c.len_utf8();
+        } else if c.is_ascii_digit() || c == '.' {
+            while k < src.len() && (bytes[k].is_ascii_digit() || bytes[k] == b'.') {
+                k += 1;
+            }
+            let text = &src[start..k];
+            let value = Rational::parse_decimal(text).ok_or_else(|| {
+                LangError::new(
+                    ErrorKind::Syntax,
+                    Span::new(start, k),
+                    format!("`{text}` is not a number"),
+                )
+                .help("write integers or decimals such as 3 or 0.25; fractions as 1/3")
+            })?;
+            out.push((Tok::Num(value), Span::new(start, k)));
+        } else if c.is_ascii_alphabetic() {
+            while k < src.len() && bytes[k].is_ascii_alphanumeric() {
+                k += 1;
+            }
+            let base = src[start..k].to_owned();
+            let mut indices = Vec::new();
+            if k + 1 < src.len() && bytes[k] == b'_' && bytes[k + 1].is_ascii_alphanumeric() {
+                k += 1;
+                while k < src.len() && bytes[k].is_ascii_alphanumeric() {
+                    indices.push(IndexTok {
+                        ch: bytes[k] as char,
+                        span: Span::new(k, k + 1),
+                    });
+                    k += 1;
+                }
+            } else if k < src.len() && bytes[k] == b'_' {
+                return Err(LangError::new(
+                    ErrorKind::Syntax,
+                    Span::new(k, k + 1),
+                    "`_` must be followed by indices",
+                )
+                .help("write indices right after the underscore, as in sigma_ki"));
+            }
+            let full = src[start..k].to_owned();
+            out.push((Tok::Name { full, base, indices }, Span::new(start, k)));
+        } else if "+-*/^()".contains(c) {
+            k += 1;
+            out.push((Tok::Op(c), Span::new(start, k)));
+        } else {
+            let end = k + c.len_utf8();
+            return Err(LangError::new(
+                ErrorKind::Syntax,
+                Span::new(start, end),
+                format!("unexpected character `{c}`"),
+            )
+            .help("expressions use names with index suffixes, numbers, + - * / ^, parentheses, sqrt(…) and avg(…)"));
+        }
+    }
+    out.push((Tok::End, Span::new(src.len(), src.len())));
+    Ok(out)
+}
+
+/// Longest expression accepted, in tokens. Trees are recursive, so an unbounded
+/// operand chain could exhaust the stack; paper expressions have a few dozen tokens.
+pub const MAX_TOKENS: usize = 1000;
+
+/// Parses one expression; the whole text must be consumed.
+pub fn parse_expr(src: &str) -> Result<Expr, LangError> {
+    let toks = lex(src)?;
+    if toks.len() > MAX_TOKENS {
+        return Err(LangError::new(
+            ErrorKind::Syntax,
+            toks[MAX_TOKENS].1,
+            format!("expression longer than {MAX_TOKENS} tokens"),
+        )
+        .help("split it into named definitions"));
+    }
+    let mut p = Parser {
+        toks,
+        pos: 0,
+        depth: 0,
+    };
+    let e = p.expr()?;
+    match p.peek() {
+        Tok::End => Ok(e),
+        Tok::Op(')') => Err(LangError::new(
+            ErrorKind::Syntax,
+            p.span(),
+            "unmatched `)`",
+        )),
+        _ => Err(LangError::new(ErrorKind::Syntax, p.span(), "unexpected token")
+            .help("an operator may be missing here")),
+    }
+}
+
+/// Nesting deeper than this is refused rather than risking the stack.
+const MAX_DEPTH: usize = 200;
+
+struct Parser {
+    toks: Vec<(Tok, Span)>,
+    pos: usize,
+    depth: usize,
+}
+
+impl Parser {
+    fn peek(&self) -> &Tok {
+        &self.toks[self.pos].0
+    }
+
+    fn span(&self) -> Span {
+        self.toks[self.pos].1
+    }
+
+    fn bump(&mut self) -> (Tok, Span) {
+        let t = self.toks[self.pos].clone();
+        if self.pos + 1 < self.toks.len() {
+            self.pos += 1;
+        }
+        t
+    }
+
+    fn enter(&mut self) -> Result<(), LangError> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(LangError::new(
+                ErrorKind::Syntax,
+                self.span(),
+                format!("expression nested more than {MAX_DEPTH} levels deep"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn expr(&mut self) -> Result<Expr, LangError> {
+        self.enter()?;
+        let mut lhs = self.term()?;
+        while let Tok::Op(c @ ('+' | '-')) = *self.peek() {
+            self.bump();
+            let rhs = self.term()?;
+            let span = lhs.span.to(rhs.span);
+            let (l, r) = (Box::new(lhs), Box::new(rhs));
+            let kind = if c == '+' {
+                ExprKind::Add(l, r)
+            } else {
+                ExprKind::Sub(l, r)
+            };
+            lhs = Expr { kind, span };
+        }
+        self.depth -= 1;
+        Ok(lhs)
+    }
+
+    fn starts_atom(&self) -> bool {
+        matches!(self.peek(), Tok::Num(_) | Tok::Name { .. } | Tok::Op('('))
+    }
+
+    fn term(&mut self) -> Result<Expr, LangError> {
+        let mut lhs = self.unary()?;
+        loop {
+            let div = match self.peek() {
+                Tok::Op('*') => false,
+                Tok::Op('/') => true,
+                _ if self.starts_atom() => {
+                    let rhs = self.unary()?;
+                    lhs = binary(lhs, rhs, ExprKind::Mul);
+                    continue;
+                }
+                _ => break,
+            };
+            self.bump();
+            let rhs = self.unary()?;
+            lhs = binary(lhs, rhs, if div { ExprKind::Div } else { ExprKind::Mul });
+        }
+        Ok(lhs)
+    }
+
+    fn unary(&mut self) -> Result<Expr, LangError> {
+        if let Tok::Op('-') = self.peek() {
+            let (_, span) = self.bump();
+            self.enter()?;
+            let inner = self.unary()?;
+            self.depth -= 1;
+            let span = span.to(inner.span);
+            return Ok(Expr {
+                kind: ExprKind::Neg(Box::new(inner)),
+                span,
+            });
+        }
+        self.power()
+    }
+
+    fn power(&mut self) -> Result<Expr, LangError> {
+        let base = self.atom()?;
+        if let Tok::Op('^') = self.peek() {
+            let (_, caret) = self.bump();
+            let (tok, span) = self.bump();
+            let exp = match tok {
+                Tok::Num(q) if q.is_integer() && !q.is_negative() => q
+                    .to_string()
+                    .parse::<u32>()
+                    .ok()
+                    .filter(|&e| e <= MAX_POWER),
+                _ => None,
+            };
+            let Some(exp) = exp else {
+                return Err(LangError::new(
+                    ErrorKind::Syntax,
+                    if span.end > span.start { span } else { caret },
+                    "`^` must be followed by a whole number",
+                )
+                .help(format!("write a power as x^2; exponents run from 0 to {MAX_POWER}")));
+            };
+            let span = base.span.to(span);
+            return Ok(Expr {
+                kind: ExprKind::Pow(Box::new(base), exp),
+                span,
+            });
+        }
+        Ok(base)
+    }
+
+    fn atom(&mut self) -> Result<Expr, LangError> {
+        let (tok, span) = self.bump();
+        match tok {
+            Tok::Num(q) => Ok(Expr {
+                kind: ExprKind::Number(q),
+                span,
+            }),
+            Tok::Name { full, base, indices } => {
+                let func = match full.as_str() {
+                    "sqrt" => Some(Func::Sqrt),
+                    "avg" => Some(Func::Avg),
+                    _ => None,
+                };
+                if let Some(func) = func {
+                    if *self.peek() != Tok::Op('(') {
+                        return Err(LangError::new(
+                            ErrorKind::Syntax,
+                            span,
+                            format!("`{full}` must be followed by `(`"),
+                        )
+                        .help(format!("write {full}(…)")));
+                    }
+                    let arg = self.parenthesised()?;
+                    let span = span.to(arg.span);
+                    return Ok(Expr {
+                        kind: ExprKind::Call(func, Box::new(arg)),
+                        span,
+                    });
+                }
+                Ok(Expr {
+                    kind: ExprKind::Name { full, base, indices },
+                    span,
+                })
+            }
+            Tok::Op('(') => {
+                self.pos -= 1;
+                self.parenthesised()
+            }
+            Tok::End => Err(LangError::new(
+                ErrorKind::Syntax,
+                span,
+                "expression ends too early",
+            )
+            .help("an operand is missing at the end")),
+            Tok::Op(c) => Err(LangError::new(
+                ErrorKind::Syntax,
+                span,
+                format!("expected an operand, found `{c}`"),
+            )),
+        }
+    }
+
+    /// `( expr )`, returning the inner expression with the parentheses' span.
+    fn parenthesised(&mut self) -> Result<Expr, LangError> {
+        let (_, open) = self.bump();
+        let mut inner = self.expr()?;
+        match self.bump() {
+            (Tok::Op(')'), close) => {
+                inner.span = open.to(close);
+                Ok(inner)
+            }
+            (_, span) => Err(LangError::new(
+                ErrorKind::Syntax,
+                open,
+                "this `(` is never closed",
+            )
+            .help(format!("add `)` (at column {} or earlier)", span.start + 1))),
+        }
+    }
+}
+
+fn binary(l: Expr, r: Expr, f: fn(Box<Expr>, Box<Expr>) -> ExprKind) -> Expr {
+    let span = l.span.to(r.span);
+    Expr {
+        kind: f(Box::new(l), Box::new(r)),
+        span,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn shape(e: &Expr) -> String {
+        match &e.kind {
+            ExprKind::Number(q) => q.to_string(),
+            ExprKind::Name { full, .. } => full.clone(),
+            ExprKind::Neg(a) => format!("(-{})", shape(a)),
+            ExprKind::Add(a, b) => format!("({} + {})", shape(a), shape(b)),
+            ExprKind::Sub(a, b) => format!("({} - {})", shape(a), shape(b)),
+            ExprKind::Mul(a, b) => format!("({} {})", shape(a), shape(b)),
+            ExprKind::Div(a, b) => format!("({} / {})", shape(a), shape(b)),
+            ExprKind::Pow(a, k) => format!("{}^{k}", shape(a)),
+            ExprKind::Call(f, a) => format!("{f:?}{}", shape(a)),
+        }
+    }
+
+    #[test]
+    fn precedence_and_juxtaposition() {
+        let e = parse_expr("sigma_ki n_k (delta_il - n_i n_l)").unwrap();
+        assert_eq!(shape(&e), "((sigma_ki n_k) (delta_il - (n_i n_l)))");
+        let e = parse_expr("1/3 delta_ij + 2R_g^2 x").unwrap();
+        assert_eq!(shape(&e), "(((1 / 3) delta_ij) + ((2 R_g^2) x))");
+        let e = parse_expr("3*V/(2*R_g)").unwrap();
+        assert_eq!(shape(&e), "((3 V) / (2 R_g))");
+        let e = parse_expr("-a - -b").unwrap();
+        assert_eq!(shape(&e), "((-a) - (-b))");
+        let e = parse_expr("avg(n_i n_j) - sqrt(4)").unwrap();
+        assert_eq!(shape(&e), "(Avg(n_i n_j) - Sqrt4)");
+    }
+
+    #[test]
+    fn names_split_into_base_and_indices() {
+        let e = parse_expr("sigma_k1").unwrap();
+        let ExprKind::Name { base, indices, .. } = e.kind else {
+            panic!()
+        };
+        assert_eq!(base, "sigma");
+        assert_eq!(indices.iter().map(|t| t.ch).collect::<String>(), "k1");
+        assert_eq!(indices[1].span, Span::new(7, 8));
+    }
+
+    #[test]
+    fn spans_point_at_tokens() {
+        let err = parse_expr("a + * b").unwrap_err();
+        assert_eq!(err.span, Span::new(4, 5));
+        assert_eq!(err.kind, ErrorKind::Syntax);
+        let err = parse_expr("(a + b").unwrap_err();
+        assert_eq!(err.span, Span::new(0, 1));
+        assert_eq!(parse_expr("a)").unwrap_err().message, "unmatched `)`");
+        assert_eq!(parse_expr("a # b").unwrap_err().span, Span::new(2, 3));
+        assert_eq!(parse_expr("x^y").unwrap_err().span, Span::new(2, 3));
+        assert_eq!(parse_expr("sigma_ ").unwrap_err().span, Span::new(5, 6));
+        assert!(parse_expr("").is_err());
+        assert!(parse_expr("1.2.3").is_err());
+        assert!(parse_expr("avg n").is_err());
+    }
+
+    #[test]
+    fn deep_nesting_is_an_error_not_a_crash() {
+        let deep = "(".repeat(5000) + "a" + &")".repeat(5000);
+        assert!(parse_expr(&deep).is_err());
+        let negs = "-".repeat(5000) + "a";
+        assert!(parse_expr(&negs).is_err());
+        let long = vec!["a"; 3000].join(" + ");
+        assert!(parse_expr(&long).unwrap_err().message.contains("longer than"));
+    }
+
+    #[test]
+    fn non_ascii_input_is_rejected_cleanly() {
+        let err = parse_expr("σ_ij").unwrap_err();
+        assert_eq!(err.span, Span::new(0, 2));
+    }
+}
