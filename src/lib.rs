@@ -5,5 +5,9 @@
 //! file under `derivations/`; the checker decides each claim and reports a verdict
 //! with its evidence. Data flows one way: file → parse/validate → decide → report.
 
+pub mod cli;
+pub mod derivation;
 pub mod kernel;
 pub mod lang;
+pub mod report;
+pub mod strategy;

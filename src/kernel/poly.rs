@@ -210,6 +210,11 @@ impl Poly {
         self.terms.iter()
     }
 
+    /// Whether this is the zero polynomial (canonical form: no terms at all).
+    pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
     pub fn num_terms(&self) -> usize {
         self.terms.len()
     }

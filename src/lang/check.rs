@@ -64,7 +64,10 @@ pub struct Node {
 #[derive(Clone, Debug, PartialEq)]
 pub enum NodeKind {
     Const(Rational),
-    Leaf { target: Target, slots: Vec<Slot> },
+    Leaf {
+        target: Target,
+        slots: Vec<Slot>,
+    },
     Sum(Vec<Node>),
     /// Indices that occur in two factors are summed over.
     Product(Vec<Node>),
@@ -76,6 +79,12 @@ pub enum NodeKind {
 }
 
 impl Node {
+    /// Whether the node is the literal `0`, which stands for a zero tensor of any
+    /// rank (`avg(n_i n_j n_k) = 0`).
+    pub fn is_literal_zero(&self) -> bool {
+        matches!(&self.kind, NodeKind::Const(q) if q.is_zero())
+    }
+
     /// The free index letters, sorted.
     pub fn free_letters(&self) -> Vec<char> {
         self.free.iter().map(|&(c, _)| c).collect()
@@ -130,7 +139,9 @@ impl Scope<'_> {
                             letters(&den.free_letters())
                         ),
                     )
-                    .help(format!("sum over `{c}` inside the divisor, or multiply instead")));
+                    .help(format!(
+                        "sum over `{c}` inside the divisor, or multiply instead"
+                    )));
                 }
                 reject_reuse(&[&num, &den])?;
                 let mut bound = num.bound.clone();
@@ -172,14 +183,25 @@ impl Scope<'_> {
             return Err(LangError::new(
                 ErrorKind::Index,
                 span,
-                format!("{what} takes a scalar, but this has free index {}", letters(&a.free_letters())),
+                format!(
+                    "{what} takes a scalar, but this has free index {}",
+                    letters(&a.free_letters())
+                ),
             )
-            .help(format!("contract `{c}` first, e.g. x_{c} x_{c} instead of x_{c}^2")));
+            .help(format!(
+                "contract `{c}` first, e.g. x_{c} x_{c} instead of x_{c}^2"
+            )));
         }
         Ok(a)
     }
 
-    fn name(&self, full: &str, base: &str, indices: &[IndexTok], span: Span) -> Result<Node, LangError> {
+    fn name(
+        &self,
+        full: &str,
+        base: &str,
+        indices: &[IndexTok],
+        span: Span,
+    ) -> Result<Node, LangError> {
         let dim = self.decls.dim;
         let def = |n: &str| self.defs.iter().rev().find(|d| d.name == n);
         // A whole token such as `R_g` may itself be a scalar's name.
@@ -257,7 +279,9 @@ impl Scope<'_> {
         known.dedup();
         let close = known
             .iter()
-            .filter(|k| k.eq_ignore_ascii_case(base) || k.starts_with(base) || base.starts_with(k.as_str()))
+            .filter(|k| {
+                k.eq_ignore_ascii_case(base) || k.starts_with(base) || base.starts_with(k.as_str())
+            })
             .cloned()
             .collect::<Vec<_>>();
         let help = if close.is_empty() {
@@ -335,7 +359,10 @@ impl Scope<'_> {
 
 /// Splits index occurrences into free (once) and summed (twice); a third occurrence is
 /// an error pointing at it.
-fn tally(counts: BTreeMap<char, Vec<Span>>) -> Result<(Vec<(char, Span)>, Vec<char>), LangError> {
+/// Free indices with where they occur, and summed letters.
+type Tally = (Vec<(char, Span)>, Vec<char>);
+
+fn tally(counts: BTreeMap<char, Vec<Span>>) -> Result<Tally, LangError> {
     let mut free = Vec::new();
     let mut bound = Vec::new();
     for (c, spans) in counts {
@@ -459,7 +486,11 @@ mod tests {
             name: "t".into(),
             formal: vec!['i'],
         }];
-        Scope { decls: &d, defs: &defs }.check(&parse_expr(src).unwrap())
+        Scope {
+            decls: &d,
+            defs: &defs,
+        }
+        .check(&parse_expr(src).unwrap())
     }
 
     fn free(src: &str) -> String {
@@ -501,10 +532,15 @@ mod tests {
 
     #[test]
     fn scalars_only_where_scalars_belong() {
-        assert_eq!(err("x_i / n_i").1, "a divisor must be a scalar, but this one has free index i");
+        assert_eq!(
+            err("x_i / n_i").1,
+            "a divisor must be a scalar, but this one has free index i"
+        );
         assert!(err("x_i^2").1.contains("a power takes a scalar"));
         assert!(err("sqrt(n_i)").1.contains("sqrt takes a scalar"));
-        assert!(err("n_i / (x_i x_i)").1.contains("summed inside another factor"));
+        assert!(err("n_i / (x_i x_i)")
+            .1
+            .contains("summed inside another factor"));
         let (_, msg, span) = err("x_j (x_j n_j + 1)");
         assert!(msg.contains("summed inside another factor"), "{msg}");
         assert_eq!(span, Span::new(2, 3));
@@ -512,7 +548,10 @@ mod tests {
 
     #[test]
     fn ranks_and_dimensions() {
-        assert_eq!(err("sigma_i").1, "`sigma` has rank 2 but is written with 1 index");
+        assert_eq!(
+            err("sigma_i").1,
+            "`sigma` has rank 2 but is written with 1 index"
+        );
         assert_eq!(err("eps_ij").0, ErrorKind::Dimension);
         let (kind, msg, span) = err("sigma_14");
         assert_eq!(kind, ErrorKind::Dimension);

@@ -94,13 +94,7 @@ impl Origin {
 
     /// The file span of an expression span.
     pub fn file_span(&self, span: Span) -> Span {
-        let at = |k: usize| {
-            self.map
-                .get(k)
-                .or(self.map.last())
-                .copied()
-                .unwrap_or(0)
-        };
+        let at = |k: usize| self.map.get(k).or(self.map.last()).copied().unwrap_or(0);
         let start = at(span.start);
         let end = if span.end > span.start {
             at(span.end - 1) + 1

@@ -155,7 +155,14 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
                 .help("write indices right after the underscore, as in sigma_ki"));
             }
             let full = src[start..k].to_owned();
-            out.push((Tok::Name { full, base, indices }, Span::new(start, k)));
+            out.push((
+                Tok::Name {
+                    full,
+                    base,
+                    indices,
+                },
+                Span::new(start, k),
+            ));
         } else if "+-*/^()".contains(c) {
             k += 1;
             out.push((Tok::Op(c), Span::new(start, k)));
@@ -196,13 +203,11 @@ pub fn parse_expr(src: &str) -> Result<Expr, LangError> {
     let e = p.expr()?;
     match p.peek() {
         Tok::End => Ok(e),
-        Tok::Op(')') => Err(LangError::new(
-            ErrorKind::Syntax,
-            p.span(),
-            "unmatched `)`",
-        )),
-        _ => Err(LangError::new(ErrorKind::Syntax, p.span(), "unexpected token")
-            .help("an operator may be missing here")),
+        Tok::Op(')') => Err(LangError::new(ErrorKind::Syntax, p.span(), "unmatched `)`")),
+        _ => Err(
+            LangError::new(ErrorKind::Syntax, p.span(), "unexpected token")
+                .help("an operator may be missing here"),
+        ),
     }
 }
 
@@ -321,7 +326,9 @@ impl Parser {
                     if span.end > span.start { span } else { caret },
                     "`^` must be followed by a whole number",
                 )
-                .help(format!("write a power as x^2; exponents run from 0 to {MAX_POWER}")));
+                .help(format!(
+                    "write a power as x^2; exponents run from 0 to {MAX_POWER}"
+                )));
             };
             let span = base.span.to(span);
             return Ok(Expr {
@@ -339,7 +346,11 @@ impl Parser {
                 kind: ExprKind::Number(q),
                 span,
             }),
-            Tok::Name { full, base, indices } => {
+            Tok::Name {
+                full,
+                base,
+                indices,
+            } => {
                 let func = match full.as_str() {
                     "sqrt" => Some(Func::Sqrt),
                     "avg" => Some(Func::Avg),
@@ -362,7 +373,11 @@ impl Parser {
                     });
                 }
                 Ok(Expr {
-                    kind: ExprKind::Name { full, base, indices },
+                    kind: ExprKind::Name {
+                        full,
+                        base,
+                        indices,
+                    },
                     span,
                 })
             }
@@ -370,12 +385,10 @@ impl Parser {
                 self.pos -= 1;
                 self.parenthesised()
             }
-            Tok::End => Err(LangError::new(
-                ErrorKind::Syntax,
-                span,
-                "expression ends too early",
-            )
-            .help("an operand is missing at the end")),
+            Tok::End => Err(
+                LangError::new(ErrorKind::Syntax, span, "expression ends too early")
+                    .help("an operand is missing at the end"),
+            ),
             Tok::Op(c) => Err(LangError::new(
                 ErrorKind::Syntax,
                 span,
@@ -393,12 +406,10 @@ impl Parser {
                 inner.span = open.to(close);
                 Ok(inner)
             }
-            (_, span) => Err(LangError::new(
-                ErrorKind::Syntax,
-                open,
-                "this `(` is never closed",
-            )
-            .help(format!("add `)` (at column {} or earlier)", span.start + 1))),
+            (_, span) => Err(
+                LangError::new(ErrorKind::Syntax, open, "this `(` is never closed")
+                    .help(format!("add `)` (at column {} or earlier)", span.start + 1)),
+            ),
         }
     }
 }
@@ -477,7 +488,10 @@ mod tests {
         let negs = "-".repeat(5000) + "a";
         assert!(parse_expr(&negs).is_err());
         let long = vec!["a"; 3000].join(" + ");
-        assert!(parse_expr(&long).unwrap_err().message.contains("longer than"));
+        assert!(parse_expr(&long)
+            .unwrap_err()
+            .message
+            .contains("longer than"));
     }
 
     #[test]

@@ -1,0 +1,791 @@
+//! Reading derivation files: TOML text → checked [`DerivationFile`]s. Every mistake
+//! becomes a [`Diagnostic`] naming the file, line and column; nothing panics.
+
+use super::model::{
+    Assumption, Check, Claim, Correction, Definition, DerivationFile, Side, Verdict,
+};
+use crate::lang::check::{letters, RESERVED};
+use crate::lang::parser::ExprKind;
+use crate::lang::{
+    parse_expr, Decls, DefSig, Diagnostic, ErrorKind, LangError, Origin, Scope, SourceFile, Span,
+};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::fmt;
+use std::ops::Range;
+use std::path::Path;
+use std::sync::Arc;
+use toml::Spanned;
+
+type S = Spanned<String>;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    section: S,
+    title: S,
+    dimension: Spanned<i64>,
+    normal: Option<S>,
+    #[serde(default)]
+    tensors: Vec<S>,
+    #[serde(default)]
+    scalars: Vec<S>,
+    #[serde(default)]
+    define: Vec<S>,
+    #[serde(default)]
+    claim: Vec<RawClaim>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawClaim {
+    id: S,
+    section: Option<S>,
+    printed: S,
+    #[serde(default)]
+    prose: bool,
+    expect: S,
+    reason: Option<S>,
+    note: Option<S>,
+    #[serde(default)]
+    verbatim: bool,
+    #[serde(default)]
+    define: Vec<S>,
+    #[serde(default)]
+    assume: Vec<S>,
+    sides: Option<Vec<S>>,
+    chains: Option<Vec<Vec<S>>>,
+    correction: Option<RawCorrection>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCorrection {
+    printed: S,
+    reason: S,
+    expect: S,
+    #[serde(default)]
+    verbatim: bool,
+    #[serde(default)]
+    define: Vec<S>,
+    #[serde(default)]
+    assume: Vec<S>,
+    sides: Option<Vec<S>>,
+    chains: Option<Vec<Vec<S>>>,
+}
+
+/// Why derivation files could not be read.
+#[derive(Debug)]
+pub enum LoadError {
+    /// The file or directory could not be read at all.
+    Io { path: String, message: String },
+    /// The file was read but is malformed.
+    Invalid(Vec<Diagnostic>),
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LoadError::Io { path, message } => write!(f, "error: cannot read {path}: {message}"),
+            LoadError::Invalid(ds) => {
+                let parts: Vec<String> = ds.iter().map(ToString::to_string).collect();
+                f.write_str(&parts.join("\n\n"))
+            }
+        }
+    }
+}
+
+impl std::error::Error for LoadError {}
+
+impl From<Diagnostic> for LoadError {
+    fn from(d: Diagnostic) -> Self {
+        LoadError::Invalid(vec![d])
+    }
+}
+
+/// Reads every `*.toml` file directly in `dir` (sorted by name), and checks that
+/// claim ids are unique across them.
+pub fn load_dir(dir: &Path) -> Result<Vec<DerivationFile>, LoadError> {
+    let io = |e: std::io::Error| LoadError::Io {
+        path: dir.display().to_string(),
+        message: e.to_string(),
+    };
+    let mut paths: Vec<_> = std::fs::read_dir(dir)
+        .map_err(io)?
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    if paths.is_empty() {
+        return Err(LoadError::Io {
+            path: dir.display().to_string(),
+            message: "no derivation files (*.toml) in this directory".into(),
+        });
+    }
+    load_files(&paths)
+}
+
+/// Reads the given files in order, checking that claim ids are unique across them.
+pub fn load_files(paths: &[impl AsRef<Path>]) -> Result<Vec<DerivationFile>, LoadError> {
+    let mut files = Vec::new();
+    let mut seen: BTreeMap<String, String> = BTreeMap::new();
+    for path in paths {
+        let (file, ids) = load_file_with_ids(path.as_ref())?;
+        for (id, diag) in ids {
+            if let Some(first) = seen.get(&id) {
+                return Err(
+                    diag(format!("duplicate claim id `{id}` (first used in {first})")).into(),
+                );
+            }
+            seen.insert(id, file.path.clone());
+        }
+        files.push(file);
+    }
+    Ok(files)
+}
+
+type IdDiag = Box<dyn Fn(String) -> Diagnostic>;
+
+fn load_file_with_ids(path: &Path) -> Result<(DerivationFile, Vec<(String, IdDiag)>), LoadError> {
+    let label = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| LoadError::Io {
+        path: label.clone(),
+        message: e.to_string(),
+    })?;
+    let text = match String::from_utf8(bytes) {
+        Ok(t) => t,
+        Err(e) => {
+            let valid = e.utf8_error().valid_up_to();
+            let lossy = String::from_utf8_lossy(e.as_bytes()).into_owned();
+            let file = SourceFile::new(label, lossy);
+            let prefix_chars = String::from_utf8_lossy(&e.as_bytes()[..valid]).len();
+            return Err(file
+                .diagnostic(
+                    Span::new(prefix_chars, prefix_chars + 1),
+                    "this file is not UTF-8 text",
+                )
+                .with_help("derivation files are UTF-8 TOML; check that the right file was given")
+                .into());
+        }
+    };
+    let file = SourceFile::new(label, text);
+    Loader::new(file).run()
+}
+
+/// Reads one derivation file given as text (`label` names it in diagnostics).
+pub fn load_str(label: &str, text: &str) -> Result<DerivationFile, LoadError> {
+    Loader::new(SourceFile::new(label, text))
+        .run()
+        .map(|(f, _)| f)
+}
+
+struct Loader {
+    file: Arc<SourceFile>,
+}
+
+impl Loader {
+    fn new(file: Arc<SourceFile>) -> Self {
+        Loader { file }
+    }
+
+    fn diag(&self, span: Range<usize>, msg: impl Into<String>) -> Diagnostic {
+        self.file.diagnostic(Span::new(span.start, span.end), msg)
+    }
+
+    /// The origin of a TOML string value, mapping its characters to file offsets.
+    fn origin(&self, s: &S) -> Origin {
+        Origin {
+            file: self.file.clone(),
+            map: content_map(&self.file.text, s.span(), s.get_ref()),
+        }
+    }
+
+    fn lang(&self, origin: &Origin, e: LangError) -> Diagnostic {
+        let d = origin.diagnostic(e.span, e.message);
+        match e.help {
+            Some(h) => d.with_help(h),
+            None => d,
+        }
+    }
+
+    fn run(self) -> Result<(DerivationFile, Vec<(String, IdDiag)>), LoadError> {
+        let raw: RawFile = toml::from_str(&self.file.text).map_err(|e| {
+            let span = e.span().unwrap_or(0..0);
+            self.diag(
+                span,
+                format!("malformed derivation file: {}", e.message().trim()),
+            )
+            .with_help("see README.md, section \"Derivation files\", for the format")
+        })?;
+        let decls = Arc::new(self.decls(&raw)?);
+        let mut defs = Vec::new();
+        for d in &raw.define {
+            let def = self.definition(d, &decls, &defs)?;
+            defs.push(def);
+        }
+        let mut claims = Vec::new();
+        let mut ids: Vec<(String, IdDiag)> = Vec::new();
+        let mut local_ids = BTreeMap::new();
+        for c in &raw.claim {
+            let id = c.id.get_ref().clone();
+            if !valid_id(&id) {
+                return Err(self
+                    .diag(c.id.span(), format!("`{id}` is not a valid claim id"))
+                    .with_help("ids use letters, digits and `-`, like eq33 or odd-averages")
+                    .into());
+            }
+            if local_ids.insert(id.clone(), ()).is_some() {
+                return Err(self
+                    .diag(c.id.span(), format!("duplicate claim id `{id}`"))
+                    .into());
+            }
+            let file = self.file.clone();
+            let span = c.id.span();
+            ids.push((
+                id,
+                Box::new(move |m| file.diagnostic(Span::new(span.start, span.end), m)),
+            ));
+            claims.push(self.claim(c, &raw, &decls, &defs)?);
+        }
+        Ok((
+            DerivationFile {
+                path: self.file.path.clone(),
+                section: raw.section.get_ref().clone(),
+                title: raw.title.get_ref().clone(),
+                claims,
+            },
+            ids,
+        ))
+    }
+
+    fn decls(&self, raw: &RawFile) -> Result<Decls, Diagnostic> {
+        let dim = *raw.dimension.get_ref();
+        if !(dim == 2 || dim == 3) {
+            return Err(self
+                .diag(
+                    raw.dimension.span(),
+                    format!("dimension must be 2 or 3, not {dim}"),
+                )
+                .with_help("the paper works in 3D (Section 3) and 2D (Sections 4–6)"));
+        }
+        let mut decls = Decls {
+            dim: dim as usize,
+            normal: None,
+            symbols: BTreeMap::new(),
+        };
+        let declare = |decls: &mut Decls, name: String, rank: usize, s: &S| {
+            if RESERVED.contains(&name.as_str())
+                || decls.symbols.contains_key(&name)
+                || decls.normal.as_ref() == Some(&name)
+            {
+                return Err(self.diag(
+                    s.span(),
+                    format!("`{name}` is declared twice or is a built-in name"),
+                ));
+            }
+            decls.symbols.insert(name, rank);
+            Ok(())
+        };
+        if let Some(n) = &raw.normal {
+            let (base, idx) = self.name_token(n)?;
+            if !idx.is_empty() || RESERVED.contains(&base.as_str()) {
+                return Err(self
+                    .diag(n.span(), "the normal is named without indices, e.g. \"n\"")
+                    .with_help("write normal = \"n\" and use it as n_i"));
+            }
+            decls.normal = Some(base);
+        }
+        for t in &raw.tensors {
+            let (base, idx) = self.name_token(t)?;
+            let distinct = idx.iter().all(|c| c.is_ascii_alphabetic())
+                && idx.iter().collect::<std::collections::BTreeSet<_>>().len() == idx.len();
+            if idx.is_empty() || !distinct {
+                return Err(self
+                    .diag(
+                        t.span(),
+                        "a tensor is declared with distinct index letters, one per slot",
+                    )
+                    .with_help("e.g. \"sigma_ij\" for a rank-2 tensor; scalars go in `scalars`"));
+            }
+            declare(&mut decls, base, idx.len(), t)?;
+        }
+        for s in &raw.scalars {
+            self.name_token(s)?;
+            declare(&mut decls, s.get_ref().trim().to_owned(), 0, s)?;
+        }
+        Ok(decls)
+    }
+
+    /// A single name token (`sigma_ij`, `R_g`, `n`): its base and index characters.
+    fn name_token(&self, s: &S) -> Result<(String, Vec<char>), Diagnostic> {
+        let origin = self.origin(s);
+        let e = parse_expr(s.get_ref()).map_err(|e| self.lang(&origin, e))?;
+        match e.kind {
+            ExprKind::Name { base, indices, .. } => {
+                Ok((base, indices.iter().map(|t| t.ch).collect()))
+            }
+            _ => Err(self.diag(
+                s.span(),
+                "expected a single name here, like sigma_ij or R_g",
+            )),
+        }
+    }
+
+    fn definition(
+        &self,
+        s: &S,
+        decls: &Decls,
+        visible: &[Definition],
+    ) -> Result<Definition, Diagnostic> {
+        let origin = self.origin(s);
+        let text = s.get_ref();
+        let Some(eq) = text.find('=') else {
+            return Err(origin
+                .diagnostic(Span::new(0, text.len()), "a definition needs `=`")
+                .with_help("write it as name_ij = expression, e.g. t_i = sigma_ki n_k"));
+        };
+        let (name, formal, name_span) = self.lhs_name(&origin, text, eq)?;
+        if RESERVED.contains(&name.as_str())
+            || decls.symbols.contains_key(&name)
+            || decls.normal.as_ref() == Some(&name)
+            || visible.iter().any(|d| d.sig.name == name)
+        {
+            return Err(origin
+                .diagnostic(
+                    name_span,
+                    format!("`{name}` is already declared or defined"),
+                )
+                .with_help("choose a new name; definitions cannot redefine a name"));
+        }
+        let sigs: Vec<DefSig> = visible.iter().map(|d| d.sig.clone()).collect();
+        let body = self.rhs(&origin, text, eq, decls, &sigs)?;
+        let mut want = formal.clone();
+        want.sort_unstable();
+        if body.free_letters() != want {
+            return Err(origin
+                .diagnostic(
+                    name_span,
+                    format!(
+                    "`{name}` is defined with indices {} but its right side has free indices {}",
+                    letters(&formal),
+                    letters(&body.free_letters())
+                ),
+                )
+                .with_help("the defined name carries exactly the free indices of its right side"));
+        }
+        Ok(Definition {
+            sig: DefSig { name, formal },
+            body,
+            origin,
+            text: text.clone(),
+        })
+    }
+
+    /// The left side of `name_ij = …`: a name with distinct letter indices.
+    fn lhs_name(
+        &self,
+        origin: &Origin,
+        text: &str,
+        eq: usize,
+    ) -> Result<(String, Vec<char>, Span), Diagnostic> {
+        let lhs = &text[..eq];
+        let sub = sub_origin(origin, 0..eq);
+        let e = parse_expr(lhs).map_err(|e| self.lang(&sub, e))?;
+        let ExprKind::Name {
+            full,
+            base,
+            indices,
+        } = e.kind
+        else {
+            return Err(sub.diagnostic(e.span, "the left side must be a single name such as t_i"));
+        };
+        let letters_only = indices.iter().all(|t| t.ch.is_ascii_alphabetic());
+        let distinct = indices
+            .iter()
+            .map(|t| t.ch)
+            .collect::<std::collections::BTreeSet<_>>()
+            .len()
+            == indices.len();
+        if !letters_only || !distinct {
+            return Err(sub
+                .diagnostic(e.span, "a defined name carries distinct index letters")
+                .with_help("e.g. t_i or mu_ij; fixed components cannot be defined one by one"));
+        }
+        let _ = full;
+        Ok((base, indices.iter().map(|t| t.ch).collect(), e.span))
+    }
+
+    fn rhs(
+        &self,
+        origin: &Origin,
+        text: &str,
+        eq: usize,
+        decls: &Decls,
+        defs: &[DefSig],
+    ) -> Result<crate::lang::Node, Diagnostic> {
+        let rhs_text = &text[eq + 1..];
+        let sub = sub_origin(origin, eq + 1..text.len());
+        let e = parse_expr(rhs_text).map_err(|e| self.lang(&sub, e))?;
+        Scope { decls, defs }
+            .check(&e)
+            .map_err(|e| self.lang(&sub, e))
+    }
+
+    fn assumption(&self, s: &S, decls: &Decls) -> Result<Assumption, Diagnostic> {
+        let origin = self.origin(s);
+        let text = s.get_ref();
+        if let Some(eq) = text.find('=') {
+            let (name, formal, span) = self.lhs_name(&origin, text, eq)?;
+            match decls.symbols.get(&name) {
+                Some(&rank) if rank == formal.len() => {}
+                Some(&rank) => {
+                    return Err(origin.diagnostic(
+                        span,
+                        format!("`{name}` has rank {rank}, so it takes {rank} indices here"),
+                    ))
+                }
+                None => {
+                    return Err(origin
+                        .diagnostic(span, format!("`{name}` is not a declared symbol"))
+                        .with_help(
+                            "an assumption constrains a symbol from `tensors` or `scalars`",
+                        ))
+                }
+            }
+            let body = self.rhs(&origin, text, eq, decls, &[])?;
+            let mut want = formal.clone();
+            want.sort_unstable();
+            if body.free_letters() != want {
+                return Err(origin.diagnostic(
+                    span,
+                    format!(
+                        "the right side has free indices {}, not {}",
+                        letters(&body.free_letters()),
+                        letters(&formal)
+                    ),
+                ));
+            }
+            return Ok(Assumption::Equals {
+                symbol: name,
+                formal,
+                body,
+                origin,
+            });
+        }
+        let trimmed = text.trim();
+        let parsed = trimmed
+            .strip_suffix(')')
+            .and_then(|t| t.split_once('('))
+            .map(|(f, a)| (f.trim(), a.trim()));
+        let usage = "write traceless(X), symmetric(X), antisymmetric(X) or X = expression";
+        let Some((func, arg)) = parsed else {
+            return Err(origin
+                .diagnostic(Span::new(0, text.len()), "unrecognised assumption")
+                .with_help(usage));
+        };
+        let lead = text.len() - text.trim_start().len();
+        let arg_at = lead + trimmed.find('(').unwrap_or(0) + 1;
+        let arg_span = Span::new(arg_at, arg_at + arg.len().max(1));
+        if decls.symbols.get(arg) != Some(&2) {
+            return Err(origin
+                .diagnostic(arg_span, format!("`{arg}` is not a declared rank-2 tensor"))
+                .with_help(
+                    "these assumptions apply to a symbol declared in `tensors`, e.g. \"s_ij\"",
+                ));
+        }
+        let symbol = arg.to_owned();
+        match func {
+            "traceless" => Ok(Assumption::Traceless { symbol }),
+            "symmetric" => Ok(Assumption::Symmetric { symbol }),
+            "antisymmetric" => Ok(Assumption::Antisymmetric { symbol }),
+            _ => Err(origin
+                .diagnostic(
+                    Span::new(lead, lead + func.len().max(1)),
+                    format!("unknown assumption `{func}`"),
+                )
+                .with_help(usage)),
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn check(
+        &self,
+        anchor: &S,
+        decls: &Decls,
+        defs: &[Definition],
+        define: &[S],
+        assume: &[S],
+        sides: &Option<Vec<S>>,
+        chains: &Option<Vec<Vec<S>>>,
+        verbatim: bool,
+    ) -> Result<Check, Diagnostic> {
+        let mut defs = defs.to_vec();
+        for d in define {
+            let def = self.definition(d, decls, &defs)?;
+            defs.push(def);
+        }
+        let assumptions = assume
+            .iter()
+            .map(|a| self.assumption(a, decls))
+            .collect::<Result<Vec<_>, _>>()?;
+        let raw_chains: Vec<&Vec<S>> = match (sides, chains) {
+            (Some(s), None) => vec![s],
+            (None, Some(c)) => c.iter().collect(),
+            (Some(_), Some(_)) => {
+                return Err(self
+                    .diag(anchor.span(), "give either `sides` or `chains`, not both")
+                    .with_help(
+                        "`sides` is one chain a = b = …; `chains` is a list of such chains",
+                    ))
+            }
+            (None, None) => {
+                return Err(self
+                    .diag(
+                        anchor.span(),
+                        "this statement has no `sides` (or `chains`) to check",
+                    )
+                    .with_help("add sides = [\"left\", \"right\"] in index notation"))
+            }
+        };
+        if raw_chains.is_empty() {
+            return Err(self.diag(anchor.span(), "`chains` is empty"));
+        }
+        let sigs: Vec<DefSig> = defs.iter().map(|d| d.sig.clone()).collect();
+        let scope = Scope { decls, defs: &sigs };
+        let mut out = Vec::new();
+        for chain in raw_chains {
+            if chain.len() < 2 {
+                let at = chain.first().map_or(anchor.span(), Spanned::span);
+                return Err(self
+                    .diag(at, "an equation chain needs at least two sides")
+                    .with_help("write sides = [\"left\", \"right\"]"));
+            }
+            let mut checked: Vec<Side> = Vec::new();
+            for s in chain {
+                let origin = self.origin(s);
+                let e = parse_expr(s.get_ref()).map_err(|e| self.lang(&origin, e))?;
+                let node = match scope.check(&e) {
+                    Ok(n) => Ok(n),
+                    Err(e) if verbatim && e.kind == ErrorKind::Index => Err(e),
+                    Err(e) => return Err(self.lang(&origin, e)),
+                };
+                if let (Some(Side { node: Ok(prev), .. }), Ok(cur)) = (checked.last(), &node) {
+                    let zero = prev.is_literal_zero() || cur.is_literal_zero();
+                    if prev.free_letters() != cur.free_letters() && !verbatim && !zero {
+                        return Err(origin
+                            .diagnostic(
+                                Span::new(0, s.get_ref().len()),
+                                format!(
+                                    "the sides have different free indices: {} on the left, {} here",
+                                    letters(&prev.free_letters()),
+                                    letters(&cur.free_letters())
+                                ),
+                            )
+                            .with_help("both sides of an equation carry the same free indices; for a printed statement that does not, set verbatim = true"));
+                    }
+                }
+                checked.push(Side {
+                    text: s.get_ref().clone(),
+                    origin,
+                    node,
+                });
+            }
+            out.push(checked);
+        }
+        Ok(Check {
+            defs,
+            assumptions,
+            chains: out,
+            verbatim,
+        })
+    }
+
+    fn verdict(&self, s: &S) -> Result<Verdict, Diagnostic> {
+        Verdict::parse(s.get_ref()).ok_or_else(|| {
+            self.diag(s.span(), format!("unknown verdict `{}`", s.get_ref()))
+                .with_help("expect is one of \"holds\", \"fails\", \"conditional\"")
+        })
+    }
+
+    fn claim(
+        &self,
+        c: &RawClaim,
+        raw: &RawFile,
+        decls: &Arc<Decls>,
+        defs: &[Definition],
+    ) -> Result<Claim, Diagnostic> {
+        let expect = self.verdict(&c.expect)?;
+        if expect != Verdict::Holds && c.reason.is_none() {
+            return Err(self
+                .diag(c.expect.span(), format!("a claim expected to be `{expect}` needs a `reason`"))
+                .with_help("add reason = \"…\": one sentence saying why the printed statement does not hold"));
+        }
+        let check = self.check(
+            &c.id, decls, defs, &c.define, &c.assume, &c.sides, &c.chains, c.verbatim,
+        )?;
+        let correction = match &c.correction {
+            None => None,
+            Some(r) => {
+                let expect = self.verdict(&r.expect)?;
+                // The correction sees the claim's definitions and assumptions too.
+                let mut inner = self.check(
+                    &r.printed,
+                    decls,
+                    &check.defs,
+                    &r.define,
+                    &r.assume,
+                    &r.sides,
+                    &r.chains,
+                    r.verbatim,
+                )?;
+                let mut assumptions = check.assumptions.clone();
+                assumptions.append(&mut inner.assumptions);
+                inner.assumptions = assumptions;
+                Some(Correction {
+                    statement: r.printed.get_ref().clone(),
+                    reason: r.reason.get_ref().clone(),
+                    expect,
+                    check: inner,
+                })
+            }
+        };
+        Ok(Claim {
+            id: c.id.get_ref().clone(),
+            section: c.section.as_ref().unwrap_or(&raw.section).get_ref().clone(),
+            statement: c.printed.get_ref().clone(),
+            prose: c.prose,
+            expect,
+            reason: c.reason.as_ref().map(|r| r.get_ref().clone()),
+            note: c.note.as_ref().map(|r| r.get_ref().clone()),
+            decls: decls.clone(),
+            check,
+            correction,
+        })
+    }
+}
+
+fn valid_id(id: &str) -> bool {
+    !id.is_empty()
+        && id
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+}
+
+fn sub_origin(origin: &Origin, range: Range<usize>) -> Origin {
+    let end = range.end.min(origin.map.len().saturating_sub(1));
+    let start = range.start.min(end);
+    Origin {
+        file: origin.file.clone(),
+        map: origin.map[start..=end].to_vec(),
+    }
+}
+
+/// Maps each byte of a TOML string's value to its byte offset in the file. Literal
+/// strings map one to one; escapes in basic strings map to their backslash. When the
+/// raw text cannot be matched to the value, every byte maps to the string's start.
+fn content_map(text: &str, span: Range<usize>, value: &str) -> Vec<usize> {
+    let fallback = || vec![span.start; value.len() + 1];
+    let Some(raw) = text.get(span.clone()) else {
+        return fallback();
+    };
+    let (open, literal) = if raw.starts_with("'''") {
+        (3, true)
+    } else if raw.starts_with("\"\"\"") {
+        (3, false)
+    } else if raw.starts_with('\'') {
+        (1, true)
+    } else if raw.starts_with('"') {
+        (1, false)
+    } else {
+        return fallback();
+    };
+    let mut pos = span.start + open;
+    if open == 3 {
+        if text[pos..].starts_with("\r\n") {
+            pos += 2;
+        } else if text[pos..].starts_with('\n') {
+            pos += 1;
+        }
+    }
+    if literal {
+        if text.get(pos..pos + value.len()) != Some(value) {
+            return fallback();
+        }
+        return (0..=value.len()).map(|k| pos + k).collect();
+    }
+    let mut map = Vec::with_capacity(value.len() + 1);
+    let mut decoded = String::with_capacity(value.len());
+    let body = &text[pos..span.end];
+    let mut it = body.char_indices().peekable();
+    while decoded.len() < value.len() {
+        let Some((k, c)) = it.next() else { break };
+        let at = pos + k;
+        let ch = if c == '\\' {
+            match it.next() {
+                Some((_, 'n')) => '\n',
+                Some((_, 't')) => '\t',
+                Some((_, 'r')) => '\r',
+                Some((_, 'b')) => '\u{8}',
+                Some((_, 'f')) => '\u{c}',
+                Some((_, 'e')) => '\u{1b}',
+                Some((_, '"')) => '"',
+                Some((_, '\\')) => '\\',
+                Some((_, u @ ('u' | 'U'))) => {
+                    let n = if u == 'u' { 4 } else { 8 };
+                    let hex: String = (0..n).filter_map(|_| it.next().map(|(_, h)| h)).collect();
+                    match u32::from_str_radix(&hex, 16).ok().and_then(char::from_u32) {
+                        Some(ch) => ch,
+                        None => return fallback(),
+                    }
+                }
+                Some((_, w)) if w.is_whitespace() => {
+                    // Line-ending backslash: skip all following whitespace.
+                    while it.peek().is_some_and(|(_, w)| w.is_whitespace()) {
+                        it.next();
+                    }
+                    continue;
+                }
+                _ => return fallback(),
+            }
+        } else {
+            c
+        };
+        for _ in 0..ch.len_utf8() {
+            map.push(at);
+        }
+        decoded.push(ch);
+    }
+    if decoded != value {
+        return fallback();
+    }
+    map.push(map.last().map_or(pos, |&m| m + 1));
+    map
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn content_maps_follow_quotes_and_escapes() {
+        let text = r#"a = 'x_i y'
+b = "p\tq_i"
+c = '''
+m_k'''"#;
+        let span = |v: &str| {
+            let k = text.find(v).unwrap();
+            k..k + v.len()
+        };
+        assert_eq!(
+            content_map(text, span("'x_i y'"), "x_i y")[2],
+            text.find("i y").unwrap()
+        );
+        let m = content_map(text, span(r#""p\tq_i""#), "p\tq_i");
+        assert_eq!(m[2], text.find("q_i").unwrap());
+        let m = content_map(text, span("'''\nm_k'''"), "m_k");
+        assert_eq!(m[0], text.find("m_k").unwrap());
+        // A value that does not match its raw text falls back to the string's start.
+        assert_eq!(content_map(text, span("'x_i y'"), "zzz"), vec![4; 4]);
+    }
+}

@@ -1,0 +1,9 @@
+//! Derivation files: the claims of the paper, one file per section, in TOML with
+//! expressions in index notation. [`load`] reads and validates them into the
+//! [`model`] types.
+
+pub mod load;
+pub mod model;
+
+pub use load::{load_dir, load_files, load_str, LoadError};
+pub use model::{Assumption, Check, Claim, Correction, Definition, DerivationFile, Side, Verdict};

@@ -1,0 +1,88 @@
+//! The JSON contract of `check --format json`. Later versions may add fields but never
+//! remove or rename these: `paper`, `claims[]` (`id`, `section`, `statement`,
+//! `verdict`, `method`, `expected`, `checks`, `counterexample`, `correction`), and
+//! `summary` (`holds`, `fails`, `conditional`, `unexpected`).
+
+use super::{Summary, PAPER};
+use crate::strategy::{Counterexample, Decided, Method};
+use serde::Serialize;
+
+#[derive(Serialize)]
+struct Report<'a> {
+    paper: &'a str,
+    claims: Vec<ClaimRow<'a>>,
+    summary: Summary,
+}
+
+#[derive(Serialize)]
+struct ClaimRow<'a> {
+    id: &'a str,
+    section: &'a str,
+    statement: &'a str,
+    verdict: &'static str,
+    method: Method,
+    expected: &'static str,
+    checks: usize,
+    counterexample: Option<&'a Counterexample>,
+    correction: Option<CorrectionRow<'a>>,
+    as_expected: bool,
+    used_unit_normal: bool,
+    reason: Option<&'a str>,
+    note: Option<&'a str>,
+}
+
+#[derive(Serialize)]
+struct CorrectionRow<'a> {
+    statement: &'a str,
+    verdict: &'static str,
+    method: Method,
+    expected: &'static str,
+    checks: usize,
+    counterexample: Option<&'a Counterexample>,
+    reason: &'a str,
+}
+
+/// Renders the table as pretty-printed JSON (deterministic: fixed field order).
+pub fn render(rows: &[Decided<'_>]) -> String {
+    let claims = rows
+        .iter()
+        .map(|r| {
+            let c = r.claim;
+            ClaimRow {
+                id: &c.id,
+                section: &c.section,
+                statement: &c.statement,
+                verdict: r.outcome.verdict.as_str(),
+                method: r.outcome.method,
+                expected: c.expect.as_str(),
+                checks: r.outcome.checks,
+                counterexample: r.outcome.counterexample.as_ref(),
+                correction: c
+                    .correction
+                    .as_ref()
+                    .zip(r.correction.as_ref())
+                    .map(|(k, o)| CorrectionRow {
+                        statement: &k.statement,
+                        verdict: o.verdict.as_str(),
+                        method: o.method,
+                        expected: k.expect.as_str(),
+                        checks: o.checks,
+                        counterexample: o.counterexample.as_ref(),
+                        reason: &k.reason,
+                    }),
+                as_expected: r.as_expected(),
+                used_unit_normal: r.outcome.used_unit_normal,
+                reason: c.reason.as_deref(),
+                note: c.note.as_deref(),
+            }
+        })
+        .collect();
+    let report = Report {
+        paper: PAPER,
+        claims,
+        summary: Summary::of(rows),
+    };
+    let mut s = serde_json::to_string_pretty(&report).expect("plain data serialises");
+    s.push('\n');
+    s
+}

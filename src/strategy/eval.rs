@@ -1,0 +1,350 @@
+//! Exact evaluation of checked expressions to tensors of canonical polynomials.
+//!
+//! Every symbol component becomes a polynomial variable (`sigma_12`, `n_3`, `R_g`),
+//! definitions are evaluated once and cached, assumptions rewrite the symbols'
+//! component tensors before anything else is evaluated, and `avg(…)` applies the exact
+//! isotropic moments to the normal's monomials.
+
+use crate::derivation::{Assumption, Definition};
+use crate::kernel::{assignments, Poly, PolyError, Tensor, Var, VarTable};
+use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin, Slot, Target};
+use num_traits::{One, Zero};
+use std::collections::HashMap;
+
+/// A tensor whose slots are labelled by index letters, sorted.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Labeled {
+    pub labels: Vec<char>,
+    pub tensor: Tensor<Poly>,
+}
+
+impl Labeled {
+    /// The component for the given values of (a superset of) its labels.
+    pub fn at(&self, assignment: &[(char, usize)]) -> &Poly {
+        let idx: Vec<usize> = self
+            .labels
+            .iter()
+            .map(|c| {
+                assignment
+                    .iter()
+                    .find(|(d, _)| d == c)
+                    .map_or(0, |&(_, v)| v)
+            })
+            .collect();
+        self.tensor.get(&idx)
+    }
+}
+
+/// The exact evaluation environment of one claim.
+pub struct ExactEnv<'a> {
+    decls: &'a Decls,
+    defs: &'a [Definition],
+    pub vars: VarTable,
+    normal: Vec<Var>,
+    symbols: HashMap<String, Tensor<Poly>>,
+    cache: HashMap<String, Tensor<Poly>>,
+}
+
+fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
+    let help = match e {
+        PolyError::DivisionByZero => "the divisor is identically zero",
+        PolyError::DivisionBySum => {
+            "exact mode divides only by a single term such as 3, V or 2*R_g"
+        }
+        PolyError::NegativeNormalPower => "keep components of the normal out of divisors",
+    };
+    origin.diagnostic(node.span, e.to_string()).with_help(help)
+}
+
+impl<'a> ExactEnv<'a> {
+    /// Builds the environment and applies the assumptions in order.
+    pub fn new(
+        decls: &'a Decls,
+        defs: &'a [Definition],
+        assumptions: &[Assumption],
+    ) -> Result<Self, Diagnostic> {
+        let mut vars = VarTable::new();
+        let normal = match &decls.normal {
+            Some(n) => (1..=decls.dim)
+                .map(|k| vars.intern(&format!("{n}_{k}")))
+                .collect(),
+            None => Vec::new(),
+        };
+        let mut env = ExactEnv {
+            decls,
+            defs,
+            vars,
+            normal,
+            symbols: HashMap::new(),
+            cache: HashMap::new(),
+        };
+        for a in assumptions {
+            env.assume(a)?;
+        }
+        Ok(env)
+    }
+
+    /// The normal's component variables (empty when the file declares no normal).
+    pub fn normal_vars(&self) -> &[Var] {
+        &self.normal
+    }
+
+    fn assume(&mut self, a: &Assumption) -> Result<(), Diagnostic> {
+        let d = self.decls.dim;
+        match a {
+            Assumption::Traceless { symbol } => {
+                let mut t = self.symbol(symbol);
+                let rest = (0..d - 1).fold(Poly::zero(), |acc, k| &acc + t.get(&[k, k]));
+                *t.get_mut(&[d - 1, d - 1]) = -rest;
+                self.symbols.insert(symbol.clone(), t);
+            }
+            Assumption::Symmetric { symbol } | Assumption::Antisymmetric { symbol } => {
+                let anti = matches!(a, Assumption::Antisymmetric { .. });
+                let mut t = self.symbol(symbol);
+                for i in 0..d {
+                    for j in 0..i {
+                        let upper = t.get(&[j, i]).clone();
+                        *t.get_mut(&[i, j]) = if anti { -upper } else { upper };
+                    }
+                    if anti {
+                        *t.get_mut(&[i, i]) = Poly::zero();
+                    }
+                }
+                self.symbols.insert(symbol.clone(), t);
+            }
+            Assumption::Equals {
+                symbol,
+                formal,
+                body,
+                origin,
+            } => {
+                let value = self.eval(body, origin)?;
+                let t = to_formal_order(&value, formal);
+                self.symbols.insert(symbol.clone(), t);
+            }
+        }
+        Ok(())
+    }
+
+    /// The component tensor of a declared symbol (fresh variables on first use).
+    fn symbol(&mut self, name: &str) -> Tensor<Poly> {
+        if let Some(t) = self.symbols.get(name) {
+            return t.clone();
+        }
+        let rank = self.decls.symbols.get(name).copied().unwrap_or(0);
+        let vars = &mut self.vars;
+        let t = Tensor::from_fn(self.decls.dim, rank, |idx| {
+            let var = if idx.is_empty() {
+                name.to_owned()
+            } else {
+                let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
+                format!("{name}_{digits}")
+            };
+            Poly::var(vars.intern(&var))
+        });
+        self.symbols.insert(name.to_owned(), t.clone());
+        t
+    }
+
+    fn base(&mut self, target: &Target, origin: &Origin) -> Result<Tensor<Poly>, Diagnostic> {
+        let d = self.decls.dim;
+        Ok(match target {
+            Target::Delta => Tensor::delta(d),
+            Target::Eps => Tensor::levi_civita(d),
+            Target::Normal => Tensor::from_fn(d, 1, |i| Poly::var(self.normal[i[0]])),
+            Target::Symbol(name) => self.symbol(name),
+            Target::Def(name) => {
+                if let Some(t) = self.cache.get(name) {
+                    return Ok(t.clone());
+                }
+                let Some(def) = self.defs.iter().rev().find(|d| &d.sig.name == name) else {
+                    return Err(origin.diagnostic(
+                        Default::default(),
+                        format!("internal: definition `{name}` is not in scope"),
+                    ));
+                };
+                let value = self.eval(&def.body, &def.origin)?;
+                let t = to_formal_order(&value, &def.sig.formal);
+                self.cache.insert(name.clone(), t.clone());
+                t
+            }
+        })
+    }
+
+    /// Evaluates a checked node; `origin` locates errors in its text.
+    pub fn eval(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Diagnostic> {
+        let d = self.decls.dim;
+        let labels = node.free_letters();
+        let scalar = |p: Poly| Labeled {
+            labels: vec![],
+            tensor: Tensor::scalar(d, p),
+        };
+        Ok(match &node.kind {
+            NodeKind::Const(q) => scalar(Poly::constant(q.clone())),
+            NodeKind::Leaf { target, slots } => {
+                let base = self.base(target, origin)?;
+                let tensor = einsum(d, &[(&base, slots.clone())], &labels);
+                Labeled { labels, tensor }
+            }
+            NodeKind::Neg(a) => {
+                let a = self.eval(a, origin)?;
+                Labeled {
+                    tensor: a.tensor.map(|p| -p),
+                    labels: a.labels,
+                }
+            }
+            NodeKind::Sum(terms) => {
+                let mut acc: Option<Labeled> = None;
+                for t in terms {
+                    let v = self.eval(t, origin)?;
+                    acc = Some(match acc {
+                        None => v,
+                        Some(a) => Labeled {
+                            tensor: a.tensor.add(&v.tensor),
+                            labels: a.labels,
+                        },
+                    });
+                }
+                acc.expect("a sum has at least one term")
+            }
+            NodeKind::Product(factors) => {
+                let values = factors
+                    .iter()
+                    .map(|f| self.eval(f, origin))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let slots: Vec<(&Tensor<Poly>, Vec<Slot>)> = values
+                    .iter()
+                    .map(|v| {
+                        (
+                            &v.tensor,
+                            v.labels.iter().map(|&c| Slot::Letter(c)).collect(),
+                        )
+                    })
+                    .collect();
+                let tensor = einsum(d, &slots, &labels);
+                Labeled { labels, tensor }
+            }
+            NodeKind::Div(a, b) => {
+                let num = self.eval(a, origin)?;
+                let den = self.eval(b, origin)?;
+                let den = den
+                    .tensor
+                    .into_scalar()
+                    .expect("validated: divisors are scalars");
+                let tensor = num
+                    .tensor
+                    .try_map(|p| p.checked_div(&den))
+                    .map_err(|e| poly_error(origin, b, e))?;
+                Labeled {
+                    labels: num.labels,
+                    tensor,
+                }
+            }
+            NodeKind::Pow(a, k) => {
+                let p = self
+                    .eval(a, origin)?
+                    .tensor
+                    .into_scalar()
+                    .expect("validated: powers of scalars");
+                scalar(p.pow(*k))
+            }
+            NodeKind::Sqrt(a) => {
+                let p = self
+                    .eval(a, origin)?
+                    .tensor
+                    .into_scalar()
+                    .expect("validated: sqrt of scalars");
+                let root = p.as_constant().and_then(|q| q.sqrt_exact()).ok_or_else(|| {
+                    origin
+                        .diagnostic(node.span, "sqrt(…) of this expression has no exact polynomial value")
+                        .with_help("exact mode takes square roots of squares of rationals only; use a numeric strategy")
+                })?;
+                scalar(Poly::constant(root))
+            }
+            NodeKind::Avg(a) => {
+                let v = self.eval(a, origin)?;
+                let normal = self.normal.clone();
+                let tensor = v
+                    .tensor
+                    .try_map(|p| p.average_over_normal(&normal))
+                    .map_err(|e| poly_error(origin, node, e))?;
+                Labeled {
+                    labels: v.labels,
+                    tensor,
+                }
+            }
+        })
+    }
+}
+
+/// Reorders a sorted-label tensor into a definition's formal index order.
+fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Poly> {
+    let perm: Vec<usize> = formal
+        .iter()
+        .map(|c| {
+            value
+                .labels
+                .iter()
+                .position(|d| d == c)
+                .expect("validated: same letters")
+        })
+        .collect();
+    value.tensor.permuted(&perm)
+}
+
+/// Σ over the summed letters of Π factors, for every value of the `out` letters.
+/// A letter is summed when it is not in `out`; fixed slots pick one component.
+fn einsum(dim: usize, factors: &[(&Tensor<Poly>, Vec<Slot>)], out: &[char]) -> Tensor<Poly> {
+    let mut all: Vec<char> = out.to_vec();
+    for (_, slots) in factors {
+        for s in slots {
+            if let Slot::Letter(c) = s {
+                if !all.contains(c) {
+                    all.push(*c);
+                }
+            }
+        }
+    }
+    let summed = all.len() - out.len();
+    // For each factor slot: Ok(position in `all`) or Err(fixed value).
+    let plan: Vec<Vec<Result<usize, usize>>> = factors
+        .iter()
+        .map(|(_, slots)| {
+            slots
+                .iter()
+                .map(|s| match s {
+                    Slot::Letter(c) => {
+                        Ok(all.iter().position(|d| d == c).expect("collected above"))
+                    }
+                    Slot::Fixed(v) => Err(*v),
+                })
+                .collect()
+        })
+        .collect();
+    let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
+    Tensor::from_fn(dim, out.len(), |o| {
+        let mut acc = Poly::zero();
+        let mut values = o.to_vec();
+        values.resize(all.len(), 0);
+        for s in &inner {
+            values[out.len()..].copy_from_slice(s);
+            let mut prod = Poly::one();
+            for ((t, _), p) in factors.iter().zip(&plan) {
+                let idx: Vec<usize> = p
+                    .iter()
+                    .map(|r| r.map_or_else(|v| v, |k| values[k]))
+                    .collect();
+                let c = t.get(&idx);
+                if c.is_zero() {
+                    prod = Poly::zero();
+                    break;
+                }
+                prod = &prod * c;
+            }
+            if !prod.is_zero() {
+                acc = &acc + &prod;
+            }
+        }
+        acc
+    })
+}

@@ -1,0 +1,246 @@
+//! The exact strategy: expand both sides of every equality to canonical polynomials,
+//! for every value of the free indices, and compare them structurally (after the
+//! unit-normal reduction when the file declares a normal). Equal everywhere: `holds`.
+//! Otherwise `fails`, with the index values, the nonzero difference and its value at
+//! a rational point that satisfies the assumptions (a point on the unit sphere for
+//! the normal).
+
+use super::eval::{ExactEnv, Labeled};
+use super::{Counterexample, Method, Outcome};
+use crate::derivation::{Check, Verdict};
+use crate::kernel::{assignments, Poly, Rational, Var, VarTable};
+use crate::lang::check::letters;
+use crate::lang::{Decls, Diagnostic};
+use std::collections::BTreeMap;
+
+/// How many terms of a difference polynomial a report shows.
+const SHOWN_TERMS: usize = 12;
+
+/// Decides a check exactly. An error means the check cannot be decided by this
+/// strategy (e.g. a square root of a non-square) and is reported as bad input.
+pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+    // A verbatim transcription whose indices are ill-formed fails as printed.
+    for (ci, chain) in check.chains.iter().enumerate() {
+        for (si, side) in chain.iter().enumerate() {
+            if let Err(e) = &side.node {
+                let mut d = side.origin.diagnostic(e.span, e.message.clone());
+                if let Some(h) = &e.help {
+                    d = d.with_help(h.clone());
+                }
+                return Ok(Outcome {
+                    verdict: Verdict::Fails,
+                    method: Method::IndexCheck,
+                    checks: 1,
+                    used_unit_normal: false,
+                    counterexample: Some(Counterexample {
+                        chain: ci + 1,
+                        equality: si.max(1),
+                        lhs: side.text.clone(),
+                        rhs: String::new(),
+                        ill_formed: Some(format!("{}: {}", location(&d), e.message)),
+                        ..Counterexample::default()
+                    }),
+                });
+            }
+        }
+    }
+    let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
+    let mut checks = 0;
+    let mut used_unit = false;
+    for (ci, chain) in check.chains.iter().enumerate() {
+        let mut values = Vec::with_capacity(chain.len());
+        for side in chain {
+            let node = side.node.as_ref().expect("ill-formed sides handled above");
+            values.push(env.eval(node, &side.origin)?);
+        }
+        for k in 0..chain.len() - 1 {
+            let (l, r) = (&values[k], &values[k + 1]);
+            let labels = union(&l.labels, &r.labels);
+            for a in assignments(decls.dim, labels.len()) {
+                let assignment: Vec<(char, usize)> = labels.iter().copied().zip(a).collect();
+                let (lp, rp) = (l.at(&assignment), r.at(&assignment));
+                let raw = lp - rp;
+                let diff = raw.reduce_on_sphere(env.normal_vars()).map_err(|e| {
+                    chain[k]
+                        .origin
+                        .diagnostic(Default::default(), e.to_string())
+                })?;
+                checks += 1;
+                if diff.is_zero() {
+                    used_unit |= !raw.is_zero();
+                    continue;
+                }
+                let mut cx = counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
+                cx.chain = ci + 1;
+                cx.equality = k + 1;
+                cx.lhs = chain[k].text.trim().to_owned();
+                cx.rhs = chain[k + 1].text.trim().to_owned();
+                cx.indices = assignment
+                    .iter()
+                    .map(|&(c, v)| (c.to_string(), v + 1))
+                    .collect();
+                let zero = |s: &crate::derivation::Side| {
+                    s.node.as_ref().is_ok_and(|n| n.is_literal_zero())
+                };
+                if l.labels != r.labels && !zero(&chain[k]) && !zero(&chain[k + 1]) {
+                    cx.ill_formed = Some(mismatch(l, r));
+                }
+                return Ok(Outcome {
+                    verdict: Verdict::Fails,
+                    method: Method::Exact,
+                    checks,
+                    used_unit_normal: used_unit,
+                    counterexample: Some(cx),
+                });
+            }
+        }
+    }
+    Ok(Outcome {
+        verdict: Verdict::Holds,
+        method: Method::Exact,
+        checks,
+        used_unit_normal: used_unit,
+        counterexample: None,
+    })
+}
+
+fn location(d: &Diagnostic) -> String {
+    format!("{}:{}:{}", d.path, d.line, d.col)
+}
+
+fn union(a: &[char], b: &[char]) -> Vec<char> {
+    let mut u: Vec<char> = a.iter().chain(b).copied().collect();
+    u.sort_unstable();
+    u.dedup();
+    u
+}
+
+fn mismatch(l: &Labeled, r: &Labeled) -> String {
+    format!(
+        "the sides have different free indices ({} on the left, {} on the right); read as an identity for all values of {}",
+        letters(&l.labels),
+        letters(&r.labels),
+        letters(&union(&l.labels, &r.labels))
+    )
+}
+
+/// A deterministic generator (SplitMix64) for counterexample points: the same claim
+/// always gets the same point.
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// A nonzero integer in −4..=4.
+    fn small(&mut self) -> i64 {
+        let k = (self.next() % 8) as i64;
+        if k < 4 {
+            k - 4
+        } else {
+            k - 3
+        }
+    }
+}
+
+/// A rational point of the unit circle or sphere (stereographic projection).
+fn sphere_point(rng: &mut SplitMix, dim: usize) -> Vec<Rational> {
+    let u = Rational::ratio(rng.small(), 1 + (rng.next() % 3) as i64).expect("nonzero denominator");
+    let v = Rational::ratio(rng.small(), 1 + (rng.next() % 3) as i64).expect("nonzero denominator");
+    let one = Rational::int(1);
+    let two = Rational::int(2);
+    if dim == 2 {
+        let s = &(&u * &u) + &one;
+        let x = (&one - &(&u * &u)).checked_div(&s).expect("s > 0");
+        let y = (&two * &u).checked_div(&s).expect("s > 0");
+        return vec![x, y];
+    }
+    let s = &(&(&u * &u) + &(&v * &v)) + &one;
+    let x = (&two * &u).checked_div(&s).expect("s > 0");
+    let y = (&two * &v).checked_div(&s).expect("s > 0");
+    let z = (&(&(&u * &u) + &(&v * &v)) - &one)
+        .checked_div(&s)
+        .expect("s > 0");
+    let mut p = vec![x, y, z];
+    p.truncate(dim);
+    p
+}
+
+fn counterexample(
+    names: &VarTable,
+    normal: &[Var],
+    lhs: &Poly,
+    rhs: &Poly,
+    diff: &Poly,
+) -> Counterexample {
+    let shown = diff.display(names);
+    let terms = diff.num_terms();
+    let difference = if terms > SHOWN_TERMS {
+        let head: Poly = diff
+            .terms()
+            .take(SHOWN_TERMS)
+            .fold(Poly::default(), |mut p, (m, c)| {
+                p.add_term(m.clone(), c.clone());
+                p
+            });
+        format!("{} + … ({} terms in all)", head.display(names), terms)
+    } else {
+        shown
+    };
+    let mut used: Vec<Var> = lhs
+        .terms()
+        .chain(rhs.terms())
+        .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
+        .collect();
+    used.sort_unstable();
+    used.dedup();
+    let mut rng = SplitMix(0x05EE_DC05_E4A7);
+    let mut cx = Counterexample {
+        difference,
+        ..Counterexample::default()
+    };
+    let others: Vec<Var> = used
+        .iter()
+        .copied()
+        .filter(|v| !normal.contains(v))
+        .collect();
+    // Sparse points first (one variable 1, the rest 0) because they read best, then
+    // dense ones; the normal always lies on the unit sphere.
+    let sparse = others.iter().map(|&v| Some(v)).chain(std::iter::once(None));
+    let candidates = sparse
+        .flat_map(|one| (0..4).map(move |_| one))
+        .map(Some)
+        .chain((0..64).map(|_| None));
+    for candidate in candidates {
+        let n = sphere_point(&mut rng, normal.len().max(2));
+        let mut point: BTreeMap<Var, Rational> = BTreeMap::new();
+        for &v in &used {
+            let value = match (normal.iter().position(|&w| w == v), candidate) {
+                (Some(k), _) => n[k].clone(),
+                (None, Some(Some(one))) => Rational::int(i64::from(v == one)),
+                (None, Some(None)) => Rational::int(0),
+                (None, None) => Rational::int(rng.small()),
+            };
+            point.insert(v, value);
+        }
+        let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        let (Some(l), Some(r)) = (lhs.eval(&at), rhs.eval(&at)) else {
+            continue;
+        };
+        if l != r {
+            cx.point = point
+                .iter()
+                .map(|(&v, q)| (names.name(v).to_owned(), q.to_string()))
+                .collect();
+            cx.lhs_value = Some(l.to_string());
+            cx.rhs_value = Some(r.to_string());
+            break;
+        }
+    }
+    cx
+}

@@ -1,0 +1,94 @@
+//! Strategies: how a claim is decided. Each returns an [`Outcome`] carrying the
+//! evidence its verdict requires (component checks, counterexample).
+
+pub mod eval;
+pub mod exact;
+
+use crate::derivation::{Claim, Verdict};
+use crate::lang::Diagnostic;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// How a verdict was reached.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Canonical polynomial expansion for every value of the free indices.
+    Exact,
+    /// The printed statement is ill-formed in its indices.
+    IndexCheck,
+}
+
+impl Method {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Method::Exact => "exact",
+            Method::IndexCheck => "index-check",
+        }
+    }
+}
+
+/// Evidence that a statement is false.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Counterexample {
+    /// Which chain (1-based) and which equality in it (1-based: sides k and k+1).
+    pub chain: usize,
+    pub equality: usize,
+    pub lhs: String,
+    pub rhs: String,
+    /// Values (1-based) of the free indices where the sides differ.
+    pub indices: BTreeMap<String, usize>,
+    /// lhs − rhs in canonical form (reduced on the unit sphere).
+    pub difference: String,
+    /// A rational point where the sides differ, and their values there.
+    pub point: BTreeMap<String, String>,
+    pub lhs_value: Option<String>,
+    pub rhs_value: Option<String>,
+    /// Set when the statement is ill-formed in its indices as printed.
+    pub ill_formed: Option<String>,
+}
+
+/// The result of deciding one statement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    pub verdict: Verdict,
+    pub method: Method,
+    /// Number of component comparisons made.
+    pub checks: usize,
+    /// Whether some comparison needed n·n = 1.
+    pub used_unit_normal: bool,
+    pub counterexample: Option<Counterexample>,
+}
+
+/// A decided claim: the claim's own outcome and its correction's.
+#[derive(Clone, Debug)]
+pub struct Decided<'c> {
+    pub claim: &'c Claim,
+    pub outcome: Outcome,
+    pub correction: Option<Outcome>,
+}
+
+impl Decided<'_> {
+    /// Whether every verdict equals its declared expectation.
+    pub fn as_expected(&self) -> bool {
+        self.outcome.verdict == self.claim.expect
+            && match (&self.claim.correction, &self.correction) {
+                (Some(c), Some(o)) => o.verdict == c.expect,
+                _ => true,
+            }
+    }
+}
+
+/// Decides a claim and its correction.
+pub fn decide_claim(claim: &Claim) -> Result<Decided<'_>, Diagnostic> {
+    let outcome = exact::decide(&claim.decls, &claim.check)?;
+    let correction = match &claim.correction {
+        Some(c) => Some(exact::decide(&claim.decls, &c.check)?),
+        None => None,
+    };
+    Ok(Decided {
+        claim,
+        outcome,
+        correction,
+    })
+}
