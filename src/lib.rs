@@ -11,3 +11,4 @@ pub mod kernel;
 pub mod lang;
 pub mod report;
 pub mod strategy;
+pub mod mutate;

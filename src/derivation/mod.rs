@@ -2,6 +2,7 @@
 //! expressions in index notation. [`load`] reads and validates them into the
 //! [`model`] types.
 
+pub mod edit;
 pub mod load;
 pub mod model;
 

@@ -1,0 +1,89 @@
+//! Edited copies of a checked statement, for mutation testing: one side or one
+//! definition body replaced by new text, re-checked by the same validator as the
+//! original. The original claim is never modified.
+
+use super::model::{Check, Side};
+use crate::lang::{parse_expr, Decls, DefSig, LangError, NodeKind, Origin, Scope, SourceFile, Target};
+use crate::lang::{ErrorKind, Node};
+use std::collections::BTreeSet;
+
+fn parse_checked(decls: &Decls, sigs: &[DefSig], text: &str) -> Result<(Node, Origin), LangError> {
+    let origin = Origin::whole(SourceFile::new("<edited>", text));
+    let e = parse_expr(text)?;
+    let node = Scope { decls, defs: sigs }.check(&e)?;
+    Ok((node, origin))
+}
+
+impl Check {
+    /// A copy with side `side` of chain `chain` replaced by `text`. The new side must
+    /// be well-formed and keep the free indices of the side it replaces (unless one of
+    /// them is the literal 0).
+    pub fn with_side(&self, decls: &Decls, chain: usize, side: usize, text: &str) -> Result<Check, LangError> {
+        let sigs: Vec<DefSig> = self.defs.iter().map(|d| d.sig.clone()).collect();
+        let (node, origin) = parse_checked(decls, &sigs, text)?;
+        let old = &self.chains[chain][side];
+        if let Ok(old_node) = &old.node {
+            let zero = node.is_literal_zero() || old_node.is_literal_zero();
+            if old_node.free_letters() != node.free_letters() && !zero && !self.verbatim {
+                return Err(LangError::new(ErrorKind::Index, node.span, "free indices changed"));
+            }
+        }
+        let mut out = self.clone();
+        out.chains[chain][side] = Side {
+            text: text.to_owned(),
+            origin,
+            node: Ok(node),
+        };
+        Ok(out)
+    }
+
+    /// A copy with the body of definition `index` replaced by `body`, which must keep
+    /// the definition's free indices.
+    pub fn with_definition_body(&self, decls: &Decls, index: usize, body: &str) -> Result<Check, LangError> {
+        let sigs: Vec<DefSig> = self.defs[..index].iter().map(|d| d.sig.clone()).collect();
+        let (node, origin) = parse_checked(decls, &sigs, body)?;
+        let def = &self.defs[index];
+        if node.free_letters() != def.body.free_letters() {
+            return Err(LangError::new(ErrorKind::Index, node.span, "free indices changed"));
+        }
+        let mut out = self.clone();
+        out.defs[index].body = node;
+        out.defs[index].origin = origin;
+        out.defs[index].text = format!("{} = {body}", def.sig.name);
+        Ok(out)
+    }
+
+    /// Indices (into `defs`) of the definitions the sides depend on, directly or
+    /// through other definitions, in definition order.
+    pub fn dependencies(&self) -> Vec<usize> {
+        let mut names = BTreeSet::new();
+        let mut stack: Vec<&Node> = self
+            .chains
+            .iter()
+            .flatten()
+            .filter_map(|s| s.node.as_ref().ok())
+            .collect();
+        while let Some(n) = stack.pop() {
+            match &n.kind {
+                NodeKind::Leaf {
+                    target: Target::Def(name),
+                    ..
+                } => {
+                    if names.insert(name.clone()) {
+                        if let Some(d) = self.defs.iter().rev().find(|d| &d.sig.name == name) {
+                            stack.push(&d.body);
+                        }
+                    }
+                }
+                NodeKind::Leaf { .. } | NodeKind::Const(_) => {}
+                NodeKind::Sum(xs) | NodeKind::Product(xs) => stack.extend(xs),
+                NodeKind::Div(a, b) => {
+                    stack.push(a);
+                    stack.push(b);
+                }
+                NodeKind::Neg(a) | NodeKind::Pow(a, _) | NodeKind::Sqrt(a) | NodeKind::Avg(a) => stack.push(a),
+            }
+        }
+        (0..self.defs.len()).filter(|&k| names.contains(&self.defs[k].sig.name)).collect()
+    }
+}

@@ -1,0 +1,164 @@
+//! Mutants of an expression's text: the evidence that a strategy refutes wrong
+//! statements. Each mutant is one small, typical slip — a changed coefficient, two
+//! indices swapped, a flipped sign, a dropped term — made on the source text through
+//! the parser's spans, so it goes through exactly the same reader and checker as the
+//! original.
+
+use crate::lang::parser::{Expr, ExprKind};
+use crate::lang::parse_expr;
+use std::fmt;
+
+/// The kind of slip a mutant makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum MutantKind {
+    /// A numeric constant q becomes q + 1.
+    Coefficient,
+    /// Two index letters of one name trade places (`sigma_ki` → `sigma_ik`).
+    SwapIndices,
+    /// One term of a sum (or the whole expression) changes sign.
+    FlipSign,
+    /// One term of a sum is replaced by zero (kept as `0 (term)` so the indices
+    /// still line up and the mutant is well-formed).
+    DropTerm,
+}
+
+impl fmt::Display for MutantKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            MutantKind::Coefficient => "changed coefficient",
+            MutantKind::SwapIndices => "swapped indices",
+            MutantKind::FlipSign => "flipped sign",
+            MutantKind::DropTerm => "dropped term",
+        })
+    }
+}
+
+/// One mutant of a text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Mutant {
+    pub kind: MutantKind,
+    pub text: String,
+    /// What changed, e.g. "`sigma_ki` → `sigma_ik`".
+    pub what: String,
+}
+
+/// Every mutant of `src` (none when it does not parse). Swaps inside `delta` are not
+/// generated: δ is symmetric, so they are equivalent mutants by construction.
+pub fn mutants(src: &str) -> Vec<Mutant> {
+    let Ok(e) = parse_expr(src) else {
+        return Vec::new();
+    };
+    let mut edits = Vec::new();
+    collect(src, &e, &mut edits);
+    edits.push((
+        MutantKind::FlipSign,
+        0..src.len(),
+        format!("-({})", src.trim()),
+    ));
+    let mut out: Vec<Mutant> = edits
+        .into_iter()
+        .map(|(kind, range, replacement)| {
+            let mut text = src.to_owned();
+            let before = src[range.clone()].trim().to_owned();
+            text.replace_range(range, &replacement);
+            Mutant {
+                kind,
+                what: format!("`{before}` → `{}`", replacement.trim()),
+                text,
+            }
+        })
+        .collect();
+    out.sort_by(|a, b| a.kind.cmp(&b.kind).then(a.text.cmp(&b.text)));
+    out.dedup_by(|a, b| a.text == b.text);
+    out
+}
+
+type Edit = (MutantKind, std::ops::Range<usize>, String);
+
+fn collect(src: &str, e: &Expr, out: &mut Vec<Edit>) {
+    let range = e.span.start..e.span.end;
+    match &e.kind {
+        ExprKind::Number(q) => {
+            let bumped = q + &crate::kernel::Rational::int(1);
+            out.push((MutantKind::Coefficient, range, format!("({bumped})")));
+        }
+        ExprKind::Name { base, indices, .. } => {
+            if base == "delta" {
+                return;
+            }
+            for a in 0..indices.len() {
+                for b in a + 1..indices.len() {
+                    let (x, y) = (indices[a], indices[b]);
+                    if x.ch == y.ch {
+                        continue;
+                    }
+                    // Two single-character edits, applied as one replacement of the
+                    // span from the first to the second index.
+                    let lo = x.span.start;
+                    let hi = y.span.end;
+                    let mut middle: Vec<char> = Vec::new();
+                    for t in &indices[a..=b] {
+                        middle.push(t.ch);
+                    }
+                    let last = middle.len() - 1;
+                    middle.swap(0, last);
+                    out.push((MutantKind::SwapIndices, lo..hi, middle.into_iter().collect()));
+                }
+            }
+        }
+        ExprKind::Add(..) | ExprKind::Sub(..) => {
+            let mut terms = Vec::new();
+            flatten(e, &mut terms);
+            for t in &terms {
+                let r = t.span.start..t.span.end;
+                let text = &src[r.clone()];
+                out.push((MutantKind::FlipSign, r.clone(), format!("(-({text}))")));
+                out.push((MutantKind::DropTerm, r, format!("0 ({text})")));
+            }
+            for t in terms {
+                collect_inner(src, t, out);
+            }
+        }
+        _ => collect_inner(src, e, out),
+    }
+}
+
+/// Recurses into the children of a node that is not itself a sum.
+fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
+    match &e.kind {
+        ExprKind::Number(_) | ExprKind::Name { .. } | ExprKind::Add(..) | ExprKind::Sub(..) => {
+            collect(src, e, out)
+        }
+        ExprKind::Neg(a) | ExprKind::Pow(a, _) | ExprKind::Call(_, a) => collect(src, a, out),
+        ExprKind::Mul(a, b) | ExprKind::Div(a, b) => {
+            collect(src, a, out);
+            collect(src, b, out);
+        }
+    }
+}
+
+fn flatten<'e>(e: &'e Expr, out: &mut Vec<&'e Expr>) {
+    match &e.kind {
+        ExprKind::Add(a, b) | ExprKind::Sub(a, b) => {
+            flatten(a, out);
+            flatten(b, out);
+        }
+        _ => out.push(e),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_kind_is_generated() {
+        let ms = mutants("1/3 delta_ij - sigma_ki n_k");
+        let texts: Vec<&str> = ms.iter().map(|m| m.text.as_str()).collect();
+        assert!(texts.contains(&"(2)/3 delta_ij - sigma_ki n_k"), "{texts:?}");
+        assert!(texts.contains(&"1/3 delta_ij - sigma_ik n_k"), "{texts:?}");
+        assert!(texts.contains(&"1/3 delta_ij - 0 (sigma_ki n_k)"), "{texts:?}");
+        assert!(texts.contains(&"(-(1/3 delta_ij)) - sigma_ki n_k"), "{texts:?}");
+        assert!(!texts.iter().any(|t| t.contains("delta_ji")));
+    }
+}
