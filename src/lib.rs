@@ -9,6 +9,6 @@ pub mod cli;
 pub mod derivation;
 pub mod kernel;
 pub mod lang;
+pub mod mutate;
 pub mod report;
 pub mod strategy;
-pub mod mutate;

@@ -4,14 +4,14 @@
 //! the parser's spans, so it goes through exactly the same reader and checker as the
 //! original.
 
-use crate::lang::parser::{Expr, ExprKind};
 use crate::lang::parse_expr;
+use crate::lang::parser::{Expr, ExprKind};
 use std::fmt;
 
 /// The kind of slip a mutant makes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum MutantKind {
-    /// A numeric constant q becomes q + 1.
+    /// A numeric constant q becomes q + 1, or a term (or a whole side) is doubled.
     Coefficient,
     /// Two index letters of one name trade places (`sigma_ki` → `sigma_ik`).
     SwapIndices,
@@ -54,6 +54,11 @@ pub fn mutants(src: &str) -> Vec<Mutant> {
         MutantKind::FlipSign,
         0..src.len(),
         format!("-({})", src.trim()),
+    ));
+    edits.push((
+        MutantKind::Coefficient,
+        0..src.len(),
+        format!("2 ({})", src.trim()),
     ));
     let mut out: Vec<Mutant> = edits
         .into_iter()
@@ -102,7 +107,11 @@ fn collect(src: &str, e: &Expr, out: &mut Vec<Edit>) {
                     }
                     let last = middle.len() - 1;
                     middle.swap(0, last);
-                    out.push((MutantKind::SwapIndices, lo..hi, middle.into_iter().collect()));
+                    out.push((
+                        MutantKind::SwapIndices,
+                        lo..hi,
+                        middle.into_iter().collect(),
+                    ));
                 }
             }
         }
@@ -113,7 +122,8 @@ fn collect(src: &str, e: &Expr, out: &mut Vec<Edit>) {
                 let r = t.span.start..t.span.end;
                 let text = &src[r.clone()];
                 out.push((MutantKind::FlipSign, r.clone(), format!("(-({text}))")));
-                out.push((MutantKind::DropTerm, r, format!("0 ({text})")));
+                out.push((MutantKind::DropTerm, r.clone(), format!("0 ({text})")));
+                out.push((MutantKind::Coefficient, r, format!("2 ({text})")));
             }
             for t in terms {
                 collect_inner(src, t, out);
@@ -155,10 +165,19 @@ mod tests {
     fn every_kind_is_generated() {
         let ms = mutants("1/3 delta_ij - sigma_ki n_k");
         let texts: Vec<&str> = ms.iter().map(|m| m.text.as_str()).collect();
-        assert!(texts.contains(&"(2)/3 delta_ij - sigma_ki n_k"), "{texts:?}");
+        assert!(
+            texts.contains(&"(2)/3 delta_ij - sigma_ki n_k"),
+            "{texts:?}"
+        );
         assert!(texts.contains(&"1/3 delta_ij - sigma_ik n_k"), "{texts:?}");
-        assert!(texts.contains(&"1/3 delta_ij - 0 (sigma_ki n_k)"), "{texts:?}");
-        assert!(texts.contains(&"(-(1/3 delta_ij)) - sigma_ki n_k"), "{texts:?}");
+        assert!(
+            texts.contains(&"1/3 delta_ij - 0 (sigma_ki n_k)"),
+            "{texts:?}"
+        );
+        assert!(
+            texts.contains(&"(-(1/3 delta_ij)) - sigma_ki n_k"),
+            "{texts:?}"
+        );
         assert!(!texts.iter().any(|t| t.contains("delta_ji")));
     }
 }

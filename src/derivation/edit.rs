@@ -3,7 +3,9 @@
 //! original. The original claim is never modified.
 
 use super::model::{Check, Side};
-use crate::lang::{parse_expr, Decls, DefSig, LangError, NodeKind, Origin, Scope, SourceFile, Target};
+use crate::lang::{
+    parse_expr, Decls, DefSig, LangError, NodeKind, Origin, Scope, SourceFile, Target,
+};
 use crate::lang::{ErrorKind, Node};
 use std::collections::BTreeSet;
 
@@ -18,14 +20,24 @@ impl Check {
     /// A copy with side `side` of chain `chain` replaced by `text`. The new side must
     /// be well-formed and keep the free indices of the side it replaces (unless one of
     /// them is the literal 0).
-    pub fn with_side(&self, decls: &Decls, chain: usize, side: usize, text: &str) -> Result<Check, LangError> {
+    pub fn with_side(
+        &self,
+        decls: &Decls,
+        chain: usize,
+        side: usize,
+        text: &str,
+    ) -> Result<Check, LangError> {
         let sigs: Vec<DefSig> = self.defs.iter().map(|d| d.sig.clone()).collect();
         let (node, origin) = parse_checked(decls, &sigs, text)?;
         let old = &self.chains[chain][side];
         if let Ok(old_node) = &old.node {
             let zero = node.is_literal_zero() || old_node.is_literal_zero();
             if old_node.free_letters() != node.free_letters() && !zero && !self.verbatim {
-                return Err(LangError::new(ErrorKind::Index, node.span, "free indices changed"));
+                return Err(LangError::new(
+                    ErrorKind::Index,
+                    node.span,
+                    "free indices changed",
+                ));
             }
         }
         let mut out = self.clone();
@@ -39,12 +51,21 @@ impl Check {
 
     /// A copy with the body of definition `index` replaced by `body`, which must keep
     /// the definition's free indices.
-    pub fn with_definition_body(&self, decls: &Decls, index: usize, body: &str) -> Result<Check, LangError> {
+    pub fn with_definition_body(
+        &self,
+        decls: &Decls,
+        index: usize,
+        body: &str,
+    ) -> Result<Check, LangError> {
         let sigs: Vec<DefSig> = self.defs[..index].iter().map(|d| d.sig.clone()).collect();
         let (node, origin) = parse_checked(decls, &sigs, body)?;
         let def = &self.defs[index];
         if node.free_letters() != def.body.free_letters() {
-            return Err(LangError::new(ErrorKind::Index, node.span, "free indices changed"));
+            return Err(LangError::new(
+                ErrorKind::Index,
+                node.span,
+                "free indices changed",
+            ));
         }
         let mut out = self.clone();
         out.defs[index].body = node;
@@ -81,9 +102,13 @@ impl Check {
                     stack.push(a);
                     stack.push(b);
                 }
-                NodeKind::Neg(a) | NodeKind::Pow(a, _) | NodeKind::Sqrt(a) | NodeKind::Avg(a) => stack.push(a),
+                NodeKind::Neg(a) | NodeKind::Pow(a, _) | NodeKind::Sqrt(a) | NodeKind::Avg(a) => {
+                    stack.push(a)
+                }
             }
         }
-        (0..self.defs.len()).filter(|&k| names.contains(&self.defs[k].sig.name)).collect()
+        (0..self.defs.len())
+            .filter(|&k| names.contains(&self.defs[k].sig.name))
+            .collect()
     }
 }

@@ -3,6 +3,7 @@
 
 pub mod eval;
 pub mod exact;
+pub mod float;
 
 use crate::derivation::{Claim, Verdict};
 use crate::lang::Diagnostic;
