@@ -1,0 +1,183 @@
+//! The proof checker: every claim of the paper is decided, and the test fails when
+//! any verdict differs from the one its derivation file declares. The derivation
+//! table (Markdown and JSON) is snapshot-tested, and every exact verdict is
+//! cross-checked by the independent floating-point route.
+
+use cosserat_check::cli::decide_all;
+use cosserat_check::derivation::{load_dir, DerivationFile, Verdict};
+use cosserat_check::report;
+use cosserat_check::strategy::{float, Method};
+use std::path::Path;
+
+fn corpus() -> Vec<DerivationFile> {
+    load_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations"))
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn snapshot(name: &str, value: &str) {
+    insta::with_settings!({
+        snapshot_path => concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"),
+        prepend_module_to_snapshot => false,
+    }, {
+        insta::assert_snapshot!(name, value);
+    });
+}
+
+#[test]
+fn every_verdict_is_the_declared_one() {
+    let files = corpus();
+    let rows = decide_all(&files, None).unwrap_or_else(|e| panic!("{e}"));
+    let wrong: Vec<String> = rows
+        .iter()
+        .filter(|r| !r.as_expected())
+        .map(|r| {
+            format!(
+                "{}: decided {} (declared {}); correction {:?}",
+                r.claim.id,
+                r.outcome.verdict,
+                r.claim.expect,
+                r.correction.as_ref().map(|o| o.verdict)
+            )
+        })
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "unexpected verdicts:\n{}",
+        wrong.join("\n")
+    );
+}
+
+#[test]
+fn the_paper_claims_of_sections_3_3_and_3_4_are_all_present() {
+    let files = corpus();
+    let ids: Vec<&str> = files
+        .iter()
+        .flat_map(|f| &f.claims)
+        .map(|c| c.id.as_str())
+        .collect();
+    for id in [
+        "eq25",
+        "eq26",
+        "odd-averages",
+        "eq27",
+        "eq28",
+        "eq30",
+        "eq31",
+        "eq32",
+        "eq33",
+        "eq35",
+        "eq36",
+        "eq37",
+        "eq38",
+        "eq39",
+    ] {
+        assert!(ids.contains(&id), "claim {id} is missing");
+    }
+}
+
+#[test]
+fn every_non_holding_verdict_carries_evidence_and_a_reason() {
+    let files = corpus();
+    let rows = decide_all(&files, None).unwrap();
+    for r in &rows {
+        if r.outcome.verdict != Verdict::Holds {
+            assert!(r.claim.reason.is_some(), "{}: no reason", r.claim.id);
+            let cx = r.outcome.counterexample.as_ref().expect("a counterexample");
+            assert!(
+                cx.ill_formed.is_some() || !cx.difference.is_empty(),
+                "{}: empty counterexample",
+                r.claim.id
+            );
+            if !cx.difference.is_empty() {
+                // A counterexample from a difference polynomial also names a point.
+                assert!(
+                    cx.lhs_value.is_some() && cx.rhs_value.is_some(),
+                    "{}: no values at a point",
+                    r.claim.id
+                );
+            }
+        } else {
+            assert!(
+                r.outcome.checks > 0,
+                "{}: holds without a single check",
+                r.claim.id
+            );
+        }
+    }
+}
+
+#[test]
+fn exact_verdicts_agree_with_the_independent_float_route() {
+    let files = corpus();
+    let rows = decide_all(&files, None).unwrap();
+    let mut compared = 0;
+    for r in &rows {
+        let mut pairs = vec![(&r.claim.check, &r.outcome)];
+        if let (Some(c), Some(o)) = (&r.claim.correction, &r.correction) {
+            pairs.push((&c.check, o));
+        }
+        for (check, outcome) in pairs {
+            assert_eq!(
+                outcome.method == Method::IndexCheck,
+                check.chains.iter().flatten().any(|s| s.node.is_err())
+            );
+            if let Some(v) = float::decide(&r.claim.decls, check, 5, 2024)
+                .unwrap_or_else(|e| panic!("{}: {e}", r.claim.id))
+            {
+                assert_eq!(
+                    v, outcome.verdict,
+                    "{}: exact and float routes disagree",
+                    r.claim.id
+                );
+                compared += 1;
+            }
+        }
+    }
+    assert!(compared >= 15, "only {compared} statements cross-checked");
+}
+
+#[test]
+fn derivation_table_markdown() {
+    let files = corpus();
+    let rows = decide_all(&files, None).unwrap();
+    snapshot(
+        "derivation_table_markdown",
+        &report::markdown::render(&rows),
+    );
+}
+
+#[test]
+fn derivation_table_json() {
+    let files = corpus();
+    let rows = decide_all(&files, None).unwrap();
+    let json = report::json::render(&rows);
+    let v: serde_json::Value = serde_json::from_str(&json).expect("valid JSON");
+    for key in ["paper", "claims", "summary"] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    for c in v["claims"].as_array().unwrap() {
+        for key in [
+            "id",
+            "section",
+            "statement",
+            "verdict",
+            "method",
+            "expected",
+            "checks",
+            "counterexample",
+            "correction",
+        ] {
+            assert!(c.get(key).is_some(), "claim {} lacks {key}", c["id"]);
+        }
+    }
+    snapshot("derivation_table_json", &json);
+}
+
+#[test]
+fn output_is_deterministic() {
+    let files = corpus();
+    let a = report::json::render(&decide_all(&files, None).unwrap());
+    let files = corpus();
+    let b = report::json::render(&decide_all(&files, None).unwrap());
+    assert_eq!(a, b);
+}
