@@ -311,7 +311,13 @@ impl Loader {
             declare(&mut decls, base, idx.len(), t)?;
         }
         for s in &raw.scalars {
-            self.name_token(s)?;
+            let (_, suffix) = self.name_token(s)?;
+            // `x_12` would share its polynomial variable with component 12 of a tensor x.
+            if !suffix.is_empty() && suffix.iter().all(char::is_ascii_digit) {
+                return Err(self
+                    .diag(s.span(), "a scalar's name cannot end in `_` and digits")
+                    .with_help("that spelling denotes a tensor component; choose e.g. R_g or h2"));
+            }
             declare(&mut decls, s.get_ref().trim().to_owned(), 0, s)?;
         }
         Ok(decls)

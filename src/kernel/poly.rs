@@ -13,7 +13,7 @@ use super::rational::Rational;
 use num_traits::{One, Zero};
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
-use std::ops::{Add, Mul, Neg, Sub};
+use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
 /// A polynomial variable: an index into a [`VarTable`].
 pub type Var = u32;
@@ -332,22 +332,33 @@ impl Poly {
 
     /// Plain-text form with variable names, highest total degree first.
     pub fn display(&self, names: &VarTable) -> String {
-        self.render(names, false)
+        self.render(names, false, usize::MAX)
+    }
+
+    /// Like [`Poly::display`], showing at most `max_terms` leading terms and saying how
+    /// many there are in all when some are left out.
+    pub fn display_truncated(&self, names: &VarTable, max_terms: usize) -> String {
+        let shown = self.render(names, false, max_terms);
+        if self.terms.len() > max_terms {
+            format!("{shown} + … ({} terms in all)", self.terms.len())
+        } else {
+            shown
+        }
     }
 
     /// LaTeX form, highest total degree first.
     pub fn latex(&self, names: &VarTable) -> String {
-        self.render(names, true)
+        self.render(names, true, usize::MAX)
     }
 
-    fn render(&self, names: &VarTable, latex: bool) -> String {
+    fn render(&self, names: &VarTable, latex: bool, max_terms: usize) -> String {
         if self.terms.is_empty() {
             return "0".into();
         }
         let mut terms: Vec<_> = self.terms.iter().collect();
         terms.sort_by(|a, b| graded_lex_desc(a.0, b.0));
         let mut s = String::new();
-        for (k, (m, c)) in terms.into_iter().enumerate() {
+        for (k, (m, c)) in terms.into_iter().take(max_terms).enumerate() {
             let neg = c.is_negative();
             if k == 0 {
                 if neg {
@@ -413,6 +424,14 @@ impl Add<&Poly> for &Poly {
             out.add_term(m.clone(), c.clone());
         }
         out
+    }
+}
+
+impl AddAssign<&Poly> for Poly {
+    fn add_assign(&mut self, rhs: &Poly) {
+        for (m, c) in &rhs.terms {
+            self.add_term(m.clone(), c.clone());
+        }
     }
 }
 

@@ -70,8 +70,13 @@ fn counterexample_text(cx: &Counterexample) -> String {
             let idx: Vec<String> = cx.indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
             format!(" at {}", idx.join(", "))
         };
+        let modulo = if cx.reduced_on_sphere {
+            " (mod n·n = 1)"
+        } else {
+            ""
+        };
         parts.push(format!(
-            "equality {} (`{}` = `{}`){at}: left − right = `{}`",
+            "equality {} (`{}` = `{}`){at}: left − right = `{}`{modulo}",
             cx.equality, cx.lhs, cx.rhs, cx.difference
         ));
         if let (Some(l), Some(r)) = (&cx.lhs_value, &cx.rhs_value) {

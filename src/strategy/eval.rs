@@ -11,6 +11,17 @@ use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin, Slot, Target};
 use num_traits::{One, Zero};
 use std::collections::HashMap;
 
+/// Largest number of terms one component may reach before evaluation stops: keeps a
+/// hostile input (a product of hundreds of sums) from running for hours.
+pub const MAX_TERMS: usize = 50_000;
+
+/// Largest number of term-by-term products one product node may take (a few
+/// seconds of work at most).
+pub const MAX_WORK: usize = 1_000_000;
+
+/// Largest exponent a power may produce.
+pub const MAX_EXPONENT: i64 = 10_000;
+
 /// A tensor whose slots are labelled by index letters, sorted.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Labeled {
@@ -171,8 +182,30 @@ impl<'a> ExactEnv<'a> {
         })
     }
 
-    /// Evaluates a checked node; `origin` locates errors in its text.
+    /// Evaluates a checked node; `origin` locates errors in its text. Refuses (with a
+    /// located error) any component that grows past [`MAX_TERMS`] terms.
     pub fn eval(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Diagnostic> {
+        let value = self.eval_unchecked(node, origin)?;
+        if let Some(big) = value
+            .tensor
+            .components()
+            .iter()
+            .find(|p| p.num_terms() > MAX_TERMS)
+        {
+            return Err(origin
+                .diagnostic(
+                    node.span,
+                    format!(
+                        "this expands to {} terms, more than the limit of {MAX_TERMS}",
+                        big.num_terms()
+                    ),
+                )
+                .with_help("split the statement with definitions, or decide it numerically"));
+        }
+        Ok(value)
+    }
+
+    fn eval_unchecked(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Diagnostic> {
         let d = self.decls.dim;
         let labels = node.free_letters();
         let scalar = |p: Poly| Labeled {
@@ -183,7 +216,8 @@ impl<'a> ExactEnv<'a> {
             NodeKind::Const(q) => scalar(Poly::constant(q.clone())),
             NodeKind::Leaf { target, slots } => {
                 let base = self.base(target, origin)?;
-                let tensor = einsum(d, &[(&base, slots.clone())], &labels);
+                let tensor = einsum(d, &[(&base, slots.clone())], &labels)
+                    .ok_or_else(|| too_much(origin, node))?;
                 Labeled { labels, tensor }
             }
             NodeKind::Neg(a) => {
@@ -221,7 +255,7 @@ impl<'a> ExactEnv<'a> {
                         )
                     })
                     .collect();
-                let tensor = einsum(d, &slots, &labels);
+                let tensor = einsum(d, &slots, &labels).ok_or_else(|| too_much(origin, node))?;
                 Labeled { labels, tensor }
             }
             NodeKind::Div(a, b) => {
@@ -246,6 +280,31 @@ impl<'a> ExactEnv<'a> {
                     .tensor
                     .into_scalar()
                     .expect("validated: powers of scalars");
+                let max_exp = p
+                    .terms()
+                    .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| i64::from(e).abs()))
+                    .max()
+                    .unwrap_or(0);
+                // Terms of p^k: at most num_terms^k, and at most the number of
+                // monomials of degree ≤ k·(max exponent) in p's variables.
+                let mut vars: Vec<_> = p
+                    .terms()
+                    .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
+                    .collect();
+                vars.sort_unstable();
+                vars.dedup();
+                let degree = (max_exp * i64::from(*k)) as f64;
+                let monomials =
+                    (1..=vars.len()).fold(1.0, |acc, j| acc * (degree + j as f64) / j as f64);
+                let terms = (p.num_terms() as f64).powi(*k as i32).min(monomials);
+                let too_big = max_exp * i64::from(*k) > MAX_EXPONENT || terms > MAX_TERMS as f64;
+                if too_big {
+                    return Err(origin
+                        .diagnostic(node.span, "this power is too large to expand exactly")
+                        .with_help(format!(
+                            "exponents up to {MAX_EXPONENT} and expansions up to {MAX_TERMS} terms are supported"
+                        )));
+                }
                 scalar(p.pow(*k))
             }
             NodeKind::Sqrt(a) => {
@@ -277,6 +336,15 @@ impl<'a> ExactEnv<'a> {
     }
 }
 
+fn too_much(origin: &Origin, node: &Node) -> Diagnostic {
+    origin
+        .diagnostic(
+            node.span,
+            format!("this product is too large to expand exactly (over {MAX_WORK} term products)"),
+        )
+        .with_help("split the statement with definitions, or decide it numerically")
+}
+
 /// Reorders a sorted-label tensor into a definition's formal index order.
 fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Poly> {
     let perm: Vec<usize> = formal
@@ -294,7 +362,12 @@ fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Poly> {
 
 /// Σ over the summed letters of Π factors, for every value of the `out` letters.
 /// A letter is summed when it is not in `out`; fixed slots pick one component.
-fn einsum(dim: usize, factors: &[(&Tensor<Poly>, Vec<Slot>)], out: &[char]) -> Tensor<Poly> {
+/// `None` when the expansion would take more than [`MAX_WORK`] term products.
+fn einsum(
+    dim: usize,
+    factors: &[(&Tensor<Poly>, Vec<Slot>)],
+    out: &[char],
+) -> Option<Tensor<Poly>> {
     let mut all: Vec<char> = out.to_vec();
     for (_, slots) in factors {
         for s in slots {
@@ -322,7 +395,8 @@ fn einsum(dim: usize, factors: &[(&Tensor<Poly>, Vec<Slot>)], out: &[char]) -> T
         })
         .collect();
     let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
-    Tensor::from_fn(dim, out.len(), |o| {
+    let mut work = 0usize;
+    let tensor = Tensor::from_fn(dim, out.len(), |o| {
         let mut acc = Poly::zero();
         let mut values = o.to_vec();
         values.resize(all.len(), 0);
@@ -339,12 +413,15 @@ fn einsum(dim: usize, factors: &[(&Tensor<Poly>, Vec<Slot>)], out: &[char]) -> T
                     prod = Poly::zero();
                     break;
                 }
+                work = work.saturating_add(prod.num_terms() * c.num_terms());
+                if work > MAX_WORK {
+                    return Poly::zero();
+                }
                 prod = &prod * c;
             }
-            if !prod.is_zero() {
-                acc = &acc + &prod;
-            }
+            acc += &prod;
         }
         acc
-    })
+    });
+    (work <= MAX_WORK).then_some(tensor)
 }

@@ -72,6 +72,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 }
                 let mut cx = counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
                 cx.chain = ci + 1;
+                cx.reduced_on_sphere = !env.normal_vars().is_empty();
                 cx.equality = k + 1;
                 cx.lhs = chain[k].text.trim().to_owned();
                 cx.rhs = chain[k + 1].text.trim().to_owned();
@@ -178,20 +179,7 @@ fn counterexample(
     rhs: &Poly,
     diff: &Poly,
 ) -> Counterexample {
-    let shown = diff.display(names);
-    let terms = diff.num_terms();
-    let difference = if terms > SHOWN_TERMS {
-        let head: Poly = diff
-            .terms()
-            .take(SHOWN_TERMS)
-            .fold(Poly::default(), |mut p, (m, c)| {
-                p.add_term(m.clone(), c.clone());
-                p
-            });
-        format!("{} + … ({} terms in all)", head.display(names), terms)
-    } else {
-        shown
-    };
+    let difference = diff.display_truncated(names, SHOWN_TERMS);
     let mut used: Vec<Var> = lhs
         .terms()
         .chain(rhs.terms())

@@ -39,8 +39,10 @@ pub struct Counterexample {
     pub rhs: String,
     /// Values (1-based) of the free indices where the sides differ.
     pub indices: BTreeMap<String, usize>,
-    /// lhs − rhs in canonical form (reduced on the unit sphere).
+    /// lhs − rhs in canonical form, reduced modulo n·n = 1 when the file declares a
+    /// normal (see `reduced_on_sphere`).
     pub difference: String,
+    pub reduced_on_sphere: bool,
     /// A rational point where the sides differ, and their values there.
     pub point: BTreeMap<String, String>,
     pub lhs_value: Option<String>,
