@@ -181,3 +181,18 @@ fn output_is_deterministic() {
     let b = report::json::render(&decide_all(&files, None).unwrap());
     assert_eq!(a, b);
 }
+
+#[test]
+fn the_readme_excerpt_matches_the_table() {
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let table = report::markdown::render(&decide_all(&corpus(), None).unwrap());
+    let rows: Vec<&str> = readme.lines().filter(|l| l.starts_with("| eq")).collect();
+    assert!(!rows.is_empty(), "the README shows no table rows");
+    for row in rows {
+        assert!(
+            table.lines().any(|l| l == row),
+            "README row is out of date:\n{row}"
+        );
+    }
+}

@@ -166,6 +166,16 @@ pub enum PolyError {
 }
 
 /// A sparse Laurent polynomial with exact rational coefficients, in canonical form.
+///
+/// ```
+/// use cosserat_check::kernel::{Poly, VarTable};
+/// let mut names = VarTable::new();
+/// let x = Poly::var(names.intern("x"));
+/// let y = Poly::var(names.intern("y"));
+/// // (x + y)(x − y) and x² − y² are the same polynomial, so they compare equal.
+/// assert_eq!(&(&x + &y) * &(&x - &y), &(&x * &x) - &(&y * &y));
+/// assert_eq!((&x + &y).pow(2).display(&names), "x^2 + 2*x*y + y^2");
+/// ```
 #[derive(Clone, PartialEq, Eq, Hash, Debug, Default)]
 pub struct Poly {
     terms: BTreeMap<Monomial, Rational>,

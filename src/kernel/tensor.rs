@@ -23,6 +23,14 @@ pub fn assignments(dim: usize, rank: usize) -> impl Iterator<Item = Vec<usize>> 
 }
 
 /// A dense tensor of the given rank over `0..dim` in every slot, stored row-major.
+///
+/// ```
+/// use cosserat_check::kernel::Tensor;
+/// // ε_ijk ε_ijk = 6 in 3D.
+/// let e = Tensor::<i64>::levi_civita(3);
+/// let full = e.outer(&e).contract(0, 3).contract(0, 2).contract(0, 1);
+/// assert_eq!(full.into_scalar(), Some(6));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tensor<T> {
     dim: usize,
@@ -243,6 +251,19 @@ mod tests {
         assert_eq!(lhs, rhs);
         // Contracting once more: ε_ijk ε_ijn = 2 δ_kn.
         assert_eq!(lhs.contract(0, 2), d.map(|x| 2 * x));
+    }
+
+    #[test]
+    fn rank_six_outer_products_and_contractions() {
+        // δ_ij δ_kl δ_mn contracted as (i,j), (k,l), (m,n): 3·3·3 = 27 in 3D, 8 in 2D.
+        for (dim, want) in [(3usize, 27i64), (2, 8)] {
+            let d = Tensor::<i64>::delta(dim);
+            let t = d.outer(&d).outer(&d);
+            assert_eq!(t.rank(), 6);
+            assert_eq!(t.components().len(), dim.pow(6));
+            let s = t.contract(4, 5).contract(2, 3).contract(0, 1);
+            assert_eq!(s.into_scalar(), Some(want));
+        }
     }
 
     #[test]

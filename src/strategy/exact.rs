@@ -72,7 +72,10 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 }
                 let mut cx = counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
                 cx.chain = ci + 1;
-                cx.reduced_on_sphere = !env.normal_vars().is_empty();
+                let normal = env.normal_vars();
+                cx.reduced_on_sphere = diff
+                    .terms()
+                    .any(|(m, _)| normal.iter().any(|&v| m.exponent(v) != 0));
                 cx.equality = k + 1;
                 cx.lhs = chain[k].text.trim().to_owned();
                 cx.rhs = chain[k + 1].text.trim().to_owned();
