@@ -5,6 +5,8 @@
 pub mod edit;
 pub mod load;
 pub mod model;
+mod raw;
+mod spans;
 
 pub use load::{load_dir, load_files, load_str, LoadError};
 pub use model::{Assumption, Check, Claim, Correction, Definition, DerivationFile, Side, Verdict};

@@ -200,6 +200,8 @@ impl Env<'_> {
     }
 }
 
+/// The contraction of this route, written separately from the exact route's `einsum`
+/// on purpose: a shared bug would make the two routes agree on a wrong answer.
 fn product(dim: usize, factors: &[(&Tensor<f64>, Vec<Slot>)], out: &[char]) -> Tensor<f64> {
     let mut all: Vec<char> = out.to_vec();
     for (_, slots) in factors {

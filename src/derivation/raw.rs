@@ -1,0 +1,63 @@
+//! The derivation-file format as TOML sees it: plain serde structs whose strings keep
+//! their byte spans, so every later error can point into the file.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A string value with its span in the file.
+pub type S = Spanned<String>;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFile {
+    pub section: S,
+    pub title: S,
+    pub dimension: Spanned<i64>,
+    pub normal: Option<S>,
+    #[serde(default)]
+    pub tensors: Vec<S>,
+    #[serde(default)]
+    pub scalars: Vec<S>,
+    #[serde(default)]
+    pub define: Vec<S>,
+    #[serde(default)]
+    pub claim: Vec<RawClaim>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawClaim {
+    pub id: S,
+    pub section: Option<S>,
+    pub printed: S,
+    #[serde(default)]
+    pub prose: bool,
+    pub expect: S,
+    pub reason: Option<S>,
+    pub note: Option<S>,
+    #[serde(default)]
+    pub verbatim: bool,
+    #[serde(default)]
+    pub define: Vec<S>,
+    #[serde(default)]
+    pub assume: Vec<S>,
+    pub sides: Option<Vec<S>>,
+    pub chains: Option<Vec<Vec<S>>>,
+    pub correction: Option<RawCorrection>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCorrection {
+    pub printed: S,
+    pub reason: S,
+    pub expect: S,
+    #[serde(default)]
+    pub verbatim: bool,
+    #[serde(default)]
+    pub define: Vec<S>,
+    #[serde(default)]
+    pub assume: Vec<S>,
+    pub sides: Option<Vec<S>>,
+    pub chains: Option<Vec<Vec<S>>>,
+}
