@@ -216,8 +216,18 @@ impl Loader {
         let mut decls = Decls {
             dim: dim as usize,
             normal: None,
+            normal_in_plane: raw.normal_in_plane,
             symbols: BTreeMap::new(),
         };
+        if raw.normal_in_plane && (dim != 3 || raw.normal.is_none()) {
+            let at = raw
+                .normal
+                .as_ref()
+                .map_or(raw.dimension.span(), Spanned::span);
+            return Err(self
+                .diag(at, "normal_in_plane needs dimension = 3 and a declared normal")
+                .with_help("it keeps the normal in the 1-2 plane of a 3D index range (plane Cosserat problems)"));
+        }
         let declare = |decls: &mut Decls, name: String, rank: usize, s: &S| {
             if RESERVED.contains(&name.as_str())
                 || decls.symbols.contains_key(&name)
@@ -382,10 +392,63 @@ impl Loader {
             .map_err(|e| self.lang(&sub, e))
     }
 
+    /// `X_13 = expr`: a fixed component of a declared symbol. `None` when the left side
+    /// is not a name with digit indices only.
+    fn component_assumption(
+        &self,
+        origin: &Origin,
+        text: &str,
+        eq: usize,
+        decls: &Decls,
+    ) -> Result<Option<Assumption>, Diagnostic> {
+        let sub = sub_origin(origin, 0..eq);
+        let Ok(e) = parse_expr(&text[..eq]) else {
+            return Ok(None);
+        };
+        let ExprKind::Name { base, indices, .. } = e.kind else {
+            return Ok(None);
+        };
+        if indices.is_empty() || !indices.iter().all(|t| t.ch.is_ascii_digit()) {
+            return Ok(None);
+        }
+        if decls.symbols.get(&base) != Some(&indices.len()) {
+            return Err(sub
+                .diagnostic(e.span, format!("`{base}` is not a declared tensor of rank {}", indices.len()))
+                .with_help("a component assumption such as sigma_13 = 0 fixes one component of a declared tensor"));
+        }
+        let mut index = Vec::with_capacity(indices.len());
+        for t in &indices {
+            let d = t.ch.to_digit(10).unwrap_or(0) as usize;
+            if d == 0 || d > decls.dim {
+                return Err(sub.diagnostic(
+                    t.span,
+                    format!("fixed index {d} is outside 1..={}", decls.dim),
+                ));
+            }
+            index.push(d - 1);
+        }
+        let body = self.rhs(origin, text, eq, decls, &[])?;
+        if !body.free.is_empty() {
+            return Err(origin.diagnostic(
+                Span::new(eq + 1, text.len()),
+                "a single component is set to a scalar expression",
+            ));
+        }
+        Ok(Some(Assumption::Component {
+            symbol: base,
+            index,
+            body,
+            origin: origin.clone(),
+        }))
+    }
+
     fn assumption(&self, s: &S, decls: &Decls) -> Result<Assumption, Diagnostic> {
         let origin = self.origin(s);
         let text = s.get_ref();
         if let Some(eq) = text.find('=') {
+            if let Some(component) = self.component_assumption(&origin, text, eq, decls)? {
+                return Ok(component);
+            }
             let (name, formal, span) = self.lhs_name(&origin, text, eq)?;
             match decls.symbols.get(&name) {
                 Some(&rank) if rank == formal.len() => {}
@@ -428,7 +491,7 @@ impl Loader {
             .strip_suffix(')')
             .and_then(|t| t.split_once('('))
             .map(|(f, a)| (f.trim(), a.trim()));
-        let usage = "write traceless(X), symmetric(X), antisymmetric(X) or X = expression";
+        let usage = "write traceless(X), symmetric(X), antisymmetric(X), X = expression or X_13 = expression";
         let Some((func, arg)) = parsed else {
             return Err(origin
                 .diagnostic(Span::new(0, text.len()), "unrecognised assumption")
@@ -571,9 +634,17 @@ impl Loader {
                 .diag(c.expect.span(), format!("a claim expected to be `{expect}` needs a `reason`"))
                 .with_help("add reason = \"…\": one sentence saying why the printed statement does not hold"));
         }
-        let check = self.check(
+        let mut check = self.check(
             &c.id, decls, defs, &c.define, &c.assume, &c.sides, &c.chains, c.verbatim,
         )?;
+        // File-wide assumptions come first, then the claim's own.
+        let mut assumptions = raw
+            .assume
+            .iter()
+            .map(|a| self.assumption(a, decls))
+            .collect::<Result<Vec<_>, _>>()?;
+        assumptions.append(&mut check.assumptions);
+        check.assumptions = assumptions;
         let correction = match &c.correction {
             None => None,
             Some(r) => {

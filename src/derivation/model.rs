@@ -63,6 +63,14 @@ pub enum Assumption {
     Symmetric { symbol: String },
     /// `X_ji = −X_ij` (and `X_ii = 0`) for a rank-2 symbol.
     Antisymmetric { symbol: String },
+    /// One component of a symbol is fixed, e.g. `sigma_13 = 0` for plane problems.
+    Component {
+        symbol: String,
+        /// 0-based component indices.
+        index: Vec<usize>,
+        body: Node,
+        origin: Origin,
+    },
     /// The symbol is replaced by an expression, e.g. `S = 3*V/(2*R_g)` for the paper's
     /// `2 R_g S = 3 V`.
     Equals {

@@ -15,6 +15,10 @@ pub struct RawFile {
     pub dimension: Spanned<i64>,
     pub normal: Option<S>,
     #[serde(default)]
+    pub normal_in_plane: bool,
+    #[serde(default)]
+    pub assume: Vec<S>,
+    #[serde(default)]
     pub tensors: Vec<S>,
     #[serde(default)]
     pub scalars: Vec<S>,

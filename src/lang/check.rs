@@ -22,6 +22,9 @@ pub struct Decls {
     pub dim: usize,
     /// The name of the unit contact normal averaged over by `avg(…)`, if any.
     pub normal: Option<String>,
+    /// The normal lies in the 1-2 plane (n_3 = 0) and is uniform on its unit circle:
+    /// plane problems with a 3D index range (Section 4).
+    pub normal_in_plane: bool,
     /// Declared symbols and their ranks (0 for scalars such as `R_g`).
     pub symbols: BTreeMap<String, usize>,
 }
@@ -473,6 +476,7 @@ mod tests {
         Decls {
             dim: 3,
             normal: Some("n".into()),
+            normal_in_plane: false,
             symbols: [("sigma", 2), ("mu", 2), ("R_g", 0), ("V", 0), ("x", 1)]
                 .into_iter()
                 .map(|(k, v)| (k.to_string(), v))

@@ -75,8 +75,9 @@ impl<'a> ExactEnv<'a> {
         assumptions: &[Assumption],
     ) -> Result<Self, Diagnostic> {
         let mut vars = VarTable::new();
+        let free_components = if decls.normal_in_plane { 2 } else { decls.dim };
         let normal = match &decls.normal {
-            Some(n) => (1..=decls.dim)
+            Some(n) => (1..=free_components)
                 .map(|k| vars.intern(&format!("{n}_{k}")))
                 .collect(),
             None => Vec::new(),
@@ -123,6 +124,21 @@ impl<'a> ExactEnv<'a> {
                 }
                 self.symbols.insert(symbol.clone(), t);
             }
+            Assumption::Component {
+                symbol,
+                index,
+                body,
+                origin,
+            } => {
+                let value = self
+                    .eval(body, origin)?
+                    .tensor
+                    .into_scalar()
+                    .expect("validated: scalar");
+                let mut t = self.symbol(symbol);
+                *t.get_mut(index) = value;
+                self.symbols.insert(symbol.clone(), t);
+            }
             Assumption::Equals {
                 symbol,
                 formal,
@@ -162,7 +178,12 @@ impl<'a> ExactEnv<'a> {
         Ok(match target {
             Target::Delta => Tensor::delta(d),
             Target::Eps => Tensor::levi_civita(d),
-            Target::Normal => Tensor::from_fn(d, 1, |i| Poly::var(self.normal[i[0]])),
+            // An in-plane normal has no third component: n_3 = 0.
+            Target::Normal => Tensor::from_fn(d, 1, |i| {
+                self.normal
+                    .get(i[0])
+                    .map_or_else(Poly::zero, |&v| Poly::var(v))
+            }),
             Target::Symbol(name) => self.symbol(name),
             Target::Def(name) => {
                 if let Some(t) = self.cache.get(name) {

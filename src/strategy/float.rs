@@ -261,16 +261,27 @@ pub fn decide(
         for (name, &rank) in &decls.symbols {
             symbols.insert(name.clone(), Tensor::from_fn(d, rank, |_| rng.uniform()));
         }
+        // An in-plane normal uses the circle rule, embedded with n_3 = 0.
+        let free = if decls.normal_in_plane { 2 } else { d };
+        let rule = sphere_rule(free)
+            .into_iter()
+            .map(|(mut p, w)| {
+                p.resize(d, 0.0);
+                (p, w)
+            })
+            .collect();
         let mut env = Env {
             decls,
             defs: &check.defs,
             symbols,
-            rule: sphere_rule(d),
+            rule,
         };
         let n: Vec<f64> = {
-            let v: Vec<f64> = (0..d).map(|_| rng.uniform()).collect();
+            let mut v: Vec<f64> = (0..free).map(|_| rng.uniform()).collect();
             let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-3);
-            v.iter().map(|x| x / norm).collect()
+            v.iter_mut().for_each(|x| *x /= norm);
+            v.resize(d, 0.0);
+            v
         };
         for a in &check.assumptions {
             apply(&mut env, a, &n)?;
@@ -327,6 +338,20 @@ fn apply(env: &mut Env<'_>, a: &Assumption, n: &[f64]) -> Result<(), String> {
                     *t.get_mut(&[i, i]) = 0.0;
                 }
             }
+        }
+        Assumption::Component {
+            symbol,
+            index,
+            body,
+            ..
+        } => {
+            let x = env
+                .eval(body, n)?
+                .1
+                .into_scalar()
+                .ok_or("component set to a non-scalar")?;
+            let t = env.symbols.get_mut(symbol).ok_or("unknown symbol")?;
+            *t.get_mut(index) = x;
         }
         Assumption::Equals {
             symbol,
