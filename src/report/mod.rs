@@ -75,8 +75,13 @@ fn counterexample_text(cx: &Counterexample) -> String {
         } else {
             ""
         };
+        let chain = if cx.chain > 1 {
+            format!("chain {}, ", cx.chain)
+        } else {
+            String::new()
+        };
         parts.push(format!(
-            "equality {} (`{}` = `{}`){at}: left − right = `{}`{modulo}",
+            "{chain}equality {} (`{}` = `{}`){at}: left − right = `{}`{modulo}",
             cx.equality, cx.lhs, cx.rhs, cx.difference
         ));
         if let (Some(l), Some(r)) = (&cx.lhs_value, &cx.rhs_value) {
