@@ -102,9 +102,11 @@ impl Check {
                     stack.push(a);
                     stack.push(b);
                 }
-                NodeKind::Neg(a) | NodeKind::Pow(a, _) | NodeKind::Sqrt(a) | NodeKind::Avg(a) => {
-                    stack.push(a)
-                }
+                NodeKind::Neg(a)
+                | NodeKind::Pow(a, _)
+                | NodeKind::Apply(_, a)
+                | NodeKind::Avg(a)
+                | NodeKind::MaxN(a) => stack.push(a),
             }
         }
         (0..self.defs.len())

@@ -77,8 +77,11 @@ pub enum NodeKind {
     Div(Box<Node>, Box<Node>),
     Neg(Box<Node>),
     Pow(Box<Node>, u32),
-    Sqrt(Box<Node>),
+    /// A scalar function (`sqrt`, `abs`, `cos`, `sin`, `tan`) of a scalar.
+    Apply(Func, Box<Node>),
     Avg(Box<Node>),
+    /// The maximum over the orientation of the normal of a scalar.
+    MaxN(Box<Node>),
 }
 
 impl Node {
@@ -107,7 +110,9 @@ pub fn letters(ls: &[char]) -> String {
 }
 
 /// Names that cannot be declared: built-ins and functions.
-pub const RESERVED: [&str; 4] = ["delta", "eps", "sqrt", "avg"];
+pub const RESERVED: [&str; 9] = [
+    "delta", "eps", "sqrt", "abs", "cos", "sin", "tan", "avg", "maxn",
+];
 
 /// Resolves and validates expressions against declarations and visible definitions.
 pub struct Scope<'a> {
@@ -161,21 +166,29 @@ impl Scope<'_> {
                 let k = *k;
                 Ok(wrap(a, e.span, |a| NodeKind::Pow(Box::new(a), k)))
             }
-            ExprKind::Call(Func::Sqrt, a) => {
-                let a = self.scalar_arg(a, "sqrt")?;
-                Ok(wrap(a, e.span, |a| NodeKind::Sqrt(Box::new(a))))
-            }
-            ExprKind::Call(Func::Avg, a) => {
+            ExprKind::Call(func @ (Func::Avg | Func::MaxN), a) => {
                 if self.decls.normal.is_none() {
                     return Err(LangError::new(
                         ErrorKind::Name,
                         e.span,
-                        "avg(…) needs a contact normal, and this file declares none",
+                        format!(
+                            "{}(…) needs a contact normal, and this file declares none",
+                            func.name()
+                        ),
                     )
                     .help("add `normal = \"n\"` at the top of the file"));
                 }
-                let a = self.check(a)?;
-                Ok(wrap(a, e.span, |a| NodeKind::Avg(Box::new(a))))
+                if *func == Func::Avg {
+                    let a = self.check(a)?;
+                    return Ok(wrap(a, e.span, |a| NodeKind::Avg(Box::new(a))));
+                }
+                let a = self.scalar_arg(a, "maxn")?;
+                Ok(wrap(a, e.span, |a| NodeKind::MaxN(Box::new(a))))
+            }
+            ExprKind::Call(func, a) => {
+                let a = self.scalar_arg(a, func.name())?;
+                let func = *func;
+                Ok(wrap(a, e.span, |a| NodeKind::Apply(func, Box::new(a))))
             }
         }
     }

@@ -7,7 +7,8 @@
 //! term   := unary (('*' | '/') unary | unary)*      -- `a b` means `a * b`
 //! unary  := '-' unary | power
 //! power  := atom ('^' integer)?
-//! atom   := number | name | ('sqrt' | 'avg') '(' expr ')' | '(' expr ')'
+//! atom   := number | name | func '(' expr ')' | '(' expr ')'
+//! func   := 'sqrt' | 'abs' | 'cos' | 'sin' | 'tan' | 'avg' | 'maxn'
 //! name   := letter alnum* ('_' alnum+)?             -- sigma_ki, n_k, R_g, delta_ij
 //! ```
 //!
@@ -25,10 +26,47 @@ pub struct IndexTok {
     pub span: Span,
 }
 
+/// The functions of the language. `avg` and `maxn` act on the contact normal; the
+/// others are ordinary scalar functions (exact mode accepts only `sqrt` of a square).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Func {
     Sqrt,
+    Abs,
+    Cos,
+    Sin,
+    Tan,
+    /// The average over the contact normal.
     Avg,
+    /// The maximum over the orientation of the contact normal.
+    MaxN,
+}
+
+impl Func {
+    /// The function called `name`, if any.
+    pub fn from_name(name: &str) -> Option<Func> {
+        Some(match name {
+            "sqrt" => Func::Sqrt,
+            "abs" => Func::Abs,
+            "cos" => Func::Cos,
+            "sin" => Func::Sin,
+            "tan" => Func::Tan,
+            "avg" => Func::Avg,
+            "maxn" => Func::MaxN,
+            _ => return None,
+        })
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sqrt => "sqrt",
+            Func::Abs => "abs",
+            Func::Cos => "cos",
+            Func::Sin => "sin",
+            Func::Tan => "tan",
+            Func::Avg => "avg",
+            Func::MaxN => "maxn",
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -351,11 +389,7 @@ impl Parser {
                 base,
                 indices,
             } => {
-                let func = match full.as_str() {
-                    "sqrt" => Some(Func::Sqrt),
-                    "avg" => Some(Func::Avg),
-                    _ => None,
-                };
+                let func = Func::from_name(&full);
                 if let Some(func) = func {
                     if *self.peek() != Tok::Op('(') {
                         return Err(LangError::new(

@@ -7,6 +7,7 @@
 
 use crate::derivation::{Assumption, Definition};
 use crate::kernel::{assignments, Poly, PolyError, Tensor, Var, VarTable};
+use crate::lang::parser::Func;
 use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin, Slot, Target};
 use num_traits::{One, Zero};
 use std::collections::HashMap;
@@ -328,7 +329,7 @@ impl<'a> ExactEnv<'a> {
                 }
                 scalar(p.pow(*k))
             }
-            NodeKind::Sqrt(a) => {
+            NodeKind::Apply(Func::Sqrt, a) => {
                 let p = self
                     .eval(a, origin)?
                     .tensor
@@ -337,9 +338,25 @@ impl<'a> ExactEnv<'a> {
                 let root = p.as_constant().and_then(|q| q.sqrt_exact()).ok_or_else(|| {
                     origin
                         .diagnostic(node.span, "sqrt(…) of this expression has no exact polynomial value")
-                        .with_help("exact mode takes square roots of squares of rationals only; use a numeric strategy")
+                        .with_help("exact mode takes square roots of squares of rationals only; use strategy = \"numeric\"")
                 })?;
                 scalar(Poly::constant(root))
+            }
+            NodeKind::Apply(func, _) => {
+                return Err(origin
+                    .diagnostic(
+                        node.span,
+                        format!("{}(…) has no exact polynomial value", func.name()),
+                    )
+                    .with_help("decide this claim with strategy = \"numeric\""))
+            }
+            NodeKind::MaxN(_) => {
+                return Err(origin
+                    .diagnostic(
+                        node.span,
+                        "maxn(…) is a maximum over orientations, not a polynomial",
+                    )
+                    .with_help("decide this claim with strategy = \"numeric\""))
             }
             NodeKind::Avg(a) => {
                 let v = self.eval(a, origin)?;

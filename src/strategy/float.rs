@@ -1,16 +1,17 @@
 //! An independent floating-point route for cross-checking exact verdicts.
 //!
-//! It shares only the parser and validator with the exact strategy: no polynomial, no
-//! moment formula. Symbols get seeded random values in [−1, 1], the normal is a random
+//! It shares only the parser and validator with the exact strategy (evaluation is
+//! [`super::real`]): no polynomial, no moment formula. Symbols get seeded random values in [−1, 1], the normal is a random
 //! unit vector, and `avg(…)` re-evaluates its argument at the nodes of a quadrature
 //! rule on the circle (trapezoid, 32 points) or the sphere (8-point Gauss–Legendre in
 //! cos θ by Newton iteration × 16 equally spaced φ), exact for polynomials of degree
 //! ≤ 15 in n. A disagreement between this route and the exact one is a bug in one of
 //! them, and the test suite fails on it.
 
-use crate::derivation::{Assumption, Check, Definition, Verdict};
+use super::real::RealEnv;
+use crate::derivation::{Check, Verdict};
 use crate::kernel::{assignments, Tensor};
-use crate::lang::{Decls, Node, NodeKind, Slot, Target};
+use crate::lang::Decls;
 use std::collections::HashMap;
 
 /// Relative tolerance of a float comparison: |l − r| ≤ TOL · (1 + |l| + |r|). Inputs
@@ -84,164 +85,6 @@ impl Rng {
     }
 }
 
-type Labeled = (Vec<char>, Tensor<f64>);
-
-struct Env<'a> {
-    decls: &'a Decls,
-    defs: &'a [Definition],
-    symbols: HashMap<String, Tensor<f64>>,
-    rule: Vec<(Vec<f64>, f64)>,
-}
-
-impl Env<'_> {
-    fn eval(&self, node: &Node, n: &[f64]) -> Result<Labeled, String> {
-        let d = self.decls.dim;
-        let labels = node.free_letters();
-        let scalar = |x: f64| (vec![], Tensor::scalar(d, x));
-        Ok(match &node.kind {
-            NodeKind::Const(q) => scalar(q.to_f64()),
-            NodeKind::Leaf { target, slots } => {
-                let base = match target {
-                    Target::Delta => Tensor::delta(d),
-                    Target::Eps => Tensor::levi_civita(d),
-                    Target::Normal => Tensor::from_fn(d, 1, |i| n[i[0]]),
-                    Target::Symbol(s) => self.symbols[s].clone(),
-                    Target::Def(name) => {
-                        let def = self
-                            .defs
-                            .iter()
-                            .rev()
-                            .find(|x| &x.sig.name == name)
-                            .ok_or_else(|| format!("definition {name} not in scope"))?;
-                        let (ls, t) = self.eval(&def.body, n)?;
-                        let perm: Vec<usize> = def
-                            .sig
-                            .formal
-                            .iter()
-                            .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
-                            .collect();
-                        t.permuted(&perm)
-                    }
-                };
-                let t = product(d, &[(&base, slots.clone())], &labels);
-                (labels, t)
-            }
-            NodeKind::Neg(a) => {
-                let (ls, t) = self.eval(a, n)?;
-                (ls, t.map(|x| -x))
-            }
-            NodeKind::Sum(terms) => {
-                let mut acc: Option<Labeled> = None;
-                for t in terms {
-                    let (ls, v) = self.eval(t, n)?;
-                    acc = Some(match acc {
-                        None => (ls, v),
-                        Some((ls, a)) => (ls, a.add(&v)),
-                    });
-                }
-                acc.ok_or("empty sum")?
-            }
-            NodeKind::Product(fs) => {
-                let vals = fs
-                    .iter()
-                    .map(|f| self.eval(f, n))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let slots: Vec<(&Tensor<f64>, Vec<Slot>)> = vals
-                    .iter()
-                    .map(|(ls, t)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
-                    .collect();
-                let t = product(d, &slots, &labels);
-                (labels, t)
-            }
-            NodeKind::Div(a, b) => {
-                let (ls, t) = self.eval(a, n)?;
-                let den = self
-                    .eval(b, n)?
-                    .1
-                    .into_scalar()
-                    .ok_or("divisor is not a scalar")?;
-                if den == 0.0 {
-                    return Err("division by zero".into());
-                }
-                (ls, t.map(|x| x / den))
-            }
-            NodeKind::Pow(a, k) => {
-                let x = self
-                    .eval(a, n)?
-                    .1
-                    .into_scalar()
-                    .ok_or("power of a non-scalar")?;
-                scalar(x.powi(*k as i32))
-            }
-            NodeKind::Sqrt(a) => {
-                let x = self
-                    .eval(a, n)?
-                    .1
-                    .into_scalar()
-                    .ok_or("sqrt of a non-scalar")?;
-                if x < 0.0 {
-                    return Err("sqrt of a negative number".into());
-                }
-                scalar(x.sqrt())
-            }
-            NodeKind::Avg(a) => {
-                let mut acc: Option<Labeled> = None;
-                for (point, w) in &self.rule {
-                    let (ls, t) = self.eval(a, point)?;
-                    let t = t.map(|x| x * w);
-                    acc = Some(match acc {
-                        None => (ls, t),
-                        Some((ls, s)) => (ls, s.add(&t)),
-                    });
-                }
-                acc.ok_or("empty quadrature rule")?
-            }
-        })
-    }
-}
-
-/// The contraction of this route, written separately from the exact route's `einsum`
-/// on purpose: a shared bug would make the two routes agree on a wrong answer.
-fn product(dim: usize, factors: &[(&Tensor<f64>, Vec<Slot>)], out: &[char]) -> Tensor<f64> {
-    let mut all: Vec<char> = out.to_vec();
-    for (_, slots) in factors {
-        for s in slots {
-            if let Slot::Letter(c) = s {
-                if !all.contains(c) {
-                    all.push(*c);
-                }
-            }
-        }
-    }
-    let summed = all.len() - out.len();
-    Tensor::from_fn(dim, out.len(), |o| {
-        assignments(dim, summed)
-            .map(|s| {
-                factors
-                    .iter()
-                    .map(|(t, slots)| {
-                        let idx: Vec<usize> = slots
-                            .iter()
-                            .map(|sl| match sl {
-                                Slot::Fixed(v) => *v,
-                                Slot::Letter(c) => {
-                                    let k = all.iter().position(|x| x == c).expect("collected");
-                                    if k < out.len() {
-                                        o[k]
-                                    } else {
-                                        s[k - out.len()]
-                                    }
-                                }
-                            })
-                            .collect();
-                        *t.get(&idx)
-                    })
-                    .product::<f64>()
-            })
-            .sum()
-    })
-}
-
 /// The float route's verdict on a check: `holds` when every equality agrees within
 /// [`TOL`] at `samples` seeded random points, else `fails`. `Ok(None)` when the check
 /// has an ill-formed (verbatim) side, which this route does not judge.
@@ -270,7 +113,7 @@ pub fn decide(
                 (p, w)
             })
             .collect();
-        let mut env = Env {
+        let mut env = RealEnv {
             decls,
             defs: &check.defs,
             symbols,
@@ -283,14 +126,13 @@ pub fn decide(
             v.resize(d, 0.0);
             v
         };
-        for a in &check.assumptions {
-            apply(&mut env, a, &n)?;
-        }
+        env.assume(&check.assumptions, &n).map_err(|e| e.message)?;
         for chain in &check.chains {
             let values = chain
                 .iter()
                 .map(|s| env.eval(s.node.as_ref().expect("checked above"), &n))
-                .collect::<Result<Vec<_>, _>>()?;
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| e.message)?;
             for w in values.windows(2) {
                 let ((la, ta), (lb, tb)) = (&w[0], &w[1]);
                 let mut labels: Vec<char> = la.iter().chain(lb).copied().collect();
@@ -316,58 +158,6 @@ pub fn decide(
         }
     }
     Ok(Some(Verdict::Holds))
-}
-
-fn apply(env: &mut Env<'_>, a: &Assumption, n: &[f64]) -> Result<(), String> {
-    let d = env.decls.dim;
-    match a {
-        Assumption::Traceless { symbol } => {
-            let t = env.symbols.get_mut(symbol).ok_or("unknown symbol")?;
-            let rest: f64 = (0..d - 1).map(|k| *t.get(&[k, k])).sum();
-            *t.get_mut(&[d - 1, d - 1]) = -rest;
-        }
-        Assumption::Symmetric { symbol } | Assumption::Antisymmetric { symbol } => {
-            let anti = matches!(a, Assumption::Antisymmetric { .. });
-            let t = env.symbols.get_mut(symbol).ok_or("unknown symbol")?;
-            for i in 0..d {
-                for j in 0..i {
-                    let u = *t.get(&[j, i]);
-                    *t.get_mut(&[i, j]) = if anti { -u } else { u };
-                }
-                if anti {
-                    *t.get_mut(&[i, i]) = 0.0;
-                }
-            }
-        }
-        Assumption::Component {
-            symbol,
-            index,
-            body,
-            ..
-        } => {
-            let x = env
-                .eval(body, n)?
-                .1
-                .into_scalar()
-                .ok_or("component set to a non-scalar")?;
-            let t = env.symbols.get_mut(symbol).ok_or("unknown symbol")?;
-            *t.get_mut(index) = x;
-        }
-        Assumption::Equals {
-            symbol,
-            formal,
-            body,
-            ..
-        } => {
-            let (ls, t) = env.eval(body, n)?;
-            let perm: Vec<usize> = formal
-                .iter()
-                .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
-                .collect();
-            env.symbols.insert(symbol.clone(), t.permuted(&perm));
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 pub mod eval;
 pub mod exact;
 pub mod float;
+pub mod real;
 
 use crate::derivation::{Claim, Verdict};
 use crate::lang::Diagnostic;

@@ -1,0 +1,318 @@
+//! Evaluation of checked expressions over the reals, generic over the scalar: `f64`
+//! for sampling, and num-dual numbers (`DualDVec64`, `Dual2DVec64`, …) for gradients
+//! and Hessians. It shares only the parser and validator with the exact route, and
+//! has its own contraction code: a shared bug would make both routes agree on a wrong
+//! answer.
+//!
+//! `avg(…)` re-evaluates its argument at the nodes of a quadrature rule (see
+//! [`super::float::sphere_rule`]); `maxn(…)` maximises over the normal's angle in the
+//! plane by a dense grid refined by golden-section search (see [`MAXN_GRID`]).
+
+use crate::derivation::{Assumption, Definition};
+use crate::kernel::{assignments, Tensor};
+use crate::lang::parser::Func;
+use crate::lang::{Decls, Node, NodeKind, Slot, Span, Target};
+use num_dual::DualNum;
+use std::collections::HashMap;
+
+/// Grid points of `maxn` over [0, 2π) before golden-section refinement. The functions
+/// maximised here are trigonometric polynomials of degree ≤ 4 in the angle (or their
+/// absolute values), whose peaks are wider than 2π/8; 720 points put one within
+/// 0.25° of the global maximiser, and the refinement then converges to 1e-12 in angle.
+pub const MAXN_GRID: usize = 720;
+
+/// An evaluation error located in the expression's text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RealError {
+    pub span: Span,
+    pub message: String,
+}
+
+fn err(node: &Node, message: impl Into<String>) -> RealError {
+    RealError {
+        span: node.span,
+        message: message.into(),
+    }
+}
+
+/// Free-index labels (sorted) and the tensor.
+pub type Labeled<T> = (Vec<char>, Tensor<T>);
+
+/// The values of one sample: every symbol's components, and the quadrature rule.
+pub struct RealEnv<'a, T> {
+    pub decls: &'a Decls,
+    pub defs: &'a [Definition],
+    pub symbols: HashMap<String, Tensor<T>>,
+    /// Nodes and weights of the average over the normal.
+    pub rule: Vec<(Vec<f64>, f64)>,
+}
+
+impl<T: DualNum<Primitive = f64>> RealEnv<'_, T> {
+    /// Evaluates `node` with the normal `n` (used outside `avg`/`maxn`).
+    pub fn eval(&self, node: &Node, n: &[f64]) -> Result<Labeled<T>, RealError> {
+        let d = self.decls.dim;
+        let labels = node.free_letters();
+        let scalar = |x: T| (vec![], Tensor::scalar(d, x));
+        Ok(match &node.kind {
+            NodeKind::Const(q) => scalar(T::from(q.to_f64())),
+            NodeKind::Leaf { target, slots } => {
+                let base = match target {
+                    Target::Delta => Tensor::delta(d),
+                    Target::Eps => Tensor::levi_civita(d),
+                    Target::Normal => Tensor::from_fn(d, 1, |i| T::from(n[i[0]])),
+                    Target::Symbol(s) => self
+                        .symbols
+                        .get(s)
+                        .cloned()
+                        .ok_or_else(|| err(node, format!("no value for symbol {s}")))?,
+                    Target::Def(name) => {
+                        let def = self
+                            .defs
+                            .iter()
+                            .rev()
+                            .find(|x| &x.sig.name == name)
+                            .ok_or_else(|| err(node, format!("definition {name} not in scope")))?;
+                        let (ls, t) = self.eval(&def.body, n)?;
+                        let perm: Vec<usize> = def
+                            .sig
+                            .formal
+                            .iter()
+                            .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
+                            .collect();
+                        t.permuted(&perm)
+                    }
+                };
+                let t = contract(d, &[(&base, slots.clone())], &labels);
+                (labels, t)
+            }
+            NodeKind::Neg(a) => {
+                let (ls, t) = self.eval(a, n)?;
+                (ls, t.map(|x| -x.clone()))
+            }
+            NodeKind::Sum(terms) => {
+                let mut acc: Option<Labeled<T>> = None;
+                for t in terms {
+                    let (ls, v) = self.eval(t, n)?;
+                    acc = Some(match acc {
+                        None => (ls, v),
+                        Some((ls, a)) => (ls, a.add(&v)),
+                    });
+                }
+                acc.ok_or_else(|| err(node, "empty sum"))?
+            }
+            NodeKind::Product(fs) => {
+                let vals = fs
+                    .iter()
+                    .map(|f| self.eval(f, n))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let slots: Vec<(&Tensor<T>, Vec<Slot>)> = vals
+                    .iter()
+                    .map(|(ls, t)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
+                    .collect();
+                let t = contract(d, &slots, &labels);
+                (labels, t)
+            }
+            NodeKind::Div(a, b) => {
+                let (ls, t) = self.eval(a, n)?;
+                let den = self.scalar(b, n)?;
+                if den.re() == 0.0 {
+                    return Err(err(b, "division by zero"));
+                }
+                (ls, t.map(|x| x.clone() / den.clone()))
+            }
+            NodeKind::Pow(a, k) => scalar(self.scalar(a, n)?.powi(*k as i32)),
+            NodeKind::Apply(func, a) => {
+                let x = self.scalar(a, n)?;
+                scalar(match func {
+                    Func::Sqrt => {
+                        if x.re() < 0.0 {
+                            return Err(err(
+                                node,
+                                format!("sqrt of a negative number ({})", x.re()),
+                            ));
+                        }
+                        x.sqrt()
+                    }
+                    Func::Abs => x.abs(),
+                    Func::Cos => x.cos(),
+                    Func::Sin => x.sin(),
+                    Func::Tan => x.tan(),
+                    Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
+                })
+            }
+            NodeKind::Avg(a) => {
+                let mut acc: Option<Labeled<T>> = None;
+                for (point, w) in &self.rule {
+                    let (ls, t) = self.eval(a, point)?;
+                    let t = t.map(|x| x.clone() * *w);
+                    acc = Some(match acc {
+                        None => (ls, t),
+                        Some((ls, s)) => (ls, s.add(&t)),
+                    });
+                }
+                acc.ok_or_else(|| err(node, "empty quadrature rule"))?
+            }
+            NodeKind::MaxN(a) => scalar(self.max_over_angle(node, a)?),
+        })
+    }
+
+    fn scalar(&self, node: &Node, n: &[f64]) -> Result<T, RealError> {
+        self.eval(node, n)?
+            .1
+            .into_scalar()
+            .ok_or_else(|| err(node, "expected a scalar"))
+    }
+
+    /// max over θ of `a` at n = (cos θ, sin θ[, 0]): grid, then golden section around
+    /// the best grid point; the value (with its derivatives, by the envelope theorem)
+    /// is `a` evaluated at the maximiser.
+    fn max_over_angle(&self, node: &Node, a: &Node) -> Result<T, RealError> {
+        let d = self.decls.dim;
+        if d == 3 && !self.decls.normal_in_plane {
+            return Err(err(node, "maxn(…) maximises over the normal in a plane: use dimension = 2 or normal_in_plane = true"));
+        }
+        let at = |theta: f64| -> Vec<f64> {
+            let mut n = vec![theta.cos(), theta.sin()];
+            n.resize(d, 0.0);
+            n
+        };
+        let f = |theta: f64| -> Result<f64, RealError> { Ok(self.scalar(a, &at(theta))?.re()) };
+        let h = 2.0 * std::f64::consts::PI / MAXN_GRID as f64;
+        let mut best = (0.0, f64::NEG_INFINITY);
+        for k in 0..MAXN_GRID {
+            let theta = k as f64 * h;
+            let v = f(theta)?;
+            if !v.is_finite() {
+                return Err(err(node, "maxn(…): the argument is not finite"));
+            }
+            if v > best.1 {
+                best = (theta, v);
+            }
+        }
+        // Golden-section search on [θ* − h, θ* + h].
+        let g = (5f64.sqrt() - 1.0) / 2.0;
+        let (mut lo, mut hi) = (best.0 - h, best.0 + h);
+        let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        let (mut f1, mut f2) = (f(x1)?, f(x2)?);
+        while hi - lo > 1e-12 {
+            if f1 < f2 {
+                lo = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = lo + g * (hi - lo);
+                f2 = f(x2)?;
+            } else {
+                hi = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = hi - g * (hi - lo);
+                f1 = f(x1)?;
+            }
+        }
+        let theta = if f1.max(f2) >= best.1 {
+            (lo + hi) / 2.0
+        } else {
+            best.0
+        };
+        self.scalar(a, &at(theta))
+    }
+
+    /// Applies assumptions to the symbol values, in order.
+    pub fn assume(&mut self, assumptions: &[Assumption], n: &[f64]) -> Result<(), RealError> {
+        let d = self.decls.dim;
+        for a in assumptions {
+            match a {
+                Assumption::Traceless { symbol } => {
+                    if let Some(t) = self.symbols.get_mut(symbol) {
+                        let rest =
+                            (0..d - 1).fold(T::zero(), |acc, k| acc + t.get(&[k, k]).clone());
+                        *t.get_mut(&[d - 1, d - 1]) = -rest;
+                    }
+                }
+                Assumption::Symmetric { symbol } | Assumption::Antisymmetric { symbol } => {
+                    let anti = matches!(a, Assumption::Antisymmetric { .. });
+                    if let Some(t) = self.symbols.get_mut(symbol) {
+                        for i in 0..d {
+                            for j in 0..i {
+                                let u = t.get(&[j, i]).clone();
+                                *t.get_mut(&[i, j]) = if anti { -u } else { u };
+                            }
+                            if anti {
+                                *t.get_mut(&[i, i]) = T::zero();
+                            }
+                        }
+                    }
+                }
+                Assumption::Component {
+                    symbol,
+                    index,
+                    body,
+                    ..
+                } => {
+                    let x = self.scalar(body, n)?;
+                    if let Some(t) = self.symbols.get_mut(symbol) {
+                        *t.get_mut(index) = x;
+                    }
+                }
+                Assumption::Equals {
+                    symbol,
+                    formal,
+                    body,
+                    ..
+                } => {
+                    let (ls, t) = self.eval(body, n)?;
+                    let perm: Vec<usize> = formal
+                        .iter()
+                        .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
+                        .collect();
+                    self.symbols.insert(symbol.clone(), t.permuted(&perm));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Σ over summed letters of Π factors for every value of the `out` letters.
+fn contract<T: DualNum<Primitive = f64>>(
+    dim: usize,
+    factors: &[(&Tensor<T>, Vec<Slot>)],
+    out: &[char],
+) -> Tensor<T> {
+    let mut all: Vec<char> = out.to_vec();
+    for (_, slots) in factors {
+        for s in slots {
+            if let Slot::Letter(c) = s {
+                if !all.contains(c) {
+                    all.push(*c);
+                }
+            }
+        }
+    }
+    let summed = all.len() - out.len();
+    Tensor::from_fn(dim, out.len(), |o| {
+        let mut total = T::zero();
+        for s in assignments(dim, summed) {
+            let mut prod = T::one();
+            for (t, slots) in factors {
+                let idx: Vec<usize> = slots
+                    .iter()
+                    .map(|sl| match sl {
+                        Slot::Fixed(v) => *v,
+                        Slot::Letter(c) => {
+                            let k = all.iter().position(|x| x == c).expect("collected");
+                            if k < out.len() {
+                                o[k]
+                            } else {
+                                s[k - out.len()]
+                            }
+                        }
+                    })
+                    .collect();
+                prod *= t.get(&idx).clone();
+            }
+            total += prod;
+        }
+        total
+    })
+}
