@@ -12,7 +12,7 @@
 //! rates per kind and the full list of equivalent mutants — is snapshot-tested, so a
 //! new survivor shows up as a diff to review.
 
-use cosserat_check::derivation::{load_dir, Check, Verdict};
+use cosserat_check::derivation::{load_dir, Check, Strategy, Verdict};
 use cosserat_check::lang::Decls;
 use cosserat_check::mutate::{mutants, MutantKind};
 use cosserat_check::strategy::{exact, float};
@@ -67,6 +67,11 @@ fn every_mutant_of_every_proved_statement_is_refuted() {
     let mut survivors: Vec<(String, String, String)> = Vec::new();
     let mut disagreements: Vec<String> = Vec::new();
     for claim in files.iter().flat_map(|f| &f.claims) {
+        // The sweep covers the exact strategy; numeric strategies have their own
+        // refutation tests (tests/numeric.rs).
+        if !matches!(claim.check.strategy, Strategy::Exact) {
+            continue;
+        }
         let mut statements: Vec<(String, &Check)> = Vec::new();
         if claim.expect == Verdict::Holds {
             statements.push((claim.id.clone(), &claim.check));

@@ -2,7 +2,7 @@
 //! becomes a [`Diagnostic`] naming the file, line and column; nothing panics.
 
 use super::model::{
-    Assumption, Check, Claim, Correction, Definition, DerivationFile, Side, Verdict,
+    Assumption, Check, Claim, Correction, Definition, DerivationFile, Side, Strategy, Verdict,
 };
 use super::raw::{RawClaim, RawFile, S};
 use super::spans::{content_map, sub_origin};
@@ -124,7 +124,7 @@ pub fn load_str(label: &str, text: &str) -> Result<DerivationFile, LoadError> {
         .map(|(f, _)| f)
 }
 
-struct Loader {
+pub(super) struct Loader {
     file: Arc<SourceFile>,
 }
 
@@ -133,19 +133,19 @@ impl Loader {
         Loader { file }
     }
 
-    fn diag(&self, span: Range<usize>, msg: impl Into<String>) -> Diagnostic {
+    pub(super) fn diag(&self, span: Range<usize>, msg: impl Into<String>) -> Diagnostic {
         self.file.diagnostic(Span::new(span.start, span.end), msg)
     }
 
     /// The origin of a TOML string value, mapping its characters to file offsets.
-    fn origin(&self, s: &S) -> Origin {
+    pub(super) fn origin(&self, s: &S) -> Origin {
         Origin {
             file: self.file.clone(),
             map: content_map(&self.file.text, s.span(), s.get_ref()),
         }
     }
 
-    fn lang(&self, origin: &Origin, e: LangError) -> Diagnostic {
+    pub(super) fn lang(&self, origin: &Origin, e: LangError) -> Diagnostic {
         let d = origin.diagnostic(e.span, e.message);
         match e.help {
             Some(h) => d.with_help(h),
@@ -305,7 +305,7 @@ impl Loader {
                 .diagnostic(Span::new(0, text.len()), "a definition needs `=`")
                 .with_help("write it as name_ij = expression, e.g. t_i = sigma_ki n_k"));
         };
-        let (name, formal, name_span) = self.lhs_name(&origin, text, eq)?;
+        let (name, formal, name_span) = self.lhs_name(&origin, text, eq, None)?;
         if RESERVED.contains(&name.as_str())
             || decls.symbols.contains_key(&name)
             || decls.normal.as_ref() == Some(&name)
@@ -342,12 +342,14 @@ impl Loader {
         })
     }
 
-    /// The left side of `name_ij = …`: a name with distinct letter indices.
+    /// The left side of `name_ij = …`: a name with distinct letter indices, or the
+    /// whole name of a declared scalar such as `f_g` (when `decls` is given).
     fn lhs_name(
         &self,
         origin: &Origin,
         text: &str,
         eq: usize,
+        decls: Option<&Decls>,
     ) -> Result<(String, Vec<char>, Span), Diagnostic> {
         let lhs = &text[..eq];
         let sub = sub_origin(origin, 0..eq);
@@ -360,6 +362,9 @@ impl Loader {
         else {
             return Err(sub.diagnostic(e.span, "the left side must be a single name such as t_i"));
         };
+        if decls.is_some_and(|d| d.symbols.get(&full) == Some(&0)) {
+            return Ok((full, Vec::new(), e.span));
+        }
         let letters_only = indices.iter().all(|t| t.ch.is_ascii_alphabetic());
         let distinct = indices
             .iter()
@@ -372,7 +377,6 @@ impl Loader {
                 .diagnostic(e.span, "a defined name carries distinct index letters")
                 .with_help("e.g. t_i or mu_ij; fixed components cannot be defined one by one"));
         }
-        let _ = full;
         Ok((base, indices.iter().map(|t| t.ch).collect(), e.span))
     }
 
@@ -449,7 +453,7 @@ impl Loader {
             if let Some(component) = self.component_assumption(&origin, text, eq, decls)? {
                 return Ok(component);
             }
-            let (name, formal, span) = self.lhs_name(&origin, text, eq)?;
+            let (name, formal, span) = self.lhs_name(&origin, text, eq, Some(decls))?;
             match decls.symbols.get(&name) {
                 Some(&rank) if rank == formal.len() => {}
                 Some(&rank) => {
@@ -532,6 +536,7 @@ impl Loader {
         sides: &Option<Vec<S>>,
         chains: &Option<Vec<Vec<S>>>,
         verbatim: bool,
+        needs_sides: bool,
     ) -> Result<Check, Diagnostic> {
         let mut defs = defs.to_vec();
         for d in define {
@@ -552,6 +557,7 @@ impl Loader {
                         "`sides` is one chain a = b = …; `chains` is a list of such chains",
                     ))
             }
+            (None, None) if !needs_sides => Vec::new(),
             (None, None) => {
                 return Err(self
                     .diag(
@@ -561,7 +567,7 @@ impl Loader {
                     .with_help("add sides = [\"left\", \"right\"] in index notation"))
             }
         };
-        if raw_chains.is_empty() {
+        if raw_chains.is_empty() && needs_sides {
             return Err(self.diag(anchor.span(), "`chains` is empty"));
         }
         let sigs: Vec<DefSig> = defs.iter().map(|d| d.sig.clone()).collect();
@@ -611,6 +617,7 @@ impl Loader {
             assumptions,
             chains: out,
             verbatim,
+            strategy: Strategy::Exact,
         })
     }
 
@@ -634,9 +641,22 @@ impl Loader {
                 .diag(c.expect.span(), format!("a claim expected to be `{expect}` needs a `reason`"))
                 .with_help("add reason = \"…\": one sentence saying why the printed statement does not hold"));
         }
+        let needs_sides = c
+            .strategy
+            .as_ref()
+            .is_none_or(|s| matches!(s.get_ref().as_str(), "exact" | "numeric"));
         let mut check = self.check(
-            &c.id, decls, defs, &c.define, &c.assume, &c.sides, &c.chains, c.verbatim,
+            &c.id,
+            decls,
+            defs,
+            &c.define,
+            &c.assume,
+            &c.sides,
+            &c.chains,
+            c.verbatim,
+            needs_sides,
         )?;
+        check.strategy = self.strategy(c, decls, &check.defs)?;
         // File-wide assumptions come first, then the claim's own.
         let mut assumptions = raw
             .assume
@@ -659,7 +679,9 @@ impl Loader {
                     &r.sides,
                     &r.chains,
                     r.verbatim,
+                    needs_sides,
                 )?;
+                inner.strategy = check.strategy.clone();
                 let mut assumptions = check.assumptions.clone();
                 assumptions.append(&mut inner.assumptions);
                 inner.assumptions = assumptions;

@@ -7,6 +7,10 @@ pub mod load;
 pub mod model;
 mod raw;
 mod spans;
+mod spec;
 
 pub use load::{load_dir, load_files, load_str, LoadError};
-pub use model::{Assumption, Check, Claim, Correction, Definition, DerivationFile, Side, Verdict};
+pub use model::{
+    Assumption, Check, Claim, Constraint, Correction, Definition, DerivationFile, Expression,
+    Relation, Sampling, Side, Strategy, Verdict,
+};

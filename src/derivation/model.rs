@@ -109,6 +109,99 @@ pub struct Check {
     /// The sides transcribe a printed statement index for index, so ill-formed
     /// indices are a verdict rather than an input error.
     pub verbatim: bool,
+    /// How the statement is decided.
+    pub strategy: Strategy,
+}
+
+/// The relation between consecutive sides of a chain.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Relation {
+    Eq,
+    Le,
+    Ge,
+}
+
+impl Relation {
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "==" | "=" => Some(Relation::Eq),
+            "<=" => Some(Relation::Le),
+            ">=" => Some(Relation::Ge),
+            _ => None,
+        }
+    }
+
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Relation::Eq => "=",
+            Relation::Le => "≤",
+            Relation::Ge => "≥",
+        }
+    }
+}
+
+/// A checked scalar expression with its text, e.g. a function to differentiate.
+#[derive(Clone, Debug)]
+pub struct Expression {
+    pub text: String,
+    pub origin: Origin,
+    pub node: Node,
+}
+
+/// An inequality or equation between two scalars: `f_r <= f_s`, `p <= 0`.
+#[derive(Clone, Debug)]
+pub struct Constraint {
+    pub text: String,
+    pub lhs: Expression,
+    pub relation: Relation,
+    pub rhs: Expression,
+}
+
+/// How random states are drawn for the numeric strategies.
+#[derive(Clone, Debug)]
+pub struct Sampling {
+    /// Number of accepted samples.
+    pub samples: usize,
+    pub seed: u64,
+    /// Range of every component of a symbol; symbols not listed use [−1, 1], which
+    /// includes compression and tension.
+    pub ranges: std::collections::BTreeMap<String, (f64, f64)>,
+    /// Hypotheses: samples that violate one are redrawn.
+    pub given: Vec<Constraint>,
+    /// Where the statement is not defined (e.g. the apex of a cone): samples with this
+    /// scalar below 1e-8 in magnitude are excluded and counted.
+    pub singular: Option<Expression>,
+}
+
+/// The decision procedure of a claim.
+#[derive(Clone, Debug)]
+pub enum Strategy {
+    /// Canonical polynomial expansion (the default).
+    Exact,
+    /// Seeded random states in f64; `domain`, when given, is where a statement that
+    /// fails is claimed to hold (verdict `conditional`).
+    Numeric {
+        sampling: Sampling,
+        relation: Relation,
+        domain: Vec<Constraint>,
+    },
+    /// num-dual gradient of `function` against closed forms and central differences.
+    Gradient {
+        sampling: Sampling,
+        function: Expression,
+        /// (symbol, closed-form ∂F/∂symbol with the symbol's free indices).
+        closed_forms: Vec<(String, Expression)>,
+    },
+    /// num-dual Hessian of `function` in the components of `wrt` is positive
+    /// semidefinite at every sample.
+    Convex {
+        sampling: Sampling,
+        function: Expression,
+        wrt: Vec<String>,
+    },
+    /// The locus of (x, y) over the orientations of the normal is not a circle: an
+    /// exact witness state with four points on no common circle or line.
+    NotCircle { x: Expression, y: Expression },
 }
 
 /// A corrected statement that the paper evidently intended.

@@ -2,6 +2,7 @@
 //! their byte spans, so every later error can point into the file.
 
 use serde::Deserialize;
+use std::collections::BTreeMap;
 use toml::Spanned;
 
 /// A string value with its span in the file.
@@ -48,6 +49,28 @@ pub struct RawClaim {
     pub sides: Option<Vec<S>>,
     pub chains: Option<Vec<Vec<S>>>,
     pub correction: Option<RawCorrection>,
+    /// exact (default) | numeric | gradient | convex | not-circle
+    pub strategy: Option<S>,
+    /// == (default) | <= | >=, between consecutive sides (numeric only).
+    pub relation: Option<S>,
+    pub samples: Option<Spanned<i64>>,
+    pub seed: Option<Spanned<i64>>,
+    /// symbol → [low, high]
+    #[serde(default)]
+    pub ranges: BTreeMap<String, Vec<f64>>,
+    #[serde(default)]
+    pub given: Vec<S>,
+    #[serde(default)]
+    pub domain: Vec<S>,
+    pub singular: Option<S>,
+    pub function: Option<S>,
+    /// symbol → closed-form gradient
+    #[serde(default)]
+    pub gradient: BTreeMap<String, S>,
+    #[serde(default)]
+    pub wrt: Vec<S>,
+    pub x: Option<S>,
+    pub y: Option<S>,
 }
 
 #[derive(Deserialize)]

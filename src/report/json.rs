@@ -4,7 +4,7 @@
 //! `summary` (`holds`, `fails`, `conditional`, `unexpected`).
 
 use super::{Summary, PAPER};
-use crate::strategy::{Counterexample, Decided, Method};
+use crate::strategy::{Counterexample, Decided, Method, NumericEvidence};
 use serde::Serialize;
 
 #[derive(Serialize)]
@@ -27,6 +27,8 @@ struct ClaimRow<'a> {
     correction: Option<CorrectionRow<'a>>,
     as_expected: bool,
     used_unit_normal: bool,
+    numeric: Option<&'a NumericEvidence>,
+    detail: Option<&'a str>,
     reason: Option<&'a str>,
     note: Option<&'a str>,
 }
@@ -72,6 +74,8 @@ pub fn render(rows: &[Decided<'_>]) -> String {
                     }),
                 as_expected: r.as_expected(),
                 used_unit_normal: r.outcome.used_unit_normal,
+                numeric: r.outcome.numeric.as_ref(),
+                detail: r.outcome.detail.as_deref(),
                 reason: c.reason.as_deref(),
                 note: c.note.as_deref(),
             }

@@ -41,27 +41,61 @@ impl Summary {
 
 /// One line of evidence for an outcome, in plain text with inline code.
 pub fn evidence(o: &Outcome) -> String {
+    let mut parts = Vec::new();
+    if let Some(n) = &o.numeric {
+        let mut line = format!(
+            "{} samples (seed {}), {} {:.1e}, tolerance {}",
+            n.samples, n.seed, n.residual, n.largest_residual, n.tolerance
+        );
+        if let Some(x) = &n.exclusion {
+            line.push_str(&format!("; excluded {} samples with {x}", n.excluded));
+        }
+        parts.push(line);
+    }
+    if let Some(d) = &o.detail {
+        parts.push(d.clone());
+    }
     match &o.counterexample {
-        None => {
+        None if o.numeric.is_none() && o.detail.is_none() => {
             let unit = if o.used_unit_normal {
                 ", using n·n = 1"
             } else {
                 ""
             };
-            format!(
+            parts.push(format!(
                 "{} component check{}, every difference identically 0{unit}",
                 o.checks,
                 if o.checks == 1 { "" } else { "s" }
-            )
+            ));
         }
-        Some(cx) => counterexample_text(cx),
+        None => {}
+        Some(cx) => parts.push(counterexample_text(cx)),
     }
+    parts.join("; ")
 }
 
 fn counterexample_text(cx: &Counterexample) -> String {
     let mut parts = Vec::new();
     if let Some(m) = &cx.ill_formed {
         parts.push(format!("ill-formed: {m}"));
+    }
+    if cx.difference.is_empty() && cx.lhs_value.is_some() {
+        // A numeric counterexample: a sample where the relation fails.
+        let at = if cx.indices.is_empty() {
+            String::new()
+        } else {
+            let idx: Vec<String> = cx.indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
+            format!(" at {}", idx.join(", "))
+        };
+        let pts: Vec<String> = cx.point.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        parts.push(format!(
+            "counterexample to `{}` vs `{}`{at}: left {}, right {} at {}",
+            cx.lhs,
+            cx.rhs,
+            cx.lhs_value.as_deref().unwrap_or("?"),
+            cx.rhs_value.as_deref().unwrap_or("?"),
+            pts.join(", ")
+        ));
     }
     if !cx.difference.is_empty() {
         let at = if cx.indices.is_empty() {

@@ -32,6 +32,8 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                     method: Method::IndexCheck,
                     checks: 1,
                     used_unit_normal: false,
+                    numeric: None,
+                    detail: None,
                     counterexample: Some(Counterexample {
                         chain: ci + 1,
                         equality: si.max(1),
@@ -95,6 +97,8 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                     checks,
                     used_unit_normal: used_unit,
                     counterexample: Some(cx),
+                    numeric: None,
+                    detail: None,
                 });
             }
         }
@@ -105,6 +109,8 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
         checks,
         used_unit_normal: used_unit,
         counterexample: None,
+        numeric: None,
+        detail: None,
     })
 }
 

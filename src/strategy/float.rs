@@ -73,16 +73,46 @@ fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// A small deterministic generator (xorshift64*), independent of the exact route's.
-struct Rng(u64);
+pub struct Rng(u64);
 
 impl Rng {
-    fn uniform(&mut self) -> f64 {
+    /// A generator for `seed` (0 is mapped to 1: xorshift needs a nonzero state).
+    pub fn new(seed: u64) -> Self {
+        Rng(seed.max(1))
+    }
+
+    /// Uniform in [−1, 1).
+    pub fn uniform(&mut self) -> f64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
         let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
         (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     }
+
+    /// A random unit normal (in the 1-2 plane for plane problems), padded to the
+    /// dimension with zeros.
+    pub fn unit_normal(&mut self, decls: &Decls) -> Vec<f64> {
+        let free = if decls.normal_in_plane { 2 } else { decls.dim };
+        let mut v: Vec<f64> = (0..free).map(|_| self.uniform()).collect();
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-3);
+        v.iter_mut().for_each(|x| *x /= norm);
+        v.resize(decls.dim, 0.0);
+        v
+    }
+}
+
+/// The quadrature rule of `avg(…)` for these declarations: the sphere, or the circle
+/// (embedded with n_3 = 0) for plane problems.
+pub fn rule_for(decls: &Decls) -> Vec<(Vec<f64>, f64)> {
+    let free = if decls.normal_in_plane { 2 } else { decls.dim };
+    sphere_rule(free)
+        .into_iter()
+        .map(|(mut p, w)| {
+            p.resize(decls.dim, 0.0);
+            (p, w)
+        })
+        .collect()
 }
 
 /// The float route's verdict on a check: `holds` when every equality agrees within
@@ -98,34 +128,19 @@ pub fn decide(
         return Ok(None);
     }
     let d = decls.dim;
-    let mut rng = Rng(seed.max(1));
+    let mut rng = Rng::new(seed);
     for _ in 0..samples {
         let mut symbols: HashMap<String, Tensor<f64>> = HashMap::new();
         for (name, &rank) in &decls.symbols {
             symbols.insert(name.clone(), Tensor::from_fn(d, rank, |_| rng.uniform()));
         }
-        // An in-plane normal uses the circle rule, embedded with n_3 = 0.
-        let free = if decls.normal_in_plane { 2 } else { d };
-        let rule = sphere_rule(free)
-            .into_iter()
-            .map(|(mut p, w)| {
-                p.resize(d, 0.0);
-                (p, w)
-            })
-            .collect();
         let mut env = RealEnv {
             decls,
             defs: &check.defs,
             symbols,
-            rule,
+            rule: rule_for(decls),
         };
-        let n: Vec<f64> = {
-            let mut v: Vec<f64> = (0..free).map(|_| rng.uniform()).collect();
-            let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-3);
-            v.iter_mut().for_each(|x| *x /= norm);
-            v.resize(d, 0.0);
-            v
-        };
+        let n = rng.unit_normal(decls);
         env.assume(&check.assumptions, &n).map_err(|e| e.message)?;
         for chain in &check.chains {
             let values = chain

@@ -4,7 +4,9 @@
 pub mod eval;
 pub mod exact;
 pub mod float;
+pub mod numeric;
 pub mod real;
+pub mod witness;
 
 use crate::derivation::{Claim, Verdict};
 use crate::lang::Diagnostic;
@@ -19,6 +21,14 @@ pub enum Method {
     Exact,
     /// The printed statement is ill-formed in its indices.
     IndexCheck,
+    /// Seeded random states in f64.
+    Numeric,
+    /// num-dual gradients against closed forms and central differences.
+    Gradient,
+    /// num-dual Hessians, positive semidefinite.
+    Convex,
+    /// An exact witness of an existential statement.
+    Witness,
 }
 
 impl Method {
@@ -26,6 +36,10 @@ impl Method {
         match self {
             Method::Exact => "exact",
             Method::IndexCheck => "index-check",
+            Method::Numeric => "numeric",
+            Method::Gradient => "gradient",
+            Method::Convex => "convex",
+            Method::Witness => "witness",
         }
     }
 }
@@ -62,6 +76,30 @@ pub struct Outcome {
     /// Whether some comparison needed n·n = 1.
     pub used_unit_normal: bool,
     pub counterexample: Option<Counterexample>,
+    /// Sample count, seed and residuals of the numeric strategies.
+    pub numeric: Option<NumericEvidence>,
+    /// A strategy-specific line of evidence (the domain of a conditional claim, the
+    /// witness of an existential one, …).
+    pub detail: Option<String>,
+}
+
+/// The evidence a numeric verdict must carry.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NumericEvidence {
+    pub samples: usize,
+    pub seed: u64,
+    /// Largest relative residual (equalities) or relative violation (inequalities,
+    /// ≤ 0 when satisfied) over the samples; for convexity, the smallest relative
+    /// eigenvalue.
+    pub largest_residual: f64,
+    /// What `largest_residual` measures, in words.
+    pub residual: &'static str,
+    /// Samples excluded because they lie on the singular set.
+    pub excluded: usize,
+    pub exclusion: Option<String>,
+    /// The domain on which a conditional statement holds.
+    pub domain: Option<String>,
+    pub tolerance: String,
 }
 
 /// A decided claim: the claim's own outcome and its correction's.
@@ -83,11 +121,26 @@ impl Decided<'_> {
     }
 }
 
+/// Decides one check with its strategy.
+pub fn decide(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+) -> Result<Outcome, Diagnostic> {
+    use crate::derivation::Strategy;
+    match &check.strategy {
+        Strategy::Exact => exact::decide(decls, check),
+        Strategy::Numeric { .. } => numeric::decide_numeric(decls, check),
+        Strategy::Gradient { .. } => numeric::decide_gradient(decls, check),
+        Strategy::Convex { .. } => numeric::decide_convex(decls, check),
+        Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
+    }
+}
+
 /// Decides a claim and its correction.
 pub fn decide_claim(claim: &Claim) -> Result<Decided<'_>, Diagnostic> {
-    let outcome = exact::decide(&claim.decls, &claim.check)?;
+    let outcome = decide(&claim.decls, &claim.check)?;
     let correction = match &claim.correction {
-        Some(c) => Some(exact::decide(&claim.decls, &c.check)?),
+        Some(c) => Some(decide(&claim.decls, &c.check)?),
         None => None,
     };
     Ok(Decided {

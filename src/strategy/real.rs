@@ -15,11 +15,12 @@ use crate::lang::{Decls, Node, NodeKind, Slot, Span, Target};
 use num_dual::DualNum;
 use std::collections::HashMap;
 
-/// Grid points of `maxn` over [0, 2π) before golden-section refinement. The functions
-/// maximised here are trigonometric polynomials of degree ≤ 4 in the angle (or their
-/// absolute values), whose peaks are wider than 2π/8; 720 points put one within
-/// 0.25° of the global maximiser, and the refinement then converges to 1e-12 in angle.
-pub const MAXN_GRID: usize = 720;
+/// Grid points of `maxn` over [0, 2π) before golden-section refinement of every local
+/// maximum of the grid. For a function whose peaks are wider than two grid steps (a
+/// trigonometric polynomial of degree ≤ 4 in the angle, or its absolute value, as
+/// here: peaks at least 2π/8 wide), each peak contains a grid local maximum, and the
+/// refinement converges to 1e-12 in angle, so the maximum is found to rounding.
+pub const MAXN_GRID: usize = 360;
 
 /// An evaluation error located in the expression's text.
 #[derive(Clone, Debug, PartialEq)]
@@ -178,43 +179,31 @@ impl<T: DualNum<Primitive = f64>> RealEnv<'_, T> {
         };
         let f = |theta: f64| -> Result<f64, RealError> { Ok(self.scalar(a, &at(theta))?.re()) };
         let h = 2.0 * std::f64::consts::PI / MAXN_GRID as f64;
-        let mut best = (0.0, f64::NEG_INFINITY);
+        let mut grid = Vec::with_capacity(MAXN_GRID);
         for k in 0..MAXN_GRID {
-            let theta = k as f64 * h;
-            let v = f(theta)?;
+            let v = f(k as f64 * h)?;
             if !v.is_finite() {
                 return Err(err(node, "maxn(…): the argument is not finite"));
             }
+            grid.push(v);
+        }
+        // Refine every local maximum of the grid (not only the best one), so that a
+        // second peak whose grid value is slightly lower is not missed.
+        let mut best = (0.0, f64::NEG_INFINITY);
+        for k in 0..MAXN_GRID {
+            let (prev, next) = (
+                grid[(k + MAXN_GRID - 1) % MAXN_GRID],
+                grid[(k + 1) % MAXN_GRID],
+            );
+            if grid[k] < prev || grid[k] < next {
+                continue;
+            }
+            let (theta, v) = golden_max(&f, k as f64 * h, h)?;
             if v > best.1 {
                 best = (theta, v);
             }
         }
-        // Golden-section search on [θ* − h, θ* + h].
-        let g = (5f64.sqrt() - 1.0) / 2.0;
-        let (mut lo, mut hi) = (best.0 - h, best.0 + h);
-        let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        let (mut f1, mut f2) = (f(x1)?, f(x2)?);
-        while hi - lo > 1e-12 {
-            if f1 < f2 {
-                lo = x1;
-                x1 = x2;
-                f1 = f2;
-                x2 = lo + g * (hi - lo);
-                f2 = f(x2)?;
-            } else {
-                hi = x2;
-                x2 = x1;
-                f2 = f1;
-                x1 = hi - g * (hi - lo);
-                f1 = f(x1)?;
-            }
-        }
-        let theta = if f1.max(f2) >= best.1 {
-            (lo + hi) / 2.0
-        } else {
-            best.0
-        };
-        self.scalar(a, &at(theta))
+        self.scalar(a, &at(best.0))
     }
 
     /// Applies assumptions to the symbol values, in order.
@@ -273,6 +262,38 @@ impl<T: DualNum<Primitive = f64>> RealEnv<'_, T> {
     }
 }
 
+/// Golden-section search for the maximum of `f` on [c − h, c + h]: the maximiser and
+/// the value (never below f(c)).
+fn golden_max(
+    f: &dyn Fn(f64) -> Result<f64, RealError>,
+    c: f64,
+    h: f64,
+) -> Result<(f64, f64), RealError> {
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut lo, mut hi) = (c - h, c + h);
+    let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+    let (mut f1, mut f2) = (f(x1)?, f(x2)?);
+    while hi - lo > 1e-12 {
+        if f1 < f2 {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + g * (hi - lo);
+            f2 = f(x2)?;
+        } else {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - g * (hi - lo);
+            f1 = f(x1)?;
+        }
+    }
+    let mid = (lo + hi) / 2.0;
+    let fm = f(mid)?;
+    let fc = f(c)?;
+    Ok(if fm >= fc { (mid, fm) } else { (c, fc) })
+}
+
 /// Σ over summed letters of Π factors for every value of the `out` letters.
 fn contract<T: DualNum<Primitive = f64>>(
     dim: usize,
@@ -290,25 +311,34 @@ fn contract<T: DualNum<Primitive = f64>>(
         }
     }
     let summed = all.len() - out.len();
+    // For each factor slot: Ok(position in the combined assignment) or Err(fixed value).
+    let plan: Vec<Vec<Result<usize, usize>>> = factors
+        .iter()
+        .map(|(_, slots)| {
+            slots
+                .iter()
+                .map(|sl| match sl {
+                    Slot::Fixed(v) => Err(*v),
+                    Slot::Letter(c) => Ok(all.iter().position(|x| x == c).expect("collected")),
+                })
+                .collect()
+        })
+        .collect();
+    let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
+    let mut values = vec![0usize; all.len()];
+    let mut idx: Vec<usize> = Vec::with_capacity(8);
     Tensor::from_fn(dim, out.len(), |o| {
+        values[..out.len()].copy_from_slice(o);
         let mut total = T::zero();
-        for s in assignments(dim, summed) {
+        for s in &inner {
+            values[out.len()..].copy_from_slice(s);
             let mut prod = T::one();
-            for (t, slots) in factors {
-                let idx: Vec<usize> = slots
-                    .iter()
-                    .map(|sl| match sl {
-                        Slot::Fixed(v) => *v,
-                        Slot::Letter(c) => {
-                            let k = all.iter().position(|x| x == c).expect("collected");
-                            if k < out.len() {
-                                o[k]
-                            } else {
-                                s[k - out.len()]
-                            }
-                        }
-                    })
-                    .collect();
+            for ((t, _), p) in factors.iter().zip(&plan) {
+                idx.clear();
+                idx.extend(p.iter().map(|r| match r {
+                    Ok(k) => values[*k],
+                    Err(v) => *v,
+                }));
                 prod *= t.get(&idx).clone();
             }
             total += prod;

@@ -1,0 +1,253 @@
+//! Reading a claim's decision procedure (`strategy = …` and its fields) into a
+//! [`Strategy`], with every expression checked against the claim's scope.
+
+use super::load::Loader;
+use super::model::{Constraint, Definition, Expression, Relation, Sampling, Strategy};
+use super::raw::{RawClaim, S};
+use super::spans::sub_origin;
+use crate::lang::check::letters;
+use crate::lang::{parse_expr, Decls, DefSig, Diagnostic, Scope, Span};
+use std::collections::BTreeMap;
+
+/// Default and smallest sample counts. Fewer than 50 random states would let a
+/// statement that fails on a small part of the domain pass too easily.
+pub const DEFAULT_SAMPLES: usize = 200;
+pub const MIN_SAMPLES: usize = 50;
+
+const STRATEGIES: &str = "exact, numeric, gradient, convex or not-circle";
+
+impl Loader {
+    /// The strategy of a claim; `defs` are the claim's visible definitions.
+    pub(super) fn strategy(
+        &self,
+        c: &RawClaim,
+        decls: &Decls,
+        defs: &[Definition],
+    ) -> Result<Strategy, Diagnostic> {
+        let sigs: Vec<DefSig> = defs.iter().map(|d| d.sig.clone()).collect();
+        let name = c
+            .strategy
+            .as_ref()
+            .map_or("exact", |s| s.get_ref().as_str());
+        let anchor = c.strategy.as_ref().unwrap_or(&c.id);
+        let need = |field: &Option<S>, what: &str| -> Result<S, Diagnostic> {
+            field.clone().ok_or_else(|| {
+                self.diag(
+                    anchor.span(),
+                    format!("strategy = \"{name}\" needs `{what}`"),
+                )
+                .with_help("see README.md, section \"Derivation files\"")
+            })
+        };
+        let scalar = |s: &S| self.expression(s, decls, &sigs, &[]);
+        Ok(match name {
+            "exact" => Strategy::Exact,
+            "numeric" => {
+                let relation = match &c.relation {
+                    None => Relation::Eq,
+                    Some(r) => Relation::parse(r.get_ref()).ok_or_else(|| {
+                        self.diag(r.span(), format!("unknown relation `{}`", r.get_ref()))
+                            .with_help("relation is one of \"==\", \"<=\", \">=\"")
+                    })?,
+                };
+                let domain = c
+                    .domain
+                    .iter()
+                    .map(|d| self.constraint(d, decls, &sigs))
+                    .collect::<Result<_, _>>()?;
+                Strategy::Numeric {
+                    sampling: self.sampling(c, decls, &sigs)?,
+                    relation,
+                    domain,
+                }
+            }
+            "gradient" => {
+                let function = scalar(&need(&c.function, "function")?)?;
+                if c.gradient.is_empty() {
+                    return Err(self
+                        .diag(
+                            anchor.span(),
+                            "strategy = \"gradient\" needs a `gradient` table",
+                        )
+                        .with_help("gradient = { sigma = \"closed form of ∂F/∂sigma_ij\" }"));
+                }
+                let mut closed_forms = Vec::new();
+                for (symbol, text) in &c.gradient {
+                    let Some(&rank) = decls.symbols.get(symbol) else {
+                        return Err(
+                            self.diag(text.span(), format!("`{symbol}` is not a declared symbol"))
+                        );
+                    };
+                    let want: Vec<char> = "ijklmn".chars().take(rank).collect();
+                    closed_forms
+                        .push((symbol.clone(), self.expression(text, decls, &sigs, &want)?));
+                }
+                Strategy::Gradient {
+                    sampling: self.sampling(c, decls, &sigs)?,
+                    function,
+                    closed_forms,
+                }
+            }
+            "convex" => {
+                let function = scalar(&need(&c.function, "function")?)?;
+                let mut wrt = Vec::new();
+                for w in &c.wrt {
+                    if !decls.symbols.contains_key(w.get_ref()) {
+                        return Err(self.diag(
+                            w.span(),
+                            format!("`{}` is not a declared symbol", w.get_ref()),
+                        ));
+                    }
+                    wrt.push(w.get_ref().clone());
+                }
+                if wrt.is_empty() {
+                    return Err(self.diag(
+                        anchor.span(),
+                        "strategy = \"convex\" needs `wrt`, the symbols to vary",
+                    ));
+                }
+                Strategy::Convex {
+                    sampling: self.sampling(c, decls, &sigs)?,
+                    function,
+                    wrt,
+                }
+            }
+            "not-circle" => Strategy::NotCircle {
+                x: scalar(&need(&c.x, "x")?)?,
+                y: scalar(&need(&c.y, "y")?)?,
+            },
+            other => {
+                return Err(self
+                    .diag(anchor.span(), format!("unknown strategy `{other}`"))
+                    .with_help(format!("strategy is one of {STRATEGIES}")))
+            }
+        })
+    }
+
+    /// A checked expression whose free indices must be exactly `free` (letters).
+    fn expression(
+        &self,
+        s: &S,
+        decls: &Decls,
+        sigs: &[DefSig],
+        free: &[char],
+    ) -> Result<Expression, Diagnostic> {
+        let origin = self.origin(s);
+        let e = parse_expr(s.get_ref()).map_err(|e| self.lang(&origin, e))?;
+        let node = Scope { decls, defs: sigs }
+            .check(&e)
+            .map_err(|e| self.lang(&origin, e))?;
+        if node.free_letters() != free {
+            return Err(origin
+                .diagnostic(
+                    Span::new(0, s.get_ref().len()),
+                    format!(
+                        "this expression has free indices {}, but {} are expected here",
+                        letters(&node.free_letters()),
+                        letters(free)
+                    ),
+                )
+                .with_help("functions are scalars; a closed-form gradient carries the indices i, j, … of its symbol"));
+        }
+        Ok(Expression {
+            text: s.get_ref().clone(),
+            origin,
+            node,
+        })
+    }
+
+    /// `a <= b`, `a >= b` or `a == b` between scalars.
+    fn constraint(&self, s: &S, decls: &Decls, sigs: &[DefSig]) -> Result<Constraint, Diagnostic> {
+        let origin = self.origin(s);
+        let text = s.get_ref();
+        let found = ["<=", ">=", "=="]
+            .iter()
+            .find_map(|op| text.find(op).map(|k| (k, *op)));
+        let Some((k, op)) = found else {
+            return Err(origin
+                .diagnostic(
+                    Span::new(0, text.len()),
+                    "a constraint needs `<=`, `>=` or `==`",
+                )
+                .with_help("e.g. \"p <= 0\" or \"f_r <= f_s\""));
+        };
+        let side = |range: std::ops::Range<usize>| -> Result<Expression, Diagnostic> {
+            let sub = sub_origin(&origin, range.clone());
+            let part = &text[range];
+            let e = parse_expr(part).map_err(|e| self.lang(&sub, e))?;
+            let node = Scope { decls, defs: sigs }
+                .check(&e)
+                .map_err(|e| self.lang(&sub, e))?;
+            if !node.free.is_empty() {
+                return Err(sub.diagnostic(node.span, "a constraint compares scalars"));
+            }
+            Ok(Expression {
+                text: part.trim().to_owned(),
+                origin: sub,
+                node,
+            })
+        };
+        Ok(Constraint {
+            text: text.trim().to_owned(),
+            lhs: side(0..k)?,
+            relation: Relation::parse(op).expect("listed above"),
+            rhs: side(k + 2..text.len())?,
+        })
+    }
+
+    fn sampling(
+        &self,
+        c: &RawClaim,
+        decls: &Decls,
+        sigs: &[DefSig],
+    ) -> Result<Sampling, Diagnostic> {
+        let samples = match &c.samples {
+            None => DEFAULT_SAMPLES,
+            Some(n) => {
+                let v = *n.get_ref();
+                if v < MIN_SAMPLES as i64 || v > 1_000_000 {
+                    return Err(self
+                        .diag(n.span(), format!("samples must be between {MIN_SAMPLES} and 1000000, not {v}"))
+                        .with_help(format!("fewer than {MIN_SAMPLES} random states would let a statement that fails on a small part of the domain pass")));
+                }
+                v as usize
+            }
+        };
+        let seed = match &c.seed {
+            None => 1,
+            Some(s) if *s.get_ref() >= 0 => *s.get_ref() as u64,
+            Some(s) => return Err(self.diag(s.span(), "seed must be a non-negative integer")),
+        };
+        let mut ranges = BTreeMap::new();
+        for (name, bounds) in &c.ranges {
+            let ok = bounds.len() == 2
+                && bounds[0].is_finite()
+                && bounds[1].is_finite()
+                && bounds[0] < bounds[1];
+            if !decls.symbols.contains_key(name) || !ok {
+                return Err(self
+                    .diag(c.id.span(), format!("bad range for `{name}`: {bounds:?}"))
+                    .with_help(
+                        "ranges = { name = [low, high] } with a declared symbol and low < high",
+                    ));
+            }
+            ranges.insert(name.clone(), (bounds[0], bounds[1]));
+        }
+        let given = c
+            .given
+            .iter()
+            .map(|g| self.constraint(g, decls, sigs))
+            .collect::<Result<_, _>>()?;
+        let singular = match &c.singular {
+            None => None,
+            Some(s) => Some(self.expression(s, decls, sigs, &[])?),
+        };
+        Ok(Sampling {
+            samples,
+            seed,
+            ranges,
+            given,
+            singular,
+        })
+    }
+}

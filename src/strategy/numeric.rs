@@ -1,0 +1,670 @@
+//! Numeric strategies: seeded random states evaluated in f64 (equalities and
+//! inequalities, with a domain search for conditional claims), num-dual gradients
+//! against closed forms and central differences, and num-dual Hessians for convexity.
+//!
+//! Tolerances live here, in one place:
+//! - equality: |l − r| ≤ [`TOL`]·(1 + |l| + |r|); inequality l ≤ r: l − r ≤ TOL·(1 + |l| + |r|);
+//! - num-dual gradient vs closed form: [`TOL`] relative; vs central differences with
+//!   step h = [`FD_STEP`]·(1 + |x|): [`FD_TOL`] relative (truncation O(h²) plus rounding
+//!   O(ε/h), both far below it for the smooth functions checked here);
+//! - Hessian: the smallest eigenvalue must be ≥ −TOL·(1 + max |λ|).
+//!
+//! NaN or infinity never passes: a non-finite value is a violation unless the sample
+//! lies on the declared singular set, which is excluded and counted in the evidence.
+
+use super::float::{rule_for, Rng};
+use super::real::{RealEnv, RealError};
+use super::{Counterexample, Method, NumericEvidence, Outcome};
+use crate::derivation::{
+    Assumption, Check, Constraint, Expression, Relation, Sampling, Strategy, Verdict,
+};
+use crate::kernel::{assignments, Tensor};
+use crate::lang::{Decls, Diagnostic};
+use nalgebra::{DVector, SymmetricEigen};
+use num_dual::{gradient, hessian, Dual2DVec64, DualDVec64, DualNum};
+use std::collections::{BTreeMap, HashMap};
+
+pub use super::float::TOL;
+
+/// Relative step of central differences.
+pub const FD_STEP: f64 = 1e-6;
+/// Relative tolerance between num-dual and central differences.
+pub const FD_TOL: f64 = 1e-6;
+/// Samples whose singular expression is below this in magnitude are excluded.
+pub const SINGULAR_EPS: f64 = 1e-8;
+/// Draws allowed per accepted sample before the hypotheses are judged too narrow.
+const MAX_DRAWS_PER_SAMPLE: usize = 100;
+
+/// One random state: every symbol's components (after the assumptions) and a normal.
+#[derive(Clone)]
+struct State {
+    symbols: HashMap<String, Tensor<f64>>,
+    n: Vec<f64>,
+}
+
+fn located(e: &Expression, r: RealError) -> Diagnostic {
+    e.origin.diagnostic(r.span, r.message)
+}
+
+struct Sampler<'a> {
+    decls: &'a Decls,
+    check: &'a Check,
+    sampling: &'a Sampling,
+    rng: Rng,
+    rule: Vec<(Vec<f64>, f64)>,
+    /// Where errors about the sampling as a whole point (the statement's first
+    /// expression).
+    anchor: &'a Expression,
+}
+
+impl<'a> Sampler<'a> {
+    fn new(
+        decls: &'a Decls,
+        check: &'a Check,
+        sampling: &'a Sampling,
+        anchor: &'a Expression,
+    ) -> Self {
+        Sampler {
+            decls,
+            check,
+            sampling,
+            rng: Rng::new(sampling.seed),
+            rule: rule_for(decls),
+            anchor,
+        }
+    }
+
+    fn error(&self, message: String, help: &str) -> Diagnostic {
+        self.anchor
+            .origin
+            .diagnostic(self.anchor.node.span, message)
+            .with_help(help)
+    }
+
+    fn env<T: DualNum<Primitive = f64>>(
+        &self,
+        symbols: HashMap<String, Tensor<T>>,
+    ) -> RealEnv<'a, T> {
+        RealEnv {
+            decls: self.decls,
+            defs: &self.check.defs,
+            symbols,
+            rule: self.rule.clone(),
+        }
+    }
+
+    fn draw(&mut self) -> Result<State, Diagnostic> {
+        let d = self.decls.dim;
+        let mut symbols = HashMap::new();
+        for (name, &rank) in &self.decls.symbols {
+            let (lo, hi) = self
+                .sampling
+                .ranges
+                .get(name)
+                .copied()
+                .unwrap_or((-1.0, 1.0));
+            let rng = &mut self.rng;
+            symbols.insert(
+                name.clone(),
+                Tensor::from_fn(d, rank, |_| lo + (hi - lo) * (rng.uniform() + 1.0) / 2.0),
+            );
+        }
+        let n = self.rng.unit_normal(self.decls);
+        let mut env = self.env(symbols);
+        env.assume(&self.check.assumptions, &n).map_err(|e| {
+            self.error(
+                format!(
+                    "an assumption cannot be evaluated at a random state: {}",
+                    e.message
+                ),
+                "check the assumptions of this claim",
+            )
+        })?;
+        Ok(State {
+            symbols: env.symbols,
+            n,
+        })
+    }
+
+    fn scalar(&self, state: &State, e: &Expression) -> Result<f64, Diagnostic> {
+        let env = self.env(state.symbols.clone());
+        let v = env.eval(&e.node, &state.n).map_err(|r| located(e, r))?;
+        Ok(v.1.into_scalar().unwrap_or(f64::NAN))
+    }
+
+    fn satisfies(&self, state: &State, cs: &[Constraint]) -> Result<bool, Diagnostic> {
+        for c in cs {
+            let (l, r) = (self.scalar(state, &c.lhs)?, self.scalar(state, &c.rhs)?);
+            if !relation_holds(c.relation, l, r).0 {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
+    fn singular(&self, state: &State) -> Result<bool, Diagnostic> {
+        match &self.sampling.singular {
+            None => Ok(false),
+            Some(e) => Ok(self.scalar(state, e)?.abs() < SINGULAR_EPS),
+        }
+    }
+
+    /// The next state satisfying the hypotheses (and `extra`), or an error when they
+    /// reject almost every draw. `excluded` counts singular states skipped.
+    fn next(&mut self, extra: &[Constraint], excluded: &mut usize) -> Result<State, Diagnostic> {
+        for _ in 0..MAX_DRAWS_PER_SAMPLE {
+            let s = self.draw()?;
+            if !self.satisfies(&s, &self.sampling.given)? || !self.satisfies(&s, extra)? {
+                continue;
+            }
+            if self.singular(&s)? {
+                *excluded += 1;
+                continue;
+            }
+            return Ok(s);
+        }
+        Err(self.error(
+            format!("the hypotheses accept fewer than 1 in {MAX_DRAWS_PER_SAMPLE} random states"),
+            "widen `ranges` or relax `given`/`domain`",
+        ))
+    }
+}
+
+/// Whether `l rel r` holds within tolerance, and the relative residual (for `=`, the
+/// relative difference; for inequalities, the relative violation, ≤ 0 when satisfied).
+fn relation_holds(rel: Relation, l: f64, r: f64) -> (bool, f64) {
+    if !l.is_finite() || !r.is_finite() {
+        return (false, f64::INFINITY);
+    }
+    let scale = 1.0 + l.abs() + r.abs();
+    let residual = match rel {
+        Relation::Eq => (l - r).abs() / scale,
+        Relation::Le => (l - r) / scale,
+        Relation::Ge => (r - l) / scale,
+    };
+    (residual <= TOL, residual)
+}
+
+/// The state's nonzero values, for a counterexample.
+fn describe(state: &State, decls: &Decls) -> BTreeMap<String, String> {
+    let mut out = BTreeMap::new();
+    for (name, t) in &state.symbols {
+        let rank = t.rank();
+        for idx in assignments(decls.dim, rank) {
+            let v = *t.get(&idx);
+            if v != 0.0 {
+                let key = if rank == 0 {
+                    name.clone()
+                } else {
+                    format!(
+                        "{name}_{}",
+                        idx.iter().map(|i| (i + 1).to_string()).collect::<String>()
+                    )
+                };
+                out.insert(key, format!("{v:.6}"));
+            }
+        }
+    }
+    if decls.normal.is_some() {
+        let n: Vec<String> = state.n.iter().map(|x| format!("{x:.6}")).collect();
+        out.insert("n".into(), format!("({})", n.join(", ")));
+    }
+    out
+}
+
+/// Checks every chain at one state; the first violation as a counterexample.
+fn check_state(
+    sampler: &Sampler<'_>,
+    state: &State,
+    relation: Relation,
+    largest: &mut f64,
+) -> Result<Option<Counterexample>, Diagnostic> {
+    let env = sampler.env(state.symbols.clone());
+    for (ci, chain) in sampler.check.chains.iter().enumerate() {
+        let values = chain
+            .iter()
+            .map(|s| {
+                let node = s
+                    .node
+                    .as_ref()
+                    .map_err(|e| s.origin.diagnostic(e.span, e.message.clone()))?;
+                env.eval(node, &state.n)
+                    .map_err(|r| s.origin.diagnostic(r.span, r.message))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        for k in 0..values.len().saturating_sub(1) {
+            let ((la, ta), (lb, tb)) = (&values[k], &values[k + 1]);
+            let mut labels: Vec<char> = la.iter().chain(lb).copied().collect();
+            labels.sort_unstable();
+            labels.dedup();
+            for a in assignments(sampler.decls.dim, labels.len()) {
+                let pick = |ls: &[char], t: &Tensor<f64>| {
+                    let idx: Vec<usize> = ls
+                        .iter()
+                        .map(|c| a[labels.iter().position(|x| x == c).unwrap_or(0)])
+                        .collect();
+                    *t.get(&idx)
+                };
+                let (l, r) = (pick(la, ta), pick(lb, tb));
+                let (ok, residual) = relation_holds(relation, l, r);
+                *largest = largest.max(residual);
+                if !ok {
+                    return Ok(Some(Counterexample {
+                        chain: ci + 1,
+                        equality: k + 1,
+                        lhs: chain[k].text.trim().to_owned(),
+                        rhs: chain[k + 1].text.trim().to_owned(),
+                        indices: labels
+                            .iter()
+                            .zip(&a)
+                            .map(|(c, v)| (c.to_string(), v + 1))
+                            .collect(),
+                        point: describe(state, sampler.decls),
+                        lhs_value: Some(format!("{l:.9}")),
+                        rhs_value: Some(format!("{r:.9}")),
+                        ..Counterexample::default()
+                    }));
+                }
+            }
+        }
+    }
+    Ok(None)
+}
+
+/// The first side of a check as an expression (the anchor of sampling errors).
+fn first_side(check: &Check) -> Result<Expression, Diagnostic> {
+    let side = check
+        .chains
+        .first()
+        .and_then(|c| c.first())
+        .expect("numeric checks have sides");
+    match &side.node {
+        Ok(node) => Ok(Expression {
+            text: side.text.clone(),
+            origin: side.origin.clone(),
+            node: node.clone(),
+        }),
+        Err(e) => Err(side.origin.diagnostic(e.span, e.message.clone())),
+    }
+}
+
+/// Decides a `strategy = "numeric"` check.
+pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+    let Strategy::Numeric {
+        sampling,
+        relation,
+        domain,
+    } = &check.strategy
+    else {
+        unreachable!("dispatched on the strategy")
+    };
+    let anchor = first_side(check)?;
+    let mut sampler = Sampler::new(decls, check, sampling, &anchor);
+    let mut excluded = 0;
+    let mut largest = f64::NEG_INFINITY;
+    let mut found = None;
+    for _ in 0..sampling.samples {
+        let state = sampler.next(&[], &mut excluded)?;
+        if let Some(cx) = check_state(&sampler, &state, *relation, &mut largest)? {
+            found = Some((state, cx));
+            break;
+        }
+    }
+    let residual = match relation {
+        Relation::Eq => "largest relative residual",
+        Relation::Le | Relation::Ge => "largest relative violation (≤ 0: satisfied)",
+    };
+    let evidence =
+        |samples: usize, largest: f64, excluded: usize, domain: Option<String>| NumericEvidence {
+            samples,
+            seed: sampling.seed,
+            largest_residual: largest,
+            residual,
+            excluded,
+            exclusion: sampling
+                .singular
+                .as_ref()
+                .map(|s| format!("|{}| < {SINGULAR_EPS:e}", s.text)),
+            domain,
+            tolerance: format!("{TOL:e} relative"),
+        };
+    let Some((state, cx)) = found else {
+        return Ok(Outcome {
+            verdict: Verdict::Holds,
+            method: Method::Numeric,
+            checks: sampling.samples,
+            used_unit_normal: false,
+            counterexample: None,
+            numeric: Some(evidence(sampling.samples, largest, excluded, None)),
+            detail: None,
+        });
+    };
+    let fails = |cx: Counterexample, detail: Option<String>| Outcome {
+        verdict: Verdict::Fails,
+        method: Method::Numeric,
+        checks: sampling.samples,
+        used_unit_normal: false,
+        counterexample: Some(cx),
+        numeric: Some(evidence(sampling.samples, largest, excluded, None)),
+        detail,
+    };
+    if domain.is_empty() || sampler.satisfies(&state, domain)? {
+        return Ok(fails(cx, None));
+    }
+    // The statement fails; does it hold on the declared domain?
+    let domain_text = domain
+        .iter()
+        .map(|c| c.text.clone())
+        .collect::<Vec<_>>()
+        .join(" and ");
+    let mut inside_largest = f64::NEG_INFINITY;
+    let mut inside_excluded = 0;
+    let mut inner = Sampler::new(decls, check, sampling, &anchor);
+    for _ in 0..sampling.samples {
+        let s = inner.next(domain, &mut inside_excluded)?;
+        if let Some(cx_in) = check_state(&inner, &s, *relation, &mut inside_largest)? {
+            return Ok(fails(
+                cx_in,
+                Some(format!(
+                    "it also fails inside the declared domain {domain_text}"
+                )),
+            ));
+        }
+    }
+    Ok(Outcome {
+        verdict: Verdict::Conditional,
+        method: Method::Numeric,
+        checks: 2 * sampling.samples,
+        used_unit_normal: false,
+        counterexample: Some(cx),
+        numeric: Some(evidence(
+            sampling.samples,
+            inside_largest,
+            inside_excluded,
+            Some(domain_text.clone()),
+        )),
+        detail: Some(format!(
+            "holds on {} samples with {domain_text}; the counterexample lies outside that domain",
+            sampling.samples
+        )),
+    })
+}
+
+/// The variables of a derivative: (symbol, 0-based component) of every component of
+/// `wrt` not fixed by a component assumption.
+fn variables(
+    decls: &Decls,
+    check: &Check,
+    wrt: &[String],
+) -> Result<Vec<(String, Vec<usize>)>, String> {
+    let mut out = Vec::new();
+    for symbol in wrt {
+        for a in &check.assumptions {
+            let constrained = match a {
+                Assumption::Traceless { symbol: s }
+                | Assumption::Symmetric { symbol: s }
+                | Assumption::Antisymmetric { symbol: s }
+                | Assumption::Equals { symbol: s, .. } => s == symbol,
+                Assumption::Component { .. } => false,
+            };
+            if constrained {
+                return Err(format!("`{symbol}` is constrained by an assumption other than fixed components; derivatives with respect to it are ambiguous"));
+            }
+        }
+        let rank = decls.symbols.get(symbol).copied().unwrap_or(0);
+        for idx in assignments(decls.dim, rank) {
+            let fixed = check.assumptions.iter().any(|a| {
+                matches!(a, Assumption::Component { symbol: s, index, .. } if s == symbol && *index == idx)
+            });
+            if !fixed {
+                out.push((symbol.clone(), idx));
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn component_name(symbol: &str, idx: &[usize]) -> String {
+    if idx.is_empty() {
+        symbol.to_owned()
+    } else {
+        format!(
+            "{symbol}_{}",
+            idx.iter().map(|i| (i + 1).to_string()).collect::<String>()
+        )
+    }
+}
+
+/// `function` evaluated with the variables set to `x` (any num-dual scalar).
+fn eval_at<T: DualNum<Primitive = f64>>(
+    sampler: &Sampler<'_>,
+    state: &State,
+    vars: &[(String, Vec<usize>)],
+    function: &Expression,
+    x: &DVector<T>,
+) -> T {
+    let mut symbols: HashMap<String, Tensor<T>> = state
+        .symbols
+        .iter()
+        .map(|(k, t)| (k.clone(), t.map(|&v| T::from(v))))
+        .collect();
+    for (k, (symbol, idx)) in vars.iter().enumerate() {
+        if let Some(t) = symbols.get_mut(symbol) {
+            *t.get_mut(idx) = x[k].clone();
+        }
+    }
+    let env = sampler.env(symbols);
+    match env.eval(&function.node, &state.n) {
+        Ok((_, t)) => t.into_scalar().unwrap_or_else(|| T::from(f64::NAN)),
+        Err(_) => T::from(f64::NAN),
+    }
+}
+
+/// Decides a `strategy = "gradient"` check.
+pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+    let Strategy::Gradient {
+        sampling,
+        function,
+        closed_forms,
+    } = &check.strategy
+    else {
+        unreachable!("dispatched on the strategy")
+    };
+    let wrt: Vec<String> = closed_forms.iter().map(|(s, _)| s.clone()).collect();
+    let vars = variables(decls, check, &wrt)
+        .map_err(|m| function.origin.diagnostic(function.node.span, m))?;
+    let mut sampler = Sampler::new(decls, check, sampling, function);
+    let mut excluded = 0;
+    let mut largest: f64 = 0.0;
+    let mut checks = 0;
+    for _ in 0..sampling.samples {
+        let state = sampler.next(&[], &mut excluded)?;
+        let x0 = DVector::from_iterator(
+            vars.len(),
+            vars.iter().map(|(s, idx)| *state.symbols[s].get(idx)),
+        );
+        let (_, grad) = gradient(
+            |x: DVector<DualDVec64>| eval_at(&sampler, &state, &vars, function, &x),
+            &x0,
+        );
+        let closed: HashMap<&str, Tensor<f64>> = closed_forms
+            .iter()
+            .map(|(s, e)| {
+                let env = sampler.env(state.symbols.clone());
+                env.eval(&e.node, &state.n)
+                    .map(|(ls, t)| {
+                        // Closed forms are written with the indices i, j, … in order.
+                        let perm: Vec<usize> = "ijklmn"
+                            .chars()
+                            .take(ls.len())
+                            .map(|c| ls.iter().position(|x| *x == c).unwrap_or(0))
+                            .collect();
+                        (s.as_str(), t.permuted(&perm))
+                    })
+                    .map_err(|r| located(e, r))
+            })
+            .collect::<Result<_, _>>()?;
+        for (k, (symbol, idx)) in vars.iter().enumerate() {
+            checks += 1;
+            let ad = grad[k];
+            let cf = *closed[symbol.as_str()].get(idx);
+            let h = FD_STEP * (1.0 + x0[k].abs());
+            let shifted = |delta: f64| {
+                let mut x = x0.clone();
+                x[k] += delta;
+                eval_at::<f64>(&sampler, &state, &vars, function, &x)
+            };
+            let fd = (shifted(h) - shifted(-h)) / (2.0 * h);
+            let (ok_cf, r_cf) = relation_holds(Relation::Eq, ad, cf);
+            let fd_ok = ad.is_finite()
+                && fd.is_finite()
+                && (ad - fd).abs() <= FD_TOL * (1.0 + ad.abs() + fd.abs());
+            largest = largest.max(r_cf);
+            if !ok_cf || !fd_ok {
+                let what = if ok_cf {
+                    "num-dual and central differences disagree"
+                } else {
+                    "num-dual and the closed form disagree"
+                };
+                let mut point = describe(&state, decls);
+                point.insert("central difference".into(), format!("{fd:.9}"));
+                return Ok(Outcome {
+                    verdict: Verdict::Fails,
+                    method: Method::Gradient,
+                    checks,
+                    used_unit_normal: false,
+                    counterexample: Some(Counterexample {
+                        chain: 1,
+                        equality: 1,
+                        lhs: format!(
+                            "∂({})/∂{}",
+                            function.text.trim(),
+                            component_name(symbol, idx)
+                        ),
+                        rhs: closed_forms
+                            .iter()
+                            .find(|(s, _)| s == symbol)
+                            .map(|(_, e)| e.text.clone())
+                            .unwrap_or_default(),
+                        point,
+                        lhs_value: Some(format!("{ad:.9}")),
+                        rhs_value: Some(format!("{cf:.9}")),
+                        ill_formed: None,
+                        ..Counterexample::default()
+                    }),
+                    numeric: None,
+                    detail: Some(what.into()),
+                });
+            }
+        }
+    }
+    let names: Vec<String> = vars.iter().map(|(s, idx)| component_name(s, idx)).collect();
+    Ok(Outcome {
+        verdict: Verdict::Holds,
+        method: Method::Gradient,
+        checks,
+        used_unit_normal: false,
+        counterexample: None,
+        numeric: Some(NumericEvidence {
+            samples: sampling.samples,
+            seed: sampling.seed,
+            largest_residual: largest,
+            residual: "largest relative difference from the closed form",
+            excluded,
+            exclusion: sampling
+                .singular
+                .as_ref()
+                .map(|s| format!("|{}| < {SINGULAR_EPS:e} (not differentiable there)", s.text)),
+            domain: None,
+            tolerance: format!(
+                "{TOL:e} relative vs closed form, {FD_TOL:e} vs central differences"
+            ),
+        }),
+        detail: Some(format!(
+            "∂/∂{} by num-dual = closed form = central differences",
+            names.join(", ")
+        )),
+    })
+}
+
+/// Decides a `strategy = "convex"` check.
+pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+    let Strategy::Convex {
+        sampling,
+        function,
+        wrt,
+    } = &check.strategy
+    else {
+        unreachable!("dispatched on the strategy")
+    };
+    let vars = variables(decls, check, wrt)
+        .map_err(|m| function.origin.diagnostic(function.node.span, m))?;
+    let mut sampler = Sampler::new(decls, check, sampling, function);
+    let mut excluded = 0;
+    let mut smallest = f64::INFINITY;
+    for _ in 0..sampling.samples {
+        let state = sampler.next(&[], &mut excluded)?;
+        let x0 = DVector::from_iterator(
+            vars.len(),
+            vars.iter().map(|(s, idx)| *state.symbols[s].get(idx)),
+        );
+        let (_, _, h) = hessian(
+            |x: DVector<Dual2DVec64>| eval_at(&sampler, &state, &vars, function, &x),
+            &x0,
+        );
+        let finite = h.iter().all(|v| v.is_finite());
+        let eig = if finite {
+            SymmetricEigen::new(h.clone()).eigenvalues
+        } else {
+            DVector::from_element(1, f64::NAN)
+        };
+        let min = eig.iter().copied().fold(f64::INFINITY, f64::min);
+        let max_abs = eig.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        let relative = min / (1.0 + max_abs);
+        smallest = smallest.min(relative);
+        if !finite || relative < -TOL {
+            let mut point = describe(&state, decls);
+            point.insert("smallest eigenvalue".into(), format!("{min:.9}"));
+            return Ok(Outcome {
+                verdict: Verdict::Fails,
+                method: Method::Convex,
+                checks: sampling.samples,
+                used_unit_normal: false,
+                counterexample: Some(Counterexample {
+                    chain: 1,
+                    equality: 1,
+                    lhs: format!("Hessian of {}", function.text.trim()),
+                    rhs: "positive semidefinite".into(),
+                    point,
+                    ..Counterexample::default()
+                }),
+                numeric: None,
+                detail: Some("the Hessian has a negative eigenvalue".into()),
+            });
+        }
+    }
+    Ok(Outcome {
+        verdict: Verdict::Holds,
+        method: Method::Convex,
+        checks: sampling.samples,
+        used_unit_normal: false,
+        counterexample: None,
+        numeric: Some(NumericEvidence {
+            samples: sampling.samples,
+            seed: sampling.seed,
+            largest_residual: smallest,
+            residual: "smallest eigenvalue / (1 + max|λ|)",
+            excluded,
+            exclusion: sampling
+                .singular
+                .as_ref()
+                .map(|s| format!("|{}| < {SINGULAR_EPS:e} (not differentiable there)", s.text)),
+            domain: None,
+            tolerance: format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
+        }),
+        detail: Some(format!(
+            "Hessian in {} variables positive semidefinite at every sample",
+            vars.len()
+        )),
+    })
+}
