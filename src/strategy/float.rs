@@ -20,11 +20,20 @@ use std::collections::HashMap;
 pub const TOL: f64 = 1e-9;
 
 /// Quadrature nodes and weights (weights sum to 1) for the uniform average over the
-/// unit circle or sphere.
+/// unit circle or sphere, exact for polynomials in n of degree ≤ 15.
 pub fn sphere_rule(dim: usize) -> Vec<(Vec<f64>, f64)> {
+    sphere_rule_exact_to(dim, 15)
+}
+
+/// A rule exact for polynomials in n of degree ≤ `degree`: on the circle, M = degree + 1
+/// equally spaced points (exact for trigonometric degree < M); on the sphere, an
+/// N-point Gauss–Legendre rule in z = cos θ with 2N − 1 ≥ degree times M = degree + 1
+/// equally spaced φ. (A monomial n_1^a n_2^b n_3^c with a + b odd integrates to 0 over
+/// φ exactly; with a + b even it is a polynomial of degree ≤ degree in z.)
+pub fn sphere_rule_exact_to(dim: usize, degree: usize) -> Vec<(Vec<f64>, f64)> {
     use std::f64::consts::PI;
+    let m = degree + 1;
     if dim == 2 {
-        let m = 32;
         return (0..m)
             .map(|k| {
                 let phi = 2.0 * PI * k as f64 / m as f64;
@@ -32,8 +41,7 @@ pub fn sphere_rule(dim: usize) -> Vec<(Vec<f64>, f64)> {
             })
             .collect();
     }
-    let (zs, ws) = gauss_legendre(8);
-    let m = 16;
+    let (zs, ws) = gauss_legendre(degree / 2 + 1);
     let mut out = Vec::with_capacity(zs.len() * m);
     for (z, w) in zs.iter().zip(&ws) {
         let r = (1.0 - z * z).max(0.0).sqrt();
@@ -102,11 +110,11 @@ impl Rng {
     }
 }
 
-/// The quadrature rule of `avg(…)` for these declarations: the sphere, or the circle
-/// (embedded with n_3 = 0) for plane problems.
-pub fn rule_for(decls: &Decls) -> Vec<(Vec<f64>, f64)> {
+/// The quadrature rule of `avg(…)` for these declarations, exact to `degree`: the
+/// sphere, or the circle (embedded with n_3 = 0) for plane problems.
+pub fn rule_for(decls: &Decls, degree: usize) -> Vec<(Vec<f64>, f64)> {
     let free = if decls.normal_in_plane { 2 } else { decls.dim };
-    sphere_rule(free)
+    sphere_rule_exact_to(free, degree)
         .into_iter()
         .map(|(mut p, w)| {
             p.resize(decls.dim, 0.0);
@@ -134,12 +142,7 @@ pub fn decide(
         for (name, &rank) in &decls.symbols {
             symbols.insert(name.clone(), Tensor::from_fn(d, rank, |_| rng.uniform()));
         }
-        let mut env = RealEnv {
-            decls,
-            defs: &check.defs,
-            symbols,
-            rule: rule_for(decls),
-        };
+        let mut env = RealEnv::new(decls, &check.defs, symbols);
         let n = rng.unit_normal(decls);
         env.assume(&check.assumptions, &n).map_err(|e| e.message)?;
         for chain in &check.chains {

@@ -4,8 +4,8 @@
 //! has its own contraction code: a shared bug would make both routes agree on a wrong
 //! answer.
 //!
-//! `avg(…)` re-evaluates its argument at the nodes of a quadrature rule (see
-//! [`super::float::sphere_rule`]); `maxn(…)` maximises over the normal's angle in the
+//! `avg(…)` re-evaluates its argument at the nodes of a quadrature rule exact for its
+//! degree in n (see [`super::float::sphere_rule_exact_to`]); `maxn(…)` maximises over the normal's angle in the
 //! plane by a dense grid refined by golden-section search (see [`MAXN_GRID`]).
 
 use crate::derivation::{Assumption, Definition};
@@ -13,7 +13,9 @@ use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::Func;
 use crate::lang::{Decls, Node, NodeKind, Slot, Span, Target};
 use num_dual::DualNum;
+use std::cell::RefCell;
 use std::collections::HashMap;
+use std::rc::Rc;
 
 /// Grid points of `maxn` over [0, 2π) before golden-section refinement of every local
 /// maximum of the grid. For a function whose peaks are wider than two grid steps (a
@@ -39,16 +41,95 @@ fn err(node: &Node, message: impl Into<String>) -> RealError {
 /// Free-index labels (sorted) and the tensor.
 pub type Labeled<T> = (Vec<char>, Tensor<T>);
 
-/// The values of one sample: every symbol's components, and the quadrature rule.
+/// Quadrature nodes and weights.
+type Rule = Vec<(Vec<f64>, f64)>;
+
+/// Memoised definition values, keyed by name and (for definitions that depend on the
+/// normal) the normal's bits.
+type Memo<T> = HashMap<(String, Vec<u64>), Labeled<T>>;
+
+/// Entries kept before the memo is cleared (a `maxn` visits hundreds of normals).
+const MEMO_LIMIT: usize = 4096;
+
+/// The values of one sample: every symbol's components, with caches for definition
+/// values, their degree in the normal, and quadrature rules.
 pub struct RealEnv<'a, T> {
     pub decls: &'a Decls,
     pub defs: &'a [Definition],
     pub symbols: HashMap<String, Tensor<T>>,
-    /// Nodes and weights of the average over the normal.
-    pub rule: Vec<(Vec<f64>, f64)>,
+    memo: RefCell<Memo<T>>,
+    degrees: RefCell<HashMap<String, Option<usize>>>,
+    rules: RefCell<HashMap<usize, Rc<Rule>>>,
 }
 
-impl<T: DualNum<Primitive = f64>> RealEnv<'_, T> {
+impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
+    pub fn new(
+        decls: &'a Decls,
+        defs: &'a [Definition],
+        symbols: HashMap<String, Tensor<T>>,
+    ) -> Self {
+        RealEnv {
+            decls,
+            defs,
+            symbols,
+            memo: RefCell::new(HashMap::new()),
+            degrees: RefCell::new(HashMap::new()),
+            rules: RefCell::new(HashMap::new()),
+        }
+    }
+
+    fn def(&self, name: &str) -> Option<&'a Definition> {
+        self.defs.iter().rev().find(|x| x.sig.name == name)
+    }
+
+    /// An upper bound on the degree of `node` as a polynomial in the normal (outside
+    /// `avg` and `maxn`, which remove it); `None` when it is not a polynomial in n.
+    pub fn normal_degree(&self, node: &Node) -> Option<usize> {
+        match &node.kind {
+            NodeKind::Const(_) | NodeKind::Avg(_) | NodeKind::MaxN(_) => Some(0),
+            NodeKind::Leaf { target, .. } => match target {
+                Target::Normal => Some(1),
+                Target::Def(name) => {
+                    let known = self.degrees.borrow().get(name).copied();
+                    if let Some(d) = known {
+                        return d;
+                    }
+                    let d = self.def(name).and_then(|def| self.normal_degree(&def.body));
+                    self.degrees.borrow_mut().insert(name.clone(), d);
+                    d
+                }
+                _ => Some(0),
+            },
+            NodeKind::Neg(a) => self.normal_degree(a),
+            NodeKind::Sum(xs) => xs
+                .iter()
+                .try_fold(0, |m, x| Some(m.max(self.normal_degree(x)?))),
+            NodeKind::Product(xs) => xs
+                .iter()
+                .try_fold(0, |m, x| Some(m + self.normal_degree(x)?)),
+            NodeKind::Div(a, b) => match self.normal_degree(b)? {
+                0 => self.normal_degree(a),
+                _ => None,
+            },
+            NodeKind::Pow(a, k) => Some(self.normal_degree(a)? * *k as usize),
+            NodeKind::Apply(_, a) => match self.normal_degree(a)? {
+                0 => Some(0),
+                _ => None,
+            },
+        }
+    }
+
+    /// The averaging rule for an argument of this degree (degree 15 when the argument
+    /// is not a polynomial in n; the average is then a quadrature approximation).
+    fn rule(&self, arg: &Node) -> Rc<Rule> {
+        let degree = self.normal_degree(arg).unwrap_or(15).clamp(1, 40);
+        self.rules
+            .borrow_mut()
+            .entry(degree)
+            .or_insert_with(|| Rc::new(super::float::rule_for(self.decls, degree)))
+            .clone()
+    }
+
     /// Evaluates `node` with the normal `n` (used outside `avg`/`maxn`).
     pub fn eval(&self, node: &Node, n: &[f64]) -> Result<Labeled<T>, RealError> {
         let d = self.decls.dim;
@@ -68,19 +149,34 @@ impl<T: DualNum<Primitive = f64>> RealEnv<'_, T> {
                         .ok_or_else(|| err(node, format!("no value for symbol {s}")))?,
                     Target::Def(name) => {
                         let def = self
-                            .defs
-                            .iter()
-                            .rev()
-                            .find(|x| &x.sig.name == name)
+                            .def(name)
                             .ok_or_else(|| err(node, format!("definition {name} not in scope")))?;
-                        let (ls, t) = self.eval(&def.body, n)?;
-                        let perm: Vec<usize> = def
-                            .sig
-                            .formal
-                            .iter()
-                            .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
-                            .collect();
-                        t.permuted(&perm)
+                        // Definitions that do not involve the normal are the same for every n.
+                        let key_n = if self.normal_degree(&def.body) == Some(0) {
+                            Vec::new()
+                        } else {
+                            n.iter().map(|x| x.to_bits()).collect()
+                        };
+                        let key = (name.clone(), key_n);
+                        let cached = self.memo.borrow().get(&key).map(|(_, t)| t.clone());
+                        if let Some(t) = cached {
+                            t
+                        } else {
+                            let (ls, t) = self.eval(&def.body, n)?;
+                            let perm: Vec<usize> = def
+                                .sig
+                                .formal
+                                .iter()
+                                .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
+                                .collect();
+                            let t = t.permuted(&perm);
+                            let mut memo = self.memo.borrow_mut();
+                            if memo.len() > MEMO_LIMIT {
+                                memo.clear();
+                            }
+                            memo.insert(key, (def.sig.formal.clone(), t.clone()));
+                            t
+                        }
                     }
                 };
                 let t = contract(d, &[(&base, slots.clone())], &labels);
@@ -143,7 +239,7 @@ impl<T: DualNum<Primitive = f64>> RealEnv<'_, T> {
             }
             NodeKind::Avg(a) => {
                 let mut acc: Option<Labeled<T>> = None;
-                for (point, w) in &self.rule {
+                for (point, w) in self.rule(a).iter() {
                     let (ls, t) = self.eval(a, point)?;
                     let t = t.map(|x| x.clone() * *w);
                     acc = Some(match acc {
@@ -209,6 +305,7 @@ impl<T: DualNum<Primitive = f64>> RealEnv<'_, T> {
     /// Applies assumptions to the symbol values, in order.
     pub fn assume(&mut self, assumptions: &[Assumption], n: &[f64]) -> Result<(), RealError> {
         let d = self.decls.dim;
+        self.memo.borrow_mut().clear();
         for a in assumptions {
             match a {
                 Assumption::Traceless { symbol } => {
