@@ -12,7 +12,7 @@
 //! NaN or infinity never passes: a non-finite value is a violation unless the sample
 //! lies on the declared singular set, which is excluded and counted in the evidence.
 
-use super::float::{rule_for, Rng};
+use super::float::Rng;
 use super::real::{RealEnv, RealError};
 use super::{Counterexample, Method, NumericEvidence, Outcome};
 use crate::derivation::{
@@ -51,7 +51,6 @@ struct Sampler<'a> {
     check: &'a Check,
     sampling: &'a Sampling,
     rng: Rng,
-    rule: Vec<(Vec<f64>, f64)>,
     /// Where errors about the sampling as a whole point (the statement's first
     /// expression).
     anchor: &'a Expression,
@@ -69,7 +68,6 @@ impl<'a> Sampler<'a> {
             check,
             sampling,
             rng: Rng::new(sampling.seed),
-            rule: rule_for(decls),
             anchor,
         }
     }
@@ -85,12 +83,7 @@ impl<'a> Sampler<'a> {
         &self,
         symbols: HashMap<String, Tensor<T>>,
     ) -> RealEnv<'a, T> {
-        RealEnv {
-            decls: self.decls,
-            defs: &self.check.defs,
-            symbols,
-            rule: self.rule.clone(),
-        }
+        RealEnv::new(self.decls, &self.check.defs, symbols)
     }
 
     fn draw(&mut self) -> Result<State, Diagnostic> {
@@ -348,7 +341,7 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         numeric: Some(evidence(sampling.samples, largest, excluded, None)),
         detail,
     };
-    if domain.is_empty() || sampler.satisfies(&state, domain)? {
+    if domain.is_empty() {
         return Ok(fails(cx, None));
     }
     // The statement fails; does it hold on the declared domain?
@@ -357,6 +350,10 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         .map(|c| c.text.clone())
         .collect::<Vec<_>>()
         .join(" and ");
+    if sampler.satisfies(&state, domain)? {
+        let why = format!("the counterexample lies inside the declared domain {domain_text}");
+        return Ok(fails(cx, Some(why)));
+    }
     let mut inside_largest = f64::NEG_INFINITY;
     let mut inside_excluded = 0;
     let mut inner = Sampler::new(decls, check, sampling, &anchor);
@@ -487,7 +484,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
             |x: DVector<DualDVec64>| eval_at(&sampler, &state, &vars, function, &x),
             &x0,
         );
-        let closed: HashMap<&str, Tensor<f64>> = closed_forms
+        let closed: Result<HashMap<&str, Tensor<f64>>, _> = closed_forms
             .iter()
             .map(|(s, e)| {
                 let env = sampler.env(state.symbols.clone());
@@ -501,9 +498,37 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                             .collect();
                         (s.as_str(), t.permuted(&perm))
                     })
-                    .map_err(|r| located(e, r))
+                    .map_err(|r| (e, r))
             })
-            .collect::<Result<_, _>>()?;
+            .collect::<Result<_, _>>();
+        let closed = match closed {
+            Ok(c) => c,
+            Err((e, r)) => {
+                // A closed form undefined at a sample (e.g. 1/0 at the apex) cannot
+                // agree with anything: a failure, located by the evidence, not a pass.
+                return Ok(Outcome {
+                    verdict: Verdict::Fails,
+                    method: Method::Gradient,
+                    checks,
+                    used_unit_normal: false,
+                    counterexample: Some(Counterexample {
+                        chain: 1,
+                        equality: 1,
+                        lhs: format!("∂({})", function.text.trim()),
+                        rhs: e.text.clone(),
+                        point: describe(&state, decls),
+                        lhs_value: Some("(num-dual)".into()),
+                        rhs_value: Some(format!("undefined: {}", r.message)),
+                        ..Counterexample::default()
+                    }),
+                    numeric: None,
+                    detail: Some(format!(
+                        "the closed form is undefined at a sample ({})",
+                        r.message
+                    )),
+                });
+            }
+        };
         for (k, (symbol, idx)) in vars.iter().enumerate() {
             checks += 1;
             let ad = grad[k];

@@ -1,0 +1,209 @@
+//! Evidence that the numeric strategies refute wrong statements: a wrong gradient, a
+//! wrong circle radius, a false inequality, a false maximum, a non-convex function, a
+//! genuine circle offered as "not a circle", and a statement undefined on its samples.
+
+use cosserat_check::derivation::{load_str, Verdict};
+use cosserat_check::strategy::{decide_claim, Method};
+
+/// A plane problem as in derivations/4.2-yield-surfaces.toml.
+const HEADER: &str = r#"
+section = "t"
+title = "numeric strategies"
+dimension = 3
+normal = "n"
+normal_in_plane = true
+tensors = ["sigma_ij", "mu_ij"]
+scalars = ["R_g", "f_s", "f_r", "phi"]
+assume = [
+  "sigma_13 = 0", "sigma_23 = 0", "sigma_31 = 0", "sigma_32 = 0", "sigma_33 = 0",
+  "mu_11 = 0", "mu_12 = 0", "mu_21 = 0", "mu_22 = 0", "mu_31 = 0", "mu_32 = 0", "mu_33 = 0",
+]
+define = [
+  "p = (sigma_11 + sigma_22) / 2",
+  "Pi_ij = delta_ij - delta_i3 delta_j3",
+  "s_ij = sigma_ij - p Pi_ij",
+  "t_i = sigma_ki n_k",
+  "tn = t_i n_i",
+  "tau = t_i eps_i3k n_k",
+  "q2 = 1/4 (s_11 - s_22)^2 + 1/4 (s_12 + s_21)^2",
+  "r2 = 1/4 (s_12 - s_21)^2",
+  "M2 = 1/2 (mu_13^2 + mu_23^2)",
+  "F1 = sqrt(q2 + 2 r2) + f_s p",
+  "F1star = sqrt(q2) + sqrt(r2) cos(phi) + p sin(phi)",
+  "F2 = sqrt(2 M2 / R_g^2 + q2 + 2 r2) + f_r p",
+]
+"#;
+
+/// Decides the single claim `body` (a `[[claim]]` table without its header line).
+fn decide(body: &str) -> (Verdict, Method, String) {
+    let text = format!("{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\n{body}");
+    let file = load_str("test.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+    let d = decide_claim(&file.claims[0]).unwrap_or_else(|e| panic!("{e}"));
+    let text = cosserat_check::report::evidence(&d.outcome);
+    (d.outcome.verdict, d.outcome.method, text)
+}
+
+#[test]
+fn a_correct_gradient_holds_and_a_wrong_one_fails() {
+    let right = r#"expect = "holds"
+strategy = "gradient"
+ranges = { f_s = [0.0, 2.0] }
+singular = "q2 + 2 r2"
+function = "F1"
+gradient = { sigma = "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij" }"#;
+    assert_eq!(decide(right).0, Verdict::Holds);
+    for wrong in [
+        "(2 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij",
+        "(3 s_ji - s_ij) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij",
+        "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2))",
+        "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) - f_s / 2 Pi_ij",
+    ] {
+        let (v, m, ev) = decide(&right.replace(
+            "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij",
+            wrong,
+        ));
+        assert_eq!((v, m), (Verdict::Fails, Method::Gradient), "{wrong}: {ev}");
+        assert!(ev.contains("num-dual and the closed form disagree"), "{ev}");
+    }
+}
+
+#[test]
+fn a_wrong_circle_radius_or_centre_fails() {
+    let circle = r#"expect = "holds"
+sides = ["(tn - p)^2 + (tau - (sigma_12 - sigma_21) / 2)^2", "q2"]"#;
+    assert_eq!(decide(circle).0, Verdict::Holds);
+    assert_eq!(
+        decide(&circle.replace("\"q2\"", "\"2 q2\"")).0,
+        Verdict::Fails
+    );
+    assert_eq!(
+        decide(&circle.replace("(tn - p)", "(tn + p)")).0,
+        Verdict::Fails
+    );
+    assert_eq!(
+        decide(&circle.replace("(sigma_12 - sigma_21) / 2", "(sigma_12 + sigma_21) / 2")).0,
+        Verdict::Fails
+    );
+}
+
+#[test]
+fn a_false_inequality_fails_and_a_partial_one_is_conditional() {
+    let base = r#"expect = "holds"
+strategy = "numeric"
+relation = ">="
+ranges = { R_g = [0.1, 2.0], f_r = [0.0, 2.0], f_s = [0.0, 2.0] }
+given = ["f_r <= f_s"]
+sides = ["F2", "F1"]"#;
+    // Without a domain: fails (tension counterexample).
+    let (v, _, ev) = decide(base);
+    assert_eq!(v, Verdict::Fails, "{ev}");
+    // With the right domain: conditional, the counterexample outside it.
+    let (v, _, ev) = decide(&format!("{base}\ndomain = [\"p <= 0\"]"));
+    assert_eq!(v, Verdict::Conditional, "{ev}");
+    // With a wrong domain (tension): it also fails inside, so fails.
+    let (v, _, ev) = decide(&format!("{base}\ndomain = [\"p >= 0\"]"));
+    assert_eq!(v, Verdict::Fails, "{ev}");
+    assert!(ev.contains("inside the declared domain"), "{ev}");
+    // The reversed inequality is false too.
+    let (v, _, _) = decide(
+        &base
+            .replace("\">=\"", "\"<=\"")
+            .replace("given = [\"f_r <= f_s\"]", "given = [\"f_r >= f_s\"]"),
+    );
+    assert_eq!(v, Verdict::Fails);
+}
+
+#[test]
+fn a_false_maximum_fails() {
+    let max = r#"expect = "holds"
+strategy = "numeric"
+samples = 50
+ranges = { phi = [0.05, 1.5] }
+sides = ["maxn(abs(tau) cos(phi) + tn sin(phi))", "F1star"]"#;
+    assert_eq!(decide(max).0, Verdict::Holds);
+    assert_eq!(
+        decide(&max.replace("\"F1star\"", "\"F1star + 1/1000\"")).0,
+        Verdict::Fails
+    );
+    assert_eq!(decide(&max.replace("abs(tau)", "tau")).0, Verdict::Fails);
+    assert_eq!(
+        decide(&max.replace("cos(phi) + tn", "cos(phi) - tn")).0,
+        Verdict::Fails
+    );
+}
+
+#[test]
+fn a_non_convex_function_fails() {
+    let convex = r#"expect = "holds"
+strategy = "convex"
+ranges = { f_s = [0.0, 2.0] }
+singular = "q2 + 2 r2"
+function = "F1"
+wrt = ["sigma"]"#;
+    assert_eq!(decide(convex).0, Verdict::Holds);
+    let (v, m, _) = decide(&convex.replace("function = \"F1\"", "function = \"-F1\""));
+    assert_eq!((v, m), (Verdict::Fails, Method::Convex));
+    let (v, _, _) =
+        decide(&convex.replace("function = \"F1\"", "function = \"sqrt(sqrt(q2 + 2 r2))\""));
+    assert_eq!(v, Verdict::Fails);
+}
+
+#[test]
+fn a_genuine_circle_has_no_not_circle_witness() {
+    let not_circle = "expect = \"holds\"\nstrategy = \"not-circle\"\nx = \"tn\"\ny = \"tau\"";
+    let (v, m, ev) = decide(not_circle);
+    assert_eq!((v, m), (Verdict::Fails, Method::Witness), "{ev}");
+    // Distorting the shear axis breaks the circle: a witness exists.
+    let (v, _, ev) = decide(&not_circle.replace("\"tau\"", "\"2 tau\""));
+    assert_eq!(v, Verdict::Holds, "{ev}");
+    assert!(ev.contains("det["), "{ev}");
+}
+
+#[test]
+fn nan_and_division_by_zero_never_pass() {
+    let text = format!(
+        "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"numeric\"\nsides = [\"sqrt(-1 - q2)\", \"0\"]\n"
+    );
+    let file = load_str("t.toml", &text).unwrap();
+    assert!(
+        decide_claim(&file.claims[0]).is_err(),
+        "sqrt of a negative number must not pass"
+    );
+    let text = text.replace("sqrt(-1 - q2)", "1 / (p - p)");
+    let file = load_str("t.toml", &text).unwrap();
+    assert!(
+        decide_claim(&file.claims[0]).is_err(),
+        "a division by zero must not pass"
+    );
+}
+
+#[test]
+fn too_few_samples_are_refused() {
+    let text = format!(
+        "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"numeric\"\nsamples = 10\nsides = [\"F1\", \"F1\"]\n"
+    );
+    let err = load_str("t.toml", &text).unwrap_err().to_string();
+    assert!(err.contains("samples must be between 50"), "{err}");
+}
+
+#[test]
+fn at_the_apex_the_gradient_does_not_exist_and_is_reported() {
+    // Every sample at the apex q = r = 0 (σ_22 = σ_11, no shear): num-dual's sqrt has a
+    // NaN derivative there, and NaN never passes.
+    let apex = r#"expect = "holds"
+strategy = "gradient"
+samples = 50
+assume = ["sigma_12 = 0", "sigma_21 = 0", "sigma_22 = sigma_11"]
+function = "F1"
+gradient = { sigma = "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij" }"#;
+    let (v, m, ev) = decide(apex);
+    assert_eq!((v, m), (Verdict::Fails, Method::Gradient), "{ev}");
+    // Declaring the singular set excludes those samples; when every sample lies on it,
+    // the checker says so instead of passing vacuously.
+    let text = format!(
+        "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\n{apex}\nsingular = \"q2 + 2 r2\"\n"
+    );
+    let file = load_str("t.toml", &text).unwrap();
+    let err = decide_claim(&file.claims[0]).unwrap_err().to_string();
+    assert!(err.contains("accept fewer than 1 in"), "{err}");
+}
