@@ -79,7 +79,11 @@ pub fn load_files(paths: &[impl AsRef<Path>]) -> Result<Vec<DerivationFile>, Loa
         for (id, diag) in ids {
             if let Some(first) = seen.get(&id) {
                 return Err(
-                    diag(format!("duplicate claim id `{id}` (first used in {first})")).into(),
+                    diag(format!("duplicate claim id `{id}` (first used in {first})"))
+                        .with_help(
+                            "claim ids are unique across the files checked together; rename one",
+                        )
+                        .into(),
                 );
             }
             seen.insert(id, file.path.clone());
@@ -182,6 +186,7 @@ impl Loader {
             if local_ids.insert(id.clone(), ()).is_some() {
                 return Err(self
                     .diag(c.id.span(), format!("duplicate claim id `{id}`"))
+                    .with_help("every claim id is unique; rename one of them")
                     .into());
             }
             let file = self.file.clone();
@@ -233,10 +238,9 @@ impl Loader {
                 || decls.symbols.contains_key(&name)
                 || decls.normal.as_ref() == Some(&name)
             {
-                return Err(self.diag(
-                    s.span(),
-                    format!("`{name}` is declared twice or is a built-in name"),
-                ));
+                return Err(self
+                    .diag(s.span(), format!("`{name}` is declared twice or is a built-in name"))
+                    .with_help("built-in names: delta, eps, sqrt, abs, cos, sin, tan, avg, maxn; choose another name"));
             }
             decls.symbols.insert(name, rank);
             Ok(())
@@ -694,6 +698,11 @@ impl Loader {
             }
         };
         Ok(Claim {
+            paper: raw
+                .paper
+                .as_ref()
+                .map_or(super::model::PAPER, |p| p.get_ref().as_str())
+                .to_owned(),
             id: c.id.get_ref().clone(),
             section: c.section.as_ref().unwrap_or(&raw.section).get_ref().clone(),
             statement: c.printed.get_ref().clone(),

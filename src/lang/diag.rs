@@ -55,7 +55,18 @@ impl SourceFile {
         let line_end = self.text[start..]
             .find('\n')
             .map_or(self.text.len(), |k| start + k);
-        let line_text = self.text[line_start..line_end].trim_end_matches('\r');
+        // Control characters (a binary file's NULs, say) would garble the terminal.
+        let line_text: String = self.text[line_start..line_end]
+            .trim_end_matches('\r')
+            .chars()
+            .map(|c| {
+                if c.is_control() && c != '\t' {
+                    '\u{fffd}'
+                } else {
+                    c
+                }
+            })
+            .collect();
         let end = floor_char_boundary(&self.text, span.end.clamp(start, line_end));
         let width = self.text[start..end].chars().count().max(1);
         Diagnostic {
@@ -63,7 +74,7 @@ impl SourceFile {
             line,
             col,
             width,
-            line_text: line_text.to_owned(),
+            line_text,
             message: message.into(),
             help: None,
         }
