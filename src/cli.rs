@@ -1,22 +1,22 @@
-//! The command line: `cosserat-check [check] [--format …] [--only ID] [--dir DIR]`.
-//!
-//! Exit codes: 0 when every verdict equals the one its derivation file declares, 1
-//! when any differs, 2 for malformed input (with a located diagnostic on stderr).
+//! The command line. `main` maps [`run`]'s result to the exit code: 0 when every
+//! verdict equals the one its derivation file declares, 1 when any differs, 2 for
+//! malformed input (with a located diagnostic on stderr; nothing is written then).
 
-use crate::derivation::{load_dir, DerivationFile, LoadError};
+use crate::derivation::{load_dir, load_files, DerivationFile, LoadError, Strategy};
 use crate::report;
 use crate::strategy::{decide_claim, Decided};
 use clap::{Parser, Subcommand, ValueEnum};
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
 /// Checks the derivations of Papanicolopoulos & Veveakis, "Sliding and rolling
 /// dissipation in Cosserat plasticity", equation by equation, and prints the
-/// derivation table. Without a subcommand it runs `check`.
+/// derivation table. Without a subcommand it runs `check` on the paper.
 #[derive(Debug, Parser)]
 #[command(name = "cosserat-check", version, about, long_about = None)]
 #[command(
-    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input."
+    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then).\nSee README.md for the derivation-file format."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -25,22 +25,69 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Decide every claim and print the derivation table.
+    /// Decide every claim of the paper and print the derivation table.
     Check(CheckArgs),
+    /// List every printed statement that fails: as printed, the counterexample, the
+    /// correction and its verdict, the reason.
+    Errata(CheckArgs),
+    /// Show how one claim was decided, in enough detail to audit it by hand.
+    Explain(ExplainArgs),
+    /// Check your own derivation files (same format, table and exit codes).
+    Verify(VerifyArgs),
+}
+
+/// Options shared by the commands that print a table.
+#[derive(Debug, Clone, clap::Args, Default)]
+pub struct OutputArgs {
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Markdown)]
+    pub format: Format,
+    /// With --format latex: a complete document instead of a table fragment.
+    #[arg(long)]
+    pub standalone: bool,
+    /// Write to FILE instead of standard output (only after every claim is decided).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Decide only the claim with this id (e.g. eq33).
+    #[arg(long, value_name = "ID")]
+    pub only: Option<String>,
+    /// Override the seed of every numeric claim.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// Override the sample count of every numeric claim (at least 50).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(50..=1_000_000))]
+    pub samples: Option<u64>,
 }
 
 #[derive(Debug, Clone, clap::Args, Default)]
 pub struct CheckArgs {
-    /// Output format of the table.
-    #[arg(long, value_enum, default_value_t = Format::Markdown)]
-    pub format: Format,
-    /// Check only the claim with this id (e.g. eq33).
-    #[arg(long, value_name = "ID")]
-    pub only: Option<String>,
+    #[command(flatten)]
+    pub output: OutputArgs,
     /// Directory of derivation files (*.toml, read in name order). Defaults to
     /// ./derivations, or the one shipped with the crate when there is none here.
     #[arg(long, value_name = "DIR")]
     pub dir: Option<PathBuf>,
+}
+
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExplainArgs {
+    /// The claim to explain (e.g. eq33).
+    pub id: String,
+    /// Directory of derivation files (as for `check`).
+    #[arg(long, value_name = "DIR")]
+    pub dir: Option<PathBuf>,
+    /// Derivation files to read instead of a directory.
+    #[arg(long = "file", value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+}
+
+#[derive(Debug, Clone, clap::Args)]
+pub struct VerifyArgs {
+    /// Derivation files to check, in this order.
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+    #[command(flatten)]
+    pub output: OutputArgs,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -48,8 +95,12 @@ pub enum Format {
     /// A Markdown table with statements as inline LaTeX.
     #[default]
     Markdown,
+    /// A LaTeX longtable (a fragment; --standalone for a whole document).
+    Latex,
     /// The JSON contract (see README).
     Json,
+    /// Comma-separated values, one row per claim.
+    Csv,
 }
 
 /// The outcome of a run, mapped to the process exit code by `main`.
@@ -83,10 +134,51 @@ fn default_dir() -> PathBuf {
     }
 }
 
+/// Progress on stderr for long runs, only when stderr is a terminal.
+struct Progress {
+    started: Instant,
+    enabled: bool,
+    shown: bool,
+}
+
+impl Progress {
+    fn new() -> Self {
+        Progress {
+            started: Instant::now(),
+            enabled: std::io::stderr().is_terminal(),
+            shown: false,
+        }
+    }
+
+    fn tick(&mut self, k: usize, n: usize, id: &str) {
+        if self.enabled && self.started.elapsed() > Duration::from_secs(1) {
+            eprint!("\r\x1b[2Kdeciding {k}/{n}: {id}");
+            self.shown = true;
+        }
+    }
+
+    fn done(&mut self, n: usize) {
+        if self.shown {
+            eprintln!(
+                "\r\x1b[2Kdecided {n} claims in {:.1} s",
+                self.started.elapsed().as_secs_f64()
+            );
+        }
+    }
+}
+
 /// Decides every claim of the files (or only `only`), in file and claim order.
 pub fn decide_all<'f>(
     files: &'f [DerivationFile],
     only: Option<&str>,
+) -> Result<Vec<Decided<'f>>, RunError> {
+    decide_with_progress(files, only, &mut |_, _, _| {})
+}
+
+fn decide_with_progress<'f>(
+    files: &'f [DerivationFile],
+    only: Option<&str>,
+    progress: &mut dyn FnMut(usize, usize, &str),
 ) -> Result<Vec<Decided<'f>>, RunError> {
     let claims: Vec<_> = files
         .iter()
@@ -104,41 +196,115 @@ pub fn decide_all<'f>(
             known.join(", ")
         )));
     }
+    let n = claims.len();
     claims
         .into_iter()
-        .map(|c| decide_claim(c).map_err(|d| RunError::Input(d.to_string())))
+        .enumerate()
+        .map(|(k, c)| {
+            progress(k + 1, n, &c.id);
+            decide_claim(c).map_err(|d| RunError::Input(d.to_string()))
+        })
         .collect()
 }
 
-/// Runs the command line, writing the report to `out`.
-pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Status, RunError> {
-    let args = match cli.command {
-        Some(Command::Check(a)) => a,
-        None => CheckArgs::default(),
-    };
-    let dir = args.dir.clone().unwrap_or_else(default_dir);
-    let started = std::time::Instant::now();
-    let files = load_dir(&dir)?;
-    let rows = decide_all(&files, args.only.as_deref())?;
-    let text = match args.format {
-        Format::Markdown => report::markdown::render(&rows),
-        Format::Json => report::json::render(&rows),
-    };
-    out.write_all(text.as_bytes())?;
-    out.flush()?;
-    if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-        eprintln!(
-            "checked {} claims from {} in {:.1} ms",
-            rows.len(),
-            dir.display(),
-            started.elapsed().as_secs_f64() * 1e3
-        );
+/// Applies `--seed` and `--samples` to every sampled claim.
+fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: Option<u64>) {
+    for claim in files.iter_mut().flat_map(|f| f.claims.iter_mut()) {
+        let checks = std::iter::once(&mut claim.check)
+            .chain(claim.correction.iter_mut().map(|c| &mut c.check));
+        for check in checks {
+            let sampling = match &mut check.strategy {
+                Strategy::Numeric { sampling, .. }
+                | Strategy::Gradient { sampling, .. }
+                | Strategy::Convex { sampling, .. } => sampling,
+                Strategy::Exact | Strategy::NotCircle { .. } => continue,
+            };
+            if let Some(s) = seed {
+                sampling.seed = s;
+            }
+            if let Some(n) = samples {
+                sampling.samples = n as usize;
+            }
+        }
     }
+}
+
+fn read(dir: Option<PathBuf>, files: &[PathBuf]) -> Result<Vec<DerivationFile>, RunError> {
+    Ok(if files.is_empty() {
+        load_dir(&dir.unwrap_or_else(default_dir))?
+    } else {
+        load_files(files)?
+    })
+}
+
+/// Renders `rows` in the requested format.
+fn render(rows: &[Decided<'_>], args: &OutputArgs, errata: bool) -> String {
+    let rows: Vec<&Decided<'_>> = rows
+        .iter()
+        .filter(|r| !errata || report::is_erratum(r))
+        .collect();
+    match (args.format, errata) {
+        (Format::Markdown, false) => report::markdown::render(&rows),
+        (Format::Markdown, true) => report::errata::markdown(&rows),
+        (Format::Latex, false) => report::latex::render(&rows, args.standalone),
+        (Format::Latex, true) => report::latex::errata(&rows, args.standalone),
+        (Format::Json, _) => report::json::render(&rows),
+        (Format::Csv, _) => report::csv::render(&rows),
+    }
+}
+
+fn emit(text: &str, out_file: &Option<PathBuf>, out: &mut dyn Write) -> Result<(), RunError> {
+    match out_file {
+        Some(path) => std::fs::write(path, text)
+            .map_err(|e| RunError::Input(format!("error: cannot write {}: {e}", path.display())))?,
+        None => {
+            out.write_all(text.as_bytes())?;
+            out.flush()?;
+        }
+    }
+    Ok(())
+}
+
+fn table(
+    mut files: Vec<DerivationFile>,
+    args: &OutputArgs,
+    errata: bool,
+    out: &mut dyn Write,
+) -> Result<Status, RunError> {
+    override_sampling(&mut files, args.seed, args.samples);
+    let mut progress = Progress::new();
+    let rows = decide_with_progress(&files, args.only.as_deref(), &mut |k, n, id| {
+        progress.tick(k, n, id)
+    })?;
+    progress.done(rows.len());
+    emit(&render(&rows, args, errata), &args.out, out)?;
     Ok(if rows.iter().all(Decided::as_expected) {
         Status::AsExpected
     } else {
         Status::Unexpected
     })
+}
+
+/// Runs the command line, writing the report to `out`.
+pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Status, RunError> {
+    match cli
+        .command
+        .unwrap_or_else(|| Command::Check(CheckArgs::default()))
+    {
+        Command::Check(a) => table(read(a.dir, &[])?, &a.output, false, out),
+        Command::Errata(a) => table(read(a.dir, &[])?, &a.output, true, out),
+        Command::Verify(a) => table(read(None, &a.files)?, &a.output, false, out),
+        Command::Explain(a) => {
+            let files = read(a.dir, &a.files)?;
+            let rows = decide_all(&files, Some(&a.id))?;
+            emit(&report::explain::render(&rows[0]), &None, out)?;
+            Ok(if rows[0].as_expected() {
+                Status::AsExpected
+            } else {
+                Status::Unexpected
+            })
+        }
+    }
 }
 
 #[cfg(test)]

@@ -191,13 +191,13 @@ fn exact_verdicts_agree_with_the_independent_float_route() {
 fn derivation_table_markdown() {
     snapshot(
         "derivation_table_markdown",
-        &report::markdown::render(decided()),
+        &report::markdown::render(&report::refs(decided())),
     );
 }
 
 #[test]
 fn derivation_table_json() {
-    let json = report::json::render(decided());
+    let json = report::json::render(&report::refs(decided()));
     let v: serde_json::Value = serde_json::from_str(&json).expect("valid JSON");
     for key in ["paper", "claims", "summary"] {
         assert!(v.get(key).is_some(), "missing {key}");
@@ -224,15 +224,15 @@ fn derivation_table_json() {
 fn output_is_deterministic() {
     // A second, independent run gives byte-identical output.
     let files = corpus();
-    let again = report::json::render(&decide_all(&files, None).unwrap());
-    assert_eq!(report::json::render(decided()), again);
+    let again = report::json::render(&report::refs(&decide_all(&files, None).unwrap()));
+    assert_eq!(report::json::render(&report::refs(decided())), again);
 }
 
 #[test]
 fn the_readme_excerpt_matches_the_table() {
     let readme =
         std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
-    let table = report::markdown::render(decided());
+    let table = report::markdown::render(&report::refs(decided()));
     let rows: Vec<&str> = readme.lines().filter(|l| l.starts_with("| eq")).collect();
     assert!(!rows.is_empty(), "the README shows no table rows");
     for row in rows {

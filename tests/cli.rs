@@ -70,7 +70,7 @@ fn an_unexpected_verdict_exits_1() {
     let out = run(&["check", "--dir", dir.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     let stdout = text(&out.stdout);
-    assert!(stdout.contains("**fails** ✗ (declared: holds)"), "{stdout}");
+    assert!(stdout.contains("**fails ✗ (declared: holds)**"), "{stdout}");
     assert!(stdout.contains("1 unexpected."));
 }
 
@@ -118,4 +118,189 @@ fn help_documents_every_option() {
     }
     let top = text(&run(&["--help"]).stdout);
     assert!(top.contains("Exit status"));
+}
+
+#[test]
+fn every_format_renders_the_full_table() {
+    for (format, marker) in [
+        ("markdown", "| eq33 | 3.4 |"),
+        ("latex", "eq33 & 3.4 &"),
+        ("json", "\"id\": \"eq33\""),
+        ("csv", "\"eq33\",\"3.4\""),
+    ] {
+        let out = run(&["check", "--format", format]);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{format}: {}",
+            text(&out.stderr)
+        );
+        let stdout = text(&out.stdout);
+        assert!(stdout.contains(marker), "{format} lacks {marker}");
+        // Quiet when stderr is not a terminal.
+        assert!(out.stderr.is_empty(), "{format}: {}", text(&out.stderr));
+    }
+    let latex = text(&run(&["check", "--format", "latex", "--standalone"]).stdout);
+    assert!(latex.starts_with("\\documentclass"));
+    assert!(latex.trim_end().ends_with("\\end{document}"));
+    assert!(latex.is_ascii(), "LaTeX output must be ASCII for pdflatex");
+    assert!(
+        !latex.contains("\\textbf{?}"),
+        "a character has no LaTeX transliteration"
+    );
+}
+
+#[test]
+fn out_writes_a_file_and_nothing_on_error() {
+    let dir = std::env::temp_dir().join(format!("cosserat-check-out-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("table.csv");
+    let out = run(&[
+        "check",
+        "--format",
+        "csv",
+        "--only",
+        "eq25",
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(out.stdout.is_empty());
+    assert!(std::fs::read_to_string(&file).unwrap().contains("\"eq25\""));
+    // A failing run leaves no file behind.
+    let missing = dir.join("never.csv");
+    let out = run(&[
+        "check",
+        "--only",
+        "nope",
+        "--out",
+        missing.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!missing.exists());
+}
+
+#[test]
+fn errata_lists_the_failing_statements_with_corrections() {
+    let out = run(&["errata"]);
+    assert_eq!(out.status.code(), Some(0));
+    let s = text(&out.stdout);
+    for id in [
+        "## eq26",
+        "## eq31",
+        "## eq21",
+        "## eq23",
+        "## eq24",
+        "## sec5-f2-dominates-f1",
+    ] {
+        assert!(s.contains(id), "errata lack {id}");
+    }
+    assert!(!s.contains("## eq33"), "a holding claim is not an erratum");
+    assert!(s.contains("- Correction: $\\langle n_i n_j n_k n_l \\rangle = \\frac{1}{15}"));
+    let latex = text(&run(&["errata", "--format", "latex"]).stdout);
+    assert!(latex.contains("\\begin{itemize}") && latex.is_ascii());
+}
+
+#[test]
+fn explain_shows_expansions_and_samples() {
+    let out = run(&["explain", "eq33"]);
+    assert_eq!(out.status.code(), Some(0));
+    let s = text(&out.stdout);
+    assert!(s.contains("Definitions used:"));
+    assert!(s.contains("Chain 1, side 2: 4/15 s_ij s_ij - 1/15 s_ij s_ji"));
+    assert!(s.contains("= 2/15*sigma_11^2"));
+    let s = text(&run(&["explain", "eq47"]).stdout);
+    assert!(s.contains("First 3 sampled states:"), "{s}");
+    let s = text(&run(&["explain", "eq26"]).stdout);
+    assert!(s.contains("## Correction") && s.contains("Counterexample:"));
+    assert_eq!(run(&["explain", "nope"]).status.code(), Some(2));
+}
+
+#[test]
+fn verify_checks_the_documented_example() {
+    let out = run(&["verify", "derivations/examples/textbook.toml"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let s = text(&out.stdout);
+    assert!(s.contains("Worked examples"));
+    assert!(s.contains("| epsilon-delta | examples |"));
+    assert!(s.contains("6 claims: 5 hold, 1 fail, 0 conditional; 0 unexpected."));
+    // --seed and --samples reach the numeric claims and change only their evidence.
+    let a = text(
+        &run(&[
+            "verify",
+            "derivations/examples/textbook.toml",
+            "--only",
+            "cauchy-schwarz",
+            "--seed",
+            "7",
+            "--samples",
+            "60",
+        ])
+        .stdout,
+    );
+    assert!(a.contains("60 samples (seed 7)"), "{a}");
+    let b = text(
+        &run(&[
+            "verify",
+            "derivations/examples/textbook.toml",
+            "--only",
+            "cauchy-schwarz",
+            "--seed",
+            "7",
+            "--samples",
+            "60",
+        ])
+        .stdout,
+    );
+    assert_eq!(a, b, "same seed, same output");
+    assert_eq!(
+        run(&[
+            "verify",
+            "derivations/examples/textbook.toml",
+            "--samples",
+            "3"
+        ])
+        .status
+        .code(),
+        Some(2)
+    );
+    assert_eq!(run(&["verify"]).status.code(), Some(2));
+}
+
+#[test]
+fn every_subcommand_has_complete_help() {
+    for (cmd, words) in [
+        (
+            "check",
+            &[
+                "--format",
+                "--standalone",
+                "--out",
+                "--only",
+                "--seed",
+                "--samples",
+                "--dir",
+            ][..],
+        ),
+        ("errata", &["--format", "--out", "--dir"][..]),
+        ("explain", &["<ID>", "--dir", "--file"][..]),
+        (
+            "verify",
+            &[
+                "<FILE>",
+                "--format",
+                "--only",
+                "--seed",
+                "--samples",
+                "--out",
+            ][..],
+        ),
+    ] {
+        let out = run(&[cmd, "--help"]);
+        assert_eq!(out.status.code(), Some(0));
+        let help = text(&out.stdout);
+        for w in words {
+            assert!(help.contains(w), "`{cmd} --help` lacks {w}");
+        }
+    }
 }

@@ -213,9 +213,15 @@ pub struct Correction {
     pub check: Check,
 }
 
+/// The paper of this corpus, the default `paper` of a derivation file.
+pub const PAPER: &str =
+    "Papanicolopoulos & Veveakis, Sliding and rolling dissipation in Cosserat plasticity";
+
 /// One checkable statement of the paper.
 #[derive(Clone, Debug)]
 pub struct Claim {
+    /// The work the claim comes from.
+    pub paper: String,
     pub id: String,
     pub section: String,
     /// The statement as printed (LaTeX, verbatim, typos included).

@@ -11,6 +11,8 @@ pub type S = Spanned<String>;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawFile {
+    /// The work the claims come from (defaults to the paper of this corpus).
+    pub paper: Option<S>,
     pub section: S,
     pub title: S,
     pub dimension: Spanned<i64>,

@@ -3,7 +3,7 @@
 //! `verdict`, `method`, `expected`, `checks`, `counterexample`, `correction`), and
 //! `summary` (`holds`, `fails`, `conditional`, `unexpected`).
 
-use super::{Summary, PAPER};
+use super::{paper_of, Summary};
 use crate::strategy::{Counterexample, Decided, Method, NumericEvidence};
 use serde::Serialize;
 
@@ -45,7 +45,7 @@ struct CorrectionRow<'a> {
 }
 
 /// Renders the table as pretty-printed JSON (deterministic: fixed field order).
-pub fn render(rows: &[Decided<'_>]) -> String {
+pub fn render(rows: &[&Decided<'_>]) -> String {
     let claims = rows
         .iter()
         .map(|r| {
@@ -81,8 +81,9 @@ pub fn render(rows: &[Decided<'_>]) -> String {
             }
         })
         .collect();
+    let paper = paper_of(rows);
     let report = Report {
-        paper: PAPER,
+        paper: &paper,
         claims,
         summary: Summary::of(rows),
     };

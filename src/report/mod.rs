@@ -1,15 +1,32 @@
 //! Reports: the derivation table in Markdown and JSON. Rendering only; every verdict
 //! has been decided before anything here runs.
 
+pub mod csv;
+pub mod errata;
+pub mod explain;
 pub mod json;
+pub mod latex;
 pub mod markdown;
 
 use crate::strategy::{Counterexample, Decided, Outcome};
 use serde::Serialize;
 
-/// The paper this corpus checks.
-pub const PAPER: &str =
-    "Papanicolopoulos & Veveakis, Sliding and rolling dissipation in Cosserat plasticity";
+pub use crate::derivation::PAPER;
+
+/// The work the rows come from: the papers of their files, in order, or this corpus's.
+pub fn paper_of(rows: &[&Decided<'_>]) -> String {
+    let mut papers: Vec<&str> = Vec::new();
+    for r in rows {
+        if !papers.contains(&r.claim.paper.as_str()) {
+            papers.push(&r.claim.paper);
+        }
+    }
+    if papers.is_empty() {
+        PAPER.to_owned()
+    } else {
+        papers.join("; ")
+    }
+}
 
 /// Verdict counts over a table.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -23,7 +40,15 @@ pub struct Summary {
 }
 
 impl Summary {
-    pub fn of(rows: &[Decided<'_>]) -> Self {
+    /// "N claims: … hold, … fail, … conditional; … unexpected."
+    pub fn sentence(&self, n: usize) -> String {
+        format!(
+            "{n} claims: {} hold, {} fail, {} conditional; {} unexpected.",
+            self.holds, self.fails, self.conditional, self.unexpected
+        )
+    }
+
+    pub fn of(rows: &[&Decided<'_>]) -> Self {
         let mut s = Summary::default();
         for r in rows {
             match r.outcome.verdict {
@@ -37,6 +62,50 @@ impl Summary {
         }
         s
     }
+}
+
+/// References to every row (the renderers take slices of references so that
+/// `errata` can pass a filtered view).
+pub fn refs<'a, 'c>(rows: &'a [Decided<'c>]) -> Vec<&'a Decided<'c>> {
+    rows.iter().collect()
+}
+
+/// Whether a row belongs in the errata: its printed statement fails, or holds only on
+/// a domain.
+pub fn is_erratum(r: &Decided<'_>) -> bool {
+    r.outcome.verdict != crate::derivation::Verdict::Holds
+}
+
+/// The verdict, marked when it differs from the declared one.
+pub fn verdict_label(r: &Decided<'_>) -> String {
+    if r.as_expected() {
+        r.outcome.verdict.to_string()
+    } else {
+        format!("{} ✗ (declared: {})", r.outcome.verdict, r.claim.expect)
+    }
+}
+
+/// The evidence, the reason and the correction of a row in one paragraph;
+/// `statement` renders the correction's statement (math in Markdown or LaTeX).
+pub fn full_evidence(r: &Decided<'_>, statement: &dyn Fn(&str) -> String) -> String {
+    let c = r.claim;
+    let mut ev = evidence(&r.outcome);
+    if let Some(reason) = &c.reason {
+        ev.push_str(&format!(". Why: {}", reason.trim_end_matches('.')));
+    }
+    if let (Some(corr), Some(o)) = (&c.correction, &r.correction) {
+        ev.push_str(&format!(
+            ". Correction {}: {} ({}; {})",
+            statement(&corr.statement),
+            o.verdict,
+            o.method.as_str(),
+            evidence(o)
+        ));
+        if o.verdict != corr.expect {
+            ev.push_str(&format!(" ✗ (declared: {})", corr.expect));
+        }
+    }
+    ev
 }
 
 /// One line of evidence for an outcome, in plain text with inline code.

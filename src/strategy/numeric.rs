@@ -693,3 +693,59 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         )),
     })
 }
+
+/// The first `k` sampled states of a sampled check, with the value of every side (or
+/// of the function), for `explain`: the same states the decision used, in order.
+pub fn trace(decls: &Decls, check: &Check, k: usize) -> Result<Vec<String>, Diagnostic> {
+    let (sampling, exprs): (&Sampling, Vec<Expression>) = match &check.strategy {
+        Strategy::Numeric { sampling, .. } => {
+            let sides = check
+                .chains
+                .iter()
+                .flatten()
+                .filter_map(|s| {
+                    s.node.as_ref().ok().map(|n| Expression {
+                        text: s.text.clone(),
+                        origin: s.origin.clone(),
+                        node: n.clone(),
+                    })
+                })
+                .collect();
+            (sampling, sides)
+        }
+        Strategy::Gradient {
+            sampling, function, ..
+        }
+        | Strategy::Convex {
+            sampling, function, ..
+        } => (sampling, vec![function.clone()]),
+        Strategy::Exact | Strategy::NotCircle { .. } => return Ok(Vec::new()),
+    };
+    let Some(anchor) = exprs.first() else {
+        return Ok(Vec::new());
+    };
+    let mut sampler = Sampler::new(decls, check, sampling, anchor);
+    let mut excluded = 0;
+    let mut lines = Vec::new();
+    for j in 0..k {
+        let state = sampler.next(&[], &mut excluded)?;
+        let values: Vec<String> = exprs
+            .iter()
+            .map(|e| match sampler.scalar(&state, e) {
+                Ok(v) => format!("`{}` = {v:.9}", e.text.trim()),
+                Err(_) => format!("`{}` is not a scalar here", e.text.trim()),
+            })
+            .collect();
+        let point: Vec<String> = describe(&state, decls)
+            .into_iter()
+            .map(|(a, b)| format!("{a}={b}"))
+            .collect();
+        lines.push(format!(
+            "{}. {}; {}",
+            j + 1,
+            point.join(", "),
+            values.join(", ")
+        ));
+    }
+    Ok(lines)
+}

@@ -1,0 +1,39 @@
+//! The derivation table as CSV (RFC 4180: every field quoted, quotes doubled), one row
+//! per claim, for spreadsheets and scripts.
+
+use super::full_evidence;
+use crate::strategy::Decided;
+
+fn field(s: &str) -> String {
+    format!("\"{}\"", s.replace('"', "\"\""))
+}
+
+/// Renders the table: a header line, then one line per claim.
+pub fn render(rows: &[&Decided<'_>]) -> String {
+    let mut out = String::from(
+        "id,section,statement,verdict,expected,method,checks,evidence,correction,correction_verdict\n",
+    );
+    for r in rows {
+        let c = r.claim;
+        let (corr, corr_verdict) = match (&c.correction, &r.correction) {
+            (Some(k), Some(o)) => (k.statement.as_str(), o.verdict.as_str()),
+            _ => ("", ""),
+        };
+        let cells = [
+            c.id.as_str(),
+            c.section.as_str(),
+            c.statement.as_str(),
+            r.outcome.verdict.as_str(),
+            c.expect.as_str(),
+            r.outcome.method.as_str(),
+            &r.outcome.checks.to_string(),
+            &full_evidence(r, &|s| s.to_owned()),
+            corr,
+            corr_verdict,
+        ]
+        .map(field);
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}

@@ -1,0 +1,49 @@
+//! The errata: every printed statement that fails (or holds only on a domain), with
+//! the counterexample, the correction and its verdict, and the reason — ready to paste
+//! into an erratum.
+
+use super::markdown::{math, statement};
+use super::{evidence, paper_of};
+use crate::strategy::Decided;
+use std::fmt::Write as _;
+
+/// The errata in Markdown, one section per statement.
+pub fn markdown(rows: &[&Decided<'_>]) -> String {
+    let mut out = format!("# Errata\n\n{}.\n\n", paper_of(rows));
+    if rows.is_empty() {
+        out.push_str("Every printed statement checked holds.\n");
+        return out;
+    }
+    let _ = writeln!(out, "{} statements do not hold as printed.\n", rows.len());
+    for r in rows {
+        let c = r.claim;
+        let _ = writeln!(out, "## {} (Section {})\n", c.id, c.section);
+        let _ = writeln!(out, "- As printed: {}", statement(c));
+        let _ = writeln!(
+            out,
+            "- Verdict: **{}** (method {})",
+            r.outcome.verdict,
+            r.outcome.method.as_str()
+        );
+        if let Some(reason) = &c.reason {
+            let _ = writeln!(out, "- Why: {reason}");
+        }
+        let _ = writeln!(out, "- Evidence: {}", evidence(&r.outcome));
+        if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
+            let _ = writeln!(out, "- Correction: {}", math(&k.statement));
+            let _ = writeln!(out, "  - {}", k.reason);
+            let _ = writeln!(
+                out,
+                "  - Verdict: **{}** (method {}; {})",
+                o.verdict,
+                o.method.as_str(),
+                evidence(o)
+            );
+        }
+        if let Some(note) = &c.note {
+            let _ = writeln!(out, "- Note: {note}");
+        }
+        out.push('\n');
+    }
+    out
+}
