@@ -5,7 +5,7 @@
 //! original.
 
 use crate::lang::parse_expr;
-use crate::lang::parser::{Expr, ExprKind};
+use crate::lang::parser::{Expr, ExprKind, Func};
 use std::fmt;
 
 /// The kind of slip a mutant makes.
@@ -20,6 +20,9 @@ pub enum MutantKind {
     /// One term of a sum is replaced by zero (kept as `0 (term)` so the indices
     /// still line up and the mutant is well-formed).
     DropTerm,
+    /// A function is replaced by a neighbour: sqrt, abs, avg and maxn by the identity,
+    /// cos ↔ sin, tan → sin.
+    Function,
 }
 
 impl fmt::Display for MutantKind {
@@ -29,6 +32,7 @@ impl fmt::Display for MutantKind {
             MutantKind::SwapIndices => "swapped indices",
             MutantKind::FlipSign => "flipped sign",
             MutantKind::DropTerm => "dropped term",
+            MutantKind::Function => "replaced function",
         })
     }
 }
@@ -139,7 +143,21 @@ fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
         ExprKind::Number(_) | ExprKind::Name { .. } | ExprKind::Add(..) | ExprKind::Sub(..) => {
             collect(src, e, out)
         }
-        ExprKind::Neg(a) | ExprKind::Pow(a, _) | ExprKind::Call(_, a) => collect(src, a, out),
+        ExprKind::Call(func, a) => {
+            let name = func.name();
+            let at = e.span.start..e.span.start + name.len();
+            let neighbours: &[&str] = match func {
+                Func::Sqrt | Func::Abs | Func::Avg | Func::MaxN => &[""],
+                Func::Cos => &["sin"],
+                Func::Sin => &["cos"],
+                Func::Tan => &["sin"],
+            };
+            for n in neighbours {
+                out.push((MutantKind::Function, at.clone(), (*n).to_owned()));
+            }
+            collect(src, a, out);
+        }
+        ExprKind::Neg(a) | ExprKind::Pow(a, _) => collect(src, a, out),
         ExprKind::Mul(a, b) | ExprKind::Div(a, b) => {
             collect(src, a, out);
             collect(src, b, out);
@@ -179,5 +197,16 @@ mod tests {
             "{texts:?}"
         );
         assert!(!texts.iter().any(|t| t.contains("delta_ji")));
+    }
+
+    #[test]
+    fn functions_are_replaced_by_neighbours() {
+        let ms = mutants("sqrt(x) + cos(y)");
+        let texts: Vec<&str> = ms
+            .iter()
+            .filter(|m| m.kind == MutantKind::Function)
+            .map(|m| m.text.as_str())
+            .collect();
+        assert_eq!(texts, vec!["(x) + cos(y)", "sqrt(x) + sin(y)"]);
     }
 }

@@ -1,152 +1,252 @@
-//! Mutation tests: the exact strategy refutes wrong statements.
+//! Mutation tests: every strategy refutes wrong statements.
 //!
-//! For every statement that is expected to hold (each `holds` claim, and each
-//! correction that holds), every side and every definition the statement depends on
-//! is mutated — each coefficient changed, each pair of indices of a name swapped, each
-//! term's sign flipped, each term dropped — and the mutant is decided by the same
-//! strategy. A mutant must be refuted (`fails`) or rejected as ill-formed by the
-//! validator, or be equivalent: a surviving mutant counts as equivalent only when the
-//! independent floating-point route (`strategy::float`: random values, quadrature
-//! averages, no polynomial code) also finds the mutated statement true. Every mutant
-//! decided by both routes must get the same verdict from both. The report — kill
-//! rates per kind and the full list of equivalent mutants — is snapshot-tested, so a
-//! new survivor shows up as a diff to review.
+//! For every statement whose declared verdict is `holds` or `conditional` (each claim,
+//! and each correction that holds), every side and every definition the statement
+//! depends on is mutated — each coefficient changed or a term doubled, each pair of
+//! indices of a name swapped, each term's sign flipped, each term dropped, each function
+//! replaced by a neighbour (sqrt → identity, cos ↔ sin, avg → identity, …) — and the
+//! mutant is decided by the claim's own strategy. A mutant is refuted when its verdict
+//! differs from the declared one, or rejected when the validator refuses it.
+//!
+//! Survivors must be equivalent (the mutated statement is still true):
+//! - for the exact strategy, the independent floating-point route (`strategy::float`:
+//!   random values, quadrature averages, no polynomial code) must also find the mutant
+//!   true, and the two routes must agree on every mutant they both decide;
+//! - for the sampled strategies (decided here with 50 samples), every survivor is
+//!   decided again with 200 samples and another seed; it counts as equivalent only if it
+//!   still holds there, and as refuted (late) otherwise.
+//!
+//! The report — kill rates per strategy and kind, and every equivalent mutant — is
+//! snapshot-tested, so a new survivor shows up as a diff to review.
 
-use cosserat_check::derivation::{load_dir, Check, Strategy, Verdict};
+use cosserat_check::derivation::{load_dir, Check, Claim, Strategy, Verdict};
 use cosserat_check::lang::Decls;
 use cosserat_check::mutate::{mutants, MutantKind};
-use cosserat_check::strategy::{exact, float};
+use cosserat_check::strategy::{decide, float};
 use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Random points per mutant for the float route (see `float::decide`).
 const FLOAT_SAMPLES: usize = 2;
+/// Samples per mutant for the sampled strategies (the minimum a claim may declare).
+const SAMPLED: usize = 50;
+
+/// The second, independent sampling of a survivor of a sampled strategy.
+const RESAMPLED: usize = 100;
+const RESAMPLE_SEED: u64 = 9973;
 
 #[derive(Default)]
 struct Tally {
     killed: usize,
+    late: usize,
     rejected: usize,
     equivalent: usize,
 }
 
 enum Fate {
     Killed,
+    /// Survived 50 samples but not the second sampling.
+    Late,
     Rejected,
     Survived,
     /// The exact and float routes disagree: a bug in one of them.
     Disagreement(String),
 }
 
-fn fate(decls: &Decls, mutated: Result<Check, impl std::fmt::Debug>) -> Fate {
+fn strategy_name(s: &Strategy) -> &'static str {
+    match s {
+        Strategy::Exact => "exact",
+        Strategy::Numeric { .. } => "numeric",
+        Strategy::Gradient { .. } => "gradient",
+        Strategy::Convex { .. } => "convex",
+        Strategy::NotCircle { .. } => "not-circle",
+    }
+}
+
+/// The check with `samples` samples (at most the claim's own) and, when given, a seed.
+fn resampled(mut check: Check, samples: usize, seed: Option<u64>) -> Check {
+    match &mut check.strategy {
+        Strategy::Numeric { sampling, .. }
+        | Strategy::Gradient { sampling, .. }
+        | Strategy::Convex { sampling, .. } => {
+            sampling.samples = samples;
+            if let Some(s) = seed {
+                sampling.seed = s;
+            }
+        }
+        Strategy::Exact | Strategy::NotCircle { .. } => {}
+    }
+    check
+}
+
+fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::Debug>) -> Fate {
     let Ok(check) = mutated else {
         return Fate::Rejected;
     };
-    let Ok(exact) = exact::decide(decls, &check) else {
+    let sampled = !matches!(check.strategy, Strategy::Exact | Strategy::NotCircle { .. });
+    let light = resampled(check.clone(), SAMPLED, None);
+    let Ok(outcome) = decide(decls, &light) else {
         return Fate::Rejected;
     };
-    match float::decide(decls, &check, FLOAT_SAMPLES, 7) {
-        Ok(Some(v)) if v != exact.verdict => {
-            return Fate::Disagreement(format!("exact {}, float {v}", exact.verdict));
+    if matches!(check.strategy, Strategy::Exact) {
+        match float::decide(decls, &check, FLOAT_SAMPLES, 7) {
+            Ok(Some(v)) if v != outcome.verdict => {
+                return Fate::Disagreement(format!("exact {}, float {v}", outcome.verdict));
+            }
+            Err(e) => {
+                return Fate::Disagreement(format!("exact {}, float error {e}", outcome.verdict))
+            }
+            _ => {}
         }
-        Err(e) => return Fate::Disagreement(format!("exact {}, float error {e}", exact.verdict)),
-        _ => {}
     }
-    if exact.verdict == Verdict::Fails {
-        Fate::Killed
-    } else {
-        Fate::Survived
+    if outcome.verdict != expected {
+        return Fate::Killed;
     }
+    if sampled {
+        let again = resampled(check, RESAMPLED, Some(RESAMPLE_SEED));
+        match decide(decls, &again) {
+            Ok(o) if o.verdict == expected => {}
+            _ => return Fate::Late,
+        }
+    }
+    Fate::Survived
+}
+
+/// The statements of a claim that the sweep mutates.
+fn statements(claim: &Claim) -> Vec<(String, &Check, Verdict)> {
+    let mut out = Vec::new();
+    if matches!(claim.expect, Verdict::Holds | Verdict::Conditional) {
+        out.push((claim.id.clone(), &claim.check, claim.expect));
+    }
+    if let Some(c) = claim.correction.iter().find(|c| c.expect == Verdict::Holds) {
+        out.push((format!("{} (correction)", claim.id), &c.check, c.expect));
+    }
+    out
+}
+
+/// Every mutant of one statement with its fate: (kind, place, mutant text, fate).
+fn sweep(
+    claim: &Claim,
+    check: &Check,
+    expected: Verdict,
+) -> Vec<(MutantKind, String, String, Fate)> {
+    let mut out = Vec::new();
+    for (ci, chain) in check.chains.iter().enumerate() {
+        for (si, side) in chain.iter().enumerate() {
+            for m in mutants(&side.text) {
+                let f = fate(
+                    &claim.decls,
+                    expected,
+                    check.with_side(&claim.decls, ci, si, &m.text),
+                );
+                out.push((
+                    m.kind,
+                    format!("chain {} side {}", ci + 1, si + 1),
+                    m.text,
+                    f,
+                ));
+            }
+        }
+    }
+    for d in check.dependencies() {
+        let def = &check.defs[d];
+        let body = def.text.split_once('=').map_or("", |(_, b)| b);
+        for m in mutants(body) {
+            let f = fate(
+                &claim.decls,
+                expected,
+                check.with_definition_body(&claim.decls, d, &m.text),
+            );
+            out.push((
+                m.kind,
+                format!("definition {}", def.sig.name),
+                m.text.trim().to_owned(),
+                f,
+            ));
+        }
+    }
+    out
 }
 
 #[test]
 fn every_mutant_of_every_proved_statement_is_refuted() {
     let files = load_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations"))
         .expect("derivations load");
-    let mut per_kind: BTreeMap<MutantKind, Tally> = BTreeMap::new();
-    let mut per_claim: Vec<String> = Vec::new();
-    let mut survivors: Vec<(String, String, String)> = Vec::new();
-    let mut disagreements: Vec<String> = Vec::new();
-    for claim in files.iter().flat_map(|f| &f.claims) {
-        // The sweep covers the exact strategy; numeric strategies have their own
-        // refutation tests (tests/numeric.rs).
-        if !matches!(claim.check.strategy, Strategy::Exact) {
-            continue;
-        }
-        let mut statements: Vec<(String, &Check)> = Vec::new();
-        if claim.expect == Verdict::Holds {
-            statements.push((claim.id.clone(), &claim.check));
-        }
-        if let Some(c) = claim.correction.iter().find(|c| c.expect == Verdict::Holds) {
-            statements.push((format!("{} (correction)", claim.id), &c.check));
-        }
-        for (name, check) in statements {
-            let mut kinds: BTreeMap<MutantKind, (usize, usize)> = BTreeMap::new();
-            let mut record = |kind: MutantKind, place: String, text: String, f: Fate| {
-                let entry = per_kind.entry(kind).or_default();
-                let k = kinds.entry(kind).or_default();
-                match f {
-                    Fate::Killed => {
-                        entry.killed += 1;
-                        k.0 += 1;
-                    }
-                    Fate::Rejected => entry.rejected += 1,
-                    Fate::Survived => {
-                        entry.equivalent += 1;
-                        k.1 += 1;
-                        survivors.push((name.clone(), place, text));
-                    }
-                    Fate::Disagreement(why) => {
-                        disagreements.push(format!("{name}, {place}: `{text}`: {why}"))
-                    }
-                }
-            };
-            for (ci, chain) in check.chains.iter().enumerate() {
-                for (si, side) in chain.iter().enumerate() {
-                    for m in mutants(&side.text) {
-                        let f = fate(&claim.decls, check.with_side(&claim.decls, ci, si, &m.text));
-                        record(
-                            m.kind,
-                            format!("chain {} side {}", ci + 1, si + 1),
-                            m.text,
-                            f,
-                        );
-                    }
-                }
-            }
-            for d in check.dependencies() {
-                let def = &check.defs[d];
-                let body = def.text.split_once('=').map_or("", |(_, b)| b);
-                for m in mutants(body) {
-                    let f = fate(
-                        &claim.decls,
-                        check.with_definition_body(&claim.decls, d, &m.text),
-                    );
-                    record(
-                        m.kind,
-                        format!("definition {}", def.sig.name),
-                        m.text.trim().to_owned(),
-                        f,
-                    );
-                }
-            }
-            let summary: Vec<String> = kinds
-                .iter()
-                .map(|(k, (killed, survived))| {
-                    format!("{k}: {killed} refuted, {survived} equivalent")
+    let jobs: Vec<(String, &Claim, &Check, Verdict)> = files
+        .iter()
+        .flat_map(|f| &f.claims)
+        .flat_map(|c| statements(c).into_iter().map(move |(n, k, v)| (n, c, k, v)))
+        .collect();
+    // Two workers (this machine's cores); results are merged in job order, so the
+    // report does not depend on scheduling.
+    let workers = 2;
+    let mut results: Vec<Option<Vec<(MutantKind, String, String, Fate)>>> =
+        (0..jobs.len()).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|w| {
+                let jobs = &jobs;
+                scope.spawn(move || {
+                    jobs.iter()
+                        .enumerate()
+                        .filter(|(k, _)| k % workers == w)
+                        .map(|(k, (_, claim, check, expected))| (k, sweep(claim, check, *expected)))
+                        .collect::<Vec<_>>()
                 })
-                .collect();
-            per_claim.push(format!("{name}: {}", summary.join("; ")));
+            })
+            .collect();
+        for h in handles {
+            for (k, r) in h.join().expect("a worker panicked") {
+                results[k] = Some(r);
+            }
         }
+    });
+    let mut per_kind: BTreeMap<(&str, MutantKind), Tally> = BTreeMap::new();
+    let mut per_claim: Vec<String> = Vec::new();
+    let mut survivors: Vec<(String, String, String, &str)> = Vec::new();
+    let mut disagreements: Vec<String> = Vec::new();
+    for ((name, _, check, _), result) in jobs.iter().zip(results) {
+        let strategy = strategy_name(&check.strategy);
+        let mut kinds: BTreeMap<MutantKind, (usize, usize)> = BTreeMap::new();
+        for (kind, place, text, f) in result.expect("every job ran") {
+            let entry = per_kind.entry((strategy, kind)).or_default();
+            let k = kinds.entry(kind).or_default();
+            match f {
+                Fate::Killed => {
+                    entry.killed += 1;
+                    k.0 += 1;
+                }
+                Fate::Late => {
+                    entry.late += 1;
+                    k.0 += 1;
+                }
+                Fate::Rejected => entry.rejected += 1,
+                Fate::Survived => {
+                    entry.equivalent += 1;
+                    k.1 += 1;
+                    survivors.push((name.clone(), place, text, strategy));
+                }
+                Fate::Disagreement(why) => {
+                    disagreements.push(format!("{name}, {place}: `{text}`: {why}"))
+                }
+            }
+        }
+        let summary: Vec<String> = kinds
+            .iter()
+            .map(|(k, (killed, survived))| format!("{k}: {killed} refuted, {survived} equivalent"))
+            .collect();
+        per_claim.push(format!("{name} [{strategy}]: {}", summary.join("; ")));
     }
 
     let mut report = String::from(
-        "kind | mutants | refuted | rejected as ill-formed | equivalent (still true)\n",
+        "strategy | kind | mutants | refuted | refuted on resampling | rejected as ill-formed | equivalent (still true)\n",
     );
-    for (kind, t) in &per_kind {
+    for ((strategy, kind), t) in &per_kind {
         report.push_str(&format!(
-            "{kind} | {} | {} | {} | {}\n",
-            t.killed + t.rejected + t.equivalent,
+            "{strategy} | {kind} | {} | {} | {} | {} | {}\n",
+            t.killed + t.late + t.rejected + t.equivalent,
             t.killed,
+            t.late,
             t.rejected,
             t.equivalent
         ));
@@ -156,12 +256,20 @@ fn every_mutant_of_every_proved_statement_is_refuted() {
         report.push_str(line);
         report.push('\n');
     }
-    println!("{report}");
-
-    report.push_str("\nEquivalent mutants (the mutated statement is still true; confirmed by the float route):\n");
-    for (name, place, text) in &survivors {
+    report.push_str(
+        "\nEquivalent mutants of exact statements (still true; confirmed by the float route):\n",
+    );
+    for (name, place, text, _) in survivors.iter().filter(|s| s.3 == "exact") {
         report.push_str(&format!("{name}, {place}: {text}\n"));
     }
+    report.push_str(&format!(
+        "\nEquivalent mutants of sampled statements (still true at {RESAMPLED} further samples, seed {RESAMPLE_SEED}):\n"
+    ));
+    for (name, place, text, _) in survivors.iter().filter(|s| s.3 != "exact") {
+        report.push_str(&format!("{name}, {place}: {text}\n"));
+    }
+    println!("{report}");
+
     assert!(
         disagreements.is_empty(),
         "exact and float routes disagree:\n{}",
@@ -172,9 +280,12 @@ fn every_mutant_of_every_proved_statement_is_refuted() {
         MutantKind::SwapIndices,
         MutantKind::FlipSign,
         MutantKind::DropTerm,
+        MutantKind::Function,
     ] {
         assert!(
-            per_kind.get(&kind).is_some_and(|t| t.killed > 0),
+            per_kind
+                .iter()
+                .any(|((_, k), t)| *k == kind && t.killed > 0),
             "no {kind} mutant was refuted"
         );
     }

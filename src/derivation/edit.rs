@@ -84,6 +84,7 @@ impl Check {
             .flatten()
             .filter_map(|s| s.node.as_ref().ok())
             .collect();
+        stack.extend(self.strategy.expressions().into_iter().map(|e| &e.node));
         while let Some(n) = stack.pop() {
             match &n.kind {
                 NodeKind::Leaf {

@@ -173,6 +173,46 @@ pub struct Sampling {
     pub singular: Option<Expression>,
 }
 
+impl Strategy {
+    /// Every expression of the strategy itself (functions, closed forms, constraints,
+    /// singular sets), for dependency analysis.
+    pub fn expressions(&self) -> Vec<&Expression> {
+        let mut out = Vec::new();
+        match self {
+            Strategy::Exact => {}
+            Strategy::Numeric {
+                sampling, domain, ..
+            } => {
+                out.extend(sampling.given.iter().flat_map(|c| [&c.lhs, &c.rhs]));
+                out.extend(sampling.singular.iter());
+                out.extend(domain.iter().flat_map(|c| [&c.lhs, &c.rhs]));
+            }
+            Strategy::Gradient {
+                sampling,
+                function,
+                closed_forms,
+            } => {
+                out.extend(sampling.given.iter().flat_map(|c| [&c.lhs, &c.rhs]));
+                out.extend(sampling.singular.iter());
+                out.push(function);
+                out.extend(closed_forms.iter().map(|(_, e)| e));
+            }
+            Strategy::Convex {
+                sampling, function, ..
+            } => {
+                out.extend(sampling.given.iter().flat_map(|c| [&c.lhs, &c.rhs]));
+                out.extend(sampling.singular.iter());
+                out.push(function);
+            }
+            Strategy::NotCircle { x, y } => {
+                out.push(x);
+                out.push(y);
+            }
+        }
+        out
+    }
+}
+
 /// The decision procedure of a claim.
 #[derive(Clone, Debug)]
 pub enum Strategy {

@@ -258,6 +258,21 @@ impl Poly {
         Ok(self * &inv)
     }
 
+    /// ∂/∂v, exactly (Laurent exponents included).
+    pub fn derivative(&self, v: Var) -> Poly {
+        let mut out = Poly::default();
+        for (m, c) in &self.terms {
+            let e = m.exponent(v);
+            if e != 0 {
+                out.add_term(
+                    m.mul(&Monomial::var(v, -1)),
+                    c * &Rational::int(i64::from(e)),
+                );
+            }
+        }
+        out
+    }
+
     pub fn pow(&self, e: u32) -> Poly {
         (0..e).fold(Poly::one(), |acc, _| &acc * self)
     }
@@ -597,6 +612,17 @@ mod tests {
             Poly::constant(q(1, 15))
         );
         assert!(v[0].pow(3).average_over_normal(&n).unwrap().is_zero());
+    }
+
+    #[test]
+    fn derivatives_are_exact() {
+        let (names, v) = vars(&["x", "y"]);
+        let p = &(&v[0].pow(3) * &v[1]) - &Poly::constant(q(5, 1));
+        assert_eq!(p.derivative(0).display(&names), "3*x^2*y");
+        assert_eq!(p.derivative(1).display(&names), "x^3");
+        let inv = Poly::one().checked_div(&v[0]).unwrap();
+        assert_eq!(inv.derivative(0).display(&names), "-x^-2");
+        assert!(Poly::constant(q(7, 2)).derivative(0).is_zero());
     }
 
     #[test]

@@ -90,6 +90,11 @@ impl Rational {
         (&root * &root == self.0).then_some(Rational(root))
     }
 
+    /// Bits in the numerator and the denominator together: the size of the number.
+    pub fn bits(&self) -> u64 {
+        self.0.numer().bits() + self.0.denom().bits()
+    }
+
     /// The nearest `f64` (used only by numeric cross-checks, never by exact verdicts).
     pub fn to_f64(&self) -> f64 {
         self.0.to_f64().unwrap_or(f64::NAN)

@@ -20,6 +20,10 @@ pub const MAX_TERMS: usize = 50_000;
 /// seconds of work at most).
 pub const MAX_WORK: usize = 1_000_000;
 
+/// Largest size, in bits, of a coefficient a power may produce (a fuzzed input raised
+/// 31^-64 to the 4096th power and took minutes).
+pub const MAX_COEFFICIENT_BITS: u64 = 100_000;
+
 /// Largest exponent a power may produce.
 pub const MAX_EXPONENT: i64 = 10_000;
 
@@ -319,12 +323,16 @@ impl<'a> ExactEnv<'a> {
                 let monomials =
                     (1..=vars.len()).fold(1.0, |acc, j| acc * (degree + j as f64) / j as f64);
                 let terms = (p.num_terms() as f64).powi(*k as i32).min(monomials);
-                let too_big = max_exp * i64::from(*k) > MAX_EXPONENT || terms > MAX_TERMS as f64;
+                // Coefficients grow too: (q)^k has about k times the bits of q.
+                let max_bits = p.terms().map(|(_, c)| c.bits()).max().unwrap_or(0);
+                let too_big = max_exp * i64::from(*k) > MAX_EXPONENT
+                    || terms > MAX_TERMS as f64
+                    || max_bits.saturating_mul(u64::from(*k)) > MAX_COEFFICIENT_BITS;
                 if too_big {
                     return Err(origin
                         .diagnostic(node.span, "this power is too large to expand exactly")
                         .with_help(format!(
-                            "exponents up to {MAX_EXPONENT} and expansions up to {MAX_TERMS} terms are supported"
+                            "exponents up to {MAX_EXPONENT}, expansions up to {MAX_TERMS} terms and coefficients up to {MAX_COEFFICIENT_BITS} bits are supported"
                         )));
                 }
                 scalar(p.pow(*k))

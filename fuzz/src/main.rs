@@ -1,0 +1,231 @@
+//! A mutational fuzzer for cosserat-check's input side: the derivation-file reader, the
+//! expression parser, the index validator, and the exact decision (the strategies that
+//! run in bounded time per input). No nightly toolchain or sanitizer runtime is needed.
+//!
+//! Usage: `cargo run --release -- SECONDS [SEED]` from `fuzz/`. Seeds are every derivation
+//! file of the repository (the paper, the examples, the bad-input corpus). Each input is
+//! a seed mutated by byte edits, token insertions from a dictionary of the language, and
+//! splices of two seeds. A panic is a crash (written to `crashes/`), an input that takes
+//! more than `SLOW` seconds is a hang candidate (written to `slow/`). The run prints its
+//! statistics and exits 1 when it found anything.
+
+use cosserat_check::derivation::{load_str, Strategy};
+use cosserat_check::strategy::decide;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+const SLOW: Duration = Duration::from_secs(5);
+
+const DICTIONARY: &[&str] = &[
+    "(",
+    ")",
+    "_",
+    "_ij",
+    "_k",
+    "_1",
+    "^",
+    "^64",
+    "^0",
+    "+",
+    "-",
+    "*",
+    "/",
+    "/0",
+    " ",
+    "\n",
+    "\"",
+    "'",
+    "[",
+    "]",
+    "=",
+    "==",
+    "<=",
+    "avg(",
+    "maxn(",
+    "sqrt(",
+    "abs(",
+    "cos(",
+    "eps_ijk",
+    "delta_ij",
+    "n_i",
+    "sigma_kk",
+    "0",
+    "1/3",
+    "0.5",
+    "99999999999999999999",
+    "[[claim]]\n",
+    "sides = [",
+    "chains = [[",
+    "strategy = \"numeric\"\n",
+    "strategy = \"gradient\"\n",
+    "verbatim = true\n",
+    "assume = [\"",
+    "define = [\"",
+    "expect = \"fails\"\n",
+    "dimension = 2\n",
+    "normal_in_plane = true\n",
+    "\u{3c3}",
+    "\u{0}",
+    "\\u0041",
+    "\\",
+    "#",
+    "'''",
+];
+
+/// xorshift64*: deterministic given the seed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        if n == 0 {
+            0
+        } else {
+            (self.next() % n as u64) as usize
+        }
+    }
+}
+
+fn seeds(root: &Path) -> Vec<Vec<u8>> {
+    let mut out = Vec::new();
+    for dir in ["derivations", "derivations/examples", "tests/bad"] {
+        if let Ok(entries) = std::fs::read_dir(root.join(dir)) {
+            let mut paths: Vec<PathBuf> =
+                entries.filter_map(Result::ok).map(|e| e.path()).collect();
+            paths.sort();
+            for p in paths {
+                if p.extension().is_some_and(|x| x == "toml") {
+                    if let Ok(b) = std::fs::read(&p) {
+                        out.push(b);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+fn mutate(rng: &mut Rng, seeds: &[Vec<u8>]) -> Vec<u8> {
+    let mut data = seeds[rng.below(seeds.len())].clone();
+    for _ in 0..1 + rng.below(8) {
+        let at = rng.below(data.len() + 1);
+        match rng.below(6) {
+            0 if !data.is_empty() => {
+                let k = rng.below(data.len());
+                data[k] = rng.next() as u8;
+            }
+            1 if !data.is_empty() => {
+                let len = 1 + rng.below(16.min(data.len()));
+                let start = rng.below(data.len() - len + 1);
+                data.drain(start..start + len);
+            }
+            2 | 3 => {
+                let tok = DICTIONARY[rng.below(DICTIONARY.len())].as_bytes();
+                data.splice(at..at, tok.iter().copied());
+            }
+            4 => {
+                let other = &seeds[rng.below(seeds.len())];
+                if !other.is_empty() {
+                    let a = rng.below(other.len());
+                    let b = a + rng.below(other.len() - a + 1).min(400);
+                    data.splice(at..at, other[a..b].iter().copied());
+                }
+            }
+            _ if !data.is_empty() => {
+                // Duplicate a slice (repetition finds depth and size limits).
+                let a = rng.below(data.len());
+                let b = (a + rng.below(64)).min(data.len());
+                let piece: Vec<u8> = data[a..b].repeat(1 + rng.below(8));
+                data.splice(at.min(data.len())..at.min(data.len()), piece);
+            }
+            _ => {}
+        }
+    }
+    data
+}
+
+/// Reads and decides one input; numeric strategies are skipped (they are bounded by
+/// their sample counts and exercised by the test suite).
+fn exercise(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(file) = load_str("fuzz.toml", text) else {
+        return;
+    };
+    for claim in &file.claims {
+        if matches!(
+            claim.check.strategy,
+            Strategy::Exact | Strategy::NotCircle { .. }
+        ) {
+            let _ = decide(&claim.decls, &claim.check);
+        }
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let seconds: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(60);
+    let seed: u64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let seeds = seeds(&root);
+    assert!(!seeds.is_empty(), "no seed files found");
+    std::panic::set_hook(Box::new(|_| {}));
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let (crashes, slow) = (here.join("crashes"), here.join("slow"));
+    let mut rng = Rng(seed.max(1));
+    let started = Instant::now();
+    let (mut runs, mut loaded, mut found) = (0u64, 0u64, 0u64);
+    let mut last_report = Instant::now();
+    while started.elapsed() < Duration::from_secs(seconds) {
+        let input = mutate(&mut rng, &seeds);
+        let t = Instant::now();
+        let outcome = catch_unwind(AssertUnwindSafe(|| exercise(&input)));
+        let took = t.elapsed();
+        runs += 1;
+        if std::str::from_utf8(&input)
+            .ok()
+            .and_then(|s| load_str("f", s).ok())
+            .is_some()
+        {
+            loaded += 1;
+        }
+        let bucket = if outcome.is_err() {
+            Some(&crashes)
+        } else if took > SLOW {
+            Some(&slow)
+        } else {
+            None
+        };
+        if let Some(dir) = bucket {
+            found += 1;
+            let _ = std::fs::create_dir_all(dir);
+            let _ = std::fs::write(dir.join(format!("{seed}-{runs}.toml")), &input);
+            eprintln!(
+                "finding {} after {runs} runs ({:.1} s): {}",
+                found,
+                took.as_secs_f64(),
+                dir.display()
+            );
+        }
+        if last_report.elapsed() > Duration::from_secs(60) {
+            eprintln!(
+                "{:>6.0} s: {runs} inputs, {loaded} valid files, {found} findings",
+                started.elapsed().as_secs_f64()
+            );
+            last_report = Instant::now();
+        }
+    }
+    println!(
+        "fuzzed {runs} inputs in {:.0} s ({loaded} valid derivation files), {found} findings",
+        started.elapsed().as_secs_f64()
+    );
+    std::process::exit(i32::from(found > 0));
+}
