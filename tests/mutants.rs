@@ -180,8 +180,7 @@ fn every_mutant_of_every_proved_statement_is_refuted() {
     // Two workers (this machine's cores); results are merged in job order, so the
     // report does not depend on scheduling.
     let workers = 2;
-    let mut results: Vec<Option<Vec<(MutantKind, String, String, Fate)>>> =
-        (0..jobs.len()).map(|_| None).collect();
+    let mut results: Vec<Option<Vec<Swept>>> = (0..jobs.len()).map(|_| None).collect();
     std::thread::scope(|scope| {
         let handles: Vec<_> = (0..workers)
             .map(|w| {
