@@ -124,12 +124,11 @@ fn statements(claim: &Claim) -> Vec<(String, &Check, Verdict)> {
     out
 }
 
-/// Every mutant of one statement with its fate: (kind, place, mutant text, fate).
-fn sweep(
-    claim: &Claim,
-    check: &Check,
-    expected: Verdict,
-) -> Vec<(MutantKind, String, String, Fate)> {
+/// One mutant's result: (kind, place, mutant text, fate).
+type Swept = (MutantKind, String, String, Fate);
+
+/// Every mutant of one statement with its fate.
+fn sweep(claim: &Claim, check: &Check, expected: Verdict) -> Vec<Swept> {
     let mut out = Vec::new();
     for (ci, chain) in check.chains.iter().enumerate() {
         for (si, side) in chain.iter().enumerate() {
