@@ -8,9 +8,9 @@
 //! ≤ 15 in n. A disagreement between this route and the exact one is a bug in one of
 //! them, and the test suite fails on it.
 
-use super::real::RealEnv;
+use super::real::{component_pairs, RealEnv};
 use crate::derivation::{Check, Verdict};
-use crate::kernel::{assignments, Tensor};
+use crate::kernel::Tensor;
 use crate::lang::Decls;
 use std::collections::HashMap;
 
@@ -152,19 +152,8 @@ pub fn decide(
                 .collect::<Result<Vec<_>, _>>()
                 .map_err(|e| e.message)?;
             for w in values.windows(2) {
-                let ((la, ta), (lb, tb)) = (&w[0], &w[1]);
-                let mut labels: Vec<char> = la.iter().chain(lb).copied().collect();
-                labels.sort_unstable();
-                labels.dedup();
-                for a in assignments(d, labels.len()) {
-                    let pick = |ls: &[char], t: &Tensor<f64>| {
-                        let idx: Vec<usize> = ls
-                            .iter()
-                            .map(|c| a[labels.iter().position(|x| x == c).unwrap_or(0)])
-                            .collect();
-                        *t.get(&idx)
-                    };
-                    let (l, r) = (pick(la, ta), pick(lb, tb));
+                let (_, pairs) = component_pairs(d, &w[0], &w[1]);
+                for (_, l, r) in pairs {
                     if !l.is_finite()
                         || !r.is_finite()
                         || (l - r).abs() > TOL * (1.0 + l.abs() + r.abs())

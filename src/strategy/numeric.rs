@@ -13,7 +13,7 @@
 //! lies on the declared singular set, which is excluded and counted in the evidence.
 
 use super::float::Rng;
-use super::real::{RealEnv, RealError};
+use super::real::{component_pairs, RealEnv, RealError};
 use super::{Counterexample, Method, NumericEvidence, Outcome};
 use crate::derivation::{
     Assumption, Check, Constraint, Expression, Relation, Sampling, Strategy, Verdict,
@@ -226,19 +226,8 @@ fn check_state(
             })
             .collect::<Result<Vec<_>, _>>()?;
         for k in 0..values.len().saturating_sub(1) {
-            let ((la, ta), (lb, tb)) = (&values[k], &values[k + 1]);
-            let mut labels: Vec<char> = la.iter().chain(lb).copied().collect();
-            labels.sort_unstable();
-            labels.dedup();
-            for a in assignments(sampler.decls.dim, labels.len()) {
-                let pick = |ls: &[char], t: &Tensor<f64>| {
-                    let idx: Vec<usize> = ls
-                        .iter()
-                        .map(|c| a[labels.iter().position(|x| x == c).unwrap_or(0)])
-                        .collect();
-                    *t.get(&idx)
-                };
-                let (l, r) = (pick(la, ta), pick(lb, tb));
+            let (labels, pairs) = component_pairs(sampler.decls.dim, &values[k], &values[k + 1]);
+            for (a, l, r) in pairs {
                 let (ok, residual) = relation_holds(relation, l, r);
                 *largest = largest.max(residual);
                 if !ok {
@@ -281,6 +270,36 @@ fn first_side(check: &Check) -> Result<Expression, Diagnostic> {
     }
 }
 
+/// The evidence of a sampled verdict; `derivatives` says the singular set is where the
+/// function is not differentiable.
+fn sampled_evidence(
+    sampling: &Sampling,
+    largest: f64,
+    residual: &'static str,
+    excluded: usize,
+    tolerance: String,
+    derivatives: bool,
+) -> NumericEvidence {
+    let why = if derivatives {
+        " (not differentiable there)"
+    } else {
+        ""
+    };
+    NumericEvidence {
+        samples: sampling.samples,
+        seed: sampling.seed,
+        largest_residual: largest,
+        residual,
+        excluded,
+        exclusion: sampling
+            .singular
+            .as_ref()
+            .map(|s| format!("|{}| < {SINGULAR_EPS:e}{why}", s.text)),
+        domain: None,
+        tolerance,
+    }
+}
+
 /// Decides a `strategy = "numeric"` check.
 pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     let Strategy::Numeric {
@@ -307,20 +326,17 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         Relation::Eq => "largest relative residual",
         Relation::Le | Relation::Ge => "largest relative violation (≤ 0: satisfied)",
     };
-    let evidence =
-        |samples: usize, largest: f64, excluded: usize, domain: Option<String>| NumericEvidence {
-            samples,
-            seed: sampling.seed,
-            largest_residual: largest,
+    let evidence = |largest: f64, excluded: usize, domain: Option<String>| NumericEvidence {
+        domain,
+        ..sampled_evidence(
+            sampling,
+            largest,
             residual,
             excluded,
-            exclusion: sampling
-                .singular
-                .as_ref()
-                .map(|s| format!("|{}| < {SINGULAR_EPS:e}", s.text)),
-            domain,
-            tolerance: format!("{TOL:e} relative"),
-        };
+            format!("{TOL:e} relative"),
+            false,
+        )
+    };
     let Some((state, cx)) = found else {
         return Ok(Outcome {
             verdict: Verdict::Holds,
@@ -328,7 +344,7 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
             checks: sampling.samples,
             used_unit_normal: false,
             counterexample: None,
-            numeric: Some(evidence(sampling.samples, largest, excluded, None)),
+            numeric: Some(evidence(largest, excluded, None)),
             detail: None,
         });
     };
@@ -338,7 +354,7 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         checks: sampling.samples,
         used_unit_normal: false,
         counterexample: Some(cx),
-        numeric: Some(evidence(sampling.samples, largest, excluded, None)),
+        numeric: Some(evidence(largest, excluded, None)),
         detail,
     };
     if domain.is_empty() {
@@ -375,7 +391,6 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         used_unit_normal: false,
         counterexample: Some(cx),
         numeric: Some(evidence(
-            sampling.samples,
             inside_largest,
             inside_excluded,
             Some(domain_text.clone()),
@@ -590,21 +605,14 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
         checks,
         used_unit_normal: false,
         counterexample: None,
-        numeric: Some(NumericEvidence {
-            samples: sampling.samples,
-            seed: sampling.seed,
-            largest_residual: largest,
-            residual: "largest relative difference from the closed form",
+        numeric: Some(sampled_evidence(
+            sampling,
+            largest,
+            "largest relative difference from the closed form",
             excluded,
-            exclusion: sampling
-                .singular
-                .as_ref()
-                .map(|s| format!("|{}| < {SINGULAR_EPS:e} (not differentiable there)", s.text)),
-            domain: None,
-            tolerance: format!(
-                "{TOL:e} relative vs closed form, {FD_TOL:e} vs central differences"
-            ),
-        }),
+            format!("{TOL:e} relative vs closed form, {FD_TOL:e} vs central differences"),
+            true,
+        )),
         detail: Some(format!(
             "∂/∂{} by num-dual = closed form = central differences",
             names.join(", ")
@@ -674,19 +682,14 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         checks: sampling.samples,
         used_unit_normal: false,
         counterexample: None,
-        numeric: Some(NumericEvidence {
-            samples: sampling.samples,
-            seed: sampling.seed,
-            largest_residual: smallest,
-            residual: "smallest eigenvalue / (1 + max|λ|)",
+        numeric: Some(sampled_evidence(
+            sampling,
+            smallest,
+            "smallest eigenvalue / (1 + max|λ|)",
             excluded,
-            exclusion: sampling
-                .singular
-                .as_ref()
-                .map(|s| format!("|{}| < {SINGULAR_EPS:e} (not differentiable there)", s.text)),
-            domain: None,
-            tolerance: format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
-        }),
+            format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
+            true,
+        )),
         detail: Some(format!(
             "Hessian in {} variables positive semidefinite at every sample",
             vars.len()

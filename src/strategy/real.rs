@@ -359,6 +359,36 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
     }
 }
 
+/// Index values with the left and right components there.
+pub type ComponentPair = (Vec<usize>, f64, f64);
+
+/// The component pairs of two labelled tensors compared under the reading "for every
+/// value of every free index of either side": (letters, their values, left, right).
+pub fn component_pairs(
+    dim: usize,
+    left: &Labeled<f64>,
+    right: &Labeled<f64>,
+) -> (Vec<char>, Vec<ComponentPair>) {
+    let ((la, ta), (lb, tb)) = (left, right);
+    let mut labels: Vec<char> = la.iter().chain(lb).copied().collect();
+    labels.sort_unstable();
+    labels.dedup();
+    let pairs = assignments(dim, labels.len())
+        .map(|a| {
+            let pick = |ls: &[char], t: &Tensor<f64>| {
+                let idx: Vec<usize> = ls
+                    .iter()
+                    .map(|c| a[labels.iter().position(|x| x == c).unwrap_or(0)])
+                    .collect();
+                *t.get(&idx)
+            };
+            let (l, r) = (pick(la, ta), pick(lb, tb));
+            (a, l, r)
+        })
+        .collect();
+    (labels, pairs)
+}
+
 /// Golden-section search for the maximum of `f` on [c − h, c + h]: the maximiser and
 /// the value (never below f(c)).
 fn golden_max(
