@@ -1,0 +1,193 @@
+//! `cargo bench`: medians of repeated wall-clock timings, printed as a Markdown table.
+//!
+//! What is measured (release build): the whole-paper check (and its exact claims
+//! alone), exact canonical expansion of isotropic identities of rank 2, 4 and 6 in 2D
+//! and 3D, the scaling of an exact proof with polynomial degree, the exact moments up to
+//! order 12, and the num-dual gradient claim of F2. Targets live in issue 8; this
+//! prints what the machine does, it asserts nothing.
+
+use cosserat_check::cli::decide_all;
+use cosserat_check::derivation::{load_dir, load_str, DerivationFile, Strategy};
+use cosserat_check::kernel::monomial_moment;
+use cosserat_check::strategy::decide_claim;
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Instant;
+
+fn median_ms(reps: usize, mut f: impl FnMut()) -> f64 {
+    let mut times: Vec<f64> = (0..reps)
+        .map(|_| {
+            let t = Instant::now();
+            f();
+            t.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[reps / 2]
+}
+
+fn corpus() -> Vec<DerivationFile> {
+    load_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations")).expect("derivations load")
+}
+
+/// An isotropic-moment identity of even rank `rank` in dimension `dim`, as a file.
+fn moment_identity(dim: usize, rank: usize) -> String {
+    let letters: Vec<char> = "ijklmp".chars().take(rank).collect();
+    let ns: Vec<String> = letters.iter().map(|c| format!("n_{c}")).collect();
+    // All pairings of the indices (3 for rank 4, 15 for rank 6).
+    fn pairings(ls: &[char]) -> Vec<Vec<(char, char)>> {
+        if ls.is_empty() {
+            return vec![vec![]];
+        }
+        let mut out = Vec::new();
+        for k in 1..ls.len() {
+            let rest: Vec<char> = ls[1..]
+                .iter()
+                .enumerate()
+                .filter(|(j, _)| j + 1 != k)
+                .map(|(_, c)| *c)
+                .collect();
+            for mut p in pairings(&rest) {
+                p.insert(0, (ls[0], ls[k]));
+                out.push(p);
+            }
+        }
+        out
+    }
+    let terms: Vec<String> = pairings(&letters)
+        .iter()
+        .map(|p| {
+            p.iter()
+                .map(|(a, b)| format!("delta_{a}{b}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect();
+    let denom: usize = (0..rank / 2).map(|m| dim + 2 * m).product();
+    format!(
+        "section = \"b\"\ntitle = \"b\"\ndimension = {dim}\nnormal = \"n\"\n[[claim]]\nid = \"m\"\nprinted = 'm'\nexpect = \"holds\"\nsides = [\"avg({})\", \"1/{denom} ({})\"]\n",
+        ns.join(" "),
+        terms.join(" + ")
+    )
+}
+
+/// ⟨(a·n)^(2k)⟩ = (2k−1)!! / (3·5·…·(2k+1)) (a·a)^k in 3D: degree 2k in a and in n.
+fn degree_identity(k: usize) -> String {
+    let num: usize = (1..2 * k).step_by(2).product();
+    let den: usize = (0..k).map(|m| 3 + 2 * m).product();
+    format!(
+        "section = \"b\"\ntitle = \"b\"\ndimension = 3\nnormal = \"n\"\ntensors = [\"a_i\"]\n[[claim]]\nid = \"d\"\nprinted = 'd'\nexpect = \"holds\"\nsides = [\"avg((a_i n_i)^{})\", \"{num}/{den} (a_j a_j)^{k}\"]\n",
+        2 * k
+    )
+}
+
+fn decide_text(text: &str) {
+    let file = load_str("bench.toml", text).expect("valid");
+    for c in &file.claims {
+        black_box(decide_claim(c).expect("decides"));
+    }
+}
+
+fn main() {
+    let mut rows: Vec<(String, String)> = Vec::new();
+    let files = corpus();
+    let whole = median_ms(3, || {
+        black_box(decide_all(&corpus(), None).unwrap());
+    });
+    rows.push((
+        "whole paper: read + decide every claim".into(),
+        format!("{whole:.1} ms"),
+    ));
+    let exact_only: Vec<_> = files
+        .iter()
+        .flat_map(|f| &f.claims)
+        .filter(|c| matches!(c.check.strategy, Strategy::Exact))
+        .collect();
+    let exact = median_ms(9, || {
+        for c in &exact_only {
+            black_box(decide_claim(c).unwrap());
+        }
+    });
+    rows.push((
+        format!("the {} exact claims (decide only)", exact_only.len()),
+        format!("{exact:.1} ms"),
+    ));
+    for c in files
+        .iter()
+        .flat_map(|f| &f.claims)
+        .filter(|c| !matches!(c.check.strategy, Strategy::Exact))
+    {
+        let t = median_ms(3, || {
+            black_box(decide_claim(c).unwrap());
+        });
+        let strategy = match &c.check.strategy {
+            Strategy::Numeric { .. } => "numeric",
+            Strategy::Gradient { .. } => "gradient",
+            Strategy::Convex { .. } => "convex",
+            Strategy::NotCircle { .. } => "witness",
+            Strategy::Exact => "exact",
+        };
+        rows.push((format!("claim {} ({strategy})", c.id), format!("{t:.1} ms")));
+    }
+    for dim in [2, 3] {
+        for rank in [2, 4, 6] {
+            let text = moment_identity(dim, rank);
+            let t = median_ms(9, || decide_text(&text));
+            rows.push((
+                format!("exact: isotropic moment identity, rank {rank}, {dim}D"),
+                format!("{t:.2} ms"),
+            ));
+        }
+    }
+    for k in 1..=4 {
+        let text = degree_identity(k);
+        let t = median_ms(5, || decide_text(&text));
+        rows.push((
+            format!(
+                "exact: ⟨(a·n)^{}⟩ identity, degree {} in n and a",
+                2 * k,
+                2 * k
+            ),
+            format!("{t:.2} ms"),
+        ));
+    }
+    let moments = median_ms(9, || {
+        for total in 0..=12u32 {
+            for a in 0..=total {
+                for b in 0..=total - a {
+                    black_box(monomial_moment(3, &[a, b, total - a - b]));
+                }
+            }
+        }
+    });
+    rows.push((
+        "exact moments: every 3D monomial of order ≤ 12 (455)".into(),
+        format!("{moments:.2} ms"),
+    ));
+    if let Some(g) = files
+        .iter()
+        .flat_map(|f| &f.claims)
+        .find(|c| c.id == "grad-F2")
+    {
+        let samples = match &g.check.strategy {
+            Strategy::Gradient { sampling, .. } => sampling.samples,
+            _ => 1,
+        };
+        let t = median_ms(5, || {
+            black_box(decide_claim(g).unwrap());
+        });
+        rows.push((
+            "num-dual gradient of F2 (per sample: gradient, closed form, 12 central differences)"
+                .into(),
+            format!("{:.0} samples/s", samples as f64 / (t / 1e3)),
+        ));
+    }
+    rows.push((
+        "symbolic A² derivation".into(),
+        "not built yet (issue 5)".into(),
+    ));
+    println!("| benchmark | median |\n|---|---|");
+    for (k, v) in rows {
+        println!("| {k} | {v} |");
+    }
+}
