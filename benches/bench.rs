@@ -89,6 +89,24 @@ fn decide_text(text: &str) {
 }
 
 fn main() {
+    // `cargo bench --bench bench -- --claim ID`: the median time to decide one claim of
+    // the paper (and its correction), in process, in milliseconds (used by
+    // benches/sympy_compare.py).
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(k) = args.iter().position(|a| a == "--claim") {
+        let id = args.get(k + 1).expect("--claim ID");
+        let files = corpus();
+        let claim = files
+            .iter()
+            .flat_map(|f| &f.claims)
+            .find(|c| &c.id == id)
+            .expect("a known claim id");
+        let t = median_ms(15, || {
+            black_box(decide_claim(claim).unwrap());
+        });
+        println!("{t:.3}");
+        return;
+    }
     let mut rows: Vec<(String, String)> = Vec::new();
     let files = corpus();
     let whole = median_ms(3, || {
