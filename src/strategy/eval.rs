@@ -16,8 +16,10 @@ use std::collections::HashMap;
 /// hostile input (a product of hundreds of sums) from running for hours.
 pub const MAX_TERMS: usize = 50_000;
 
-/// Largest number of term-by-term products one product node may take (a few
-/// seconds of work at most).
+/// Largest number of term-by-term products one evaluation environment (one claim's
+/// statement) may spend in all: well under a second of work. The paper's largest exact
+/// claim needs a few thousand; a fuzzed file raising σ_kk to the 64th power spent
+/// seconds across its claims before this budget.
 pub const MAX_WORK: usize = 1_000_000;
 
 /// Largest size, in bits, of a coefficient a power may produce (a fuzzed input raised
@@ -59,6 +61,8 @@ pub struct ExactEnv<'a> {
     normal: Vec<Var>,
     symbols: HashMap<String, Tensor<Poly>>,
     cache: HashMap<String, Tensor<Poly>>,
+    /// Term products still allowed (see [`MAX_WORK`]).
+    work_left: usize,
 }
 
 fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
@@ -94,6 +98,7 @@ impl<'a> ExactEnv<'a> {
             normal,
             symbols: HashMap::new(),
             cache: HashMap::new(),
+            work_left: MAX_WORK,
         };
         for a in assumptions {
             env.assume(a)?;
@@ -242,7 +247,7 @@ impl<'a> ExactEnv<'a> {
             NodeKind::Const(q) => scalar(Poly::constant(q.clone())),
             NodeKind::Leaf { target, slots } => {
                 let base = self.base(target, origin)?;
-                let tensor = einsum(d, &[(&base, slots.clone())], &labels)
+                let tensor = einsum(d, &[(&base, slots.clone())], &labels, &mut self.work_left)
                     .ok_or_else(|| too_much(origin, node))?;
                 Labeled { labels, tensor }
             }
@@ -281,7 +286,8 @@ impl<'a> ExactEnv<'a> {
                         )
                     })
                     .collect();
-                let tensor = einsum(d, &slots, &labels).ok_or_else(|| too_much(origin, node))?;
+                let tensor = einsum(d, &slots, &labels, &mut self.work_left)
+                    .ok_or_else(|| too_much(origin, node))?;
                 Labeled { labels, tensor }
             }
             NodeKind::Div(a, b) => {
@@ -386,7 +392,7 @@ fn too_much(origin: &Origin, node: &Node) -> Diagnostic {
     origin
         .diagnostic(
             node.span,
-            format!("this product is too large to expand exactly (over {MAX_WORK} term products)"),
+            format!("expanding this statement exactly takes more than {MAX_WORK} term products"),
         )
         .with_help("split the statement with definitions, or decide it numerically")
 }
@@ -408,11 +414,13 @@ fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Poly> {
 
 /// Σ over the summed letters of Π factors, for every value of the `out` letters.
 /// A letter is summed when it is not in `out`; fixed slots pick one component.
-/// `None` when the expansion would take more than [`MAX_WORK`] term products.
+/// `None` when the expansion would take more than `budget` term products; otherwise
+/// the work done is taken from the budget.
 fn einsum(
     dim: usize,
     factors: &[(&Tensor<Poly>, Vec<Slot>)],
     out: &[char],
+    budget: &mut usize,
 ) -> Option<Tensor<Poly>> {
     let mut all: Vec<char> = out.to_vec();
     for (_, slots) in factors {
@@ -442,6 +450,7 @@ fn einsum(
         .collect();
     let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
     let mut work = 0usize;
+    let limit = *budget;
     let tensor = Tensor::from_fn(dim, out.len(), |o| {
         let mut acc = Poly::zero();
         let mut values = o.to_vec();
@@ -460,7 +469,7 @@ fn einsum(
                     break;
                 }
                 work = work.saturating_add(prod.num_terms() * c.num_terms());
-                if work > MAX_WORK {
+                if work > limit {
                     return Poly::zero();
                 }
                 prod = &prod * c;
@@ -469,5 +478,9 @@ fn einsum(
         }
         acc
     });
-    (work <= MAX_WORK).then_some(tensor)
+    if work > limit {
+        return None;
+    }
+    *budget -= work;
+    Some(tensor)
 }
