@@ -1,7 +1,7 @@
 //! The checked, in-memory form of derivation files: claims whose expressions have
 //! already passed name resolution and index validation.
 
-use crate::lang::{Decls, DefSig, LangError, Node, Origin, Span};
+use crate::lang::{Decls, DefSig, LangError, Node, Origin};
 use serde::Serialize;
 use std::fmt;
 use std::sync::Arc;
@@ -90,13 +90,6 @@ pub struct Side {
     /// The checked expression; an index error is kept (not raised) only for a
     /// printed statement transcribed verbatim, where it is a finding about the paper.
     pub node: Result<Node, LangError>,
-}
-
-impl Side {
-    /// The whole side's span in its own text.
-    pub fn span(&self) -> Span {
-        Span::new(0, self.text.len())
-    }
 }
 
 /// Everything needed to decide one statement: definitions, assumptions and one or

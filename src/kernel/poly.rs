@@ -290,18 +290,6 @@ impl Poly {
         Some(total)
     }
 
-    /// Evaluates in `f64` (for numeric cross-checks only).
-    pub fn eval_f64(&self, value: &dyn Fn(Var) -> f64) -> f64 {
-        self.terms
-            .iter()
-            .map(|(m, c)| {
-                m.factors()
-                    .iter()
-                    .fold(c.to_f64(), |t, &(v, e)| t * value(v).powi(e))
-            })
-            .sum()
-    }
-
     /// The exact average over a unit vector `n = (vars[0], …, vars[d-1])` uniformly
     /// distributed on the unit circle (d = 2) or sphere (d = 3): every monomial
     /// `n^α · rest` becomes `⟨n^α⟩ · rest`, with the moments of
@@ -633,6 +621,5 @@ mod tests {
         assert_eq!(p.eval(&val), Some(q(17, 2)));
         let inv = Poly::one().checked_div(&v[1]).unwrap();
         assert_eq!(inv.eval(&val), None);
-        assert!((p.eval_f64(&|w| if w == 0 { 3.0 } else { 0.0 }) - 8.5).abs() < 1e-15);
     }
 }
