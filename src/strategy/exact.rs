@@ -27,22 +27,15 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 if let Some(h) = &e.help {
                     d = d.with_help(h.clone());
                 }
-                return Ok(Outcome {
-                    verdict: Verdict::Fails,
-                    method: Method::IndexCheck,
-                    checks: 1,
-                    used_unit_normal: false,
-                    numeric: None,
-                    detail: None,
-                    counterexample: Some(Counterexample {
+                return Ok(Outcome::new(Verdict::Fails, Method::IndexCheck, 1)
+                    .with_counterexample(Counterexample {
                         chain: ci + 1,
                         equality: si.max(1),
                         lhs: side.text.clone(),
                         rhs: String::new(),
                         ill_formed: Some(format!("{}: {}", location(&d), e.message)),
                         ..Counterexample::default()
-                    }),
-                });
+                    }));
             }
         }
     }
@@ -91,27 +84,13 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 if l.labels != r.labels && !zero(&chain[k]) && !zero(&chain[k + 1]) {
                     cx.ill_formed = Some(mismatch(l, r));
                 }
-                return Ok(Outcome {
-                    verdict: Verdict::Fails,
-                    method: Method::Exact,
-                    checks,
-                    used_unit_normal: used_unit,
-                    counterexample: Some(cx),
-                    numeric: None,
-                    detail: None,
-                });
+                return Ok(Outcome::new(Verdict::Fails, Method::Exact, checks)
+                    .using_unit_normal(used_unit)
+                    .with_counterexample(cx));
             }
         }
     }
-    Ok(Outcome {
-        verdict: Verdict::Holds,
-        method: Method::Exact,
-        checks,
-        used_unit_normal: used_unit,
-        counterexample: None,
-        numeric: None,
-        detail: None,
-    })
+    Ok(Outcome::new(Verdict::Holds, Method::Exact, checks).using_unit_normal(used_unit))
 }
 
 fn location(d: &Diagnostic) -> String {

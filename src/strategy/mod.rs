@@ -83,6 +83,42 @@ pub struct Outcome {
     pub detail: Option<String>,
 }
 
+impl Outcome {
+    /// A verdict with its method and number of checks; the evidence is added with the
+    /// `with_*` methods.
+    pub fn new(verdict: Verdict, method: Method, checks: usize) -> Self {
+        Outcome {
+            verdict,
+            method,
+            checks,
+            used_unit_normal: false,
+            counterexample: None,
+            numeric: None,
+            detail: None,
+        }
+    }
+
+    pub fn with_counterexample(mut self, cx: Counterexample) -> Self {
+        self.counterexample = Some(cx);
+        self
+    }
+
+    pub fn with_numeric(mut self, evidence: NumericEvidence) -> Self {
+        self.numeric = Some(evidence);
+        self
+    }
+
+    pub fn with_detail(mut self, detail: impl Into<String>) -> Self {
+        self.detail = Some(detail.into());
+        self
+    }
+
+    pub fn using_unit_normal(mut self, used: bool) -> Self {
+        self.used_unit_normal = used;
+        self
+    }
+}
+
 /// The evidence a numeric verdict must carry.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct NumericEvidence {

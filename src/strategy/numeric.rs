@@ -338,24 +338,16 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         )
     };
     let Some((state, cx)) = found else {
-        return Ok(Outcome {
-            verdict: Verdict::Holds,
-            method: Method::Numeric,
-            checks: sampling.samples,
-            used_unit_normal: false,
-            counterexample: None,
-            numeric: Some(evidence(largest, excluded, None)),
-            detail: None,
-        });
+        return Ok(
+            Outcome::new(Verdict::Holds, Method::Numeric, sampling.samples)
+                .with_numeric(evidence(largest, excluded, None)),
+        );
     };
     let fails = |cx: Counterexample, detail: Option<String>| Outcome {
-        verdict: Verdict::Fails,
-        method: Method::Numeric,
-        checks: sampling.samples,
-        used_unit_normal: false,
-        counterexample: Some(cx),
-        numeric: Some(evidence(largest, excluded, None)),
         detail,
+        ..Outcome::new(Verdict::Fails, Method::Numeric, sampling.samples)
+            .with_counterexample(cx)
+            .with_numeric(evidence(largest, excluded, None))
     };
     if domain.is_empty() {
         return Ok(fails(cx, None));
@@ -384,22 +376,19 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
             ));
         }
     }
-    Ok(Outcome {
-        verdict: Verdict::Conditional,
-        method: Method::Numeric,
-        checks: 2 * sampling.samples,
-        used_unit_normal: false,
-        counterexample: Some(cx),
-        numeric: Some(evidence(
-            inside_largest,
-            inside_excluded,
-            Some(domain_text.clone()),
-        )),
-        detail: Some(format!(
+    Ok(
+        Outcome::new(Verdict::Conditional, Method::Numeric, 2 * sampling.samples)
+            .with_counterexample(cx)
+            .with_numeric(evidence(
+                inside_largest,
+                inside_excluded,
+                Some(domain_text.clone()),
+            ))
+            .with_detail(format!(
             "holds on {} samples with {domain_text}; the counterexample lies outside that domain",
             sampling.samples
         )),
-    })
+    )
 }
 
 /// The variables of a derivative: (symbol, 0-based component) of every component of
@@ -521,12 +510,8 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
             Err((e, r)) => {
                 // A closed form undefined at a sample (e.g. 1/0 at the apex) cannot
                 // agree with anything: a failure, located by the evidence, not a pass.
-                return Ok(Outcome {
-                    verdict: Verdict::Fails,
-                    method: Method::Gradient,
-                    checks,
-                    used_unit_normal: false,
-                    counterexample: Some(Counterexample {
+                return Ok(Outcome::new(Verdict::Fails, Method::Gradient, checks)
+                    .with_counterexample(Counterexample {
                         chain: 1,
                         equality: 1,
                         lhs: format!("∂({})", function.text.trim()),
@@ -535,13 +520,11 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                         lhs_value: Some("(num-dual)".into()),
                         rhs_value: Some(format!("undefined: {}", r.message)),
                         ..Counterexample::default()
-                    }),
-                    numeric: None,
-                    detail: Some(format!(
+                    })
+                    .with_detail(format!(
                         "the closed form is undefined at a sample ({})",
                         r.message
-                    )),
-                });
+                    )));
             }
         };
         for (k, (symbol, idx)) in vars.iter().enumerate() {
@@ -568,12 +551,8 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                 };
                 let mut point = describe(&state, decls);
                 point.insert("central difference".into(), format!("{fd:.9}"));
-                return Ok(Outcome {
-                    verdict: Verdict::Fails,
-                    method: Method::Gradient,
-                    checks,
-                    used_unit_normal: false,
-                    counterexample: Some(Counterexample {
+                return Ok(Outcome::new(Verdict::Fails, Method::Gradient, checks)
+                    .with_counterexample(Counterexample {
                         chain: 1,
                         equality: 1,
                         lhs: format!(
@@ -591,33 +570,25 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                         rhs_value: Some(format!("{cf:.9}")),
                         ill_formed: None,
                         ..Counterexample::default()
-                    }),
-                    numeric: None,
-                    detail: Some(what.into()),
-                });
+                    })
+                    .with_detail(what));
             }
         }
     }
     let names: Vec<String> = vars.iter().map(|(s, idx)| component_name(s, idx)).collect();
-    Ok(Outcome {
-        verdict: Verdict::Holds,
-        method: Method::Gradient,
-        checks,
-        used_unit_normal: false,
-        counterexample: None,
-        numeric: Some(sampled_evidence(
+    Ok(Outcome::new(Verdict::Holds, Method::Gradient, checks)
+        .with_numeric(sampled_evidence(
             sampling,
             largest,
             "largest relative difference from the closed form",
             excluded,
             format!("{TOL:e} relative vs closed form, {FD_TOL:e} vs central differences"),
             true,
-        )),
-        detail: Some(format!(
+        ))
+        .with_detail(format!(
             "∂/∂{} by num-dual = closed form = central differences",
             names.join(", ")
-        )),
-    })
+        )))
 }
 
 /// Decides a `strategy = "convex"` check.
@@ -658,43 +629,35 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         if !finite || relative < -TOL {
             let mut point = describe(&state, decls);
             point.insert("smallest eigenvalue".into(), format!("{min:.9}"));
-            return Ok(Outcome {
-                verdict: Verdict::Fails,
-                method: Method::Convex,
-                checks: sampling.samples,
-                used_unit_normal: false,
-                counterexample: Some(Counterexample {
-                    chain: 1,
-                    equality: 1,
-                    lhs: format!("Hessian of {}", function.text.trim()),
-                    rhs: "positive semidefinite".into(),
-                    point,
-                    ..Counterexample::default()
-                }),
-                numeric: None,
-                detail: Some("the Hessian has a negative eigenvalue".into()),
-            });
+            return Ok(
+                Outcome::new(Verdict::Fails, Method::Convex, sampling.samples)
+                    .with_counterexample(Counterexample {
+                        chain: 1,
+                        equality: 1,
+                        lhs: format!("Hessian of {}", function.text.trim()),
+                        rhs: "positive semidefinite".into(),
+                        point,
+                        ..Counterexample::default()
+                    })
+                    .with_detail("the Hessian has a negative eigenvalue"),
+            );
         }
     }
-    Ok(Outcome {
-        verdict: Verdict::Holds,
-        method: Method::Convex,
-        checks: sampling.samples,
-        used_unit_normal: false,
-        counterexample: None,
-        numeric: Some(sampled_evidence(
-            sampling,
-            smallest,
-            "smallest eigenvalue / (1 + max|λ|)",
-            excluded,
-            format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
-            true,
-        )),
-        detail: Some(format!(
-            "Hessian in {} variables positive semidefinite at every sample",
-            vars.len()
-        )),
-    })
+    Ok(
+        Outcome::new(Verdict::Holds, Method::Convex, sampling.samples)
+            .with_numeric(sampled_evidence(
+                sampling,
+                smallest,
+                "smallest eigenvalue / (1 + max|λ|)",
+                excluded,
+                format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
+                true,
+            ))
+            .with_detail(format!(
+                "Hessian in {} variables positive semidefinite at every sample",
+                vars.len()
+            )),
+    )
 }
 
 /// The first `k` sampled states of a sampled check, with the value of every side (or

@@ -131,32 +131,18 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
                 .map(|(&v, q)| format!("{}={q}", env.vars.name(v)))
                 .collect();
             let pts: Vec<String> = points.iter().map(|(a, b)| format!("({a}, {b})")).collect();
-            return Ok(Outcome {
-                verdict: Verdict::Holds,
-                method: Method::Witness,
-                checks: 1,
-                used_unit_normal: false,
-                counterexample: None,
-                numeric: None,
-                detail: Some(format!(
+            return Ok(Outcome::new(Verdict::Holds, Method::Witness, 1).with_detail(format!(
                     "witness: at {} (other variables 0) and n = ((1−u²), 2u)/(1+u²) for u = 0, 1/2, 2, −1/3, the points (x, y) = {} lie on no common circle or line: det[x²+y², x, y, 1] = {det}",
                     names.join(", "),
                     pts.join(", ")
-                )),
-            });
+                )));
         }
     }
-    Ok(Outcome {
-        verdict: Verdict::Fails,
-        method: Method::Witness,
-        checks: ATTEMPTS,
-        used_unit_normal: false,
-        counterexample: None,
-        numeric: None,
-        detail: Some(format!(
+    Ok(
+        Outcome::new(Verdict::Fails, Method::Witness, ATTEMPTS).with_detail(format!(
             "no witness among {ATTEMPTS} rational states: every four points tried were concyclic"
         )),
-    })
+    )
 }
 
 #[cfg(test)]
