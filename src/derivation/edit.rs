@@ -31,8 +31,7 @@ impl Check {
         let (node, origin) = parse_checked(decls, &sigs, text)?;
         let old = &self.chains[chain][side];
         if let Ok(old_node) = &old.node {
-            let zero = node.is_literal_zero() || old_node.is_literal_zero();
-            if old_node.free_letters() != node.free_letters() && !zero && !self.verbatim {
+            if !self.verbatim && !old_node.matches_free_indices(&node) {
                 return Err(LangError::new(
                     ErrorKind::Index,
                     node.span,

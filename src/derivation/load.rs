@@ -594,8 +594,7 @@ impl Loader {
                     Err(e) => return Err(self.lang(&origin, e)),
                 };
                 if let (Some(Side { node: Ok(prev), .. }), Ok(cur)) = (checked.last(), &node) {
-                    let zero = prev.is_literal_zero() || cur.is_literal_zero();
-                    if prev.free_letters() != cur.free_letters() && !verbatim && !zero {
+                    if !verbatim && !prev.matches_free_indices(cur) {
                         return Err(origin
                             .diagnostic(
                                 Span::new(0, s.get_ref().len()),

@@ -91,6 +91,14 @@ impl Node {
         matches!(&self.kind, NodeKind::Const(q) if q.is_zero())
     }
 
+    /// Whether two sides of an equation carry the same free indices (the literal `0`
+    /// matches any): the one rule every reader of sides applies.
+    pub fn matches_free_indices(&self, other: &Node) -> bool {
+        self.is_literal_zero()
+            || other.is_literal_zero()
+            || self.free_letters() == other.free_letters()
+    }
+
     /// The free index letters, sorted.
     pub fn free_letters(&self) -> Vec<char> {
         self.free.iter().map(|&(c, _)| c).collect()

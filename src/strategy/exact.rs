@@ -78,10 +78,9 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                     .iter()
                     .map(|&(c, v)| (c.to_string(), v + 1))
                     .collect();
-                let zero = |s: &crate::derivation::Side| {
-                    s.node.as_ref().is_ok_and(|n| n.is_literal_zero())
-                };
-                if l.labels != r.labels && !zero(&chain[k]) && !zero(&chain[k + 1]) {
+                let (ln, rn) = (&chain[k].node, &chain[k + 1].node);
+                let matching = matches!((ln, rn), (Ok(a), Ok(b)) if a.matches_free_indices(b));
+                if !matching {
                     cx.ill_formed = Some(mismatch(l, r));
                 }
                 return Ok(Outcome::new(Verdict::Fails, Method::Exact, checks)
