@@ -5,12 +5,15 @@
 //! else in the crate reaches a verdict only through these types, so they are kept
 //! small and are tested hardest (unit tests here, cross-checks in `tests/`).
 
+pub mod gcd;
 pub mod moments;
 pub mod poly;
+pub mod ratfunc;
 pub mod rational;
 pub mod tensor;
 
 pub use moments::{monomial_moment, tensor_moment};
 pub use poly::{Monomial, Poly, PolyError, Var, VarTable};
+pub use ratfunc::RatFunc;
 pub use rational::Rational;
 pub use tensor::{assignments, permutation_sign, Tensor};

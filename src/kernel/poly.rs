@@ -343,6 +343,11 @@ impl Poly {
         Ok(out)
     }
 
+    /// The leading term in graded lexicographic order (the first term displayed).
+    pub fn leading(&self) -> Option<(&Monomial, &Rational)> {
+        self.terms.iter().min_by(|a, b| graded_lex_desc(a.0, b.0))
+    }
+
     /// Plain-text form with variable names, highest total degree first.
     pub fn display(&self, names: &VarTable) -> String {
         self.render(names, false, usize::MAX)

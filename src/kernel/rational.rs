@@ -90,6 +90,21 @@ impl Rational {
         (&root * &root == self.0).then_some(Rational(root))
     }
 
+    /// The numerator (the sign is carried here; the denominator is positive).
+    pub fn numer(&self) -> &BigInt {
+        self.0.numer()
+    }
+
+    /// The denominator, always positive.
+    pub fn denom(&self) -> &BigInt {
+        self.0.denom()
+    }
+
+    /// `n / d` for big integers, or `None` when `d == 0`.
+    pub fn from_big(n: BigInt, d: BigInt) -> Option<Self> {
+        (!d.is_zero()).then(|| Rational(BigRational::new(n, d)))
+    }
+
     /// Bits in the numerator and the denominator together: the size of the number.
     pub fn bits(&self) -> u64 {
         self.0.numer().bits() + self.0.denom().bits()
