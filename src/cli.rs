@@ -34,6 +34,29 @@ pub enum Command {
     Explain(ExplainArgs),
     /// Check your own derivation files (same format, table and exit codes).
     Verify(VerifyArgs),
+    /// Fig. 6: d_B/R_g against f_r = 0.05, 0.10, …, 3.00, from (54) as printed and
+    /// from the A² derived by following Appendix A as printed (h^C = 1/2, h_2 = 0,
+    /// ν = 0, 0.25, 0.45; empty cells where A is not real).
+    Fig6(Fig6Args),
+}
+
+#[derive(Debug, Clone, clap::Args)]
+pub struct Fig6Args {
+    /// Output format: the table of values or the plot.
+    #[arg(long, value_enum, default_value_t = FigureFormat::Csv)]
+    pub format: FigureFormat,
+    /// Write to FILE instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum FigureFormat {
+    /// Columns f_r, paper, nu=0, nu=0.25, nu=0.45 (12 significant digits).
+    #[default]
+    Csv,
+    /// The four curves with axis labels and a legend.
+    Svg,
 }
 
 /// Options shared by the commands that print a table.
@@ -217,7 +240,9 @@ fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: O
                 Strategy::Numeric { sampling, .. }
                 | Strategy::Gradient { sampling, .. }
                 | Strategy::Convex { sampling, .. } => sampling,
-                Strategy::Exact | Strategy::NotCircle { .. } => continue,
+                Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. } => {
+                    continue
+                }
             };
             if let Some(s) = seed {
                 sampling.seed = s;
@@ -294,6 +319,22 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Status, RunError> {
         Command::Check(a) => table(read(a.dir, &[])?, &a.output, false, out),
         Command::Errata(a) => table(read(a.dir, &[])?, &a.output, true, out),
         Command::Verify(a) => table(read(None, &a.files)?, &a.output, false, out),
+        Command::Fig6(a) => {
+            let p = crate::model::Params::new();
+            let derivation =
+                crate::model::shear_band::derive(&p, crate::model::tangent::ShearSign::Positive)
+                    .map_err(|e| {
+                        RunError::Input(format!("error: the Appendix derivation failed: {e}"))
+                    })?;
+            let rows = crate::model::fig6::rows(&p, &derivation);
+            let text = match a.format {
+                FigureFormat::Csv => crate::model::fig6::csv(&rows),
+                FigureFormat::Svg => crate::model::fig6::svg(&rows)
+                    .map_err(|e| RunError::Input(format!("error: {e}")))?,
+            };
+            emit(&text, &a.out, out)?;
+            Ok(Status::AsExpected)
+        }
         Command::Explain(a) => {
             let files = read(a.dir, &a.files)?;
             let rows = decide_all(&files, Some(&a.id))?;

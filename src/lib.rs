@@ -9,6 +9,7 @@ pub mod cli;
 pub mod derivation;
 pub mod kernel;
 pub mod lang;
+pub mod model;
 pub mod mutate;
 pub mod report;
 pub mod strategy;

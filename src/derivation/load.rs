@@ -648,6 +648,16 @@ impl Loader {
             .strategy
             .as_ref()
             .is_none_or(|s| matches!(s.get_ref().as_str(), "exact" | "numeric"));
+        if c.step.is_some()
+            && c.strategy
+                .as_ref()
+                .is_none_or(|s| s.get_ref() != "appendix")
+        {
+            let at = c.step.as_ref().expect("checked above");
+            return Err(self
+                .diag(at.span(), "`step` belongs to strategy = \"appendix\"")
+                .with_help("add strategy = \"appendix\" or remove `step`"));
+        }
         let mut check = self.check(
             &c.id,
             decls,

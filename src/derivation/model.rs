@@ -201,6 +201,7 @@ impl Strategy {
                 out.push(x);
                 out.push(y);
             }
+            Strategy::Appendix { .. } => {}
         }
         out
     }
@@ -235,6 +236,59 @@ pub enum Strategy {
     /// The locus of (x, y) over the orientations of the normal is not a circle: an
     /// exact witness state with four points on no common circle or line.
     NotCircle { x: Expression, y: Expression },
+    /// A step of Appendix A, derived with exact rational functions by `crate::model`
+    /// and decided by `strategy::appendix` (the sides, when given, are the printed
+    /// statement the step compares with).
+    Appendix { step: AppendixStep, origin: Origin },
+}
+
+/// The steps of Appendix A and Section 6 that `strategy = "appendix"` can decide.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AppendixStep {
+    YieldGradients,
+    BandDirection,
+    CriticalHardening,
+    BPositive,
+    BalanceV1,
+    BalanceV2,
+    BalanceW3,
+    Eq61,
+    BoundaryModes,
+    Eq54,
+    NoBandWithoutRolling,
+    ThicknessDecreases,
+}
+
+impl AppendixStep {
+    pub const ALL: [(AppendixStep, &'static str); 12] = [
+        (AppendixStep::YieldGradients, "yield-gradients"),
+        (AppendixStep::BandDirection, "band-direction"),
+        (AppendixStep::CriticalHardening, "critical-hardening"),
+        (AppendixStep::BPositive, "b-positive"),
+        (AppendixStep::BalanceV1, "balance-v1"),
+        (AppendixStep::BalanceV2, "balance-v2"),
+        (AppendixStep::BalanceW3, "balance-w3"),
+        (AppendixStep::Eq61, "eq61"),
+        (AppendixStep::BoundaryModes, "boundary-modes"),
+        (AppendixStep::Eq54, "eq54"),
+        (
+            AppendixStep::NoBandWithoutRolling,
+            "no-band-without-rolling",
+        ),
+        (AppendixStep::ThicknessDecreases, "thickness-decreases"),
+    ];
+
+    pub fn parse(s: &str) -> Option<Self> {
+        Self::ALL.iter().find(|(_, n)| *n == s).map(|(k, _)| *k)
+    }
+
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(k, _)| *k == self)
+            .map(|(_, n)| *n)
+            .expect("every step is listed")
+    }
 }
 
 /// A corrected statement that the paper evidently intended.

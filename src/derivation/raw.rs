@@ -51,7 +51,7 @@ pub struct RawClaim {
     pub sides: Option<Vec<S>>,
     pub chains: Option<Vec<Vec<S>>>,
     pub correction: Option<RawCorrection>,
-    /// exact (default) | numeric | gradient | convex | not-circle
+    /// exact (default) | numeric | gradient | convex | not-circle | appendix
     pub strategy: Option<S>,
     /// == (default) | <= | >=, between consecutive sides (numeric only).
     pub relation: Option<S>,
@@ -73,6 +73,8 @@ pub struct RawClaim {
     pub wrt: Vec<S>,
     pub x: Option<S>,
     pub y: Option<S>,
+    /// The Appendix step (strategy = "appendix").
+    pub step: Option<S>,
 }
 
 #[derive(Deserialize)]

@@ -2,7 +2,9 @@
 //! [`Strategy`], with every expression checked against the claim's scope.
 
 use super::load::Loader;
-use super::model::{Constraint, Definition, Expression, Relation, Sampling, Strategy};
+use super::model::{
+    AppendixStep, Constraint, Definition, Expression, Relation, Sampling, Strategy,
+};
 use super::raw::{RawClaim, S};
 use super::spans::sub_origin;
 use crate::lang::check::letters;
@@ -14,7 +16,7 @@ use std::collections::BTreeMap;
 pub const DEFAULT_SAMPLES: usize = 200;
 pub const MIN_SAMPLES: usize = 50;
 
-const STRATEGIES: &str = "exact, numeric, gradient, convex or not-circle";
+const STRATEGIES: &str = "exact, numeric, gradient, convex, not-circle or appendix";
 
 impl Loader {
     /// The strategy of a claim; `defs` are the claim's visible definitions.
@@ -110,6 +112,22 @@ impl Loader {
                     sampling: self.sampling(c, decls, &sigs)?,
                     function,
                     wrt,
+                }
+            }
+            "appendix" => {
+                let step = need(&c.step, "step")?;
+                let Some(kind) = AppendixStep::parse(step.get_ref()) else {
+                    let names: Vec<&str> = AppendixStep::ALL.iter().map(|(_, n)| *n).collect();
+                    return Err(self
+                        .diag(
+                            step.span(),
+                            format!("unknown appendix step `{}`", step.get_ref()),
+                        )
+                        .with_help(format!("step is one of {}", names.join(", "))));
+                };
+                Strategy::Appendix {
+                    step: kind,
+                    origin: self.origin(&step),
                 }
             }
             "not-circle" => Strategy::NotCircle {

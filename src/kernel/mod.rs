@@ -10,6 +10,7 @@ pub mod moments;
 pub mod poly;
 pub mod ratfunc;
 pub mod rational;
+pub mod sturm;
 pub mod tensor;
 
 pub use moments::{monomial_moment, tensor_moment};

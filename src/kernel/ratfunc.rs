@@ -80,6 +80,11 @@ impl RatFunc {
         self.num.is_zero()
     }
 
+    /// Whether the variable `v` occurs (in the reduced form).
+    pub fn depends_on(&self, v: Var) -> bool {
+        gcd::degree_in(&self.num, v) != 0 || gcd::degree_in(&self.den, v) != 0
+    }
+
     /// The value when this is a constant.
     pub fn as_constant(&self) -> Option<Rational> {
         let d = self.den.as_constant()?;

@@ -121,6 +121,13 @@ fn check_section(out: &mut String, claim: &Claim, check: &Check, outcome: &Outco
         Strategy::NotCircle { x, y } => {
             let _ = writeln!(out, "Locus: x = {}, y = {}", x.text, y.text);
         }
+        Strategy::Appendix { step, .. } => {
+            let _ = writeln!(
+                out,
+                "Appendix step `{}`: derived with exact rational functions (src/model), cross-checked in f64",
+                step.name()
+            );
+        }
     }
     let _ = writeln!(
         out,

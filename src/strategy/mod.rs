@@ -1,6 +1,7 @@
 //! Strategies: how a claim is decided. Each returns an [`Outcome`] carrying the
 //! evidence its verdict requires (component checks, counterexample).
 
+pub mod appendix;
 pub mod eval;
 pub mod exact;
 pub mod float;
@@ -29,6 +30,8 @@ pub enum Method {
     Convex,
     /// An exact witness of an existential statement.
     Witness,
+    /// Exact rational functions (Appendix A), with a floating-point second route.
+    Symbolic,
 }
 
 impl Method {
@@ -40,6 +43,7 @@ impl Method {
             Method::Gradient => "gradient",
             Method::Convex => "convex",
             Method::Witness => "witness",
+            Method::Symbolic => "symbolic",
         }
     }
 }
@@ -169,6 +173,7 @@ pub fn decide(
         Strategy::Gradient { .. } => numeric::decide_gradient(decls, check),
         Strategy::Convex { .. } => numeric::decide_convex(decls, check),
         Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
+        Strategy::Appendix { step, origin } => appendix::decide(*step, origin, decls, check),
     }
 }
 

@@ -685,7 +685,9 @@ pub fn trace(decls: &Decls, check: &Check, k: usize) -> Result<Vec<String>, Diag
         | Strategy::Convex {
             sampling, function, ..
         } => (sampling, vec![function.clone()]),
-        Strategy::Exact | Strategy::NotCircle { .. } => return Ok(Vec::new()),
+        Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. } => {
+            return Ok(Vec::new())
+        }
     };
     let Some(anchor) = exprs.first() else {
         return Ok(Vec::new());

@@ -1,0 +1,250 @@
+//! Exact real-root counting and isolation for univariate polynomials over ℚ (Sturm's
+//! theorem). Used to decide sign claims exactly: "A² increases with f_r" is the sign
+//! of a polynomial on an interval, which is constant between consecutive real roots.
+
+use super::poly::{Poly, Var};
+use super::rational::Rational;
+use num_traits::Zero;
+
+/// A dense univariate polynomial, coefficients from the constant term up, no
+/// trailing zeros.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UniPoly(Vec<Rational>);
+
+impl UniPoly {
+    pub fn new(mut c: Vec<Rational>) -> Self {
+        while c.last().is_some_and(Rational::is_zero) {
+            c.pop();
+        }
+        UniPoly(c)
+    }
+
+    /// `p` as a polynomial in `v`; `None` if another variable or a negative power occurs.
+    pub fn from_poly(p: &Poly, v: Var) -> Option<Self> {
+        let mut c: Vec<Rational> = Vec::new();
+        for (m, coef) in p.terms() {
+            let e = match m.factors() {
+                [] => 0,
+                [(w, e)] if *w == v && *e > 0 => *e as usize,
+                _ => return None,
+            };
+            if c.len() <= e {
+                c.resize(e + 1, Rational::zero());
+            }
+            c[e] = coef.clone();
+        }
+        Some(UniPoly::new(c))
+    }
+
+    pub fn degree(&self) -> Option<usize> {
+        self.0.len().checked_sub(1)
+    }
+
+    pub fn is_zero(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    pub fn eval(&self, x: &Rational) -> Rational {
+        self.0
+            .iter()
+            .rev()
+            .fold(Rational::zero(), |acc, c| &(&acc * x) + c)
+    }
+
+    fn derivative(&self) -> UniPoly {
+        UniPoly::new(
+            self.0
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(k, c)| c * &Rational::int(k as i64))
+                .collect(),
+        )
+    }
+
+    /// The remainder of `self` divided by `d` (exact over ℚ); `d` nonzero.
+    fn rem(&self, d: &UniPoly) -> UniPoly {
+        let mut r = self.0.clone();
+        let dd = d.0.len() - 1;
+        let lead = d.0[dd].recip().expect("nonzero leading coefficient");
+        while r.len() > dd && !r.is_empty() {
+            let k = r.len() - 1;
+            let f = &r[k] * &lead;
+            for (j, dc) in d.0.iter().enumerate() {
+                let idx = k - dd + j;
+                r[idx] = &r[idx] - &(&f * dc);
+            }
+            r.pop();
+            while r.last().is_some_and(Rational::is_zero) {
+                r.pop();
+            }
+        }
+        UniPoly::new(r)
+    }
+
+    /// The sign at +∞ (`at_plus`) or −∞ of a nonzero polynomial.
+    fn sign_at_infinity(&self, at_plus: bool) -> i32 {
+        let lead = self.0.last().expect("nonzero");
+        let s = if lead.is_negative() { -1 } else { 1 };
+        if !at_plus && self.0.len() % 2 == 0 {
+            -s
+        } else {
+            s
+        }
+    }
+}
+
+/// A bound of an interval: a rational or ±∞.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Bound {
+    MinusInfinity,
+    At(Rational),
+    PlusInfinity,
+}
+
+/// Sturm's sequence p₀ = p, p₁ = p', p_{k+1} = −rem(p_{k−1}, p_k).
+pub fn sturm_sequence(p: &UniPoly) -> Vec<UniPoly> {
+    let mut seq = vec![p.clone(), p.derivative()];
+    while !seq.last().expect("two entries").is_zero() {
+        let n = seq.len();
+        let r = seq[n - 2].rem(&seq[n - 1]);
+        seq.push(UniPoly::new(r.0.iter().map(|c| -c.clone()).collect()));
+    }
+    seq.pop();
+    seq
+}
+
+fn sign_changes(seq: &[UniPoly], at: &Bound) -> usize {
+    let signs: Vec<i32> = seq
+        .iter()
+        .map(|q| match at {
+            Bound::MinusInfinity => q.sign_at_infinity(false),
+            Bound::PlusInfinity => q.sign_at_infinity(true),
+            Bound::At(x) => {
+                let v = q.eval(x);
+                if v.is_zero() {
+                    0
+                } else if v.is_negative() {
+                    -1
+                } else {
+                    1
+                }
+            }
+        })
+        .filter(|&s| s != 0)
+        .collect();
+    signs.windows(2).filter(|w| w[0] != w[1]).count()
+}
+
+/// The number of distinct real roots of a nonzero `p` in the half-open interval
+/// (a, b] (Sturm's theorem; `a` must not be a root when finite).
+pub fn count_roots(p: &UniPoly, a: &Bound, b: &Bound) -> usize {
+    let seq = sturm_sequence(p);
+    sign_changes(&seq, a).saturating_sub(sign_changes(&seq, b))
+}
+
+/// The distinct real roots of `p` in (a, b), each isolated in an interval [lo, hi] of
+/// rationals no wider than `width` (bisection with Sturm counts). Finite `a`, `b`
+/// that are not roots.
+pub fn isolate_roots(
+    p: &UniPoly,
+    a: &Rational,
+    b: &Rational,
+    width: &Rational,
+) -> Vec<(Rational, Rational)> {
+    let seq = sturm_sequence(p);
+    let count = |lo: &Rational, hi: &Rational| {
+        sign_changes(&seq, &Bound::At(lo.clone()))
+            .saturating_sub(sign_changes(&seq, &Bound::At(hi.clone())))
+    };
+    let half = Rational::ratio(1, 2).expect("2 ≠ 0");
+    let mut out = Vec::new();
+    let mut stack = vec![(a.clone(), b.clone())];
+    while let Some((lo, hi)) = stack.pop() {
+        let n = count(&lo, &hi);
+        if n == 0 {
+            continue;
+        }
+        if n == 1 && &hi - &lo <= *width {
+            out.push((lo, hi));
+            continue;
+        }
+        let mid = &(&lo + &hi) * &half;
+        if p.eval(&mid).is_zero() {
+            out.push((mid.clone(), mid.clone()));
+            // Nudge the halves off the exact root so no bound is a root.
+            let eps = &(&hi - &lo) * &Rational::ratio(1, 1 << 20).expect("nonzero");
+            stack.push((&mid + &eps, hi));
+            stack.push((lo, &mid - &eps));
+        } else {
+            stack.push((mid.clone(), hi));
+            stack.push((lo, mid));
+        }
+    }
+    out.sort();
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn up(c: &[i64]) -> UniPoly {
+        UniPoly::new(c.iter().map(|&k| Rational::int(k)).collect())
+    }
+
+    #[test]
+    fn counts_real_roots() {
+        // (x − 1)(x − 2)(x + 3) = x³ − 7x + 6
+        let p = up(&[6, -7, 0, 1]);
+        assert_eq!(
+            count_roots(&p, &Bound::MinusInfinity, &Bound::PlusInfinity),
+            3
+        );
+        assert_eq!(
+            count_roots(&p, &Bound::At(Rational::int(0)), &Bound::PlusInfinity),
+            2
+        );
+        // x² + 1 has none; x² − 2 has two, x⁴ − 4x² + 4 = (x² − 2)² has two distinct.
+        assert_eq!(
+            count_roots(&up(&[1, 0, 1]), &Bound::MinusInfinity, &Bound::PlusInfinity),
+            0
+        );
+        assert_eq!(
+            count_roots(
+                &up(&[-2, 0, 1]),
+                &Bound::MinusInfinity,
+                &Bound::PlusInfinity
+            ),
+            2
+        );
+        assert_eq!(
+            count_roots(
+                &up(&[4, 0, -4, 0, 1]),
+                &Bound::MinusInfinity,
+                &Bound::PlusInfinity
+            ),
+            2
+        );
+    }
+
+    #[test]
+    fn isolates_irrational_roots() {
+        let p = up(&[-2, 0, 1]); // ±√2
+        let w = Rational::ratio(1, 1_000_000).unwrap();
+        let roots = isolate_roots(&p, &Rational::int(0), &Rational::int(10), &w);
+        assert_eq!(roots.len(), 1);
+        let (lo, hi) = &roots[0];
+        assert!(lo.to_f64() <= 2f64.sqrt() && 2f64.sqrt() <= hi.to_f64());
+        // An exact rational root is found exactly.
+        let q = up(&[-1, 2]); // 2x − 1
+        let r = isolate_roots(&q, &Rational::int(0), &Rational::int(1), &w);
+        assert_eq!(
+            r,
+            vec![(
+                Rational::ratio(1, 2).unwrap(),
+                Rational::ratio(1, 2).unwrap()
+            )]
+        );
+    }
+}
