@@ -60,6 +60,7 @@ fn strategy_name(s: &Strategy) -> &'static str {
         Strategy::Gradient { .. } => "gradient",
         Strategy::Convex { .. } => "convex",
         Strategy::NotCircle { .. } => "not-circle",
+        Strategy::Appendix { .. } => "appendix",
     }
 }
 
@@ -74,7 +75,7 @@ fn resampled(mut check: Check, samples: usize, seed: Option<u64>) -> Check {
                 sampling.seed = s;
             }
         }
-        Strategy::Exact | Strategy::NotCircle { .. } => {}
+        Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. } => {}
     }
     check
 }
@@ -83,7 +84,10 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     let Ok(check) = mutated else {
         return Fate::Rejected;
     };
-    let sampled = !matches!(check.strategy, Strategy::Exact | Strategy::NotCircle { .. });
+    let sampled = !matches!(
+        check.strategy,
+        Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. }
+    );
     let light = resampled(check.clone(), SAMPLED, None);
     let Ok(outcome) = decide(decls, &light) else {
         return Fate::Rejected;

@@ -16,7 +16,8 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 /// A reduced rational function `num / den`.
 ///
 /// ```
-/// use cosserat_check::kernel::{Poly, RatFunc, VarTable};
+/// use cosserat_check::kernel::{RatFunc, VarTable};
+/// use num_traits::One;
 /// let mut names = VarTable::new();
 /// let x = RatFunc::var(names.intern("x"));
 /// let one = RatFunc::one();

@@ -27,6 +27,7 @@ fn transliterate(c: char) -> Option<&'static str> {
         '≥' => "$\\ge$",
         '≠' => "$\\ne$",
         '≈' => "$\\approx$",
+        '\u{0307}' => "$^{\\cdot}$", // combining dot above (a rate: μ̇)
         '−' => "-",
         '–' => "--",
         '—' => "---",

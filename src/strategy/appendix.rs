@@ -411,6 +411,24 @@ fn balance_law(
          only: {derived_text} = 0 (d-prefixed variables are ∂/∂x_2; rates implied)",
         v.name()
     );
+    // A point where the two laws differ: the first variable of the difference set to
+    // 1, every other one 0.
+    let diff = &printed - &derived;
+    let first = diff
+        .terms()
+        .next()
+        .and_then(|(m, _)| m.factors().first().map(|&(v, _)| v));
+    let at_point: BTreeMap<String, Rational> = first
+        .map(|v| (names.name(v).to_owned(), Rational::int(1)))
+        .into_iter()
+        .collect();
+    let value = |v| {
+        if Some(v) == first {
+            Rational::int(1)
+        } else {
+            Rational::int(0)
+        }
+    };
     match balance::proportional(&printed, &derived) {
         Some(lambda) => Ok(Outcome::new(Verdict::Holds, Method::Symbolic, 1)
             .with_detail(format!("{base}; the printed law is {lambda} times it"))),
@@ -426,9 +444,17 @@ fn balance_law(
             Ok(Outcome::new(Verdict::Fails, Method::Symbolic, 1)
                 .with_detail(format!("{base}{flip}"))
                 .with_counterexample(Counterexample {
+                    chain: 1,
+                    equality: 1,
                     lhs: text,
                     rhs: format!("{derived_text} = 0"),
                     difference: (&printed - &derived).display(&names),
+                    point: at_point
+                        .iter()
+                        .map(|(k, v)| (k.clone(), v.to_string()))
+                        .collect(),
+                    lhs_value: printed.eval(&value).map(|v| v.to_string()),
+                    rhs_value: derived.eval(&value).map(|v| v.to_string()),
                     ..Counterexample::default()
                 }))
         }
@@ -605,29 +631,70 @@ fn no_band_without_rolling(p: &Params, d: &Derivation) -> Result<Outcome, String
     )))
 }
 
-fn thickness_decreases(p: &Params, d: &Derivation) -> Result<Outcome, String> {
-    // d_B = π/A decreases exactly where A² increases: the sign of d(A²)/df_r.
-    let slope = d.a2_eq54.derivative(p.f_r);
-    let num = UniPoly::from_poly(slope.numerator(), p.f_r).ok_or("not univariate")?;
-    let den = UniPoly::from_poly(slope.denominator(), p.f_r).ok_or("not univariate")?;
-    let width = Rational::ratio(1, 1_000_000_000).expect("nonzero");
-    let (zero, ten) = (Rational::int(0), Rational::int(10));
-    let pos = (Bound::At(zero.clone()), Bound::PlusInfinity);
+/// Where a function of f_r alone increases for f_r > 0, decided exactly.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Monotonicity {
+    /// `Holds`: increasing on all of f_r > 0; `Conditional`: increasing on (0, f*)
+    /// and decreasing just after f*; `Fails`: decreasing just after 0.
+    pub verdict: Verdict,
+    /// The first positive root f* of d/df_r, isolated in [lo, hi].
+    pub first_root: Option<(Rational, Rational)>,
+    pub slope: RatFunc,
+}
+
+/// The sign of d/df_r of `f` (a rational function of f_r alone) on f_r > 0, from
+/// Sturm counts of the slope's numerator (its denominator is a square, so ≥ 0; it
+/// must have no positive root). Roots are isolated to width 1e-9 below 10 (`Err` if
+/// any lies beyond).
+pub fn increasing_for_positive(p: &Params, f: &RatFunc) -> Result<Monotonicity, String> {
+    let slope = f.derivative(p.f_r);
+    let num = UniPoly::from_poly(slope.numerator(), p.f_r).ok_or("not a function of f_r alone")?;
+    let den =
+        UniPoly::from_poly(slope.denominator(), p.f_r).ok_or("not a function of f_r alone")?;
+    let pos = (Bound::At(Rational::int(0)), Bound::PlusInfinity);
     if count_roots(&den, &pos.0, &pos.1) != 0 {
-        return Err("the denominator of d(A²)/df_r vanishes for some f_r > 0".into());
+        return Err("the denominator of the slope vanishes for some f_r > 0".into());
     }
-    // Roots in (0, ∞): every root lies below 10 here (checked by the count).
-    let total = count_roots(&num, &pos.0, &pos.1);
+    let width = Rational::ratio(1, 1_000_000_000).expect("nonzero");
     let tiny = Rational::ratio(1, 1_000_000_000_000).expect("nonzero");
-    let roots = isolate_roots(&num, &tiny, &ten, &width);
+    let total = count_roots(&num, &pos.0, &pos.1);
+    let roots = isolate_roots(&num, &tiny, &Rational::int(10), &width);
     if roots.len() != total {
         return Err(format!(
-            "{total} positive roots of d(A²)/df_r, {} isolated below 10",
+            "{total} positive roots of the slope, {} isolated in (1e-12, 10)",
             roots.len()
         ));
     }
-    let positive_at = |x: &Rational| !num.eval(x).is_negative() && !num.eval(x).is_zero();
-    let sign_start = positive_at(&Rational::ratio(1, 100).expect("nonzero"));
+    let positive = |x: &Rational| {
+        let v = num.eval(x);
+        !v.is_negative() && !v.is_zero()
+    };
+    let verdict = match roots.first() {
+        _ if !positive(&tiny) => Verdict::Fails,
+        None => Verdict::Holds,
+        Some((_, hi)) => {
+            let next = roots
+                .get(1)
+                .map_or(hi + &Rational::int(1), |(lo, _)| lo.clone());
+            let after = &(hi + &next) * &half();
+            if positive(&after) {
+                return Err("the slope touches 0 without changing sign; not handled".into());
+            }
+            Verdict::Conditional
+        }
+    };
+    Ok(Monotonicity {
+        verdict,
+        first_root: roots.first().cloned(),
+        slope,
+    })
+}
+
+fn thickness_decreases(p: &Params, d: &Derivation) -> Result<Outcome, String> {
+    // d_B = π/A decreases exactly where A² increases: the sign of d(A²)/df_r.
+    let m = increasing_for_positive(p, &d.a2_eq54)?;
+    let (slope, verdict) = (&m.slope, m.verdict);
+    let roots: Vec<(Rational, Rational)> = m.first_root.iter().cloned().collect();
     let a2 = |f: i64| {
         d.a2_eq54.eval(&|v| {
             if v == p.f_r {
@@ -644,11 +711,6 @@ fn thickness_decreases(p: &Params, d: &Derivation) -> Result<Outcome, String> {
         .substitute(p.h_2, &RatFunc::int(0))
         .ok_or("pole")?
         .derivative(p.f_r);
-    let verdict = match (roots.first(), sign_start) {
-        (None, true) => Verdict::Holds,
-        (Some(_), true) => Verdict::Conditional,
-        _ => Verdict::Fails,
-    };
     let domain = roots
         .first()
         .map(|(lo, hi)| {
