@@ -304,3 +304,62 @@ fn every_subcommand_has_complete_help() {
         }
     }
 }
+
+#[test]
+fn fig6_writes_the_table_and_the_plot() {
+    let csv = run(&["fig6"]);
+    assert_eq!(csv.status.code(), Some(0), "{}", text(&csv.stderr));
+    let table = text(&csv.stdout);
+    let lines: Vec<&str> = table.lines().collect();
+    assert_eq!(lines[0], "f_r,paper,nu=0,nu=0.25,nu=0.45");
+    assert_eq!(lines.len(), 61, "60 grid points and a header");
+    assert!(lines[1].starts_with("0.0500000000000,"));
+    assert!(lines[60].starts_with("3.00000000000,"));
+    for line in &lines[1..] {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells.len(), 5, "{line}");
+        for c in &cells {
+            let digits = c.chars().filter(char::is_ascii_digit).count();
+            assert!(digits >= 10, "fewer than 10 significant digits in {c}");
+            assert!(c.parse::<f64>().is_ok_and(|v| v > 0.0), "{c}");
+        }
+    }
+    // Deterministic: the same bytes twice.
+    assert_eq!(run(&["fig6"]).stdout, csv.stdout);
+
+    let dir = std::env::temp_dir().join(format!("cosserat-check-fig6-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg_path = dir.join("fig6.svg");
+    let svg = run(&[
+        "fig6",
+        "--format",
+        "svg",
+        "--out",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert_eq!(svg.status.code(), Some(0), "{}", text(&svg.stderr));
+    assert!(svg.stdout.is_empty());
+    let picture = std::fs::read_to_string(&svg_path).unwrap();
+    assert!(picture.starts_with("<svg"));
+    for label in [
+        "rolling resistance f_r",
+        "d_B / R_g",
+        "paper, eq. (54)",
+        "derived, nu = 0.25",
+        "derived, nu = 0.45",
+    ] {
+        assert!(picture.contains(label), "the SVG lacks {label}");
+    }
+    // Each curve and its legend mark: a 2-pixel polyline in the curve's colour.
+    for colour in ["#000000", "#0000FF", "#00FF00", "#FF0000"] {
+        let marker = format!("stroke=\"{colour}\" stroke-width=\"2\"");
+        assert_eq!(
+            picture.matches(&marker).count(),
+            2,
+            "curve and legend in {colour}"
+        );
+    }
+    let again = run(&["fig6", "--format", "svg"]);
+    assert_eq!(again.stdout, picture.as_bytes());
+    std::fs::remove_dir_all(&dir).ok();
+}

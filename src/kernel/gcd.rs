@@ -150,6 +150,13 @@ pub fn gcd(a: &Poly, b: &Poly) -> Poly {
     if b.is_zero() {
         return normalize_sign_and_scale(a);
     }
+    // Short cuts: a nonzero constant is a unit; gcd(a, a) = a.
+    if a.as_constant().is_some() || b.as_constant().is_some() {
+        return Poly::one();
+    }
+    if a == b {
+        return normalize_sign_and_scale(a);
+    }
     let v = match (main_var(a), main_var(b)) {
         (None, None) => return Poly::one(),
         (x, y) => x.max(y).expect("one of them has a variable"),

@@ -42,6 +42,14 @@ impl RatFunc {
         let unit = |m| Poly::term(m, Rational::one());
         let n = &n * &unit(md);
         let d = &d * &unit(mn);
+        if let Some(c) = d.as_constant() {
+            // A constant denominator: scale it to 1, no gcd needed.
+            let inv = Poly::constant(c.recip().expect("the denominator is nonzero"));
+            return Some(RatFunc {
+                num: &n * &inv,
+                den: Poly::one(),
+            });
+        }
         let g = gcd::gcd(&n, &d);
         let n = gcd::divide_exact(&n, &g).expect("the gcd divides the numerator");
         let d = gcd::divide_exact(&d, &g).expect("the gcd divides the denominator");

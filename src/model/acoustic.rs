@@ -103,8 +103,13 @@ pub fn b_scalar(p: &Params, m_ep: &Mat2) -> RatFunc {
 /// (−H, 100 G], where det A goes from −∞ to det A^(el) > 0.
 pub fn critical_hardening_f64(pt: &Point, shear: ShearSign, theta: f64) -> f64 {
     let n = [-theta.sin(), theta.cos()];
+    let grad = tangent::yield_gradient_dual(
+        tangent::state_components(-1.0, pt.f_r, shear),
+        pt.f_r,
+        pt.r_g,
+    );
     let det_at = |h2: f64| {
-        let d = tangent::elastoplastic_f64(&Point { h_2: h2, ..*pt }, shear);
+        let d = tangent::elastoplastic_f64_with(&Point { h_2: h2, ..*pt }, &grad);
         let a = nalgebra::Matrix2::from_fn(|r, s| {
             let mut acc = 0.0;
             for i in 0..2 {
@@ -117,15 +122,11 @@ pub fn critical_hardening_f64(pt: &Point, shear: ShearSign, theta: f64) -> f64 {
         a.determinant()
     };
     // H = Q·D·Q at h_2 = 0: the pole of D^(ep) sits at h_2 = −H.
-    let grad = tangent::yield_gradient_dual(
-        tangent::state_components(-1.0, pt.f_r, shear),
-        pt.f_r,
-        pt.r_g,
-    );
     let q = nalgebra::Vector4::new(grad[0], grad[1], grad[2], grad[3]);
     let h = q.dot(&(tangent::elastic_f64(pt) * q));
     let (mut lo, mut hi) = (-h * (1.0 - 1e-12), 100.0 * pt.g);
-    for _ in 0..200 {
+    // 100 halvings take the bracket below f64 resolution.
+    for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
         if det_at(mid) < 0.0 {
             lo = mid;

@@ -247,8 +247,14 @@ pub fn elastic_f64(pt: &Point) -> nalgebra::Matrix4<f64> {
 /// D^(ep) in `f64` by an independent route: nalgebra matrices, the gradient from
 /// num-dual at the state (σ = −1), the same consistency formula.
 pub fn elastoplastic_f64(pt: &Point, shear: ShearSign) -> nalgebra::Matrix4<f64> {
-    let d = elastic_f64(pt);
     let grad = yield_gradient_dual(state_components(-1.0, pt.f_r, shear), pt.f_r, pt.r_g);
+    elastoplastic_f64_with(pt, &grad)
+}
+
+/// [`elastoplastic_f64`] for a gradient (Q_11, Q_22, Q_12, Q_21, F_1, F_2) already
+/// computed (the bisections of the acoustic analysis reuse one).
+pub fn elastoplastic_f64_with(pt: &Point, grad: &[f64; 6]) -> nalgebra::Matrix4<f64> {
+    let d = elastic_f64(pt);
     let qv = nalgebra::Vector4::new(grad[0], grad[1], grad[2], grad[3]);
     let fv = nalgebra::Vector2::new(grad[4], grad[5]);
     let m = nalgebra::Matrix2::identity() * (4.0 * pt.g * pt.r_g * pt.r_g);

@@ -178,8 +178,18 @@ fn maxima(p: &Params, h2cr: &RatFunc, pt: &Point) -> Result<((f64, f64), (f64, f
     Ok((exact, float))
 }
 
+/// h_2^cr(n) of the state with τ > 0, computed once.
+fn critical_hardening_function(p: &Params, d: &Derivation) -> Result<&'static RatFunc, String> {
+    static CELL: OnceLock<Result<RatFunc, String>> = OnceLock::new();
+    CELL.get_or_init(|| {
+        acoustic::critical_hardening(p, &d.tangent.d_ep, Contraction::GradientIndices)
+    })
+    .as_ref()
+    .map_err(Clone::clone)
+}
+
 fn band_direction(p: &Params, d: &Derivation) -> Result<Outcome, String> {
-    let h2cr = acoustic::critical_hardening(p, &d.tangent.d_ep, Contraction::GradientIndices)?;
+    let h2cr = critical_hardening_function(p, d)?;
     // n = (−sin θ, cos θ): d/dθ at θ = 0 is −∂/∂n_1 at n = (0, 1). The quotient rule
     // is applied to numerator and denominator separately and evaluated at n = (0, 1)
     // before anything is reduced (reducing the full derivative first is slow).
@@ -267,7 +277,7 @@ fn h2cr_on_line(p: &Params, h2cr: &RatFunc, at: &ExactPoint) -> Result<(UniPoly,
 }
 
 fn critical_hardening(p: &Params, d: &Derivation) -> Result<Outcome, String> {
-    let h2cr = acoustic::critical_hardening(p, &d.tangent.d_ep, Contraction::GradientIndices)?;
+    let h2cr = critical_hardening_function(p, d)?;
     let at_zero = h2cr
         .substitute(p.n_1, &RatFunc::int(0))
         .and_then(|x| x.substitute(p.n_2, &RatFunc::int(1)))
