@@ -167,7 +167,8 @@ fn a_wrong_yield_gradient_is_refuted() {
     assert!(exact <= ROUTE_TOL && fd <= FD_TOL && n > 100);
     // Mutants: a changed coefficient (Q_12 = 1), a flipped sign (Q_11 = −f_r/2), a
     // dropped term (Q_22 = 0), swapped components (Q_11 ↔ Q_12), a nonzero F.
-    let cases: Vec<(usize, Box<dyn Fn(&YieldGradient) -> RatFunc>, bool)> = vec![
+    type Replacement = Box<dyn Fn(&YieldGradient) -> RatFunc>;
+    let cases: Vec<(usize, Replacement, bool)> = vec![
         (2, Box::new(|_| RatFunc::int(1)), false),
         (0, Box::new(|g| -&g.q[0]), false),
         (1, Box::new(|_| RatFunc::int(0)), false),

@@ -648,15 +648,15 @@ impl Loader {
             .strategy
             .as_ref()
             .is_none_or(|s| matches!(s.get_ref().as_str(), "exact" | "numeric"));
-        if c.step.is_some()
-            && c.strategy
+        if let Some(at) = &c.step {
+            if c.strategy
                 .as_ref()
                 .is_none_or(|s| s.get_ref() != "appendix")
-        {
-            let at = c.step.as_ref().expect("checked above");
-            return Err(self
-                .diag(at.span(), "`step` belongs to strategy = \"appendix\"")
-                .with_help("add strategy = \"appendix\" or remove `step`"));
+            {
+                return Err(self
+                    .diag(at.span(), "`step` belongs to strategy = \"appendix\"")
+                    .with_help("add strategy = \"appendix\" or remove `step`"));
+            }
         }
         let mut check = self.check(
             &c.id,

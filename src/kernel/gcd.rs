@@ -202,8 +202,8 @@ pub fn canonical_scale(p: &Poly) -> Option<Rational> {
     let mut den_lcm = BigInt::one();
     let mut num_gcd = BigInt::zero();
     for (_, c) in p.terms() {
-        den_lcm = den_lcm.lcm(c.denom());
-        num_gcd = num_gcd.gcd(c.numer());
+        den_lcm = den_lcm.lcm(&c.denom());
+        num_gcd = num_gcd.gcd(&c.numer());
     }
     let mut scale = Rational::from_big(den_lcm, num_gcd.abs())?;
     if lead.is_negative() {

@@ -219,6 +219,12 @@ impl One for RatFunc {
 impl Add<&RatFunc> for &RatFunc {
     type Output = RatFunc;
     fn add(self, rhs: &RatFunc) -> RatFunc {
+        if self.is_zero() {
+            return rhs.clone();
+        }
+        if rhs.is_zero() {
+            return self.clone();
+        }
         if self.den == rhs.den {
             return RatFunc::new(&(&self.num + &rhs.num), &self.den).expect("nonzero");
         }
@@ -237,6 +243,18 @@ impl Sub<&RatFunc> for &RatFunc {
 impl Mul<&RatFunc> for &RatFunc {
     type Output = RatFunc;
     fn mul(self, rhs: &RatFunc) -> RatFunc {
+        // A constant factor keeps the function reduced: scale the numerator only.
+        for (c, f) in [(self, rhs), (rhs, self)] {
+            if let Some(k) = c.as_constant() {
+                if k.is_zero() {
+                    return RatFunc::zero();
+                }
+                return RatFunc {
+                    num: &f.num * &Poly::constant(k),
+                    den: f.den.clone(),
+                };
+            }
+        }
         RatFunc::new(&(&self.num * &rhs.num), &(&self.den * &rhs.den))
             .expect("a product of nonzero polynomials")
     }

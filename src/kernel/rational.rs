@@ -1,29 +1,83 @@
 //! Exact rational numbers: the scalar that every exact verdict rests on.
 //!
-//! A thin newtype over `num_rational::BigRational`, so the representation can change
-//! (an `i128` fast path, say) without touching any caller. Arbitrary precision keeps
-//! the kernel free of overflow: no coefficient can wrap silently.
+//! Two representations behind one type: a fast path for numerator and denominator that
+//! fit in `i64` (arithmetic in `i128`, which cannot overflow for a product or a sum of
+//! two such fractions) and `num_rational::BigRational` for everything else. Every
+//! result is normalised — lowest terms, positive denominator, and the small form
+//! whenever the value fits — so equal values have identical representations and `==`
+//! and `Hash` stay structural. Arbitrary precision keeps the kernel free of overflow:
+//! no coefficient can wrap silently (tested at the boundary of the fast path below).
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cmp::Ordering;
 use std::fmt;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
+/// The representation: `Small(n, d)` with d > 0, gcd(n, d) = 1 and n ≠ i64::MIN (so
+/// that negation stays small), used exactly when the value fits; `Big` otherwise.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+enum Repr {
+    Small(i64, i64),
+    Big(BigRational),
+}
+
 /// An exact rational number, always in lowest terms with a positive denominator, so
 /// that equal values have equal representations (`==` and `Hash` are structural).
-#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
-pub struct Rational(BigRational);
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub struct Rational(Repr);
+
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+/// n/d in normal form from 128-bit parts (d ≠ 0, |n|, |d| < 2^127).
+fn from_i128(n: i128, d: i128) -> Rational {
+    debug_assert!(d != 0);
+    let g = gcd_u128(n.unsigned_abs(), d.unsigned_abs()).max(1) as i128;
+    let (mut n, mut d) = (n / g, d / g);
+    if d < 0 {
+        n = -n;
+        d = -d;
+    }
+    if n > i128::from(i64::MIN) && n <= i128::from(i64::MAX) && d <= i128::from(i64::MAX) {
+        Rational(Repr::Small(n as i64, d as i64))
+    } else {
+        Rational(Repr::Big(BigRational::new_raw(
+            BigInt::from(n),
+            BigInt::from(d),
+        )))
+    }
+}
+
+/// A reduced big rational in normal form (small when it fits).
+fn from_big_reduced(r: BigRational) -> Rational {
+    match (r.numer().to_i64(), r.denom().to_i64()) {
+        (Some(n), Some(d)) if n != i64::MIN => Rational(Repr::Small(n, d)),
+        _ => Rational(Repr::Big(r)),
+    }
+}
 
 impl Rational {
     /// The integer `n`.
     pub fn int(n: i64) -> Self {
-        Rational(BigRational::from_integer(BigInt::from(n)))
+        from_i128(i128::from(n), 1)
     }
 
     /// `n / d`, or `None` when `d == 0`.
     pub fn ratio(n: i64, d: i64) -> Option<Self> {
-        (d != 0).then(|| Rational(BigRational::new(BigInt::from(n), BigInt::from(d))))
+        (d != 0).then(|| from_i128(i128::from(n), i128::from(d)))
+    }
+
+    fn big(&self) -> BigRational {
+        match &self.0 {
+            Repr::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
+            Repr::Big(r) => r.clone(),
+        }
     }
 
     /// Parses a plain decimal literal such as `12`, `0.25` or `3.` exactly.
@@ -42,28 +96,39 @@ impl Rational {
         let digits = format!("{int_part}{frac_part}");
         let numer: BigInt = digits.parse().ok()?;
         let denom = num_traits::pow(BigInt::from(10), frac_part.len());
-        Some(Rational(BigRational::new(numer, denom)))
+        Some(from_big_reduced(BigRational::new(numer, denom)))
     }
 
     pub fn is_zero(&self) -> bool {
-        self.0.is_zero()
+        matches!(self.0, Repr::Small(0, _))
     }
 
     pub fn is_one(&self) -> bool {
-        self.0.is_one()
+        matches!(self.0, Repr::Small(1, 1))
     }
 
     pub fn is_negative(&self) -> bool {
-        self.0.is_negative()
+        match &self.0 {
+            Repr::Small(n, _) => *n < 0,
+            Repr::Big(r) => r.is_negative(),
+        }
     }
 
     pub fn is_integer(&self) -> bool {
-        self.0.is_integer()
+        match &self.0 {
+            Repr::Small(_, d) => *d == 1,
+            Repr::Big(r) => r.is_integer(),
+        }
     }
 
     /// `1 / self`, or `None` for zero.
     pub fn recip(&self) -> Option<Self> {
-        (!self.is_zero()).then(|| Rational(self.0.recip()))
+        match &self.0 {
+            Repr::Small(0, _) => None,
+            Repr::Small(n, d) if *n > 0 => Some(Rational(Repr::Small(*d, *n))),
+            Repr::Small(n, d) => Some(Rational(Repr::Small(-*d, -*n))),
+            Repr::Big(r) => Some(from_big_reduced(r.recip())),
+        }
     }
 
     /// `self / other`, or `None` when `other` is zero.
@@ -76,7 +141,17 @@ impl Rational {
         if e < 0 {
             return self.recip().map(|r| r.pow(-e).expect("nonzero base"));
         }
-        Some(Rational(num_traits::pow(self.0.clone(), e as usize)))
+        let (mut base, mut e, mut acc) = (self.clone(), e as u32, Rational::one());
+        while e > 0 {
+            if e & 1 == 1 {
+                acc = &acc * &base;
+            }
+            e >>= 1;
+            if e > 0 {
+                base = &base * &base;
+            }
+        }
+        Some(acc)
     }
 
     /// The exact square root when `self` is the square of a rational, else `None`.
@@ -84,57 +159,90 @@ impl Rational {
         if self.is_negative() {
             return None;
         }
-        let n = self.0.numer().sqrt();
-        let d = self.0.denom().sqrt();
+        let r = self.big();
+        let n = r.numer().sqrt();
+        let d = r.denom().sqrt();
         let root = BigRational::new(n, d);
-        (&root * &root == self.0).then_some(Rational(root))
+        (&root * &root == r).then(|| from_big_reduced(root))
     }
 
     /// The numerator (the sign is carried here; the denominator is positive).
-    pub fn numer(&self) -> &BigInt {
-        self.0.numer()
+    pub fn numer(&self) -> BigInt {
+        match &self.0 {
+            Repr::Small(n, _) => BigInt::from(*n),
+            Repr::Big(r) => r.numer().clone(),
+        }
     }
 
     /// The denominator, always positive.
-    pub fn denom(&self) -> &BigInt {
-        self.0.denom()
+    pub fn denom(&self) -> BigInt {
+        match &self.0 {
+            Repr::Small(_, d) => BigInt::from(*d),
+            Repr::Big(r) => r.denom().clone(),
+        }
     }
 
     /// `n / d` for big integers, or `None` when `d == 0`.
     pub fn from_big(n: BigInt, d: BigInt) -> Option<Self> {
-        (!d.is_zero()).then(|| Rational(BigRational::new(n, d)))
+        (!d.is_zero()).then(|| from_big_reduced(BigRational::new(n, d)))
     }
 
     /// Bits in the numerator and the denominator together: the size of the number.
     pub fn bits(&self) -> u64 {
-        self.0.numer().bits() + self.0.denom().bits()
+        match &self.0 {
+            Repr::Small(n, d) => {
+                u64::from(64 - n.unsigned_abs().leading_zeros())
+                    + u64::from(64 - d.unsigned_abs().leading_zeros())
+            }
+            Repr::Big(r) => r.numer().bits() + r.denom().bits(),
+        }
     }
 
     /// The nearest `f64` (used only by numeric cross-checks, never by exact verdicts).
     pub fn to_f64(&self) -> f64 {
-        self.0.to_f64().unwrap_or(f64::NAN)
+        match &self.0 {
+            Repr::Small(n, d) if n.unsigned_abs() < 1 << 53 && *d < 1 << 53 => {
+                *n as f64 / *d as f64
+            }
+            _ => self.big().to_f64().unwrap_or(f64::NAN),
+        }
     }
 
     /// LaTeX form: `\frac{p}{q}` or `p`, with a leading minus sign.
     pub fn latex(&self) -> String {
         if self.is_integer() {
-            return self.0.numer().to_string();
+            return self.numer().to_string();
         }
         let sign = if self.is_negative() { "-" } else { "" };
-        format!(
-            "{sign}\\frac{{{}}}{{{}}}",
-            self.0.numer().abs(),
-            self.0.denom()
-        )
+        format!("{sign}\\frac{{{}}}{{{}}}", self.numer().abs(), self.denom())
+    }
+}
+
+impl PartialOrd for Rational {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Ordered by value.
+impl Ord for Rational {
+    fn cmp(&self, other: &Self) -> Ordering {
+        match (&self.0, &other.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => {
+                (i128::from(*a) * i128::from(*d)).cmp(&(i128::from(*c) * i128::from(*b)))
+            }
+            _ => self.big().cmp(&other.big()),
+        }
     }
 }
 
 impl fmt::Display for Rational {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.is_integer() {
-            write!(f, "{}", self.0.numer())
-        } else {
-            write!(f, "{}/{}", self.0.numer(), self.0.denom())
+        match &self.0 {
+            Repr::Small(n, 1) => write!(f, "{n}"),
+            Repr::Small(n, d) => write!(f, "{n}/{d}"),
+            Repr::Big(r) if r.is_integer() => write!(f, "{}", r.numer()),
+            Repr::Big(r) => write!(f, "{}/{}", r.numer(), r.denom()),
         }
     }
 }
@@ -147,56 +255,90 @@ impl From<i64> for Rational {
 
 impl Zero for Rational {
     fn zero() -> Self {
-        Rational(BigRational::zero())
+        Rational(Repr::Small(0, 1))
     }
     fn is_zero(&self) -> bool {
-        self.0.is_zero()
+        Rational::is_zero(self)
     }
 }
 
 impl One for Rational {
     fn one() -> Self {
-        Rational(BigRational::one())
+        Rational(Repr::Small(1, 1))
     }
 }
 
-macro_rules! forward_binop {
-    ($tr:ident, $method:ident) => {
-        impl $tr<&Rational> for &Rational {
-            type Output = Rational;
-            fn $method(self, rhs: &Rational) -> Rational {
-                Rational((&self.0).$method(&rhs.0))
+impl Add<&Rational> for &Rational {
+    type Output = Rational;
+    fn add(self, rhs: &Rational) -> Rational {
+        match (&self.0, &rhs.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) if b == d => {
+                from_i128(i128::from(*a) + i128::from(*c), i128::from(*b))
             }
+            (Repr::Small(a, b), Repr::Small(c, d)) => from_i128(
+                i128::from(*a) * i128::from(*d) + i128::from(*c) * i128::from(*b),
+                i128::from(*b) * i128::from(*d),
+            ),
+            _ => from_big_reduced(self.big() + rhs.big()),
         }
+    }
+}
+
+impl Sub<&Rational> for &Rational {
+    type Output = Rational;
+    fn sub(self, rhs: &Rational) -> Rational {
+        self + &(-rhs)
+    }
+}
+
+impl Mul<&Rational> for &Rational {
+    type Output = Rational;
+    fn mul(self, rhs: &Rational) -> Rational {
+        match (&self.0, &rhs.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => from_i128(
+                i128::from(*a) * i128::from(*c),
+                i128::from(*b) * i128::from(*d),
+            ),
+            _ => from_big_reduced(self.big() * rhs.big()),
+        }
+    }
+}
+
+macro_rules! owned_binop {
+    ($tr:ident, $method:ident) => {
         impl $tr for Rational {
             type Output = Rational;
             fn $method(self, rhs: Rational) -> Rational {
-                Rational(self.0.$method(rhs.0))
+                (&self).$method(&rhs)
             }
         }
     };
 }
-forward_binop!(Add, add);
-forward_binop!(Sub, sub);
-forward_binop!(Mul, mul);
+owned_binop!(Add, add);
+owned_binop!(Sub, sub);
+owned_binop!(Mul, mul);
 
 impl AddAssign<&Rational> for Rational {
     fn add_assign(&mut self, rhs: &Rational) {
-        self.0 += &rhs.0;
+        *self = &*self + rhs;
     }
 }
 
 impl Neg for Rational {
     type Output = Rational;
     fn neg(self) -> Rational {
-        Rational(-self.0)
+        -&self
     }
 }
 
 impl Neg for &Rational {
     type Output = Rational;
     fn neg(self) -> Rational {
-        Rational(-&self.0)
+        match &self.0 {
+            // n ≠ i64::MIN by the invariant, so −n fits.
+            Repr::Small(n, d) => Rational(Repr::Small(-*n, *d)),
+            Repr::Big(r) => from_big_reduced(-r.clone()),
+        }
     }
 }
 
@@ -257,5 +399,62 @@ mod tests {
     fn latex_form() {
         assert_eq!(q(-1, 15).latex(), "-\\frac{1}{15}");
         assert_eq!(q(4, 1).latex(), "4");
+    }
+
+    #[test]
+    fn the_fast_path_promotes_at_its_boundary_and_demotes_back() {
+        // i64::MIN is kept big so that negation cannot overflow.
+        let min = &Rational::int(i64::MIN + 1) - &Rational::int(1);
+        assert_eq!(min.to_string(), "-9223372036854775808");
+        assert!(matches!(min.0, Repr::Big(_)));
+        assert_eq!((-&min).to_string(), "9223372036854775808");
+        // A product beyond i64 is big; dividing back gives the small form again, so
+        // equal values stay identical.
+        let big = &Rational::int(i64::MAX) * &Rational::int(3);
+        assert!(matches!(big.0, Repr::Big(_)));
+        let back = big.checked_div(&Rational::int(3)).unwrap();
+        assert_eq!(back, Rational::int(i64::MAX));
+        assert!(matches!(back.0, Repr::Small(_, _)));
+        // Sums of fractions with large coprime denominators.
+        let a = q(1, i64::MAX);
+        let b = q(1, i64::MAX - 1);
+        let s = &a + &b;
+        assert_eq!(&s - &b, a);
+        assert!(q(1, 3) < q(1, 2) && q(-1, 2) < q(1, 3) && big > Rational::int(i64::MAX));
+        assert_eq!(
+            Rational::from_big(BigInt::from(6), BigInt::from(-4)),
+            Some(q(-3, 2))
+        );
+        assert_eq!(q(2, 3).bits(), 4);
+    }
+
+    #[test]
+    fn small_and_big_arithmetic_agree_on_random_values() {
+        // Compare against BigRational directly on values near the i64 boundary.
+        let mut state = 7u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 1) as i64 - (1 << 62)
+        };
+        for _ in 0..2000 {
+            let (a, b, c, d) = (
+                next(),
+                next().max(1),
+                next() >> (next() & 63),
+                next().max(1) >> 20,
+            );
+            let d = d.max(1);
+            let x = q(a, b);
+            let y = q(c, d);
+            let bx = BigRational::new(BigInt::from(a), BigInt::from(b));
+            let by = BigRational::new(BigInt::from(c), BigInt::from(d));
+            assert_eq!((&x + &y).big(), &bx + &by);
+            assert_eq!((&x - &y).big(), &bx - &by);
+            assert_eq!((&x * &y).big(), &bx * &by);
+            assert_eq!(x.cmp(&y), bx.cmp(&by));
+            assert_eq!(from_big_reduced(&bx + &by), &x + &y);
+        }
     }
 }

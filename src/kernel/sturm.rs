@@ -86,7 +86,7 @@ impl UniPoly {
     fn sign_at_infinity(&self, at_plus: bool) -> i32 {
         let lead = self.0.last().expect("nonzero");
         let s = if lead.is_negative() { -1 } else { 1 };
-        if !at_plus && self.0.len() % 2 == 0 {
+        if !at_plus && self.0.len().is_multiple_of(2) {
             -s
         } else {
             s

@@ -105,7 +105,7 @@ pub fn svg(rows: &[Row]) -> Result<String, String> {
             .map_err(|e| err(&e))?;
         let styles = [
             (BLACK, "paper, eq. (54)".to_string()),
-            (BLUE, format!("derived, nu = 0 (h^C = 1/2, h_2 = 0)")),
+            (BLUE, "derived, nu = 0 (h^C = 1/2, h_2 = 0)".to_string()),
             (GREEN, "derived, nu = 0.25".to_string()),
             (RED, "derived, nu = 0.45".to_string()),
         ];

@@ -165,7 +165,10 @@ fn h2cr_exact_f64(p: &Params, h2cr: &RatFunc, pt: &Point, theta: f64) -> f64 {
 }
 
 /// Both routes' maximum of h_2^cr over θ at `pt`: (θ*, h*) exact-in-f64 and nalgebra.
-fn maxima(p: &Params, h2cr: &RatFunc, pt: &Point) -> Result<((f64, f64), (f64, f64)), String> {
+/// (θ*, h_2^cr(θ*)): the maximum over orientations found by one route.
+type Maximum = (f64, f64);
+
+fn maxima(p: &Params, h2cr: &RatFunc, pt: &Point) -> Result<(Maximum, Maximum), String> {
     let exact = acoustic::maximise_over_orientation(|t| h2cr_exact_f64(p, h2cr, pt, t));
     let float = acoustic::maximise_over_orientation(|t| {
         acoustic::critical_hardening_f64(pt, ShearSign::Positive, t)
@@ -216,7 +219,7 @@ fn band_direction(p: &Params, d: &Derivation) -> Result<Outcome, String> {
         .eval(&|v| at.value(p, v))
         .ok_or("the slope has a pole at the point")?;
     let pt = at.to_f64();
-    let ((theta, h), (theta_f, _)) = maxima(p, &h2cr, &pt)?;
+    let ((theta, h), (theta_f, _)) = maxima(p, h2cr, &pt)?;
     let stationary = slope.is_zero();
     let detail = format!(
         "h_2^cr(n), the h_2 at which det(n_i D^(ep)_ijkl n_k) = 0, is exact (the printed contraction n_j D_ijkl n_l gives \
@@ -286,7 +289,7 @@ fn critical_hardening(p: &Params, d: &Derivation) -> Result<Outcome, String> {
     // Exact: on the line n = (t, 1) (every θ but θ = 90°) numerator and denominator
     // of h_2^cr have no real root, so h_2^cr keeps the sign of its value at t = 0;
     // θ = 90° (n = (1, 0)) is evaluated separately.
-    let (num, den) = h2cr_on_line(p, &h2cr, &at)?;
+    let (num, den) = h2cr_on_line(p, h2cr, &at)?;
     let all = (Bound::MinusInfinity, Bound::PlusInfinity);
     let roots = count_roots(&num, &all.0, &all.1) + count_roots(&den, &all.0, &all.1);
     let zero = Rational::int(0);
@@ -305,7 +308,7 @@ fn critical_hardening(p: &Params, d: &Derivation) -> Result<Outcome, String> {
     }
     let value_90 = f90.as_constant().ok_or("not a number")?;
     let pt = at.to_f64();
-    let ((theta, h), (_, h_f)) = maxima(p, &h2cr, &pt)?;
+    let ((theta, h), (_, h_f)) = maxima(p, h2cr, &pt)?;
     let everywhere_negative = roots == 0 && value_0.is_negative() && value_90.is_negative();
     let detail = format!(
         "at θ = 0, h_2^cr = {} exactly; at {} the numerator and denominator of h_2^cr(n_1 = t, n_2 = 1) have no real \
@@ -735,7 +738,7 @@ fn thickness_decreases(p: &Params, d: &Derivation) -> Result<Outcome, String> {
     let mut out = Outcome::new(verdict, Method::Symbolic, 2).with_detail(format!(
         "d_B = π/A decreases where A² of (54) increases; d(A²)/df_r = {}; {domain}; beyond f*, A² decreases and d_B grows \
          again; for the A² derived from the Appendix (h_2 = 0), d(A²)/df_r = {}, positive for every f_r > 0",
-        p.display(&slope),
+        p.display(slope),
         p.display(&derived_slope)
     ));
     if verdict == Verdict::Conditional {
