@@ -129,6 +129,13 @@ fn main() {
         "whole paper: read + decide every claim".into(),
         format!("{whole:.1} ms"),
     ));
+    let read = median_ms(5, || {
+        black_box(corpus());
+    });
+    rows.push((
+        "read and validate the derivation files (no deciding)".into(),
+        format!("{read:.1} ms"),
+    ));
     let exact_only: Vec<_> = files
         .iter()
         .flat_map(|f| &f.claims)

@@ -172,10 +172,13 @@ pub fn gcd(a: &Poly, b: &Poly) -> Poly {
     while !r1.is_zero() {
         let r = pseudo_remainder(&r0, &r1, v);
         r0 = r1;
+        // The primitive part, scaled to coprime integer coefficients: over ℚ the
+        // content of constant coefficients is a unit, and without this scaling the
+        // coefficients of the pseudo-remainders grow exponentially.
         r1 = if r.is_zero() {
             r
         } else {
-            content_and_primitive(&r, v).1
+            normalize_sign_and_scale(&content_and_primitive(&r, v).1)
         };
     }
     let primitive = if degree_in(&r0, v) == 0 {

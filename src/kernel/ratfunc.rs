@@ -121,6 +121,28 @@ impl RatFunc {
         &n / &d
     }
 
+    /// The function with some variables fixed to rational values (`value` returns
+    /// `None` for the variables that stay), reduced once at the end; `None` if the
+    /// denominator vanishes there.
+    pub fn fix(&self, value: &dyn Fn(Var) -> Option<Rational>) -> Option<Self> {
+        let fix_poly = |p: &Poly| -> Option<Poly> {
+            let mut out = Poly::zero();
+            for (m, c) in p.terms() {
+                let mut coef = c.clone();
+                let mut rest = Vec::new();
+                for &(v, e) in m.factors() {
+                    match value(v) {
+                        Some(x) => coef = &coef * &x.pow(e)?,
+                        None => rest.push((v, e)),
+                    }
+                }
+                out.add_term(crate::kernel::Monomial::from_factors(rest), coef);
+            }
+            Some(out)
+        };
+        RatFunc::new(&fix_poly(&self.num)?, &fix_poly(&self.den)?)
+    }
+
     /// Exact value at a point; `None` where the denominator vanishes.
     pub fn eval(&self, value: &dyn Fn(Var) -> Rational) -> Option<Rational> {
         let d = self.den.eval(value)?;
@@ -362,6 +384,11 @@ mod tests {
         };
         assert_eq!(g.eval(&at), Rational::ratio(1, 5));
         assert!((g.eval_f64(&|_| 2.0) - 0.2).abs() < 1e-15);
+        // Fixing some variables at once equals substituting them one by one.
+        let fixed = f.fix(&|v| (v == yv).then(|| Rational::int(3))).unwrap();
+        assert_eq!(fixed, f.substitute(yv, &RatFunc::int(3)).unwrap());
+        assert_eq!(fixed.display(&names), "x / (x + 3)");
+        assert_eq!(f.fix(&|_| Some(Rational::int(0))), None);
         // A pole is reported, not divided through.
         assert_eq!(f.eval(&|_| Rational::int(0)), None);
     }

@@ -62,6 +62,32 @@ impl UniPoly {
         )
     }
 
+    /// The sign of the value at `x` for integer coefficients, by homogeneous Horner in
+    /// big integers: b^deg p(a/b) = Σ c_i a^i b^(deg − i) has the sign of p(a/b)
+    /// (b > 0), and no fraction is ever reduced.
+    fn sign_at(&self, x: &Rational) -> i32 {
+        use num_traits::Signed;
+        let (a, b) = (x.numer(), x.denom());
+        let mut acc = num_bigint::BigInt::zero();
+        let mut pow_b = num_bigint::BigInt::from(1);
+        for (k, c) in self.0.iter().rev().enumerate() {
+            debug_assert!(c.is_integer(), "scaled to integers first");
+            if k == 0 {
+                acc = c.numer();
+            } else {
+                pow_b *= &b;
+                acc = acc * &a + c.numer() * &pow_b;
+            }
+        }
+        if acc.is_zero() {
+            0
+        } else if acc.is_negative() {
+            -1
+        } else {
+            1
+        }
+    }
+
     /// The remainder of `self` divided by `d` (exact over ℚ); `d` nonzero.
     fn rem(&self, d: &UniPoly) -> UniPoly {
         let mut r = self.0.clone();
@@ -80,6 +106,26 @@ impl UniPoly {
             }
         }
         UniPoly::new(r)
+    }
+
+    /// The polynomial times a positive rational that makes its coefficients coprime
+    /// integers: the same signs everywhere, much smaller numbers to evaluate.
+    fn positive_scaled(self) -> UniPoly {
+        use num_integer::Integer;
+        use num_traits::{One, Signed};
+        if self.0.is_empty() {
+            return self;
+        }
+        let mut den_lcm = num_bigint::BigInt::one();
+        let mut num_gcd = num_bigint::BigInt::zero();
+        for c in &self.0 {
+            den_lcm = den_lcm.lcm(&c.denom());
+            num_gcd = num_gcd.gcd(&c.numer());
+        }
+        match Rational::from_big(den_lcm, num_gcd.abs()) {
+            Some(scale) => UniPoly(self.0.iter().map(|c| c * &scale).collect()),
+            None => self,
+        }
     }
 
     /// The sign at +∞ (`at_plus`) or −∞ of a nonzero polynomial.
@@ -104,11 +150,15 @@ pub enum Bound {
 
 /// Sturm's sequence p₀ = p, p₁ = p', p_{k+1} = −rem(p_{k−1}, p_k).
 pub fn sturm_sequence(p: &UniPoly) -> Vec<UniPoly> {
-    let mut seq = vec![p.clone(), p.derivative()];
+    // Positive multiples keep every sign, so each entry is scaled to coprime integers.
+    let mut seq = vec![
+        p.clone().positive_scaled(),
+        p.derivative().positive_scaled(),
+    ];
     while !seq.last().expect("two entries").is_zero() {
         let n = seq.len();
         let r = seq[n - 2].rem(&seq[n - 1]);
-        seq.push(UniPoly::new(r.0.iter().map(|c| -c.clone()).collect()));
+        seq.push(UniPoly::new(r.0.iter().map(|c| -c.clone()).collect()).positive_scaled());
     }
     seq.pop();
     seq
@@ -120,16 +170,7 @@ fn sign_changes(seq: &[UniPoly], at: &Bound) -> usize {
         .map(|q| match at {
             Bound::MinusInfinity => q.sign_at_infinity(false),
             Bound::PlusInfinity => q.sign_at_infinity(true),
-            Bound::At(x) => {
-                let v = q.eval(x);
-                if v.is_zero() {
-                    0
-                } else if v.is_negative() {
-                    -1
-                } else {
-                    1
-                }
-            }
+            Bound::At(x) => q.sign_at(x),
         })
         .filter(|&s| s != 0)
         .collect();

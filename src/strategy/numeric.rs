@@ -13,16 +13,19 @@
 //! lies on the declared singular set, which is excluded and counted in the evidence.
 
 use super::float::Rng;
-use super::real::{component_pairs, RealEnv, RealError};
+use super::real::{component_pairs, Labeled, RealEnv, RealError};
+use super::tape::Tape;
 use super::{Counterexample, Method, NumericEvidence, Outcome};
 use crate::derivation::{
     Assumption, Check, Constraint, Expression, Relation, Sampling, Strategy, Verdict,
 };
 use crate::kernel::{assignments, Tensor};
-use crate::lang::{Decls, Diagnostic};
+use crate::lang::{Decls, Diagnostic, Node};
 use nalgebra::{DVector, SymmetricEigen};
 use num_dual::{gradient, hessian, Dual2DVec64, DualDVec64, DualNum};
+use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap};
+use std::rc::Rc;
 
 pub use super::float::TOL;
 
@@ -50,6 +53,9 @@ struct Sampler<'a> {
     decls: &'a Decls,
     check: &'a Check,
     sampling: &'a Sampling,
+    /// Compiled tapes of the expressions evaluated at every sample, keyed by node
+    /// address (`None`: not compilable, the interpreter is used).
+    tapes: RefCell<HashMap<usize, Option<Rc<Tape>>>>,
     rng: Rng,
     /// Where errors about the sampling as a whole point (the statement's first
     /// expression).
@@ -67,6 +73,7 @@ impl<'a> Sampler<'a> {
             decls,
             check,
             sampling,
+            tapes: RefCell::new(HashMap::new()),
             rng: Rng::new(sampling.seed),
             anchor,
         }
@@ -84,6 +91,43 @@ impl<'a> Sampler<'a> {
         symbols: HashMap<String, Tensor<T>>,
     ) -> RealEnv<'a, T> {
         RealEnv::new(self.decls, &self.check.defs, symbols)
+    }
+
+    fn tape(&self, node: &Node) -> Option<Rc<Tape>> {
+        self.tapes
+            .borrow_mut()
+            .entry(node as *const Node as usize)
+            .or_insert_with(|| {
+                Tape::compile(self.decls, &self.check.defs, node)
+                    .ok()
+                    .map(Rc::new)
+            })
+            .clone()
+    }
+
+    /// `node` at the given symbol values and normal: by its compiled tape, or by the
+    /// interpreter when it has none.
+    fn eval<T: DualNum<Primitive = f64>>(
+        &self,
+        symbols: &HashMap<String, Tensor<T>>,
+        node: &Node,
+        n: &[f64],
+    ) -> Result<Labeled<T>, RealError> {
+        match self.tape(node) {
+            Some(tape) => {
+                let inputs: Vec<T> = tape
+                    .inputs
+                    .iter()
+                    .map(|(s, idx)| {
+                        symbols
+                            .get(s)
+                            .map_or_else(|| T::from(f64::NAN), |t| t.get(idx).clone())
+                    })
+                    .collect();
+                tape.eval(&inputs, n)
+            }
+            None => self.env(symbols.clone()).eval(node, n),
+        }
     }
 
     fn draw(&mut self) -> Result<State, Diagnostic> {
@@ -120,8 +164,9 @@ impl<'a> Sampler<'a> {
     }
 
     fn scalar(&self, state: &State, e: &Expression) -> Result<f64, Diagnostic> {
-        let env = self.env(state.symbols.clone());
-        let v = env.eval(&e.node, &state.n).map_err(|r| located(e, r))?;
+        let v = self
+            .eval(&state.symbols, &e.node, &state.n)
+            .map_err(|r| located(e, r))?;
         Ok(v.1.into_scalar().unwrap_or(f64::NAN))
     }
 
@@ -212,7 +257,6 @@ fn check_state(
     relation: Relation,
     largest: &mut f64,
 ) -> Result<Option<Counterexample>, Diagnostic> {
-    let env = sampler.env(state.symbols.clone());
     for (ci, chain) in sampler.check.chains.iter().enumerate() {
         let values = chain
             .iter()
@@ -221,7 +265,8 @@ fn check_state(
                     .node
                     .as_ref()
                     .map_err(|e| s.origin.diagnostic(e.span, e.message.clone()))?;
-                env.eval(node, &state.n)
+                sampler
+                    .eval(&state.symbols, node, &state.n)
                     .map_err(|r| s.origin.diagnostic(r.span, r.message))
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -444,6 +489,23 @@ fn eval_at<T: DualNum<Primitive = f64>>(
     function: &Expression,
     x: &DVector<T>,
 ) -> T {
+    if let Some(tape) = sampler.tape(&function.node) {
+        // The tape's inputs straight from the state, the variables overridden.
+        let mut inputs: Vec<T> = tape
+            .inputs
+            .iter()
+            .map(|(s, idx)| T::from(state.symbols.get(s).map_or(f64::NAN, |t| *t.get(idx))))
+            .collect();
+        for (k, var) in vars.iter().enumerate() {
+            if let Some(pos) = tape.inputs.iter().position(|input| input == var) {
+                inputs[pos] = x[k].clone();
+            }
+        }
+        return match tape.eval(&inputs, &state.n) {
+            Ok((_, t)) => t.into_scalar().unwrap_or_else(|| T::from(f64::NAN)),
+            Err(_) => T::from(f64::NAN),
+        };
+    }
     let mut symbols: HashMap<String, Tensor<T>> = state
         .symbols
         .iter()
@@ -454,8 +516,7 @@ fn eval_at<T: DualNum<Primitive = f64>>(
             *t.get_mut(idx) = x[k].clone();
         }
     }
-    let env = sampler.env(symbols);
-    match env.eval(&function.node, &state.n) {
+    match sampler.eval(&symbols, &function.node, &state.n) {
         Ok((_, t)) => t.into_scalar().unwrap_or_else(|| T::from(f64::NAN)),
         Err(_) => T::from(f64::NAN),
     }
@@ -491,8 +552,8 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
         let closed: Result<HashMap<&str, Tensor<f64>>, _> = closed_forms
             .iter()
             .map(|(s, e)| {
-                let env = sampler.env(state.symbols.clone());
-                env.eval(&e.node, &state.n)
+                sampler
+                    .eval(&state.symbols, &e.node, &state.n)
                     .map(|(ls, t)| {
                         // Closed forms are written with the indices i, j, … in order.
                         let perm: Vec<usize> = "ijklmn"

@@ -391,7 +391,7 @@ pub fn component_pairs(
 
 /// Golden-section search for the maximum of `f` on [c − h, c + h]: the maximiser and
 /// the value (never below f(c)).
-fn golden_max(
+pub(crate) fn golden_max(
     f: &dyn Fn(f64) -> Result<f64, RealError>,
     c: f64,
     h: f64,

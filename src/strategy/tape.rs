@@ -1,0 +1,617 @@
+//! Expressions compiled once per claim to a flat tape of scalar operations, evaluated
+//! at every sample: the sampled strategies' hot path.
+//!
+//! [`RealEnv`](super::real::RealEnv) interprets the expression tree at every sample and
+//! every quadrature node, allocating tensors as it goes; for a gradient in eighteen
+//! variables through a sphere quadrature that was seconds per claim. Here the same
+//! semantics — contraction over summed letters, memoised definitions, `avg` as a sum
+//! over the nodes of a rule exact for the argument's degree in n, `maxn` as a grid with
+//! golden-section refinement — are unrolled into straight-line code over component
+//! values: constants are folded (δ, ε and structural zeros vanish), repeated
+//! subexpressions are shared, and evaluation is one pass over a `Vec` generic over the
+//! scalar (`f64` or num-dual numbers).
+//!
+//! It is a second implementation of the real route, so `tests/tape.rs` holds it to the
+//! interpreter on every sampled claim of the paper; errors keep the interpreter's
+//! messages and spans (division by zero, square root of a negative number).
+
+use super::real::{RealError, MAXN_GRID};
+use crate::derivation::Definition;
+use crate::kernel::{assignments, Tensor};
+use crate::lang::parser::Func;
+use crate::lang::{Decls, Node, NodeKind, Slot, Span, Target};
+use num_dual::DualNum;
+use std::collections::HashMap;
+
+/// One scalar operation; operands are indices of earlier operations.
+#[derive(Clone, Debug, PartialEq)]
+enum Op {
+    /// Component `k` of the inputs (every symbol component, in [`Tape::inputs`] order).
+    Input(usize),
+    /// Component `k` of the sample's normal.
+    Normal(usize),
+    /// The normal at angle θ inside a `maxn` (component `k` of (cos θ, sin θ, 0)).
+    Angle(usize),
+    Const(f64),
+    Add(usize, usize),
+    Mul(usize, usize),
+    Neg(usize),
+    Div(usize, usize, Span),
+    Powi(usize, i32),
+    Sqrt(usize, Span),
+    Abs(usize),
+    Cos(usize),
+    Sin(usize),
+    Tan(usize),
+    /// max over θ of the sub-tape's output (index into [`Tape::maxn`]).
+    MaxN(usize, Span),
+}
+
+/// A hashable key for sharing equal operations.
+#[derive(Clone, PartialEq, Eq, Hash)]
+enum Key {
+    Input(usize),
+    Normal(usize),
+    Angle(usize),
+    Const(u64),
+    Bin(u8, usize, usize),
+    Un(u8, usize, i32),
+}
+
+/// A compiled expression: its free-index labels, the op index of each component.
+#[derive(Clone, Debug)]
+pub struct Tape {
+    ops: Vec<Op>,
+    /// Symbol components in input order: (symbol, component index).
+    pub inputs: Vec<(String, Vec<usize>)>,
+    labels: Vec<char>,
+    outputs: Tensor<usize>,
+    /// Sub-tapes of `maxn` arguments: their `Angle` ops stand for the normal.
+    maxn: Vec<Tape>,
+}
+
+/// Why an expression was not compiled (the caller falls back to the interpreter).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unsupported(pub String);
+
+struct Compiler<'a> {
+    decls: &'a Decls,
+    defs: &'a [Definition],
+    ops: Vec<Op>,
+    shared: HashMap<Key, usize>,
+    symbols: HashMap<String, Tensor<usize>>,
+    inputs: Vec<(String, Vec<usize>)>,
+    memo: HashMap<(String, Vec<usize>), Tensor<usize>>,
+    degrees: HashMap<String, Option<usize>>,
+    maxn: Vec<Tape>,
+    /// Ops created so far; compilation stops beyond this (a hostile input).
+    budget: usize,
+}
+
+/// Largest number of operations a tape may hold.
+pub const MAX_OPS: usize = 2_000_000;
+
+impl Tape {
+    /// Compiles `node` over the given symbols (every component of each becomes an
+    /// input, in `decls.symbols` order) and definitions.
+    pub fn compile(decls: &Decls, defs: &[Definition], node: &Node) -> Result<Tape, Unsupported> {
+        let mut c = Compiler {
+            decls,
+            defs,
+            ops: Vec::new(),
+            shared: HashMap::new(),
+            symbols: HashMap::new(),
+            inputs: Vec::new(),
+            memo: HashMap::new(),
+            degrees: HashMap::new(),
+            maxn: Vec::new(),
+            budget: MAX_OPS,
+        };
+        let mut names: Vec<(&String, &usize)> = decls.symbols.iter().collect();
+        names.sort();
+        for (name, &rank) in names {
+            let t = Tensor::from_fn(decls.dim, rank, |idx| {
+                let k = c.inputs.len();
+                c.inputs.push((name.clone(), idx.to_vec()));
+                c.push(Op::Input(k))
+            });
+            c.symbols.insert(name.clone(), t);
+        }
+        let n: Vec<usize> = (0..decls.dim).map(|k| c.push(Op::Normal(k))).collect();
+        let outputs = c.eval(node, &n)?;
+        Ok(Tape {
+            ops: c.ops,
+            inputs: c.inputs,
+            labels: node.free_letters(),
+            outputs,
+            maxn: c.maxn,
+        })
+    }
+
+    pub fn len(&self) -> usize {
+        self.ops.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.ops.is_empty()
+    }
+
+    /// The labelled result at `inputs` (one value per entry of [`Tape::inputs`]) and
+    /// the sample's normal `n`.
+    pub fn eval<T: DualNum<Primitive = f64>>(
+        &self,
+        inputs: &[T],
+        n: &[f64],
+    ) -> Result<(Vec<char>, Tensor<T>), RealError> {
+        let vals = self.run(inputs, n, &[])?;
+        Ok((self.labels.clone(), self.outputs.map(|&k| vals[k].clone())))
+    }
+
+    fn run<T: DualNum<Primitive = f64>>(
+        &self,
+        inputs: &[T],
+        n: &[f64],
+        angle: &[f64],
+    ) -> Result<Vec<T>, RealError> {
+        let mut v: Vec<T> = Vec::with_capacity(self.ops.len());
+        for op in &self.ops {
+            let x = match *op {
+                Op::Input(k) => inputs[k].clone(),
+                Op::Normal(k) => T::from(n[k]),
+                Op::Angle(k) => T::from(angle[k]),
+                Op::Const(c) => T::from(c),
+                Op::Add(a, b) => v[a].clone() + v[b].clone(),
+                Op::Mul(a, b) => v[a].clone() * v[b].clone(),
+                Op::Neg(a) => -v[a].clone(),
+                Op::Div(a, b, span) => {
+                    if v[b].re() == 0.0 {
+                        return Err(RealError {
+                            span,
+                            message: "division by zero".into(),
+                        });
+                    }
+                    v[a].clone() / v[b].clone()
+                }
+                Op::Powi(a, k) => v[a].powi(k),
+                Op::Sqrt(a, span) => {
+                    if v[a].re() < 0.0 {
+                        return Err(RealError {
+                            span,
+                            message: format!("sqrt of a negative number ({})", v[a].re()),
+                        });
+                    }
+                    v[a].sqrt()
+                }
+                Op::Abs(a) => v[a].abs(),
+                Op::Cos(a) => v[a].cos(),
+                Op::Sin(a) => v[a].sin(),
+                Op::Tan(a) => v[a].tan(),
+                Op::MaxN(k, span) => self.maxn[k].max_over_angle(inputs, n, span)?,
+            };
+            v.push(x);
+        }
+        Ok(v)
+    }
+
+    /// The scalar output at angle θ.
+    fn at_angle<T: DualNum<Primitive = f64>>(
+        &self,
+        inputs: &[T],
+        n: &[f64],
+        theta: f64,
+    ) -> Result<T, RealError> {
+        let mut angle = vec![theta.cos(), theta.sin()];
+        angle.resize(n.len(), 0.0);
+        let v = self.run(inputs, n, &angle)?;
+        Ok(v[*self.outputs.get(&[])].clone())
+    }
+
+    /// max over θ, as in `RealEnv::max_over_angle`: the grid, golden-section refinement
+    /// of every local maximum in `f64`, then the value (with derivatives) at the
+    /// maximiser.
+    fn max_over_angle<T: DualNum<Primitive = f64>>(
+        &self,
+        inputs: &[T],
+        n: &[f64],
+        span: Span,
+    ) -> Result<T, RealError> {
+        let re: Vec<f64> = inputs.iter().map(|x| x.re()).collect();
+        let f = |theta: f64| -> Result<f64, RealError> { self.at_angle(&re, n, theta) };
+        let h = 2.0 * std::f64::consts::PI / MAXN_GRID as f64;
+        let mut grid = Vec::with_capacity(MAXN_GRID);
+        for k in 0..MAXN_GRID {
+            let v = f(k as f64 * h)?;
+            if !v.is_finite() {
+                return Err(RealError {
+                    span,
+                    message: "maxn(…): the argument is not finite".into(),
+                });
+            }
+            grid.push(v);
+        }
+        let mut best = (0.0, f64::NEG_INFINITY);
+        for k in 0..MAXN_GRID {
+            let (prev, next) = (
+                grid[(k + MAXN_GRID - 1) % MAXN_GRID],
+                grid[(k + 1) % MAXN_GRID],
+            );
+            if grid[k] < prev || grid[k] < next {
+                continue;
+            }
+            let (theta, v) = super::real::golden_max(&f, k as f64 * h, h)?;
+            if v > best.1 {
+                best = (theta, v);
+            }
+        }
+        self.at_angle(inputs, n, best.0)
+    }
+}
+
+impl Compiler<'_> {
+    fn push(&mut self, op: Op) -> usize {
+        let key = match &op {
+            Op::Input(k) => Some(Key::Input(*k)),
+            Op::Normal(k) => Some(Key::Normal(*k)),
+            Op::Angle(k) => Some(Key::Angle(*k)),
+            Op::Const(c) => Some(Key::Const(c.to_bits())),
+            Op::Add(a, b) => Some(Key::Bin(0, *a.min(b), *a.max(b))),
+            Op::Mul(a, b) => Some(Key::Bin(1, *a.min(b), *a.max(b))),
+            Op::Div(a, b, _) => Some(Key::Bin(2, *a, *b)),
+            Op::Neg(a) => Some(Key::Un(0, *a, 0)),
+            Op::Powi(a, k) => Some(Key::Un(1, *a, *k)),
+            Op::Sqrt(a, _) => Some(Key::Un(2, *a, 0)),
+            Op::Abs(a) => Some(Key::Un(3, *a, 0)),
+            Op::Cos(a) => Some(Key::Un(4, *a, 0)),
+            Op::Sin(a) => Some(Key::Un(5, *a, 0)),
+            Op::Tan(a) => Some(Key::Un(6, *a, 0)),
+            Op::MaxN(..) => None,
+        };
+        if let Some(k) = &key {
+            if let Some(&id) = self.shared.get(k) {
+                return id;
+            }
+        }
+        self.budget = self.budget.saturating_sub(1);
+        let id = self.ops.len();
+        self.ops.push(op);
+        if let Some(k) = key {
+            self.shared.insert(k, id);
+        }
+        id
+    }
+
+    fn constant(&self, id: usize) -> Option<f64> {
+        match self.ops[id] {
+            Op::Const(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    fn c(&mut self, x: f64) -> usize {
+        self.push(Op::Const(x))
+    }
+
+    fn add(&mut self, a: usize, b: usize) -> usize {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => self.c(x + y),
+            (Some(x), _) if x == 0.0 => b,
+            (_, Some(y)) if y == 0.0 => a,
+            _ => self.push(Op::Add(a, b)),
+        }
+    }
+
+    fn mul(&mut self, a: usize, b: usize) -> usize {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => self.c(x * y),
+            (Some(x), _) | (_, Some(x)) if x == 0.0 => self.c(0.0),
+            (Some(x), _) if x == 1.0 => b,
+            (_, Some(y)) if y == 1.0 => a,
+            _ => self.push(Op::Mul(a, b)),
+        }
+    }
+
+    fn neg(&mut self, a: usize) -> usize {
+        match self.constant(a) {
+            Some(x) => self.c(-x),
+            None => self.push(Op::Neg(a)),
+        }
+    }
+
+    fn def(&self, name: &str) -> Option<&Definition> {
+        self.defs.iter().rev().find(|x| x.sig.name == name)
+    }
+
+    /// As `RealEnv::normal_degree`.
+    fn normal_degree(&mut self, node: &Node) -> Option<usize> {
+        match &node.kind {
+            NodeKind::Const(_) | NodeKind::Avg(_) | NodeKind::MaxN(_) => Some(0),
+            NodeKind::Leaf { target, .. } => match target {
+                Target::Normal => Some(1),
+                Target::Def(name) => {
+                    if let Some(d) = self.degrees.get(name) {
+                        return *d;
+                    }
+                    let body = self.def(name).map(|d| d.body.clone());
+                    let d = body.and_then(|b| self.normal_degree(&b));
+                    self.degrees.insert(name.clone(), d);
+                    d
+                }
+                _ => Some(0),
+            },
+            NodeKind::Neg(a) => self.normal_degree(a),
+            NodeKind::Sum(xs) => xs
+                .iter()
+                .try_fold(0, |m, x| Some(m.max(self.normal_degree(x)?))),
+            NodeKind::Product(xs) => xs
+                .iter()
+                .try_fold(0, |m, x| Some(m + self.normal_degree(x)?)),
+            NodeKind::Div(a, b) => match self.normal_degree(b)? {
+                0 => self.normal_degree(a),
+                _ => None,
+            },
+            NodeKind::Pow(a, k) => Some(self.normal_degree(a)? * *k as usize),
+            NodeKind::Apply(_, a) => match self.normal_degree(a)? {
+                0 => Some(0),
+                _ => None,
+            },
+        }
+    }
+
+    fn scalar(&mut self, node: &Node, n: &[usize]) -> Result<usize, Unsupported> {
+        let t = self.eval(node, n)?;
+        if t.rank() != 0 {
+            return Err(Unsupported("expected a scalar".into()));
+        }
+        Ok(*t.get(&[]))
+    }
+
+    /// The tensor of op ids of `node` (slots in the order of its free letters), with the
+    /// normal `n` given as op ids.
+    fn eval(&mut self, node: &Node, n: &[usize]) -> Result<Tensor<usize>, Unsupported> {
+        if self.budget == 0 {
+            return Err(Unsupported("the tape grew beyond its size limit".into()));
+        }
+        let d = self.decls.dim;
+        let labels = node.free_letters();
+        Ok(match &node.kind {
+            NodeKind::Const(q) => {
+                let x = self.c(q.to_f64());
+                Tensor::scalar(d, x)
+            }
+            NodeKind::Leaf { target, slots } => {
+                let base: Tensor<usize> = match target {
+                    Target::Delta => {
+                        let (zero, one) = (self.c(0.0), self.c(1.0));
+                        Tensor::from_fn(d, 2, |i| if i[0] == i[1] { one } else { zero })
+                    }
+                    Target::Eps => {
+                        let e = Tensor::<f64>::levi_civita(d);
+                        let mut ids = HashMap::new();
+                        for v in [-1.0, 0.0, 1.0] {
+                            ids.insert(v as i64, self.c(v));
+                        }
+                        e.map(|&v| ids[&(v as i64)])
+                    }
+                    Target::Normal => Tensor::from_fn(d, 1, |i| n[i[0]]),
+                    Target::Symbol(s) => self
+                        .symbols
+                        .get(s)
+                        .cloned()
+                        .ok_or_else(|| Unsupported(format!("no value for symbol {s}")))?,
+                    Target::Def(name) => {
+                        let def = self.def(name).cloned().ok_or_else(|| {
+                            Unsupported(format!("definition {name} not in scope"))
+                        })?;
+                        let key_n = if self.normal_degree(&def.body) == Some(0) {
+                            Vec::new()
+                        } else {
+                            n.to_vec()
+                        };
+                        let key = (name.clone(), key_n);
+                        if let Some(t) = self.memo.get(&key) {
+                            t.clone()
+                        } else {
+                            let body_labels = def.body.free_letters();
+                            let t = self.eval(&def.body, n)?;
+                            let perm: Vec<usize> = def
+                                .sig
+                                .formal
+                                .iter()
+                                .map(|c| body_labels.iter().position(|x| x == c).unwrap_or(0))
+                                .collect();
+                            let t = t.permuted(&perm);
+                            self.memo.insert(key, t.clone());
+                            t
+                        }
+                    }
+                };
+                self.contract(&[(&base, slots.clone())], &labels)
+            }
+            NodeKind::Neg(a) => {
+                let t = self.eval(a, n)?;
+                t.try_map(|&x| Ok::<_, Unsupported>(self.neg(x)))?
+            }
+            NodeKind::Sum(terms) => {
+                let mut acc: Option<Tensor<usize>> = None;
+                for term in terms {
+                    let v = self.eval(term, n)?;
+                    acc = Some(match acc {
+                        None => v,
+                        Some(a) => {
+                            let mut out = a.clone();
+                            for idx in assignments(d, labels.len()) {
+                                let s = self.add(*a.get(&idx), *v.get(&idx));
+                                *out.get_mut(&idx) = s;
+                            }
+                            out
+                        }
+                    });
+                }
+                acc.ok_or_else(|| Unsupported("empty sum".into()))?
+            }
+            NodeKind::Product(fs) => {
+                let mut vals = Vec::with_capacity(fs.len());
+                for f in fs {
+                    vals.push((self.eval(f, n)?, f.free_letters()));
+                }
+                let slots: Vec<(&Tensor<usize>, Vec<Slot>)> = vals
+                    .iter()
+                    .map(|(t, ls)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
+                    .collect();
+                self.contract(&slots, &labels)
+            }
+            NodeKind::Div(a, b) => {
+                let t = self.eval(a, n)?;
+                let den = self.scalar(b, n)?;
+                t.try_map(|&x| {
+                    Ok::<_, Unsupported>(match (self.constant(x), self.constant(den)) {
+                        (Some(p), Some(q)) if q != 0.0 => self.c(p / q),
+                        _ => self.push(Op::Div(x, den, b.span)),
+                    })
+                })?
+            }
+            NodeKind::Pow(a, k) => {
+                let x = self.scalar(a, n)?;
+                let p = match self.constant(x) {
+                    Some(c) => self.c(c.powi(*k as i32)),
+                    None => self.push(Op::Powi(x, *k as i32)),
+                };
+                Tensor::scalar(d, p)
+            }
+            NodeKind::Apply(func, a) => {
+                let x = self.scalar(a, n)?;
+                let op = match func {
+                    Func::Sqrt => Op::Sqrt(x, node.span),
+                    Func::Abs => Op::Abs(x),
+                    Func::Cos => Op::Cos(x),
+                    Func::Sin => Op::Sin(x),
+                    Func::Tan => Op::Tan(x),
+                    Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
+                };
+                Tensor::scalar(d, self.push(op))
+            }
+            NodeKind::Avg(a) => {
+                let degree = self.normal_degree(a).unwrap_or(15).clamp(1, 40);
+                let rule = super::float::rule_for(self.decls, degree);
+                let mut acc: Option<Tensor<usize>> = None;
+                for (point, w) in rule {
+                    let pn: Vec<usize> = point.iter().map(|&x| self.c(x)).collect();
+                    let t = self.eval(a, &pn)?;
+                    let wid = self.c(w);
+                    let t = t.try_map(|&x| Ok::<_, Unsupported>(self.mul(x, wid)))?;
+                    acc = Some(match acc {
+                        None => t,
+                        Some(s) => {
+                            let mut out = s.clone();
+                            for idx in assignments(d, labels.len()) {
+                                let v = self.add(*s.get(&idx), *t.get(&idx));
+                                *out.get_mut(&idx) = v;
+                            }
+                            out
+                        }
+                    });
+                }
+                acc.ok_or_else(|| Unsupported("empty quadrature rule".into()))?
+            }
+            NodeKind::MaxN(a) => {
+                if d == 3 && !self.decls.normal_in_plane {
+                    return Err(Unsupported("maxn needs an in-plane normal".into()));
+                }
+                // The argument becomes a sub-tape over the same inputs whose normal is
+                // the angle's; it is evaluated many times per sample.
+                let mut sub = Compiler {
+                    decls: self.decls,
+                    defs: self.defs,
+                    ops: Vec::new(),
+                    shared: HashMap::new(),
+                    symbols: HashMap::new(),
+                    inputs: Vec::new(),
+                    memo: HashMap::new(),
+                    degrees: HashMap::new(),
+                    maxn: Vec::new(),
+                    budget: self.budget,
+                };
+                for (k, (name, idx)) in self.inputs.iter().enumerate() {
+                    let id = sub.push(Op::Input(k));
+                    sub.inputs.push((name.clone(), idx.clone()));
+                    let rank = idx.len();
+                    sub.symbols
+                        .entry(name.clone())
+                        .or_insert_with(|| Tensor::from_fn(d, rank, |_| 0));
+                    *sub.symbols.get_mut(name).expect("inserted").get_mut(idx) = id;
+                }
+                let angle: Vec<usize> = (0..d).map(|k| sub.push(Op::Angle(k))).collect();
+                let outputs = sub.eval(a, &angle)?;
+                if outputs.rank() != 0 {
+                    return Err(Unsupported("maxn of a tensor".into()));
+                }
+                self.budget = sub.budget;
+                self.maxn.push(Tape {
+                    ops: sub.ops,
+                    inputs: sub.inputs,
+                    labels: Vec::new(),
+                    outputs,
+                    maxn: sub.maxn,
+                });
+                let k = self.maxn.len() - 1;
+                Tensor::scalar(d, self.push(Op::MaxN(k, node.span)))
+            }
+        })
+    }
+
+    /// Σ over summed letters of Π factors for every value of the `out` letters, on op
+    /// ids (as `real::contract` does on values).
+    fn contract(&mut self, factors: &[(&Tensor<usize>, Vec<Slot>)], out: &[char]) -> Tensor<usize> {
+        let dim = self.decls.dim;
+        let mut all: Vec<char> = out.to_vec();
+        for (_, slots) in factors {
+            for s in slots {
+                if let Slot::Letter(c) = s {
+                    if !all.contains(c) {
+                        all.push(*c);
+                    }
+                }
+            }
+        }
+        let summed = all.len() - out.len();
+        let plan: Vec<Vec<Result<usize, usize>>> = factors
+            .iter()
+            .map(|(_, slots)| {
+                slots
+                    .iter()
+                    .map(|sl| match sl {
+                        Slot::Fixed(v) => Err(*v),
+                        Slot::Letter(c) => Ok(all.iter().position(|x| x == c).expect("collected")),
+                    })
+                    .collect()
+            })
+            .collect();
+        let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
+        let mut values = vec![0usize; all.len()];
+        let outs: Vec<Vec<usize>> = assignments(dim, out.len()).collect();
+        let mut result = Vec::with_capacity(outs.len());
+        for o in &outs {
+            values[..out.len()].copy_from_slice(o);
+            let mut total = self.c(0.0);
+            for s in &inner {
+                values[out.len()..].copy_from_slice(s);
+                let mut prod = self.c(1.0);
+                for ((t, _), p) in factors.iter().zip(&plan) {
+                    let idx: Vec<usize> = p
+                        .iter()
+                        .map(|r| match r {
+                            Ok(k) => values[*k],
+                            Err(v) => *v,
+                        })
+                        .collect();
+                    let f = *t.get(&idx);
+                    prod = self.mul(prod, f);
+                }
+                total = self.add(total, prod);
+            }
+            result.push(total);
+        }
+        let mut it = result.into_iter();
+        Tensor::from_fn(dim, out.len(), |_| it.next().expect("one per assignment"))
+    }
+}
