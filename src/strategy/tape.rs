@@ -294,8 +294,8 @@ impl Compiler<'_> {
     fn add(&mut self, a: usize, b: usize) -> usize {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => self.c(x + y),
-            (Some(x), _) if x == 0.0 => b,
-            (_, Some(y)) if y == 0.0 => a,
+            (Some(0.0), _) => b,
+            (_, Some(0.0)) => a,
             _ => self.push(Op::Add(a, b)),
         }
     }
@@ -303,9 +303,11 @@ impl Compiler<'_> {
     fn mul(&mut self, a: usize, b: usize) -> usize {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => self.c(x * y),
-            (Some(x), _) | (_, Some(x)) if x == 0.0 => self.c(0.0),
-            (Some(x), _) if x == 1.0 => b,
-            (_, Some(y)) if y == 1.0 => a,
+            // A structural zero (from δ, ε or a literal) annihilates the other factor;
+            // the interpreter would give NaN only if that factor were infinite or NaN.
+            (Some(0.0), _) | (_, Some(0.0)) => self.c(0.0),
+            (Some(1.0), _) => b,
+            (_, Some(1.0)) => a,
             _ => self.push(Op::Mul(a, b)),
         }
     }
