@@ -3,8 +3,10 @@
 //! What is measured (release build): the whole-paper check (and its exact claims
 //! alone), exact canonical expansion of isotropic identities of rank 2, 4 and 6 in 2D
 //! and 3D, the scaling of an exact proof with polynomial degree, the exact moments up to
-//! order 12, and the num-dual gradient claim of F2. Targets live in issue 8; this
-//! prints what the machine does, it asserts nothing.
+//! order 12, the num-dual gradient claim of F2, the symbolic A² derivation, and the
+//! whole paper in a fresh process (the user's view, when the release binary exists).
+//! Targets live in issue 8; this prints what the machine does, it asserts nothing.
+//! `-- --claim ID` and `-- --derive-a2` print one median for benches/sympy_compare.py.
 
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_str, DerivationFile, Strategy};
