@@ -7,6 +7,7 @@ pub mod exact;
 pub mod float;
 pub mod numeric;
 pub mod real;
+pub mod sampler;
 pub mod tape;
 pub mod witness;
 

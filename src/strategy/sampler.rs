@@ -1,0 +1,236 @@
+//! The random states of the sampled strategies: drawing them (ranges, assumptions,
+//! hypotheses, singular sets), evaluating expressions at them (compiled tapes, the
+//! interpreter as fallback), and describing them in counterexamples.
+
+use super::float::Rng;
+use super::numeric::TOL;
+use super::real::{Labeled, RealEnv, RealError};
+use super::tape::Tape;
+use crate::derivation::{Check, Constraint, Expression, Relation, Sampling};
+use crate::kernel::{assignments, Tensor};
+use crate::lang::{Decls, Diagnostic, Node};
+use num_dual::DualNum;
+use std::cell::RefCell;
+use std::collections::{BTreeMap, HashMap};
+use std::rc::Rc;
+
+/// Samples whose singular expression is below this in magnitude are excluded.
+pub const SINGULAR_EPS: f64 = 1e-8;
+/// Draws allowed per accepted sample before the hypotheses are judged too narrow.
+const MAX_DRAWS_PER_SAMPLE: usize = 100;
+
+/// One random state: every symbol's components (after the assumptions) and a normal.
+#[derive(Clone)]
+pub(super) struct State {
+    pub(super) symbols: HashMap<String, Tensor<f64>>,
+    pub(super) n: Vec<f64>,
+}
+
+pub(super) fn located(e: &Expression, r: RealError) -> Diagnostic {
+    e.origin.diagnostic(r.span, r.message)
+}
+
+pub(super) struct Sampler<'a> {
+    pub(super) decls: &'a Decls,
+    pub(super) check: &'a Check,
+    pub(super) sampling: &'a Sampling,
+    /// Compiled tapes of the expressions evaluated at every sample, keyed by node
+    /// address (`None`: not compilable, the interpreter is used).
+    pub(super) tapes: RefCell<HashMap<usize, Option<Rc<Tape>>>>,
+    pub(super) rng: Rng,
+    /// Where errors about the sampling as a whole point (the statement's first
+    /// expression).
+    pub(super) anchor: &'a Expression,
+}
+
+impl<'a> Sampler<'a> {
+    pub(super) fn new(
+        decls: &'a Decls,
+        check: &'a Check,
+        sampling: &'a Sampling,
+        anchor: &'a Expression,
+    ) -> Self {
+        Sampler {
+            decls,
+            check,
+            sampling,
+            tapes: RefCell::new(HashMap::new()),
+            rng: Rng::new(sampling.seed),
+            anchor,
+        }
+    }
+
+    pub(super) fn error(&self, message: String, help: &str) -> Diagnostic {
+        self.anchor
+            .origin
+            .diagnostic(self.anchor.node.span, message)
+            .with_help(help)
+    }
+
+    pub(super) fn env<T: DualNum<Primitive = f64>>(
+        &self,
+        symbols: HashMap<String, Tensor<T>>,
+    ) -> RealEnv<'a, T> {
+        RealEnv::new(self.decls, &self.check.defs, symbols)
+    }
+
+    pub(super) fn tape(&self, node: &Node) -> Option<Rc<Tape>> {
+        self.tapes
+            .borrow_mut()
+            .entry(node as *const Node as usize)
+            .or_insert_with(|| {
+                Tape::compile(self.decls, &self.check.defs, node)
+                    .ok()
+                    .map(Rc::new)
+            })
+            .clone()
+    }
+
+    /// `node` at the given symbol values and normal: by its compiled tape, or by the
+    /// interpreter when it has none.
+    pub(super) fn eval<T: DualNum<Primitive = f64>>(
+        &self,
+        symbols: &HashMap<String, Tensor<T>>,
+        node: &Node,
+        n: &[f64],
+    ) -> Result<Labeled<T>, RealError> {
+        match self.tape(node) {
+            Some(tape) => {
+                let inputs: Vec<T> = tape
+                    .inputs
+                    .iter()
+                    .map(|(s, idx)| {
+                        symbols
+                            .get(s)
+                            .map_or_else(|| T::from(f64::NAN), |t| t.get(idx).clone())
+                    })
+                    .collect();
+                tape.eval(&inputs, n)
+            }
+            None => self.env(symbols.clone()).eval(node, n),
+        }
+    }
+
+    pub(super) fn draw(&mut self) -> Result<State, Diagnostic> {
+        let d = self.decls.dim;
+        let mut symbols = HashMap::new();
+        for (name, &rank) in &self.decls.symbols {
+            let (lo, hi) = self
+                .sampling
+                .ranges
+                .get(name)
+                .copied()
+                .unwrap_or((-1.0, 1.0));
+            let rng = &mut self.rng;
+            symbols.insert(
+                name.clone(),
+                Tensor::from_fn(d, rank, |_| lo + (hi - lo) * (rng.uniform() + 1.0) / 2.0),
+            );
+        }
+        let n = self.rng.unit_normal(self.decls);
+        let mut env = self.env(symbols);
+        env.assume(&self.check.assumptions, &n).map_err(|e| {
+            self.error(
+                format!(
+                    "an assumption cannot be evaluated at a random state: {}",
+                    e.message
+                ),
+                "check the assumptions of this claim",
+            )
+        })?;
+        Ok(State {
+            symbols: env.symbols,
+            n,
+        })
+    }
+
+    pub(super) fn scalar(&self, state: &State, e: &Expression) -> Result<f64, Diagnostic> {
+        let v = self
+            .eval(&state.symbols, &e.node, &state.n)
+            .map_err(|r| located(e, r))?;
+        Ok(v.1.into_scalar().unwrap_or(f64::NAN))
+    }
+
+    pub(super) fn satisfies(&self, state: &State, cs: &[Constraint]) -> Result<bool, Diagnostic> {
+        for c in cs {
+            let (l, r) = (self.scalar(state, &c.lhs)?, self.scalar(state, &c.rhs)?);
+            if !relation_holds(c.relation, l, r).0 {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
+    pub(super) fn singular(&self, state: &State) -> Result<bool, Diagnostic> {
+        match &self.sampling.singular {
+            None => Ok(false),
+            Some(e) => Ok(self.scalar(state, e)?.abs() < SINGULAR_EPS),
+        }
+    }
+
+    /// The next state satisfying the hypotheses (and `extra`), or an error when they
+    /// reject almost every draw. `excluded` counts singular states skipped.
+    pub(super) fn next(
+        &mut self,
+        extra: &[Constraint],
+        excluded: &mut usize,
+    ) -> Result<State, Diagnostic> {
+        for _ in 0..MAX_DRAWS_PER_SAMPLE {
+            let s = self.draw()?;
+            if !self.satisfies(&s, &self.sampling.given)? || !self.satisfies(&s, extra)? {
+                continue;
+            }
+            if self.singular(&s)? {
+                *excluded += 1;
+                continue;
+            }
+            return Ok(s);
+        }
+        Err(self.error(
+            format!("the hypotheses accept fewer than 1 in {MAX_DRAWS_PER_SAMPLE} random states"),
+            "widen `ranges` or relax `given`/`domain`",
+        ))
+    }
+}
+
+/// Whether `l rel r` holds within tolerance, and the relative residual (for `=`, the
+/// relative difference; for inequalities, the relative violation, ≤ 0 when satisfied).
+pub(super) fn relation_holds(rel: Relation, l: f64, r: f64) -> (bool, f64) {
+    if !l.is_finite() || !r.is_finite() {
+        return (false, f64::INFINITY);
+    }
+    let scale = 1.0 + l.abs() + r.abs();
+    let residual = match rel {
+        Relation::Eq => (l - r).abs() / scale,
+        Relation::Le => (l - r) / scale,
+        Relation::Ge => (r - l) / scale,
+    };
+    (residual <= TOL, residual)
+}
+
+/// The state's nonzero values, for a counterexample.
+pub(super) fn describe(state: &State, decls: &Decls) -> BTreeMap<String, String> {
+    let mut out = BTreeMap::new();
+    for (name, t) in &state.symbols {
+        let rank = t.rank();
+        for idx in assignments(decls.dim, rank) {
+            let v = *t.get(&idx);
+            if v != 0.0 {
+                let key = if rank == 0 {
+                    name.clone()
+                } else {
+                    format!(
+                        "{name}_{}",
+                        idx.iter().map(|i| (i + 1).to_string()).collect::<String>()
+                    )
+                };
+                out.insert(key, format!("{v:.6}"));
+            }
+        }
+    }
+    if decls.normal.is_some() {
+        let n: Vec<String> = state.n.iter().map(|x| format!("{x:.6}")).collect();
+        out.insert("n".into(), format!("({})", n.join(", ")));
+    }
+    out
+}
