@@ -220,13 +220,36 @@ fn decide_with_progress<'f>(
         )));
     }
     let n = claims.len();
-    claims
+    // Claims are independent: two workers (this machine's cores) decide them, and the
+    // results are put back in claim order, so the output and the first error reported
+    // do not depend on scheduling.
+    let workers = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .clamp(1, 2);
+    let mut slots: Vec<Option<Result<Decided<'f>, RunError>>> = (0..n).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        let (tx, rx) = std::sync::mpsc::channel();
+        for w in 0..workers {
+            let tx = tx.clone();
+            let claims = &claims;
+            scope.spawn(move || {
+                for (k, c) in claims.iter().enumerate().filter(|(k, _)| k % workers == w) {
+                    let r = decide_claim(c).map_err(|d| RunError::Input(d.to_string()));
+                    if tx.send((k, r)).is_err() {
+                        return;
+                    }
+                }
+            });
+        }
+        drop(tx);
+        for (done, (k, r)) in rx.into_iter().enumerate() {
+            progress(done + 1, n, &claims[k].id);
+            slots[k] = Some(r);
+        }
+    });
+    slots
         .into_iter()
-        .enumerate()
-        .map(|(k, c)| {
-            progress(k + 1, n, &c.id);
-            decide_claim(c).map_err(|d| RunError::Input(d.to_string()))
-        })
+        .map(|r| r.unwrap_or_else(|| Err(RunError::Input("error: a worker stopped".into()))))
         .collect()
 }
 
