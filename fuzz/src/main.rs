@@ -11,6 +11,7 @@
 
 use cosserat_check::derivation::{load_str, Strategy};
 use cosserat_check::strategy::decide;
+use cosserat_check::strategy::tape::Tape;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -59,6 +60,11 @@ const DICTIONARY: &[&str] = &[
     "chains = [[",
     "strategy = \"numeric\"\n",
     "strategy = \"gradient\"\n",
+    "strategy = \"appendix\"\n",
+    "step = \"balance-w3\"\n",
+    "step = \"eq54\"\n",
+    "dsigma_21",
+    "dmu_23",
     "verbatim = true\n",
     "assume = [\"",
     "define = [\"",
@@ -151,8 +157,9 @@ fn mutate(rng: &mut Rng, seeds: &[Vec<u8>]) -> Vec<u8> {
     data
 }
 
-/// Reads and decides one input; numeric strategies are skipped (they are bounded by
-/// their sample counts and exercised by the test suite).
+/// Reads and decides one input; numeric strategies are not decided (they are bounded
+/// by their sample counts and exercised by the test suite), but every expression they
+/// would evaluate is compiled to a tape and run once.
 fn exercise(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
@@ -163,9 +170,32 @@ fn exercise(data: &[u8]) {
     for claim in &file.claims {
         if matches!(
             claim.check.strategy,
-            Strategy::Exact | Strategy::NotCircle { .. }
+            Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. }
         ) {
             let _ = decide(&claim.decls, &claim.check);
+            continue;
+        }
+        let nodes = claim
+            .check
+            .chains
+            .iter()
+            .flatten()
+            .filter_map(|s| s.node.as_ref().ok())
+            .chain(
+                claim
+                    .check
+                    .strategy
+                    .expressions()
+                    .into_iter()
+                    .map(|e| &e.node),
+            );
+        for node in nodes {
+            if let Ok(tape) = Tape::compile(&claim.decls, &claim.check.defs, node) {
+                let inputs = vec![0.5; tape.inputs.len()];
+                let mut n = vec![0.0; claim.decls.dim];
+                n[0] = 1.0;
+                let _ = tape.eval(&inputs, &n);
+            }
         }
     }
 }
