@@ -439,14 +439,7 @@ impl Compiler<'_> {
                     let v = self.eval(term, n)?;
                     acc = Some(match acc {
                         None => v,
-                        Some(a) => {
-                            let mut out = a.clone();
-                            for idx in assignments(d, labels.len()) {
-                                let s = self.add(*a.get(&idx), *v.get(&idx));
-                                *out.get_mut(&idx) = s;
-                            }
-                            out
-                        }
+                        Some(a) => self.add_tensors(&a, &v),
                     });
                 }
                 acc.ok_or_else(|| Unsupported("empty sum".into()))?
@@ -503,14 +496,7 @@ impl Compiler<'_> {
                     let t = t.try_map(|&x| Ok::<_, Unsupported>(self.mul(x, wid)))?;
                     acc = Some(match acc {
                         None => t,
-                        Some(s) => {
-                            let mut out = s.clone();
-                            for idx in assignments(d, labels.len()) {
-                                let v = self.add(*s.get(&idx), *t.get(&idx));
-                                *out.get_mut(&idx) = v;
-                            }
-                            out
-                        }
+                        Some(s) => self.add_tensors(&s, &t),
                     });
                 }
                 acc.ok_or_else(|| Unsupported("empty quadrature rule".into()))?
@@ -561,8 +547,18 @@ impl Compiler<'_> {
         })
     }
 
+    /// The componentwise sum of two tensors of op ids with the same labels.
+    fn add_tensors(&mut self, a: &Tensor<usize>, b: &Tensor<usize>) -> Tensor<usize> {
+        let mut out = a.clone();
+        for idx in assignments(a.dim(), a.rank()) {
+            *out.get_mut(&idx) = self.add(*a.get(&idx), *b.get(&idx));
+        }
+        out
+    }
+
     /// Σ over summed letters of Π factors for every value of the `out` letters, on op
-    /// ids (as `real::contract` does on values).
+    /// ids (as `real::contract` does on values; kept separate on purpose, so that
+    /// `tests/tape.rs` compares two implementations).
     fn contract(&mut self, factors: &[(&Tensor<usize>, Vec<Slot>)], out: &[char]) -> Tensor<usize> {
         let dim = self.decls.dim;
         let mut all: Vec<char> = out.to_vec();
