@@ -42,8 +42,6 @@ pub struct Params {
     pub h_2: Var,
     /// Grain radius R_g.
     pub r_g: Var,
-    /// Poisson's ratio ν (only through K = 1/(1 − 2ν)).
-    pub nu: Var,
     /// The normal stress σ = σ_11 = σ_22 of the state (compression: σ < 0).
     pub sigma: Var,
     /// Components of the band normal n = (n_1, n_2).
@@ -66,7 +64,6 @@ impl Params {
         let h_c = names.intern("h_C");
         let h_2 = names.intern("h_2");
         let r_g = names.intern("R_g");
-        let nu = names.intern("nu");
         let sigma = names.intern("sigma");
         let n_1 = names.intern("n_1");
         let n_2 = names.intern("n_2");
@@ -78,7 +75,6 @@ impl Params {
             h_c,
             h_2,
             r_g,
-            nu,
             sigma,
             n_1,
             n_2,
@@ -87,12 +83,6 @@ impl Params {
 
     pub fn var(&self, v: Var) -> RatFunc {
         RatFunc::var(v)
-    }
-
-    /// K = 1/(1 − 2ν) as a rational function of ν.
-    pub fn bulk_from_poisson(&self) -> RatFunc {
-        let one = RatFunc::one();
-        (&one / &(&one - &(&RatFunc::int(2) * &self.var(self.nu)))).expect("1 − 2ν is not 0")
     }
 
     pub fn display(&self, f: &RatFunc) -> String {
@@ -186,4 +176,3 @@ impl ExactPoint {
     }
 }
 
-use num_traits::One;
