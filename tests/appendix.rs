@@ -6,7 +6,7 @@ use cosserat_check::kernel::{gcd, Poly, RatFunc, Rational, VarTable};
 use cosserat_check::model::acoustic::{self, Contraction};
 use cosserat_check::model::shear_band::{self, MomentLaw};
 use cosserat_check::model::tangent::{self, ShearSign, YieldGradient};
-use cosserat_check::model::{fig6, Params, Point};
+use cosserat_check::model::{fig6, ExactPoint, Params, Point};
 use cosserat_check::strategy::appendix::{
     gradient_residuals, increasing_for_positive, FD_TOL, ROUTE_TOL,
 };
@@ -69,6 +69,58 @@ fn derived_expressions_are_snapshotted() {
             p.latex(f)
         ));
     }
+    // Relaxing σ_11 = σ_22 (t = tan(α/2), σ_11 − σ_22 = 2ρ cos α, τ = ρ sin α), for the
+    // material ν = 1/4 (K = 2), h^C = 1/2, h_2 = 0, G = R_g = 1.
+    let material = ExactPoint {
+        f_r: Rational::int(0),
+        k: Rational::int(2),
+        g: Rational::int(1),
+        h_c: Rational::ratio(1, 2).unwrap(),
+        h_2: Rational::int(0),
+        r_g: Rational::int(1),
+    };
+    let rotated = shear_band::a_squared_rotated(&p, &material).unwrap();
+    let at_t1 = rotated.substitute(p.t, &RatFunc::int(1)).unwrap();
+    let fixed = d
+        .a2_printed_balance
+        .fix(&|v| (v != p.f_r).then(|| material.value(&p, v)))
+        .unwrap();
+    assert_eq!(at_t1, fixed, "t = 1 is the Appendix's state");
+    // The nalgebra route at rotated states: num-dual gradient at σ_11 − σ_22 = 2ρ cos α,
+    // τ = ρ sin α, ρ = −f_r σ.
+    for (f_r, t) in [(0.3, 0.0), (1.0, 0.5), (2.0, 3.0)] {
+        let (alpha, sigma) = (2.0 * f64::atan(t), -1.5);
+        let rho = -f_r * sigma;
+        let state = [
+            sigma + rho * alpha.cos(),
+            sigma - rho * alpha.cos(),
+            rho * alpha.sin(),
+            rho * alpha.sin(),
+            0.0,
+            0.0,
+        ];
+        let pt = Point {
+            f_r,
+            k: 2.0,
+            g: 1.0,
+            h_c: 0.5,
+            h_2: 0.0,
+            r_g: 1.0,
+        };
+        let grad = tangent::yield_gradient_dual(state, f_r, 1.0);
+        let d_ep = tangent::elastoplastic_f64_with(&pt, &grad);
+        let float = shear_band::a_squared_f64_from(&d_ep, &pt, 1.0, -1.0).unwrap();
+        let exact = rotated.eval_f64(&|v| if v == p.t { t } else { f_r });
+        assert!(
+            (exact - float).abs() <= 1e-9 * exact.abs().max(1.0),
+            "t = {t}: {exact} vs {float}"
+        );
+    }
+    a2.push_str(&format!(
+        "A² following the Appendix as printed, with σ_11 ≠ σ_22 (t = tan(α/2); K = 2, h^C = 1/2, h_2 = 0):\n  {}\n  at t = 1: {}\n",
+        p.display(&rotated),
+        p.display(&at_t1)
+    ));
     snapshot("appendix__a_squared", a2);
     let h2cr =
         acoustic::critical_hardening(&p, &d.tangent.d_ep, Contraction::GradientIndices).unwrap();

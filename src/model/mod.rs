@@ -44,6 +44,8 @@ pub struct Params {
     pub r_g: Var,
     /// The normal stress σ = σ_11 = σ_22 of the state (compression: σ < 0).
     pub sigma: Var,
+    /// t = tan(α/2) of a state with σ_11 ≠ σ_22 ([`tangent::yield_gradient_rotated`]).
+    pub t: Var,
     /// Components of the band normal n = (n_1, n_2).
     pub n_1: Var,
     pub n_2: Var,
@@ -65,6 +67,7 @@ impl Params {
         let h_2 = names.intern("h_2");
         let r_g = names.intern("R_g");
         let sigma = names.intern("sigma");
+        let t = names.intern("t");
         let n_1 = names.intern("n_1");
         let n_2 = names.intern("n_2");
         Params {
@@ -76,6 +79,7 @@ impl Params {
             h_2,
             r_g,
             sigma,
+            t,
             n_1,
             n_2,
         }

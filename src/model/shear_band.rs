@@ -15,7 +15,7 @@
 
 use super::balance::{self, Velocity};
 use super::tangent::{self, Mat4, ShearSign, Tangent};
-use super::{Params, Point};
+use super::{ExactPoint, Params, Point};
 use crate::kernel::{Poly, RatFunc, Rational, VarTable};
 use num_traits::{One, Zero};
 
@@ -171,11 +171,37 @@ pub fn derive(p: &Params, shear: ShearSign) -> Result<Derivation, String> {
     })
 }
 
+/// A² following the Appendix as printed at the rotated state of
+/// [`tangent::yield_gradient_rotated`] (σ_11 ≠ σ_22), for a material fixed to numbers
+/// (K, G, h^C, h_2, R_g of `at`): a function of f_r and t = tan(α/2). (Symbolic in every
+/// parameter and t at once, the gcds take minutes.)
+pub fn a_squared_rotated(p: &Params, at: &ExactPoint) -> Result<RatFunc, String> {
+    let grad = tangent::yield_gradient_rotated(p)?;
+    let material = |v| (v != p.f_r && v != p.t).then(|| at.value(p, v));
+    let fix = |x: &RatFunc| x.fix(&material).ok_or("a pole at the material".to_string());
+    let d: Vec<Vec<RatFunc>> = tangent::elastic_stiffness(p)
+        .iter()
+        .map(|row| row.iter().map(fix).collect())
+        .collect::<Result<_, _>>()?;
+    let d: tangent::Mat4 = std::array::from_fn(|a| std::array::from_fn(|b| d[a][b].clone()));
+    let m = tangent::couple_stiffness(p);
+    let m: tangent::Mat2 = [
+        [fix(&m[0][0])?, fix(&m[0][1])?],
+        [fix(&m[1][0])?, fix(&m[1][1])?],
+    ];
+    let t = tangent::elastoplastic_tangent_with(&grad, &d, &m, &RatFunc::constant(at.h_2.clone()));
+    fix(&a_squared(p, &t, &printed_moment_law())?)
+}
+
 /// A² in `f64` by an independent route: the D^(ep) of [`tangent::elastoplastic_f64`]
 /// (num-dual gradient, nalgebra), the same two balance equations solved by nalgebra's
 /// LU decomposition, and the moment balance with coefficients (a, b).
 pub fn a_squared_f64(pt: &Point, shear: ShearSign, a: f64, b: f64) -> Option<f64> {
-    let d = tangent::elastoplastic_f64(pt, shear);
+    a_squared_f64_from(&tangent::elastoplastic_f64(pt, shear), pt, a, b)
+}
+
+/// [`a_squared_f64`] for a given f64 D^(ep) (e.g. at another state).
+pub fn a_squared_f64_from(d: &nalgebra::Matrix4<f64>, pt: &Point, a: f64, b: f64) -> Option<f64> {
     // Γ = G_u · (v_1', v_2', w_3): written out from (2) by hand, not from `kinematics`.
     #[rustfmt::skip]
     let gu = nalgebra::Matrix4x3::new(

@@ -100,54 +100,92 @@ pub fn rolling_radicand(p: &Params, comps: &[Poly; 6]) -> (Poly, Poly) {
 /// Fails with a message if the state does not make X a perfect square τ², i.e. if the
 /// assumptions are inconsistent.
 pub fn yield_gradient_exact(p: &Params, shear: ShearSign) -> Result<YieldGradient, String> {
+    // τ = s ρ with s the sign of τ and ρ = √X = |τ|.
+    let s = c(shear.factor());
+    let sigma = RatFunc::var(p.sigma);
+    gradient_on_surface(p, &|rho| {
+        let tau = &s * rho;
+        [
+            sigma.clone(),
+            sigma.clone(),
+            tau.clone(),
+            tau,
+            RatFunc::zero(),
+            RatFunc::zero(),
+        ]
+    })
+}
+
+/// Q and F with the assumption σ_11 = σ_22 relaxed: σ_11 − σ_22 = 2ρ cos α and
+/// τ = σ_12 = σ_21 = ρ sin α, written rationally with t = tan(α/2) (`p.t`):
+/// cos α = (1 − t²)/(1 + t²), sin α = 2t/(1 + t²). t = 1 (α = 90°) is the state of
+/// [`yield_gradient_exact`]; every other t rotates the principal axes of σ.
+pub fn yield_gradient_rotated(p: &Params) -> Result<YieldGradient, String> {
+    let sigma = RatFunc::var(p.sigma);
+    let t = p.var(p.t);
+    let one = RatFunc::one();
+    let t2 = t.pow(2);
+    let den = &one + &t2;
+    let cos = (&(&one - &t2) / &den).expect("1 + t² ≠ 0");
+    let sin = (&(&c(2) * &t) / &den).expect("1 + t² ≠ 0");
+    gradient_on_surface(p, &|rho| {
+        let d = rho * &cos;
+        let tau = rho * &sin;
+        [
+            &sigma + &d,
+            &sigma - &d,
+            tau.clone(),
+            tau,
+            RatFunc::zero(),
+            RatFunc::zero(),
+        ]
+    })
+}
+
+/// The gradient of F₂ = √X + f_r p at a state given as a function of ρ = √X > 0 (the
+/// state must make X = ρ² identically, which is checked), on the surface F₂ = 0, i.e.
+/// with ρ = −f_r σ. The result must not depend on σ (checked).
+fn gradient_on_surface(
+    p: &Params,
+    state: &dyn Fn(&RatFunc) -> [RatFunc; 6],
+) -> Result<YieldGradient, String> {
     let mut names = p.names.clone();
     let comp_vars: Vec<_> = ["s11", "s22", "s12", "s21", "m13", "m23"]
         .iter()
         .map(|n| names.intern(&format!("__{n}")))
         .collect();
-    let tau = names.intern("__tau");
+    let rho_var = names.intern("__rho");
     let comps: [Poly; 6] = std::array::from_fn(|k| Poly::var(comp_vars[k]));
     let (x, mean) = rolling_radicand(p, &comps);
-    let sigma = RatFunc::var(p.sigma);
-    let tau_f = RatFunc::var(tau);
-    let state = [
-        sigma.clone(),
-        sigma.clone(),
-        tau_f.clone(),
-        tau_f.clone(),
-        RatFunc::zero(),
-        RatFunc::zero(),
-    ];
+    let rho = RatFunc::var(rho_var);
+    let values = state(&rho);
     let at_state = |poly: &Poly| -> RatFunc {
         comp_vars
             .iter()
-            .zip(&state)
+            .zip(&values)
             .fold(RatFunc::from_poly(poly), |acc, (&v, value)| {
                 acc.substitute(v, value).expect("polynomial substitution")
             })
     };
-    if at_state(&x) != tau_f.pow(2) {
+    if at_state(&x) != rho.pow(2) {
         return Err(format!(
-            "at the state, X = {} is not τ²",
+            "at the state, X = {} is not ρ²",
             at_state(&x).display(&names)
         ));
     }
-    // √X = |τ| = s·τ with s the sign of τ; F₂ = 0 then gives s·τ = −f_r σ.
-    let s = c(shear.factor());
-    let sqrt_x = &s * &tau_f;
-    let tau_on_surface = &(&s * &c(-1)) * &(&p.var(p.f_r) * &sigma);
     let f_r = p.var(p.f_r);
+    let on_surface = &c(-1) * &(&f_r * &RatFunc::var(p.sigma));
     let grads: Vec<RatFunc> = comp_vars
         .iter()
         .map(|&v| {
             let dx = at_state(&x.derivative(v));
             let dp = at_state(&mean.derivative(v));
-            let g = &(&dx / &(&c(2) * &sqrt_x)).expect("τ ≠ 0") + &(&f_r * &dp);
-            g.substitute(tau, &tau_on_surface).expect("σ ≠ 0")
+            let g = &(&dx / &(&c(2) * &rho)).expect("ρ ≠ 0") + &(&f_r * &dp);
+            g.substitute(rho_var, &on_surface).expect("σ ≠ 0")
         })
         .collect();
     for g in &grads {
-        if g.depends_on(p.sigma) || g.depends_on(tau) {
+        if g.depends_on(p.sigma) || g.depends_on(rho_var) {
             return Err(format!(
                 "the gradient {} still depends on σ",
                 g.display(&names)
@@ -206,8 +244,22 @@ pub struct Tangent {
 }
 
 pub fn elastoplastic_tangent(p: &Params, grad: &YieldGradient) -> Tangent {
-    let d = elastic_stiffness(p);
-    let m = couple_stiffness(p);
+    elastoplastic_tangent_with(
+        grad,
+        &elastic_stiffness(p),
+        &couple_stiffness(p),
+        &p.var(p.h_2),
+    )
+}
+
+/// [`elastoplastic_tangent`] for given stiffnesses and hardening modulus (symbolic, or
+/// with the material fixed to numbers, which keeps the rational functions small).
+pub fn elastoplastic_tangent_with(
+    grad: &YieldGradient,
+    d: &Mat4,
+    m: &Mat2,
+    h_2: &RatFunc,
+) -> Tangent {
     let dq: Vec4 = std::array::from_fn(|a| dot4(&d[a], &grad.q));
     let qd: Vec4 = std::array::from_fn(|b| {
         (0..4).fold(RatFunc::zero(), |acc, a| &acc + &(&grad.q[a] * &d[a][b]))
@@ -216,8 +268,7 @@ pub fn elastoplastic_tangent(p: &Params, grad: &YieldGradient) -> Tangent {
         std::array::from_fn(|a| &(&m[a][0] * &grad.f[0]) + &(&m[a][1] * &grad.f[1]));
     let fm: [RatFunc; 2] =
         std::array::from_fn(|b| &(&grad.f[0] * &m[0][b]) + &(&grad.f[1] * &m[1][b]));
-    let h =
-        &(&dot4(&grad.q, &dq) + &(&(&grad.f[0] * &mf[0]) + &(&grad.f[1] * &mf[1]))) + &p.var(p.h_2);
+    let h = &(&dot4(&grad.q, &dq) + &(&(&grad.f[0] * &mf[0]) + &(&grad.f[1] * &mf[1]))) + h_2;
     let over_h = |x: RatFunc| (&x / &h).expect("H is not identically zero");
     Tangent {
         d_ep: std::array::from_fn(|a| std::array::from_fn(|b| &d[a][b] - &over_h(&dq[a] * &qd[b]))),
@@ -276,6 +327,12 @@ mod tests {
         assert!(g.f.iter().all(RatFunc::is_zero));
         let neg = yield_gradient_exact(&p, ShearSign::Negative).unwrap();
         assert_eq!(p.display(&neg.q[2]), "-1/2");
+        // Relaxing σ_11 = σ_22: the rotated state at t = 1 is the same state.
+        let rot = yield_gradient_rotated(&p).unwrap();
+        for (a, b) in rot.q.iter().zip(&g.q) {
+            assert_eq!(&a.substitute(p.t, &RatFunc::int(1)).unwrap(), b);
+        }
+        assert_eq!(p.display(&rot.q[2]), "t / (t^2 + 1)");
     }
 
     #[test]

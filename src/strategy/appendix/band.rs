@@ -94,6 +94,30 @@ pub(super) fn eq54(p: &Params, d: &Derivation) -> Result<Outcome, String> {
         .and_then(|x| x.substitute(p.h_2, &RatFunc::int(0)))
         .ok_or("pole")?;
     let same = d.a2_printed_balance == d.a2_eq54;
+    // The assumption σ_11 = σ_22 relaxed, at the counterexample material.
+    let rotated = shear_band::a_squared_rotated(p, &at)?;
+    let at_zero = |t: i64| {
+        rotated
+            .fix(&|v| {
+                if v == p.f_r {
+                    Some(Rational::int(0))
+                } else if v == p.t {
+                    Some(Rational::int(t))
+                } else {
+                    None
+                }
+            })
+            .and_then(|x| x.as_constant())
+            .ok_or("a pole at f_r = 0")
+    };
+    let relaxed = format!(
+        "relaxing σ_11 = σ_22 (σ_11 − σ_22 = 2ρ cos α, τ = ρ sin α, t = tan(α/2), at K = 2, h^C = 1/2, h_2 = 0): \
+         A² = {}, which at f_r = 0 is {} for t = 1 (the state above) but {} for t = 0, so the limit f_r → 0 of Section 6 \
+         rests on σ_11 = σ_22",
+        p.display(&rotated),
+        at_zero(1)?,
+        at_zero(0)?
+    );
     let parting = if d.a2_printed_balance != d.a2_eq61 {
         "the routes part at (61): eliminating through (58)–(60) as printed and the printed formula (61) already disagree, \
          and (54) equals neither"
@@ -104,7 +128,7 @@ pub(super) fn eq54(p: &Params, d: &Derivation) -> Result<Outcome, String> {
         "derived by following the Appendix as printed ((55) with its indices fixed, (58)–(60) as printed, y in units of R_g): \
          A² = {}, which with h^C = 1/2, h_2 = 0 is {}; it depends on K (ν) and h^C, (54) does not; {parting}; with the \
          balance law derived from (2)–(3) instead of (60), A² = {} < 0, so A is not real and w_3 is exponential (no \
-         periodic band profile); nalgebra route at the point: {float:.12}",
+         periodic band profile); nalgebra route at the point: {float:.12}; {relaxed}",
         p.display(&d.a2_printed_balance),
         p.display(&paper_values),
         p.display(&d.a2_derived_balance)
