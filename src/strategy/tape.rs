@@ -95,18 +95,7 @@ impl Tape {
     /// Compiles `node` over the given symbols (every component of each becomes an
     /// input, in `decls.symbols` order) and definitions.
     pub fn compile(decls: &Decls, defs: &[Definition], node: &Node) -> Result<Tape, Unsupported> {
-        let mut c = Compiler {
-            decls,
-            defs,
-            ops: Vec::new(),
-            shared: HashMap::new(),
-            symbols: HashMap::new(),
-            inputs: Vec::new(),
-            memo: HashMap::new(),
-            degrees: HashMap::new(),
-            maxn: Vec::new(),
-            budget: MAX_OPS,
-        };
+        let mut c = Compiler::new(decls, defs, MAX_OPS);
         let mut names: Vec<(&String, &usize)> = decls.symbols.iter().collect();
         names.sort();
         for (name, &rank) in names {
@@ -247,7 +236,23 @@ impl Tape {
     }
 }
 
-impl Compiler<'_> {
+impl<'a> Compiler<'a> {
+    /// An empty compiler allowed `budget` more operations.
+    fn new(decls: &'a Decls, defs: &'a [Definition], budget: usize) -> Self {
+        Compiler {
+            decls,
+            defs,
+            ops: Vec::new(),
+            shared: HashMap::new(),
+            symbols: HashMap::new(),
+            inputs: Vec::new(),
+            memo: HashMap::new(),
+            degrees: HashMap::new(),
+            maxn: Vec::new(),
+            budget,
+        }
+    }
+
     fn push(&mut self, op: Op) -> usize {
         let key = match &op {
             Op::Input(k) => Some(Key::Input(*k)),
@@ -507,18 +512,7 @@ impl Compiler<'_> {
                 }
                 // The argument becomes a sub-tape over the same inputs whose normal is
                 // the angle's; it is evaluated many times per sample.
-                let mut sub = Compiler {
-                    decls: self.decls,
-                    defs: self.defs,
-                    ops: Vec::new(),
-                    shared: HashMap::new(),
-                    symbols: HashMap::new(),
-                    inputs: Vec::new(),
-                    memo: HashMap::new(),
-                    degrees: HashMap::new(),
-                    maxn: Vec::new(),
-                    budget: self.budget,
-                };
+                let mut sub = Compiler::new(self.decls, self.defs, self.budget);
                 for (k, (name, idx)) in self.inputs.iter().enumerate() {
                     let id = sub.push(Op::Input(k));
                     sub.inputs.push((name.clone(), idx.clone()));
