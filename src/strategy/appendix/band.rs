@@ -94,6 +94,18 @@ pub(super) fn eq54(p: &Params, d: &Derivation) -> Result<Outcome, String> {
         .and_then(|x| x.substitute(p.h_2, &RatFunc::int(0)))
         .ok_or("pole")?;
     let same = d.a2_printed_balance == d.a2_eq54;
+    // With the derived balance law A² is minus the printed-route A²; that one is positive
+    // for positive parameters when every coefficient of its numerator and denominator is.
+    let positive_coefficients = |q: &Poly| !q.is_zero() && q.terms().all(|(_, c)| !c.is_negative());
+    let derived_sign = if d.a2_derived_balance == -&d.a2_printed_balance
+        && positive_coefficients(d.a2_printed_balance.numerator())
+        && positive_coefficients(d.a2_printed_balance.denominator())
+    {
+        "< 0 for all positive parameters (minus a ratio of polynomials with positive \
+         coefficients), so A is not real and w_3 is exponential (no periodic band profile)"
+    } else {
+        "(its sign is not established here)"
+    };
     // The assumption σ_11 = σ_22 relaxed, at the counterexample material.
     let rotated = shear_band::a_squared_rotated(p, &at)?;
     let at_zero = |t: i64| {
@@ -127,8 +139,8 @@ pub(super) fn eq54(p: &Params, d: &Derivation) -> Result<Outcome, String> {
     let detail = format!(
         "derived by following the Appendix as printed ((55) with its indices fixed, (58)–(60) as printed, y in units of R_g): \
          A² = {}, which with h^C = 1/2, h_2 = 0 is {}; it depends on K (ν) and h^C, (54) does not; {parting}; with the \
-         balance law derived from (2)–(3) instead of (60), A² = {} < 0, so A is not real and w_3 is exponential (no \
-         periodic band profile); nalgebra route at the point: {float:.12}; {relaxed}",
+         balance law derived from (2)–(3) instead of (60), A² = {} {derived_sign}; nalgebra route at the point: \
+         {float:.12}; {relaxed}",
         p.display(&d.a2_printed_balance),
         p.display(&paper_values),
         p.display(&d.a2_derived_balance)
