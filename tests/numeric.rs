@@ -188,12 +188,13 @@ fn too_few_samples_are_refused() {
 
 #[test]
 fn at_the_apex_the_gradient_does_not_exist_and_is_reported() {
-    // Every sample at the apex q = r = 0 (σ_22 = σ_11, no shear): num-dual's sqrt has a
-    // NaN derivative there, and NaN never passes.
+    // Every sample at the apex q = r = 0 (a range of one value puts every stress
+    // component at 0; the derivative is still taken in every free direction): num-dual's
+    // sqrt has a NaN derivative there, and NaN never passes.
     let apex = r#"expect = "holds"
 strategy = "gradient"
 samples = 50
-assume = ["sigma_12 = 0", "sigma_21 = 0", "sigma_22 = sigma_11"]
+ranges = { sigma = [0.0, 0.0] }
 function = "F1"
 gradient = { sigma = "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij" }"#;
     let (v, m, ev) = decide(apex);
@@ -206,4 +207,27 @@ gradient = { sigma = "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij" }"#
     let file = load_str("t.toml", &text).unwrap();
     let err = decide_claim(&file.claims[0]).unwrap_err().to_string();
     assert!(err.contains("accept fewer than 1 in"), "{err}");
+}
+
+#[test]
+fn a_derivative_with_respect_to_tied_components_is_refused() {
+    // σ_22 = σ_11 ties two variables: perturbing them independently would differentiate
+    // off the assumed set, so the checker refuses instead of answering.
+    let tied = format!(
+        "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"gradient\"\nassume = [\"sigma_22 = sigma_11\"]\nfunction = \"F1\"\ngradient = {{ sigma = \"(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij\" }}\n"
+    );
+    let file = load_str("t.toml", &tied).unwrap();
+    let err = decide_claim(&file.claims[0]).unwrap_err().to_string();
+    assert!(
+        err.contains("`sigma_22` depends on `sigma_11`") && err.contains("ambiguous"),
+        "{err}"
+    );
+    // With every component fixed there is nothing to differentiate: refused, not a
+    // vacuous `holds`.
+    let fixed = format!(
+        "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"gradient\"\nassume = [\"mu_13 = 0\", \"mu_23 = 1\"]\nfunction = \"F2\"\ngradient = {{ mu = \"0 delta_ij\" }}\n"
+    );
+    let file = load_str("t.toml", &fixed).unwrap();
+    let err = decide_claim(&file.claims[0]).unwrap_err().to_string();
+    assert!(err.contains("nothing to differentiate"), "{err}");
 }

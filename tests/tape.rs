@@ -8,6 +8,7 @@
 use cosserat_check::derivation::{load_dir, Claim, Strategy};
 use cosserat_check::kernel::Tensor;
 use cosserat_check::lang::Node;
+use cosserat_check::strategy::assume::Parametrisation;
 use cosserat_check::strategy::float::Rng;
 use cosserat_check::strategy::real::RealEnv;
 use cosserat_check::strategy::tape::Tape;
@@ -59,7 +60,8 @@ fn the_tape_agrees_with_the_interpreter_on_every_sampled_expression() {
                 }
                 let n = rng.unit_normal(decls);
                 let mut env = RealEnv::new(decls, defs, symbols);
-                env.assume(&claim.check.assumptions, &n).unwrap();
+                let p = Parametrisation::new(decls, &claim.check.assumptions).unwrap();
+                env.assume(&p, &claim.check.assumptions, &n).unwrap();
                 let symbols = env.symbols.clone();
                 let inputs: Vec<f64> = tape
                     .inputs

@@ -2,7 +2,8 @@
 //! becomes a [`Diagnostic`] naming the file, line and column; nothing panics.
 
 use super::model::{
-    Assumption, Check, Claim, Correction, Definition, DerivationFile, Side, Strategy, Verdict,
+    Assumption, AssumptionKind, Check, Claim, Correction, Definition, DerivationFile, Side,
+    Strategy, Verdict,
 };
 use super::raw::{RawClaim, RawFile, S};
 use super::spans::{content_map, sub_origin};
@@ -408,7 +409,7 @@ impl Loader {
         text: &str,
         eq: usize,
         decls: &Decls,
-    ) -> Result<Option<Assumption>, Diagnostic> {
+    ) -> Result<Option<AssumptionKind>, Diagnostic> {
         let sub = sub_origin(origin, 0..eq);
         let Ok(e) = parse_expr(&text[..eq]) else {
             return Ok(None);
@@ -442,22 +443,34 @@ impl Loader {
                 "a single component is set to a scalar expression",
             ));
         }
-        Ok(Some(Assumption::Component {
+        Ok(Some(AssumptionKind::Component {
             symbol: base,
             index,
             body,
-            origin: origin.clone(),
         }))
     }
 
     fn assumption(&self, s: &S, decls: &Decls) -> Result<Assumption, Diagnostic> {
         let origin = self.origin(s);
-        let text = s.get_ref();
+        let kind = self.assumption_kind(&origin, s.get_ref(), decls)?;
+        Ok(Assumption {
+            kind,
+            text: s.get_ref().trim().to_owned(),
+            origin,
+        })
+    }
+
+    fn assumption_kind(
+        &self,
+        origin: &Origin,
+        text: &str,
+        decls: &Decls,
+    ) -> Result<AssumptionKind, Diagnostic> {
         if let Some(eq) = text.find('=') {
-            if let Some(component) = self.component_assumption(&origin, text, eq, decls)? {
+            if let Some(component) = self.component_assumption(origin, text, eq, decls)? {
                 return Ok(component);
             }
-            let (name, formal, span) = self.lhs_name(&origin, text, eq, Some(decls))?;
+            let (name, formal, span) = self.lhs_name(origin, text, eq, Some(decls))?;
             match decls.symbols.get(&name) {
                 Some(&rank) if rank == formal.len() => {}
                 Some(&rank) => {
@@ -474,7 +487,7 @@ impl Loader {
                         ))
                 }
             }
-            let body = self.rhs(&origin, text, eq, decls, &[])?;
+            let body = self.rhs(origin, text, eq, decls, &[])?;
             let mut want = formal.clone();
             want.sort_unstable();
             if body.free_letters() != want {
@@ -487,11 +500,10 @@ impl Loader {
                     ),
                 ));
             }
-            return Ok(Assumption::Equals {
+            return Ok(AssumptionKind::Equals {
                 symbol: name,
                 formal,
                 body,
-                origin,
             });
         }
         let trimmed = text.trim();
@@ -517,9 +529,9 @@ impl Loader {
         }
         let symbol = arg.to_owned();
         match func {
-            "traceless" => Ok(Assumption::Traceless { symbol }),
-            "symmetric" => Ok(Assumption::Symmetric { symbol }),
-            "antisymmetric" => Ok(Assumption::Antisymmetric { symbol }),
+            "traceless" => Ok(AssumptionKind::Traceless { symbol }),
+            "symmetric" => Ok(AssumptionKind::Symmetric { symbol }),
+            "antisymmetric" => Ok(AssumptionKind::Antisymmetric { symbol }),
             _ => Err(origin
                 .diagnostic(
                     Span::new(lead, lead + func.len().max(1)),

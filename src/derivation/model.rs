@@ -53,32 +53,57 @@ pub struct Definition {
     pub text: String,
 }
 
-/// A constraint on a declared symbol, applied before anything is evaluated.
+/// An assumption of a claim or a file, as written, with what it says.
+///
+/// Component-level assumptions are affine equations on components and are solved
+/// together, once, whatever their order (`strategy::assume`); a substitution whose
+/// right side is not affine replaces the whole symbol.
 #[derive(Clone, Debug)]
-pub enum Assumption {
-    /// The rank-2 symbol's trace vanishes: its last diagonal component is replaced by
-    /// minus the others.
+pub struct Assumption {
+    pub kind: AssumptionKind,
+    /// The assumption as written.
+    pub text: String,
+    pub origin: Origin,
+}
+
+/// What an assumption says.
+#[derive(Clone, Debug)]
+pub enum AssumptionKind {
+    /// The rank-2 symbol's trace vanishes.
     Traceless { symbol: String },
     /// `X_ji = X_ij` for a rank-2 symbol.
     Symmetric { symbol: String },
     /// `X_ji = −X_ij` (and `X_ii = 0`) for a rank-2 symbol.
     Antisymmetric { symbol: String },
-    /// One component of a symbol is fixed, e.g. `sigma_13 = 0` for plane problems.
+    /// One component of a symbol equals a scalar expression, e.g. `sigma_13 = 0` for
+    /// plane problems.
     Component {
         symbol: String,
         /// 0-based component indices.
         index: Vec<usize>,
         body: Node,
-        origin: Origin,
     },
-    /// The symbol is replaced by an expression, e.g. `S = 3*V/(2*R_g)` for the paper's
-    /// `2 R_g S = 3 V`.
+    /// `X_ij… = expression` for every value of the indices: an affine relation between
+    /// components (`C_ijkl = C_klij`, `f_g = f_r`) or, when the right side is not
+    /// affine, a substitution of the whole symbol (`S = 3 V / (2 R_g)`).
     Equals {
         symbol: String,
         formal: Vec<char>,
         body: Node,
-        origin: Origin,
     },
+}
+
+impl AssumptionKind {
+    /// The symbol the assumption is about (its left side).
+    pub fn symbol(&self) -> &str {
+        match self {
+            AssumptionKind::Traceless { symbol }
+            | AssumptionKind::Symmetric { symbol }
+            | AssumptionKind::Antisymmetric { symbol }
+            | AssumptionKind::Component { symbol, .. }
+            | AssumptionKind::Equals { symbol, .. } => symbol,
+        }
+    }
 }
 
 /// One side of an equation chain.

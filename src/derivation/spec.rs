@@ -241,7 +241,7 @@ impl Loader {
             let ok = bounds.len() == 2
                 && bounds[0].is_finite()
                 && bounds[1].is_finite()
-                && bounds[0] < bounds[1];
+                && bounds[0] <= bounds[1];
             if !decls.symbols.contains_key(name) || !ok {
                 return Err(self
                     .diag(c.id.span(), format!("bad range for `{name}`: {bounds:?}"))

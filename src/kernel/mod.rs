@@ -6,6 +6,7 @@
 //! small and are tested hardest (unit tests here, cross-checks in `tests/`).
 
 pub mod gcd;
+pub mod linear;
 pub mod moments;
 pub mod poly;
 pub mod ratfunc;

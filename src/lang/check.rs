@@ -103,6 +103,30 @@ impl Node {
     pub fn free_letters(&self) -> Vec<char> {
         self.free.iter().map(|&(c, _)| c).collect()
     }
+
+    /// The declared symbols the node refers to directly (not through definitions).
+    pub fn symbols(&self) -> std::collections::BTreeSet<&str> {
+        let mut out = std::collections::BTreeSet::new();
+        let mut stack = vec![self];
+        while let Some(node) = stack.pop() {
+            match &node.kind {
+                NodeKind::Const(_) => {}
+                NodeKind::Leaf { target, .. } => {
+                    if let Target::Symbol(s) = target {
+                        out.insert(s.as_str());
+                    }
+                }
+                NodeKind::Sum(xs) | NodeKind::Product(xs) => stack.extend(xs),
+                NodeKind::Div(a, b) => stack.extend([&**a, &**b]),
+                NodeKind::Neg(a)
+                | NodeKind::Pow(a, _)
+                | NodeKind::Apply(_, a)
+                | NodeKind::Avg(a)
+                | NodeKind::MaxN(a) => stack.push(a),
+            }
+        }
+        out
+    }
 }
 
 /// Formats a list of index letters for messages: `i, l` or `none`.

@@ -4,7 +4,7 @@
 //! states (numeric), and the full evidence.
 
 use super::evidence;
-use crate::derivation::{Assumption, Check, Claim, Strategy};
+use crate::derivation::{Check, Claim, Strategy};
 use crate::kernel::assignments;
 use crate::lang::Decls;
 use crate::strategy::eval::ExactEnv;
@@ -17,21 +17,6 @@ const TERMS: usize = 24;
 const COMPONENTS: usize = 27;
 /// Sampled states shown for numeric strategies.
 const STATES: usize = 3;
-
-fn assumption_text(a: &Assumption) -> String {
-    match a {
-        Assumption::Traceless { symbol } => format!("traceless({symbol})"),
-        Assumption::Symmetric { symbol } => format!("symmetric({symbol})"),
-        Assumption::Antisymmetric { symbol } => format!("antisymmetric({symbol})"),
-        Assumption::Component { origin, .. } | Assumption::Equals { origin, .. } => {
-            let (a, b) = (
-                origin.map.first().copied().unwrap_or(0),
-                origin.map.last().copied().unwrap_or(0),
-            );
-            origin.file.text.get(a..b).unwrap_or("").trim().to_owned()
-        }
-    }
-}
 
 fn setting(decls: &Decls) -> String {
     let mut s = format!("dimension {}", decls.dim);
@@ -69,7 +54,7 @@ fn check_section(out: &mut String, claim: &Claim, check: &Check, outcome: &Outco
         }
     }
     if !check.assumptions.is_empty() {
-        let texts: Vec<String> = check.assumptions.iter().map(assumption_text).collect();
+        let texts: Vec<String> = check.assumptions.iter().map(|a| a.text.clone()).collect();
         let _ = writeln!(out, "Assumptions: {}", texts.join("; "));
     }
     match &check.strategy {

@@ -5,7 +5,8 @@
 //! component tensors before anything else is evaluated, and `avg(…)` applies the exact
 //! isotropic moments to the normal's monomials.
 
-use crate::derivation::{Assumption, Definition};
+use super::assume::{Component, Parametrisation};
+use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::{assignments, Poly, PolyError, Tensor, Var, VarTable};
 use crate::lang::parser::Func;
 use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin, Slot, Target};
@@ -63,6 +64,17 @@ pub struct ExactEnv<'a> {
     cache: HashMap<String, Tensor<Poly>>,
     /// Term products still allowed (see [`MAX_WORK`]).
     work_left: usize,
+    parametrisation: Option<Parametrisation>,
+}
+
+/// The variable name of a component: `sigma_12`, or the symbol's own name for a scalar.
+pub fn component_name(symbol: &str, idx: &[usize]) -> String {
+    if idx.is_empty() {
+        symbol.to_owned()
+    } else {
+        let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
+        format!("{symbol}_{digits}")
+    }
 }
 
 fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
@@ -77,12 +89,58 @@ fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
 }
 
 impl<'a> ExactEnv<'a> {
-    /// Builds the environment and applies the assumptions in order.
+    /// Builds the environment: the assumptions solved as one system
+    /// ([`Parametrisation`]), every constrained component replaced by its value in the
+    /// free ones, then the substitutions in dependency order.
     pub fn new(
         decls: &'a Decls,
         defs: &'a [Definition],
         assumptions: &[Assumption],
     ) -> Result<Self, Diagnostic> {
+        let parametrisation = Parametrisation::new(decls, assumptions)?;
+        let mut env = ExactEnv {
+            defs,
+            ..ExactEnv::unconstrained(decls)
+        };
+        // Variables are numbered in order of first use, and witnesses and counterexample
+        // points list them in that order: the symbols of the assumptions come first, in
+        // the order they are written.
+        for (k, a) in assumptions.iter().enumerate() {
+            if !parametrisation.substitutions().contains(&k) {
+                env.symbol(a.kind.symbol());
+            }
+        }
+        for ((symbol, idx), terms, constant) in parametrisation.dependents() {
+            let value = terms
+                .iter()
+                .fold(Poly::constant(constant.clone()), |acc, ((s, i), q)| {
+                    &acc + &(&env.component(s, i) * &Poly::constant((*q).clone()))
+                });
+            let mut t = env.symbol(symbol);
+            *t.get_mut(idx) = value;
+            env.symbols.insert(symbol.clone(), t);
+        }
+        for &k in parametrisation.substitutions() {
+            let a = &assumptions[k];
+            let AssumptionKind::Equals {
+                symbol,
+                formal,
+                body,
+            } = &a.kind
+            else {
+                unreachable!("substitutions are equations")
+            };
+            let value = env.eval(body, &a.origin)?;
+            let t = to_formal_order(&value, formal);
+            env.symbols.insert(symbol.clone(), t);
+        }
+        env.parametrisation = Some(parametrisation);
+        Ok(env)
+    }
+
+    /// An environment with no definitions and no assumptions: every component of every
+    /// symbol is its own variable.
+    pub fn unconstrained(decls: &'a Decls) -> Self {
         let mut vars = VarTable::new();
         let free_components = if decls.normal_in_plane { 2 } else { decls.dim };
         let normal = match &decls.normal {
@@ -91,19 +149,16 @@ impl<'a> ExactEnv<'a> {
                 .collect(),
             None => Vec::new(),
         };
-        let mut env = ExactEnv {
+        ExactEnv {
             decls,
-            defs,
+            defs: &[],
             vars,
             normal,
             symbols: HashMap::new(),
             cache: HashMap::new(),
             work_left: MAX_WORK,
-        };
-        for a in assumptions {
-            env.assume(a)?;
+            parametrisation: None,
         }
-        Ok(env)
     }
 
     /// The normal's component variables (empty when the file declares no normal).
@@ -111,56 +166,37 @@ impl<'a> ExactEnv<'a> {
         &self.normal
     }
 
-    fn assume(&mut self, a: &Assumption) -> Result<(), Diagnostic> {
-        let d = self.decls.dim;
-        match a {
-            Assumption::Traceless { symbol } => {
-                let mut t = self.symbol(symbol);
-                let rest = (0..d - 1).fold(Poly::zero(), |acc, k| &acc + t.get(&[k, k]));
-                *t.get_mut(&[d - 1, d - 1]) = -rest;
-                self.symbols.insert(symbol.clone(), t);
-            }
-            Assumption::Symmetric { symbol } | Assumption::Antisymmetric { symbol } => {
-                let anti = matches!(a, Assumption::Antisymmetric { .. });
-                let mut t = self.symbol(symbol);
-                for i in 0..d {
-                    for j in 0..i {
-                        let upper = t.get(&[j, i]).clone();
-                        *t.get_mut(&[i, j]) = if anti { -upper } else { upper };
-                    }
-                    if anti {
-                        *t.get_mut(&[i, i]) = Poly::zero();
-                    }
-                }
-                self.symbols.insert(symbol.clone(), t);
-            }
-            Assumption::Component {
-                symbol,
-                index,
-                body,
-                origin,
-            } => {
-                let value = self
-                    .eval(body, origin)?
-                    .tensor
-                    .into_scalar()
-                    .expect("validated: scalar");
-                let mut t = self.symbol(symbol);
-                *t.get_mut(index) = value;
-                self.symbols.insert(symbol.clone(), t);
-            }
-            Assumption::Equals {
-                symbol,
-                formal,
-                body,
-                origin,
-            } => {
-                let value = self.eval(body, origin)?;
-                let t = to_formal_order(&value, formal);
-                self.symbols.insert(symbol.clone(), t);
+    /// The solved assumptions (`None` for an unconstrained environment).
+    pub fn parametrisation(&self) -> Option<&Parametrisation> {
+        self.parametrisation.as_ref()
+    }
+
+    /// The variable of one component before any assumption, as a polynomial.
+    pub fn component(&mut self, symbol: &str, idx: &[usize]) -> Poly {
+        let name = component_name(symbol, idx);
+        Poly::var(self.vars.intern(&name))
+    }
+
+    /// Every component of every declared symbol, by its variable.
+    pub fn component_vars(&mut self) -> HashMap<Var, Component> {
+        let mut out = HashMap::new();
+        for (name, &rank) in &self.decls.symbols {
+            for idx in assignments(self.decls.dim, rank) {
+                let v = self.vars.intern(&component_name(name, &idx));
+                out.insert(v, (name.clone(), idx));
             }
         }
-        Ok(())
+        out
+    }
+
+    /// Whether `p` is affine in the components with rational coefficients: no products,
+    /// powers or divisions of variables, and no normal.
+    pub fn is_affine(&self, p: &Poly) -> bool {
+        p.terms().all(|(m, _)| match m.factors() {
+            [] => true,
+            [(v, 1)] => !self.normal.contains(v),
+            _ => false,
+        })
     }
 
     /// The component tensor of a declared symbol (fresh variables on first use).
@@ -171,13 +207,7 @@ impl<'a> ExactEnv<'a> {
         let rank = self.decls.symbols.get(name).copied().unwrap_or(0);
         let vars = &mut self.vars;
         let t = Tensor::from_fn(self.decls.dim, rank, |idx| {
-            let var = if idx.is_empty() {
-                name.to_owned()
-            } else {
-                let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
-                format!("{name}_{digits}")
-            };
-            Poly::var(vars.intern(&var))
+            Poly::var(vars.intern(&component_name(name, idx)))
         });
         self.symbols.insert(name.to_owned(), t.clone());
         t

@@ -5,7 +5,7 @@
 //! a rational point that satisfies the assumptions (a point on the unit sphere for
 //! the normal).
 
-use super::eval::{ExactEnv, Labeled};
+use super::eval::{component_name, ExactEnv, Labeled};
 use super::{Counterexample, Method, Outcome};
 use crate::derivation::{Check, Verdict};
 use crate::kernel::{assignments, Poly, Rational, Var, VarTable};
@@ -65,7 +65,8 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                     used_unit |= !raw.is_zero();
                     continue;
                 }
-                let mut cx = counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
+                let (mut cx, point) = counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
+                satisfies_assumptions(&env, &point, &chain[k].origin)?;
                 cx.chain = ci + 1;
                 let normal = env.normal_vars();
                 cx.reduced_on_sphere = diff
@@ -90,6 +91,33 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
         }
     }
     Ok(Outcome::new(Verdict::Holds, Method::Exact, checks).using_unit_normal(used_unit))
+}
+
+/// A counterexample point must satisfy every assumption; a point that does not is a
+/// bug in the checker, reported as such and never as a verdict.
+fn satisfies_assumptions(
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+    origin: &crate::lang::Origin,
+) -> Result<(), Diagnostic> {
+    let Some(p) = env.parametrisation() else {
+        return Ok(());
+    };
+    // Variables the point leaves out are 0, as in the evaluation of the sides.
+    let value = |(s, idx): &(String, Vec<usize>)| {
+        env.vars
+            .lookup(&component_name(s, idx))
+            .and_then(|v| point.get(&v).cloned())
+            .unwrap_or_else(|| Rational::int(0))
+    };
+    if p.holds_exactly(value) {
+        Ok(())
+    } else {
+        Err(origin.diagnostic(
+            Default::default(),
+            "internal error: a counterexample violates the assumptions; no verdict is given",
+        ))
+    }
 }
 
 fn location(d: &Diagnostic) -> String {
@@ -165,7 +193,7 @@ fn counterexample(
     lhs: &Poly,
     rhs: &Poly,
     diff: &Poly,
-) -> Counterexample {
+) -> (Counterexample, BTreeMap<Var, Rational>) {
     let difference = diff.display_truncated(names, SHOWN_TERMS);
     let mut used: Vec<Var> = lhs
         .terms()
@@ -214,8 +242,8 @@ fn counterexample(
                 .collect();
             cx.lhs_value = Some(l.to_string());
             cx.rhs_value = Some(r.to_string());
-            break;
+            return (cx, point);
         }
     }
-    cx
+    (cx, BTreeMap::new())
 }

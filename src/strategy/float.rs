@@ -8,6 +8,7 @@
 //! ≤ 15 in n. A disagreement between this route and the exact one is a bug in one of
 //! them, and the test suite fails on it.
 
+use super::assume::Parametrisation;
 use super::real::{component_pairs, RealEnv};
 use crate::derivation::{Check, Verdict};
 use crate::kernel::Tensor;
@@ -136,6 +137,7 @@ pub fn decide(
         return Ok(None);
     }
     let d = decls.dim;
+    let parametrisation = Parametrisation::new(decls, &check.assumptions).map_err(|e| e.message)?;
     let mut rng = Rng::new(seed);
     for _ in 0..samples {
         let mut symbols: HashMap<String, Tensor<f64>> = HashMap::new();
@@ -144,7 +146,8 @@ pub fn decide(
         }
         let mut env = RealEnv::new(decls, &check.defs, symbols);
         let n = rng.unit_normal(decls);
-        env.assume(&check.assumptions, &n).map_err(|e| e.message)?;
+        env.assume(&parametrisation, &check.assumptions, &n)
+            .map_err(|e| e.message)?;
         for chain in &check.chains {
             let values = chain
                 .iter()

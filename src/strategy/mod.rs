@@ -2,6 +2,7 @@
 //! evidence its verdict requires (component checks, counterexample).
 
 pub mod appendix;
+pub mod assume;
 pub mod eval;
 pub mod exact;
 pub mod float;

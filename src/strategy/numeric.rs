@@ -12,11 +12,12 @@
 //! NaN or infinity never passes: a non-finite value is a violation unless the sample
 //! lies on the declared singular set, which is excluded and counted in the evidence.
 
+use super::eval::component_name;
 use super::real::component_pairs;
 pub use super::sampler::SINGULAR_EPS;
 use super::sampler::{describe, relation_holds, Sampler, State};
 use super::{Counterexample, Method, NumericEvidence, Outcome};
-use crate::derivation::{Assumption, Check, Expression, Relation, Sampling, Strategy, Verdict};
+use crate::derivation::{AssumptionKind, Check, Expression, Relation, Sampling, Strategy, Verdict};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic};
 use nalgebra::{DVector, SymmetricEigen};
@@ -56,6 +57,7 @@ fn check_state(
                 let (ok, residual) = relation_holds(relation, l, r);
                 *largest = largest.max(residual);
                 if !ok {
+                    sampler.verify_state(state)?;
                     return Ok(Some(Counterexample {
                         chain: ci + 1,
                         equality: k + 1,
@@ -136,7 +138,7 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         unreachable!("dispatched on the strategy")
     };
     let anchor = first_side(check)?;
-    let mut sampler = Sampler::new(decls, check, sampling, &anchor);
+    let mut sampler = Sampler::new(decls, check, sampling, &anchor)?;
     let mut excluded = 0;
     let mut largest = f64::NEG_INFINITY;
     let mut found = None;
@@ -189,7 +191,7 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
     }
     let mut inside_largest = f64::NEG_INFINITY;
     let mut inside_excluded = 0;
-    let mut inner = Sampler::new(decls, check, sampling, &anchor);
+    let mut inner = Sampler::new(decls, check, sampling, &anchor)?;
     for _ in 0..sampling.samples {
         let s = inner.next(domain, &mut inside_excluded)?;
         if let Some(cx_in) = check_state(&inner, &s, *relation, &mut inside_largest)? {
@@ -217,48 +219,50 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
 }
 
 /// The variables of a derivative: (symbol, 0-based component) of every component of
-/// `wrt` not fixed by a component assumption.
-fn variables(
-    decls: &Decls,
-    check: &Check,
-    wrt: &[String],
-) -> Result<Vec<(String, Vec<usize>)>, String> {
+/// `wrt` that the assumptions leave free. A component fixed to a constant is skipped;
+/// one that the assumptions tie to others (symmetry, trace, `mu_11 = sigma_11`) or a
+/// substituted symbol makes the derivative ambiguous, and is refused.
+fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Vec<(String, Vec<usize>)>, String> {
+    use super::assume::Constrained;
+    let (decls, check, p) = (sampler.decls, sampler.check, &sampler.parametrisation);
     let mut out = Vec::new();
     for symbol in wrt {
-        for a in &check.assumptions {
-            let constrained = match a {
-                Assumption::Traceless { symbol: s }
-                | Assumption::Symmetric { symbol: s }
-                | Assumption::Antisymmetric { symbol: s }
-                | Assumption::Equals { symbol: s, .. } => s == symbol,
-                Assumption::Component { .. } => false,
+        for &k in p.substitutions() {
+            let a = &check.assumptions[k];
+            let AssumptionKind::Equals { body, .. } = &a.kind else {
+                continue;
             };
-            if constrained {
-                return Err(format!("`{symbol}` is constrained by an assumption other than fixed components; derivatives with respect to it are ambiguous"));
+            if a.kind.symbol() == symbol || body.symbols().contains(symbol.as_str()) {
+                return Err(format!("`{symbol}` is tied to the substitution `{}`; derivatives with respect to it are ambiguous", a.text));
             }
         }
         let rank = decls.symbols.get(symbol).copied().unwrap_or(0);
         for idx in assignments(decls.dim, rank) {
-            let fixed = check.assumptions.iter().any(|a| {
-                matches!(a, Assumption::Component { symbol: s, index, .. } if s == symbol && *index == idx)
-            });
-            if !fixed {
-                out.push((symbol.clone(), idx));
+            let name = component_name(symbol, &idx);
+            match p.constrained(symbol, &idx) {
+                Constrained::Fixed(_) => continue,
+                Constrained::Dependent => {
+                    return Err(format!("`{name}` is tied to other components by the assumptions; derivatives with respect to `{symbol}` are ambiguous"));
+                }
+                Constrained::Free => {}
             }
+            let c = (symbol.clone(), idx);
+            if let Some((s, i)) = p.dependents_on(&c).next() {
+                return Err(format!(
+                    "`{}` depends on `{name}` through the assumptions; derivatives with respect to `{symbol}` are ambiguous",
+                    component_name(s, i)
+                ));
+            }
+            out.push(c);
         }
     }
-    Ok(out)
-}
-
-fn component_name(symbol: &str, idx: &[usize]) -> String {
-    if idx.is_empty() {
-        symbol.to_owned()
-    } else {
-        format!(
-            "{symbol}_{}",
-            idx.iter().map(|i| (i + 1).to_string()).collect::<String>()
-        )
+    if out.is_empty() {
+        return Err(format!(
+            "the assumptions fix every component of {}: there is nothing to differentiate",
+            wrt.join(", ")
+        ));
     }
+    Ok(out)
 }
 
 /// `function` evaluated with the variables set to `x` (any num-dual scalar).
@@ -313,9 +317,9 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
         unreachable!("dispatched on the strategy")
     };
     let wrt: Vec<String> = closed_forms.iter().map(|(s, _)| s.clone()).collect();
-    let vars = variables(decls, check, &wrt)
-        .map_err(|m| function.origin.diagnostic(function.node.span, m))?;
-    let mut sampler = Sampler::new(decls, check, sampling, function);
+    let mut sampler = Sampler::new(decls, check, sampling, function)?;
+    let vars =
+        variables(&sampler, &wrt).map_err(|m| function.origin.diagnostic(function.node.span, m))?;
     let mut excluded = 0;
     let mut largest: f64 = 0.0;
     let mut checks = 0;
@@ -349,6 +353,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
         let closed = match closed {
             Ok(c) => c,
             Err((e, r)) => {
+                sampler.verify_state(&state)?;
                 // A closed form undefined at a sample (e.g. 1/0 at the apex) cannot
                 // agree with anything: a failure, located by the evidence, not a pass.
                 return Ok(Outcome::new(Verdict::Fails, Method::Gradient, checks)
@@ -385,6 +390,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                 && (ad - fd).abs() <= FD_TOL * (1.0 + ad.abs() + fd.abs());
             largest = largest.max(r_cf);
             if !ok_cf || !fd_ok {
+                sampler.verify_state(&state)?;
                 let what = if ok_cf {
                     "num-dual and central differences disagree"
                 } else {
@@ -442,9 +448,9 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
     else {
         unreachable!("dispatched on the strategy")
     };
-    let vars = variables(decls, check, wrt)
-        .map_err(|m| function.origin.diagnostic(function.node.span, m))?;
-    let mut sampler = Sampler::new(decls, check, sampling, function);
+    let mut sampler = Sampler::new(decls, check, sampling, function)?;
+    let vars =
+        variables(&sampler, wrt).map_err(|m| function.origin.diagnostic(function.node.span, m))?;
     let mut excluded = 0;
     let mut smallest = f64::INFINITY;
     for _ in 0..sampling.samples {
@@ -468,6 +474,7 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         let relative = min / (1.0 + max_abs);
         smallest = smallest.min(relative);
         if !finite || relative < -TOL {
+            sampler.verify_state(&state)?;
             let mut point = describe(&state, decls);
             point.insert("smallest eigenvalue".into(), format!("{min:.9}"));
             return Ok(
@@ -533,7 +540,7 @@ pub fn trace(decls: &Decls, check: &Check, k: usize) -> Result<Vec<String>, Diag
     let Some(anchor) = exprs.first() else {
         return Ok(Vec::new());
     };
-    let mut sampler = Sampler::new(decls, check, sampling, anchor);
+    let mut sampler = Sampler::new(decls, check, sampling, anchor)?;
     let mut excluded = 0;
     let mut lines = Vec::new();
     for j in 0..k {

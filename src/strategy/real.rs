@@ -8,7 +8,8 @@
 //! degree in n (see [`super::float::sphere_rule_exact_to`]); `maxn(…)` maximises over the normal's angle in the
 //! plane by a dense grid refined by golden-section search (see [`MAXN_GRID`]).
 
-use crate::derivation::{Assumption, Definition};
+use super::assume::Parametrisation;
+use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::Func;
 use crate::lang::{Decls, Node, NodeKind, Slot, Span, Target};
@@ -302,58 +303,45 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
         self.scalar(a, &at(best.0))
     }
 
-    /// Applies assumptions to the symbol values, in order.
-    pub fn assume(&mut self, assumptions: &[Assumption], n: &[f64]) -> Result<(), RealError> {
-        let d = self.decls.dim;
+    /// Applies the solved assumptions to the symbol values: every constrained
+    /// component set from the free ones, then the substitutions in dependency order.
+    pub fn assume(
+        &mut self,
+        parametrisation: &Parametrisation,
+        assumptions: &[Assumption],
+        n: &[f64],
+    ) -> Result<(), RealError> {
         self.memo.borrow_mut().clear();
-        for a in assumptions {
-            match a {
-                Assumption::Traceless { symbol } => {
-                    if let Some(t) = self.symbols.get_mut(symbol) {
-                        let rest =
-                            (0..d - 1).fold(T::zero(), |acc, k| acc + t.get(&[k, k]).clone());
-                        *t.get_mut(&[d - 1, d - 1]) = -rest;
-                    }
-                }
-                Assumption::Symmetric { symbol } | Assumption::Antisymmetric { symbol } => {
-                    let anti = matches!(a, Assumption::Antisymmetric { .. });
-                    if let Some(t) = self.symbols.get_mut(symbol) {
-                        for i in 0..d {
-                            for j in 0..i {
-                                let u = t.get(&[j, i]).clone();
-                                *t.get_mut(&[i, j]) = if anti { -u } else { u };
-                            }
-                            if anti {
-                                *t.get_mut(&[i, i]) = T::zero();
-                            }
-                        }
-                    }
-                }
-                Assumption::Component {
-                    symbol,
-                    index,
-                    body,
-                    ..
-                } => {
-                    let x = self.scalar(body, n)?;
-                    if let Some(t) = self.symbols.get_mut(symbol) {
-                        *t.get_mut(index) = x;
-                    }
-                }
-                Assumption::Equals {
-                    symbol,
-                    formal,
-                    body,
-                    ..
-                } => {
-                    let (ls, t) = self.eval(body, n)?;
-                    let perm: Vec<usize> = formal
-                        .iter()
-                        .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
-                        .collect();
-                    self.symbols.insert(symbol.clone(), t.permuted(&perm));
-                }
+        for ((symbol, idx), terms, constant) in parametrisation.dependents() {
+            let value = terms
+                .iter()
+                .fold(T::from(constant.to_f64()), |acc, ((s, i), q)| {
+                    let x = self
+                        .symbols
+                        .get(s)
+                        .map_or_else(|| T::from(f64::NAN), |t| t.get(i).clone());
+                    acc + x * q.to_f64()
+                });
+            if let Some(t) = self.symbols.get_mut(symbol) {
+                *t.get_mut(idx) = value;
             }
+        }
+        for &k in parametrisation.substitutions() {
+            let AssumptionKind::Equals {
+                symbol,
+                formal,
+                body,
+            } = &assumptions[k].kind
+            else {
+                unreachable!("substitutions are equations")
+            };
+            let (ls, t) = self.eval(body, n)?;
+            let perm: Vec<usize> = formal
+                .iter()
+                .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
+                .collect();
+            self.symbols.insert(symbol.clone(), t.permuted(&perm));
+            self.memo.borrow_mut().clear();
         }
         Ok(())
     }

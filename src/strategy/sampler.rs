@@ -2,11 +2,12 @@
 //! hypotheses, singular sets), evaluating expressions at them (compiled tapes, the
 //! interpreter as fallback), and describing them in counterexamples.
 
+use super::assume::Parametrisation;
 use super::float::Rng;
 use super::numeric::TOL;
 use super::real::{Labeled, RealEnv, RealError};
 use super::tape::Tape;
-use crate::derivation::{Check, Constraint, Expression, Relation, Sampling};
+use crate::derivation::{AssumptionKind, Check, Constraint, Expression, Relation, Sampling};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic, Node};
 use num_dual::DualNum;
@@ -41,6 +42,8 @@ pub(super) struct Sampler<'a> {
     /// Where errors about the sampling as a whole point (the statement's first
     /// expression).
     pub(super) anchor: &'a Expression,
+    /// The claim's assumptions, solved once.
+    pub(super) parametrisation: Parametrisation,
 }
 
 impl<'a> Sampler<'a> {
@@ -49,15 +52,16 @@ impl<'a> Sampler<'a> {
         check: &'a Check,
         sampling: &'a Sampling,
         anchor: &'a Expression,
-    ) -> Self {
-        Sampler {
+    ) -> Result<Self, Diagnostic> {
+        Ok(Sampler {
             decls,
             check,
             sampling,
             tapes: RefCell::new(HashMap::new()),
             rng: Rng::new(sampling.seed),
             anchor,
-        }
+            parametrisation: Parametrisation::new(decls, &check.assumptions)?,
+        })
     }
 
     pub(super) fn error(&self, message: String, help: &str) -> Diagnostic {
@@ -129,19 +133,62 @@ impl<'a> Sampler<'a> {
         }
         let n = self.rng.unit_normal(self.decls);
         let mut env = self.env(symbols);
-        env.assume(&self.check.assumptions, &n).map_err(|e| {
-            self.error(
-                format!(
-                    "an assumption cannot be evaluated at a random state: {}",
-                    e.message
-                ),
-                "check the assumptions of this claim",
-            )
-        })?;
+        env.assume(&self.parametrisation, &self.check.assumptions, &n)
+            .map_err(|e| {
+                self.error(
+                    format!(
+                        "an assumption cannot be evaluated at a random state: {}",
+                        e.message
+                    ),
+                    "check the assumptions of this claim",
+                )
+            })?;
         Ok(State {
             symbols: env.symbols,
             n,
         })
+    }
+
+    /// Checks that a state satisfies every assumption before it is reported: the
+    /// assumed equations (not the solution that produced the state) and every
+    /// substitution. A violation is a bug in the checker, never a verdict.
+    pub(super) fn verify_state(&self, state: &State) -> Result<(), Diagnostic> {
+        let p = &self.parametrisation;
+        let value = |(s, idx): &(String, Vec<usize>)| {
+            state.symbols.get(s).map_or(f64::NAN, |t| *t.get(idx))
+        };
+        let mut ok = p.residual(value) <= TOL;
+        for &k in p.substitutions() {
+            let AssumptionKind::Equals {
+                symbol,
+                formal,
+                body,
+            } = &self.check.assumptions[k].kind
+            else {
+                continue;
+            };
+            let Ok((ls, t)) = self.eval(&state.symbols, body, &state.n) else {
+                ok = false;
+                continue;
+            };
+            let perm: Vec<usize> = formal
+                .iter()
+                .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
+                .collect();
+            let expected = t.permuted(&perm);
+            let actual = &state.symbols[symbol];
+            ok &= assignments(self.decls.dim, formal.len())
+                .all(|idx| relation_holds(Relation::Eq, *actual.get(&idx), *expected.get(&idx)).0);
+        }
+        if ok {
+            Ok(())
+        } else {
+            Err(self.error(
+                "internal error: a sampled state violates the assumptions; no verdict is given"
+                    .into(),
+                "please report this with the derivation file",
+            ))
+        }
     }
 
     pub(super) fn scalar(&self, state: &State, e: &Expression) -> Result<f64, Diagnostic> {

@@ -1,0 +1,427 @@
+//! Assumptions as one exact affine system over the components, solved once.
+//!
+//! Every component-level assumption is an affine equation with rational coefficients:
+//! `symmetric(X)`, `antisymmetric(X)`, `traceless(X)`, a fixed component `sigma_13 = 0`,
+//! and any `X_ij… = expression` whose right side is affine in components, such as the
+//! minor and major symmetries `C_ijkl = C_jikl`, `C_ijkl = C_klij`. They are collected
+//! into one system and solved exactly over ℚ by the kernel ([`crate::kernel::linear`]),
+//! so the result does not depend on the order in which they are written, and a
+//! contradiction is an input error that names the assumptions that clash.
+//!
+//! Which components are eliminated is fixed by a rule, not by the order of writing:
+//! first the components an assumption sets explicitly (its left side), then the others;
+//! within each group, a symbol's components from the highest index down. So `symmetric`
+//! eliminates the lower triangle, `traceless` the last diagonal component, and
+//! `sigma_13 = 0` the component it names.
+//!
+//! An `X = expression` whose right side is not affine (`S = 3 V / (2 R_g)`) substitutes
+//! the whole symbol after the system is solved; substitutions are evaluated in the order
+//! of their dependencies, and a cycle is an input error.
+
+use super::eval::ExactEnv;
+use crate::derivation::{Assumption, AssumptionKind};
+use crate::kernel::linear::{self, Affine, AffineEquation, Solution};
+use crate::kernel::{assignments, Poly, Rational, Var};
+use crate::lang::{Decls, Diagnostic, Span};
+use num_traits::Zero;
+use std::cmp::Reverse;
+use std::collections::{BTreeSet, HashMap};
+
+/// A component of a declared symbol: its name and 0-based indices.
+pub type Component = (String, Vec<usize>);
+
+/// Largest number of component equations one claim may assume (a rank-4 tensor in 3D
+/// with minor and major symmetries needs a few hundred).
+pub const MAX_EQUATIONS: usize = 20_000;
+
+/// How an assumption enters: equations in the system, or a substitution.
+enum Role {
+    Linear(Vec<Poly>),
+    Substitution,
+}
+
+/// The solution of a claim's assumptions: which components are free, and every other
+/// component as an affine function of the free ones; then the substitutions, in order.
+#[derive(Debug)]
+pub struct Parametrisation {
+    columns: Vec<Component>,
+    solution: Solution,
+    /// The equations as assumed (before solving), for re-checking states.
+    equations: Vec<AffineEquation>,
+    /// Indices into the assumptions of the whole-symbol substitutions, each after the
+    /// substitutions its right side refers to.
+    substitutions: Vec<usize>,
+}
+
+/// How a component is constrained.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Constrained {
+    /// Not constrained, or a free parameter of the solution.
+    Free,
+    /// Set to a constant.
+    Fixed(Rational),
+    /// An affine function of free components.
+    Dependent,
+}
+
+impl Parametrisation {
+    /// Solves the assumptions of one claim.
+    pub fn new(decls: &Decls, assumptions: &[Assumption]) -> Result<Self, Diagnostic> {
+        let mut env = ExactEnv::unconstrained(decls);
+        let components = env.component_vars();
+        let mut roles = Vec::with_capacity(assumptions.len());
+        for a in assumptions {
+            roles.push(role(&mut env, decls, a)?);
+        }
+        let var_symbol = |v: &Var| components.get(v).map(|(s, _)| s.as_str());
+        let symbols_of = |polys: &[Poly]| -> BTreeSet<String> {
+            polys
+                .iter()
+                .flat_map(|p| p.terms().flat_map(|(m, _)| m.factors().to_vec()))
+                .filter_map(|(v, _)| var_symbol(&v).map(str::to_owned))
+                .collect()
+        };
+        // Substituted symbols; an affine `X = …` that refers to one becomes a
+        // substitution too (it is evaluated after the one it refers to).
+        let mut substituted: BTreeSet<String> = BTreeSet::new();
+        loop {
+            let mut changed = false;
+            for (a, r) in assumptions.iter().zip(roles.iter_mut()) {
+                let demote = match r {
+                    Role::Substitution => {
+                        changed |= substituted.insert(a.kind.symbol().to_owned());
+                        false
+                    }
+                    Role::Linear(polys) => {
+                        matches!(a.kind, AssumptionKind::Equals { .. })
+                            && !symbols_of(polys).is_disjoint(&substituted)
+                    }
+                };
+                if demote {
+                    *r = Role::Substitution;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        let substitutions = substitution_order(assumptions, &roles)?;
+        // The unknowns: every component in an equation, explicit left sides first.
+        let mut explicit: BTreeSet<&Component> = BTreeSet::new();
+        let mut all: BTreeSet<&Component> = BTreeSet::new();
+        for (a, r) in assumptions.iter().zip(&roles) {
+            let Role::Linear(polys) = r else { continue };
+            for p in polys {
+                for (m, _) in p.terms() {
+                    for (v, _) in m.factors() {
+                        let c = &components[v];
+                        if substituted.contains(&c.0) {
+                            return Err(a.origin.diagnostic(
+                                Span::new(0, a.text.len()),
+                                format!("`{}` is replaced by a substitution, so its components cannot also be constrained", c.0),
+                            ).with_help("constrain the symbols of the substitution's right side instead"));
+                        }
+                        all.insert(c);
+                    }
+                }
+            }
+            match &a.kind {
+                AssumptionKind::Component { symbol, index, .. } => {
+                    explicit.extend(all.get(&(symbol.clone(), index.clone())));
+                }
+                AssumptionKind::Equals { symbol, .. } => {
+                    explicit.extend(all.iter().filter(|c| &c.0 == symbol));
+                }
+                _ => {}
+            }
+        }
+        let mut columns: Vec<Component> = all.iter().map(|&c| c.clone()).collect();
+        columns.sort_by_key(|c| (!explicit.contains(c), c.0.clone(), Reverse(c.1.clone())));
+        let column_of: HashMap<&Component, usize> =
+            columns.iter().enumerate().map(|(k, c)| (c, k)).collect();
+        let mut equations = Vec::new();
+        for (k, r) in roles.iter().enumerate() {
+            let Role::Linear(polys) = r else { continue };
+            for p in polys {
+                let mut eq = AffineEquation {
+                    coeffs: Default::default(),
+                    constant: Rational::int(0),
+                    source: k,
+                };
+                for (m, q) in p.terms() {
+                    match m.factors() {
+                        [] => eq.constant = q.clone(),
+                        [(v, 1)] => {
+                            eq.coeffs.insert(column_of[&components[v]], q.clone());
+                        }
+                        _ => unreachable!("affine by construction"),
+                    }
+                }
+                equations.push(eq);
+            }
+        }
+        if equations.len() > MAX_EQUATIONS {
+            let a = &assumptions[equations[MAX_EQUATIONS].source];
+            return Err(a
+                .origin
+                .diagnostic(
+                    Span::new(0, a.text.len()),
+                    format!("the assumptions give more than {MAX_EQUATIONS} component equations"),
+                )
+                .with_help("constrain fewer or smaller tensors"));
+        }
+        let solution = linear::solve(columns.len(), &equations)
+            .map_err(|clash| contradiction(assumptions, &clash.sources))?;
+        Ok(Parametrisation {
+            columns,
+            solution,
+            equations,
+            substitutions,
+        })
+    }
+
+    /// Every component the assumptions determine: its value is `constant + Σ
+    /// coefficient · (free component)`.
+    pub fn dependents(
+        &self,
+    ) -> impl Iterator<Item = (&Component, Vec<(&Component, &Rational)>, &Rational)> {
+        self.columns.iter().enumerate().filter_map(|(k, c)| {
+            self.solution.dependent(k).map(|a: &Affine| {
+                let terms = a
+                    .terms
+                    .iter()
+                    .map(|(f, q)| (&self.columns[*f], q))
+                    .collect();
+                (c, terms, &a.constant)
+            })
+        })
+    }
+
+    /// Indices into the assumptions of the substitutions, in the order to apply them.
+    pub fn substitutions(&self) -> &[usize] {
+        &self.substitutions
+    }
+
+    /// How the assumptions constrain one component (substitutions aside).
+    pub fn constrained(&self, symbol: &str, index: &[usize]) -> Constrained {
+        let Some(k) = self
+            .columns
+            .iter()
+            .position(|(s, i)| s == symbol && i == index)
+        else {
+            return Constrained::Free;
+        };
+        match self.solution.dependent(k) {
+            None => Constrained::Free,
+            Some(a) if a.terms.is_empty() => Constrained::Fixed(a.constant.clone()),
+            Some(_) => Constrained::Dependent,
+        }
+    }
+
+    /// The dependent components whose value involves the free component `c`.
+    pub fn dependents_on<'a>(&'a self, c: &'a Component) -> impl Iterator<Item = &'a Component> {
+        self.dependents()
+            .filter(move |(_, terms, _)| terms.iter().any(|(f, _)| *f == c))
+            .map(|(d, _, _)| d)
+    }
+
+    /// The largest relative residual of the assumed equations at a state (0 when every
+    /// one holds exactly): a state that violates them is never reported.
+    pub fn residual(&self, value: impl Fn(&Component) -> f64) -> f64 {
+        self.equations
+            .iter()
+            .map(|e| {
+                let mut sum = e.constant.to_f64();
+                let mut scale = sum.abs();
+                for (c, q) in &e.coeffs {
+                    let term = q.to_f64() * value(&self.columns[*c]);
+                    sum += term;
+                    scale += term.abs();
+                }
+                sum.abs() / (1.0 + scale)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// Whether every assumed equation holds exactly when the free components take the
+    /// given values and the others the values the solution gives them: the solution is
+    /// re-checked against the equations as assumed, not trusted.
+    pub fn holds_exactly(&self, free: impl Fn(&Component) -> Rational) -> bool {
+        let values = self.solution.complete(|k| free(&self.columns[k]));
+        self.equations.iter().all(|e| {
+            e.coeffs
+                .iter()
+                .fold(e.constant.clone(), |acc, (c, q)| &acc + &(q * &values[*c]))
+                .is_zero()
+        })
+    }
+}
+
+/// The equations an assumption contributes, or that it substitutes a whole symbol.
+fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, Diagnostic> {
+    let d = decls.dim;
+    let var = |env: &mut ExactEnv<'_>, s: &str, idx: &[usize]| env.component(s, idx);
+    Ok(match &a.kind {
+        AssumptionKind::Traceless { symbol } => {
+            let trace = (0..d).fold(Poly::zero(), |acc, k| &acc + &var(env, symbol, &[k, k]));
+            Role::Linear(vec![trace])
+        }
+        AssumptionKind::Symmetric { symbol } | AssumptionKind::Antisymmetric { symbol } => {
+            let anti = matches!(a.kind, AssumptionKind::Antisymmetric { .. });
+            let mut out = Vec::new();
+            for i in 0..d {
+                for j in i..d {
+                    if i == j && !anti {
+                        continue;
+                    }
+                    let (x, y) = (var(env, symbol, &[i, j]), var(env, symbol, &[j, i]));
+                    out.push(if anti { &x + &y } else { &x - &y });
+                }
+            }
+            Role::Linear(out)
+        }
+        AssumptionKind::Component {
+            symbol,
+            index,
+            body,
+        } => {
+            let not_affine = || {
+                a.origin
+                    .diagnostic(body.span, "a component assumption must be affine in the components, with rational coefficients")
+                    .with_help("write e.g. sigma_13 = 0 or sigma_22 = sigma_11; relate whole symbols with X = expression")
+            };
+            let value = env
+                .eval(body, &a.origin)
+                .map_err(|_| not_affine())?
+                .tensor
+                .into_scalar()
+                .expect("validated: scalar");
+            if !env.is_affine(&value) {
+                return Err(not_affine());
+            }
+            Role::Linear(vec![&var(env, symbol, index) - &value])
+        }
+        AssumptionKind::Equals {
+            symbol,
+            formal,
+            body,
+        } => {
+            let Ok(value) = env.eval(body, &a.origin) else {
+                return Ok(Role::Substitution);
+            };
+            let rank = formal.len();
+            let mut out = Vec::new();
+            for idx in assignments(d, rank) {
+                let assignment: Vec<(char, usize)> =
+                    formal.iter().copied().zip(idx.iter().copied()).collect();
+                let p = value.at(&assignment);
+                if !env.is_affine(p) {
+                    return Ok(Role::Substitution);
+                }
+                out.push(&var(env, symbol, &idx) - p);
+            }
+            Role::Linear(out)
+        }
+    })
+}
+
+/// The substitutions, each after those whose symbols its right side refers to.
+fn substitution_order(
+    assumptions: &[Assumption],
+    roles: &[Role],
+) -> Result<Vec<usize>, Diagnostic> {
+    let subs: Vec<usize> = (0..assumptions.len())
+        .filter(|&k| matches!(roles[k], Role::Substitution))
+        .collect();
+    let of = |symbol: &str| -> Vec<usize> {
+        subs.iter()
+            .copied()
+            .filter(|&k| assumptions[k].kind.symbol() == symbol)
+            .collect()
+    };
+    for &k in &subs {
+        if let [first, second, ..] = of(assumptions[k].kind.symbol())[..] {
+            let a = &assumptions[second];
+            return Err(a
+                .origin
+                .diagnostic(
+                    Span::new(0, a.text.len()),
+                    format!(
+                        "`{}` is already replaced by `{}`",
+                        a.kind.symbol(),
+                        assumptions[first].text
+                    ),
+                )
+                .with_help("a symbol can be substituted once"));
+        }
+    }
+    // Depth-first, in the order written; a node on the current path again is a cycle.
+    fn visit(
+        k: usize,
+        assumptions: &[Assumption],
+        of: &dyn Fn(&str) -> Vec<usize>,
+        path: &mut Vec<usize>,
+        done: &mut Vec<usize>,
+    ) -> Result<(), Diagnostic> {
+        if done.contains(&k) {
+            return Ok(());
+        }
+        if let Some(at) = path.iter().position(|&p| p == k) {
+            let a = &assumptions[k];
+            let cycle: Vec<&str> = path[at..]
+                .iter()
+                .chain([&k])
+                .map(|&p| assumptions[p].kind.symbol())
+                .collect();
+            return Err(a
+                .origin
+                .diagnostic(
+                    Span::new(0, a.text.len()),
+                    format!(
+                        "substitutions refer to each other in a cycle: {}",
+                        cycle.join(" → ")
+                    ),
+                )
+                .with_help("a substituted symbol cannot depend on itself"));
+        }
+        path.push(k);
+        let AssumptionKind::Equals { body, .. } = &assumptions[k].kind else {
+            unreachable!("substitutions are equations")
+        };
+        for s in body.symbols() {
+            for dep in of(s) {
+                visit(dep, assumptions, of, path, done)?;
+            }
+        }
+        path.pop();
+        done.push(k);
+        Ok(())
+    }
+    let mut done = Vec::new();
+    for &k in &subs {
+        visit(k, assumptions, &of, &mut Vec::new(), &mut done)?;
+    }
+    Ok(done)
+}
+
+fn contradiction(assumptions: &[Assumption], sources: &[usize]) -> Diagnostic {
+    let line = |a: &Assumption| a.origin.diagnostic(Span::new(0, a.text.len()), "").line;
+    let first = &assumptions[sources[0]];
+    let names: Vec<String> = sources
+        .iter()
+        .map(|&k| format!("`{}` (line {})", assumptions[k].text, line(&assumptions[k])))
+        .collect();
+    let message = if sources.len() == 1 {
+        format!("the assumption `{}` has no solution", first.text)
+    } else {
+        format!(
+            "these assumptions contradict each other: {}",
+            names.join(", ")
+        )
+    };
+    first
+        .origin
+        .diagnostic(Span::new(0, first.text.len()), message)
+        .with_help("together they admit no value of the components; correct or remove one")
+}

@@ -1,0 +1,96 @@
+//! Assumptions are one exact linear system over the components: the verdict does not
+//! depend on the order they are written in, contradictions are input errors naming the
+//! assumptions that clash, and rank-4 symmetries are expressible (issue: order-free
+//! assumptions). The derivation files under `tests/soundness/` hold the true verdicts.
+
+use cosserat_check::derivation::{load_files, load_str};
+use cosserat_check::strategy::assume::{Constrained, Parametrisation};
+use cosserat_check::strategy::decide_claim;
+use std::path::PathBuf;
+
+fn soundness_file(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/soundness")
+        .join(name)
+}
+
+#[test]
+fn every_claim_gets_its_true_verdict_whatever_the_order_of_its_assumptions() {
+    let files = load_files(&[soundness_file("assumption-order.toml")]).unwrap();
+    let mut decided = 0;
+    for claim in files.iter().flat_map(|f| &f.claims) {
+        let d = decide_claim(claim).unwrap_or_else(|e| panic!("{}: {e}", claim.id));
+        assert_eq!(d.outcome.verdict, claim.expect, "{}", claim.id);
+        decided += 1;
+    }
+    assert_eq!(decided, 13);
+}
+
+const HEADER: &str = "section = \"t\"\ntitle = \"t\"\ndimension = 3\ntensors = [\"eta_ij\", \"C_ijkl\"]\nscalars = [\"S\", \"V\", \"T\"]\n";
+
+fn error_of(claim: &str) -> String {
+    let text =
+        format!("{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\n{claim}\n");
+    let file = load_str("t.toml", &text).unwrap();
+    decide_claim(&file.claims[0]).unwrap_err().to_string()
+}
+
+#[test]
+fn contradictory_assumptions_are_an_input_error_naming_both() {
+    let err =
+        error_of("assume = [\"eta_11 = 5\", \"antisymmetric(eta)\"]\nsides = [\"eta_11\", \"5\"]");
+    assert!(
+        err.contains("contradict each other")
+            && err.contains("`eta_11 = 5`")
+            && err.contains("`antisymmetric(eta)`"),
+        "{err}"
+    );
+    // The contradiction is found through a chain of symmetries too.
+    let err = error_of(
+        "assume = [\"C_ijkl = C_jikl\", \"C_ijkl = C_klij\", \"C_1211 = 1\", \"C_1121 = 2\"]\nsides = [\"C_1111\", \"C_1111\"]",
+    );
+    assert!(err.contains("contradict each other"), "{err}");
+    assert!(
+        err.contains("`C_1211 = 1`") && err.contains("`C_1121 = 2`"),
+        "{err}"
+    );
+}
+
+#[test]
+fn consistent_redundant_assumptions_are_accepted() {
+    let text = format!(
+        "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nassume = [\"symmetric(eta)\", \"eta_12 = 3\", \"eta_21 = 3\"]\nsides = [\"eta_21\", \"3\"]\n"
+    );
+    let file = load_str("t.toml", &text).unwrap();
+    assert!(decide_claim(&file.claims[0]).is_ok());
+}
+
+#[test]
+fn substitutions_in_a_cycle_or_twice_are_refused() {
+    let err = error_of("assume = [\"S = V T / T^2 + T\", \"T = S^2\"]\nsides = [\"S\", \"S\"]");
+    assert!(err.contains("cycle"), "{err}");
+    let err = error_of("assume = [\"S = V^2\", \"S = 1/V\"]\nsides = [\"S\", \"S\"]");
+    assert!(err.contains("already replaced"), "{err}");
+}
+
+#[test]
+fn a_component_assumption_must_be_affine() {
+    let err = error_of("assume = [\"eta_11 = eta_22 eta_33\"]\nsides = [\"eta_11\", \"eta_11\"]");
+    assert!(err.contains("affine"), "{err}");
+}
+
+#[test]
+fn elasticity_tensor_symmetries_leave_21_and_6_independent_components() {
+    for (dim, free) in [(3, 21), (2, 6)] {
+        let text = format!(
+            "section = \"t\"\ntitle = \"t\"\ndimension = {dim}\ntensors = [\"C_ijkl\"]\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nassume = [\"C_ijkl = C_jikl\", \"C_ijkl = C_ijlk\", \"C_ijkl = C_klij\"]\nsides = [\"C_ijkl\", \"C_ijkl\"]\n"
+        );
+        let file = load_str("t.toml", &text).unwrap();
+        let claim = &file.claims[0];
+        let p = Parametrisation::new(&claim.decls, &claim.check.assumptions).unwrap();
+        let components = cosserat_check::kernel::assignments(dim, 4)
+            .filter(|idx| p.constrained("C", idx) == Constrained::Free)
+            .count();
+        assert_eq!(components, free, "dimension {dim}");
+    }
+}
