@@ -119,6 +119,16 @@ pub fn evidence(o: &Outcome) -> String {
         if let Some(x) = &n.exclusion {
             line.push_str(&format!("; excluded {} samples with {x}", n.excluded));
         }
+        if let Some(s) = &n.search {
+            let at: Vec<String> = s.at.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            line.push_str(&format!(
+                "; search for the worst case: {} evaluations from {} starts, worst {:.1e} at {}",
+                s.evaluations,
+                s.starts,
+                s.worst_margin,
+                at.join(", ")
+            ));
+        }
         parts.push(line);
     }
     if let Some(d) = &o.detail {

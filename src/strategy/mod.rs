@@ -9,6 +9,7 @@ pub mod float;
 pub mod numeric;
 pub mod real;
 pub mod sampler;
+pub mod search;
 pub mod tape;
 pub mod witness;
 
@@ -143,6 +144,20 @@ pub struct NumericEvidence {
     /// The domain on which a conditional statement holds.
     pub domain: Option<String>,
     pub tolerance: String,
+    /// The adversarial search that followed the random samples.
+    pub search: Option<SearchEvidence>,
+}
+
+/// What the search for the worst violation did (`strategy::search`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SearchEvidence {
+    pub starts: usize,
+    pub evaluations: usize,
+    /// The largest margin found, in the units of `largest_residual` (≤ tolerance:
+    /// not violated).
+    pub worst_margin: f64,
+    /// Where it was found.
+    pub at: BTreeMap<String, String>,
 }
 
 /// A decided claim: the claim's own outcome and its correction's.

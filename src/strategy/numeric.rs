@@ -16,7 +16,7 @@ use super::eval::component_name;
 use super::real::component_pairs;
 pub use super::sampler::SINGULAR_EPS;
 use super::sampler::{describe, relation_holds, Sampler, State};
-use super::{Counterexample, Method, NumericEvidence, Outcome};
+use super::{search, Counterexample, Method, NumericEvidence, Outcome, SearchEvidence};
 use crate::derivation::{AssumptionKind, Check, Expression, Relation, Sampling, Strategy, Verdict};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic};
@@ -124,7 +124,67 @@ fn sampled_evidence(
             .map(|s| format!("|{}| < {SINGULAR_EPS:e}{why}", s.text)),
         domain: None,
         tolerance,
+        search: None,
     }
+}
+
+/// Keeps the `WORST_STARTS` states of largest margin.
+fn keep_worst(worst: &mut Vec<(f64, State)>, margin: f64, state: State) {
+    worst.push((margin, state));
+    worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+    worst.truncate(search::WORST_STARTS);
+}
+
+/// The adversarial search after the random samples of a numeric check: a violating
+/// state with its counterexample, or none, and the search's evidence.
+fn search_numeric(
+    sampler: &mut Sampler<'_>,
+    relation: Relation,
+    worst: &[(f64, State)],
+    extra: &[crate::derivation::Constraint],
+) -> Result<(Option<(State, Counterexample)>, SearchEvidence), Diagnostic> {
+    let check = sampler.check;
+    let nodes = check
+        .chains
+        .iter()
+        .flatten()
+        .filter_map(|s| s.node.as_ref().ok())
+        .chain(check.strategy.expressions().into_iter().map(|e| &e.node))
+        .chain(extra.iter().flat_map(|c| [&c.lhs.node, &c.rhs.node]));
+    let relevant = search::components_read(sampler, nodes);
+    let starts: Vec<State> = worst.iter().map(|(_, s)| s.clone()).collect();
+    let budget = search::EVALUATIONS_PER_SAMPLE * sampler.sampling.samples;
+    let result = search::worst_case(
+        sampler,
+        &starts,
+        extra,
+        relevant,
+        budget,
+        &mut |s, state| {
+            let mut m = f64::NEG_INFINITY;
+            Ok(check_state(s, state, relation, &mut m)?
+                .is_none()
+                .then_some(m))
+        },
+    )?;
+    let evidence = SearchEvidence {
+        starts: result.starts,
+        evaluations: result.evaluations,
+        worst_margin: result.worst,
+        at: result
+            .worst_state
+            .as_ref()
+            .map(|s| describe(s, sampler.decls))
+            .unwrap_or_default(),
+    };
+    let found = match result.violation {
+        Some(state) => {
+            let mut m = f64::NEG_INFINITY;
+            check_state(sampler, &state, relation, &mut m)?.map(|cx| (state, cx))
+        }
+        None => None,
+    };
+    Ok((found, evidence))
 }
 
 /// Decides a `strategy = "numeric"` check.
@@ -142,12 +202,26 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
     let mut excluded = 0;
     let mut largest = f64::NEG_INFINITY;
     let mut found = None;
+    let mut worst = Vec::new();
     for _ in 0..sampling.samples {
         let state = sampler.next(&[], &mut excluded)?;
-        if let Some(cx) = check_state(&sampler, &state, *relation, &mut largest)? {
+        let mut margin = f64::NEG_INFINITY;
+        if let Some(cx) = check_state(&sampler, &state, *relation, &mut margin)? {
+            largest = largest.max(margin);
             found = Some((state, cx));
             break;
         }
+        largest = largest.max(margin);
+        keep_worst(&mut worst, margin, state);
+    }
+    let mut search = None;
+    if found.is_none() {
+        let (violation, evidence) = search_numeric(&mut sampler, *relation, &worst, &[])?;
+        if let Some((state, cx)) = violation {
+            largest = largest.max(evidence.worst_margin);
+            found = Some((state, cx));
+        }
+        search = Some(evidence);
     }
     let residual = match relation {
         Relation::Eq => "largest relative residual",
@@ -155,6 +229,7 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
     };
     let evidence = |largest: f64, excluded: usize, domain: Option<String>| NumericEvidence {
         domain,
+        search: search.clone(),
         ..sampled_evidence(
             sampling,
             largest,
@@ -192,25 +267,28 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
     let mut inside_largest = f64::NEG_INFINITY;
     let mut inside_excluded = 0;
     let mut inner = Sampler::new(decls, check, sampling, &anchor)?;
+    let mut inside_worst = Vec::new();
+    let also_inside = format!("it also fails inside the declared domain {domain_text}");
     for _ in 0..sampling.samples {
         let s = inner.next(domain, &mut inside_excluded)?;
-        if let Some(cx_in) = check_state(&inner, &s, *relation, &mut inside_largest)? {
-            return Ok(fails(
-                cx_in,
-                Some(format!(
-                    "it also fails inside the declared domain {domain_text}"
-                )),
-            ));
+        let mut margin = f64::NEG_INFINITY;
+        if let Some(cx_in) = check_state(&inner, &s, *relation, &mut margin)? {
+            return Ok(fails(cx_in, Some(also_inside)));
         }
+        inside_largest = inside_largest.max(margin);
+        keep_worst(&mut inside_worst, margin, s);
+    }
+    let (violation, inside_search) = search_numeric(&mut inner, *relation, &inside_worst, domain)?;
+    if let Some((_, cx_in)) = violation {
+        return Ok(fails(cx_in, Some(also_inside)));
     }
     Ok(
         Outcome::new(Verdict::Conditional, Method::Numeric, 2 * sampling.samples)
             .with_counterexample(cx)
-            .with_numeric(evidence(
-                inside_largest,
-                inside_excluded,
-                Some(domain_text.clone()),
-            ))
+            .with_numeric(NumericEvidence {
+                search: Some(inside_search),
+                ..evidence(inside_largest, inside_excluded, Some(domain_text.clone()))
+            })
             .with_detail(format!(
             "holds on {} samples with {domain_text}; the counterexample lies outside that domain",
             sampling.samples

@@ -21,8 +21,8 @@ pub const SINGULAR_EPS: f64 = 1e-8;
 const MAX_DRAWS_PER_SAMPLE: usize = 100;
 
 /// One random state: every symbol's components (after the assumptions) and a normal.
-#[derive(Clone)]
-pub(super) struct State {
+#[derive(Clone, Debug)]
+pub struct State {
     pub(super) symbols: HashMap<String, Tensor<f64>>,
     pub(super) n: Vec<f64>,
 }
@@ -115,16 +115,20 @@ impl<'a> Sampler<'a> {
         }
     }
 
+    /// The range of every component of `symbol`.
+    pub(super) fn range(&self, symbol: &str) -> (f64, f64) {
+        self.sampling
+            .ranges
+            .get(symbol)
+            .copied()
+            .unwrap_or((-1.0, 1.0))
+    }
+
     pub(super) fn draw(&mut self) -> Result<State, Diagnostic> {
         let d = self.decls.dim;
         let mut symbols = HashMap::new();
         for (name, &rank) in &self.decls.symbols {
-            let (lo, hi) = self
-                .sampling
-                .ranges
-                .get(name)
-                .copied()
-                .unwrap_or((-1.0, 1.0));
+            let (lo, hi) = self.range(name);
             let rng = &mut self.rng;
             symbols.insert(
                 name.clone(),
@@ -132,6 +136,16 @@ impl<'a> Sampler<'a> {
             );
         }
         let n = self.rng.unit_normal(self.decls);
+        self.complete(symbols, n)
+    }
+
+    /// A state from values of the symbols (only the free components matter) and a
+    /// normal: the constrained components and substitutions set by the assumptions.
+    pub(super) fn complete(
+        &self,
+        symbols: HashMap<String, Tensor<f64>>,
+        n: Vec<f64>,
+    ) -> Result<State, Diagnostic> {
         let mut env = self.env(symbols);
         env.assume(&self.parametrisation, &self.check.assumptions, &n)
             .map_err(|e| {
