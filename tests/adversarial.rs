@@ -30,3 +30,30 @@ fn thin_violations_are_found_for_every_seed_from_1_to_20() {
     }
     assert_eq!(decided, 20 * 7);
 }
+
+#[test]
+fn sampled_and_proved_verdicts_are_labelled_differently() {
+    use cosserat_check::strategy::Strength;
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/soundness");
+    let files = load_files(&[
+        dir.join("adversarial.toml"),
+        dir.join("assumption-order.toml"),
+    ])
+    .unwrap();
+    let claims: Vec<_> = files.iter().flat_map(|f| &f.claims).collect();
+    let find = |id: &str| *claims.iter().find(|c| c.id == id).unwrap();
+    let sampled = decide_claim(find("lode-bound-sharp")).unwrap().outcome;
+    assert_eq!(
+        (sampled.strength, sampled.verdict_text().as_str()),
+        (Strength::Sampled, "holds (sampled)")
+    );
+    let search = sampled.numeric.unwrap().search.unwrap();
+    assert!(search.evaluations > 0 && search.worst_margin <= 1e-9 && !search.at.is_empty());
+    let proved = decide_claim(find("minor-kl-from-minor-ij-and-major"))
+        .unwrap()
+        .outcome;
+    assert_eq!(
+        (proved.strength, proved.verdict_text().as_str()),
+        (Strength::Proof, "holds")
+    );
+}

@@ -11,7 +11,7 @@ fn field(s: &str) -> String {
 /// Renders the table: a header line, then one line per claim.
 pub fn render(rows: &[&Decided<'_>]) -> String {
     let mut out = String::from(
-        "id,section,statement,verdict,expected,method,checks,evidence,correction,correction_verdict\n",
+        "id,section,statement,verdict,expected,method,checks,evidence,correction,correction_verdict,strength\n",
     );
     for r in rows {
         let c = r.claim;
@@ -30,6 +30,10 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
             &full_evidence(r, &|s| s.to_owned()),
             corr,
             corr_verdict,
+            match r.outcome.strength {
+                crate::strategy::Strength::Proof => "proof",
+                crate::strategy::Strength::Sampled => "sampled",
+            },
         ]
         .map(field);
         out.push_str(&cells.join(","));

@@ -22,7 +22,7 @@ pub fn markdown(rows: &[&Decided<'_>]) -> String {
         let _ = writeln!(
             out,
             "- Verdict: **{}** (method {})",
-            r.outcome.verdict,
+            r.outcome.verdict_text(),
             r.outcome.method.as_str()
         );
         if let Some(reason) = &c.reason {
@@ -35,7 +35,7 @@ pub fn markdown(rows: &[&Decided<'_>]) -> String {
             let _ = writeln!(
                 out,
                 "  - Verdict: **{}** (method {}; {})",
-                o.verdict,
+                o.verdict_text(),
                 o.method.as_str(),
                 evidence(o)
             );

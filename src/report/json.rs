@@ -1,10 +1,11 @@
 //! The JSON contract of `check --format json`. Later versions may add fields but never
 //! remove or rename these: `paper`, `claims[]` (`id`, `section`, `statement`,
-//! `verdict`, `method`, `expected`, `checks`, `counterexample`, `correction`), and
+//! `verdict`, `method`, `strength` (`proof` or `sampled`), `expected`, `checks`,
+//! `counterexample`, `correction`), and
 //! `summary` (`holds`, `fails`, `conditional`, `unexpected`).
 
 use super::{paper_of, Summary};
-use crate::strategy::{Counterexample, Decided, Method, NumericEvidence};
+use crate::strategy::{Counterexample, Decided, Method, NumericEvidence, Strength};
 use serde::Serialize;
 
 #[derive(Serialize)]
@@ -21,6 +22,7 @@ struct ClaimRow<'a> {
     statement: &'a str,
     verdict: &'static str,
     method: Method,
+    strength: Strength,
     expected: &'static str,
     checks: usize,
     counterexample: Option<&'a Counterexample>,
@@ -38,6 +40,7 @@ struct CorrectionRow<'a> {
     statement: &'a str,
     verdict: &'static str,
     method: Method,
+    strength: Strength,
     expected: &'static str,
     checks: usize,
     counterexample: Option<&'a Counterexample>,
@@ -56,6 +59,7 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
                 statement: &c.statement,
                 verdict: r.outcome.verdict.as_str(),
                 method: r.outcome.method,
+                strength: r.outcome.strength,
                 expected: c.expect.as_str(),
                 checks: r.outcome.checks,
                 counterexample: r.outcome.counterexample.as_ref(),
@@ -67,6 +71,7 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
                         statement: &k.statement,
                         verdict: o.verdict.as_str(),
                         method: o.method,
+                        strength: o.strength,
                         expected: k.expect.as_str(),
                         checks: o.checks,
                         counterexample: o.counterexample.as_ref(),

@@ -211,7 +211,7 @@ pub fn errata(rows: &[&Decided<'_>], standalone: bool) -> String {
         let _ = writeln!(
             out,
             "\\item Verdict: \\textbf{{{}}} ({})",
-            escape(r.outcome.verdict.as_str()),
+            escape(&r.outcome.verdict_text()),
             escape(r.outcome.method.as_str())
         );
         if let Some(reason) = &c.reason {
@@ -223,7 +223,7 @@ pub fn errata(rows: &[&Decided<'_>], standalone: bool) -> String {
                 out,
                 "\\item Correction: {} --- {} ({}). {}",
                 escape(&math(&k.statement)),
-                escape(o.verdict.as_str()),
+                escape(&o.verdict_text()),
                 escape(o.method.as_str()),
                 escape(&k.reason)
             );

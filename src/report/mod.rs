@@ -79,9 +79,13 @@ pub fn is_erratum(r: &Decided<'_>) -> bool {
 /// The verdict, marked when it differs from the declared one.
 pub fn verdict_label(r: &Decided<'_>) -> String {
     if r.as_expected() {
-        r.outcome.verdict.to_string()
+        r.outcome.verdict_text()
     } else {
-        format!("{} ✗ (declared: {})", r.outcome.verdict, r.claim.expect)
+        format!(
+            "{} ✗ (declared: {})",
+            r.outcome.verdict_text(),
+            r.claim.expect
+        )
     }
 }
 
@@ -97,7 +101,7 @@ pub fn full_evidence(r: &Decided<'_>, statement: &dyn Fn(&str) -> String) -> Str
         ev.push_str(&format!(
             ". Correction {}: {} ({}; {})",
             statement(&corr.statement),
-            o.verdict,
+            o.verdict_text(),
             o.method.as_str(),
             evidence(o)
         ));

@@ -38,7 +38,27 @@ pub enum Method {
     Symbolic,
 }
 
+/// How strong a verdict's evidence is: a proof by exact computation, or no violation
+/// found by seeded sampling and a search for the worst case.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Strength {
+    Proof,
+    Sampled,
+}
+
 impl Method {
+    /// The strength of a verdict reached by this method (a strategy that samples
+    /// inside an otherwise exact method marks its outcome [`Outcome::sampled`]).
+    pub fn strength(self) -> Strength {
+        match self {
+            Method::Exact | Method::IndexCheck | Method::Witness | Method::Symbolic => {
+                Strength::Proof
+            }
+            Method::Numeric | Method::Gradient | Method::Convex => Strength::Sampled,
+        }
+    }
+
     pub fn as_str(self) -> &'static str {
         match self {
             Method::Exact => "exact",
@@ -79,6 +99,7 @@ pub struct Counterexample {
 pub struct Outcome {
     pub verdict: Verdict,
     pub method: Method,
+    pub strength: Strength,
     /// Number of component comparisons made.
     pub checks: usize,
     /// Whether some comparison needed n·n = 1.
@@ -98,11 +119,30 @@ impl Outcome {
         Outcome {
             verdict,
             method,
+            strength: method.strength(),
             checks,
             used_unit_normal: false,
             counterexample: None,
             numeric: None,
             detail: None,
+        }
+    }
+
+    /// Marks an outcome whose decision rests on sampled floating-point evidence.
+    pub fn sampled(mut self) -> Self {
+        self.strength = Strength::Sampled;
+        self
+    }
+
+    /// The verdict as the tables show it: `holds` and `conditional` say `(sampled)`
+    /// when they rest on sampled evidence; a `fails` always carries its
+    /// counterexample.
+    pub fn verdict_text(&self) -> String {
+        match (self.verdict, self.strength) {
+            (Verdict::Holds | Verdict::Conditional, Strength::Sampled) => {
+                format!("{} (sampled)", self.verdict)
+            }
+            _ => self.verdict.to_string(),
         }
     }
 
