@@ -94,3 +94,29 @@ fn elasticity_tensor_symmetries_leave_21_and_6_independent_components() {
         assert_eq!(components, free, "dimension {dim}");
     }
 }
+
+#[test]
+fn the_parametrisation_itself_does_not_depend_on_the_order() {
+    let assumptions = [
+        "\"C_ijkl = C_klij\"",
+        "\"C_1111 = 2\"",
+        "\"C_ijkl = C_jikl\"",
+        "\"C_1122 = C_2211\"",
+    ];
+    let mut seen = None;
+    for perm in itertools::Itertools::permutations(0..4, 4) {
+        let list: Vec<&str> = perm.iter().map(|&k| assumptions[k]).collect();
+        let text = format!(
+            "section = \"t\"\ntitle = \"t\"\ndimension = 2\ntensors = [\"C_ijkl\"]\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nassume = [{}]\nsides = [\"C_ijkl\", \"C_ijkl\"]\n",
+            list.join(", ")
+        );
+        let file = load_str("t.toml", &text).unwrap();
+        let claim = &file.claims[0];
+        let p = Parametrisation::new(&claim.decls, &claim.check.assumptions).unwrap();
+        let shown = format!("{:?}", p.dependents().collect::<Vec<_>>());
+        match &seen {
+            None => seen = Some(shown),
+            Some(first) => assert_eq!(&shown, first, "{list:?}"),
+        }
+    }
+}

@@ -126,6 +126,13 @@ impl Parametrisation {
                     }
                 }
             }
+        }
+        // Marked after every unknown is known, so that the choice does not depend on the
+        // order of the assumptions.
+        for (a, r) in assumptions.iter().zip(&roles) {
+            if !matches!(r, Role::Linear(_)) {
+                continue;
+            }
             match &a.kind {
                 AssumptionKind::Component { symbol, index, .. } => {
                     explicit.extend(all.get(&(symbol.clone(), index.clone())));
