@@ -162,9 +162,9 @@ fn search_numeric(
         budget,
         &mut |s, state| {
             let mut m = f64::NEG_INFINITY;
-            Ok(check_state(s, state, relation, &mut m)?
-                .is_none()
-                .then_some(m))
+            let violated = check_state(s, state, relation, &mut m)?.is_some();
+            let clear = !m.is_finite() || m > search::SEARCH_CONFIRM;
+            Ok((!(violated && clear)).then_some(m))
         },
     )?;
     let evidence = SearchEvidence {

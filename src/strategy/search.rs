@@ -25,6 +25,11 @@ pub const RANDOM_CORNERS: usize = 4;
 /// Evaluations of the whole search per random sample: the search costs this many times
 /// the random sampling.
 pub const EVALUATIONS_PER_SAMPLE: usize = 3;
+/// A violation found by the search counts only with a relative margin above this: the
+/// search maximises the residual, so it can climb onto rounding noise (near a singular
+/// set, cancellation of large terms) just above the sampling tolerance; a genuine
+/// violation stands far above it.
+pub const SEARCH_CONFIRM: f64 = 1e-6;
 /// Initial step, as a fraction of each coordinate's range.
 const FIRST_STEP: f64 = 0.25;
 /// The search from one start ends when the step falls below this fraction.
