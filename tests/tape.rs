@@ -10,11 +10,17 @@ use cosserat_check::kernel::Tensor;
 use cosserat_check::lang::Node;
 use cosserat_check::strategy::assume::Parametrisation;
 use cosserat_check::strategy::float::Rng;
+use cosserat_check::strategy::quadrature::{Level, Quadrature};
 use cosserat_check::strategy::real::RealEnv;
 use cosserat_check::strategy::tape::Tape;
 use num_dual::Dual64;
 use std::collections::HashMap;
 use std::path::Path;
+
+/// The accuracy the decisions evaluate adaptive averages at.
+fn fine() -> Quadrature {
+    Quadrature::new(Level::Fine)
+}
 
 fn expressions(claim: &Claim) -> Vec<&Node> {
     let check = &claim.check;
@@ -69,7 +75,7 @@ fn the_tape_agrees_with_the_interpreter_on_every_sampled_expression() {
                     .map(|(s, idx)| *symbols[s].get(idx))
                     .collect();
                 let by_tree = env.eval(node, &n);
-                let by_tape = tape.eval(&inputs, &n);
+                let by_tape = tape.eval(&inputs, &n, &fine());
                 match (by_tree, by_tape) {
                     (Ok((la, a)), Ok((lb, b))) => {
                         assert_eq!(la, lb, "{}: labels", claim.id);
@@ -93,7 +99,7 @@ fn the_tape_agrees_with_the_interpreter_on_every_sampled_expression() {
                     *seeded.get_mut(s).unwrap().get_mut(idx) = Dual64::new(inputs[0], 1.0);
                 }
                 let tree = RealEnv::new(decls, defs, seeded).eval(node, &n);
-                let taped = tape.eval(&dual_inputs, &n);
+                let taped = tape.eval(&dual_inputs, &n, &fine());
                 if let (Ok((_, a)), Ok((_, b))) = (tree, taped) {
                     for (x, y) in a.components().iter().zip(b.components()) {
                         assert!(
@@ -129,11 +135,11 @@ fn a_tape_reports_the_interpreters_errors() {
     );
     let inputs = [4.0, 1.0];
     assert_eq!(
-        tape.eval(&inputs, &[1.0, 0.0]).unwrap_err(),
+        tape.eval(&inputs, &[1.0, 0.0], &fine()).unwrap_err(),
         env.eval(node, &[1.0, 0.0]).unwrap_err()
     );
     let negative = [-4.0, 1.0];
-    let err = tape.eval(&negative, &[1.0, 0.0]).unwrap_err();
+    let err = tape.eval(&negative, &[1.0, 0.0], &fine()).unwrap_err();
     assert!(
         err.message.contains("sqrt of a negative number"),
         "{}",

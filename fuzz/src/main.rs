@@ -11,6 +11,7 @@
 
 use cosserat_check::derivation::{load_str, Strategy};
 use cosserat_check::strategy::decide;
+use cosserat_check::strategy::quadrature::{Level, Quadrature};
 use cosserat_check::strategy::tape::Tape;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
@@ -194,7 +195,7 @@ fn exercise(data: &[u8]) {
                 let inputs = vec![0.5; tape.inputs.len()];
                 let mut n = vec![0.0; claim.decls.dim];
                 n[0] = 1.0;
-                let _ = tape.eval(&inputs, &n);
+                let _ = tape.eval(&inputs, &n, &Quadrature::new(Level::Fine));
             }
         }
     }

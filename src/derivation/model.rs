@@ -16,6 +16,8 @@ pub enum Verdict {
     Fails,
     /// Holds on a stated domain and fails outside it.
     Conditional,
+    /// The checker could not decide; the outcome says why (never a guess).
+    Undecided,
 }
 
 impl Verdict {
@@ -24,6 +26,7 @@ impl Verdict {
             "holds" => Some(Verdict::Holds),
             "fails" => Some(Verdict::Fails),
             "conditional" => Some(Verdict::Conditional),
+            "undecided" => Some(Verdict::Undecided),
             _ => None,
         }
     }
@@ -33,6 +36,7 @@ impl Verdict {
             Verdict::Holds => "holds",
             Verdict::Fails => "fails",
             Verdict::Conditional => "conditional",
+            Verdict::Undecided => "undecided",
         }
     }
 }

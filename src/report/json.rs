@@ -2,7 +2,7 @@
 //! remove or rename these: `paper`, `claims[]` (`id`, `section`, `statement`,
 //! `verdict`, `method`, `strength` (`proof` or `sampled`), `expected`, `checks`,
 //! `counterexample`, `correction`), and
-//! `summary` (`holds`, `fails`, `conditional`, `unexpected`).
+//! `summary` (`holds`, `fails`, `conditional`, `undecided`, `unexpected`).
 
 use super::{paper_of, Summary};
 use crate::strategy::{Counterexample, Decided, Method, NumericEvidence, Strength};

@@ -34,16 +34,23 @@ pub struct Summary {
     pub holds: usize,
     pub fails: usize,
     pub conditional: usize,
+    /// Claims the checker could not decide (each says why).
+    pub undecided: usize,
     /// Claims whose verdict (or whose correction's verdict) differs from the one the
     /// derivation file declares.
     pub unexpected: usize,
 }
 
 impl Summary {
-    /// "N claims: … hold, … fail, … conditional; … unexpected."
+    /// "N claims: … hold, … fail, … conditional[, … undecided]; … unexpected."
     pub fn sentence(&self, n: usize) -> String {
+        let undecided = if self.undecided > 0 {
+            format!(", {} undecided", self.undecided)
+        } else {
+            String::new()
+        };
         format!(
-            "{n} claims: {} hold, {} fail, {} conditional; {} unexpected.",
+            "{n} claims: {} hold, {} fail, {} conditional{undecided}; {} unexpected.",
             self.holds, self.fails, self.conditional, self.unexpected
         )
     }
@@ -55,6 +62,7 @@ impl Summary {
                 crate::derivation::Verdict::Holds => s.holds += 1,
                 crate::derivation::Verdict::Fails => s.fails += 1,
                 crate::derivation::Verdict::Conditional => s.conditional += 1,
+                crate::derivation::Verdict::Undecided => s.undecided += 1,
             }
             if !r.as_expected() {
                 s.unexpected += 1;

@@ -7,6 +7,7 @@ pub mod eval;
 pub mod exact;
 pub mod float;
 pub mod numeric;
+pub mod quadrature;
 pub mod real;
 pub mod sampler;
 pub mod search;

@@ -5,10 +5,13 @@
 //! answer.
 //!
 //! `avg(…)` re-evaluates its argument at the nodes of a quadrature rule exact for its
-//! degree in n (see [`super::float::sphere_rule_exact_to`]); `maxn(…)` maximises over the normal's angle in the
+//! degree in n (see [`super::float::sphere_rule_exact_to`]), or, when the argument is
+//! not a polynomial in n, by adaptive quadrature with an error estimate (see
+//! [`super::quadrature`]); `maxn(…)` maximises over the normal's angle in the
 //! plane by a dense grid refined by golden-section search (see [`MAXN_GRID`]).
 
 use super::assume::Parametrisation;
+use super::quadrature::{Level, Quadrature};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::Func;
@@ -61,6 +64,9 @@ pub struct RealEnv<'a, T> {
     memo: RefCell<Memo<T>>,
     degrees: RefCell<HashMap<String, Option<usize>>>,
     rules: RefCell<HashMap<usize, Rc<Rule>>>,
+    /// The accuracy of averages of arguments that are not polynomials in n, and what
+    /// they reported.
+    pub quadrature: Quadrature,
 }
 
 impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
@@ -76,6 +82,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             memo: RefCell::new(HashMap::new()),
             degrees: RefCell::new(HashMap::new()),
             rules: RefCell::new(HashMap::new()),
+            quadrature: Quadrature::new(Level::Fine),
         }
     }
 
@@ -120,10 +127,9 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
         }
     }
 
-    /// The averaging rule for an argument of this degree (degree 15 when the argument
-    /// is not a polynomial in n; the average is then a quadrature approximation).
-    fn rule(&self, arg: &Node) -> Rc<Rule> {
-        let degree = self.normal_degree(arg).unwrap_or(15).clamp(1, 40);
+    /// The averaging rule for an argument of this degree in n.
+    fn rule(&self, degree: usize) -> Rc<Rule> {
+        let degree = degree.clamp(1, 40);
         self.rules
             .borrow_mut()
             .entry(degree)
@@ -239,8 +245,18 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
                 })
             }
             NodeKind::Avg(a) => {
+                let Some(degree) = self.normal_degree(a) else {
+                    // Not a polynomial in n: adaptive quadrature with an error estimate.
+                    let free = if self.decls.normal_in_plane { 2 } else { d };
+                    let value = self.quadrature.average(free, d, &mut |point| {
+                        Ok(self.eval(a, point)?.1.components().to_vec())
+                    })?;
+                    let mut it = value.into_iter();
+                    let t = Tensor::from_fn(d, labels.len(), |_| it.next().expect("one each"));
+                    return Ok((labels, t));
+                };
                 let mut acc: Option<Labeled<T>> = None;
-                for (point, w) in self.rule(a).iter() {
+                for (point, w) in self.rule(degree).iter() {
                     let (ls, t) = self.eval(a, point)?;
                     let t = t.map(|x| x.clone() * *w);
                     acc = Some(match acc {

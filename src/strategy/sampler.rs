@@ -5,6 +5,7 @@
 use super::assume::Parametrisation;
 use super::float::Rng;
 use super::numeric::TOL;
+use super::quadrature::{Level, Quadrature};
 use super::real::{Labeled, RealEnv, RealError};
 use super::tape::Tape;
 use crate::derivation::{AssumptionKind, Check, Constraint, Expression, Relation, Sampling};
@@ -44,6 +45,11 @@ pub(super) struct Sampler<'a> {
     pub(super) anchor: &'a Expression,
     /// The claim's assumptions, solved once.
     pub(super) parametrisation: Parametrisation,
+    /// What the adaptive averages of the last evaluations reported, at the accuracy
+    /// the decision is made at and at the coarser one it is compared with.
+    pub(super) fine: Quadrature,
+    pub(super) coarse: Quadrature,
+    pub(super) arbiter: Quadrature,
 }
 
 impl<'a> Sampler<'a> {
@@ -61,6 +67,9 @@ impl<'a> Sampler<'a> {
             rng: Rng::new(sampling.seed),
             anchor,
             parametrisation: Parametrisation::new(decls, &check.assumptions)?,
+            fine: Quadrature::new(Level::Fine),
+            coarse: Quadrature::new(Level::Coarse),
+            arbiter: Quadrature::new(Level::Arbiter),
         })
     }
 
@@ -91,13 +100,30 @@ impl<'a> Sampler<'a> {
     }
 
     /// `node` at the given symbol values and normal: by its compiled tape, or by the
-    /// interpreter when it has none.
+    /// interpreter when it has none; adaptive averages at the fine accuracy.
     pub(super) fn eval<T: DualNum<Primitive = f64>>(
         &self,
         symbols: &HashMap<String, Tensor<T>>,
         node: &Node,
         n: &[f64],
     ) -> Result<Labeled<T>, RealError> {
+        self.eval_at(symbols, node, n, Level::Fine)
+    }
+
+    /// As [`Sampler::eval`], adaptive averages at the given level and reported to its
+    /// record ([`Sampler::fine`], [`Sampler::coarse`] or [`Sampler::arbiter`]).
+    pub(super) fn eval_at<T: DualNum<Primitive = f64>>(
+        &self,
+        symbols: &HashMap<String, Tensor<T>>,
+        node: &Node,
+        n: &[f64],
+        level: Level,
+    ) -> Result<Labeled<T>, RealError> {
+        let quad = match level {
+            Level::Fine => &self.fine,
+            Level::Coarse => &self.coarse,
+            Level::Arbiter => &self.arbiter,
+        };
         match self.tape(node) {
             Some(tape) => {
                 let inputs: Vec<T> = tape
@@ -109,9 +135,15 @@ impl<'a> Sampler<'a> {
                             .map_or_else(|| T::from(f64::NAN), |t| t.get(idx).clone())
                     })
                     .collect();
-                tape.eval(&inputs, n)
+                tape.eval(&inputs, n, quad)
             }
-            None => self.env(symbols.clone()).eval(node, n),
+            None => {
+                let mut env = self.env(symbols.clone());
+                env.quadrature = Quadrature::new(level);
+                let value = env.eval(node, n);
+                quad.absorb(&env.quadrature);
+                value
+            }
         }
     }
 

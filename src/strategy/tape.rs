@@ -15,6 +15,7 @@
 //! interpreter on every sampled claim of the paper; errors keep the interpreter's
 //! messages and spans (division by zero, square root of a negative number).
 
+use super::quadrature::Quadrature;
 use super::real::{RealError, MAXN_GRID};
 use crate::derivation::Definition;
 use crate::kernel::{assignments, Tensor};
@@ -45,6 +46,9 @@ enum Op {
     Tan(usize),
     /// max over θ of the sub-tape's output (index into [`Tape::maxn`]).
     MaxN(usize, Span),
+    /// Component `c` (in [`assignments`] order) of the adaptive average of the
+    /// sub-tape `k` of [`Tape::avgs`] (an argument that is not a polynomial in n).
+    Avg(usize, usize),
 }
 
 /// A hashable key for sharing equal operations.
@@ -68,6 +72,11 @@ pub struct Tape {
     outputs: Tensor<usize>,
     /// Sub-tapes of `maxn` arguments: their `Angle` ops stand for the normal.
     maxn: Vec<Tape>,
+    /// Sub-tapes of `avg` arguments that are not polynomials in n, averaged by
+    /// adaptive quadrature: their `Angle` ops stand for the normal.
+    avgs: Vec<Tape>,
+    /// Whether the normal lies in the 1-2 plane (averages are then over the circle).
+    in_plane: bool,
 }
 
 /// Why an expression was not compiled (the caller falls back to the interpreter).
@@ -84,6 +93,7 @@ struct Compiler<'a> {
     memo: HashMap<(String, Vec<usize>), Tensor<usize>>,
     degrees: HashMap<String, Option<usize>>,
     maxn: Vec<Tape>,
+    avgs: Vec<Tape>,
     /// Ops created so far; compilation stops beyond this (a hostile input).
     budget: usize,
 }
@@ -114,6 +124,8 @@ impl Tape {
             labels: node.free_letters(),
             outputs,
             maxn: c.maxn,
+            avgs: c.avgs,
+            in_plane: decls.normal_in_plane,
         })
     }
 
@@ -126,13 +138,15 @@ impl Tape {
     }
 
     /// The labelled result at `inputs` (one value per entry of [`Tape::inputs`]) and
-    /// the sample's normal `n`.
+    /// the sample's normal `n`; adaptive averages are taken at the accuracy of `quad`
+    /// and reported to it.
     pub fn eval<T: DualNum<Primitive = f64>>(
         &self,
         inputs: &[T],
         n: &[f64],
+        quad: &Quadrature,
     ) -> Result<(Vec<char>, Tensor<T>), RealError> {
-        let vals = self.run(inputs, n, &[])?;
+        let vals = self.run(inputs, n, &[], quad)?;
         Ok((self.labels.clone(), self.outputs.map(|&k| vals[k].clone())))
     }
 
@@ -141,8 +155,10 @@ impl Tape {
         inputs: &[T],
         n: &[f64],
         angle: &[f64],
+        quad: &Quadrature,
     ) -> Result<Vec<T>, RealError> {
         let mut v: Vec<T> = Vec::with_capacity(self.ops.len());
+        let mut averages: Vec<Option<Vec<T>>> = vec![None; self.avgs.len()];
         for op in &self.ops {
             let x = match *op {
                 Op::Input(k) => inputs[k].clone(),
@@ -175,11 +191,38 @@ impl Tape {
                 Op::Cos(a) => v[a].cos(),
                 Op::Sin(a) => v[a].sin(),
                 Op::Tan(a) => v[a].tan(),
-                Op::MaxN(k, span) => self.maxn[k].max_over_angle(inputs, n, span)?,
+                Op::MaxN(k, span) => self.maxn[k].max_over_angle(inputs, n, span, quad)?,
+                Op::Avg(k, c) => {
+                    if averages[k].is_none() {
+                        let sub = &self.avgs[k];
+                        let free = self.free_normal_dim(n.len());
+                        let value = quad.average(free, n.len(), &mut |point| {
+                            let vals = sub.run(inputs, n, point, quad)?;
+                            Ok(sub
+                                .outputs
+                                .components()
+                                .iter()
+                                .map(|&k| vals[k].clone())
+                                .collect())
+                        })?;
+                        averages[k] = Some(value);
+                    }
+                    averages[k].as_ref().expect("computed above")[c].clone()
+                }
             };
             v.push(x);
         }
         Ok(v)
+    }
+
+    /// The dimension the normal ranges over: 2 for an in-plane normal (recorded at
+    /// compilation), else the space's.
+    fn free_normal_dim(&self, dim: usize) -> usize {
+        if self.in_plane {
+            2
+        } else {
+            dim
+        }
     }
 
     /// The scalar output at angle θ.
@@ -188,10 +231,11 @@ impl Tape {
         inputs: &[T],
         n: &[f64],
         theta: f64,
+        quad: &Quadrature,
     ) -> Result<T, RealError> {
         let mut angle = vec![theta.cos(), theta.sin()];
         angle.resize(n.len(), 0.0);
-        let v = self.run(inputs, n, &angle)?;
+        let v = self.run(inputs, n, &angle, quad)?;
         Ok(v[*self.outputs.get(&[])].clone())
     }
 
@@ -203,9 +247,10 @@ impl Tape {
         inputs: &[T],
         n: &[f64],
         span: Span,
+        quad: &Quadrature,
     ) -> Result<T, RealError> {
         let re: Vec<f64> = inputs.iter().map(|x| x.re()).collect();
-        let f = |theta: f64| -> Result<f64, RealError> { self.at_angle(&re, n, theta) };
+        let f = |theta: f64| -> Result<f64, RealError> { self.at_angle(&re, n, theta, quad) };
         let h = 2.0 * std::f64::consts::PI / MAXN_GRID as f64;
         let mut grid = Vec::with_capacity(MAXN_GRID);
         for k in 0..MAXN_GRID {
@@ -232,7 +277,7 @@ impl Tape {
                 best = (theta, v);
             }
         }
-        self.at_angle(inputs, n, best.0)
+        self.at_angle(inputs, n, best.0, quad)
     }
 }
 
@@ -249,6 +294,7 @@ impl<'a> Compiler<'a> {
             memo: HashMap::new(),
             degrees: HashMap::new(),
             maxn: Vec::new(),
+            avgs: Vec::new(),
             budget,
         }
     }
@@ -269,7 +315,7 @@ impl<'a> Compiler<'a> {
             Op::Cos(a) => Some(Key::Un(4, *a, 0)),
             Op::Sin(a) => Some(Key::Un(5, *a, 0)),
             Op::Tan(a) => Some(Key::Un(6, *a, 0)),
-            Op::MaxN(..) => None,
+            Op::MaxN(..) | Op::Avg(..) => None,
         };
         if let Some(k) = &key {
             if let Some(&id) = self.shared.get(k) {
@@ -490,6 +536,17 @@ impl<'a> Compiler<'a> {
                 };
                 Tensor::scalar(d, self.push(op))
             }
+            NodeKind::Avg(a) if self.normal_degree(a).is_none() => {
+                let sub = self.sub_tape(a)?;
+                self.avgs.push(sub);
+                let k = self.avgs.len() - 1;
+                let rank = self.avgs[k].outputs.rank();
+                let mut c = 0;
+                Tensor::from_fn(d, rank, |_| {
+                    c += 1;
+                    self.push(Op::Avg(k, c - 1))
+                })
+            }
             NodeKind::Avg(a) => {
                 let degree = self.normal_degree(a).unwrap_or(15).clamp(1, 40);
                 let rule = super::float::rule_for(self.decls, degree);
@@ -510,34 +567,42 @@ impl<'a> Compiler<'a> {
                 if d == 3 && !self.decls.normal_in_plane {
                     return Err(Unsupported("maxn needs an in-plane normal".into()));
                 }
-                // The argument becomes a sub-tape over the same inputs whose normal is
-                // the angle's; it is evaluated many times per sample.
-                let mut sub = Compiler::new(self.decls, self.defs, self.budget);
-                for (k, (name, idx)) in self.inputs.iter().enumerate() {
-                    let id = sub.push(Op::Input(k));
-                    sub.inputs.push((name.clone(), idx.clone()));
-                    let rank = idx.len();
-                    sub.symbols
-                        .entry(name.clone())
-                        .or_insert_with(|| Tensor::from_fn(d, rank, |_| 0));
-                    *sub.symbols.get_mut(name).expect("inserted").get_mut(idx) = id;
-                }
-                let angle: Vec<usize> = (0..d).map(|k| sub.push(Op::Angle(k))).collect();
-                let outputs = sub.eval(a, &angle)?;
-                if outputs.rank() != 0 {
+                let sub = self.sub_tape(a)?;
+                if sub.outputs.rank() != 0 {
                     return Err(Unsupported("maxn of a tensor".into()));
                 }
-                self.budget = sub.budget;
-                self.maxn.push(Tape {
-                    ops: sub.ops,
-                    inputs: sub.inputs,
-                    labels: Vec::new(),
-                    outputs,
-                    maxn: sub.maxn,
-                });
+                self.maxn.push(sub);
                 let k = self.maxn.len() - 1;
                 Tensor::scalar(d, self.push(Op::MaxN(k, node.span)))
             }
+        })
+    }
+
+    /// The argument of a `maxn` or an adaptive `avg` as a sub-tape over the same
+    /// inputs whose normal is the `Angle` ops: it is evaluated many times per sample.
+    fn sub_tape(&mut self, a: &Node) -> Result<Tape, Unsupported> {
+        let d = self.decls.dim;
+        let mut sub = Compiler::new(self.decls, self.defs, self.budget);
+        for (k, (name, idx)) in self.inputs.iter().enumerate() {
+            let id = sub.push(Op::Input(k));
+            sub.inputs.push((name.clone(), idx.clone()));
+            let rank = idx.len();
+            sub.symbols
+                .entry(name.clone())
+                .or_insert_with(|| Tensor::from_fn(d, rank, |_| 0));
+            *sub.symbols.get_mut(name).expect("inserted").get_mut(idx) = id;
+        }
+        let angle: Vec<usize> = (0..d).map(|k| sub.push(Op::Angle(k))).collect();
+        let outputs = sub.eval(a, &angle)?;
+        self.budget = sub.budget;
+        Ok(Tape {
+            ops: sub.ops,
+            inputs: sub.inputs,
+            labels: a.free_letters(),
+            outputs,
+            maxn: sub.maxn,
+            avgs: sub.avgs,
+            in_plane: self.decls.normal_in_plane,
         })
     }
 
