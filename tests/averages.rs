@@ -159,3 +159,16 @@ fn derivatives_through_an_adaptive_average_are_refused_not_guessed() {
     assert_eq!(d.outcome.verdict, Verdict::Undecided);
     assert!(d.outcome.detail.unwrap().contains("not a polynomial in n"));
 }
+
+#[test]
+fn an_undecided_claim_is_not_an_erratum() {
+    let files = load_files(&[soundness("averages-circle.toml")]).unwrap();
+    let claim = files[0]
+        .claims
+        .iter()
+        .find(|c| c.id == "amplified-quadrature-error")
+        .unwrap();
+    let d = decide_claim(claim).unwrap();
+    assert_eq!(d.outcome.verdict, Verdict::Undecided);
+    assert!(!cosserat_check::report::is_erratum(&d));
+}

@@ -79,9 +79,10 @@ pub fn refs<'a, 'c>(rows: &'a [Decided<'c>]) -> Vec<&'a Decided<'c>> {
 }
 
 /// Whether a row belongs in the errata: its printed statement fails, or holds only on
-/// a domain.
+/// a domain (an undecided claim accuses nobody).
 pub fn is_erratum(r: &Decided<'_>) -> bool {
-    r.outcome.verdict != crate::derivation::Verdict::Holds
+    use crate::derivation::Verdict;
+    matches!(r.outcome.verdict, Verdict::Fails | Verdict::Conditional)
 }
 
 /// The verdict, marked when it differs from the declared one.
