@@ -70,6 +70,14 @@ pub struct Assumption {
     pub origin: Origin,
 }
 
+impl Assumption {
+    /// A diagnostic that points at the whole assumption.
+    pub fn diagnostic(&self, message: impl Into<String>) -> crate::lang::Diagnostic {
+        self.origin
+            .diagnostic(crate::lang::Span::new(0, self.text.len()), message)
+    }
+}
+
 /// What an assumption says.
 #[derive(Clone, Debug)]
 pub enum AssumptionKind {

@@ -22,7 +22,7 @@ use super::eval::ExactEnv;
 use crate::derivation::{Assumption, AssumptionKind};
 use crate::kernel::linear::{self, Affine, AffineEquation, Solution};
 use crate::kernel::{assignments, Poly, Rational, Var};
-use crate::lang::{Decls, Diagnostic, Span};
+use crate::lang::{Decls, Diagnostic};
 use num_traits::Zero;
 use std::cmp::Reverse;
 use std::collections::{BTreeSet, HashMap};
@@ -117,8 +117,7 @@ impl Parametrisation {
                     for (v, _) in m.factors() {
                         let c = &components[v];
                         if substituted.contains(&c.0) {
-                            return Err(a.origin.diagnostic(
-                                Span::new(0, a.text.len()),
+                            return Err(a.diagnostic(
                                 format!("`{}` is replaced by a substitution, so its components cannot also be constrained", c.0),
                             ).with_help("constrain the symbols of the substitution's right side instead"));
                         }
@@ -171,11 +170,9 @@ impl Parametrisation {
         if equations.len() > MAX_EQUATIONS {
             let a = &assumptions[equations[MAX_EQUATIONS].source];
             return Err(a
-                .origin
-                .diagnostic(
-                    Span::new(0, a.text.len()),
-                    format!("the assumptions give more than {MAX_EQUATIONS} component equations"),
-                )
+                .diagnostic(format!(
+                    "the assumptions give more than {MAX_EQUATIONS} component equations"
+                ))
                 .with_help("constrain fewer or smaller tensors"));
         }
         let solution = linear::solve(columns.len(), &equations)
@@ -351,15 +348,11 @@ fn substitution_order(
         if let [first, second, ..] = of(assumptions[k].kind.symbol())[..] {
             let a = &assumptions[second];
             return Err(a
-                .origin
-                .diagnostic(
-                    Span::new(0, a.text.len()),
-                    format!(
-                        "`{}` is already replaced by `{}`",
-                        a.kind.symbol(),
-                        assumptions[first].text
-                    ),
-                )
+                .diagnostic(format!(
+                    "`{}` is already replaced by `{}`",
+                    a.kind.symbol(),
+                    assumptions[first].text
+                ))
                 .with_help("a symbol can be substituted once"));
         }
     }
@@ -382,14 +375,10 @@ fn substitution_order(
                 .map(|&p| assumptions[p].kind.symbol())
                 .collect();
             return Err(a
-                .origin
-                .diagnostic(
-                    Span::new(0, a.text.len()),
-                    format!(
-                        "substitutions refer to each other in a cycle: {}",
-                        cycle.join(" → ")
-                    ),
-                )
+                .diagnostic(format!(
+                    "substitutions refer to each other in a cycle: {}",
+                    cycle.join(" → ")
+                ))
                 .with_help("a substituted symbol cannot depend on itself"));
         }
         path.push(k);
@@ -413,7 +402,7 @@ fn substitution_order(
 }
 
 fn contradiction(assumptions: &[Assumption], sources: &[usize]) -> Diagnostic {
-    let line = |a: &Assumption| a.origin.diagnostic(Span::new(0, a.text.len()), "").line;
+    let line = |a: &Assumption| a.diagnostic("").line;
     let first = &assumptions[sources[0]];
     let names: Vec<String> = sources
         .iter()
@@ -428,7 +417,6 @@ fn contradiction(assumptions: &[Assumption], sources: &[usize]) -> Diagnostic {
         )
     };
     first
-        .origin
-        .diagnostic(Span::new(0, first.text.len()), message)
+        .diagnostic(message)
         .with_help("together they admit no value of the components; correct or remove one")
 }

@@ -38,7 +38,7 @@ enum Judged {
     Satisfied,
     Violated(Counterexample),
     /// The sides differ by more than the tolerance but not clearly more than the
-    /// quadrature's error, or the quadrature did not converge: the reason.
+    /// adaptive averages' error, or that error is above [`QUADRATURE_MAX`]: the reason.
     Unresolved(String),
 }
 
@@ -108,10 +108,9 @@ fn check_state(
             .flatten()
             .zip(coarse.iter().flatten())
             .any(|(f, c)| {
-                f.iter().zip(c).any(|(x, y)| {
-                    (residual(x) - residual(y)).abs().partial_cmp(&(TOL / 10.0))
-                        != Some(std::cmp::Ordering::Less)
-                })
+                // NaN residuals never agree.
+                let agree = |x, y| (residual(x) - residual(y)).abs() < TOL / 10.0;
+                f.iter().zip(c).any(|(x, y)| !agree(x, y))
             });
         others.push(coarse);
         if disagree {
@@ -363,7 +362,7 @@ fn sample_and_search(
             let mut m = f64::NEG_INFINITY;
             match check_state(sampler, &state, relation, &mut m, &mut tally.quadrature)? {
                 Judged::Violated(cx) => {
-                    tally.largest = tally.largest.max(evidence.worst_margin);
+                    tally.largest = tally.largest.max(m);
                     Found::Violation(Box::new(state), cx)
                 }
                 Judged::Unresolved(why) => Found::Unresolved(why),

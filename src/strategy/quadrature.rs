@@ -329,12 +329,13 @@ where
         let worst = (0..parts.len())
             .max_by(|&i, &j| parts[i].integral.error.total_cmp(&parts[j].integral.error))
             .expect("at least one piece");
-        let Piece { a: lo, b: hi, .. } = parts.swap_remove(worst);
+        let (lo, hi) = (parts[worst].a, parts[worst].b);
         let mid = (lo + hi) / 2.0;
         if mid <= lo || mid >= hi {
-            // The piece cannot be split further in f64.
+            // The piece cannot be split further in f64 (it stays, with its error).
             break;
         }
+        parts.swap_remove(worst);
         for (x, y) in [(lo, mid), (mid, hi)] {
             parts.push(Piece {
                 a: x,

@@ -244,20 +244,42 @@ impl<'a> Sampler<'a> {
         Ok(v.1.into_scalar().unwrap_or(f64::NAN))
     }
 
+    /// Whether the state satisfies every constraint. A constraint evaluated through
+    /// adaptive averages must hold with the averages' error bound to spare, so that
+    /// their error cannot put a state inside a hypothesis it violates.
     pub(super) fn satisfies(&self, state: &State, cs: &[Constraint]) -> Result<bool, Diagnostic> {
         for c in cs {
+            self.fine.reset();
             let (l, r) = (self.scalar(state, &c.lhs)?, self.scalar(state, &c.rhs)?);
-            if !relation_holds(c.relation, l, r).0 {
+            let (ok, residual) = relation_holds(c.relation, l, r);
+            let spare = self.adaptive_error(l, r);
+            if !ok || residual + spare > TOL {
                 return Ok(false);
             }
         }
         Ok(true)
     }
 
+    /// Whether the state lies on the singular set (within the error bound of any
+    /// adaptive average the singular expression takes).
     pub(super) fn singular(&self, state: &State) -> Result<bool, Diagnostic> {
         match &self.sampling.singular {
             None => Ok(false),
-            Some(e) => Ok(self.scalar(state, e)?.abs() < SINGULAR_EPS),
+            Some(e) => {
+                self.fine.reset();
+                let v = self.scalar(state, e)?;
+                Ok(v.abs() < SINGULAR_EPS + self.adaptive_error(v, 0.0))
+            }
+        }
+    }
+
+    /// The relative error bound, on the scale of `l` and `r`, of the adaptive averages
+    /// taken since [`Sampler::fine`] was reset (0 when there were none).
+    fn adaptive_error(&self, l: f64, r: f64) -> f64 {
+        if self.fine.used() {
+            self.fine.worst_error() / (1.0 + l.abs() + r.abs())
+        } else {
+            0.0
         }
     }
 
