@@ -300,12 +300,12 @@ pub(super) fn components_read<'n>(
 ) -> Option<BTreeSet<(String, Vec<usize>)>> {
     let mut out = BTreeSet::new();
     for node in nodes {
-        out.extend(sampler.tape(node)?.inputs.iter().cloned());
+        out.extend(sampler.tape(node)?.inputs_read().into_iter().cloned());
     }
     // Substitutions read their own right sides.
     for &k in sampler.parametrisation.substitutions() {
         if let AssumptionKind::Equals { body, .. } = &sampler.check.assumptions[k].kind {
-            out.extend(sampler.tape(body)?.inputs.iter().cloned());
+            out.extend(sampler.tape(body)?.inputs_read().into_iter().cloned());
         }
     }
     Some(out)

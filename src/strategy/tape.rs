@@ -133,6 +133,49 @@ impl Tape {
         self.ops.len()
     }
 
+    /// The entries of [`Tape::inputs`] the result depends on: every symbol component
+    /// is an input, but folding (δ, ε, a factor 0) leaves many unread.
+    pub fn inputs_read(&self) -> Vec<&(String, Vec<usize>)> {
+        let mut read = vec![false; self.inputs.len()];
+        self.mark_read(&mut read);
+        self.inputs
+            .iter()
+            .zip(read)
+            .filter_map(|(input, r)| r.then_some(input))
+            .collect()
+    }
+
+    /// Marks the inputs reachable from the outputs, through operands and sub-tapes
+    /// (which share this tape's input order).
+    fn mark_read(&self, read: &mut [bool]) {
+        let mut live = vec![false; self.ops.len()];
+        for &k in self.outputs.components() {
+            live[k] = true;
+        }
+        for k in (0..self.ops.len()).rev() {
+            if !live[k] {
+                continue;
+            }
+            match self.ops[k] {
+                Op::Input(i) => read[i] = true,
+                Op::Normal(_) | Op::Angle(_) | Op::Const(_) => {}
+                Op::Add(a, b) | Op::Mul(a, b) | Op::Div(a, b, _) => {
+                    live[a] = true;
+                    live[b] = true;
+                }
+                Op::Neg(a)
+                | Op::Powi(a, _)
+                | Op::Sqrt(a, _)
+                | Op::Abs(a)
+                | Op::Cos(a)
+                | Op::Sin(a)
+                | Op::Tan(a) => live[a] = true,
+                Op::MaxN(t, _) => self.maxn[t].mark_read(read),
+                Op::Avg(t, _) => self.avgs[t].mark_read(read),
+            }
+        }
+    }
+
     pub fn is_empty(&self) -> bool {
         self.ops.is_empty()
     }
