@@ -46,13 +46,8 @@ pub enum Target {
     Normal,
 }
 
-/// One index slot of a leaf.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Slot {
-    Letter(char),
-    /// A fixed component, 0-based.
-    Fixed(usize),
-}
+/// One index slot of a leaf (the kernel's contraction reads the same slots).
+pub use crate::kernel::einsum::Slot;
 
 /// A checked expression node. `free` is sorted by letter and gives, for each free
 /// index, where it occurs; `bound` lists letters summed anywhere inside the node.

@@ -7,10 +7,11 @@
 
 use super::assume::{Component, Parametrisation};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
+use crate::kernel::einsum::{einsum as kernel_einsum, Polynomials, Slot};
 use crate::kernel::{assignments, Poly, PolyError, Tensor, Var, VarTable};
 use crate::lang::parser::Func;
-use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin, Slot, Target};
-use num_traits::{One, Zero};
+use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin, Target};
+use num_traits::Zero;
 use std::collections::HashMap;
 
 /// Largest number of terms one component may reach before evaluation stops: keeps a
@@ -442,75 +443,24 @@ fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Poly> {
     value.tensor.permuted(&perm)
 }
 
-/// Σ over the summed letters of Π factors, for every value of the `out` letters.
-/// A letter is summed when it is not in `out`; fixed slots pick one component.
-/// `None` when the expansion would take more than `budget` term products; otherwise
-/// the work done is taken from the budget.
+/// The kernel's contraction in canonical polynomials, charged to `budget`; `None`
+/// when the expansion would take more term products than are left.
 fn einsum(
     dim: usize,
     factors: &[(&Tensor<Poly>, Vec<Slot>)],
     out: &[char],
     budget: &mut usize,
 ) -> Option<Tensor<Poly>> {
-    let mut all: Vec<char> = out.to_vec();
-    for (_, slots) in factors {
-        for s in slots {
-            if let Slot::Letter(c) = s {
-                if !all.contains(c) {
-                    all.push(*c);
-                }
-            }
-        }
-    }
-    let summed = all.len() - out.len();
-    // For each factor slot: Ok(position in `all`) or Err(fixed value).
-    let plan: Vec<Vec<Result<usize, usize>>> = factors
-        .iter()
-        .map(|(_, slots)| {
-            slots
-                .iter()
-                .map(|s| match s {
-                    Slot::Letter(c) => {
-                        Ok(all.iter().position(|d| d == c).expect("collected above"))
-                    }
-                    Slot::Fixed(v) => Err(*v),
-                })
-                .collect()
-        })
-        .collect();
-    let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
-    let mut work = 0usize;
-    let limit = *budget;
-    let tensor = Tensor::from_fn(dim, out.len(), |o| {
-        let mut acc = Poly::zero();
-        let mut values = o.to_vec();
-        values.resize(all.len(), 0);
-        for s in &inner {
-            values[out.len()..].copy_from_slice(s);
-            let mut prod = Poly::one();
-            for ((t, _), p) in factors.iter().zip(&plan) {
-                let idx: Vec<usize> = p
-                    .iter()
-                    .map(|r| r.map_or_else(|v| v, |k| values[k]))
-                    .collect();
-                let c = t.get(&idx);
-                if c.is_zero() {
-                    prod = Poly::zero();
-                    break;
-                }
-                work = work.saturating_add(prod.num_terms() * c.num_terms());
-                if work > limit {
-                    return Poly::zero();
-                }
-                prod = &prod * c;
-            }
-            acc += &prod;
-        }
-        acc
-    });
-    if work > limit {
-        return None;
-    }
-    *budget -= work;
-    Some(tensor)
+    let mut left = *budget;
+    let t = kernel_einsum(
+        &mut Polynomials {
+            work_left: &mut left,
+        },
+        dim,
+        factors,
+        out,
+    )
+    .ok()?;
+    *budget = left;
+    Some(t)
 }

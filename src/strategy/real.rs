@@ -13,9 +13,10 @@
 use super::assume::Parametrisation;
 use super::quadrature::{Level, Quadrature};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
+use crate::kernel::einsum::{Plain, Slot};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::Func;
-use crate::lang::{Decls, Node, NodeKind, Slot, Span, Target};
+use crate::lang::{Decls, Node, NodeKind, Span, Target};
 use num_dual::DualNum;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -186,7 +187,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
                         }
                     }
                 };
-                let t = contract(d, &[(&base, slots.clone())], &labels);
+                let t = Plain::einsum(d, &[(&base, slots.clone())], &labels);
                 (labels, t)
             }
             NodeKind::Neg(a) => {
@@ -213,7 +214,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
                     .iter()
                     .map(|(ls, t)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
                     .collect();
-                let t = contract(d, &slots, &labels);
+                let t = Plain::einsum(d, &slots, &labels);
                 (labels, t)
             }
             NodeKind::Div(a, b) => {
@@ -423,57 +424,4 @@ pub(crate) fn golden_max(
     let fm = f(mid)?;
     let fc = f(c)?;
     Ok(if fm >= fc { (mid, fm) } else { (c, fc) })
-}
-
-/// Σ over summed letters of Π factors for every value of the `out` letters.
-fn contract<T: DualNum<Primitive = f64>>(
-    dim: usize,
-    factors: &[(&Tensor<T>, Vec<Slot>)],
-    out: &[char],
-) -> Tensor<T> {
-    let mut all: Vec<char> = out.to_vec();
-    for (_, slots) in factors {
-        for s in slots {
-            if let Slot::Letter(c) = s {
-                if !all.contains(c) {
-                    all.push(*c);
-                }
-            }
-        }
-    }
-    let summed = all.len() - out.len();
-    // For each factor slot: Ok(position in the combined assignment) or Err(fixed value).
-    let plan: Vec<Vec<Result<usize, usize>>> = factors
-        .iter()
-        .map(|(_, slots)| {
-            slots
-                .iter()
-                .map(|sl| match sl {
-                    Slot::Fixed(v) => Err(*v),
-                    Slot::Letter(c) => Ok(all.iter().position(|x| x == c).expect("collected")),
-                })
-                .collect()
-        })
-        .collect();
-    let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
-    let mut values = vec![0usize; all.len()];
-    let mut idx: Vec<usize> = Vec::with_capacity(8);
-    Tensor::from_fn(dim, out.len(), |o| {
-        values[..out.len()].copy_from_slice(o);
-        let mut total = T::zero();
-        for s in &inner {
-            values[out.len()..].copy_from_slice(s);
-            let mut prod = T::one();
-            for ((t, _), p) in factors.iter().zip(&plan) {
-                idx.clear();
-                idx.extend(p.iter().map(|r| match r {
-                    Ok(k) => values[*k],
-                    Err(v) => *v,
-                }));
-                prod *= t.get(&idx).clone();
-            }
-            total += prod;
-        }
-        total
-    })
 }

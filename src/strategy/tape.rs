@@ -11,16 +11,19 @@
 //! subexpressions are shared, and evaluation is one pass over a `Vec` generic over the
 //! scalar (`f64` or num-dual numbers).
 //!
-//! It is a second implementation of the real route, so `tests/tape.rs` holds it to the
-//! interpreter on every sampled claim of the paper; errors keep the interpreter's
-//! messages and spans (division by zero, square root of a negative number).
+//! Contraction is the kernel's [`einsum`] over op ids, the same code the interpreter runs
+//! over numbers; `tests/tape.rs` holds the tape to the interpreter on every sampled claim
+//! of the paper, so the compiler's folding, sharing and unrolling are checked against
+//! plain evaluation. Errors keep the interpreter's messages and spans (division by
+//! zero, square root of a negative number).
 
 use super::quadrature::Quadrature;
 use super::real::{RealError, MAXN_GRID};
 use crate::derivation::Definition;
+use crate::kernel::einsum::{einsum, Arithmetic, Slot};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::Func;
-use crate::lang::{Decls, Node, NodeKind, Slot, Span, Target};
+use crate::lang::{Decls, Node, NodeKind, Span, Target};
 use num_dual::DualNum;
 use std::collections::HashMap;
 
@@ -658,60 +661,31 @@ impl<'a> Compiler<'a> {
         out
     }
 
-    /// Σ over summed letters of Π factors for every value of the `out` letters, on op
-    /// ids (as `real::contract` does on values; kept separate on purpose, so that
-    /// `tests/tape.rs` compares two implementations).
+    /// The kernel's contraction, emitting the tape's operations.
     fn contract(&mut self, factors: &[(&Tensor<usize>, Vec<Slot>)], out: &[char]) -> Tensor<usize> {
         let dim = self.decls.dim;
-        let mut all: Vec<char> = out.to_vec();
-        for (_, slots) in factors {
-            for s in slots {
-                if let Slot::Letter(c) = s {
-                    if !all.contains(c) {
-                        all.push(*c);
-                    }
-                }
-            }
+        match einsum(self, dim, factors, out) {
+            Ok(t) => t,
+            Err(never) => match never {},
         }
-        let summed = all.len() - out.len();
-        let plan: Vec<Vec<Result<usize, usize>>> = factors
-            .iter()
-            .map(|(_, slots)| {
-                slots
-                    .iter()
-                    .map(|sl| match sl {
-                        Slot::Fixed(v) => Err(*v),
-                        Slot::Letter(c) => Ok(all.iter().position(|x| x == c).expect("collected")),
-                    })
-                    .collect()
-            })
-            .collect();
-        let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
-        let mut values = vec![0usize; all.len()];
-        let outs: Vec<Vec<usize>> = assignments(dim, out.len()).collect();
-        let mut result = Vec::with_capacity(outs.len());
-        for o in &outs {
-            values[..out.len()].copy_from_slice(o);
-            let mut total = self.c(0.0);
-            for s in &inner {
-                values[out.len()..].copy_from_slice(s);
-                let mut prod = self.c(1.0);
-                for ((t, _), p) in factors.iter().zip(&plan) {
-                    let idx: Vec<usize> = p
-                        .iter()
-                        .map(|r| match r {
-                            Ok(k) => values[*k],
-                            Err(v) => *v,
-                        })
-                        .collect();
-                    let f = *t.get(&idx);
-                    prod = self.mul(prod, f);
-                }
-                total = self.add(total, prod);
-            }
-            result.push(total);
-        }
-        let mut it = result.into_iter();
-        Tensor::from_fn(dim, out.len(), |_| it.next().expect("one per assignment"))
+    }
+}
+
+/// The tape compiler as an arithmetic: the kernel's contraction emits its operations
+/// (constants folded as `add` and `mul` fold them).
+impl Arithmetic for Compiler<'_> {
+    type Value = usize;
+    type Error = std::convert::Infallible;
+    fn zero(&mut self) -> usize {
+        self.c(0.0)
+    }
+    fn one(&mut self) -> usize {
+        self.c(1.0)
+    }
+    fn mul(&mut self, a: usize, b: &usize) -> Result<usize, Self::Error> {
+        Ok(Compiler::mul(self, a, *b))
+    }
+    fn add(&mut self, a: usize, b: usize) -> Result<usize, Self::Error> {
+        Ok(Compiler::add(self, a, b))
     }
 }

@@ -1,0 +1,245 @@
+//! The one contraction every verdict relies on: Σ over the summed letters of a
+//! product of tensor components, for every value of the free letters.
+//!
+//! It is written once, generic over the arithmetic it computes in ([`Arithmetic`]):
+//! canonical polynomials under a work budget (the exact strategy), `f64` and num-dual
+//! numbers (the sampled strategies' interpreter), and op ids of the tape compiler.
+//! The exact route and the sampled routes thus contract with the same code; what makes
+//! them independent is the *method* (canonical forms against sampling), not a second
+//! copy of these lines. `tests/einsum.rs` checks this function against outer products
+//! followed by pairwise traces ([`Tensor::outer`], [`Tensor::contract`]).
+
+use super::tensor::{assignments, Tensor};
+use num_traits::{One, Zero};
+
+/// One index slot of a factor: a letter (free or summed) or a fixed component.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot {
+    Letter(char),
+    /// A fixed component, 0-based.
+    Fixed(usize),
+}
+
+/// The ring operations a contraction needs, with a context: a work budget, or the
+/// tape under construction. Products are formed left to right and summed in the
+/// order of the summed letters' assignments, so two arithmetics that round alike give
+/// bit-identical results.
+pub trait Arithmetic {
+    type Value: Clone;
+    /// Why an operation was refused (a work budget ran out).
+    type Error;
+    fn zero(&mut self) -> Self::Value;
+    fn one(&mut self) -> Self::Value;
+    /// Whether `x` is exactly 0, so that a product through it may be skipped. Only an
+    /// arithmetic where 0·x = 0 for every x (not IEEE floats: 0·∞ is NaN) says yes.
+    fn is_exact_zero(&self, _x: &Self::Value) -> bool {
+        false
+    }
+    fn mul(&mut self, a: Self::Value, b: &Self::Value) -> Result<Self::Value, Self::Error>;
+    fn add(&mut self, a: Self::Value, b: Self::Value) -> Result<Self::Value, Self::Error>;
+}
+
+/// One factor of a contraction: a tensor and the slots it is indexed with.
+pub type Factor<'t, T> = (&'t Tensor<T>, Vec<Slot>);
+
+/// Σ over the summed letters of Π factors, for every value of the `out` letters (in
+/// that order). A letter is summed when it is not in `out`; a fixed slot picks one
+/// component. A tensor of rank `out.len()` results.
+pub fn einsum<A: Arithmetic>(
+    arithmetic: &mut A,
+    dim: usize,
+    factors: &[Factor<'_, A::Value>],
+    out: &[char],
+) -> Result<Tensor<A::Value>, A::Error> {
+    let mut all: Vec<char> = out.to_vec();
+    for (_, slots) in factors {
+        for s in slots {
+            if let Slot::Letter(c) = s {
+                if !all.contains(c) {
+                    all.push(*c);
+                }
+            }
+        }
+    }
+    let summed = all.len() - out.len();
+    // For each factor slot: Ok(position in `all`) or Err(fixed value).
+    let plan: Vec<Vec<Result<usize, usize>>> = factors
+        .iter()
+        .map(|(_, slots)| {
+            slots
+                .iter()
+                .map(|s| match s {
+                    Slot::Letter(c) => {
+                        Ok(all.iter().position(|d| d == c).expect("collected above"))
+                    }
+                    Slot::Fixed(v) => Err(*v),
+                })
+                .collect()
+        })
+        .collect();
+    let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
+    let mut values = vec![0usize; all.len()];
+    let mut idx: Vec<usize> = Vec::with_capacity(8);
+    let mut data = Vec::with_capacity(dim.pow(out.len() as u32));
+    for o in assignments(dim, out.len()) {
+        values[..out.len()].copy_from_slice(&o);
+        let mut total = arithmetic.zero();
+        for s in &inner {
+            values[out.len()..].copy_from_slice(s);
+            let mut prod = Some(arithmetic.one());
+            for ((t, _), p) in factors.iter().zip(&plan) {
+                idx.clear();
+                idx.extend(p.iter().map(|r| match r {
+                    Ok(k) => values[*k],
+                    Err(v) => *v,
+                }));
+                let c = t.get(&idx);
+                if arithmetic.is_exact_zero(c) {
+                    prod = None;
+                    break;
+                }
+                prod = Some(arithmetic.mul(prod.expect("set above"), c)?);
+            }
+            if let Some(prod) = prod {
+                total = arithmetic.add(total, prod)?;
+            }
+        }
+        data.push(total);
+    }
+    let mut it = data.into_iter();
+    Ok(Tensor::from_fn(dim, out.len(), |_| {
+        it.next().expect("one value per assignment")
+    }))
+}
+
+/// Plain field arithmetic for any `Clone` number type with the usual operators
+/// (`f64`, num-dual numbers, [`Rational`](super::Rational)); it never refuses.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Plain;
+
+impl Plain {
+    /// `einsum` in plain arithmetic.
+    pub fn einsum<T>(dim: usize, factors: &[Factor<'_, T>], out: &[char]) -> Tensor<T>
+    where
+        T: Clone + Zero + One + std::ops::Mul<Output = T>,
+    {
+        match einsum(
+            &mut PlainOf::<T>(std::marker::PhantomData),
+            dim,
+            factors,
+            out,
+        ) {
+            Ok(t) => t,
+            Err(never) => match never {},
+        }
+    }
+}
+
+/// [`Plain`] for one number type.
+struct PlainOf<T>(std::marker::PhantomData<T>);
+
+impl<T> Arithmetic for PlainOf<T>
+where
+    T: Clone + Zero + One + std::ops::Mul<Output = T>,
+{
+    type Value = T;
+    type Error = std::convert::Infallible;
+    fn zero(&mut self) -> T {
+        T::zero()
+    }
+    fn one(&mut self) -> T {
+        T::one()
+    }
+    fn mul(&mut self, a: T, b: &T) -> Result<T, Self::Error> {
+        Ok(a * b.clone())
+    }
+    fn add(&mut self, a: T, b: T) -> Result<T, Self::Error> {
+        Ok(a + b)
+    }
+}
+
+/// The work budget of a polynomial contraction ran out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OverBudget;
+
+/// Canonical polynomials, with a budget of term products: each product of an `a`-term
+/// and a `b`-term polynomial costs `a·b`. Known zeros are skipped exactly.
+#[derive(Debug)]
+pub struct Polynomials<'b> {
+    pub work_left: &'b mut usize,
+}
+
+impl Arithmetic for Polynomials<'_> {
+    type Value = super::Poly;
+    type Error = OverBudget;
+    fn zero(&mut self) -> super::Poly {
+        super::Poly::zero()
+    }
+    fn one(&mut self) -> super::Poly {
+        super::Poly::one()
+    }
+    fn is_exact_zero(&self, x: &super::Poly) -> bool {
+        x.is_zero()
+    }
+    fn mul(&mut self, a: super::Poly, b: &super::Poly) -> Result<super::Poly, OverBudget> {
+        let cost = a.num_terms().saturating_mul(b.num_terms());
+        *self.work_left = self.work_left.checked_sub(cost).ok_or(OverBudget)?;
+        Ok(&a * b)
+    }
+    fn add(&mut self, mut a: super::Poly, b: super::Poly) -> Result<super::Poly, OverBudget> {
+        a += &b;
+        Ok(a)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::{Poly, Rational, VarTable};
+
+    #[test]
+    fn trace_and_matrix_product() {
+        let a = Tensor::from_fn(2, 2, |i| (1 + 2 * i[0] + i[1]) as f64);
+        let tr = Plain::einsum(2, &[(&a, vec![Slot::Letter('i'), Slot::Letter('i')])], &[]);
+        assert_eq!(tr.into_scalar(), Some(1.0 + 4.0));
+        // (AA)_ik = A_ij A_jk, [[1,2],[3,4]]² = [[7,10],[15,22]].
+        let i = Slot::Letter('i');
+        let j = Slot::Letter('j');
+        let k = Slot::Letter('k');
+        let sq = Plain::einsum(2, &[(&a, vec![i, j]), (&a, vec![j, k])], &['i', 'k']);
+        assert_eq!(sq.components(), &[7.0, 10.0, 15.0, 22.0]);
+        // A_2j A_j1 = 3·1 + 4·3 = 15.
+        let fixed = Plain::einsum(
+            2,
+            &[(&a, vec![Slot::Fixed(1), j]), (&a, vec![j, Slot::Fixed(0)])],
+            &[],
+        );
+        assert_eq!(fixed.into_scalar(), Some(15.0));
+    }
+
+    #[test]
+    fn polynomial_budget_refuses_and_charges() {
+        let mut names = VarTable::new();
+        let x = Poly::var(names.intern("x"));
+        let y = Poly::var(names.intern("y"));
+        let s = &x + &y;
+        let v = Tensor::from_fn(3, 1, |_| s.clone());
+        let i = Slot::Letter('i');
+        let mut work = 3 * 2 * 2;
+        let mut ring = Polynomials {
+            work_left: &mut work,
+        };
+        // Σ_i (x+y)(x+y): three products of a 1-term by a 2-term (the leading 1) and
+        // three of 2 by 2.
+        let r = einsum(&mut ring, 3, &[(&v, vec![i]), (&v, vec![i])], &[]);
+        assert_eq!(r, Err(OverBudget));
+        let mut work = 100;
+        let mut ring = Polynomials {
+            work_left: &mut work,
+        };
+        let r = einsum(&mut ring, 3, &[(&v, vec![i]), (&v, vec![i])], &[]).unwrap();
+        let three = Poly::constant(Rational::int(3));
+        assert_eq!(r.into_scalar(), Some(&three * &(&s * &s)));
+        assert_eq!(work, 100 - 3 * (2 + 4));
+    }
+}
