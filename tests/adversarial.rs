@@ -21,9 +21,11 @@ fn thin_violations_are_found_for_every_seed_from_1_to_20() {
             sampling.seed = seed;
             let d = decide_claim(claim).unwrap_or_else(|e| panic!("{}: {e}", claim.id));
             assert_eq!(
-                d.outcome.verdict, claim.expect,
+                d.outcome.verdict(),
+                claim.expect,
                 "{} with seed {seed}: {:?}",
-                claim.id, d.outcome.numeric
+                claim.id,
+                d.outcome.numeric
             );
             decided += 1;
         }
@@ -44,7 +46,7 @@ fn sampled_and_proved_verdicts_are_labelled_differently() {
     let find = |id: &str| *claims.iter().find(|c| c.id == id).unwrap();
     let sampled = decide_claim(find("lode-bound-sharp")).unwrap().outcome;
     assert_eq!(
-        (sampled.strength, sampled.verdict_text().as_str()),
+        (sampled.strength(), sampled.verdict_text().as_str()),
         (Strength::Sampled, "holds (sampled)")
     );
     let search = sampled.numeric.unwrap().search.unwrap();
@@ -53,7 +55,7 @@ fn sampled_and_proved_verdicts_are_labelled_differently() {
         .unwrap()
         .outcome;
     assert_eq!(
-        (proved.strength, proved.verdict_text().as_str()),
+        (proved.strength(), proved.verdict_text().as_str()),
         (Strength::Proof, "holds")
     );
 }

@@ -30,11 +30,14 @@ fn verdicts_as_declared(file: &str, seeds: std::ops::RangeInclusive<u64>) {
             sampling.seed = seed;
             let d = decide_claim(claim).unwrap_or_else(|e| panic!("{}: {e}", claim.id));
             assert_eq!(
-                d.outcome.verdict, claim.expect,
+                d.outcome.verdict(),
+                claim.expect,
                 "{} with seed {seed}: {:?} {:?}",
-                claim.id, d.outcome.detail, d.outcome.numeric
+                claim.id,
+                d.outcome.detail,
+                d.outcome.numeric
             );
-            if d.outcome.verdict == Verdict::Undecided {
+            if d.outcome.verdict() == Verdict::Undecided {
                 let why = d.outcome.detail.unwrap();
                 assert!(why.contains("adaptive quadrature cannot decide"), "{why}");
             }
@@ -156,7 +159,7 @@ fn derivatives_through_an_adaptive_average_are_refused_not_guessed() {
     // The closed form is irrelevant: the refusal comes before any comparison.
     let file = load_str("t.toml", text).unwrap();
     let d = decide_claim(&file.claims[0]).unwrap();
-    assert_eq!(d.outcome.verdict, Verdict::Undecided);
+    assert_eq!(d.outcome.verdict(), Verdict::Undecided);
     assert!(d.outcome.detail.unwrap().contains("not a polynomial in n"));
 }
 
@@ -169,6 +172,6 @@ fn an_undecided_claim_is_not_an_erratum() {
         .find(|c| c.id == "amplified-quadrature-error")
         .unwrap();
     let d = decide_claim(claim).unwrap();
-    assert_eq!(d.outcome.verdict, Verdict::Undecided);
+    assert_eq!(d.outcome.verdict(), Verdict::Undecided);
     assert!(!cosserat_check::report::is_erratum(&d));
 }

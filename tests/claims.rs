@@ -47,9 +47,9 @@ fn every_verdict_is_the_declared_one() {
             format!(
                 "{}: decided {} (declared {}); correction {:?}",
                 r.claim.id,
-                r.outcome.verdict,
+                r.outcome.verdict(),
                 r.claim.expect,
-                r.correction.as_ref().map(|o| o.verdict)
+                r.correction.as_ref().map(|o| o.verdict())
             )
         })
         .collect();
@@ -125,7 +125,7 @@ fn the_paper_claims_of_sections_3_to_5_are_all_present() {
 #[test]
 fn every_non_holding_verdict_carries_evidence_and_a_reason() {
     for r in decided() {
-        if r.outcome.verdict != Verdict::Holds {
+        if r.outcome.verdict() != Verdict::Holds {
             assert!(r.claim.reason.is_some(), "{}: no reason", r.claim.id);
             let cx = r.outcome.counterexample.as_ref().expect("a counterexample");
             assert!(
@@ -133,7 +133,7 @@ fn every_non_holding_verdict_carries_evidence_and_a_reason() {
                 "{}: empty counterexample",
                 r.claim.id
             );
-            if r.outcome.verdict == Verdict::Conditional {
+            if r.outcome.verdict() == Verdict::Conditional {
                 // Sampled strategies state the domain in their numeric evidence, the
                 // symbolic (Appendix) ones in their detail.
                 let numeric = r.outcome.numeric.as_ref().and_then(|n| n.domain.as_ref());
@@ -186,7 +186,8 @@ fn exact_verdicts_agree_with_the_independent_float_route() {
                 .unwrap_or_else(|e| panic!("{}: {e}", r.claim.id))
             {
                 assert_eq!(
-                    v, outcome.verdict,
+                    v,
+                    outcome.verdict(),
                     "{}: exact and float routes disagree",
                     r.claim.id
                 );

@@ -94,22 +94,22 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     };
     if matches!(check.strategy, Strategy::Exact) {
         match float::decide(decls, &check, FLOAT_SAMPLES, 7) {
-            Ok(Some(v)) if v != outcome.verdict => {
-                return Fate::Disagreement(format!("exact {}, float {v}", outcome.verdict));
+            Ok(Some(v)) if v != outcome.verdict() => {
+                return Fate::Disagreement(format!("exact {}, float {v}", outcome.verdict()));
             }
             Err(e) => {
-                return Fate::Disagreement(format!("exact {}, float error {e}", outcome.verdict))
+                return Fate::Disagreement(format!("exact {}, float error {e}", outcome.verdict()))
             }
             _ => {}
         }
     }
-    if outcome.verdict != expected {
+    if outcome.verdict() != expected {
         return Fate::Killed;
     }
     if sampled {
         let again = resampled(check, RESAMPLED, Some(RESAMPLE_SEED));
         match decide(decls, &again) {
-            Ok(o) if o.verdict == expected => {}
+            Ok(o) if o.verdict() == expected => {}
             _ => return Fate::Late,
         }
     }

@@ -40,7 +40,7 @@ fn decide(body: &str) -> (Verdict, Method, String) {
     let file = load_str("test.toml", &text).unwrap_or_else(|e| panic!("{e}"));
     let d = decide_claim(&file.claims[0]).unwrap_or_else(|e| panic!("{e}"));
     let text = cosserat_check::report::evidence(&d.outcome);
-    (d.outcome.verdict, d.outcome.method, text)
+    (d.outcome.verdict(), d.outcome.method, text)
 }
 
 #[test]
@@ -151,8 +151,10 @@ wrt = ["sigma"]"#;
 #[test]
 fn a_genuine_circle_has_no_not_circle_witness() {
     let not_circle = "expect = \"holds\"\nstrategy = \"not-circle\"\nx = \"tn\"\ny = \"tau\"";
+    // No witness is not a counterexample: the claim is undecided, never `fails`.
     let (v, m, ev) = decide(not_circle);
-    assert_eq!((v, m), (Verdict::Fails, Method::Witness), "{ev}");
+    assert_eq!((v, m), (Verdict::Undecided, Method::Witness), "{ev}");
+    assert!(ev.contains("not a counterexample"), "{ev}");
     // Distorting the shear axis breaks the circle: a witness exists.
     let (v, _, ev) = decide(&not_circle.replace("\"tau\"", "\"2 tau\""));
     assert_eq!(v, Verdict::Holds, "{ev}");

@@ -155,9 +155,41 @@ pub fn solve(columns: usize, equations: &[AffineEquation]) -> Result<Solution, I
     Ok(Solution { values })
 }
 
+/// The determinant of a square matrix of rationals (Gaussian elimination, exact).
+pub fn determinant(mut m: Vec<Vec<Rational>>) -> Rational {
+    let n = m.len();
+    let mut det = Rational::int(1);
+    for col in 0..n {
+        let Some(pivot) = (col..n).find(|&r| !m[r][col].is_zero()) else {
+            return Rational::int(0);
+        };
+        if pivot != col {
+            m.swap(pivot, col);
+            det = -det;
+        }
+        det = &det * &m[col][col];
+        let inv = m[col][col].recip().expect("pivot is nonzero");
+        for r in col + 1..n {
+            let factor = &m[r][col] * &inv;
+            if factor.is_zero() {
+                continue;
+            }
+            let pivot_row = m[col].clone();
+            for (target, p) in m[r].iter_mut().zip(&pivot_row).skip(col) {
+                *target = &*target - &(&factor * p);
+            }
+        }
+    }
+    det
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn qi(a: i64) -> Rational {
+        Rational::int(a)
+    }
 
     fn eq(source: usize, coeffs: &[(usize, i64)], constant: i64) -> AffineEquation {
         AffineEquation {
@@ -236,5 +268,21 @@ mod tests {
                 .fold(e.constant.clone(), |acc, (c, q)| &acc + &(q * &x[*c]));
             assert!(lhs.is_zero());
         }
+    }
+
+    #[test]
+    fn determinant_is_exact() {
+        assert_eq!(
+            determinant(vec![vec![qi(2), qi(1)], vec![qi(1), qi(3)]]),
+            qi(5)
+        );
+        assert_eq!(
+            determinant(vec![vec![qi(0), qi(1)], vec![qi(1), qi(0)]]),
+            qi(-1)
+        );
+        assert_eq!(
+            determinant(vec![vec![qi(1), qi(2)], vec![qi(2), qi(4)]]),
+            qi(0)
+        );
     }
 }

@@ -5,6 +5,7 @@
 //! else in the crate reaches a verdict only through these types, so they are kept
 //! small and are tested hardest (unit tests here, cross-checks in `tests/`).
 
+pub mod certificate;
 pub mod einsum;
 pub mod gcd;
 pub mod linear;

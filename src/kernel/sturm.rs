@@ -36,6 +36,24 @@ impl UniPoly {
         Some(UniPoly::new(c))
     }
 
+    /// `p / (x − a)^k` for the largest k with (x − a)^k dividing `p` (synthetic
+    /// division): the same roots as `p`, except `a`.
+    pub fn without_root_at(&self, a: &Rational) -> UniPoly {
+        let mut p = self.clone();
+        while !p.is_zero() && p.eval(a).is_zero() {
+            // Coefficients of the quotient, from the top: q_{n−1} = p_n, q_{k−1} = p_k + a q_k.
+            let n = p.0.len() - 1;
+            let mut q = vec![Rational::zero(); n];
+            let mut carry = Rational::zero();
+            for k in (1..=n).rev() {
+                carry = &p.0[k] + &(a * &carry);
+                q[k - 1] = carry.clone();
+            }
+            p = UniPoly::new(q);
+        }
+        p
+    }
+
     pub fn degree(&self) -> Option<usize> {
         self.0.len().checked_sub(1)
     }

@@ -16,21 +16,21 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
     for r in rows {
         let c = r.claim;
         let (corr, corr_verdict) = match (&c.correction, &r.correction) {
-            (Some(k), Some(o)) => (k.statement.as_str(), o.verdict.as_str()),
+            (Some(k), Some(o)) => (k.statement.as_str(), o.verdict().as_str()),
             _ => ("", ""),
         };
         let cells = [
             c.id.as_str(),
             c.section.as_str(),
             c.statement.as_str(),
-            r.outcome.verdict.as_str(),
+            r.outcome.verdict().as_str(),
             c.expect.as_str(),
             r.outcome.method.as_str(),
             &r.outcome.checks.to_string(),
             &full_evidence(r, &|s| s.to_owned()),
             corr,
             corr_verdict,
-            match r.outcome.strength {
+            match r.outcome.strength() {
                 crate::strategy::Strength::Proof => "proof",
                 crate::strategy::Strength::Sampled => "sampled",
             },

@@ -117,9 +117,16 @@ fn check_section(out: &mut String, claim: &Claim, check: &Check, outcome: &Outco
     let _ = writeln!(
         out,
         "Verdict: {} ({})",
-        outcome.verdict,
+        outcome.verdict_text(),
         outcome.method.as_str()
     );
+    if let Some(c) = outcome.certificate() {
+        let _ = writeln!(
+            out,
+            "Certificate (verified by the kernel): {}",
+            super::certificate_words(c)
+        );
+    }
     let _ = writeln!(out, "Evidence: {}", evidence(outcome));
     if let Some(cx) = &outcome.counterexample {
         let json = serde_json::to_string_pretty(cx).unwrap_or_default();
@@ -193,7 +200,7 @@ pub fn render(r: &Decided<'_>) -> String {
         out,
         "Declared: {}; decided: {} ({})",
         c.expect,
-        r.outcome.verdict,
+        r.outcome.verdict(),
         r.outcome.method.as_str()
     );
     if let Some(reason) = &c.reason {

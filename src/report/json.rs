@@ -1,10 +1,12 @@
 //! The JSON contract of `check --format json`. Later versions may add fields but never
 //! remove or rename these: `paper`, `claims[]` (`id`, `section`, `statement`,
 //! `verdict`, `method`, `strength` (`proof` or `sampled`), `expected`, `checks`,
-//! `counterexample`, `correction`), and
+//! `certificate` (the kernel's facts behind a proof: `{"facts": [{"kind": …}]}`, or
+//! null), `counterexample`, `correction`), and
 //! `summary` (`holds`, `fails`, `conditional`, `undecided`, `unexpected`).
 
 use super::{paper_of, Summary};
+use crate::kernel::certificate::Certificate;
 use crate::strategy::{Counterexample, Decided, Method, NumericEvidence, Strength};
 use serde::Serialize;
 
@@ -25,6 +27,7 @@ struct ClaimRow<'a> {
     strength: Strength,
     expected: &'static str,
     checks: usize,
+    certificate: Option<&'a Certificate>,
     counterexample: Option<&'a Counterexample>,
     correction: Option<CorrectionRow<'a>>,
     as_expected: bool,
@@ -43,6 +46,7 @@ struct CorrectionRow<'a> {
     strength: Strength,
     expected: &'static str,
     checks: usize,
+    certificate: Option<&'a Certificate>,
     counterexample: Option<&'a Counterexample>,
     reason: &'a str,
 }
@@ -57,11 +61,12 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
                 id: &c.id,
                 section: &c.section,
                 statement: &c.statement,
-                verdict: r.outcome.verdict.as_str(),
+                verdict: r.outcome.verdict().as_str(),
                 method: r.outcome.method,
-                strength: r.outcome.strength,
+                strength: r.outcome.strength(),
                 expected: c.expect.as_str(),
                 checks: r.outcome.checks,
+                certificate: r.outcome.certificate(),
                 counterexample: r.outcome.counterexample.as_ref(),
                 correction: c
                     .correction
@@ -69,11 +74,12 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
                     .zip(r.correction.as_ref())
                     .map(|(k, o)| CorrectionRow {
                         statement: &k.statement,
-                        verdict: o.verdict.as_str(),
+                        verdict: o.verdict().as_str(),
                         method: o.method,
-                        strength: o.strength,
+                        strength: o.strength(),
                         expected: k.expect.as_str(),
                         checks: o.checks,
+                        certificate: o.certificate(),
                         counterexample: o.counterexample.as_ref(),
                         reason: &k.reason,
                     }),

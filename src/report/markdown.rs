@@ -29,7 +29,7 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
     let _ = writeln!(out, "|---|---|---|---|---|---|");
     for r in rows {
         let c = r.claim;
-        let verdict = match r.outcome.verdict {
+        let verdict = match r.outcome.verdict() {
             crate::derivation::Verdict::Holds => verdict_label(r),
             _ => format!("**{}**", verdict_label(r)),
         };

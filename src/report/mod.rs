@@ -58,7 +58,7 @@ impl Summary {
     pub fn of(rows: &[&Decided<'_>]) -> Self {
         let mut s = Summary::default();
         for r in rows {
-            match r.outcome.verdict {
+            match r.outcome.verdict() {
                 crate::derivation::Verdict::Holds => s.holds += 1,
                 crate::derivation::Verdict::Fails => s.fails += 1,
                 crate::derivation::Verdict::Conditional => s.conditional += 1,
@@ -82,7 +82,7 @@ pub fn refs<'a, 'c>(rows: &'a [Decided<'c>]) -> Vec<&'a Decided<'c>> {
 /// a domain (an undecided claim accuses nobody).
 pub fn is_erratum(r: &Decided<'_>) -> bool {
     use crate::derivation::Verdict;
-    matches!(r.outcome.verdict, Verdict::Fails | Verdict::Conditional)
+    matches!(r.outcome.verdict(), Verdict::Fails | Verdict::Conditional)
 }
 
 /// The verdict, marked when it differs from the declared one.
@@ -114,7 +114,7 @@ pub fn full_evidence(r: &Decided<'_>, statement: &dyn Fn(&str) -> String) -> Str
             o.method.as_str(),
             evidence(o)
         ));
-        if o.verdict != corr.expect {
+        if o.verdict() != corr.expect {
             ev.push_str(&format!(" ✗ (declared: {})", corr.expect));
         }
     }
@@ -232,4 +232,39 @@ fn counterexample_text(cx: &Counterexample) -> String {
         }
     }
     parts.join("; ")
+}
+
+/// The kernel's facts behind a proof, in words.
+pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String {
+    use crate::kernel::certificate::Fact;
+    let facts: Vec<String> = c
+        .facts()
+        .iter()
+        .map(|f| match f {
+            Fact::PolynomialIdentity {
+                components,
+                modulo_unit_normal,
+            } => {
+                let s = if *components == 1 { "" } else { "s" };
+                let modulo = if *modulo_unit_normal > 0 {
+                    format!(" ({modulo_unit_normal} of them modulo n·n = 1)")
+                } else {
+                    String::new()
+                };
+                format!("canonical polynomials identical in {components} component{s}{modulo}")
+            }
+            Fact::RationalFunctionIdentity => "reduced rational functions identical".to_owned(),
+            Fact::Proportional { factor } => format!("one polynomial is {factor} times the other"),
+            Fact::NoRoot { interval } => format!("no real root for {interval} (Sturm count)"),
+            Fact::Positive { at } => format!("positive at {at} (exact)"),
+            Fact::Value { value } => format!("the exact value is {value}"),
+            Fact::NotConcyclic { determinant } => {
+                format!("four points on no common circle or line (det = {determinant})")
+            }
+            Fact::NullVector { vector } => {
+                format!("an exact null vector ({})", vector.join(", "))
+            }
+        })
+        .collect();
+    facts.join("; ")
 }

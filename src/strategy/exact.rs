@@ -6,8 +6,9 @@
 //! the normal).
 
 use super::eval::{component_name, ExactEnv, Labeled};
-use super::{Counterexample, Method, Outcome};
-use crate::derivation::{Check, Verdict};
+use super::{Counterexample, Method, Outcome, Strength};
+use crate::derivation::Check;
+use crate::kernel::certificate::Identities;
 use crate::kernel::{assignments, Poly, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
@@ -27,7 +28,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 if let Some(h) = &e.help {
                     d = d.with_help(h.clone());
                 }
-                return Ok(Outcome::new(Verdict::Fails, Method::IndexCheck, 1)
+                return Ok(Outcome::fails(Method::IndexCheck, Strength::Proof, 1)
                     .with_counterexample(Counterexample {
                         chain: ci + 1,
                         equality: si.max(1),
@@ -40,8 +41,8 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
         }
     }
     let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
-    let mut checks = 0;
-    let mut used_unit = false;
+    let normal = env.normal_vars().to_vec();
+    let mut identities = Identities::new(&normal);
     for (ci, chain) in check.chains.iter().enumerate() {
         let mut values = Vec::with_capacity(chain.len());
         for side in chain {
@@ -54,21 +55,17 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
             for a in assignments(decls.dim, labels.len()) {
                 let assignment: Vec<(char, usize)> = labels.iter().copied().zip(a).collect();
                 let (lp, rp) = (l.at(&assignment), r.at(&assignment));
-                let raw = lp - rp;
-                let diff = raw.reduce_on_sphere(env.normal_vars()).map_err(|e| {
+                let compared = identities.compare(lp, rp).map_err(|e| {
                     chain[k]
                         .origin
                         .diagnostic(Default::default(), e.to_string())
                 })?;
-                checks += 1;
-                if diff.is_zero() {
-                    used_unit |= !raw.is_zero();
+                let Some(diff) = compared else {
                     continue;
-                }
+                };
                 let (mut cx, point) = counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
                 cx.chain = ci + 1;
-                let normal = env.normal_vars();
                 cx.reduced_on_sphere = diff
                     .terms()
                     .any(|(m, _)| normal.iter().any(|&v| m.exponent(v) != 0));
@@ -84,13 +81,21 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 if !matching {
                     cx.ill_formed = Some(mismatch(l, r));
                 }
-                return Ok(Outcome::new(Verdict::Fails, Method::Exact, checks)
-                    .using_unit_normal(used_unit)
-                    .with_counterexample(cx));
+                return Ok(
+                    Outcome::fails(Method::Exact, Strength::Proof, identities.components())
+                        .using_unit_normal(identities.used_unit_normal())
+                        .with_counterexample(cx),
+                );
             }
         }
     }
-    Ok(Outcome::new(Verdict::Holds, Method::Exact, checks).using_unit_normal(used_unit))
+    let (checks, used_unit) = (identities.components(), identities.used_unit_normal());
+    Ok(match identities.certify() {
+        Some(certificate) => Outcome::proved(Method::Exact, checks, certificate),
+        None => Outcome::undecided(Method::Exact, checks)
+            .with_detail("no component was compared, so nothing was proved"),
+    }
+    .using_unit_normal(used_unit))
 }
 
 /// A counterexample point must satisfy every assumption; a point that does not is a

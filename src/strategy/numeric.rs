@@ -17,8 +17,8 @@ use super::quadrature::{self, Level};
 use super::real::component_pairs;
 pub use super::sampler::SINGULAR_EPS;
 use super::sampler::{describe, relation_holds, Sampler, State};
-use super::{search, Counterexample, Method, NumericEvidence, Outcome, SearchEvidence};
-use crate::derivation::{AssumptionKind, Check, Expression, Relation, Sampling, Strategy, Verdict};
+use super::{search, Counterexample, Method, NumericEvidence, Outcome, SearchEvidence, Strength};
+use crate::derivation::{AssumptionKind, Check, Expression, Relation, Sampling, Strategy};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic};
 use nalgebra::{DVector, SymmetricEigen};
@@ -434,25 +434,24 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         }
     };
     let undecided = |why: String, tally: &Tally, search: Option<SearchEvidence>| {
-        Outcome::new(Verdict::Undecided, Method::Numeric, sampling.samples)
+        Outcome::undecided(Method::Numeric, sampling.samples)
             .with_numeric(evidence(tally, search, None))
             .with_detail(why)
     };
     let (state, cx) = match found {
         Found::Nothing => {
-            return Ok(
-                Outcome::new(Verdict::Holds, Method::Numeric, sampling.samples)
-                    .with_numeric(evidence(&tally, search, None)),
-            )
+            return Ok(Outcome::holds_sampled(Method::Numeric, sampling.samples)
+                .with_numeric(evidence(&tally, search, None)))
         }
         Found::Unresolved(why) => return Ok(undecided(why, &tally, search)),
         Found::Violation(state, cx) => (state, cx),
     };
-    let fails = |cx: Counterexample, detail: Option<String>| Outcome {
-        detail,
-        ..Outcome::new(Verdict::Fails, Method::Numeric, sampling.samples)
+    let fails = |cx: Counterexample, detail: Option<String>| {
+        let mut o = Outcome::fails(Method::Numeric, Strength::Sampled, sampling.samples)
             .with_counterexample(cx)
-            .with_numeric(evidence(&tally, search.clone(), None))
+            .with_numeric(evidence(&tally, search.clone(), None));
+        o.detail = detail;
+        o
     };
     if domain.is_empty() {
         return Ok(fails(cx, None));
@@ -480,17 +479,15 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
             inside_search,
         )
         .with_counterexample(cx)),
-        Found::Nothing => {
-            Ok(
-                Outcome::new(Verdict::Conditional, Method::Numeric, 2 * sampling.samples)
-                    .with_counterexample(cx)
-                    .with_numeric(evidence(&inside, inside_search, Some(domain_text.clone())))
-                    .with_detail(format!(
+        Found::Nothing => Ok(
+            Outcome::conditional(Method::Numeric, 2 * sampling.samples, None)
+                .with_counterexample(cx)
+                .with_numeric(evidence(&inside, inside_search, Some(domain_text.clone())))
+                .with_detail(format!(
             "holds on {} samples with {domain_text}; the counterexample lies outside that domain",
             sampling.samples
         )),
-            )
-        }
+        ),
     }
 }
 
@@ -587,7 +584,7 @@ fn eval_at<T: DualNum<Primitive = f64>>(
 /// not a differentiable function of the variables to the accuracy the comparisons need
 /// (central differences would measure the quadrature's noise, not the derivative).
 fn through_adaptive_average(method: Method) -> Outcome {
-    Outcome::new(Verdict::Undecided, method, 0).with_detail(
+    Outcome::undecided(method, 0).with_detail(
         "the function averages an argument that is not a polynomial in n (adaptive \
          quadrature); derivatives through it are not checked",
     )
@@ -646,7 +643,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                 sampler.verify_state(&state)?;
                 // A closed form undefined at a sample (e.g. 1/0 at the apex) cannot
                 // agree with anything: a failure, located by the evidence, not a pass.
-                return Ok(Outcome::new(Verdict::Fails, Method::Gradient, checks)
+                return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
                     .with_counterexample(Counterexample {
                         chain: 1,
                         equality: 1,
@@ -688,7 +685,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                 };
                 let mut point = describe(&state, decls);
                 point.insert("central difference".into(), format!("{fd:.9}"));
-                return Ok(Outcome::new(Verdict::Fails, Method::Gradient, checks)
+                return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
                     .with_counterexample(Counterexample {
                         chain: 1,
                         equality: 1,
@@ -713,7 +710,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
         }
     }
     let names: Vec<String> = vars.iter().map(|(s, idx)| component_name(s, idx)).collect();
-    Ok(Outcome::new(Verdict::Holds, Method::Gradient, checks)
+    Ok(Outcome::holds_sampled(Method::Gradient, checks)
         .with_numeric(sampled_evidence(
             sampling,
             largest,
@@ -771,7 +768,7 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
             let mut point = describe(&state, decls);
             point.insert("smallest eigenvalue".into(), format!("{min:.9}"));
             return Ok(
-                Outcome::new(Verdict::Fails, Method::Convex, sampling.samples)
+                Outcome::fails(Method::Convex, Strength::Sampled, sampling.samples)
                     .with_counterexample(Counterexample {
                         chain: 1,
                         equality: 1,
@@ -784,21 +781,19 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
             );
         }
     }
-    Ok(
-        Outcome::new(Verdict::Holds, Method::Convex, sampling.samples)
-            .with_numeric(sampled_evidence(
-                sampling,
-                smallest,
-                "smallest eigenvalue / (1 + max|λ|)",
-                excluded,
-                format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
-                true,
-            ))
-            .with_detail(format!(
-                "Hessian in {} variables positive semidefinite at every sample",
-                vars.len()
-            )),
-    )
+    Ok(Outcome::holds_sampled(Method::Convex, sampling.samples)
+        .with_numeric(sampled_evidence(
+            sampling,
+            smallest,
+            "smallest eigenvalue / (1 + max|λ|)",
+            excluded,
+            format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
+            true,
+        ))
+        .with_detail(format!(
+            "Hessian in {} variables positive semidefinite at every sample",
+            vars.len()
+        )))
 }
 
 /// The first `k` sampled states of a sampled check, with the value of every side (or

@@ -8,41 +8,14 @@
 
 use super::eval::ExactEnv;
 use super::{Method, Outcome};
-use crate::derivation::{Check, Strategy, Verdict};
+use crate::derivation::{Check, Strategy};
+use crate::kernel::certificate::{Certificate, Fact};
 use crate::kernel::{Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
 
 /// States tried before giving up.
 const ATTEMPTS: usize = 64;
-
-/// The determinant of a square matrix of rationals (Gaussian elimination, exact).
-pub fn determinant(mut m: Vec<Vec<Rational>>) -> Rational {
-    let n = m.len();
-    let mut det = Rational::int(1);
-    for col in 0..n {
-        let Some(pivot) = (col..n).find(|&r| !m[r][col].is_zero()) else {
-            return Rational::int(0);
-        };
-        if pivot != col {
-            m.swap(pivot, col);
-            det = -det;
-        }
-        det = &det * &m[col][col];
-        let inv = m[col][col].recip().expect("pivot is nonzero");
-        for r in col + 1..n {
-            let factor = &m[r][col] * &inv;
-            if factor.is_zero() {
-                continue;
-            }
-            let pivot_row = m[col].clone();
-            for (target, p) in m[r].iter_mut().zip(&pivot_row).skip(col) {
-                *target = &*target - &(&factor * p);
-            }
-        }
-    }
-    det
-}
 
 /// A rational point of the unit circle: ((1 − u²), 2u)/(1 + u²).
 fn circle_point(u: &Rational) -> (Rational, Rational) {
@@ -119,28 +92,30 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
         if points.len() < 4 {
             continue;
         }
-        let rows = points
-            .iter()
-            .map(|(a, b)| vec![&(a * a) + &(b * b), a.clone(), b.clone(), Rational::int(1)])
-            .collect();
-        let det = determinant(rows);
-        if !det.is_zero() {
+        let points: [(Rational, Rational); 4] = points.try_into().expect("four points");
+        if let Some(certificate) = Certificate::not_concyclic(&points) {
+            let det = match certificate.facts() {
+                [Fact::NotConcyclic { determinant }] => determinant.clone(),
+                _ => unreachable!("the kernel issues one fact"),
+            };
             let names: Vec<String> = state
                 .iter()
                 .filter(|(_, q)| !q.is_zero())
                 .map(|(&v, q)| format!("{}={q}", env.vars.name(v)))
                 .collect();
             let pts: Vec<String> = points.iter().map(|(a, b)| format!("({a}, {b})")).collect();
-            return Ok(Outcome::new(Verdict::Holds, Method::Witness, 1).with_detail(format!(
+            return Ok(Outcome::proved(Method::Witness, 1, certificate).with_detail(format!(
                     "witness: at {} (other variables 0) and n = ((1−u²), 2u)/(1+u²) for u = 0, 1/2, 2, −1/3, the points (x, y) = {} lie on no common circle or line: det[x²+y², x, y, 1] = {det}",
                     names.join(", "),
                     pts.join(", ")
                 )));
         }
     }
+    // Not finding a witness proves nothing about the statement.
     Ok(
-        Outcome::new(Verdict::Fails, Method::Witness, ATTEMPTS).with_detail(format!(
-            "no witness among {ATTEMPTS} rational states: every four points tried were concyclic"
+        Outcome::undecided(Method::Witness, ATTEMPTS).with_detail(format!(
+            "undecided: no witness among {ATTEMPTS} rational states (every four points tried were concyclic); \
+             this is not a counterexample"
         )),
     )
 }
@@ -149,29 +124,16 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
 mod tests {
     use super::*;
 
-    fn q(a: i64) -> Rational {
-        Rational::int(a)
-    }
-
     #[test]
-    fn determinant_is_exact() {
-        assert_eq!(determinant(vec![vec![q(2), q(1)], vec![q(1), q(3)]]), q(5));
-        assert_eq!(determinant(vec![vec![q(0), q(1)], vec![q(1), q(0)]]), q(-1));
-        assert_eq!(determinant(vec![vec![q(1), q(2)], vec![q(2), q(4)]]), q(0));
-    }
-
-    #[test]
-    fn concyclic_points_give_zero() {
-        // Four points of the unit circle, and three of them with one off it.
-        let pts: Vec<(Rational, Rational)> = [(0, 1), (1, 2), (2, 1), (-1, 3)]
-            .iter()
-            .map(|&(a, b)| circle_point(&Rational::ratio(a, b).unwrap()))
-            .collect();
-        let row =
-            |(a, b): &(Rational, Rational)| vec![&(a * a) + &(b * b), a.clone(), b.clone(), q(1)];
-        assert!(determinant(pts.iter().map(row).collect()).is_zero());
-        let mut off = pts.clone();
-        off[3] = (q(2), q(0));
-        assert!(!determinant(off.iter().map(row).collect()).is_zero());
+    fn circle_points_lie_on_the_unit_circle() {
+        // Four of them are concyclic (no witness); moving one off the circle gives one.
+        let mut pts: [(Rational, Rational); 4] = [(0, 1), (1, 2), (2, 1), (-1, 3)]
+            .map(|(a, b)| circle_point(&Rational::ratio(a, b).unwrap()));
+        for (x, y) in &pts {
+            assert_eq!(&(x * x) + &(y * y), Rational::int(1));
+        }
+        assert!(Certificate::not_concyclic(&pts).is_none());
+        pts[3] = (Rational::int(2), Rational::int(0));
+        assert!(Certificate::not_concyclic(&pts).is_some());
     }
 }

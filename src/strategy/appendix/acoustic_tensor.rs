@@ -76,7 +76,8 @@ pub(super) fn band_direction(p: &Params, d: &Derivation) -> Result<Outcome, Stri
         .ok_or("the slope has a pole at the point")?;
     let pt = at.to_f64();
     let ((theta, h), (theta_f, _)) = maxima(p, h2cr, &pt)?;
-    let stationary = slope.is_zero();
+    let certificate = Certificate::rational_functions_equal(&slope, &RatFunc::int(0));
+    let stationary = certificate.is_some();
     let detail = format!(
         "h_2^cr(n), the h_2 at which det(n_i D^(ep)_ijkl n_k) = 0, is exact (the printed contraction n_j D_ijkl n_l gives \
          the same function); at θ = 0, dh_2^cr/dθ = {} exactly, so θ = 0 is not even stationary for f_r ≠ 0; at {} the slope is \
@@ -86,12 +87,7 @@ pub(super) fn band_direction(p: &Params, d: &Derivation) -> Result<Outcome, Stri
         theta.to_degrees(),
         theta_f.to_degrees()
     );
-    let verdict = if stationary {
-        Verdict::Holds
-    } else {
-        Verdict::Fails
-    };
-    let mut out = Outcome::new(verdict, Method::Symbolic, 1).with_detail(detail);
+    let mut out = proved_or_fails(certificate, 1).with_detail(detail);
     if !stationary {
         out = out.with_counterexample(Counterexample {
             lhs: "θ_B".into(),
@@ -166,14 +162,12 @@ pub(super) fn critical_hardening(p: &Params, d: &Derivation) -> Result<Outcome, 
         at.describe(),
         theta.to_degrees()
     );
-    let verdict = if everywhere_negative {
-        Verdict::Fails
-    } else {
+    if !everywhere_negative {
         return Err(format!(
             "the exact sign argument did not apply ({roots} real roots); a different check is needed: {detail}"
         ));
-    };
-    Ok(Outcome::new(verdict, Method::Symbolic, 3)
+    }
+    Ok(Outcome::fails(Method::Symbolic, Strength::Proof, 3)
         .with_detail(detail)
         .with_counterexample(Counterexample {
             lhs: "max over θ of h_2^cr".into(),
@@ -189,15 +183,15 @@ pub(super) fn b_positive(p: &Params, d: &Derivation) -> Outcome {
     let b = acoustic::b_scalar(p, &d.tangent.m_ep);
     let n2 = &p.var(p.n_1).pow(2) + &p.var(p.n_2).pow(2);
     let expected = &(&(&RatFunc::int(4) * &p.var(p.g)) * &p.var(p.r_g).pow(2)) * &n2;
-    if b == expected {
-        Outcome::new(Verdict::Holds, Method::Symbolic, 1).with_detail(format!(
+    if let Some(certificate) = Certificate::rational_functions_equal(&b, &expected) {
+        Outcome::proved(Method::Symbolic, 1, certificate).with_detail(format!(
             "B = {} exactly (F_i = 0 at the state, so M^(ep) = M^(el) = 4 G R_g² δ_ij); on n·n = 1, B = 4 G R_g² > 0 for \
              G, R_g > 0: a jump in the curvature rate cannot satisfy B [K] = 0",
             p.display(&b)
         ))
     } else {
-        Outcome::new(Verdict::Fails, Method::Symbolic, 1).with_detail(format!(
-            "B = {} is not 4 G R_g² n·n; its sign is not established",
+        Outcome::undecided(Method::Symbolic, 1).with_detail(format!(
+            "undecided: B = {} is not 4 G R_g² n·n; its sign is not established",
             p.display(&b)
         ))
     }

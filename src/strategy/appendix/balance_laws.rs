@@ -90,11 +90,11 @@ pub(super) fn balance_law(
             Rational::int(0)
         }
     };
-    match balance::proportional(&printed, &derived) {
-        Some(lambda) => Ok(Outcome::new(Verdict::Holds, Method::Symbolic, 1)
+    match Certificate::proportional(&printed, &derived) {
+        Some((certificate, lambda)) => Ok(Outcome::proved(Method::Symbolic, 1, certificate)
             .with_detail(format!("{base}; the printed law is {lambda} times it"))),
         None => {
-            let flip = if balance::proportional(&printed, &flipped).is_some() {
+            let flip = if Certificate::proportional(&printed, &flipped).is_some() {
                 format!(
                     "; the printed law follows from the opposite rotation sign Γ_ij = v_j,i + e_ijk w_k ({} = 0)",
                     flipped.display(&names)
@@ -102,7 +102,7 @@ pub(super) fn balance_law(
             } else {
                 String::new()
             };
-            Ok(Outcome::new(Verdict::Fails, Method::Symbolic, 1)
+            Ok(Outcome::fails(Method::Symbolic, Strength::Proof, 1)
                 .with_detail(format!("{base}{flip}"))
                 .with_counterexample(Counterexample {
                     chain: 1,

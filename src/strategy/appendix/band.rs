@@ -13,7 +13,8 @@ pub(super) fn eq61(p: &Params, d: &Derivation, d_neg: &Derivation) -> Result<Out
         ));
     }
     let odd = d.a2_eq61 != d_neg.a2_eq61 && d.a2_printed_balance == d_neg.a2_printed_balance;
-    let equal = d.a2_eq61 == d.a2_printed_balance;
+    let certificate = Certificate::rational_functions_equal(&d.a2_eq61, &d.a2_printed_balance);
+    let equal = certificate.is_some();
     let detail = format!(
         "reading: D_IJkl = D^(ep)_IJ / G with I, J the positions 1..4 = 11, 22, 12, 21 of (57) (so D_3222 = D^(ep)_(12)(22), \
          D_4421 = D^(ep)_(21)(21)), divided by G so that A² is dimensionless; (61) then gives A² = {}; eliminating v_1', v_2' \
@@ -26,16 +27,7 @@ pub(super) fn eq61(p: &Params, d: &Derivation, d_neg: &Derivation) -> Result<Out
             ""
         }
     );
-    let mut out = Outcome::new(
-        if equal {
-            Verdict::Holds
-        } else {
-            Verdict::Fails
-        },
-        Method::Symbolic,
-        1,
-    )
-    .with_detail(detail);
+    let mut out = proved_or_fails(certificate, 1).with_detail(detail);
     if !equal {
         out = out.with_counterexample(Counterexample {
             lhs: "A² by (61)".into(),
@@ -67,8 +59,21 @@ pub(super) fn boundary_modes() -> Outcome {
         .iter()
         .find(|(_, m)| *m == "symmetric")
         .map(|(k, _)| *k);
-    let holds = first_symmetric == Some(2);
-    Outcome::new(if holds { Verdict::Holds } else { Verdict::Fails }, Method::Symbolic, modes.len()).with_detail(format!(
+    // The kernel verifies the two modes: with s = sin(A d_B), c = cos(A d_B) the
+    // conditions −C s + S c = 0 and C s + S c = 0 read [[−s, c], [s, c]] (C, S) = 0;
+    // at A d_B = π/2 (s = 1, c = 0) (C, S) = (0, 1) solves them (antisymmetric), at
+    // A d_B = π (s = 0, c = −1) (C, S) = (1, 0) does (symmetric).
+    let q = Rational::int;
+    let certificate = (first_symmetric == Some(2))
+        .then(|| {
+            let quarter =
+                Certificate::null_vector(&[vec![q(-1), q(0)], vec![q(1), q(0)]], &[q(0), q(1)])?;
+            let half =
+                Certificate::null_vector(&[vec![q(0), q(-1)], vec![q(0), q(-1)]], &[q(1), q(0)])?;
+            Some(quarter.and(half))
+        })
+        .flatten();
+    proved_or_fails(certificate, modes.len()).with_detail(format!(
         "w_3 = C cos(A x_2) + S sin(A x_2) + const; μ_23 = M_22 w_3' = 0 at x_2 = ±d_B has a nonzero (C, S) exactly when \
          sin(2 A d_B) = 0: {}; d_B/R_g = π/A is the first symmetric mode (w_3 even about the band's centre, C ≠ 0); \
          the first antisymmetric mode would give d_B/R_g = π/(2A)",
@@ -93,7 +98,8 @@ pub(super) fn eq54(p: &Params, d: &Derivation) -> Result<Outcome, String> {
         .substitute(p.h_c, &RatFunc::constant(half()))
         .and_then(|x| x.substitute(p.h_2, &RatFunc::int(0)))
         .ok_or("pole")?;
-    let same = d.a2_printed_balance == d.a2_eq54;
+    let certificate = Certificate::rational_functions_equal(&d.a2_printed_balance, &d.a2_eq54);
+    let same = certificate.is_some();
     // With the derived balance law A² is minus the printed-route A²; that one is positive
     // for positive parameters when every coefficient of its numerator and denominator is.
     let positive_coefficients = |q: &Poly| !q.is_zero() && q.terms().all(|(_, c)| !c.is_negative());
@@ -145,12 +151,7 @@ pub(super) fn eq54(p: &Params, d: &Derivation) -> Result<Outcome, String> {
         p.display(&paper_values),
         p.display(&d.a2_derived_balance)
     );
-    let mut out = Outcome::new(
-        if same { Verdict::Holds } else { Verdict::Fails },
-        Method::Symbolic,
-        1,
-    )
-    .with_detail(detail);
+    let mut out = proved_or_fails(certificate, 1).with_detail(detail);
     if !same {
         out = out.with_counterexample(Counterexample {
             lhs: "A² of (54)".into(),

@@ -65,13 +65,11 @@ pub(super) fn yield_gradients(p: &Params) -> Result<Outcome, String> {
         shown[..4].join(", "),
         shown[4..].join(", ")
     );
-    let verdict = if holds {
-        Verdict::Holds
-    } else {
-        Verdict::Fails
-    };
     // Compared at sampled parameter points in f64: sampled evidence, not a proof.
-    Ok(Outcome::new(verdict, Method::Symbolic, n)
-        .sampled()
-        .with_detail(detail))
+    let outcome = if holds {
+        Outcome::holds_sampled(Method::Symbolic, n)
+    } else {
+        Outcome::fails(Method::Symbolic, Strength::Sampled, n)
+    };
+    Ok(outcome.with_detail(detail))
 }

@@ -4,8 +4,9 @@
 //! gradients, nalgebra linear algebra) before a verdict is given.
 
 use super::eval::ExactEnv;
-use super::{Counterexample, Method, Outcome};
+use super::{Counterexample, Method, Outcome, Strength};
 use crate::derivation::{AppendixStep, Check, Verdict};
+use crate::kernel::certificate::Certificate;
 use crate::kernel::sturm::{count_roots, isolate_roots, Bound, UniPoly};
 use crate::kernel::{Poly, RatFunc, Rational, VarTable};
 use crate::lang::{Decls, Diagnostic, Origin, Span};
@@ -122,4 +123,12 @@ fn eval_at(p: &Params, f: &RatFunc, at: &ExactPoint) -> Result<Rational, String>
 fn a2_float(at: &ExactPoint, shear: ShearSign) -> Result<f64, String> {
     shear_band::a_squared_f64(&at.to_f64(), shear, 1.0, -1.0)
         .ok_or_else(|| "singular system".to_string())
+}
+
+/// A proved `holds` from the kernel's certificate, or a `fails` (exact) without one.
+fn proved_or_fails(certificate: Option<Certificate>, checks: usize) -> Outcome {
+    match certificate {
+        Some(c) => Outcome::proved(Method::Symbolic, checks, c),
+        None => Outcome::fails(Method::Symbolic, Strength::Proof, checks),
+    }
 }

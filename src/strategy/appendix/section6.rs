@@ -20,14 +20,22 @@ pub(super) fn no_band_without_rolling(p: &Params, d: &Derivation) -> Result<Outc
         .checked_div(&den.eval(&zero))
         .ok_or("(54) has a pole at f_r = 0")?;
     let pos = (Bound::At(zero.clone()), Bound::PlusInfinity);
-    let positive_roots = count_roots(&num, &pos.0, &pos.1) + count_roots(&den, &pos.0, &pos.1);
-    let holds = a2_at_0.is_zero() && positive_roots == 0;
+    let f_is_zero = |v| {
+        debug_assert_eq!(v, p.f_r);
+        Rational::int(0)
+    };
+    let certificate = (|| {
+        let at_0 = Certificate::value(&d.a2_eq54, &f_is_zero, &zero)?;
+        let num_free = Certificate::no_root(&num, &pos.0, &pos.1, "f_r > 0")?;
+        let den_free = Certificate::no_root(&den, &pos.0, &pos.1, "f_r > 0")?;
+        Some(at_0.and(num_free).and(den_free))
+    })();
     let derived_at_0 = d
         .a2_printed_balance
         .substitute(p.f_r, &RatFunc::int(0))
         .and_then(|x| x.substitute(p.h_2, &RatFunc::int(0)))
         .ok_or("pole")?;
-    Ok(Outcome::new(if holds { Verdict::Holds } else { Verdict::Fails }, Method::Symbolic, 2).with_detail(format!(
+    Ok(proved_or_fails(certificate, 2).with_detail(format!(
         "(54): A² = {} is 0 at f_r = 0 ({a2_at_0}) with a nonzero denominator, and its numerator and denominator have no \
          root for f_r > 0 (Sturm), so A² > 0 there, A → 0 and d_B/R_g = π/A → ∞ as f_r → 0; the A² derived from the \
          Appendix as printed is {} at f_r = 0, h_2 = 0, so it agrees",
@@ -45,6 +53,9 @@ pub struct Monotonicity {
     /// The first positive root f* of d/df_r, isolated in [lo, hi].
     pub first_root: Option<(Rational, Rational)>,
     pub slope: RatFunc,
+    /// The kernel's facts behind "increasing" on (0, ∞) (`Holds`) or on (0, lo] with
+    /// lo the isolating interval's lower end (`Conditional`).
+    pub certificate: Option<Certificate>,
 }
 
 /// The sign of d/df_r of `f` (a rational function of f_r alone) on f_r > 0, from
@@ -74,6 +85,19 @@ pub fn increasing_for_positive(p: &Params, f: &RatFunc) -> Result<Monotonicity, 
         let v = num.eval(x);
         !v.is_negative() && !v.is_zero()
     };
+    // Increasing on (0, upto]: the slope's denominator has no root on (0, ∞), its
+    // numerator none on (0, upto] and is positive at `tiny` inside it.
+    let increasing_up_to = |upto: Bound, interval: &str| {
+        let den_free = Certificate::no_root(&den, &pos.0, &pos.1, "f_r > 0")?;
+        let num_free = Certificate::no_root(&num, &pos.0, &upto, interval)?;
+        let start = Certificate::positive_at(&num, &tiny)?;
+        Some(den_free.and(num_free).and(start))
+    };
+    let certificate = match roots.first() {
+        _ if !positive(&tiny) => None,
+        None => increasing_up_to(Bound::PlusInfinity, "f_r > 0"),
+        Some((lo, _)) => increasing_up_to(Bound::At(lo.clone()), &format!("0 < f_r ≤ {lo}")),
+    };
     let verdict = match roots.first() {
         _ if !positive(&tiny) => Verdict::Fails,
         None => Verdict::Holds,
@@ -92,6 +116,7 @@ pub fn increasing_for_positive(p: &Params, f: &RatFunc) -> Result<Monotonicity, 
         verdict,
         first_root: roots.first().cloned(),
         slope,
+        certificate,
     })
 }
 
@@ -130,7 +155,13 @@ pub(super) fn thickness_decreases(p: &Params, d: &Derivation) -> Result<Outcome,
             )
         })
         .unwrap_or_else(|| "d(A²)/df_r > 0 for every f_r > 0".into());
-    let mut out = Outcome::new(verdict, Method::Symbolic, 2).with_detail(format!(
+    let out = match (verdict, m.certificate.clone()) {
+        (Verdict::Holds, Some(c)) => Outcome::proved(Method::Symbolic, 2, c),
+        (Verdict::Conditional, domain) => Outcome::conditional(Method::Symbolic, 2, domain),
+        (Verdict::Fails, _) => Outcome::fails(Method::Symbolic, Strength::Proof, 2),
+        _ => Outcome::undecided(Method::Symbolic, 2),
+    };
+    let mut out = out.with_detail(format!(
         "d_B = π/A decreases where A² of (54) increases; d(A²)/df_r = {}; {domain}; beyond f*, A² decreases and d_B grows \
          again; for the A² derived from the Appendix, {} = {}, \"d_B decreases as f_r grows\" {} for every f_r > 0 (K = 2, \
          h^C = 1/2, h_2 = 0)",

@@ -1,0 +1,344 @@
+//! Certificates: the only way to a proved `holds` (the de Bruijn criterion).
+//!
+//! A [`Certificate`] records facts that the kernel itself verified, in exact
+//! arithmetic: canonical polynomials identical, reduced rational functions identical,
+//! a Sturm count of zero roots, an exact value, a nonzero exact determinant. Its field
+//! is private and every constructor here does the verification it names, so a strategy
+//! can hold a certificate only by handing the kernel the objects to compare. An
+//! `Outcome` with verdict `holds` and strength `proof` can only be built from one
+//! (`strategy::Outcome::proved`); every other `holds` is sampled evidence.
+//!
+//! What a certificate does not cover is the reduction of a claim to its facts ("A² > 0
+//! because its numerator and denominator have no positive root"): that reasoning lives
+//! in the strategy that asks for the facts, and the facts are listed in the evidence so
+//! that a reader can audit it.
+
+use super::linear::determinant;
+use super::poly::{Poly, PolyError, Var};
+use super::sturm::{count_roots, Bound, UniPoly};
+use super::{RatFunc, Rational};
+use serde::Serialize;
+
+/// One fact the kernel verified.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Fact {
+    /// Both sides expanded to canonical polynomials, identical in every compared
+    /// component; `modulo_unit_normal` of them only after reduction by n·n = 1.
+    PolynomialIdentity {
+        components: usize,
+        modulo_unit_normal: usize,
+    },
+    /// Two reduced rational functions identical.
+    RationalFunctionIdentity,
+    /// One polynomial is `factor` (nonzero) times another.
+    Proportional { factor: String },
+    /// A univariate polynomial has no real root in an interval (Sturm count 0).
+    NoRoot { interval: String },
+    /// A univariate polynomial is positive at a rational point (exact evaluation).
+    Positive { at: String },
+    /// A rational function takes an exact value at a rational point.
+    Value { value: String },
+    /// Four rational points lie on no common circle or line:
+    /// det[x²+y², x, y, 1] ≠ 0.
+    NotConcyclic { determinant: String },
+    /// A rational matrix times a nonzero rational vector is exactly zero.
+    NullVector { vector: Vec<String> },
+}
+
+/// Facts verified by the kernel; a conjunction when there are several.
+///
+/// Outside this module a certificate cannot be written down, only obtained from the
+/// functions that verify it:
+///
+/// ```compile_fail
+/// use cosserat_check::kernel::certificate::{Certificate, Fact};
+/// let forged = Certificate { facts: vec![Fact::RationalFunctionIdentity] };
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Certificate {
+    facts: Vec<Fact>,
+}
+
+impl Certificate {
+    /// What the kernel verified.
+    pub fn facts(&self) -> &[Fact] {
+        &self.facts
+    }
+
+    /// The conjunction of two certificates.
+    pub fn and(mut self, other: Certificate) -> Certificate {
+        self.facts.extend(other.facts);
+        self
+    }
+
+    fn of(fact: Fact) -> Self {
+        Certificate { facts: vec![fact] }
+    }
+
+    /// `a = b` as reduced rational functions (their canonical form makes this
+    /// structural equality).
+    pub fn rational_functions_equal(a: &RatFunc, b: &RatFunc) -> Option<Self> {
+        (a == b).then(|| Self::of(Fact::RationalFunctionIdentity))
+    }
+
+    /// `a = λ b` for a nonzero rational λ, returned with the certificate.
+    pub fn proportional(a: &Poly, b: &Poly) -> Option<(Self, Rational)> {
+        let (m, cb) = b.terms().next()?;
+        let ca = a.terms().find(|(ma, _)| *ma == m).map(|(_, c)| c.clone())?;
+        let lambda = ca.checked_div(cb)?;
+        let certified = !lambda.is_zero() && a == &(b * &Poly::constant(lambda.clone()));
+        certified.then(|| {
+            (
+                Self::of(Fact::Proportional {
+                    factor: lambda.to_string(),
+                }),
+                lambda,
+            )
+        })
+    }
+
+    /// `p` has no real root in (lo, hi] (Sturm's theorem). A root at a finite `lo` is
+    /// divided out first, since the Sturm count needs `lo` not to be a root.
+    pub fn no_root(p: &UniPoly, lo: &Bound, hi: &Bound, interval: &str) -> Option<Self> {
+        let p = match lo {
+            Bound::At(a) => p.without_root_at(a),
+            _ => p.clone(),
+        };
+        (!p.is_zero() && count_roots(&p, lo, hi) == 0).then(|| {
+            Self::of(Fact::NoRoot {
+                interval: interval.to_owned(),
+            })
+        })
+    }
+
+    /// `p(x) > 0`, evaluated exactly.
+    pub fn positive_at(p: &UniPoly, x: &Rational) -> Option<Self> {
+        let v = p.eval(x);
+        (!v.is_zero() && !v.is_negative()).then(|| Self::of(Fact::Positive { at: x.to_string() }))
+    }
+
+    /// `f(at) = expected`, evaluated exactly (no pole).
+    pub fn value(f: &RatFunc, at: &dyn Fn(Var) -> Rational, expected: &Rational) -> Option<Self> {
+        let v = f.eval(at)?;
+        (&v == expected).then(|| {
+            Self::of(Fact::Value {
+                value: v.to_string(),
+            })
+        })
+    }
+
+    /// Four rational points on no common circle or line.
+    pub fn not_concyclic(points: &[(Rational, Rational); 4]) -> Option<Self> {
+        let rows = points
+            .iter()
+            .map(|(a, b)| vec![&(a * a) + &(b * b), a.clone(), b.clone(), Rational::int(1)])
+            .collect();
+        let det = determinant(rows);
+        (!det.is_zero()).then(|| {
+            Self::of(Fact::NotConcyclic {
+                determinant: det.to_string(),
+            })
+        })
+    }
+
+    /// `matrix · vector = 0` exactly, with `vector ≠ 0`.
+    pub fn null_vector(matrix: &[Vec<Rational>], vector: &[Rational]) -> Option<Self> {
+        if vector.iter().all(Rational::is_zero) {
+            return None;
+        }
+        let zero = matrix.iter().all(|row| {
+            row.len() == vector.len()
+                && row
+                    .iter()
+                    .zip(vector)
+                    .fold(Rational::int(0), |acc, (a, x)| &acc + &(a * x))
+                    .is_zero()
+        });
+        zero.then(|| {
+            Self::of(Fact::NullVector {
+                vector: vector.iter().map(Rational::to_string).collect(),
+            })
+        })
+    }
+}
+
+/// Component-by-component comparison of canonical polynomials, certified only when
+/// every comparison made was an identity.
+///
+/// ```
+/// use cosserat_check::kernel::certificate::Identities;
+/// use cosserat_check::kernel::{Poly, Rational, VarTable};
+/// let mut names = VarTable::new();
+/// let x = Poly::var(names.intern("x"));
+/// let mut check = Identities::new(&[]);
+/// assert_eq!(check.compare(&(&x + &x), &(&Poly::constant(Rational::int(2)) * &x)), Ok(None));
+/// assert!(check.certify().is_some());
+/// let mut check = Identities::new(&[]);
+/// assert!(check.compare(&x, &Poly::constant(Rational::int(1))).unwrap().is_some());
+/// assert!(check.certify().is_none(), "one difference, no certificate");
+/// ```
+#[derive(Debug)]
+pub struct Identities<'n> {
+    normal: &'n [Var],
+    components: usize,
+    modulo_unit_normal: usize,
+    refuted: bool,
+}
+
+impl<'n> Identities<'n> {
+    /// A comparison modulo n·n = 1 for the given normal's variables (none: plain
+    /// polynomial identity).
+    pub fn new(normal: &'n [Var]) -> Self {
+        Identities {
+            normal,
+            components: 0,
+            modulo_unit_normal: 0,
+            refuted: false,
+        }
+    }
+
+    /// Compares one component: `None` when the sides are identical (modulo n·n = 1),
+    /// else their reduced difference. An error is a reduction over the work budget.
+    pub fn compare(&mut self, lhs: &Poly, rhs: &Poly) -> Result<Option<Poly>, PolyError> {
+        let raw = lhs - rhs;
+        let diff = raw.reduce_on_sphere(self.normal)?;
+        self.components += 1;
+        if diff.is_zero() {
+            self.modulo_unit_normal += usize::from(!raw.is_zero());
+            Ok(None)
+        } else {
+            self.refuted = true;
+            Ok(Some(diff))
+        }
+    }
+
+    /// Whether some identity needed n·n = 1.
+    pub fn used_unit_normal(&self) -> bool {
+        self.modulo_unit_normal > 0
+    }
+
+    /// How many components were compared.
+    pub fn components(&self) -> usize {
+        self.components
+    }
+
+    /// The certificate: only when at least one component was compared and none
+    /// differed.
+    pub fn certify(self) -> Option<Certificate> {
+        (!self.refuted && self.components > 0).then(|| {
+            Certificate::of(Fact::PolynomialIdentity {
+                components: self.components,
+                modulo_unit_normal: self.modulo_unit_normal,
+            })
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::VarTable;
+    use num_traits::Zero;
+
+    fn q(n: i64, d: i64) -> Rational {
+        Rational::ratio(n, d).unwrap()
+    }
+
+    #[test]
+    fn identities_modulo_the_unit_normal() {
+        let mut names = VarTable::new();
+        let n1 = names.intern("n_1");
+        let n2 = names.intern("n_2");
+        let (a, b) = (Poly::var(n1), Poly::var(n2));
+        let one = Poly::constant(Rational::int(1));
+        let mut plain = Identities::new(&[]);
+        assert!(plain
+            .compare(&(&(&a * &a) + &(&b * &b)), &one)
+            .unwrap()
+            .is_some());
+        assert!(plain.certify().is_none());
+        let normal = [n1, n2];
+        let mut on_sphere = Identities::new(&normal);
+        assert_eq!(
+            on_sphere.compare(&(&(&a * &a) + &(&b * &b)), &one),
+            Ok(None)
+        );
+        assert!(on_sphere.used_unit_normal());
+        let cert = on_sphere.certify().unwrap();
+        assert_eq!(
+            cert.facts(),
+            &[Fact::PolynomialIdentity {
+                components: 1,
+                modulo_unit_normal: 1
+            }]
+        );
+        assert!(Identities::new(&[]).certify().is_none(), "nothing compared");
+    }
+
+    #[test]
+    fn proportional_needs_a_nonzero_exact_factor() {
+        let mut names = VarTable::new();
+        let a = Poly::var(names.intern("a"));
+        let b = Poly::var(names.intern("b"));
+        let s = &a + &b;
+        let (_, l) = Certificate::proportional(&(&s * &Poly::constant(q(-3, 2))), &s).unwrap();
+        assert_eq!(l, q(-3, 2));
+        assert!(Certificate::proportional(&(&a - &b), &s).is_none());
+        assert!(Certificate::proportional(&Poly::zero(), &s).is_none());
+        assert!(Certificate::proportional(&s, &Poly::zero()).is_none());
+    }
+
+    #[test]
+    fn sturm_values_determinants_and_null_vectors() {
+        // t² + 1 has no real root; t² − 2 has one in (0, 2].
+        let p = UniPoly::new(vec![q(1, 1), q(0, 1), q(1, 1)]);
+        let r = UniPoly::new(vec![q(-2, 1), q(0, 1), q(1, 1)]);
+        let all = (Bound::MinusInfinity, Bound::PlusInfinity);
+        assert!(Certificate::no_root(&p, &all.0, &all.1, "ℝ").is_some());
+        assert!(
+            Certificate::no_root(&r, &Bound::At(q(0, 1)), &Bound::At(q(2, 1)), "(0, 2]").is_none()
+        );
+        assert!(Certificate::no_root(&UniPoly::new(vec![]), &all.0, &all.1, "ℝ").is_none());
+        // t³ − t = t(t − 1)(t + 1): a root at 0 itself is not in (0, ∞), the one at 1 is.
+        let c = UniPoly::new(vec![q(0, 1), q(-1, 1), q(0, 1), q(1, 1)]);
+        let zero = Bound::At(q(0, 1));
+        assert!(Certificate::no_root(&c, &zero, &Bound::At(q(1, 2)), "(0, 1/2]").is_some());
+        assert!(Certificate::no_root(&c, &zero, &Bound::PlusInfinity, "(0, ∞)").is_none());
+        // t²(t + 1) at 0: a double root divided out, no root in (0, ∞).
+        let d = UniPoly::new(vec![q(0, 1), q(0, 1), q(1, 1), q(1, 1)]);
+        assert!(Certificate::no_root(&d, &zero, &Bound::PlusInfinity, "(0, ∞)").is_some());
+        assert!(Certificate::positive_at(&d, &q(1, 3)).is_some());
+        assert!(Certificate::positive_at(&d, &q(0, 1)).is_none());
+        assert!(Certificate::positive_at(&d, &q(-2, 1)).is_none());
+        // Four points of the unit circle are concyclic; move one off it.
+        let on = |n: i64, d: i64| {
+            let u = q(n, d);
+            let s = &(&u * &u) + &q(1, 1);
+            (
+                (&q(1, 1) - &(&u * &u)).checked_div(&s).unwrap(),
+                (&q(2, 1) * &u).checked_div(&s).unwrap(),
+            )
+        };
+        let mut pts = [on(0, 1), on(1, 2), on(2, 1), on(-1, 3)];
+        assert!(Certificate::not_concyclic(&pts).is_none());
+        pts[3] = (q(2, 1), q(0, 1));
+        assert!(Certificate::not_concyclic(&pts).is_some());
+        let m = vec![vec![q(0, 1), q(1, 1)], vec![q(0, 1), q(-1, 1)]];
+        assert!(Certificate::null_vector(&m, &[q(1, 1), q(0, 1)]).is_some());
+        assert!(Certificate::null_vector(&m, &[q(0, 1), q(1, 1)]).is_none());
+        assert!(Certificate::null_vector(&m, &[q(0, 1), q(0, 1)]).is_none());
+    }
+
+    #[test]
+    fn values_are_exact() {
+        let mut names = VarTable::new();
+        let x = names.intern("x");
+        let f = RatFunc::new(&Poly::var(x), &(&Poly::var(x) + &Poly::constant(q(1, 1)))).unwrap();
+        let at = |_| q(1, 1);
+        assert!(Certificate::value(&f, &at, &q(1, 2)).is_some());
+        assert!(Certificate::value(&f, &at, &q(1, 3)).is_none());
+        let pole = |_| q(-1, 1);
+        assert!(Certificate::value(&f, &pole, &q(0, 1)).is_none());
+    }
+}

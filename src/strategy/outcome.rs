@@ -1,0 +1,236 @@
+//! What deciding a statement produces: the verdict, its strength, and the evidence.
+//!
+//! The verdict and strength of an [`Outcome`] are private to this module, which no
+//! strategy is inside of: the only way to a proved `holds` is [`Outcome::proved`], which
+//! takes a kernel [`Certificate`] (whose constructors verify what they certify).
+//!
+//! ```compile_fail
+//! use cosserat_check::strategy::Outcome;
+//! use cosserat_check::derivation::Verdict;
+//! // A verdict cannot be set by hand.
+//! let mut o = Outcome::holds_sampled(cosserat_check::strategy::Method::Numeric, 1);
+//! o.verdict = Verdict::Holds;
+//! ```
+
+use crate::derivation::Verdict;
+use crate::kernel::certificate::Certificate;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// How a verdict was reached.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Canonical polynomial expansion for every value of the free indices.
+    Exact,
+    /// The printed statement is ill-formed in its indices.
+    IndexCheck,
+    /// Seeded random states in f64.
+    Numeric,
+    /// num-dual gradients against closed forms and central differences.
+    Gradient,
+    /// num-dual Hessians, positive semidefinite.
+    Convex,
+    /// An exact witness of an existential statement.
+    Witness,
+    /// Exact rational functions (Appendix A), with a floating-point second route.
+    Symbolic,
+}
+
+/// How strong a verdict's evidence is: a proof by exact computation, or no violation
+/// found by seeded sampling and a search for the worst case.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Strength {
+    Proof,
+    Sampled,
+}
+
+impl Method {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Method::Exact => "exact",
+            Method::IndexCheck => "index-check",
+            Method::Numeric => "numeric",
+            Method::Gradient => "gradient",
+            Method::Convex => "convex",
+            Method::Witness => "witness",
+            Method::Symbolic => "symbolic",
+        }
+    }
+}
+
+/// Evidence that a statement is false.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Counterexample {
+    /// Which chain (1-based) and which equality in it (1-based: sides k and k+1).
+    pub chain: usize,
+    pub equality: usize,
+    pub lhs: String,
+    pub rhs: String,
+    /// Values (1-based) of the free indices where the sides differ.
+    pub indices: BTreeMap<String, usize>,
+    /// lhs − rhs in canonical form, reduced modulo n·n = 1 when the file declares a
+    /// normal (see `reduced_on_sphere`).
+    pub difference: String,
+    pub reduced_on_sphere: bool,
+    /// A rational point where the sides differ, and their values there.
+    pub point: BTreeMap<String, String>,
+    pub lhs_value: Option<String>,
+    pub rhs_value: Option<String>,
+    /// Set when the statement is ill-formed in its indices as printed.
+    pub ill_formed: Option<String>,
+}
+
+/// The result of deciding one statement.
+///
+/// Its verdict and strength are private: a proved `holds` is made only by
+/// [`Outcome::proved`] from a kernel [`Certificate`], a sampled one only by
+/// [`Outcome::holds_sampled`]; the other verdicts have their own constructors.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    verdict: Verdict,
+    strength: Strength,
+    certificate: Option<Certificate>,
+    pub method: Method,
+    /// Number of component comparisons made.
+    pub checks: usize,
+    /// Whether some comparison needed n·n = 1.
+    pub used_unit_normal: bool,
+    pub counterexample: Option<Counterexample>,
+    /// Sample count, seed and residuals of the numeric strategies.
+    pub numeric: Option<NumericEvidence>,
+    /// A strategy-specific line of evidence (the domain of a conditional claim, the
+    /// witness of an existential one, …).
+    pub detail: Option<String>,
+}
+
+impl Outcome {
+    fn new(verdict: Verdict, strength: Strength, method: Method, checks: usize) -> Self {
+        Outcome {
+            verdict,
+            strength,
+            certificate: None,
+            method,
+            checks,
+            used_unit_normal: false,
+            counterexample: None,
+            numeric: None,
+            detail: None,
+        }
+    }
+
+    /// `holds`, proved: the kernel's certificate is the only way to this outcome.
+    pub fn proved(method: Method, checks: usize, certificate: Certificate) -> Self {
+        let mut o = Outcome::new(Verdict::Holds, Strength::Proof, method, checks);
+        o.certificate = Some(certificate);
+        o
+    }
+
+    /// `holds` on sampled evidence: no violation among the samples and the search.
+    pub fn holds_sampled(method: Method, checks: usize) -> Self {
+        Outcome::new(Verdict::Holds, Strength::Sampled, method, checks)
+    }
+
+    /// `fails`; `strength` says how the counterexample was found and verified (exactly:
+    /// proof; in floating point: sampled).
+    pub fn fails(method: Method, strength: Strength, checks: usize) -> Self {
+        Outcome::new(Verdict::Fails, strength, method, checks)
+    }
+
+    /// `conditional`: proved on its domain when a certificate covers the domain,
+    /// otherwise sampled there.
+    pub fn conditional(method: Method, checks: usize, domain: Option<Certificate>) -> Self {
+        let strength = if domain.is_some() {
+            Strength::Proof
+        } else {
+            Strength::Sampled
+        };
+        let mut o = Outcome::new(Verdict::Conditional, strength, method, checks);
+        o.certificate = domain;
+        o
+    }
+
+    /// `undecided`: the reason goes in the evidence.
+    pub fn undecided(method: Method, checks: usize) -> Self {
+        Outcome::new(Verdict::Undecided, Strength::Sampled, method, checks)
+    }
+
+    pub fn verdict(&self) -> Verdict {
+        self.verdict
+    }
+
+    pub fn strength(&self) -> Strength {
+        self.strength
+    }
+
+    /// The kernel's certificate behind a proved verdict.
+    pub fn certificate(&self) -> Option<&Certificate> {
+        self.certificate.as_ref()
+    }
+
+    /// The verdict as the tables show it: `holds` and `conditional` say `(sampled)`
+    /// when they rest on sampled evidence; a `fails` always carries its
+    /// counterexample.
+    pub fn verdict_text(&self) -> String {
+        match (self.verdict, self.strength) {
+            (Verdict::Holds | Verdict::Conditional, Strength::Sampled) => {
+                format!("{} (sampled)", self.verdict)
+            }
+            _ => self.verdict.to_string(),
+        }
+    }
+
+    pub fn with_counterexample(mut self, cx: Counterexample) -> Self {
+        self.counterexample = Some(cx);
+        self
+    }
+
+    pub fn with_numeric(mut self, evidence: NumericEvidence) -> Self {
+        self.numeric = Some(evidence);
+        self
+    }
+
+    pub fn with_detail(mut self, detail: impl Into<String>) -> Self {
+        self.detail = Some(detail.into());
+        self
+    }
+
+    pub fn using_unit_normal(mut self, used: bool) -> Self {
+        self.used_unit_normal = used;
+        self
+    }
+}
+
+/// The evidence a numeric verdict must carry.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NumericEvidence {
+    pub samples: usize,
+    pub seed: u64,
+    /// Largest relative residual (equalities) or relative violation (inequalities,
+    /// ≤ 0 when satisfied) over the samples; for convexity, the smallest relative
+    /// eigenvalue.
+    pub largest_residual: f64,
+    /// What `largest_residual` measures, in words.
+    pub residual: &'static str,
+    /// Samples excluded because they lie on the singular set.
+    pub excluded: usize,
+    pub exclusion: Option<String>,
+    /// The domain on which a conditional statement holds.
+    pub domain: Option<String>,
+    pub tolerance: String,
+    /// The adversarial search that followed the random samples.
+    pub search: Option<SearchEvidence>,
+}
+
+/// What the search for the worst violation did (`strategy::search`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SearchEvidence {
+    pub starts: usize,
+    pub evaluations: usize,
+    /// The largest margin found, in the units of `largest_residual` (≤ tolerance:
+    /// not violated).
+    pub worst_margin: f64,
+    /// Where it was found.
+    pub at: BTreeMap<String, String>,
+}
