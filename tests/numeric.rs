@@ -143,9 +143,20 @@ wrt = ["sigma"]"#;
     assert_eq!(decide(convex).0, Verdict::Holds);
     let (v, m, _) = decide(&convex.replace("function = \"F1\"", "function = \"-F1\""));
     assert_eq!((v, m), (Verdict::Fails, Method::Convex));
-    let (v, _, _) =
+    let (v, _, ev) =
         decide(&convex.replace("function = \"F1\"", "function = \"sqrt(sqrt(q2 + 2 r2))\""));
     assert_eq!(v, Verdict::Fails);
+    assert!(ev.contains("second difference"), "{ev}");
+    // At the apex the Hessian does not exist: no verdict, and the reason.
+    let apex = convex
+        .replace(
+            "ranges = { f_s = [0.0, 2.0] }",
+            "ranges = { sigma = [0.0, 0.0] }",
+        )
+        .replace("singular = \"q2 + 2 r2\"\n", "");
+    let (v, _, ev) = decide(&apex);
+    assert_eq!(v, Verdict::Undecided, "{ev}");
+    assert!(ev.contains("not finite"), "{ev}");
 }
 
 #[test]
@@ -192,7 +203,8 @@ fn too_few_samples_are_refused() {
 fn at_the_apex_the_gradient_does_not_exist_and_is_reported() {
     // Every sample at the apex q = r = 0 (a range of one value puts every stress
     // component at 0; the derivative is still taken in every free direction): num-dual's
-    // sqrt has a NaN derivative there, and NaN never passes.
+    // sqrt has a NaN derivative there, and NaN never passes. Nor is it a counterexample:
+    // the gradient does not exist there, so the claim is undecided, with the reason.
     let apex = r#"expect = "holds"
 strategy = "gradient"
 samples = 50
@@ -200,7 +212,11 @@ ranges = { sigma = [0.0, 0.0] }
 function = "F1"
 gradient = { sigma = "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij" }"#;
     let (v, m, ev) = decide(apex);
-    assert_eq!((v, m), (Verdict::Fails, Method::Gradient), "{ev}");
+    assert_eq!((v, m), (Verdict::Undecided, Method::Gradient), "{ev}");
+    assert!(
+        ev.contains("does not exist there") && ev.contains("singular"),
+        "{ev}"
+    );
     // Declaring the singular set excludes those samples; when every sample lies on it,
     // the checker says so instead of passing vacuously.
     let text = format!(

@@ -80,6 +80,12 @@ impl Rational {
         }
     }
 
+    /// The rational a finite `f64` denotes, exactly (every finite float is a dyadic
+    /// rational); `None` for NaN and infinities.
+    pub fn from_f64_exact(x: f64) -> Option<Self> {
+        BigRational::from_float(x).map(from_big_reduced)
+    }
+
     /// Parses a plain decimal literal such as `12`, `0.25` or `3.` exactly.
     pub fn parse_decimal(text: &str) -> Option<Self> {
         let (int_part, frac_part) = match text.split_once('.') {
@@ -348,6 +354,18 @@ mod tests {
 
     fn q(n: i64, d: i64) -> Rational {
         Rational::ratio(n, d).unwrap()
+    }
+
+    #[test]
+    fn floats_convert_exactly() {
+        assert_eq!(Rational::from_f64_exact(0.75), Rational::ratio(3, 4));
+        assert_eq!(Rational::from_f64_exact(-2.0), Some(Rational::int(-2)));
+        // 0.1 is not 1/10 in binary: the conversion keeps what the float is.
+        let tenth = Rational::from_f64_exact(0.1).unwrap();
+        assert_ne!(Some(tenth.clone()), Rational::ratio(1, 10));
+        assert_eq!(tenth.to_f64(), 0.1);
+        assert_eq!(Rational::from_f64_exact(f64::NAN), None);
+        assert_eq!(Rational::from_f64_exact(f64::INFINITY), None);
     }
 
     #[test]

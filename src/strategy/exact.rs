@@ -6,7 +6,7 @@
 //! the normal).
 
 use super::eval::{component_name, ExactEnv, Labeled};
-use super::{Counterexample, Method, Outcome, Strength};
+use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::Check;
 use crate::kernel::certificate::Identities;
 use crate::kernel::{assignments, Poly, Rational, Var, VarTable};
@@ -63,7 +63,8 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 let Some(diff) = compared else {
                     continue;
                 };
-                let (mut cx, point) = counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
+                let (mut cx, point, values) =
+                    counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
                 cx.chain = ci + 1;
                 cx.reduced_on_sphere = diff
@@ -80,6 +81,21 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 let matching = matches!((ln, rn), (Ok(a), Ok(b)) if a.matches_free_indices(b));
                 if !matching {
                     cx.ill_formed = Some(mismatch(l, r));
+                }
+                // A second evaluation of both sides at the point, by the interpreter.
+                if let Some((lv, rv)) = &values {
+                    match reverify::exact_counterexample(decls, check, &env, &point, (lv, rv), &cx)
+                    {
+                        Ok(how) => cx.reverified = Some(how),
+                        Err(why) => {
+                            return Ok(Outcome::undecided(Method::Exact, identities.components())
+                                .with_detail(format!(
+                                    "undecided: the sides differ as polynomials ({}), but the counterexample \
+                                     was not confirmed by a second evaluation: {why}",
+                                    cx.difference
+                                )));
+                        }
+                    }
                 }
                 return Ok(
                     Outcome::fails(Method::Exact, Strength::Proof, identities.components())
@@ -198,7 +214,11 @@ fn counterexample(
     lhs: &Poly,
     rhs: &Poly,
     diff: &Poly,
-) -> (Counterexample, BTreeMap<Var, Rational>) {
+) -> (
+    Counterexample,
+    BTreeMap<Var, Rational>,
+    Option<(Rational, Rational)>,
+) {
     let difference = diff.display_truncated(names, SHOWN_TERMS);
     let mut used: Vec<Var> = lhs
         .terms()
@@ -247,8 +267,13 @@ fn counterexample(
                 .collect();
             cx.lhs_value = Some(l.to_string());
             cx.rhs_value = Some(r.to_string());
-            return (cx, point);
+            // The whole normal, for the second evaluation (the display keeps only the
+            // components the sides use).
+            for (k, &v) in normal.iter().enumerate() {
+                point.entry(v).or_insert_with(|| n[k].clone());
+            }
+            return (cx, point, Some((l, r)));
         }
     }
-    (cx, BTreeMap::new())
+    (cx, BTreeMap::new(), None)
 }

@@ -12,12 +12,15 @@ pub mod numeric;
 mod outcome;
 pub mod quadrature;
 pub mod real;
+mod reverify;
 pub mod sampler;
 pub mod search;
 pub mod tape;
 pub mod witness;
 
-pub use outcome::{Counterexample, Method, NumericEvidence, Outcome, SearchEvidence, Strength};
+pub use outcome::{
+    Counterexample, Method, NumericEvidence, Outcome, Reverified, SearchEvidence, Strength,
+};
 
 use crate::derivation::Claim;
 use crate::lang::Diagnostic;

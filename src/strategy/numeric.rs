@@ -17,7 +17,10 @@ use super::quadrature::{self, Level};
 use super::real::component_pairs;
 pub use super::sampler::SINGULAR_EPS;
 use super::sampler::{describe, relation_holds, Sampler, State};
-use super::{search, Counterexample, Method, NumericEvidence, Outcome, SearchEvidence, Strength};
+use super::{
+    reverify, search, Counterexample, Method, NumericEvidence, Outcome, Reverified, SearchEvidence,
+    Strength,
+};
 use crate::derivation::{AssumptionKind, Check, Expression, Relation, Sampling, Strategy};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic};
@@ -31,6 +34,12 @@ pub use super::float::TOL;
 pub const FD_STEP: f64 = 1e-6;
 /// Relative tolerance between num-dual and central differences.
 pub const FD_TOL: f64 = 1e-6;
+/// Relative step of the second difference that confirms a negative Hessian eigenvalue:
+/// its truncation error is O(step²) and its rounding error O(ε/step²) ≈ 1e-10.
+pub const SECOND_DIFFERENCE_STEP: f64 = 1e-3;
+/// The second difference must be below −this·(1 + max|λ|) to confirm a negative
+/// eigenvalue (well above its rounding error).
+pub const SECOND_DIFFERENCE_TOL: f64 = 1e-7;
 
 /// What one state says about a statement.
 enum Judged {
@@ -307,7 +316,7 @@ fn sample_and_search(
         tally.largest = tally.largest.max(margin);
         match judged {
             Judged::Satisfied => keep_worst(&mut worst, margin, state),
-            Judged::Violated(cx) => return Ok((Found::Violation(Box::new(state), cx), None)),
+            Judged::Violated(cx) => return Ok((confirmed(sampler, state, relation, cx), None)),
             Judged::Unresolved(why) => return Ok((Found::Unresolved(why), None)),
         }
     }
@@ -363,7 +372,7 @@ fn sample_and_search(
             match check_state(sampler, &state, relation, &mut m, &mut tally.quadrature)? {
                 Judged::Violated(cx) => {
                     tally.largest = tally.largest.max(m);
-                    Found::Violation(Box::new(state), cx)
+                    confirmed(sampler, state, relation, cx)
                 }
                 Judged::Unresolved(why) => Found::Unresolved(why),
                 Judged::Satisfied => Found::Nothing,
@@ -372,6 +381,37 @@ fn sample_and_search(
         None => Found::Nothing,
     };
     Ok((found, Some(evidence)))
+}
+
+/// A violation found in floating point, evaluated a second time (`reverify`): exactly
+/// where the statement is polynomial, else by the interpreter. Unconfirmed, it is no
+/// counterexample and the claim is undecided.
+fn confirmed(
+    sampler: &Sampler<'_>,
+    state: State,
+    relation: Relation,
+    mut cx: Counterexample,
+) -> Found {
+    match reverify::numeric_counterexample(sampler, &state, relation, &cx) {
+        Ok(how) => {
+            cx.reverified = Some(how);
+            Found::Violation(Box::new(state), cx)
+        }
+        Err(why) => Found::Unresolved(unresolved(
+            sampler,
+            &state,
+            format!("a floating-point violation was not confirmed by a second evaluation: {why}"),
+        )),
+    }
+}
+
+/// The strength of a `fails`: proved when its counterexample was confirmed exactly.
+fn fails_strength(cx: &Counterexample) -> Strength {
+    if cx.reverified == Some(Reverified::Exact) {
+        Strength::Proof
+    } else {
+        Strength::Sampled
+    }
 }
 
 /// Running totals of a sampled decision.
@@ -447,7 +487,7 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         Found::Violation(state, cx) => (state, cx),
     };
     let fails = |cx: Counterexample, detail: Option<String>| {
-        let mut o = Outcome::fails(Method::Numeric, Strength::Sampled, sampling.samples)
+        let mut o = Outcome::fails(Method::Numeric, fails_strength(&cx), sampling.samples)
             .with_counterexample(cx)
             .with_numeric(evidence(&tally, search.clone(), None));
         o.detail = detail;
@@ -637,12 +677,38 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                     .map_err(|r| (e, r))
             })
             .collect::<Result<_, _>>();
+        // Central differences of F itself: the second route for every component.
+        let central = |k: usize| {
+            let h = FD_STEP * (1.0 + x0[k].abs());
+            let shifted = |delta: f64| {
+                let mut x = x0.clone();
+                x[k] += delta;
+                eval_at::<f64>(&sampler, &state, &vars, function, &x)
+            };
+            (shifted(h) - shifted(-h)) / (2.0 * h)
+        };
+        let near = |a: f64, b: f64| {
+            a.is_finite() && b.is_finite() && (a - b).abs() <= FD_TOL * (1.0 + a.abs() + b.abs())
+        };
         let closed = match closed {
             Ok(c) => c,
             Err((e, r)) => {
                 sampler.verify_state(&state)?;
-                // A closed form undefined at a sample (e.g. 1/0 at the apex) cannot
-                // agree with anything: a failure, located by the evidence, not a pass.
+                // A closed form undefined at a sample where the derivative exists (num-dual
+                // and central differences agree on a finite value) is wrong there; where
+                // they do not, F is not differentiable at the sample and nothing is shown.
+                let k = (0..vars.len()).find(|&k| !near(grad[k], central(k)));
+                if let Some(k) = k {
+                    return Ok(Outcome::undecided(Method::Gradient, checks).with_detail(format!(
+                        "undecided: the closed form is undefined at a sample ({}), and ∂/∂{} does not exist \
+                         there (num-dual {:.9}, central difference {:.9}); declare the singular set with \
+                         `singular = …` to exclude such states",
+                        r.message,
+                        component_name(&vars[k].0, &vars[k].1),
+                        grad[k],
+                        central(k)
+                    )));
+                }
                 return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
                     .with_counterexample(Counterexample {
                         chain: 1,
@@ -650,12 +716,13 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                         lhs: format!("∂({})", function.text.trim()),
                         rhs: e.text.clone(),
                         point: describe(&state, decls),
-                        lhs_value: Some("(num-dual)".into()),
+                        lhs_value: Some("(num-dual = central differences)".into()),
                         rhs_value: Some(format!("undefined: {}", r.message)),
+                        reverified: Some(Reverified::CentralDifferences),
                         ..Counterexample::default()
                     })
                     .with_detail(format!(
-                        "the closed form is undefined at a sample ({})",
+                        "the closed form is undefined at a sample where the derivative exists ({})",
                         r.message
                     )));
             }
@@ -664,49 +731,45 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
             checks += 1;
             let ad = grad[k];
             let cf = *closed[symbol.as_str()].get(idx);
-            let h = FD_STEP * (1.0 + x0[k].abs());
-            let shifted = |delta: f64| {
-                let mut x = x0.clone();
-                x[k] += delta;
-                eval_at::<f64>(&sampler, &state, &vars, function, &x)
-            };
-            let fd = (shifted(h) - shifted(-h)) / (2.0 * h);
+            let fd = central(k);
             let (ok_cf, r_cf) = relation_holds(Relation::Eq, ad, cf);
-            let fd_ok = ad.is_finite()
-                && fd.is_finite()
-                && (ad - fd).abs() <= FD_TOL * (1.0 + ad.abs() + fd.abs());
             largest = largest.max(r_cf);
-            if !ok_cf || !fd_ok {
-                sampler.verify_state(&state)?;
-                let what = if ok_cf {
-                    "num-dual and central differences disagree"
-                } else {
-                    "num-dual and the closed form disagree"
-                };
-                let mut point = describe(&state, decls);
-                point.insert("central difference".into(), format!("{fd:.9}"));
-                return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
-                    .with_counterexample(Counterexample {
-                        chain: 1,
-                        equality: 1,
-                        lhs: format!(
-                            "∂({})/∂{}",
-                            function.text.trim(),
-                            component_name(symbol, idx)
-                        ),
-                        rhs: closed_forms
-                            .iter()
-                            .find(|(s, _)| s == symbol)
-                            .map(|(_, e)| e.text.clone())
-                            .unwrap_or_default(),
-                        point,
-                        lhs_value: Some(format!("{ad:.9}")),
-                        rhs_value: Some(format!("{cf:.9}")),
-                        ill_formed: None,
-                        ..Counterexample::default()
-                    })
-                    .with_detail(what));
+            if ok_cf && near(ad, fd) {
+                continue;
             }
+            sampler.verify_state(&state)?;
+            let name = component_name(symbol, idx);
+            if ok_cf || !near(ad, fd) {
+                // The closed form agrees with num-dual but not with the difference
+                // quotient, or the two derivative routes disagree: a numerical artefact
+                // (a kink, a step too large) is not a counterexample.
+                return Ok(Outcome::undecided(Method::Gradient, checks).with_detail(format!(
+                    "undecided: at a sample, ∂/∂{name} is {ad:.9} by num-dual, {fd:.9} by central \
+                     differences and {cf:.9} by the closed form; the two derivative routes do not agree \
+                     there, so no verdict is given (point: {})",
+                    render_point(&describe(&state, decls))
+                )));
+            }
+            // num-dual and central differences agree, and the closed form differs.
+            let mut point = describe(&state, decls);
+            point.insert("central difference".into(), format!("{fd:.9}"));
+            return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
+                .with_counterexample(Counterexample {
+                    chain: 1,
+                    equality: 1,
+                    lhs: format!("∂({})/∂{name}", function.text.trim()),
+                    rhs: closed_forms
+                        .iter()
+                        .find(|(s, _)| s == symbol)
+                        .map(|(_, e)| e.text.clone())
+                        .unwrap_or_default(),
+                    point,
+                    lhs_value: Some(format!("{ad:.9}")),
+                    rhs_value: Some(format!("{cf:.9}")),
+                    reverified: Some(Reverified::CentralDifferences),
+                    ..Counterexample::default()
+                })
+                .with_detail("num-dual and the closed form disagree; central differences agree with num-dual"));
         }
     }
     let names: Vec<String> = vars.iter().map(|(s, idx)| component_name(s, idx)).collect();
@@ -753,19 +816,54 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         if sampler.fine.used() {
             return Ok(through_adaptive_average(Method::Convex));
         }
-        let finite = h.iter().all(|v| v.is_finite());
-        let eig = if finite {
-            SymmetricEigen::new(h.clone()).eigenvalues
-        } else {
-            DVector::from_element(1, f64::NAN)
-        };
-        let min = eig.iter().copied().fold(f64::INFINITY, f64::min);
-        let max_abs = eig.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        if !h.iter().all(|v| v.is_finite()) {
+            sampler.verify_state(&state)?;
+            return Ok(
+                Outcome::undecided(Method::Convex, sampling.samples).with_detail(format!(
+                    "undecided: the Hessian is not finite at a sample (the function is not twice \
+                 differentiable there; declare `singular = …` to exclude such states); point: {}",
+                    render_point(&describe(&state, decls))
+                )),
+            );
+        }
+        let eigen = SymmetricEigen::new(h.clone());
+        let (k_min, min) =
+            eigen
+                .eigenvalues
+                .iter()
+                .copied()
+                .enumerate()
+                .fold(
+                    (0, f64::INFINITY),
+                    |a, (k, v)| if v < a.1 { (k, v) } else { a },
+                );
+        let max_abs = eigen
+            .eigenvalues
+            .iter()
+            .map(|v| v.abs())
+            .fold(0.0, f64::max);
         let relative = min / (1.0 + max_abs);
         smallest = smallest.min(relative);
-        if !finite || relative < -TOL {
+        if relative < -TOL {
             sampler.verify_state(&state)?;
+            // The second route: the second difference of the function along the
+            // eigenvector must be negative as well.
+            let v = eigen.eigenvectors.column(k_min).into_owned();
+            let step = SECOND_DIFFERENCE_STEP * (1.0 + x0.amax());
+            let f = |t: f64| eval_at::<f64>(&sampler, &state, &vars, function, &(&x0 + &v * t));
+            let curvature = (f(step) - 2.0 * f(0.0) + f(-step)) / (step * step);
+            let confirmed = curvature.is_finite()
+                && curvature < -SECOND_DIFFERENCE_TOL * (1.0 + max_abs)
+                && (curvature - min).abs() <= 0.5 * min.abs();
             let mut point = describe(&state, decls);
+            if !confirmed {
+                return Ok(Outcome::undecided(Method::Convex, sampling.samples).with_detail(format!(
+                    "undecided: num-dual gives the Hessian an eigenvalue {min:.9} at a sample, but the \
+                     second difference of the function along its eigenvector is {curvature:.9}; the two \
+                     routes do not agree, so no verdict is given (point: {})",
+                    render_point(&point)
+                )));
+            }
             point.insert("smallest eigenvalue".into(), format!("{min:.9}"));
             return Ok(
                 Outcome::fails(Method::Convex, Strength::Sampled, sampling.samples)
@@ -775,9 +873,13 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
                         lhs: format!("Hessian of {}", function.text.trim()),
                         rhs: "positive semidefinite".into(),
                         point,
+                        reverified: Some(Reverified::SecondDifferences),
                         ..Counterexample::default()
                     })
-                    .with_detail("the Hessian has a negative eigenvalue"),
+                    .with_detail(format!(
+                        "the Hessian has a negative eigenvalue; the second difference along its \
+                         eigenvector is {curvature:.9}"
+                    )),
             );
         }
     }

@@ -80,6 +80,25 @@ pub struct Counterexample {
     pub rhs_value: Option<String>,
     /// Set when the statement is ill-formed in its indices as printed.
     pub ill_formed: Option<String>,
+    /// How the counterexample was confirmed by a second evaluation (`reverify`).
+    pub reverified: Option<Reverified>,
+}
+
+/// The second evaluation that confirmed a counterexample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reverified {
+    /// Exact rational arithmetic at the rational point the sample denotes.
+    Exact,
+    /// The `f64` interpreter on the expression tree agrees with the exact values.
+    FloatingPoint,
+    /// The `f64` interpreter (not the compiled tape) confirms the violation.
+    Interpreter,
+    /// Central differences of the function agree with the num-dual derivative.
+    CentralDifferences,
+    /// The second derivative along the eigenvector, by central differences of the
+    /// function, is negative too.
+    SecondDifferences,
 }
 
 /// The result of deciding one statement.

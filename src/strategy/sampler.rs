@@ -147,6 +147,19 @@ impl<'a> Sampler<'a> {
         }
     }
 
+    /// The expression evaluated by the interpreter, never the tape (the second
+    /// evaluation of a counterexample, `reverify`), adaptive averages at the fine level.
+    pub(super) fn interpret(
+        &self,
+        symbols: &HashMap<String, Tensor<f64>>,
+        node: &Node,
+        n: &[f64],
+    ) -> Result<Labeled<f64>, RealError> {
+        let mut env = self.env(symbols.clone());
+        env.quadrature = Quadrature::new(Level::Fine);
+        env.eval(node, n)
+    }
+
     /// The range of every component of `symbol`.
     pub(super) fn range(&self, symbol: &str) -> (f64, f64) {
         self.sampling

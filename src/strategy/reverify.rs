@@ -1,0 +1,314 @@
+//! Every counterexample is re-verified before a `fails` is printed, by a second
+//! evaluation of both sides at the reported point that does not share the method of
+//! the one that found it.
+//!
+//! - A counterexample of the **exact** strategy (canonical polynomials evaluated at a
+//!   rational point) is evaluated again by the floating-point interpreter on the
+//!   expression tree (`real`: no canonical forms, averages by quadrature), and both
+//!   sides must agree with the exact values.
+//! - A counterexample of the **numeric** strategy (found in `f64` on the compiled tape)
+//!   is evaluated again **exactly** where the sides, the hypotheses and the singular set
+//!   are polynomial: at the rational point the sample's `f64` values denote (every
+//!   `f64` is a rational), with the normal moved onto the unit sphere by an exact
+//!   rational parametrisation. Confirmed there, the `fails` is proved. Where the sides
+//!   are not polynomial, the tree-walking interpreter evaluates them again instead of
+//!   the tape (strength `sampled`).
+//!
+//! A counterexample that the second evaluation does not confirm is never printed: the
+//! claim is `undecided`, with the reason.
+
+use super::eval::{component_name, ExactEnv, Labeled};
+use super::real::{component_pairs, RealEnv};
+use super::sampler::{relation_holds, Sampler, State};
+use super::{Counterexample, Reverified};
+use crate::derivation::{Check, Constraint, Expression, Relation};
+use crate::kernel::{Poly, Rational, Tensor, Var};
+use crate::lang::Decls;
+use std::collections::{BTreeMap, HashMap};
+
+/// Relative agreement required between the exact values of a counterexample and the
+/// interpreter's `f64` values at the same point.
+const AGREEMENT: f64 = 1e-9;
+
+/// The exact strategy's counterexample at `point` (values of the variables the sides
+/// use, and the whole normal), with exact side values `lhs`, `rhs`, confirmed by the `f64`
+/// interpreter. `Err` says why it is not confirmed.
+pub(super) fn exact_counterexample(
+    decls: &Decls,
+    check: &Check,
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+    (lhs, rhs): (&Rational, &Rational),
+    cx: &Counterexample,
+) -> Result<Reverified, String> {
+    // Variables the point leaves out do not occur in the sides; any value will do as
+    // long as the assumptions can be evaluated there (`S = 3 V / (2 R_g)` cannot at
+    // R_g = 0), so a few are tried.
+    let mut last = String::new();
+    for absent in [0.0, 1.0, 0.577_215_664_901_532_9] {
+        match float_values(decls, check, env, point, absent, cx) {
+            Ok((lf, rf)) => return confirm(lf, rf, lhs, rhs),
+            Err(why) => last = why,
+        }
+    }
+    Err(format!(
+        "the interpreter cannot evaluate the sides at the point: {last}"
+    ))
+}
+
+/// Whether the interpreter's values agree with the exact ones.
+fn confirm(lf: f64, rf: f64, lhs: &Rational, rhs: &Rational) -> Result<Reverified, String> {
+    let agrees = |f: f64, q: &Rational| {
+        let e = q.to_f64();
+        f.is_finite() && (f - e).abs() <= AGREEMENT * (1.0 + e.abs())
+    };
+    if agrees(lf, lhs) && agrees(rf, rhs) {
+        Ok(Reverified::FloatingPoint)
+    } else {
+        Err(format!(
+            "the interpreter gives left {lf:e}, right {rf:e} at the point, against the exact {lhs}, {rhs}"
+        ))
+    }
+}
+
+/// Both sides of the counterexample's equality by the interpreter at `point`, the
+/// variables it leaves out set to `absent`.
+fn float_values(
+    decls: &Decls,
+    check: &Check,
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+    absent: f64,
+    cx: &Counterexample,
+) -> Result<(f64, f64), String> {
+    let value = |name: &str| {
+        env.vars
+            .lookup(name)
+            .and_then(|v| point.get(&v))
+            .map_or(absent, Rational::to_f64)
+    };
+    let d = decls.dim;
+    let symbols: HashMap<String, Tensor<f64>> = decls
+        .symbols
+        .iter()
+        .map(|(name, &rank)| {
+            let t = Tensor::from_fn(d, rank, |idx| value(&component_name(name, idx)));
+            (name.clone(), t)
+        })
+        .collect();
+    let normal = env.normal_vars();
+    let mut n: Vec<f64> = normal
+        .iter()
+        .map(|&v| point.get(&v).map_or(f64::NAN, Rational::to_f64))
+        .collect();
+    if n.iter().any(|x| x.is_nan()) {
+        // The sides do not depend on the normal: any unit vector will do.
+        n = vec![0.0; normal.len()];
+        if let Some(first) = n.first_mut() {
+            *first = 1.0;
+        }
+    }
+    n.resize(d, 0.0);
+    let mut real = RealEnv::new(decls, &check.defs, symbols);
+    if let Some(p) = env.parametrisation() {
+        real.assume(p, &check.assumptions, &n)
+            .map_err(|e| format!("the assumptions cannot be evaluated there: {}", e.message))?;
+    }
+    let chain = &check.chains[cx.chain - 1];
+    let side = |k: usize| -> Result<super::real::Labeled<f64>, String> {
+        let node = chain[k].node.as_ref().map_err(|e| e.message.clone())?;
+        real.eval(node, &n).map_err(|e| e.message)
+    };
+    let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
+    pick(d, &l, &r, cx)
+}
+
+/// The counterexample's component of both sides.
+fn pick(
+    dim: usize,
+    l: &super::real::Labeled<f64>,
+    r: &super::real::Labeled<f64>,
+    cx: &Counterexample,
+) -> Result<(f64, f64), String> {
+    let (labels, pairs) = component_pairs(dim, l, r);
+    let wanted: Vec<usize> = labels
+        .iter()
+        .map(|c| cx.indices.get(&c.to_string()).map_or(0, |v| v - 1))
+        .collect();
+    pairs
+        .into_iter()
+        .find(|(a, _, _)| *a == wanted)
+        .map(|(_, lf, rf)| (lf, rf))
+        .ok_or_else(|| "the counterexample's indices are not among the components".to_owned())
+}
+
+/// The numeric strategy's counterexample at `state`, confirmed exactly where the
+/// statement is polynomial, else by the interpreter. `Err` says why it is not
+/// confirmed.
+pub(super) fn numeric_counterexample(
+    sampler: &Sampler<'_>,
+    state: &State,
+    relation: Relation,
+    cx: &Counterexample,
+) -> Result<Reverified, String> {
+    match exactly(sampler, state, relation, cx) {
+        Some(Ok(())) => Ok(Reverified::Exact),
+        Some(Err(why)) => Err(why),
+        None => by_interpreter(sampler, state, relation, cx),
+    }
+}
+
+/// `None` when some expression involved is not polynomial (or over the exact budget).
+fn exactly(
+    sampler: &Sampler<'_>,
+    state: &State,
+    relation: Relation,
+    cx: &Counterexample,
+) -> Option<Result<(), String>> {
+    let check = sampler.check;
+    let mut env = ExactEnv::new(sampler.decls, &check.defs, &check.assumptions).ok()?;
+    let chain = &check.chains[cx.chain - 1];
+    let mut side = |k: usize| -> Option<Labeled> {
+        let s = &chain[k];
+        env.eval(s.node.as_ref().ok()?, &s.origin).ok()
+    };
+    let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
+    let mut poly = |e: &Expression| -> Option<Labeled> { env.eval(&e.node, &e.origin).ok() };
+    let scalar = |e: &Expression, poly: &mut dyn FnMut(&Expression) -> Option<Labeled>| {
+        poly(e).and_then(|v| v.tensor.into_scalar())
+    };
+    let mut hypotheses: Vec<(Relation, Poly, Poly)> = Vec::new();
+    for Constraint {
+        lhs, relation, rhs, ..
+    } in &sampler.sampling.given
+    {
+        hypotheses.push((*relation, scalar(lhs, &mut poly)?, scalar(rhs, &mut poly)?));
+    }
+    let singular = match &sampler.sampling.singular {
+        Some(e) => Some(scalar(e, &mut poly)?),
+        None => None,
+    };
+    let point = exact_point(&mut env, state)?;
+    let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+    let assignment: Vec<(char, usize)> = cx
+        .indices
+        .iter()
+        .filter_map(|(c, v)| Some((c.chars().next()?, v - 1)))
+        .collect();
+    let (Some(lv), Some(rv)) = (l.at(&assignment).eval(&at), r.at(&assignment).eval(&at)) else {
+        return Some(Err("a side has a pole at the exact point".into()));
+    };
+    for (k, (rel, a, b)) in hypotheses.iter().enumerate() {
+        let (Some(a), Some(b)) = (a.eval(&at), b.eval(&at)) else {
+            return Some(Err(format!(
+                "hypothesis {} has a pole at the exact point",
+                k + 1
+            )));
+        };
+        if !holds_exactly(*rel, &a, &b) {
+            return Some(Err(format!(
+                "at the exact point the hypothesis `{}` does not hold; the floating-point \
+                 violation lies on its boundary",
+                sampler.sampling.given[k].text
+            )));
+        }
+    }
+    if let Some(s) = singular {
+        if s.eval(&at).is_none_or(|v| v.is_zero()) {
+            return Some(Err("the exact point lies on the singular set".into()));
+        }
+    }
+    Some(if holds_exactly(relation, &lv, &rv) {
+        Err(format!(
+            "the floating-point violation is rounding: exactly, left {lv} and right {rv} satisfy \
+             the relation at the point"
+        ))
+    } else {
+        Ok(())
+    })
+}
+
+fn holds_exactly(relation: Relation, l: &Rational, r: &Rational) -> bool {
+    let diff = l - r;
+    match relation {
+        Relation::Eq => diff.is_zero(),
+        Relation::Le => diff.is_zero() || diff.is_negative(),
+        Relation::Ge => !diff.is_negative(),
+    }
+}
+
+/// The exact point a sampled state denotes: each component's `f64` value as the
+/// rational it is, the normal moved exactly onto the unit circle or sphere.
+fn exact_point(env: &mut ExactEnv<'_>, state: &State) -> Option<HashMap<Var, Rational>> {
+    let mut point = HashMap::new();
+    for (v, (symbol, idx)) in env.component_vars() {
+        let x = *state.symbols.get(&symbol)?.get(&idx);
+        point.insert(v, Rational::from_f64_exact(x)?);
+    }
+    let normal = env.normal_vars().to_vec();
+    if !normal.is_empty() {
+        let n = on_unit_sphere(&state.n[..normal.len()])?;
+        point.extend(normal.into_iter().zip(n));
+    }
+    Some(point)
+}
+
+/// A rational point of the unit circle or sphere next to `n` (a unit vector in `f64`),
+/// by stereographic projection from the pole farther from `n`.
+fn on_unit_sphere(n: &[f64]) -> Option<Vec<Rational>> {
+    let q = |x: f64| Rational::from_f64_exact(x);
+    let one = Rational::int(1);
+    let two = Rational::int(2);
+    match n {
+        [x, y] => {
+            // (x, y) = (s (1 − u²), 2u)/(1 + u²) with u = y/(1 + s x), s = ±1.
+            let s = if *x >= 0.0 { 1.0 } else { -1.0 };
+            let u = q(y / (1.0 + s * x))?;
+            let den = &one + &(&u * &u);
+            let px = (&one - &(&u * &u)).checked_div(&den)?;
+            let px = if s < 0.0 { -px } else { px };
+            Some(vec![px, (&two * &u).checked_div(&den)?])
+        }
+        [x, y, z] => {
+            // (x, y, z) = (2u, 2v, s (1 − u² − v²))/(1 + u² + v²), u = x/(1 + s z), v = y/(1 + s z).
+            let s = if *z >= 0.0 { 1.0 } else { -1.0 };
+            let (u, v) = (q(x / (1.0 + s * z))?, q(y / (1.0 + s * z))?);
+            let r2 = &(&u * &u) + &(&v * &v);
+            let den = &one + &r2;
+            let pz = (&one - &r2).checked_div(&den)?;
+            let pz = if s < 0.0 { -pz } else { pz };
+            Some(vec![
+                (&two * &u).checked_div(&den)?,
+                (&two * &v).checked_div(&den)?,
+                pz,
+            ])
+        }
+        _ => None,
+    }
+}
+
+/// The sides evaluated again by the interpreter (never the tape) at the state.
+fn by_interpreter(
+    sampler: &Sampler<'_>,
+    state: &State,
+    relation: Relation,
+    cx: &Counterexample,
+) -> Result<Reverified, String> {
+    let chain = &sampler.check.chains[cx.chain - 1];
+    let side = |k: usize| {
+        let node = chain[k].node.as_ref().map_err(|e| e.message.clone())?;
+        sampler
+            .interpret(&state.symbols, node, &state.n)
+            .map_err(|e| e.message)
+    };
+    let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
+    let (lf, rf) = pick(sampler.decls.dim, &l, &r, cx)?;
+    let (ok, residual) = relation_holds(relation, lf, rf);
+    if ok {
+        Err(format!(
+            "the interpreter does not confirm it: left {lf:e}, right {rf:e} (relative residual {residual:.1e})"
+        ))
+    } else {
+        Ok(Reverified::Interpreter)
+    }
+}

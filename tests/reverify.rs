@@ -1,0 +1,91 @@
+//! Every counterexample is evaluated a second time before a `fails` is printed
+//! (`strategy::reverify`): exact counterexamples by the floating-point interpreter,
+//! sampled ones exactly where the statement is polynomial (then the `fails` is a proof)
+//! and by the interpreter otherwise. A floating-point violation that the exact
+//! evaluation does not confirm is never a counterexample.
+
+use cosserat_check::derivation::{load_str, Verdict};
+use cosserat_check::strategy::{decide_claim, Outcome, Reverified, Strength};
+
+const HEADER: &str = r#"
+section = "t"
+title = "re-verification"
+dimension = 3
+normal = "n"
+tensors = ["A_ij"]
+scalars = ["x", "y"]
+"#;
+
+fn decide(body: &str) -> Outcome {
+    let text = format!("{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\n{body}");
+    let file = load_str("test.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+    decide_claim(&file.claims[0])
+        .unwrap_or_else(|e| panic!("{e}"))
+        .outcome
+}
+
+fn reverified(o: &Outcome) -> Option<Reverified> {
+    o.counterexample.as_ref().and_then(|c| c.reverified)
+}
+
+#[test]
+fn a_sampled_polynomial_counterexample_is_confirmed_exactly_and_proved() {
+    // (x + y)² ≤ 2 (x² + y²) holds; with the 2 dropped it fails, and the sides are
+    // polynomial, so the sample's point is checked in exact arithmetic.
+    let o = decide(
+        "expect = \"fails\"\nreason = \"r\"\nstrategy = \"numeric\"\nrelation = \"<=\"\nsides = [\"(x + y)^2\", \"x^2 + y^2\"]",
+    );
+    assert_eq!(o.verdict(), Verdict::Fails);
+    assert_eq!(reverified(&o), Some(Reverified::Exact));
+    assert_eq!(o.strength(), Strength::Proof);
+    // Through the normal (a point of the sphere made exact): A_ij n_i n_j = A_ii is false.
+    let o = decide(
+        "expect = \"fails\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"A_ij n_i n_j\", \"A_kk\"]",
+    );
+    assert_eq!(o.verdict(), Verdict::Fails);
+    assert_eq!(reverified(&o), Some(Reverified::Exact));
+}
+
+#[test]
+fn a_sampled_non_polynomial_counterexample_is_confirmed_by_the_interpreter() {
+    let o = decide(
+        "expect = \"fails\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"sqrt(x^2 + y^2)\", \"abs(x) + abs(y)\"]",
+    );
+    assert_eq!(o.verdict(), Verdict::Fails);
+    assert_eq!(reverified(&o), Some(Reverified::Interpreter));
+    assert_eq!(o.strength(), Strength::Sampled);
+}
+
+#[test]
+fn rounding_is_never_a_counterexample() {
+    // (x + 10^16) − 10^16 = x is an identity; in f64 the left side loses every digit of
+    // x, so the samples violate it. Exactly, it holds at every sample: undecided, with
+    // the reason, never `fails`.
+    let o = decide(
+        "expect = \"undecided\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"(x + 10000000000000000) - 10000000000000000\", \"x\"]",
+    );
+    assert_eq!(o.verdict(), Verdict::Undecided, "{o:?}");
+    let why = o.detail.clone().unwrap_or_default();
+    assert!(why.contains("rounding"), "{why}");
+    // The exact strategy proves it.
+    let o = decide(
+        "expect = \"holds\"\nstrategy = \"exact\"\nsides = [\"(x + 10000000000000000) - 10000000000000000\", \"x\"]",
+    );
+    assert_eq!(
+        (o.verdict(), o.strength()),
+        (Verdict::Holds, Strength::Proof)
+    );
+}
+
+#[test]
+fn exact_counterexamples_are_confirmed_by_the_interpreter() {
+    let o = decide(
+        "expect = \"fails\"\nreason = \"r\"\nsides = [\"avg(n_i n_j n_k n_l)\", \"1/3 (delta_ij delta_kl + delta_ik delta_jl + delta_il delta_jk)\"]",
+    );
+    assert_eq!(o.verdict(), Verdict::Fails);
+    assert_eq!(reverified(&o), Some(Reverified::FloatingPoint));
+    // A free normal in the counterexample: the whole unit vector is evaluated again.
+    let o = decide("expect = \"fails\"\nreason = \"r\"\nsides = [\"A_ij n_j\", \"A_ji n_j\"]");
+    assert_eq!(o.verdict(), Verdict::Fails);
+    assert_eq!(reverified(&o), Some(Reverified::FloatingPoint));
+}
