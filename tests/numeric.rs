@@ -228,18 +228,27 @@ gradient = { sigma = "(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij" }"#
 }
 
 #[test]
-fn a_derivative_with_respect_to_tied_components_is_refused() {
-    // σ_22 = σ_11 ties two variables: perturbing them independently would differentiate
-    // off the assumed set, so the checker refuses instead of answering.
+fn a_derivative_with_respect_to_tied_components_needs_a_convention() {
+    // σ_22 = σ_11 ties two variables: ∂F/∂σ then has two meanings, so without
+    // `convention` the checker refuses instead of answering.
     let tied = format!(
         "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"gradient\"\nassume = [\"sigma_22 = sigma_11\"]\nfunction = \"F1\"\ngradient = {{ sigma = \"(3 s_ij - s_ji) / (4 sqrt(q2 + 2 r2)) + f_s / 2 Pi_ij\" }}\n"
     );
     let file = load_str("t.toml", &tied).unwrap();
     let err = decide_claim(&file.claims[0]).unwrap_err().to_string();
     assert!(
-        err.contains("`sigma_22` depends on `sigma_11`") && err.contains("ambiguous"),
+        err.contains("sigma_11") && err.contains("sigma_22") && err.contains("two meanings"),
         "{err}"
     );
+    // Symmetrised, the tied pair shares ½(∂F/∂σ_11 + ∂F/∂σ_22), which on σ_11 = σ_22 is
+    // f_s/2 for both, as the closed form says.
+    let (v, _, ev) = decide(&format!(
+        "{}convention = \"symmetrised\"\n",
+        tied.split("[[claim]]\nid = \"x\"\nprinted = 'x'\n")
+            .nth(1)
+            .unwrap()
+    ));
+    assert_eq!(v, Verdict::Holds, "{ev}");
     // With every component fixed there is nothing to differentiate: refused, not a
     // vacuous `holds`.
     let fixed = format!(

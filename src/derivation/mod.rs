@@ -12,5 +12,6 @@ mod spec;
 pub use load::{load_dir, load_files, load_str, LoadError};
 pub use model::{
     AppendixStep, Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Definition,
-    DerivationFile, Expression, Relation, Sampling, Side, Strategy, Verdict, PAPER,
+    DerivationFile, Expression, GradientConvention, Relation, Sampling, Side, Strategy, Verdict,
+    PAPER,
 };

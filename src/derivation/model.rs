@@ -187,6 +187,43 @@ pub struct Constraint {
     pub rhs: Expression,
 }
 
+/// The meaning of a gradient with respect to a tensor whose components the assumptions
+/// tie together (σ_12 = σ_21, a zero trace, …).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GradientConvention {
+    /// `convention = "independent"`: F as a function of the free components only;
+    /// ∂F/∂σ_12 is the derivative along σ_12 and everything tied to it (for a symmetric
+    /// σ: ∂F/∂σ_12 + ∂F/∂σ_21 as independent variables). Tied components are not compared.
+    Independent,
+    /// `convention = "symmetrised"`: the gradient within the constrained set, i.e. the
+    /// orthogonal (Frobenius) projection of ∂F/∂σ onto it; for a symmetric σ,
+    /// ½ (∂F/∂σ_ij + ∂F/∂σ_ji), for a traceless one the deviatoric part. Every
+    /// component is compared.
+    Symmetrised,
+}
+
+impl GradientConvention {
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "independent" => Some(GradientConvention::Independent),
+            "symmetrised" | "symmetrized" => Some(GradientConvention::Symmetrised),
+            _ => None,
+        }
+    }
+
+    /// The convention in words, for the evidence.
+    pub fn describe(self) -> &'static str {
+        match self {
+            GradientConvention::Independent => {
+                "independent components: a free component's derivative moves every component tied to it; tied components are not compared"
+            }
+            GradientConvention::Symmetrised => {
+                "symmetrised: the gradient projected onto the constrained set (for a symmetric tensor ½(∂F/∂σ_ij + ∂F/∂σ_ji))"
+            }
+        }
+    }
+}
+
 /// How random states are drawn for the numeric strategies.
 #[derive(Clone, Debug)]
 pub struct Sampling {
@@ -221,6 +258,7 @@ impl Strategy {
                 sampling,
                 function,
                 closed_forms,
+                ..
             } => {
                 out.extend(sampling.given.iter().flat_map(|c| [&c.lhs, &c.rhs]));
                 out.extend(sampling.singular.iter());
@@ -262,6 +300,9 @@ pub enum Strategy {
         function: Expression,
         /// (symbol, closed-form ∂F/∂symbol with the symbol's free indices).
         closed_forms: Vec<(String, Expression)>,
+        /// What ∂F/∂σ means when the assumptions tie components of σ together
+        /// (`convention = …`); required then, and stated in the evidence.
+        convention: Option<GradientConvention>,
     },
     /// num-dual Hessian of `function` in the components of `wrt` is positive
     /// semidefinite at every sample.

@@ -69,6 +69,8 @@ pub struct RawClaim {
     /// symbol → closed-form gradient
     #[serde(default)]
     pub gradient: BTreeMap<String, S>,
+    /// independent | symmetrised: what a gradient means for tied components.
+    pub convention: Option<S>,
     #[serde(default)]
     pub wrt: Vec<S>,
     pub x: Option<S>,

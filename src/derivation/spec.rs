@@ -3,7 +3,8 @@
 
 use super::load::Loader;
 use super::model::{
-    AppendixStep, Constraint, Definition, Expression, Relation, Sampling, Strategy,
+    AppendixStep, Constraint, Definition, Expression, GradientConvention, Relation, Sampling,
+    Strategy,
 };
 use super::raw::{RawClaim, S};
 use super::spans::sub_origin;
@@ -42,6 +43,14 @@ impl Loader {
             })
         };
         let scalar = |s: &S| self.expression(s, decls, &sigs, &[]);
+        if let (Some(text), false) = (&c.convention, name == "gradient") {
+            return Err(self
+                .diag(
+                    text.span(),
+                    "`convention` applies to strategy = \"gradient\" only",
+                )
+                .with_help("remove it, or use strategy = \"gradient\""));
+        }
         Ok(match name {
             "exact" => Strategy::Exact,
             "numeric" => {
@@ -84,10 +93,23 @@ impl Loader {
                     closed_forms
                         .push((symbol.clone(), self.expression(text, decls, &sigs, &want)?));
                 }
+                let convention = match &c.convention {
+                    None => None,
+                    Some(text) => {
+                        Some(GradientConvention::parse(text.get_ref()).ok_or_else(|| {
+                            self.diag(
+                                text.span(),
+                                format!("unknown gradient convention `{}`", text.get_ref()),
+                            )
+                            .with_help("convention = \"independent\" or \"symmetrised\"")
+                        })?)
+                    }
+                };
                 Strategy::Gradient {
                     sampling: self.sampling(c, decls, &sigs)?,
                     function,
                     closed_forms,
+                    convention,
                 }
             }
             "convex" => {

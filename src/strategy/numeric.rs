@@ -12,6 +12,7 @@
 //! NaN or infinity never passes: a non-finite value is a violation unless the sample
 //! lies on the declared singular set, which is excluded and counted in the evidence.
 
+use super::assume::Component;
 use super::eval::component_name;
 use super::quadrature::{self, Level};
 use super::real::component_pairs;
@@ -21,7 +22,9 @@ use super::{
     reverify, search, Counterexample, Method, NumericEvidence, Outcome, Reverified, SearchEvidence,
     Strength,
 };
-use crate::derivation::{AssumptionKind, Check, Expression, Relation, Sampling, Strategy};
+use crate::derivation::{
+    AssumptionKind, Check, Expression, GradientConvention, Relation, Sampling, Strategy,
+};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic};
 use nalgebra::{DVector, SymmetricEigen};
@@ -531,14 +534,30 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
     }
 }
 
-/// The variables of a derivative: (symbol, 0-based component) of every component of
-/// `wrt` that the assumptions leave free. A component fixed to a constant is skipped;
-/// one that the assumptions tie to others (symmetry, trace, `mu_11 = sigma_11`) or a
-/// substituted symbol makes the derivative ambiguous, and is refused.
-fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Vec<(String, Vec<usize>)>, String> {
+/// The variables of a derivative: the free components of the `wrt` symbols, and the
+/// components the assumptions tie to them, each an affine function of them (so that
+/// a derivative along a free component moves what is tied to it).
+struct Variables {
+    free: Vec<Component>,
+    tied: Vec<Tie>,
+}
+
+/// A component tied to free ones: (component, [(index into `free`, coefficient)],
+/// constant).
+type Tie = (Component, Vec<(usize, f64)>, f64);
+
+impl Variables {
+    fn len(&self) -> usize {
+        self.free.len()
+    }
+}
+
+/// The free and tied components of `wrt`; an error when a derivative would be
+/// ambiguous (a component tied to one outside `wrt`, or to a whole-symbol substitution).
+fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String> {
     use super::assume::Constrained;
     let (decls, check, p) = (sampler.decls, sampler.check, &sampler.parametrisation);
-    let mut out = Vec::new();
+    let mut free: Vec<Component> = Vec::new();
     for symbol in wrt {
         for &k in p.substitutions() {
             let a = &check.assumptions[k];
@@ -551,41 +570,132 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Vec<(String, Vec<u
         }
         let rank = decls.symbols.get(symbol).copied().unwrap_or(0);
         for idx in assignments(decls.dim, rank) {
-            let name = component_name(symbol, &idx);
-            match p.constrained(symbol, &idx) {
-                Constrained::Fixed(_) => continue,
-                Constrained::Dependent => {
-                    return Err(format!("`{name}` is tied to other components by the assumptions; derivatives with respect to `{symbol}` are ambiguous"));
-                }
-                Constrained::Free => {}
+            if p.constrained(symbol, &idx) == Constrained::Free {
+                free.push((symbol.clone(), idx));
             }
-            let c = (symbol.clone(), idx);
-            if let Some((s, i)) = p.dependents_on(&c).next() {
-                return Err(format!(
-                    "`{}` depends on `{name}` through the assumptions; derivatives with respect to `{symbol}` are ambiguous",
-                    component_name(s, i)
-                ));
-            }
-            out.push(c);
         }
     }
-    if out.is_empty() {
+    if free.is_empty() {
         return Err(format!(
             "the assumptions fix every component of {}: there is nothing to differentiate",
             wrt.join(", ")
         ));
     }
-    Ok(out)
+    let in_wrt = |c: &Component| wrt.contains(&c.0);
+    let mut tied = Vec::new();
+    for (d, terms, constant) in p.dependents() {
+        let touches = terms.iter().any(|(f, _)| free.contains(f));
+        if !in_wrt(d) && !touches {
+            continue;
+        }
+        if !in_wrt(d) {
+            let (f, _) = terms
+                .iter()
+                .find(|(f, _)| free.contains(f))
+                .expect("touches");
+            return Err(format!(
+                "`{}` depends on `{}` through the assumptions but is not a variable of the derivative; \
+                 derivatives with respect to `{}` are ambiguous",
+                component_name(&d.0, &d.1),
+                component_name(&f.0, &f.1),
+                f.0
+            ));
+        }
+        let mut linear = Vec::new();
+        for (f, q) in terms {
+            let Some(k) = free.iter().position(|c| c == f) else {
+                return Err(format!(
+                    "`{}` is tied to `{}`, which is not a variable of the derivative; derivatives with \
+                     respect to `{}` are ambiguous",
+                    component_name(&d.0, &d.1),
+                    component_name(&f.0, &f.1),
+                    d.0
+                ));
+            };
+            linear.push((k, q.to_f64()));
+        }
+        if !linear.is_empty() {
+            tied.push((d.clone(), linear, constant.to_f64()));
+        }
+    }
+    Ok(Variables { free, tied })
+}
+
+fn tied_names(vars: &Variables) -> String {
+    vars.tied
+        .iter()
+        .map(|((s, i), _, _)| component_name(s, i))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The symmetrised convention: the derivative along the free components `t` mapped
+/// to the gradient within the constrained set, `B (BᵀB)⁻¹ t`, where B's columns are
+/// the directions each free component moves every component in (its own unit vector
+/// plus what is tied to it). For σ_12 = σ_21 this is ½(∂F/∂σ_12 + ∂F/∂σ_21) on both.
+struct Projection<'v> {
+    components: Vec<&'v Component>,
+    b: nalgebra::DMatrix<f64>,
+    gram_inverse: nalgebra::DMatrix<f64>,
+}
+
+impl<'v> Projection<'v> {
+    fn new(vars: &'v Variables) -> Self {
+        let n = vars.free.len();
+        let components: Vec<&Component> = vars
+            .free
+            .iter()
+            .chain(vars.tied.iter().map(|(c, _, _)| c))
+            .collect();
+        let mut b = nalgebra::DMatrix::zeros(components.len(), n);
+        for k in 0..n {
+            b[(k, k)] = 1.0;
+        }
+        for (r, (_, terms, _)) in vars.tied.iter().enumerate() {
+            for &(k, q) in terms {
+                b[(n + r, k)] = q;
+            }
+        }
+        // BᵀB = I + (tied coefficients)ᵀ(…) is positive definite: always invertible.
+        let gram_inverse = (b.transpose() * &b)
+            .try_inverse()
+            .expect("BᵀB is positive definite");
+        Projection {
+            components,
+            b,
+            gram_inverse,
+        }
+    }
+
+    fn apply(&self, t: &[f64]) -> Vec<f64> {
+        let t = DVector::from_column_slice(t);
+        (&self.b * (&self.gram_inverse * t))
+            .iter()
+            .copied()
+            .collect()
+    }
 }
 
 /// `function` evaluated with the variables set to `x` (any num-dual scalar).
 fn eval_at<T: DualNum<Primitive = f64>>(
     sampler: &Sampler<'_>,
     state: &State,
-    vars: &[(String, Vec<usize>)],
+    vars: &Variables,
     function: &Expression,
     x: &DVector<T>,
 ) -> T {
+    // Every variable's value: the free ones from `x`, the tied ones following them.
+    let values: Vec<(&Component, T)> = vars
+        .free
+        .iter()
+        .zip(x.iter().cloned())
+        .chain(vars.tied.iter().map(|(c, terms, constant)| {
+            let v = terms
+                .iter()
+                .fold(T::from(*constant), |acc, &(k, q)| acc + x[k].clone() * q);
+            (c, v)
+        }))
+        .collect();
     if let Some(tape) = sampler.tape(&function.node) {
         // The tape's inputs straight from the state, the variables overridden.
         let mut inputs: Vec<T> = tape
@@ -593,9 +703,9 @@ fn eval_at<T: DualNum<Primitive = f64>>(
             .iter()
             .map(|(s, idx)| T::from(state.symbols.get(s).map_or(f64::NAN, |t| *t.get(idx))))
             .collect();
-        for (k, var) in vars.iter().enumerate() {
-            if let Some(pos) = tape.inputs.iter().position(|input| input == var) {
-                inputs[pos] = x[k].clone();
+        for (var, v) in &values {
+            if let Some(pos) = tape.inputs.iter().position(|input| input == *var) {
+                inputs[pos] = v.clone();
             }
         }
         return match tape.eval(&inputs, &state.n, &sampler.fine) {
@@ -608,9 +718,9 @@ fn eval_at<T: DualNum<Primitive = f64>>(
         .iter()
         .map(|(k, t)| (k.clone(), t.map(|&v| T::from(v))))
         .collect();
-    for (k, (symbol, idx)) in vars.iter().enumerate() {
+    for ((symbol, idx), v) in values {
         if let Some(t) = symbols.get_mut(symbol) {
-            *t.get_mut(idx) = x[k].clone();
+            *t.get_mut(idx) = v;
         }
     }
     match sampler.eval(&symbols, &function.node, &state.n) {
@@ -636,6 +746,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
         sampling,
         function,
         closed_forms,
+        convention,
     } = &check.strategy
     else {
         unreachable!("dispatched on the strategy")
@@ -644,6 +755,32 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
     let mut sampler = Sampler::new(decls, check, sampling, function)?;
     let vars =
         variables(&sampler, &wrt).map_err(|m| function.origin.diagnostic(function.node.span, m))?;
+    let convention = match (vars.tied.first(), convention) {
+        (None, _) => None,
+        (Some(_), Some(c)) => Some(*c),
+        (Some((d, terms, _)), None) => {
+            let f = &vars.free[terms[0].0];
+            return Err(function
+                .origin
+                .diagnostic(
+                    function.node.span,
+                    format!(
+                        "`{}` is tied to `{}` by the assumptions, so ∂F/∂{} has two meanings",
+                        component_name(&d.0, &d.1),
+                        component_name(&f.0, &f.1),
+                        d.0
+                    ),
+                )
+                .with_help(
+                    "state it: convention = \"independent\" (F of the free components) or \
+                     \"symmetrised\" (the gradient projected onto the constrained set)",
+                ));
+        }
+    };
+    let projection = match convention {
+        Some(GradientConvention::Symmetrised) => Some(Projection::new(&vars)),
+        _ => None,
+    };
     let mut excluded = 0;
     let mut largest: f64 = 0.0;
     let mut checks = 0;
@@ -651,7 +788,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
         let state = sampler.next(&[], &mut excluded)?;
         let x0 = DVector::from_iterator(
             vars.len(),
-            vars.iter().map(|(s, idx)| *state.symbols[s].get(idx)),
+            vars.free.iter().map(|(s, idx)| *state.symbols[s].get(idx)),
         );
         let (_, grad) = gradient(
             |x: DVector<DualDVec64>| eval_at(&sampler, &state, &vars, function, &x),
@@ -704,7 +841,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                          there (num-dual {:.9}, central difference {:.9}); declare the singular set with \
                          `singular = …` to exclude such states",
                         r.message,
-                        component_name(&vars[k].0, &vars[k].1),
+                        component_name(&vars.free[k].0, &vars.free[k].1),
                         grad[k],
                         central(k)
                     )));
@@ -727,11 +864,33 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                     )));
             }
         };
-        for (k, (symbol, idx)) in vars.iter().enumerate() {
+        // The compared components, with num-dual's and central differences' values:
+        // the free components' total derivatives, or their projection onto every
+        // component (symmetrised convention).
+        let fd: Vec<f64> = (0..vars.len()).map(central).collect();
+        let ad: Vec<f64> = grad.iter().copied().collect();
+        let compared: Vec<(&Component, f64, f64)> = match &projection {
+            None => vars
+                .free
+                .iter()
+                .zip(ad)
+                .zip(fd)
+                .map(|((c, a), f)| (c, a, f))
+                .collect(),
+            Some(p) => {
+                let (pa, pf) = (p.apply(&ad), p.apply(&fd));
+                p.components
+                    .iter()
+                    .copied()
+                    .zip(pa)
+                    .zip(pf)
+                    .map(|((c, a), f)| (c, a, f))
+                    .collect()
+            }
+        };
+        for ((symbol, idx), ad, fd) in compared {
             checks += 1;
-            let ad = grad[k];
             let cf = *closed[symbol.as_str()].get(idx);
-            let fd = central(k);
             let (ok_cf, r_cf) = relation_holds(Relation::Eq, ad, cf);
             largest = largest.max(r_cf);
             if ok_cf && near(ad, fd) {
@@ -772,7 +931,20 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                 .with_detail("num-dual and the closed form disagree; central differences agree with num-dual"));
         }
     }
-    let names: Vec<String> = vars.iter().map(|(s, idx)| component_name(s, idx)).collect();
+    let names: Vec<String> = vars
+        .free
+        .iter()
+        .map(|(s, idx)| component_name(s, idx))
+        .collect();
+    let convention_text = convention
+        .map(|c| {
+            format!(
+                "; tied components ({}), convention: {}",
+                tied_names(&vars),
+                c.describe()
+            )
+        })
+        .unwrap_or_default();
     Ok(Outcome::holds_sampled(Method::Gradient, checks)
         .with_numeric(sampled_evidence(
             sampling,
@@ -783,7 +955,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
             true,
         ))
         .with_detail(format!(
-            "∂/∂{} by num-dual = closed form = central differences",
+            "∂/∂{} by num-dual = closed form = central differences{convention_text}",
             names.join(", ")
         )))
 }
@@ -807,7 +979,7 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         let state = sampler.next(&[], &mut excluded)?;
         let x0 = DVector::from_iterator(
             vars.len(),
-            vars.iter().map(|(s, idx)| *state.symbols[s].get(idx)),
+            vars.free.iter().map(|(s, idx)| *state.symbols[s].get(idx)),
         );
         let (_, _, h) = hessian(
             |x: DVector<Dual2DVec64>| eval_at(&sampler, &state, &vars, function, &x),
