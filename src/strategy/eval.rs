@@ -3,15 +3,17 @@
 //! Every symbol component becomes a polynomial variable (`sigma_12`, `n_3`, `R_g`),
 //! definitions are evaluated once and cached, assumptions rewrite the symbols'
 //! component tensors before anything else is evaluated, and `avg(…)` applies the exact
-//! isotropic moments to the normal's monomials.
+//! isotropic moments to the normal's monomials. The tree is walked by the one walk all
+//! routes share (`walk.rs`), in canonical polynomials under a work budget.
 
 use super::assume::{Component, Parametrisation};
+use super::walk::{self, Ring};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
-use crate::kernel::einsum::{einsum as kernel_einsum, Polynomials, Slot};
-use crate::kernel::{assignments, Poly, PolyError, Tensor, Var, VarTable};
+use crate::kernel::einsum::{Arithmetic, Polynomials};
+use crate::kernel::{assignments, Poly, PolyError, Rational, Tensor, Var, VarTable};
 use crate::lang::parser::Func;
-use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin, Target};
-use num_traits::Zero;
+use crate::lang::{Decls, Diagnostic, Node, Origin};
+use num_traits::{One, Zero};
 use std::collections::HashMap;
 
 /// Largest number of terms one component may reach before evaluation stops: keeps a
@@ -214,208 +216,224 @@ impl<'a> ExactEnv<'a> {
         t
     }
 
-    fn base(&mut self, target: &Target, origin: &Origin) -> Result<Tensor<Poly>, Diagnostic> {
-        let d = self.decls.dim;
-        Ok(match target {
-            Target::Delta => Tensor::delta(d),
-            Target::Eps => Tensor::levi_civita(d),
-            // An in-plane normal has no third component: n_3 = 0.
-            Target::Normal => Tensor::from_fn(d, 1, |i| {
-                self.normal
-                    .get(i[0])
-                    .map_or_else(Poly::zero, |&v| Poly::var(v))
+    /// Evaluates a checked node; `origin` locates errors in its text. Refuses (with a
+    /// located error) any component that grows past [`MAX_TERMS`] terms, and an
+    /// expansion that takes more than [`MAX_WORK`] term products in all.
+    pub fn eval(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Diagnostic> {
+        let mut ring = ExactRing { env: self, origin };
+        match walk::walk(&mut ring, node, &()) {
+            Ok(tensor) => Ok(Labeled {
+                labels: node.free_letters(),
+                tensor,
             }),
-            Target::Symbol(name) => self.symbol(name),
-            Target::Def(name) => {
-                if let Some(t) = self.cache.get(name) {
-                    return Ok(t.clone());
-                }
-                let Some(def) = self.defs.iter().rev().find(|d| &d.sig.name == name) else {
-                    return Err(origin.diagnostic(
-                        Default::default(),
-                        format!("internal: definition `{name}` is not in scope"),
-                    ));
-                };
-                let value = self.eval(&def.body, &def.origin)?;
-                let t = to_formal_order(&value, &def.sig.formal);
-                self.cache.insert(name.clone(), t.clone());
-                t
-            }
+            Err(Failure::Located(d)) => Err(d),
+            Err(Failure::OverBudget) => Err(too_much(origin, node)),
+        }
+    }
+}
+
+/// Why an exact evaluation stopped: the work budget ran out in a contraction (located
+/// by the walk at the contraction's node), or a located error.
+enum Failure {
+    OverBudget,
+    Located(Diagnostic),
+}
+
+/// The exact environment as the walk's ring, with the origin that locates errors in
+/// the text being evaluated (a definition's body has its own).
+struct ExactRing<'e, 'a> {
+    env: &'e mut ExactEnv<'a>,
+    origin: &'e Origin,
+}
+
+impl ExactRing<'_, '_> {
+    fn error(&self, node: &Node, message: impl Into<String>, help: &str) -> Failure {
+        Failure::Located(
+            self.origin
+                .diagnostic(node.span, message)
+                .with_help(help.to_owned()),
+        )
+    }
+}
+
+/// Canonical polynomials, products charged to the environment's work budget by the
+/// kernel's [`Polynomials`] arithmetic.
+impl Arithmetic for ExactRing<'_, '_> {
+    type Value = Poly;
+    type Error = Failure;
+    fn zero(&mut self) -> Poly {
+        Poly::zero()
+    }
+    fn one(&mut self) -> Poly {
+        Poly::one()
+    }
+    fn is_exact_zero(&self, x: &Poly) -> bool {
+        x.is_zero()
+    }
+    fn mul(&mut self, a: Poly, b: &Poly) -> Result<Poly, Failure> {
+        let mut ring = Polynomials {
+            work_left: &mut self.env.work_left,
+        };
+        ring.mul(a, b).map_err(|_| Failure::OverBudget)
+    }
+    fn add(&mut self, a: Poly, b: Poly) -> Result<Poly, Failure> {
+        let mut ring = Polynomials {
+            work_left: &mut self.env.work_left,
+        };
+        ring.add(a, b).map_err(|_| Failure::OverBudget)
+    }
+}
+
+impl Ring for ExactRing<'_, '_> {
+    /// The normal is a polynomial variable: nothing to pass.
+    type Normal = ();
+
+    fn dim(&self) -> usize {
+        self.env.decls.dim
+    }
+
+    fn constant(&mut self, q: &Rational) -> Poly {
+        Poly::constant(q.clone())
+    }
+
+    fn neg(&mut self, x: Poly) -> Poly {
+        -x
+    }
+
+    fn normal(&mut self, _n: &()) -> Tensor<Poly> {
+        // An in-plane normal has no third component: n_3 = 0.
+        let normal = &self.env.normal;
+        Tensor::from_fn(self.env.decls.dim, 1, |i| {
+            normal.get(i[0]).map_or_else(Poly::zero, |&v| Poly::var(v))
         })
     }
 
-    /// Evaluates a checked node; `origin` locates errors in its text. Refuses (with a
-    /// located error) any component that grows past [`MAX_TERMS`] terms.
-    pub fn eval(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Diagnostic> {
-        let value = self.eval_unchecked(node, origin)?;
+    fn symbol(&mut self, name: &str, _node: &Node) -> Result<Tensor<Poly>, Failure> {
+        Ok(self.env.symbol(name))
+    }
+
+    fn definition(&mut self, name: &str, node: &Node, _n: &()) -> Result<Tensor<Poly>, Failure> {
+        if let Some(t) = self.env.cache.get(name) {
+            return Ok(t.clone());
+        }
+        let defs = self.env.defs;
+        let Some(def) = defs.iter().rev().find(|d| d.sig.name == name) else {
+            return Err(Failure::Located(self.origin.diagnostic(
+                node.span,
+                format!("internal: definition `{name}` is not in scope"),
+            )));
+        };
+        let mut inner = ExactRing {
+            env: &mut *self.env,
+            origin: &def.origin,
+        };
+        let t = walk::in_formal_order(&mut inner, &def.body, &def.sig.formal, &())?;
+        self.env.cache.insert(name.to_owned(), t.clone());
+        Ok(t)
+    }
+
+    fn divide(&mut self, x: Poly, den: &Poly, divisor: &Node) -> Result<Poly, Failure> {
+        x.checked_div(den)
+            .map_err(|e| Failure::Located(poly_error(self.origin, divisor, e)))
+    }
+
+    fn power(&mut self, p: Poly, k: u32, node: &Node) -> Result<Poly, Failure> {
+        let max_exp = p
+            .terms()
+            .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| i64::from(e).abs()))
+            .max()
+            .unwrap_or(0);
+        // Terms of p^k: at most num_terms^k, and at most the number of monomials of
+        // degree ≤ k·(max exponent) in p's variables.
+        let mut vars: Vec<_> = p
+            .terms()
+            .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
+            .collect();
+        vars.sort_unstable();
+        vars.dedup();
+        let degree = (max_exp * i64::from(k)) as f64;
+        let monomials = (1..=vars.len()).fold(1.0, |acc, j| acc * (degree + j as f64) / j as f64);
+        let terms = (p.num_terms() as f64).powi(k as i32).min(monomials);
+        // Coefficients grow too: (q)^k has about k times the bits of q.
+        let max_bits = p.terms().map(|(_, c)| c.bits()).max().unwrap_or(0);
+        let too_big = max_exp * i64::from(k) > MAX_EXPONENT
+            || terms > MAX_TERMS as f64
+            || max_bits.saturating_mul(u64::from(k)) > MAX_COEFFICIENT_BITS;
+        if too_big {
+            return Err(self.error(
+                node,
+                "this power is too large to expand exactly",
+                &format!(
+                    "exponents up to {MAX_EXPONENT}, expansions up to {MAX_TERMS} terms and coefficients up to {MAX_COEFFICIENT_BITS} bits are supported"
+                ),
+            ));
+        }
+        Ok(p.pow(k))
+    }
+
+    fn apply(&mut self, f: Func, p: Poly, node: &Node) -> Result<Poly, Failure> {
+        match f {
+            Func::Sqrt => p
+                .as_constant()
+                .and_then(|q| q.sqrt_exact())
+                .map(Poly::constant)
+                .ok_or_else(|| {
+                    self.error(
+                        node,
+                        "sqrt(…) of this expression has no exact polynomial value",
+                        "exact mode takes square roots of squares of rationals only; use strategy = \"numeric\"",
+                    )
+                }),
+            _ => Err(self.error(
+                node,
+                format!("{}(…) has no exact polynomial value", f.name()),
+                "decide this claim with strategy = \"numeric\"",
+            )),
+        }
+    }
+
+    fn average(&mut self, a: &Node, node: &Node, _n: &()) -> Result<Tensor<Poly>, Failure> {
+        let v = walk::walk(self, a, &())?;
+        let normal = self.env.normal.clone();
+        v.try_map(|p| p.average_over_normal(&normal))
+            .map_err(|e| Failure::Located(poly_error(self.origin, node, e)))
+    }
+
+    fn maximum(&mut self, _a: &Node, node: &Node) -> Result<Poly, Failure> {
+        Err(self.error(
+            node,
+            "maxn(…) is a maximum over orientations, not a polynomial",
+            "decide this claim with strategy = \"numeric\"",
+        ))
+    }
+
+    fn leave(&mut self, node: &Node, value: Tensor<Poly>) -> Result<Tensor<Poly>, Failure> {
         if let Some(big) = value
-            .tensor
             .components()
             .iter()
             .find(|p| p.num_terms() > MAX_TERMS)
         {
-            return Err(origin
-                .diagnostic(
-                    node.span,
-                    format!(
-                        "this expands to {} terms, more than the limit of {MAX_TERMS}",
-                        big.num_terms()
-                    ),
-                )
-                .with_help("split the statement with definitions, or decide it numerically"));
+            return Err(self.error(
+                node,
+                format!(
+                    "this expands to {} terms, more than the limit of {MAX_TERMS}",
+                    big.num_terms()
+                ),
+                "split the statement with definitions, or decide it numerically",
+            ));
         }
         Ok(value)
     }
 
-    fn eval_unchecked(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Diagnostic> {
-        let d = self.decls.dim;
-        let labels = node.free_letters();
-        let scalar = |p: Poly| Labeled {
-            labels: vec![],
-            tensor: Tensor::scalar(d, p),
-        };
-        Ok(match &node.kind {
-            NodeKind::Const(q) => scalar(Poly::constant(q.clone())),
-            NodeKind::Leaf { target, slots } => {
-                let base = self.base(target, origin)?;
-                let tensor = einsum(d, &[(&base, slots.clone())], &labels, &mut self.work_left)
-                    .ok_or_else(|| too_much(origin, node))?;
-                Labeled { labels, tensor }
-            }
-            NodeKind::Neg(a) => {
-                let a = self.eval(a, origin)?;
-                Labeled {
-                    tensor: a.tensor.map(|p| -p),
-                    labels: a.labels,
-                }
-            }
-            NodeKind::Sum(terms) => {
-                let mut acc: Option<Labeled> = None;
-                for t in terms {
-                    let v = self.eval(t, origin)?;
-                    acc = Some(match acc {
-                        None => v,
-                        Some(a) => Labeled {
-                            tensor: a.tensor.add(&v.tensor),
-                            labels: a.labels,
-                        },
-                    });
-                }
-                acc.expect("a sum has at least one term")
-            }
-            NodeKind::Product(factors) => {
-                let values = factors
-                    .iter()
-                    .map(|f| self.eval(f, origin))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let slots: Vec<(&Tensor<Poly>, Vec<Slot>)> = values
-                    .iter()
-                    .map(|v| {
-                        (
-                            &v.tensor,
-                            v.labels.iter().map(|&c| Slot::Letter(c)).collect(),
-                        )
-                    })
-                    .collect();
-                let tensor = einsum(d, &slots, &labels, &mut self.work_left)
-                    .ok_or_else(|| too_much(origin, node))?;
-                Labeled { labels, tensor }
-            }
-            NodeKind::Div(a, b) => {
-                let num = self.eval(a, origin)?;
-                let den = self.eval(b, origin)?;
-                let den = den
-                    .tensor
-                    .into_scalar()
-                    .expect("validated: divisors are scalars");
-                let tensor = num
-                    .tensor
-                    .try_map(|p| p.checked_div(&den))
-                    .map_err(|e| poly_error(origin, b, e))?;
-                Labeled {
-                    labels: num.labels,
-                    tensor,
-                }
-            }
-            NodeKind::Pow(a, k) => {
-                let p = self
-                    .eval(a, origin)?
-                    .tensor
-                    .into_scalar()
-                    .expect("validated: powers of scalars");
-                let max_exp = p
-                    .terms()
-                    .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| i64::from(e).abs()))
-                    .max()
-                    .unwrap_or(0);
-                // Terms of p^k: at most num_terms^k, and at most the number of
-                // monomials of degree ≤ k·(max exponent) in p's variables.
-                let mut vars: Vec<_> = p
-                    .terms()
-                    .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
-                    .collect();
-                vars.sort_unstable();
-                vars.dedup();
-                let degree = (max_exp * i64::from(*k)) as f64;
-                let monomials =
-                    (1..=vars.len()).fold(1.0, |acc, j| acc * (degree + j as f64) / j as f64);
-                let terms = (p.num_terms() as f64).powi(*k as i32).min(monomials);
-                // Coefficients grow too: (q)^k has about k times the bits of q.
-                let max_bits = p.terms().map(|(_, c)| c.bits()).max().unwrap_or(0);
-                let too_big = max_exp * i64::from(*k) > MAX_EXPONENT
-                    || terms > MAX_TERMS as f64
-                    || max_bits.saturating_mul(u64::from(*k)) > MAX_COEFFICIENT_BITS;
-                if too_big {
-                    return Err(origin
-                        .diagnostic(node.span, "this power is too large to expand exactly")
-                        .with_help(format!(
-                            "exponents up to {MAX_EXPONENT}, expansions up to {MAX_TERMS} terms and coefficients up to {MAX_COEFFICIENT_BITS} bits are supported"
-                        )));
-                }
-                scalar(p.pow(*k))
-            }
-            NodeKind::Apply(Func::Sqrt, a) => {
-                let p = self
-                    .eval(a, origin)?
-                    .tensor
-                    .into_scalar()
-                    .expect("validated: sqrt of scalars");
-                let root = p.as_constant().and_then(|q| q.sqrt_exact()).ok_or_else(|| {
-                    origin
-                        .diagnostic(node.span, "sqrt(…) of this expression has no exact polynomial value")
-                        .with_help("exact mode takes square roots of squares of rationals only; use strategy = \"numeric\"")
-                })?;
-                scalar(Poly::constant(root))
-            }
-            NodeKind::Apply(func, _) => {
-                return Err(origin
-                    .diagnostic(
-                        node.span,
-                        format!("{}(…) has no exact polynomial value", func.name()),
-                    )
-                    .with_help("decide this claim with strategy = \"numeric\""))
-            }
-            NodeKind::MaxN(_) => {
-                return Err(origin
-                    .diagnostic(
-                        node.span,
-                        "maxn(…) is a maximum over orientations, not a polynomial",
-                    )
-                    .with_help("decide this claim with strategy = \"numeric\""))
-            }
-            NodeKind::Avg(a) => {
-                let v = self.eval(a, origin)?;
-                let normal = self.normal.clone();
-                let tensor = v
-                    .tensor
-                    .try_map(|p| p.average_over_normal(&normal))
-                    .map_err(|e| poly_error(origin, node, e))?;
-                Labeled {
-                    labels: v.labels,
-                    tensor,
-                }
-            }
-        })
+    fn at(&mut self, e: Failure, node: &Node) -> Failure {
+        match e {
+            Failure::OverBudget => Failure::Located(too_much(self.origin, node)),
+            located => located,
+        }
+    }
+
+    fn not_scalar(&mut self, node: &Node) -> Failure {
+        Failure::Located(self.origin.diagnostic(node.span, "expected a scalar"))
     }
 }
 
@@ -441,26 +459,4 @@ fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Poly> {
         })
         .collect();
     value.tensor.permuted(&perm)
-}
-
-/// The kernel's contraction in canonical polynomials, charged to `budget`; `None`
-/// when the expansion would take more term products than are left.
-fn einsum(
-    dim: usize,
-    factors: &[(&Tensor<Poly>, Vec<Slot>)],
-    out: &[char],
-    budget: &mut usize,
-) -> Option<Tensor<Poly>> {
-    let mut left = *budget;
-    let t = kernel_einsum(
-        &mut Polynomials {
-            work_left: &mut left,
-        },
-        dim,
-        factors,
-        out,
-    )
-    .ok()?;
-    *budget = left;
-    Some(t)
 }

@@ -16,6 +16,7 @@ mod reverify;
 pub mod sampler;
 pub mod search;
 pub mod tape;
+pub mod walk;
 pub mod witness;
 
 pub use outcome::{

@@ -12,11 +12,13 @@
 
 use super::assume::Parametrisation;
 use super::quadrature::{Level, Quadrature};
+use super::walk::{self, Ring};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
-use crate::kernel::einsum::{Plain, Slot};
+use crate::kernel::einsum::Arithmetic;
+use crate::kernel::Rational;
 use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::Func;
-use crate::lang::{Decls, Node, NodeKind, Span, Target};
+use crate::lang::{Decls, Node, Span};
 use num_dual::DualNum;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -51,7 +53,7 @@ type Rule = Vec<(Vec<f64>, f64)>;
 
 /// Memoised definition values, keyed by name and (for definitions that depend on the
 /// normal) the normal's bits.
-type Memo<T> = HashMap<(String, Vec<u64>), Labeled<T>>;
+type Memo<T> = HashMap<(String, Vec<u64>), Tensor<T>>;
 
 /// Entries kept before the memo is cleared (a `maxn` visits hundreds of normals).
 const MEMO_LIMIT: usize = 4096;
@@ -91,41 +93,9 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
         self.defs.iter().rev().find(|x| x.sig.name == name)
     }
 
-    /// An upper bound on the degree of `node` as a polynomial in the normal (outside
-    /// `avg` and `maxn`, which remove it); `None` when it is not a polynomial in n.
+    /// The degree in n of `node` (see [`walk::normal_degree`]).
     pub fn normal_degree(&self, node: &Node) -> Option<usize> {
-        match &node.kind {
-            NodeKind::Const(_) | NodeKind::Avg(_) | NodeKind::MaxN(_) => Some(0),
-            NodeKind::Leaf { target, .. } => match target {
-                Target::Normal => Some(1),
-                Target::Def(name) => {
-                    let known = self.degrees.borrow().get(name).copied();
-                    if let Some(d) = known {
-                        return d;
-                    }
-                    let d = self.def(name).and_then(|def| self.normal_degree(&def.body));
-                    self.degrees.borrow_mut().insert(name.clone(), d);
-                    d
-                }
-                _ => Some(0),
-            },
-            NodeKind::Neg(a) => self.normal_degree(a),
-            NodeKind::Sum(xs) => xs
-                .iter()
-                .try_fold(0, |m, x| Some(m.max(self.normal_degree(x)?))),
-            NodeKind::Product(xs) => xs
-                .iter()
-                .try_fold(0, |m, x| Some(m + self.normal_degree(x)?)),
-            NodeKind::Div(a, b) => match self.normal_degree(b)? {
-                0 => self.normal_degree(a),
-                _ => None,
-            },
-            NodeKind::Pow(a, k) => Some(self.normal_degree(a)? * *k as usize),
-            NodeKind::Apply(_, a) => match self.normal_degree(a)? {
-                0 => Some(0),
-                _ => None,
-            },
-        }
+        walk::normal_degree(node, self.defs, &mut self.degrees.borrow_mut())
     }
 
     /// The averaging rule for an argument of this degree in n.
@@ -140,142 +110,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
 
     /// Evaluates `node` with the normal `n` (used outside `avg`/`maxn`).
     pub fn eval(&self, node: &Node, n: &[f64]) -> Result<Labeled<T>, RealError> {
-        let d = self.decls.dim;
-        let labels = node.free_letters();
-        let scalar = |x: T| (vec![], Tensor::scalar(d, x));
-        Ok(match &node.kind {
-            NodeKind::Const(q) => scalar(T::from(q.to_f64())),
-            NodeKind::Leaf { target, slots } => {
-                let base = match target {
-                    Target::Delta => Tensor::delta(d),
-                    Target::Eps => Tensor::levi_civita(d),
-                    Target::Normal => Tensor::from_fn(d, 1, |i| T::from(n[i[0]])),
-                    Target::Symbol(s) => self
-                        .symbols
-                        .get(s)
-                        .cloned()
-                        .ok_or_else(|| err(node, format!("no value for symbol {s}")))?,
-                    Target::Def(name) => {
-                        let def = self
-                            .def(name)
-                            .ok_or_else(|| err(node, format!("definition {name} not in scope")))?;
-                        // Definitions that do not involve the normal are the same for every n.
-                        let key_n = if self.normal_degree(&def.body) == Some(0) {
-                            Vec::new()
-                        } else {
-                            n.iter().map(|x| x.to_bits()).collect()
-                        };
-                        let key = (name.clone(), key_n);
-                        let cached = self.memo.borrow().get(&key).map(|(_, t)| t.clone());
-                        if let Some(t) = cached {
-                            t
-                        } else {
-                            let (ls, t) = self.eval(&def.body, n)?;
-                            let perm: Vec<usize> = def
-                                .sig
-                                .formal
-                                .iter()
-                                .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
-                                .collect();
-                            let t = t.permuted(&perm);
-                            let mut memo = self.memo.borrow_mut();
-                            if memo.len() > MEMO_LIMIT {
-                                memo.clear();
-                            }
-                            memo.insert(key, (def.sig.formal.clone(), t.clone()));
-                            t
-                        }
-                    }
-                };
-                let t = Plain::einsum(d, &[(&base, slots.clone())], &labels);
-                (labels, t)
-            }
-            NodeKind::Neg(a) => {
-                let (ls, t) = self.eval(a, n)?;
-                (ls, t.map(|x| -x.clone()))
-            }
-            NodeKind::Sum(terms) => {
-                let mut acc: Option<Labeled<T>> = None;
-                for t in terms {
-                    let (ls, v) = self.eval(t, n)?;
-                    acc = Some(match acc {
-                        None => (ls, v),
-                        Some((ls, a)) => (ls, a.add(&v)),
-                    });
-                }
-                acc.ok_or_else(|| err(node, "empty sum"))?
-            }
-            NodeKind::Product(fs) => {
-                let vals = fs
-                    .iter()
-                    .map(|f| self.eval(f, n))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let slots: Vec<(&Tensor<T>, Vec<Slot>)> = vals
-                    .iter()
-                    .map(|(ls, t)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
-                    .collect();
-                let t = Plain::einsum(d, &slots, &labels);
-                (labels, t)
-            }
-            NodeKind::Div(a, b) => {
-                let (ls, t) = self.eval(a, n)?;
-                let den = self.scalar(b, n)?;
-                if den.re() == 0.0 {
-                    return Err(err(b, "division by zero"));
-                }
-                (ls, t.map(|x| x.clone() / den.clone()))
-            }
-            NodeKind::Pow(a, k) => scalar(self.scalar(a, n)?.powi(*k as i32)),
-            NodeKind::Apply(func, a) => {
-                let x = self.scalar(a, n)?;
-                scalar(match func {
-                    Func::Sqrt => {
-                        if x.re() < 0.0 {
-                            return Err(err(
-                                node,
-                                format!("sqrt of a negative number ({})", x.re()),
-                            ));
-                        }
-                        x.sqrt()
-                    }
-                    Func::Abs => x.abs(),
-                    Func::Cos => x.cos(),
-                    Func::Sin => x.sin(),
-                    Func::Tan => x.tan(),
-                    Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
-                })
-            }
-            NodeKind::Avg(a) => {
-                let Some(degree) = self.normal_degree(a) else {
-                    // Not a polynomial in n: adaptive quadrature with an error estimate.
-                    let free = if self.decls.normal_in_plane { 2 } else { d };
-                    let value = self.quadrature.average(free, d, &mut |point| {
-                        Ok(self.eval(a, point)?.1.components().to_vec())
-                    })?;
-                    let mut it = value.into_iter();
-                    let t = Tensor::from_fn(d, labels.len(), |_| it.next().expect("one each"));
-                    return Ok((labels, t));
-                };
-                let mut acc: Option<Labeled<T>> = None;
-                for (point, w) in self.rule(degree).iter() {
-                    let (ls, t) = self.eval(a, point)?;
-                    let t = t.map(|x| x.clone() * *w);
-                    acc = Some(match acc {
-                        None => (ls, t),
-                        Some((ls, s)) => (ls, s.add(&t)),
-                    });
-                }
-                acc.ok_or_else(|| err(node, "empty quadrature rule"))?
-            }
-            NodeKind::MaxN(a) => scalar(self.max_over_angle(node, a)?),
-        })
-    }
-
-    fn scalar(&self, node: &Node, n: &[f64]) -> Result<T, RealError> {
-        self.eval(node, n)?
-            .1
-            .into_scalar()
-            .ok_or_else(|| err(node, "expected a scalar"))
+        Ok((node.free_letters(), walk::walk(&mut &*self, node, n)?))
     }
 
     /// max over θ of `a` at n = (cos θ, sin θ[, 0]): grid, then golden section around
@@ -291,7 +126,8 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             n.resize(d, 0.0);
             n
         };
-        let f = |theta: f64| -> Result<f64, RealError> { Ok(self.scalar(a, &at(theta))?.re()) };
+        let value = |theta: f64| walk::scalar(&mut &*self, a, &at(theta));
+        let f = |theta: f64| -> Result<f64, RealError> { Ok(value(theta)?.re()) };
         let h = 2.0 * std::f64::consts::PI / MAXN_GRID as f64;
         let mut grid = Vec::with_capacity(MAXN_GRID);
         for k in 0..MAXN_GRID {
@@ -317,7 +153,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
                 best = (theta, v);
             }
         }
-        self.scalar(a, &at(best.0))
+        value(best.0)
     }
 
     /// Applies the solved assumptions to the symbol values: every constrained
@@ -352,12 +188,8 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             else {
                 unreachable!("substitutions are equations")
             };
-            let (ls, t) = self.eval(body, n)?;
-            let perm: Vec<usize> = formal
-                .iter()
-                .map(|c| ls.iter().position(|x| x == c).unwrap_or(0))
-                .collect();
-            self.symbols.insert(symbol.clone(), t.permuted(&perm));
+            let t = walk::in_formal_order(&mut &*self, body, formal, n)?;
+            self.symbols.insert(symbol.clone(), t);
             self.memo.borrow_mut().clear();
         }
         Ok(())
@@ -424,4 +256,137 @@ pub(crate) fn golden_max(
     let fm = f(mid)?;
     let fc = f(c)?;
     Ok(if fm >= fc { (mid, fm) } else { (c, fc) })
+}
+
+/// Numbers: plain arithmetic in `T`.
+impl<T: DualNum<Primitive = f64>> Arithmetic for &RealEnv<'_, T> {
+    type Value = T;
+    type Error = RealError;
+    fn zero(&mut self) -> T {
+        T::zero()
+    }
+    fn one(&mut self) -> T {
+        T::one()
+    }
+    fn mul(&mut self, a: T, b: &T) -> Result<T, RealError> {
+        Ok(a * b.clone())
+    }
+    fn add(&mut self, a: T, b: T) -> Result<T, RealError> {
+        Ok(a + b)
+    }
+}
+
+/// The interpreter as the walk's ring: values in `f64` or num-dual numbers, `avg` by a
+/// rule exact for the argument's degree in n (adaptive quadrature when it is not a
+/// polynomial in n), `maxn` by a grid and golden sections.
+impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
+    type Normal = [f64];
+
+    fn dim(&self) -> usize {
+        self.decls.dim
+    }
+
+    fn constant(&mut self, q: &Rational) -> T {
+        T::from(q.to_f64())
+    }
+
+    fn neg(&mut self, x: T) -> T {
+        -x
+    }
+
+    fn normal(&mut self, n: &[f64]) -> Tensor<T> {
+        Tensor::from_fn(self.decls.dim, 1, |i| T::from(n[i[0]]))
+    }
+
+    fn symbol(&mut self, name: &str, node: &Node) -> Result<Tensor<T>, RealError> {
+        self.symbols
+            .get(name)
+            .cloned()
+            .ok_or_else(|| err(node, format!("no value for symbol {name}")))
+    }
+
+    fn definition(&mut self, name: &str, node: &Node, n: &[f64]) -> Result<Tensor<T>, RealError> {
+        let env: &RealEnv<'_, T> = self;
+        let def = env
+            .def(name)
+            .ok_or_else(|| err(node, format!("definition {name} not in scope")))?;
+        // Definitions that do not involve the normal are the same for every n.
+        let key_n = if env.normal_degree(&def.body) == Some(0) {
+            Vec::new()
+        } else {
+            n.iter().map(|x| x.to_bits()).collect()
+        };
+        let key = (name.to_owned(), key_n);
+        let cached = env.memo.borrow().get(&key).cloned();
+        if let Some(t) = cached {
+            return Ok(t);
+        }
+        let t = walk::in_formal_order(&mut { env }, &def.body, &def.sig.formal, n)?;
+        let mut memo = env.memo.borrow_mut();
+        if memo.len() > MEMO_LIMIT {
+            memo.clear();
+        }
+        memo.insert(key, t.clone());
+        Ok(t)
+    }
+
+    fn divide(&mut self, x: T, den: &T, divisor: &Node) -> Result<T, RealError> {
+        if den.re() == 0.0 {
+            return Err(err(divisor, "division by zero"));
+        }
+        Ok(x / den.clone())
+    }
+
+    fn power(&mut self, x: T, k: u32, _node: &Node) -> Result<T, RealError> {
+        Ok(x.powi(k as i32))
+    }
+
+    fn apply(&mut self, f: Func, x: T, node: &Node) -> Result<T, RealError> {
+        Ok(match f {
+            Func::Sqrt => {
+                if x.re() < 0.0 {
+                    return Err(err(node, format!("sqrt of a negative number ({})", x.re())));
+                }
+                x.sqrt()
+            }
+            Func::Abs => x.abs(),
+            Func::Cos => x.cos(),
+            Func::Sin => x.sin(),
+            Func::Tan => x.tan(),
+            Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
+        })
+    }
+
+    fn average(&mut self, a: &Node, node: &Node, _n: &[f64]) -> Result<Tensor<T>, RealError> {
+        let env: &RealEnv<'_, T> = self;
+        let d = env.decls.dim;
+        let Some(degree) = env.normal_degree(a) else {
+            // Not a polynomial in n: adaptive quadrature with an error estimate.
+            let free = if env.decls.normal_in_plane { 2 } else { d };
+            let value = env.quadrature.average(free, d, &mut |point| {
+                Ok(walk::walk(&mut { env }, a, point)?.components().to_vec())
+            })?;
+            let mut it = value.into_iter();
+            let rank = a.free_letters().len();
+            return Ok(Tensor::from_fn(d, rank, |_| it.next().expect("one each")));
+        };
+        let mut acc: Option<Tensor<T>> = None;
+        for (point, w) in env.rule(degree).iter() {
+            let t = walk::walk(&mut { env }, a, point)?;
+            let t = t.map(|x| x.clone() * *w);
+            acc = Some(match acc {
+                None => t,
+                Some(s) => s.add(&t),
+            });
+        }
+        acc.ok_or_else(|| err(node, "empty quadrature rule"))
+    }
+
+    fn maximum(&mut self, a: &Node, node: &Node) -> Result<T, RealError> {
+        self.max_over_angle(node, a)
+    }
+
+    fn not_scalar(&mut self, node: &Node) -> RealError {
+        err(node, "expected a scalar")
+    }
 }

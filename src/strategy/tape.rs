@@ -19,11 +19,13 @@
 
 use super::quadrature::Quadrature;
 use super::real::{RealError, MAXN_GRID};
+use super::walk::{self, Ring};
 use crate::derivation::Definition;
-use crate::kernel::einsum::{einsum, Arithmetic, Slot};
+use crate::kernel::einsum::Arithmetic;
+use crate::kernel::Rational;
 use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::Func;
-use crate::lang::{Decls, Node, NodeKind, Span, Target};
+use crate::lang::{Decls, Node, Span};
 use num_dual::DualNum;
 use std::collections::HashMap;
 
@@ -377,7 +379,7 @@ impl<'a> Compiler<'a> {
         id
     }
 
-    fn constant(&self, id: usize) -> Option<f64> {
+    fn folded(&self, id: usize) -> Option<f64> {
         match self.ops[id] {
             Op::Const(c) => Some(c),
             _ => None,
@@ -389,7 +391,7 @@ impl<'a> Compiler<'a> {
     }
 
     fn add(&mut self, a: usize, b: usize) -> usize {
-        match (self.constant(a), self.constant(b)) {
+        match (self.folded(a), self.folded(b)) {
             (Some(x), Some(y)) => self.c(x + y),
             (Some(0.0), _) => b,
             (_, Some(0.0)) => a,
@@ -398,7 +400,7 @@ impl<'a> Compiler<'a> {
     }
 
     fn mul(&mut self, a: usize, b: usize) -> usize {
-        match (self.constant(a), self.constant(b)) {
+        match (self.folded(a), self.folded(b)) {
             (Some(x), Some(y)) => self.c(x * y),
             // A structural zero (from δ, ε or a literal) annihilates the other factor;
             // the interpreter would give NaN only if that factor were infinite or NaN.
@@ -410,7 +412,7 @@ impl<'a> Compiler<'a> {
     }
 
     fn neg(&mut self, a: usize) -> usize {
-        match self.constant(a) {
+        match self.folded(a) {
             Some(x) => self.c(-x),
             None => self.push(Op::Neg(a)),
         }
@@ -420,208 +422,15 @@ impl<'a> Compiler<'a> {
         self.defs.iter().rev().find(|x| x.sig.name == name)
     }
 
-    /// As `RealEnv::normal_degree`.
+    /// The degree in n of `node` (see [`walk::normal_degree`]).
     fn normal_degree(&mut self, node: &Node) -> Option<usize> {
-        match &node.kind {
-            NodeKind::Const(_) | NodeKind::Avg(_) | NodeKind::MaxN(_) => Some(0),
-            NodeKind::Leaf { target, .. } => match target {
-                Target::Normal => Some(1),
-                Target::Def(name) => {
-                    if let Some(d) = self.degrees.get(name) {
-                        return *d;
-                    }
-                    let body = self.def(name).map(|d| d.body.clone());
-                    let d = body.and_then(|b| self.normal_degree(&b));
-                    self.degrees.insert(name.clone(), d);
-                    d
-                }
-                _ => Some(0),
-            },
-            NodeKind::Neg(a) => self.normal_degree(a),
-            NodeKind::Sum(xs) => xs
-                .iter()
-                .try_fold(0, |m, x| Some(m.max(self.normal_degree(x)?))),
-            NodeKind::Product(xs) => xs
-                .iter()
-                .try_fold(0, |m, x| Some(m + self.normal_degree(x)?)),
-            NodeKind::Div(a, b) => match self.normal_degree(b)? {
-                0 => self.normal_degree(a),
-                _ => None,
-            },
-            NodeKind::Pow(a, k) => Some(self.normal_degree(a)? * *k as usize),
-            NodeKind::Apply(_, a) => match self.normal_degree(a)? {
-                0 => Some(0),
-                _ => None,
-            },
-        }
-    }
-
-    fn scalar(&mut self, node: &Node, n: &[usize]) -> Result<usize, Unsupported> {
-        let t = self.eval(node, n)?;
-        if t.rank() != 0 {
-            return Err(Unsupported("expected a scalar".into()));
-        }
-        Ok(*t.get(&[]))
+        walk::normal_degree(node, self.defs, &mut self.degrees)
     }
 
     /// The tensor of op ids of `node` (slots in the order of its free letters), with the
     /// normal `n` given as op ids.
     fn eval(&mut self, node: &Node, n: &[usize]) -> Result<Tensor<usize>, Unsupported> {
-        if self.budget == 0 {
-            return Err(Unsupported("the tape grew beyond its size limit".into()));
-        }
-        let d = self.decls.dim;
-        let labels = node.free_letters();
-        Ok(match &node.kind {
-            NodeKind::Const(q) => {
-                let x = self.c(q.to_f64());
-                Tensor::scalar(d, x)
-            }
-            NodeKind::Leaf { target, slots } => {
-                let base: Tensor<usize> = match target {
-                    Target::Delta => {
-                        let (zero, one) = (self.c(0.0), self.c(1.0));
-                        Tensor::from_fn(d, 2, |i| if i[0] == i[1] { one } else { zero })
-                    }
-                    Target::Eps => {
-                        let e = Tensor::<f64>::levi_civita(d);
-                        let mut ids = HashMap::new();
-                        for v in [-1.0, 0.0, 1.0] {
-                            ids.insert(v as i64, self.c(v));
-                        }
-                        e.map(|&v| ids[&(v as i64)])
-                    }
-                    Target::Normal => Tensor::from_fn(d, 1, |i| n[i[0]]),
-                    Target::Symbol(s) => self
-                        .symbols
-                        .get(s)
-                        .cloned()
-                        .ok_or_else(|| Unsupported(format!("no value for symbol {s}")))?,
-                    Target::Def(name) => {
-                        let def = self.def(name).cloned().ok_or_else(|| {
-                            Unsupported(format!("definition {name} not in scope"))
-                        })?;
-                        let key_n = if self.normal_degree(&def.body) == Some(0) {
-                            Vec::new()
-                        } else {
-                            n.to_vec()
-                        };
-                        let key = (name.clone(), key_n);
-                        if let Some(t) = self.memo.get(&key) {
-                            t.clone()
-                        } else {
-                            let body_labels = def.body.free_letters();
-                            let t = self.eval(&def.body, n)?;
-                            let perm: Vec<usize> = def
-                                .sig
-                                .formal
-                                .iter()
-                                .map(|c| body_labels.iter().position(|x| x == c).unwrap_or(0))
-                                .collect();
-                            let t = t.permuted(&perm);
-                            self.memo.insert(key, t.clone());
-                            t
-                        }
-                    }
-                };
-                self.contract(&[(&base, slots.clone())], &labels)
-            }
-            NodeKind::Neg(a) => {
-                let t = self.eval(a, n)?;
-                t.try_map(|&x| Ok::<_, Unsupported>(self.neg(x)))?
-            }
-            NodeKind::Sum(terms) => {
-                let mut acc: Option<Tensor<usize>> = None;
-                for term in terms {
-                    let v = self.eval(term, n)?;
-                    acc = Some(match acc {
-                        None => v,
-                        Some(a) => self.add_tensors(&a, &v),
-                    });
-                }
-                acc.ok_or_else(|| Unsupported("empty sum".into()))?
-            }
-            NodeKind::Product(fs) => {
-                let mut vals = Vec::with_capacity(fs.len());
-                for f in fs {
-                    vals.push((self.eval(f, n)?, f.free_letters()));
-                }
-                let slots: Vec<(&Tensor<usize>, Vec<Slot>)> = vals
-                    .iter()
-                    .map(|(t, ls)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
-                    .collect();
-                self.contract(&slots, &labels)
-            }
-            NodeKind::Div(a, b) => {
-                let t = self.eval(a, n)?;
-                let den = self.scalar(b, n)?;
-                t.try_map(|&x| {
-                    Ok::<_, Unsupported>(match (self.constant(x), self.constant(den)) {
-                        (Some(p), Some(q)) if q != 0.0 => self.c(p / q),
-                        _ => self.push(Op::Div(x, den, b.span)),
-                    })
-                })?
-            }
-            NodeKind::Pow(a, k) => {
-                let x = self.scalar(a, n)?;
-                let p = match self.constant(x) {
-                    Some(c) => self.c(c.powi(*k as i32)),
-                    None => self.push(Op::Powi(x, *k as i32)),
-                };
-                Tensor::scalar(d, p)
-            }
-            NodeKind::Apply(func, a) => {
-                let x = self.scalar(a, n)?;
-                let op = match func {
-                    Func::Sqrt => Op::Sqrt(x, node.span),
-                    Func::Abs => Op::Abs(x),
-                    Func::Cos => Op::Cos(x),
-                    Func::Sin => Op::Sin(x),
-                    Func::Tan => Op::Tan(x),
-                    Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
-                };
-                Tensor::scalar(d, self.push(op))
-            }
-            NodeKind::Avg(a) if self.normal_degree(a).is_none() => {
-                let sub = self.sub_tape(a)?;
-                self.avgs.push(sub);
-                let k = self.avgs.len() - 1;
-                let rank = self.avgs[k].outputs.rank();
-                let mut c = 0;
-                Tensor::from_fn(d, rank, |_| {
-                    c += 1;
-                    self.push(Op::Avg(k, c - 1))
-                })
-            }
-            NodeKind::Avg(a) => {
-                let degree = self.normal_degree(a).unwrap_or(15).clamp(1, 40);
-                let rule = super::float::rule_for(self.decls, degree);
-                let mut acc: Option<Tensor<usize>> = None;
-                for (point, w) in rule {
-                    let pn: Vec<usize> = point.iter().map(|&x| self.c(x)).collect();
-                    let t = self.eval(a, &pn)?;
-                    let wid = self.c(w);
-                    let t = t.try_map(|&x| Ok::<_, Unsupported>(self.mul(x, wid)))?;
-                    acc = Some(match acc {
-                        None => t,
-                        Some(s) => self.add_tensors(&s, &t),
-                    });
-                }
-                acc.ok_or_else(|| Unsupported("empty quadrature rule".into()))?
-            }
-            NodeKind::MaxN(a) => {
-                if d == 3 && !self.decls.normal_in_plane {
-                    return Err(Unsupported("maxn needs an in-plane normal".into()));
-                }
-                let sub = self.sub_tape(a)?;
-                if sub.outputs.rank() != 0 {
-                    return Err(Unsupported("maxn of a tensor".into()));
-                }
-                self.maxn.push(sub);
-                let k = self.maxn.len() - 1;
-                Tensor::scalar(d, self.push(Op::MaxN(k, node.span)))
-            }
-        })
+        walk::walk(self, node, n)
     }
 
     /// The argument of a `maxn` or an adaptive `avg` as a sub-tape over the same
@@ -651,41 +460,165 @@ impl<'a> Compiler<'a> {
             in_plane: self.decls.normal_in_plane,
         })
     }
-
-    /// The componentwise sum of two tensors of op ids with the same labels.
-    fn add_tensors(&mut self, a: &Tensor<usize>, b: &Tensor<usize>) -> Tensor<usize> {
-        let mut out = a.clone();
-        for idx in assignments(a.dim(), a.rank()) {
-            *out.get_mut(&idx) = self.add(*a.get(&idx), *b.get(&idx));
-        }
-        out
-    }
-
-    /// The kernel's contraction, emitting the tape's operations.
-    fn contract(&mut self, factors: &[(&Tensor<usize>, Vec<Slot>)], out: &[char]) -> Tensor<usize> {
-        let dim = self.decls.dim;
-        match einsum(self, dim, factors, out) {
-            Ok(t) => t,
-            Err(never) => match never {},
-        }
-    }
 }
 
 /// The tape compiler as an arithmetic: the kernel's contraction emits its operations
 /// (constants folded as `add` and `mul` fold them).
 impl Arithmetic for Compiler<'_> {
     type Value = usize;
-    type Error = std::convert::Infallible;
+    type Error = Unsupported;
     fn zero(&mut self) -> usize {
         self.c(0.0)
     }
     fn one(&mut self) -> usize {
         self.c(1.0)
     }
-    fn mul(&mut self, a: usize, b: &usize) -> Result<usize, Self::Error> {
+    fn mul(&mut self, a: usize, b: &usize) -> Result<usize, Unsupported> {
         Ok(Compiler::mul(self, a, *b))
     }
-    fn add(&mut self, a: usize, b: usize) -> Result<usize, Self::Error> {
+    fn add(&mut self, a: usize, b: usize) -> Result<usize, Unsupported> {
         Ok(Compiler::add(self, a, b))
+    }
+}
+
+/// The tape compiler as the walk's ring: each node becomes operations on op ids.
+impl Ring for Compiler<'_> {
+    type Normal = [usize];
+
+    fn dim(&self) -> usize {
+        self.decls.dim
+    }
+
+    fn constant(&mut self, q: &Rational) -> usize {
+        self.c(q.to_f64())
+    }
+
+    fn neg(&mut self, x: usize) -> usize {
+        Compiler::neg(self, x)
+    }
+
+    fn normal(&mut self, n: &[usize]) -> Tensor<usize> {
+        Tensor::from_fn(self.decls.dim, 1, |i| n[i[0]])
+    }
+
+    fn symbol(&mut self, name: &str, _node: &Node) -> Result<Tensor<usize>, Unsupported> {
+        self.symbols
+            .get(name)
+            .cloned()
+            .ok_or_else(|| Unsupported(format!("no value for symbol {name}")))
+    }
+
+    fn definition(
+        &mut self,
+        name: &str,
+        _node: &Node,
+        n: &[usize],
+    ) -> Result<Tensor<usize>, Unsupported> {
+        let def = self
+            .def(name)
+            .cloned()
+            .ok_or_else(|| Unsupported(format!("definition {name} not in scope")))?;
+        let key_n = if self.normal_degree(&def.body) == Some(0) {
+            Vec::new()
+        } else {
+            n.to_vec()
+        };
+        let key = (name.to_owned(), key_n);
+        if let Some(t) = self.memo.get(&key) {
+            return Ok(t.clone());
+        }
+        let t = walk::in_formal_order(self, &def.body, &def.sig.formal, n)?;
+        self.memo.insert(key, t.clone());
+        Ok(t)
+    }
+
+    fn divide(&mut self, x: usize, den: &usize, divisor: &Node) -> Result<usize, Unsupported> {
+        Ok(match (self.folded(x), self.folded(*den)) {
+            (Some(p), Some(q)) if q != 0.0 => self.c(p / q),
+            _ => self.push(Op::Div(x, *den, divisor.span)),
+        })
+    }
+
+    fn power(&mut self, x: usize, k: u32, _node: &Node) -> Result<usize, Unsupported> {
+        Ok(match self.folded(x) {
+            Some(c) => self.c(c.powi(k as i32)),
+            None => self.push(Op::Powi(x, k as i32)),
+        })
+    }
+
+    fn apply(&mut self, f: Func, x: usize, node: &Node) -> Result<usize, Unsupported> {
+        let op = match f {
+            Func::Sqrt => Op::Sqrt(x, node.span),
+            Func::Abs => Op::Abs(x),
+            Func::Cos => Op::Cos(x),
+            Func::Sin => Op::Sin(x),
+            Func::Tan => Op::Tan(x),
+            Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
+        };
+        Ok(self.push(op))
+    }
+
+    fn average(
+        &mut self,
+        a: &Node,
+        _node: &Node,
+        _n: &[usize],
+    ) -> Result<Tensor<usize>, Unsupported> {
+        let d = self.decls.dim;
+        let Some(degree) = self.normal_degree(a) else {
+            // Not a polynomial in n: an adaptive average of a sub-tape.
+            let sub = self.sub_tape(a)?;
+            self.avgs.push(sub);
+            let k = self.avgs.len() - 1;
+            let rank = self.avgs[k].outputs.rank();
+            let mut c = 0;
+            return Ok(Tensor::from_fn(d, rank, |_| {
+                c += 1;
+                self.push(Op::Avg(k, c - 1))
+            }));
+        };
+        let rule = super::float::rule_for(self.decls, degree.clamp(1, 40));
+        let mut acc: Option<Tensor<usize>> = None;
+        for (point, w) in rule {
+            let pn: Vec<usize> = point.iter().map(|&x| self.c(x)).collect();
+            let t = self.eval(a, &pn)?;
+            let wid = self.c(w);
+            let t = t.try_map(|&x| Ok::<_, Unsupported>(Compiler::mul(self, x, wid)))?;
+            acc = Some(match acc {
+                None => t,
+                Some(s) => {
+                    let mut out = s.clone();
+                    for idx in assignments(d, s.rank()) {
+                        *out.get_mut(&idx) = Compiler::add(self, *s.get(&idx), *t.get(&idx));
+                    }
+                    out
+                }
+            });
+        }
+        acc.ok_or_else(|| Unsupported("empty quadrature rule".into()))
+    }
+
+    fn maximum(&mut self, a: &Node, node: &Node) -> Result<usize, Unsupported> {
+        if self.decls.dim == 3 && !self.decls.normal_in_plane {
+            return Err(Unsupported("maxn needs an in-plane normal".into()));
+        }
+        let sub = self.sub_tape(a)?;
+        if sub.outputs.rank() != 0 {
+            return Err(Unsupported("maxn of a tensor".into()));
+        }
+        self.maxn.push(sub);
+        let k = self.maxn.len() - 1;
+        Ok(self.push(Op::MaxN(k, node.span)))
+    }
+
+    fn enter(&mut self, _node: &Node) -> Result<(), Unsupported> {
+        if self.budget == 0 {
+            return Err(Unsupported("the tape grew beyond its size limit".into()));
+        }
+        Ok(())
+    }
+
+    fn not_scalar(&mut self, _node: &Node) -> Unsupported {
+        Unsupported("expected a scalar".into())
     }
 }

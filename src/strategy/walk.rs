@@ -1,0 +1,262 @@
+//! The one tree walk every route evaluates expressions with, generic over the ring it
+//! computes in ([`Ring`]): canonical polynomials under a work budget (the exact
+//! strategy, `eval.rs`), `f64` and num-dual numbers (the interpreter, `real.rs`), and op
+//! ids of the tape compiler (`tape.rs`), as SymEngine's single visitor does it.
+//!
+//! The walk owns what the routes have in common — free-index labels, contraction by the
+//! kernel's [`einsum`], sums, scalar arguments — and asks the ring for what is its own:
+//! the values of symbols and definitions, division, powers, functions, and the two
+//! operations over the normal (`avg`, by exact moments, by quadrature or as a sub-tape;
+//! `maxn`). Independence between routes therefore comes from their methods (canonical
+//! forms against sampling, moments against quadrature), not from copies of this code.
+//!
+//! Every value is a tensor whose slots are the node's free letters in sorted order
+//! ([`Node::free_letters`]).
+
+use crate::derivation::Definition;
+use crate::kernel::einsum::{einsum, Arithmetic, Slot};
+use crate::kernel::{Rational, Tensor};
+use crate::lang::parser::Func;
+use crate::lang::{Node, NodeKind, Target};
+use std::collections::HashMap;
+
+/// What a route computes in. `Normal` is how the walk hands it the normal vector n:
+/// numbers, op ids, or nothing at all when n is a polynomial variable.
+pub trait Ring: Arithmetic {
+    type Normal: ?Sized;
+
+    /// The index range 1..=d.
+    fn dim(&self) -> usize;
+    fn constant(&mut self, q: &Rational) -> Self::Value;
+    fn neg(&mut self, x: Self::Value) -> Self::Value;
+    /// δ_ij, ε_ijk and n_i.
+    fn delta(&mut self) -> Tensor<Self::Value> {
+        let (zero, one) = (self.zero(), self.one());
+        Tensor::from_fn(self.dim(), 2, |i| {
+            if i[0] == i[1] {
+                one.clone()
+            } else {
+                zero.clone()
+            }
+        })
+    }
+    fn epsilon(&mut self) -> Tensor<Self::Value> {
+        let e = Tensor::<i64>::levi_civita(self.dim());
+        let values = [-1, 0, 1].map(|k| self.constant(&Rational::int(k)));
+        e.map(|&v| values[(v + 1) as usize].clone())
+    }
+    fn normal(&mut self, n: &Self::Normal) -> Tensor<Self::Value>;
+    /// A declared symbol's components.
+    fn symbol(&mut self, name: &str, node: &Node) -> Result<Tensor<Self::Value>, Self::Error>;
+    /// A definition's value, slots in its formal order (memoised as the ring sees fit).
+    fn definition(
+        &mut self,
+        name: &str,
+        node: &Node,
+        n: &Self::Normal,
+    ) -> Result<Tensor<Self::Value>, Self::Error>;
+    /// `x / den`; `divisor` is the denominator's node, for errors.
+    fn divide(
+        &mut self,
+        x: Self::Value,
+        den: &Self::Value,
+        divisor: &Node,
+    ) -> Result<Self::Value, Self::Error>;
+    fn power(&mut self, x: Self::Value, k: u32, node: &Node) -> Result<Self::Value, Self::Error>;
+    fn apply(&mut self, f: Func, x: Self::Value, node: &Node) -> Result<Self::Value, Self::Error>;
+    /// `avg(arg)` over the unit normal.
+    fn average(
+        &mut self,
+        arg: &Node,
+        node: &Node,
+        n: &Self::Normal,
+    ) -> Result<Tensor<Self::Value>, Self::Error>;
+    /// `maxn(arg)` over the in-plane orientation of the normal.
+    fn maximum(&mut self, arg: &Node, node: &Node) -> Result<Self::Value, Self::Error>;
+    /// Called before a node is evaluated (a budget on the walk).
+    fn enter(&mut self, _node: &Node) -> Result<(), Self::Error> {
+        Ok(())
+    }
+    /// Called on every node's value (a size limit).
+    fn leave(
+        &mut self,
+        _node: &Node,
+        value: Tensor<Self::Value>,
+    ) -> Result<Tensor<Self::Value>, Self::Error> {
+        Ok(value)
+    }
+    /// Locates an error of the contraction at `node`.
+    fn at(&mut self, e: Self::Error, _node: &Node) -> Self::Error {
+        e
+    }
+    /// An argument that should be a scalar is not.
+    fn not_scalar(&mut self, node: &Node) -> Self::Error;
+}
+
+/// The value of `node` in `ring`, with the normal `n` (outside `avg` and `maxn`).
+pub fn walk<R: Ring>(
+    ring: &mut R,
+    node: &Node,
+    n: &R::Normal,
+) -> Result<Tensor<R::Value>, R::Error> {
+    ring.enter(node)?;
+    let d = ring.dim();
+    let labels = node.free_letters();
+    let value = match &node.kind {
+        NodeKind::Const(q) => Tensor::scalar(d, ring.constant(q)),
+        NodeKind::Leaf { target, slots } => {
+            let base = match target {
+                Target::Delta => ring.delta(),
+                Target::Eps => ring.epsilon(),
+                Target::Normal => ring.normal(n),
+                Target::Symbol(s) => ring.symbol(s, node)?,
+                Target::Def(name) => ring.definition(name, node, n)?,
+            };
+            contract(ring, &[(&base, slots.clone())], &labels, node)?
+        }
+        NodeKind::Neg(a) => {
+            let t = walk(ring, a, n)?;
+            let mut out = Vec::with_capacity(t.components().len());
+            for x in t.components() {
+                out.push(ring.neg(x.clone()));
+            }
+            rebuild(d, t.rank(), out)
+        }
+        NodeKind::Sum(terms) => {
+            let mut acc: Option<Tensor<R::Value>> = None;
+            for term in terms {
+                let v = walk(ring, term, n)?;
+                acc = Some(match acc {
+                    None => v,
+                    Some(a) => {
+                        let mut out = Vec::with_capacity(a.components().len());
+                        for (x, y) in a.components().iter().zip(v.components()) {
+                            out.push(ring.add(x.clone(), y.clone())?);
+                        }
+                        rebuild(d, a.rank(), out)
+                    }
+                });
+            }
+            acc.ok_or_else(|| ring.not_scalar(node))?
+        }
+        NodeKind::Product(fs) => {
+            let mut values = Vec::with_capacity(fs.len());
+            for f in fs {
+                values.push((walk(ring, f, n)?, f.free_letters()));
+            }
+            let factors: Vec<(&Tensor<R::Value>, Vec<Slot>)> = values
+                .iter()
+                .map(|(t, ls)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
+                .collect();
+            contract(ring, &factors, &labels, node)?
+        }
+        NodeKind::Div(a, b) => {
+            let t = walk(ring, a, n)?;
+            let den = scalar(ring, b, n)?;
+            let mut out = Vec::with_capacity(t.components().len());
+            for x in t.components() {
+                out.push(ring.divide(x.clone(), &den, b)?);
+            }
+            rebuild(d, t.rank(), out)
+        }
+        NodeKind::Pow(a, k) => {
+            let x = scalar(ring, a, n)?;
+            Tensor::scalar(d, ring.power(x, *k, node)?)
+        }
+        NodeKind::Apply(f, a) => {
+            let x = scalar(ring, a, n)?;
+            Tensor::scalar(d, ring.apply(*f, x, node)?)
+        }
+        NodeKind::Avg(a) => ring.average(a, node, n)?,
+        NodeKind::MaxN(a) => Tensor::scalar(d, ring.maximum(a, node)?),
+    };
+    ring.leave(node, value)
+}
+
+/// The value of a node that must be a scalar.
+pub fn scalar<R: Ring>(ring: &mut R, node: &Node, n: &R::Normal) -> Result<R::Value, R::Error> {
+    let t = walk(ring, node, n)?;
+    match t.into_scalar() {
+        Some(x) => Ok(x),
+        None => Err(ring.not_scalar(node)),
+    }
+}
+
+/// The degree of `node` as a polynomial in the normal n outside `avg` and `maxn`
+/// (`None`: not a polynomial in n, e.g. n under a square root or in a divisor), with
+/// the definitions' degrees memoised in `memo`.
+pub fn normal_degree(
+    node: &Node,
+    defs: &[Definition],
+    memo: &mut HashMap<String, Option<usize>>,
+) -> Option<usize> {
+    match &node.kind {
+        NodeKind::Const(_) | NodeKind::Avg(_) | NodeKind::MaxN(_) => Some(0),
+        NodeKind::Leaf { target, .. } => match target {
+            Target::Normal => Some(1),
+            Target::Def(name) => {
+                if let Some(d) = memo.get(name) {
+                    return *d;
+                }
+                let d = defs
+                    .iter()
+                    .rev()
+                    .find(|x| &x.sig.name == name)
+                    .and_then(|def| normal_degree(&def.body, defs, memo));
+                memo.insert(name.clone(), d);
+                d
+            }
+            _ => Some(0),
+        },
+        NodeKind::Neg(a) => normal_degree(a, defs, memo),
+        NodeKind::Sum(xs) => xs
+            .iter()
+            .try_fold(0, |m, x| Some(m.max(normal_degree(x, defs, memo)?))),
+        NodeKind::Product(xs) => xs
+            .iter()
+            .try_fold(0, |m, x| Some(m + normal_degree(x, defs, memo)?)),
+        NodeKind::Div(a, b) => match normal_degree(b, defs, memo)? {
+            0 => normal_degree(a, defs, memo),
+            _ => None,
+        },
+        NodeKind::Pow(a, k) => Some(normal_degree(a, defs, memo)? * *k as usize),
+        NodeKind::Apply(_, a) => match normal_degree(a, defs, memo)? {
+            0 => Some(0),
+            _ => None,
+        },
+    }
+}
+
+/// A definition's body walked and reordered into the definition's formal slots.
+pub fn in_formal_order<R: Ring>(
+    ring: &mut R,
+    body: &Node,
+    formal: &[char],
+    n: &R::Normal,
+) -> Result<Tensor<R::Value>, R::Error> {
+    let t = walk(ring, body, n)?;
+    let letters = body.free_letters();
+    let perm: Vec<usize> = formal
+        .iter()
+        .map(|c| letters.iter().position(|x| x == c).unwrap_or(0))
+        .collect();
+    Ok(t.permuted(&perm))
+}
+
+fn contract<R: Ring>(
+    ring: &mut R,
+    factors: &[(&Tensor<R::Value>, Vec<Slot>)],
+    labels: &[char],
+    node: &Node,
+) -> Result<Tensor<R::Value>, R::Error> {
+    let d = ring.dim();
+    match einsum(ring, d, factors, labels) {
+        Ok(t) => Ok(t),
+        Err(e) => Err(ring.at(e, node)),
+    }
+}
+
+fn rebuild<T>(dim: usize, rank: usize, values: Vec<T>) -> Tensor<T> {
+    let mut it = values.into_iter();
+    Tensor::from_fn(dim, rank, |_| it.next().expect("one value per component"))
+}
