@@ -67,6 +67,12 @@ const DICTIONARY: &[&str] = &[
     "dsigma_21",
     "dmu_23",
     "verbatim = true\n",
+    "convention = \"symmetrised\"\n",
+    "convention = \"independent\"\n",
+    "symmetric(sigma)",
+    "traceless(sigma)",
+    "strategy = \"convex\"\n",
+    "wrt = [\"sigma\"]\n",
     "assume = [\"",
     "define = [\"",
     "expect = \"fails\"\n",
@@ -102,7 +108,12 @@ impl Rng {
 
 fn seeds(root: &Path) -> Vec<Vec<u8>> {
     let mut out = Vec::new();
-    for dir in ["derivations", "derivations/examples", "tests/bad"] {
+    for dir in [
+        "derivations",
+        "derivations/examples",
+        "tests/bad",
+        "tests/soundness",
+    ] {
         if let Ok(entries) = std::fs::read_dir(root.join(dir)) {
             let mut paths: Vec<PathBuf> =
                 entries.filter_map(Result::ok).map(|e| e.path()).collect();
