@@ -6,6 +6,7 @@
 use cosserat_check::derivation::{load_files, load_str, Strategy, Verdict};
 use cosserat_check::kernel::Tensor;
 use cosserat_check::strategy::decide_claim;
+use cosserat_check::strategy::finding::{Finding, Unresolved};
 use cosserat_check::strategy::quadrature::{Level, Quadrature};
 use cosserat_check::strategy::real::RealEnv;
 use cosserat_check::strategy::tape::Tape;
@@ -34,11 +35,24 @@ fn verdicts_as_declared(file: &str, seeds: std::ops::RangeInclusive<u64>) {
                 claim.expect,
                 "{} with seed {seed}: {:?} {:?}",
                 claim.id,
-                d.outcome.detail,
+                d.outcome.finding,
                 d.outcome.numeric
             );
             if d.outcome.verdict() == Verdict::Undecided {
-                let why = d.outcome.detail.unwrap();
+                // Undecided because of the quadrature, said as data and in words.
+                let finding = d.outcome.finding.as_ref().unwrap();
+                assert!(
+                    matches!(
+                        finding,
+                        Finding::Unresolved {
+                            why: Unresolved::QuadratureError { .. }
+                                | Unresolved::WithinError { .. },
+                            ..
+                        }
+                    ),
+                    "{finding:?}"
+                );
+                let why = cosserat_check::report::words::finding(finding);
                 assert!(why.contains("adaptive quadrature cannot decide"), "{why}");
             }
         }
@@ -160,7 +174,9 @@ fn derivatives_through_an_adaptive_average_are_refused_not_guessed() {
     let file = load_str("t.toml", text).unwrap();
     let d = decide_claim(&file.claims[0]).unwrap();
     assert_eq!(d.outcome.verdict(), Verdict::Undecided);
-    assert!(d.outcome.detail.unwrap().contains("not a polynomial in n"));
+    assert_eq!(d.outcome.finding, Some(Finding::ThroughAdaptiveAverage));
+    let why = cosserat_check::report::evidence(&d.outcome);
+    assert!(why.contains("not a polynomial in n"), "{why}");
 }
 
 #[test]

@@ -139,8 +139,9 @@ fn every_non_holding_verdict_carries_evidence_and_a_reason() {
                 let numeric = r.outcome.numeric.as_ref().and_then(|n| n.domain.as_ref());
                 let symbolic = r
                     .outcome
-                    .detail
-                    .as_deref()
+                    .finding
+                    .as_ref()
+                    .map(cosserat_check::report::words::finding)
                     .filter(|d| d.contains("holds for"));
                 assert!(
                     numeric.is_some() || symbolic.is_some(),

@@ -5,6 +5,7 @@
 //! evaluation does not confirm is never a counterexample.
 
 use cosserat_check::derivation::{load_str, Verdict};
+use cosserat_check::strategy::finding::{Finding, Rejection, Unresolved};
 use cosserat_check::strategy::{decide_claim, Outcome, Reverified, Strength};
 
 const HEADER: &str = r#"
@@ -65,7 +66,18 @@ fn rounding_is_never_a_counterexample() {
         "expect = \"undecided\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"(x + 10000000000000000) - 10000000000000000\", \"x\"]",
     );
     assert_eq!(o.verdict(), Verdict::Undecided, "{o:?}");
-    let why = o.detail.clone().unwrap_or_default();
+    assert!(
+        matches!(
+            &o.finding,
+            Some(Finding::Unresolved {
+                why: Unresolved::NotConfirmed(Rejection::Rounding { .. }),
+                ..
+            })
+        ),
+        "{:?}",
+        o.finding
+    );
+    let why = cosserat_check::report::evidence(&o);
     assert!(why.contains("rounding"), "{why}");
     // The exact strategy proves it.
     let o = decide(

@@ -189,7 +189,8 @@ pub struct Constraint {
 
 /// The meaning of a gradient with respect to a tensor whose components the assumptions
 /// tie together (σ_12 = σ_21, a zero trace, …).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum GradientConvention {
     /// `convention = "independent"`: F as a function of the free components only;
     /// ∂F/∂σ_12 is the derivative along σ_12 and everything tied to it (for a symmetric

@@ -7,6 +7,7 @@
 
 use super::{paper_of, Summary};
 use crate::kernel::certificate::Certificate;
+use crate::strategy::finding::Finding;
 use crate::strategy::{Counterexample, Decided, Method, NumericEvidence, Strength};
 use serde::Serialize;
 
@@ -33,7 +34,10 @@ struct ClaimRow<'a> {
     as_expected: bool,
     used_unit_normal: bool,
     numeric: Option<&'a NumericEvidence>,
-    detail: Option<&'a str>,
+    /// The finding in words.
+    detail: Option<String>,
+    /// The finding as data (`strategy::Finding`).
+    finding: Option<&'a Finding>,
     reason: Option<&'a str>,
     note: Option<&'a str>,
 }
@@ -86,7 +90,8 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
                 as_expected: r.as_expected(),
                 used_unit_normal: r.outcome.used_unit_normal,
                 numeric: r.outcome.numeric.as_ref(),
-                detail: r.outcome.detail.as_deref(),
+                detail: r.outcome.finding.as_ref().map(super::words::finding),
+                finding: r.outcome.finding.as_ref(),
                 reason: c.reason.as_deref(),
                 note: c.note.as_deref(),
             }

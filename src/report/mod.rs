@@ -7,6 +7,7 @@ pub mod explain;
 pub mod json;
 pub mod latex;
 pub mod markdown;
+pub mod words;
 
 use crate::strategy::{Counterexample, Decided, Outcome};
 use serde::Serialize;
@@ -144,11 +145,11 @@ pub fn evidence(o: &Outcome) -> String {
         }
         parts.push(line);
     }
-    if let Some(d) = &o.detail {
-        parts.push(d.clone());
+    if let Some(f) = &o.finding {
+        parts.push(words::finding(f));
     }
     match &o.counterexample {
-        None if o.numeric.is_none() && o.detail.is_none() => {
+        None if o.numeric.is_none() && o.finding.is_none() => {
             let unit = if o.used_unit_normal {
                 ", using n·n = 1"
             } else {

@@ -6,6 +6,7 @@
 //! the normal).
 
 use super::eval::{component_name, ExactEnv, Labeled};
+use super::finding::Finding;
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::Check;
 use crate::kernel::certificate::Identities;
@@ -89,11 +90,10 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                         Ok(how) => cx.reverified = Some(how),
                         Err(why) => {
                             return Ok(Outcome::undecided(Method::Exact, identities.components())
-                                .with_detail(format!(
-                                    "undecided: the sides differ as polynomials ({}), but the counterexample \
-                                     was not confirmed by a second evaluation: {why}",
-                                    cx.difference
-                                )));
+                                .with_finding(Finding::Unconfirmed {
+                                    difference: cx.difference.clone(),
+                                    why,
+                                }));
                         }
                     }
                 }
@@ -108,8 +108,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     let (checks, used_unit) = (identities.components(), identities.used_unit_normal());
     Ok(match identities.certify() {
         Some(certificate) => Outcome::proved(Method::Exact, checks, certificate),
-        None => Outcome::undecided(Method::Exact, checks)
-            .with_detail("no component was compared, so nothing was proved"),
+        None => Outcome::undecided(Method::Exact, checks).with_finding(Finding::NothingCompared),
     }
     .using_unit_normal(used_unit))
 }

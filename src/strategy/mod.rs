@@ -7,6 +7,7 @@ pub mod appendix;
 pub mod assume;
 pub mod eval;
 pub mod exact;
+pub mod finding;
 pub mod float;
 pub mod numeric;
 mod outcome;

@@ -14,6 +14,7 @@
 
 use super::assume::Component;
 use super::eval::component_name;
+use super::finding::{Finding, Point, Unresolved};
 use super::quadrature::{self, Level};
 use super::real::component_pairs;
 pub use super::sampler::SINGULAR_EPS;
@@ -50,8 +51,9 @@ enum Judged {
     Satisfied,
     Violated(Counterexample),
     /// The sides differ by more than the tolerance but not clearly more than the
-    /// adaptive averages' error, or that error is above [`QUADRATURE_MAX`]: the reason.
-    Unresolved(String),
+    /// adaptive averages' error, or that error is above [`QUADRATURE_MAX`]: the reason
+    /// and the state.
+    Unresolved(Unresolved, Point),
 }
 
 /// A violation caused by adaptive averages counts only beyond this multiple of their
@@ -160,35 +162,29 @@ fn check_state(
                     let error = gap + own_error / (1.0 + l.abs() + r.abs());
                     *quadrature_error = quadrature_error.max(error);
                     if error.is_nan() || error > QUADRATURE_MAX {
-                        let budget = if sampler.fine.converged() && sampler.coarse.converged() {
-                            String::new()
-                        } else {
-                            format!(
-                                " (an average stopped at its budget of {} integrand evaluations)",
-                                quadrature::MAX_EVALUATIONS
-                            )
-                        };
-                        return Ok(Judged::Unresolved(unresolved(
-                            sampler,
-                            state,
-                            format!(
-                                "the error estimate {error:.1e} (relative) exceeds {QUADRATURE_MAX:e}{budget}"
-                            ),
-                        )));
+                        let converged = sampler.fine.converged() && sampler.coarse.converged();
+                        return Ok(Judged::Unresolved(
+                            Unresolved::QuadratureError {
+                                error,
+                                limit: QUADRATURE_MAX,
+                                budget: (!converged).then_some(quadrature::MAX_EVALUATIONS),
+                            },
+                            describe(state, sampler.decls),
+                        ));
                     }
                     if res.is_finite() && res > TOL {
                         if res <= TOL + error {
                             ok = true;
                         } else if res <= TOL + QUADRATURE_CLEAR * error {
-                            return Ok(Judged::Unresolved(unresolved(
-                                sampler,
-                                state,
-                                format!(
-                                    "the sides of chain {} differ by {res:.2e} (relative), \
-                                     within {QUADRATURE_CLEAR} times the error estimate {error:.1e}",
-                                    ci + 1
-                                ),
-                            )));
+                            return Ok(Judged::Unresolved(
+                                Unresolved::WithinError {
+                                    chain: ci + 1,
+                                    residual: res,
+                                    clear: QUADRATURE_CLEAR,
+                                    error,
+                                },
+                                describe(state, sampler.decls),
+                            ));
                         }
                     }
                 }
@@ -215,23 +211,6 @@ fn check_state(
         }
     }
     Ok(Judged::Satisfied)
-}
-
-/// The reason a state is unresolved, with the state.
-fn unresolved(sampler: &Sampler<'_>, state: &State, what: String) -> String {
-    format!(
-        "{what} at {}: the averages by adaptive quadrature cannot decide it",
-        render_point(&describe(state, sampler.decls))
-    )
-}
-
-/// A state as `name = value, …` for a message.
-fn render_point(point: &std::collections::BTreeMap<String, String>) -> String {
-    point
-        .iter()
-        .map(|(k, v)| format!("{k} = {v}"))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// The first side of a check as an expression (the anchor of sampling errors).
@@ -293,7 +272,7 @@ fn keep_worst(worst: &mut Vec<(f64, State)>, margin: f64, state: State) {
 enum Found {
     Nothing,
     Violation(Box<State>, Counterexample),
-    Unresolved(String),
+    Unresolved(Unresolved, Point),
 }
 
 /// Random samples, then the adversarial search, inside `extra` (a conditional
@@ -320,7 +299,7 @@ fn sample_and_search(
         match judged {
             Judged::Satisfied => keep_worst(&mut worst, margin, state),
             Judged::Violated(cx) => return Ok((confirmed(sampler, state, relation, cx), None)),
-            Judged::Unresolved(why) => return Ok((Found::Unresolved(why), None)),
+            Judged::Unresolved(why, at) => return Ok((Found::Unresolved(why, at), None)),
         }
     }
     let check = sampler.check;
@@ -347,8 +326,8 @@ fn sample_and_search(
             let stop = match check_state(s, state, relation, &mut m, &mut quadrature)? {
                 Judged::Satisfied => false,
                 Judged::Violated(_) => !m.is_finite() || m > search::SEARCH_CONFIRM,
-                Judged::Unresolved(why) => {
-                    unresolved = Some(why);
+                Judged::Unresolved(why, at) => {
+                    unresolved = Some((why, at));
                     true
                 }
             };
@@ -367,7 +346,7 @@ fn sample_and_search(
             .unwrap_or_default(),
     };
     if let Some(why) = unresolved {
-        return Ok((Found::Unresolved(why), Some(evidence)));
+        return Ok((Found::Unresolved(why.0, why.1), Some(evidence)));
     }
     let found = match result.violation {
         Some(state) => {
@@ -377,7 +356,7 @@ fn sample_and_search(
                     tally.largest = tally.largest.max(m);
                     confirmed(sampler, state, relation, cx)
                 }
-                Judged::Unresolved(why) => Found::Unresolved(why),
+                Judged::Unresolved(why, at) => Found::Unresolved(why, at),
                 Judged::Satisfied => Found::Nothing,
             }
         }
@@ -400,11 +379,10 @@ fn confirmed(
             cx.reverified = Some(how);
             Found::Violation(Box::new(state), cx)
         }
-        Err(why) => Found::Unresolved(unresolved(
-            sampler,
-            &state,
-            format!("a floating-point violation was not confirmed by a second evaluation: {why}"),
-        )),
+        Err(why) => Found::Unresolved(
+            Unresolved::NotConfirmed(why),
+            describe(&state, sampler.decls),
+        ),
     }
 }
 
@@ -476,24 +454,26 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
             )
         }
     };
-    let undecided = |why: String, tally: &Tally, search: Option<SearchEvidence>| {
+    let undecided = |finding: Finding, tally: &Tally, search: Option<SearchEvidence>| {
         Outcome::undecided(Method::Numeric, sampling.samples)
             .with_numeric(evidence(tally, search, None))
-            .with_detail(why)
+            .with_finding(finding)
     };
     let (state, cx) = match found {
         Found::Nothing => {
             return Ok(Outcome::holds_sampled(Method::Numeric, sampling.samples)
                 .with_numeric(evidence(&tally, search, None)))
         }
-        Found::Unresolved(why) => return Ok(undecided(why, &tally, search)),
+        Found::Unresolved(why, at) => {
+            return Ok(undecided(Finding::Unresolved { why, at }, &tally, search))
+        }
         Found::Violation(state, cx) => (state, cx),
     };
-    let fails = |cx: Counterexample, detail: Option<String>| {
+    let fails = |cx: Counterexample, finding: Option<Finding>| {
         let mut o = Outcome::fails(Method::Numeric, fails_strength(&cx), sampling.samples)
             .with_counterexample(cx)
             .with_numeric(evidence(&tally, search.clone(), None));
-        o.detail = detail;
+        o.finding = finding;
         o
     };
     if domain.is_empty() {
@@ -506,18 +486,28 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
         .collect::<Vec<_>>()
         .join(" and ");
     if sampler.satisfies(&state, domain)? {
-        let why = format!("the counterexample lies inside the declared domain {domain_text}");
-        return Ok(fails(cx, Some(why)));
+        let inside = Finding::InsideDomain {
+            domain: domain_text,
+        };
+        return Ok(fails(cx, Some(inside)));
     }
     let mut inner = Sampler::new(decls, check, sampling, &anchor)?;
     let mut inside = Tally::new();
     let (found_inside, inside_search) =
         sample_and_search(&mut inner, *relation, domain, &mut inside)?;
-    let also_inside = format!("it also fails inside the declared domain {domain_text}");
     match found_inside {
-        Found::Violation(_, cx_in) => Ok(fails(cx_in, Some(also_inside))),
-        Found::Unresolved(why) => Ok(undecided(
-            format!("it fails outside the declared domain {domain_text}; inside, {why}"),
+        Found::Violation(_, cx_in) => Ok(fails(
+            cx_in,
+            Some(Finding::AlsoInsideDomain {
+                domain: domain_text,
+            }),
+        )),
+        Found::Unresolved(why, at) => Ok(undecided(
+            Finding::UnresolvedInsideDomain {
+                domain: domain_text,
+                why,
+                at,
+            },
             &inside,
             inside_search,
         )
@@ -526,10 +516,10 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
             Outcome::conditional(Method::Numeric, 2 * sampling.samples, None)
                 .with_counterexample(cx)
                 .with_numeric(evidence(&inside, inside_search, Some(domain_text.clone())))
-                .with_detail(format!(
-            "holds on {} samples with {domain_text}; the counterexample lies outside that domain",
-            sampling.samples
-        )),
+                .with_finding(Finding::HoldsOnDomain {
+                    samples: sampling.samples,
+                    domain: domain_text,
+                }),
         ),
     }
 }
@@ -619,14 +609,6 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String>
         }
     }
     Ok(Variables { free, tied })
-}
-
-fn tied_names(vars: &Variables) -> String {
-    vars.tied
-        .iter()
-        .map(|((s, i), _, _)| component_name(s, i))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// The symmetrised convention: the derivative along the free components `t` mapped
@@ -734,10 +716,7 @@ fn eval_at<T: DualNum<Primitive = f64>>(
 /// not a differentiable function of the variables to the accuracy the comparisons need
 /// (central differences would measure the quadrature's noise, not the derivative).
 fn through_adaptive_average(method: Method) -> Outcome {
-    Outcome::undecided(method, 0).with_detail(
-        "the function averages an argument that is not a polynomial in n (adaptive \
-         quadrature); derivatives through it are not checked",
-    )
+    Outcome::undecided(method, 0).with_finding(Finding::ThroughAdaptiveAverage)
 }
 
 /// Decides a `strategy = "gradient"` check.
@@ -836,15 +815,14 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                 // they do not, F is not differentiable at the sample and nothing is shown.
                 let k = (0..vars.len()).find(|&k| !near(grad[k], central(k)));
                 if let Some(k) = k {
-                    return Ok(Outcome::undecided(Method::Gradient, checks).with_detail(format!(
-                        "undecided: the closed form is undefined at a sample ({}), and ∂/∂{} does not exist \
-                         there (num-dual {:.9}, central difference {:.9}); declare the singular set with \
-                         `singular = …` to exclude such states",
-                        r.message,
-                        component_name(&vars.free[k].0, &vars.free[k].1),
-                        grad[k],
-                        central(k)
-                    )));
+                    return Ok(Outcome::undecided(Method::Gradient, checks).with_finding(
+                        Finding::DerivativeDoesNotExist {
+                            message: r.message,
+                            component: component_name(&vars.free[k].0, &vars.free[k].1),
+                            num_dual: grad[k],
+                            central: central(k),
+                        },
+                    ));
                 }
                 return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
                     .with_counterexample(Counterexample {
@@ -858,10 +836,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                         reverified: Some(Reverified::CentralDifferences),
                         ..Counterexample::default()
                     })
-                    .with_detail(format!(
-                        "the closed form is undefined at a sample where the derivative exists ({})",
-                        r.message
-                    )));
+                    .with_finding(Finding::ClosedFormUndefined { message: r.message }));
             }
         };
         // The compared components, with num-dual's and central differences' values:
@@ -902,12 +877,15 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                 // The closed form agrees with num-dual but not with the difference
                 // quotient, or the two derivative routes disagree: a numerical artefact
                 // (a kink, a step too large) is not a counterexample.
-                return Ok(Outcome::undecided(Method::Gradient, checks).with_detail(format!(
-                    "undecided: at a sample, ∂/∂{name} is {ad:.9} by num-dual, {fd:.9} by central \
-                     differences and {cf:.9} by the closed form; the two derivative routes do not agree \
-                     there, so no verdict is given (point: {})",
-                    render_point(&describe(&state, decls))
-                )));
+                return Ok(Outcome::undecided(Method::Gradient, checks).with_finding(
+                    Finding::DerivativeRoutesDisagree {
+                        component: name,
+                        num_dual: ad,
+                        central: fd,
+                        closed: cf,
+                        at: describe(&state, decls),
+                    },
+                ));
             }
             // num-dual and central differences agree, and the closed form differs.
             let mut point = describe(&state, decls);
@@ -928,7 +906,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
                     reverified: Some(Reverified::CentralDifferences),
                     ..Counterexample::default()
                 })
-                .with_detail("num-dual and the closed form disagree; central differences agree with num-dual"));
+                .with_finding(Finding::ClosedFormDisagrees));
         }
     }
     let names: Vec<String> = vars
@@ -936,15 +914,6 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
         .iter()
         .map(|(s, idx)| component_name(s, idx))
         .collect();
-    let convention_text = convention
-        .map(|c| {
-            format!(
-                "; tied components ({}), convention: {}",
-                tied_names(&vars),
-                c.describe()
-            )
-        })
-        .unwrap_or_default();
     Ok(Outcome::holds_sampled(Method::Gradient, checks)
         .with_numeric(sampled_evidence(
             sampling,
@@ -954,10 +923,15 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
             format!("{TOL:e} relative vs closed form, {FD_TOL:e} vs central differences"),
             true,
         ))
-        .with_detail(format!(
-            "∂/∂{} by num-dual = closed form = central differences{convention_text}",
-            names.join(", ")
-        )))
+        .with_finding(Finding::GradientAgrees {
+            variables: names,
+            tied: vars
+                .tied
+                .iter()
+                .map(|((s, i), _, _)| component_name(s, i))
+                .collect(),
+            convention,
+        }))
 }
 
 /// Decides a `strategy = "convex"` check.
@@ -991,11 +965,11 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         if !h.iter().all(|v| v.is_finite()) {
             sampler.verify_state(&state)?;
             return Ok(
-                Outcome::undecided(Method::Convex, sampling.samples).with_detail(format!(
-                    "undecided: the Hessian is not finite at a sample (the function is not twice \
-                 differentiable there; declare `singular = …` to exclude such states); point: {}",
-                    render_point(&describe(&state, decls))
-                )),
+                Outcome::undecided(Method::Convex, sampling.samples).with_finding(
+                    Finding::HessianNotFinite {
+                        at: describe(&state, decls),
+                    },
+                ),
             );
         }
         let eigen = SymmetricEigen::new(h.clone());
@@ -1029,12 +1003,15 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
                 && (curvature - min).abs() <= 0.5 * min.abs();
             let mut point = describe(&state, decls);
             if !confirmed {
-                return Ok(Outcome::undecided(Method::Convex, sampling.samples).with_detail(format!(
-                    "undecided: num-dual gives the Hessian an eigenvalue {min:.9} at a sample, but the \
-                     second difference of the function along its eigenvector is {curvature:.9}; the two \
-                     routes do not agree, so no verdict is given (point: {})",
-                    render_point(&point)
-                )));
+                return Ok(
+                    Outcome::undecided(Method::Convex, sampling.samples).with_finding(
+                        Finding::SecondDifferenceDisagrees {
+                            eigenvalue: min,
+                            curvature,
+                            at: point,
+                        },
+                    ),
+                );
             }
             point.insert("smallest eigenvalue".into(), format!("{min:.9}"));
             return Ok(
@@ -1048,10 +1025,7 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
                         reverified: Some(Reverified::SecondDifferences),
                         ..Counterexample::default()
                     })
-                    .with_detail(format!(
-                        "the Hessian has a negative eigenvalue; the second difference along its \
-                         eigenvector is {curvature:.9}"
-                    )),
+                    .with_finding(Finding::NegativeEigenvalue { curvature }),
             );
         }
     }
@@ -1064,10 +1038,9 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
             format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
             true,
         ))
-        .with_detail(format!(
-            "Hessian in {} variables positive semidefinite at every sample",
-            vars.len()
-        )))
+        .with_finding(Finding::ConvexAgrees {
+            variables: vars.len(),
+        }))
 }
 
 /// The first `k` sampled states of a sampled check, with the value of every side (or

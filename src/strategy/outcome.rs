@@ -12,6 +12,7 @@
 //! o.verdict = Verdict::Holds;
 //! ```
 
+use super::finding::Finding;
 use crate::derivation::Verdict;
 use crate::kernel::certificate::Certificate;
 use serde::Serialize;
@@ -119,9 +120,9 @@ pub struct Outcome {
     pub counterexample: Option<Counterexample>,
     /// Sample count, seed and residuals of the numeric strategies.
     pub numeric: Option<NumericEvidence>,
-    /// A strategy-specific line of evidence (the domain of a conditional claim, the
-    /// witness of an existential one, …).
-    pub detail: Option<String>,
+    /// What the decision found beyond the verdict (why it is undecided, a witness, how
+    /// a derivative was compared), as data.
+    pub finding: Option<Finding>,
 }
 
 impl Outcome {
@@ -135,7 +136,7 @@ impl Outcome {
             used_unit_normal: false,
             counterexample: None,
             numeric: None,
-            detail: None,
+            finding: None,
         }
     }
 
@@ -210,8 +211,8 @@ impl Outcome {
         self
     }
 
-    pub fn with_detail(mut self, detail: impl Into<String>) -> Self {
-        self.detail = Some(detail.into());
+    pub fn with_finding(mut self, finding: Finding) -> Self {
+        self.finding = Some(finding);
         self
     }
 

@@ -18,6 +18,7 @@
 //! claim is `undecided`, with the reason.
 
 use super::eval::{component_name, ExactEnv, Labeled};
+use super::finding::Rejection;
 use super::real::{component_pairs, RealEnv};
 use super::sampler::{relation_holds, Sampler, State};
 use super::{Counterexample, Reverified};
@@ -40,7 +41,7 @@ pub(super) fn exact_counterexample(
     point: &BTreeMap<Var, Rational>,
     (lhs, rhs): (&Rational, &Rational),
     cx: &Counterexample,
-) -> Result<Reverified, String> {
+) -> Result<Reverified, Rejection> {
     // Variables the point leaves out do not occur in the sides; any value will do as
     // long as the assumptions can be evaluated there (`S = 3 V / (2 R_g)` cannot at
     // R_g = 0), so a few are tried.
@@ -51,13 +52,11 @@ pub(super) fn exact_counterexample(
             Err(why) => last = why,
         }
     }
-    Err(format!(
-        "the interpreter cannot evaluate the sides at the point: {last}"
-    ))
+    Err(Rejection::CannotEvaluate { message: last })
 }
 
 /// Whether the interpreter's values agree with the exact ones.
-fn confirm(lf: f64, rf: f64, lhs: &Rational, rhs: &Rational) -> Result<Reverified, String> {
+fn confirm(lf: f64, rf: f64, lhs: &Rational, rhs: &Rational) -> Result<Reverified, Rejection> {
     let agrees = |f: f64, q: &Rational| {
         let e = q.to_f64();
         f.is_finite() && (f - e).abs() <= AGREEMENT * (1.0 + e.abs())
@@ -65,9 +64,12 @@ fn confirm(lf: f64, rf: f64, lhs: &Rational, rhs: &Rational) -> Result<Reverifie
     if agrees(lf, lhs) && agrees(rf, rhs) {
         Ok(Reverified::FloatingPoint)
     } else {
-        Err(format!(
-            "the interpreter gives left {lf:e}, right {rf:e} at the point, against the exact {lhs}, {rhs}"
-        ))
+        Err(Rejection::InterpreterDisagrees {
+            lhs: lf,
+            rhs: rf,
+            exact_lhs: lhs.to_string(),
+            exact_rhs: rhs.to_string(),
+        })
     }
 }
 
@@ -150,7 +152,7 @@ pub(super) fn numeric_counterexample(
     state: &State,
     relation: Relation,
     cx: &Counterexample,
-) -> Result<Reverified, String> {
+) -> Result<Reverified, Rejection> {
     match exactly(sampler, state, relation, cx) {
         Some(Ok(())) => Ok(Reverified::Exact),
         Some(Err(why)) => Err(why),
@@ -164,7 +166,7 @@ fn exactly(
     state: &State,
     relation: Relation,
     cx: &Counterexample,
-) -> Option<Result<(), String>> {
+) -> Option<Result<(), Rejection>> {
     let check = sampler.check;
     let mut env = ExactEnv::new(sampler.decls, &check.defs, &check.assumptions).ok()?;
     let chain = &check.chains[cx.chain - 1];
@@ -196,33 +198,32 @@ fn exactly(
         .filter_map(|(c, v)| Some((c.chars().next()?, v - 1)))
         .collect();
     let (Some(lv), Some(rv)) = (l.at(&assignment).eval(&at), r.at(&assignment).eval(&at)) else {
-        return Some(Err("a side has a pole at the exact point".into()));
+        return Some(Err(Rejection::Pole {
+            what: "a side".into(),
+        }));
     };
     for (k, (rel, a, b)) in hypotheses.iter().enumerate() {
         let (Some(a), Some(b)) = (a.eval(&at), b.eval(&at)) else {
-            return Some(Err(format!(
-                "hypothesis {} has a pole at the exact point",
-                k + 1
-            )));
+            return Some(Err(Rejection::Pole {
+                what: format!("hypothesis `{}`", sampler.sampling.given[k].text),
+            }));
         };
         if !holds_exactly(*rel, &a, &b) {
-            return Some(Err(format!(
-                "at the exact point the hypothesis `{}` does not hold; the floating-point \
-                 violation lies on its boundary",
-                sampler.sampling.given[k].text
-            )));
+            return Some(Err(Rejection::HypothesisFails {
+                hypothesis: sampler.sampling.given[k].text.clone(),
+            }));
         }
     }
     if let Some(s) = singular {
         if s.eval(&at).is_none_or(|v| v.is_zero()) {
-            return Some(Err("the exact point lies on the singular set".into()));
+            return Some(Err(Rejection::OnSingularSet));
         }
     }
     Some(if holds_exactly(relation, &lv, &rv) {
-        Err(format!(
-            "the floating-point violation is rounding: exactly, left {lv} and right {rv} satisfy \
-             the relation at the point"
-        ))
+        Err(Rejection::Rounding {
+            lhs: lv.to_string(),
+            rhs: rv.to_string(),
+        })
     } else {
         Ok(())
     })
@@ -293,21 +294,27 @@ fn by_interpreter(
     state: &State,
     relation: Relation,
     cx: &Counterexample,
-) -> Result<Reverified, String> {
+) -> Result<Reverified, Rejection> {
     let chain = &sampler.check.chains[cx.chain - 1];
+    let cannot = |message: String| Rejection::CannotEvaluate { message };
     let side = |k: usize| {
-        let node = chain[k].node.as_ref().map_err(|e| e.message.clone())?;
+        let node = chain[k]
+            .node
+            .as_ref()
+            .map_err(|e| cannot(e.message.clone()))?;
         sampler
             .interpret(&state.symbols, node, &state.n)
-            .map_err(|e| e.message)
+            .map_err(|e| cannot(e.message))
     };
     let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
-    let (lf, rf) = pick(sampler.decls.dim, &l, &r, cx)?;
+    let (lf, rf) = pick(sampler.decls.dim, &l, &r, cx).map_err(cannot)?;
     let (ok, residual) = relation_holds(relation, lf, rf);
     if ok {
-        Err(format!(
-            "the interpreter does not confirm it: left {lf:e}, right {rf:e} (relative residual {residual:.1e})"
-        ))
+        Err(Rejection::InterpreterSatisfied {
+            lhs: lf,
+            rhs: rf,
+            residual,
+        })
     } else {
         Ok(Reverified::Interpreter)
     }

@@ -7,6 +7,7 @@
 //! rationals, is the proof.
 
 use super::eval::ExactEnv;
+use super::finding::Finding;
 use super::{Method, Outcome};
 use crate::derivation::{Check, Strategy};
 use crate::kernel::certificate::{Certificate, Fact};
@@ -98,26 +99,27 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
                 [Fact::NotConcyclic { determinant }] => determinant.clone(),
                 _ => unreachable!("the kernel issues one fact"),
             };
-            let names: Vec<String> = state
+            let state = state
                 .iter()
                 .filter(|(_, q)| !q.is_zero())
-                .map(|(&v, q)| format!("{}={q}", env.vars.name(v)))
+                .map(|(&v, q)| (env.vars.name(v).to_owned(), q.to_string()))
                 .collect();
-            let pts: Vec<String> = points.iter().map(|(a, b)| format!("({a}, {b})")).collect();
-            return Ok(Outcome::proved(Method::Witness, 1, certificate).with_detail(format!(
-                    "witness: at {} (other variables 0) and n = ((1−u²), 2u)/(1+u²) for u = 0, 1/2, 2, −1/3, the points (x, y) = {} lie on no common circle or line: det[x²+y², x, y, 1] = {det}",
-                    names.join(", "),
-                    pts.join(", ")
-                )));
+            let points = points
+                .iter()
+                .map(|(a, b)| (a.to_string(), b.to_string()))
+                .collect();
+            return Ok(
+                Outcome::proved(Method::Witness, 1, certificate).with_finding(Finding::Witness {
+                    state,
+                    points,
+                    determinant: det,
+                }),
+            );
         }
     }
     // Not finding a witness proves nothing about the statement.
-    Ok(
-        Outcome::undecided(Method::Witness, ATTEMPTS).with_detail(format!(
-            "undecided: no witness among {ATTEMPTS} rational states (every four points tried were concyclic); \
-             this is not a counterexample"
-        )),
-    )
+    Ok(Outcome::undecided(Method::Witness, ATTEMPTS)
+        .with_finding(Finding::NoWitness { attempts: ATTEMPTS }))
 }
 
 #[cfg(test)]

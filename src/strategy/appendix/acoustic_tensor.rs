@@ -87,7 +87,7 @@ pub(super) fn band_direction(p: &Params, d: &Derivation) -> Result<Outcome, Stri
         theta.to_degrees(),
         theta_f.to_degrees()
     );
-    let mut out = proved_or_fails(certificate, 1).with_detail(detail);
+    let mut out = proved_or_fails(certificate, 1).with_finding(Finding::Appendix { text: detail });
     if !stationary {
         out = out.with_counterexample(Counterexample {
             lhs: "θ_B".into(),
@@ -168,7 +168,7 @@ pub(super) fn critical_hardening(p: &Params, d: &Derivation) -> Result<Outcome, 
         ));
     }
     Ok(Outcome::fails(Method::Symbolic, Strength::Proof, 3)
-        .with_detail(detail)
+        .with_finding(Finding::Appendix { text: detail })
         .with_counterexample(Counterexample {
             lhs: "max over θ of h_2^cr".into(),
             rhs: "0".into(),
@@ -184,15 +184,17 @@ pub(super) fn b_positive(p: &Params, d: &Derivation) -> Outcome {
     let n2 = &p.var(p.n_1).pow(2) + &p.var(p.n_2).pow(2);
     let expected = &(&(&RatFunc::int(4) * &p.var(p.g)) * &p.var(p.r_g).pow(2)) * &n2;
     if let Some(certificate) = Certificate::rational_functions_equal(&b, &expected) {
-        Outcome::proved(Method::Symbolic, 1, certificate).with_detail(format!(
+        Outcome::proved(Method::Symbolic, 1, certificate).with_finding(Finding::Appendix { text: format!(
             "B = {} exactly (F_i = 0 at the state, so M^(ep) = M^(el) = 4 G R_g² δ_ij); on n·n = 1, B = 4 G R_g² > 0 for \
              G, R_g > 0: a jump in the curvature rate cannot satisfy B [K] = 0",
             p.display(&b)
-        ))
+        ) })
     } else {
-        Outcome::undecided(Method::Symbolic, 1).with_detail(format!(
-            "undecided: B = {} is not 4 G R_g² n·n; its sign is not established",
-            p.display(&b)
-        ))
+        Outcome::undecided(Method::Symbolic, 1).with_finding(Finding::Appendix {
+            text: format!(
+                "undecided: B = {} is not 4 G R_g² n·n; its sign is not established",
+                p.display(&b)
+            ),
+        })
     }
 }

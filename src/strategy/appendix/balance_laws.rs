@@ -92,7 +92,9 @@ pub(super) fn balance_law(
     };
     match Certificate::proportional(&printed, &derived) {
         Some((certificate, lambda)) => Ok(Outcome::proved(Method::Symbolic, 1, certificate)
-            .with_detail(format!("{base}; the printed law is {lambda} times it"))),
+            .with_finding(Finding::Appendix {
+                text: format!("{base}; the printed law is {lambda} times it"),
+            })),
         None => {
             let flip = if Certificate::proportional(&printed, &flipped).is_some() {
                 format!(
@@ -103,7 +105,9 @@ pub(super) fn balance_law(
                 String::new()
             };
             Ok(Outcome::fails(Method::Symbolic, Strength::Proof, 1)
-                .with_detail(format!("{base}{flip}"))
+                .with_finding(Finding::Appendix {
+                    text: format!("{base}{flip}"),
+                })
                 .with_counterexample(Counterexample {
                     chain: 1,
                     equality: 1,

@@ -27,7 +27,7 @@ pub(super) fn eq61(p: &Params, d: &Derivation, d_neg: &Derivation) -> Result<Out
             ""
         }
     );
-    let mut out = proved_or_fails(certificate, 1).with_detail(detail);
+    let mut out = proved_or_fails(certificate, 1).with_finding(Finding::Appendix { text: detail });
     if !equal {
         out = out.with_counterexample(Counterexample {
             lhs: "A² by (61)".into(),
@@ -73,12 +73,12 @@ pub(super) fn boundary_modes() -> Outcome {
             Some(quarter.and(half))
         })
         .flatten();
-    proved_or_fails(certificate, modes.len()).with_detail(format!(
+    proved_or_fails(certificate, modes.len()).with_finding(Finding::Appendix { text: format!(
         "w_3 = C cos(A x_2) + S sin(A x_2) + const; μ_23 = M_22 w_3' = 0 at x_2 = ±d_B has a nonzero (C, S) exactly when \
          sin(2 A d_B) = 0: {}; d_B/R_g = π/A is the first symmetric mode (w_3 even about the band's centre, C ≠ 0); \
          the first antisymmetric mode would give d_B/R_g = π/(2A)",
         listed.join(", ")
-    ))
+    ) })
 }
 
 pub(super) fn eq54(p: &Params, d: &Derivation) -> Result<Outcome, String> {
@@ -151,7 +151,7 @@ pub(super) fn eq54(p: &Params, d: &Derivation) -> Result<Outcome, String> {
         p.display(&paper_values),
         p.display(&d.a2_derived_balance)
     );
-    let mut out = proved_or_fails(certificate, 1).with_detail(detail);
+    let mut out = proved_or_fails(certificate, 1).with_finding(Finding::Appendix { text: detail });
     if !same {
         out = out.with_counterexample(Counterexample {
             lhs: "A² of (54)".into(),

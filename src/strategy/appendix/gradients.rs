@@ -71,5 +71,5 @@ pub(super) fn yield_gradients(p: &Params) -> Result<Outcome, String> {
     } else {
         Outcome::fails(Method::Symbolic, Strength::Sampled, n)
     };
-    Ok(outcome.with_detail(detail))
+    Ok(outcome.with_finding(Finding::Appendix { text: detail }))
 }

@@ -4,6 +4,7 @@
 //! gradients, nalgebra linear algebra) before a verdict is given.
 
 use super::eval::ExactEnv;
+use super::finding::Finding;
 use super::{Counterexample, Method, Outcome, Strength};
 use crate::derivation::{AppendixStep, Check, Verdict};
 use crate::kernel::certificate::Certificate;

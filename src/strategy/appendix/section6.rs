@@ -35,13 +35,13 @@ pub(super) fn no_band_without_rolling(p: &Params, d: &Derivation) -> Result<Outc
         .substitute(p.f_r, &RatFunc::int(0))
         .and_then(|x| x.substitute(p.h_2, &RatFunc::int(0)))
         .ok_or("pole")?;
-    Ok(proved_or_fails(certificate, 2).with_detail(format!(
+    Ok(proved_or_fails(certificate, 2).with_finding(Finding::Appendix { text: format!(
         "(54): A² = {} is 0 at f_r = 0 ({a2_at_0}) with a nonzero denominator, and its numerator and denominator have no \
          root for f_r > 0 (Sturm), so A² > 0 there, A → 0 and d_B/R_g = π/A → ∞ as f_r → 0; the A² derived from the \
          Appendix as printed is {} at f_r = 0, h_2 = 0, so it agrees",
         p.display(&d.a2_eq54),
         p.display(&derived_at_0)
-    )))
+    ) }))
 }
 
 /// Where a function of f_r alone increases for f_r > 0, decided exactly.
@@ -161,7 +161,7 @@ pub(super) fn thickness_decreases(p: &Params, d: &Derivation) -> Result<Outcome,
         (Verdict::Fails, _) => Outcome::fails(Method::Symbolic, Strength::Proof, 2),
         _ => Outcome::undecided(Method::Symbolic, 2),
     };
-    let mut out = out.with_detail(format!(
+    let mut out = out.with_finding(Finding::Appendix { text: format!(
         "d_B = π/A decreases where A² of (54) increases; d(A²)/df_r = {}; {domain}; beyond f*, A² decreases and d_B grows \
          again; for the A² derived from the Appendix, {} = {}, \"d_B decreases as f_r grows\" {} for every f_r > 0 (K = 2, \
          h^C = 1/2, h_2 = 0)",
@@ -169,7 +169,7 @@ pub(super) fn thickness_decreases(p: &Params, d: &Derivation) -> Result<Outcome,
         "A²",
         p.display(&derived),
         if derived_verdict == Verdict::Holds { "holds" } else { "does not hold" }
-    ));
+    ) });
     if verdict == Verdict::Conditional {
         out = out.with_counterexample(Counterexample {
             lhs: "d_B/R_g at f_r = 1".into(),

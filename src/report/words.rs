@@ -1,0 +1,198 @@
+//! Findings in words: the only place where what a decision recorded
+//! (`strategy::Finding`) becomes a sentence.
+
+use crate::strategy::finding::{Finding, Point, Rejection, Unresolved};
+
+/// A finding as one clause of the evidence.
+pub fn finding(f: &Finding) -> String {
+    match f {
+        Finding::NothingCompared => "no component was compared, so nothing was proved".into(),
+        Finding::Unconfirmed { difference, why } => format!(
+            "undecided: the sides differ as polynomials ({difference}), but the counterexample was \
+             not confirmed by a second evaluation: {}",
+            rejection(why)
+        ),
+        Finding::Witness {
+            state,
+            points,
+            determinant,
+        } => {
+            let state: Vec<String> = state.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            let points: Vec<String> = points.iter().map(|(a, b)| format!("({a}, {b})")).collect();
+            format!(
+                "witness: at {} (other variables 0) and n = ((1−u²), 2u)/(1+u²) for u = 0, 1/2, 2, −1/3, \
+                 the points (x, y) = {} lie on no common circle or line: det[x²+y², x, y, 1] = {determinant}",
+                state.join(", "),
+                points.join(", ")
+            )
+        }
+        Finding::NoWitness { attempts } => format!(
+            "undecided: no witness among {attempts} rational states (every four points tried were \
+             concyclic); this is not a counterexample"
+        ),
+        Finding::Unresolved { why, at } => unresolved(why, at),
+        Finding::UnresolvedInsideDomain { domain, why, at } => format!(
+            "it fails outside the declared domain {domain}; inside, {}",
+            unresolved(why, at)
+        ),
+        Finding::InsideDomain { domain } => {
+            format!("the counterexample lies inside the declared domain {domain}")
+        }
+        Finding::AlsoInsideDomain { domain } => {
+            format!("it also fails inside the declared domain {domain}")
+        }
+        Finding::HoldsOnDomain { samples, domain } => format!(
+            "holds on {samples} samples with {domain}; the counterexample lies outside that domain"
+        ),
+        Finding::ThroughAdaptiveAverage => {
+            "the function averages an argument that is not a polynomial in n (adaptive \
+             quadrature); derivatives through it are not checked"
+                .into()
+        }
+        Finding::ClosedFormUndefined { message } => format!(
+            "the closed form is undefined at a sample where the derivative exists ({message})"
+        ),
+        Finding::DerivativeDoesNotExist {
+            message,
+            component,
+            num_dual,
+            central,
+        } => format!(
+            "undecided: the closed form is undefined at a sample ({message}), and ∂/∂{component} does \
+             not exist there (num-dual {num_dual:.9}, central difference {central:.9}); declare the \
+             singular set with `singular = …` to exclude such states"
+        ),
+        Finding::DerivativeRoutesDisagree {
+            component,
+            num_dual,
+            central,
+            closed,
+            at,
+        } => format!(
+            "undecided: at a sample, ∂/∂{component} is {num_dual:.9} by num-dual, {central:.9} by \
+             central differences and {closed:.9} by the closed form; the two derivative routes do not \
+             agree there, so no verdict is given (point: {})",
+            point(at)
+        ),
+        Finding::ClosedFormDisagrees => {
+            "num-dual and the closed form disagree; central differences agree with num-dual".into()
+        }
+        Finding::GradientAgrees {
+            variables,
+            tied,
+            convention,
+        } => {
+            let convention = convention
+                .map(|c| {
+                    format!(
+                        "; tied components ({}), convention: {}",
+                        tied.join(", "),
+                        c.describe()
+                    )
+                })
+                .unwrap_or_default();
+            format!(
+                "∂/∂{} by num-dual = closed form = central differences{convention}",
+                variables.join(", ")
+            )
+        }
+        Finding::HessianNotFinite { at } => format!(
+            "undecided: the Hessian is not finite at a sample (the function is not twice \
+             differentiable there; declare `singular = …` to exclude such states); point: {}",
+            point(at)
+        ),
+        Finding::SecondDifferenceDisagrees {
+            eigenvalue,
+            curvature,
+            at,
+        } => format!(
+            "undecided: num-dual gives the Hessian an eigenvalue {eigenvalue:.9} at a sample, but the \
+             second difference of the function along its eigenvector is {curvature:.9}; the two \
+             routes do not agree, so no verdict is given (point: {})",
+            point(at)
+        ),
+        Finding::NegativeEigenvalue { curvature } => format!(
+            "the Hessian has a negative eigenvalue; the second difference along its eigenvector is \
+             {curvature:.9}"
+        ),
+        Finding::ConvexAgrees { variables } => {
+            format!("Hessian in {variables} variables positive semidefinite at every sample")
+        }
+        Finding::Appendix { text } => text.clone(),
+    }
+}
+
+/// Why a state was not judged, and where.
+fn unresolved(why: &Unresolved, at: &Point) -> String {
+    match why {
+        Unresolved::QuadratureError {
+            error,
+            limit,
+            budget,
+        } => {
+            let budget = budget
+                .map(|b| format!(" (an average stopped at its budget of {b} integrand evaluations)"))
+                .unwrap_or_default();
+            format!(
+                "the error estimate {error:.1e} (relative) exceeds {limit:e}{budget} at {}: the \
+                 averages by adaptive quadrature cannot decide it",
+                point(at)
+            )
+        }
+        Unresolved::WithinError {
+            chain,
+            residual,
+            clear,
+            error,
+        } => format!(
+            "the sides of chain {chain} differ by {residual:.2e} (relative), within {clear} times the \
+             error estimate {error:.1e} at {}: the averages by adaptive quadrature cannot decide it",
+            point(at)
+        ),
+        Unresolved::NotConfirmed(r) => format!(
+            "a floating-point violation at {} was not confirmed by a second evaluation: {}",
+            point(at),
+            rejection(r)
+        ),
+    }
+}
+
+/// Why a second evaluation did not confirm a counterexample.
+pub fn rejection(r: &Rejection) -> String {
+    match r {
+        Rejection::Rounding { lhs, rhs } => format!(
+            "the floating-point violation is rounding: exactly, left {lhs} and right {rhs} satisfy \
+             the relation at the point"
+        ),
+        Rejection::HypothesisFails { hypothesis } => format!(
+            "at the exact point the hypothesis `{hypothesis}` does not hold; the floating-point \
+             violation lies on its boundary"
+        ),
+        Rejection::OnSingularSet => "the exact point lies on the singular set".into(),
+        Rejection::Pole { what } => format!("{what} has a pole at the exact point"),
+        Rejection::InterpreterDisagrees {
+            lhs,
+            rhs,
+            exact_lhs,
+            exact_rhs,
+        } => format!(
+            "the interpreter gives left {lhs:e}, right {rhs:e} at the point, against the exact \
+             {exact_lhs}, {exact_rhs}"
+        ),
+        Rejection::InterpreterSatisfied { lhs, rhs, residual } => format!(
+            "the interpreter does not confirm it: left {lhs:e}, right {rhs:e} (relative residual \
+             {residual:.1e})"
+        ),
+        Rejection::CannotEvaluate { message } => {
+            format!("the interpreter cannot evaluate the sides at the point: {message}")
+        }
+    }
+}
+
+/// A point as `name = value, …`.
+pub fn point(at: &Point) -> String {
+    at.iter()
+        .map(|(k, v)| format!("{k} = {v}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}

@@ -1,0 +1,135 @@
+//! What a decision found beyond its verdict and its counterexample, as data: why a
+//! claim is undecided, the witness of an existential claim, how a derivative was
+//! compared. Strategies record a [`Finding`]; only `report` turns it into words
+//! (`report::words`), and JSON carries it as it is.
+
+use crate::derivation::GradientConvention;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// A point as the reports show it: name → value.
+pub type Point = BTreeMap<String, String>;
+
+/// What a decision found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Finding {
+    /// The exact strategy compared no component, so nothing was proved.
+    NothingCompared,
+    /// The sides differ as polynomials, but the counterexample was not confirmed by a
+    /// second evaluation.
+    Unconfirmed { difference: String, why: Rejection },
+    /// An existential statement's exact witness: the state (other variables 0), the
+    /// four points of the locus, and the nonzero determinant.
+    Witness {
+        state: Vec<(String, String)>,
+        points: Vec<(String, String)>,
+        determinant: String,
+    },
+    /// No witness among `attempts` rational states (not a counterexample).
+    NoWitness { attempts: usize },
+    /// A sampled state the checker could not judge.
+    Unresolved { why: Unresolved, at: Point },
+    /// The statement fails outside the declared domain; inside, a state could not be
+    /// judged.
+    UnresolvedInsideDomain {
+        domain: String,
+        why: Unresolved,
+        at: Point,
+    },
+    /// The counterexample lies inside the declared domain.
+    InsideDomain { domain: String },
+    /// The statement also fails inside the declared domain.
+    AlsoInsideDomain { domain: String },
+    /// The statement holds on `samples` samples inside the domain.
+    HoldsOnDomain { samples: usize, domain: String },
+    /// A derivative through an average by adaptive quadrature is not checked.
+    ThroughAdaptiveAverage,
+    /// A closed-form gradient undefined at a sample where the derivative exists.
+    ClosedFormUndefined { message: String },
+    /// The closed form is undefined at a sample where the derivative does not exist.
+    DerivativeDoesNotExist {
+        message: String,
+        component: String,
+        num_dual: f64,
+        central: f64,
+    },
+    /// num-dual and central differences disagree at a sample.
+    DerivativeRoutesDisagree {
+        component: String,
+        num_dual: f64,
+        central: f64,
+        closed: f64,
+        at: Point,
+    },
+    /// num-dual and central differences agree; the closed form does not.
+    ClosedFormDisagrees,
+    /// Every compared component agrees by the three routes.
+    GradientAgrees {
+        variables: Vec<String>,
+        tied: Vec<String>,
+        convention: Option<GradientConvention>,
+    },
+    /// The Hessian is not finite at a sample.
+    HessianNotFinite { at: Point },
+    /// num-dual's negative eigenvalue is not confirmed by the second difference.
+    SecondDifferenceDisagrees {
+        eigenvalue: f64,
+        curvature: f64,
+        at: Point,
+    },
+    /// A negative Hessian eigenvalue, confirmed by the second difference.
+    NegativeEigenvalue { curvature: f64 },
+    /// The Hessian is positive semidefinite at every sample.
+    ConvexAgrees { variables: usize },
+    /// A step of Appendix A in words, as `src/model` derives it (until the Appendix
+    /// is written as derivation files).
+    Appendix { text: String },
+}
+
+/// Why a sampled state could not be judged.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Unresolved {
+    /// The averages' error estimate (relative) is above the largest usable one.
+    QuadratureError {
+        error: f64,
+        limit: f64,
+        /// The evaluation budget of an average that stopped short, if one did.
+        budget: Option<usize>,
+    },
+    /// The sides of a chain differ by no more than a few times the error estimate.
+    WithinError {
+        chain: usize,
+        residual: f64,
+        clear: f64,
+        error: f64,
+    },
+    /// A floating-point violation the second evaluation did not confirm.
+    NotConfirmed(Rejection),
+}
+
+/// Why a second evaluation did not confirm a counterexample (`reverify`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Rejection {
+    /// Exactly, the relation holds at the point: the violation was rounding.
+    Rounding { lhs: String, rhs: String },
+    /// At the exact point a hypothesis does not hold.
+    HypothesisFails { hypothesis: String },
+    /// The exact point lies on the singular set.
+    OnSingularSet,
+    /// A side or hypothesis has a pole at the exact point.
+    Pole { what: String },
+    /// The interpreter's values differ from the exact ones.
+    InterpreterDisagrees {
+        lhs: f64,
+        rhs: f64,
+        exact_lhs: String,
+        exact_rhs: String,
+    },
+    /// The interpreter finds the relation satisfied.
+    InterpreterSatisfied { lhs: f64, rhs: f64, residual: f64 },
+    /// The interpreter cannot evaluate the sides there.
+    CannotEvaluate { message: String },
+}
