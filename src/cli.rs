@@ -4,7 +4,7 @@
 
 use crate::derivation::{load_dir, load_files, DerivationFile, LoadError, Strategy};
 use crate::report;
-use crate::strategy::{decide_claim, Decided};
+use crate::strategy::{decide_claim, decide_claim_recorded, Decided};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -195,12 +195,15 @@ pub fn decide_all<'f>(
     files: &'f [DerivationFile],
     only: Option<&str>,
 ) -> Result<Vec<Decided<'f>>, RunError> {
-    decide_with_progress(files, only, &mut |_, _, _| {})
+    decide_with_progress(files, only, false, &mut |_, _, _| {})
 }
 
+/// Decides the claims (all, or the one with id `only`); with `keep`, each outcome
+/// records what its decision evaluated (for `explain`).
 fn decide_with_progress<'f>(
     files: &'f [DerivationFile],
     only: Option<&str>,
+    keep: bool,
     progress: &mut dyn FnMut(usize, usize, &str),
 ) -> Result<Vec<Decided<'f>>, RunError> {
     let claims: Vec<_> = files
@@ -234,7 +237,12 @@ fn decide_with_progress<'f>(
             let claims = &claims;
             scope.spawn(move || {
                 for (k, c) in claims.iter().enumerate().filter(|(k, _)| k % workers == w) {
-                    let r = decide_claim(c).map_err(|d| RunError::Input(d.to_string()));
+                    let r = if keep {
+                        decide_claim_recorded(c)
+                    } else {
+                        decide_claim(c)
+                    }
+                    .map_err(|d| RunError::Input(d.to_string()));
                     if tx.send((k, r)).is_err() {
                         return;
                     }
@@ -321,7 +329,7 @@ fn table(
 ) -> Result<Status, RunError> {
     override_sampling(&mut files, args.seed, args.samples);
     let mut progress = Progress::new();
-    let rows = decide_with_progress(&files, args.only.as_deref(), &mut |k, n, id| {
+    let rows = decide_with_progress(&files, args.only.as_deref(), false, &mut |k, n, id| {
         progress.tick(k, n, id)
     })?;
     progress.done(rows.len());
@@ -360,7 +368,7 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Status, RunError> {
         }
         Command::Explain(a) => {
             let files = read(a.dir, &a.files)?;
-            let rows = decide_all(&files, Some(&a.id))?;
+            let rows = decide_with_progress(&files, Some(&a.id), true, &mut |_, _, _| {})?;
             emit(&report::explain::render(&rows[0]), &None, out)?;
             Ok(if rows[0].as_expected() {
                 Status::AsExpected

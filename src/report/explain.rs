@@ -1,22 +1,15 @@
 //! `cosserat-check explain ID`: how one claim was decided, in enough detail for a
 //! reviewer to audit the verdict by hand — the setting, the definitions and
 //! assumptions it uses, each side's canonical expansion (exact) or the first sampled
-//! states (numeric), and the full evidence.
+//! states (numeric), and the full evidence. It renders what the decision recorded
+//! (`strategy::decide_recorded`); nothing is computed again here.
 
 use super::evidence;
-use crate::derivation::{Check, Claim, Strategy};
-use crate::kernel::assignments;
+use crate::derivation::{Check, Strategy};
 use crate::lang::Decls;
-use crate::strategy::eval::ExactEnv;
-use crate::strategy::numeric::trace;
+use crate::strategy::finding::Record;
 use crate::strategy::{Decided, Outcome};
 use std::fmt::Write as _;
-
-/// Terms shown per canonical polynomial, components shown per side.
-const TERMS: usize = 24;
-const COMPONENTS: usize = 27;
-/// Sampled states shown for numeric strategies.
-const STATES: usize = 3;
 
 fn setting(decls: &Decls) -> String {
     let mut s = format!("dimension {}", decls.dim);
@@ -45,7 +38,7 @@ fn setting(decls: &Decls) -> String {
     s
 }
 
-fn check_section(out: &mut String, claim: &Claim, check: &Check, outcome: &Outcome) {
+fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
     let deps = check.dependencies();
     if !deps.is_empty() {
         let _ = writeln!(out, "Definitions used:");
@@ -58,7 +51,7 @@ fn check_section(out: &mut String, claim: &Claim, check: &Check, outcome: &Outco
         let _ = writeln!(out, "Assumptions: {}", texts.join("; "));
     }
     match &check.strategy {
-        Strategy::Exact => exact_section(out, claim, check),
+        Strategy::Exact => expansions(out, outcome.record.as_ref()),
         Strategy::Numeric { sampling, .. }
         | Strategy::Gradient { sampling, .. }
         | Strategy::Convex { sampling, .. } => {
@@ -91,17 +84,7 @@ fn check_section(out: &mut String, claim: &Claim, check: &Check, outcome: &Outco
                     )
                 }
             );
-            match trace(&claim.decls, check, STATES) {
-                Ok(lines) => {
-                    let _ = writeln!(out, "First {STATES} sampled states:");
-                    for l in lines {
-                        let _ = writeln!(out, "    {l}");
-                    }
-                }
-                Err(d) => {
-                    let _ = writeln!(out, "(the states cannot be shown: {})", d.message);
-                }
-            }
+            states(out, outcome.record.as_ref());
         }
         Strategy::NotCircle { x, y } => {
             let _ = writeln!(out, "Locus: x = {}, y = {}", x.text, y.text);
@@ -134,60 +117,61 @@ fn check_section(out: &mut String, claim: &Claim, check: &Check, outcome: &Outco
     }
 }
 
-fn exact_section(out: &mut String, claim: &Claim, check: &Check) {
-    let mut env = match ExactEnv::new(&claim.decls, &check.defs, &check.assumptions) {
-        Ok(env) => env,
-        Err(d) => {
-            let _ = writeln!(out, "(cannot expand: {})", d.message);
-            return;
-        }
+/// Each side's canonical expansion, as the decision computed it.
+fn expansions(out: &mut String, record: Option<&Record>) {
+    let Some(record) = record else {
+        let _ = writeln!(out, "(the expansions were not recorded)");
+        return;
     };
-    for (ci, chain) in check.chains.iter().enumerate() {
-        for (si, side) in chain.iter().enumerate() {
-            let _ = writeln!(
-                out,
-                "Chain {}, side {}: {}",
-                ci + 1,
-                si + 1,
-                side.text.trim()
-            );
-            let node = match &side.node {
-                Ok(n) => n,
-                Err(e) => {
-                    let _ = writeln!(out, "    ill-formed as printed: {}", e.message);
-                    continue;
+    for e in &record.expansions {
+        let _ = writeln!(out, "Chain {}, side {}: {}", e.chain, e.side, e.text);
+        match &e.components {
+            Err(why) => {
+                let _ = writeln!(out, "    ({why})");
+            }
+            Ok(components) => {
+                for (at, poly) in components {
+                    let at: Vec<String> = at.iter().map(|(c, i)| format!("{c}={i}")).collect();
+                    let label = if at.is_empty() {
+                        String::new()
+                    } else {
+                        format!("[{}] ", at.join(", "))
+                    };
+                    let _ = writeln!(out, "    {label}= {poly}");
                 }
-            };
-            match env.eval(node, &side.origin) {
-                Ok(v) => {
-                    for (k, idx) in assignments(claim.decls.dim, v.labels.len()).enumerate() {
-                        if k == COMPONENTS {
-                            let _ = writeln!(out, "    … (more components)");
-                            break;
-                        }
-                        let at: Vec<String> = v
-                            .labels
-                            .iter()
-                            .zip(&idx)
-                            .map(|(c, i)| format!("{c}={}", i + 1))
-                            .collect();
-                        let label = if at.is_empty() {
-                            String::new()
-                        } else {
-                            format!("[{}] ", at.join(", "))
-                        };
-                        let _ = writeln!(
-                            out,
-                            "    {label}= {}",
-                            v.tensor.get(&idx).display_truncated(&env.vars, TERMS)
-                        );
-                    }
-                }
-                Err(d) => {
-                    let _ = writeln!(out, "    (cannot expand: {})", d.message);
+                if e.more {
+                    let _ = writeln!(out, "    … (more components)");
                 }
             }
         }
+    }
+}
+
+/// The first states the sampled decision drew, with the values there.
+fn states(out: &mut String, record: Option<&Record>) {
+    let states = record.map(|r| r.states.as_slice()).unwrap_or_default();
+    if states.is_empty() {
+        let _ = writeln!(out, "(no sampled states were recorded)");
+        return;
+    }
+    let _ = writeln!(out, "First {} sampled states:", states.len());
+    for (j, s) in states.iter().enumerate() {
+        let point: Vec<String> = s.point.iter().map(|(a, b)| format!("{a}={b}")).collect();
+        let values: Vec<String> = s
+            .values
+            .iter()
+            .map(|(e, v)| match v {
+                Some(v) => format!("`{e}` = {v:.9}"),
+                None => format!("`{e}` is not a scalar here"),
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "    {}. {}; {}",
+            j + 1,
+            point.join(", "),
+            values.join(", ")
+        );
     }
 }
 
@@ -210,11 +194,11 @@ pub fn render(r: &Decided<'_>) -> String {
         let _ = writeln!(out, "Note: {note}");
     }
     let _ = writeln!(out, "Setting: {}\n", setting(&c.decls));
-    check_section(&mut out, c, &c.check, &r.outcome);
+    check_section(&mut out, &c.check, &r.outcome);
     if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
         let _ = writeln!(out, "\n## Correction\n\n{}\nWhy: {}", k.statement, k.reason);
         let _ = writeln!(out, "Declared: {}", k.expect);
-        check_section(&mut out, c, &k.check, o);
+        check_section(&mut out, &k.check, o);
     }
     out
 }

@@ -6,7 +6,7 @@
 //! the normal).
 
 use super::eval::{component_name, ExactEnv, Labeled};
-use super::finding::Finding;
+use super::finding::{Expansion, Finding, Record};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::Check;
 use crate::kernel::certificate::Identities;
@@ -18,9 +18,102 @@ use std::collections::BTreeMap;
 /// How many terms of a difference polynomial a report shows.
 const SHOWN_TERMS: usize = 12;
 
-/// Decides a check exactly. An error means the check cannot be decided by this
+/// Terms shown per canonical polynomial, components kept per side, in a record.
+const RECORDED_TERMS: usize = 24;
+const RECORDED_COMPONENTS: usize = 27;
+
+/// Decides a check exactly; with `keep`, the outcome records every side's expansion
+/// as the decision computed it. An error means the check cannot be decided by this
 /// strategy (e.g. a square root of a non-square) and is reported as bad input.
-pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+pub fn decide(decls: &Decls, check: &Check, keep: bool) -> Result<Outcome, Diagnostic> {
+    let mut expansions = Vec::new();
+    let record = if keep { Some(&mut expansions) } else { None };
+    let mut outcome = decide_recording(decls, check, record)?;
+    if keep {
+        outcome.record = Some(Record {
+            expansions,
+            states: Vec::new(),
+        });
+    }
+    Ok(outcome)
+}
+
+/// One side's expansion, as the record keeps it.
+fn expansion(
+    env: &ExactEnv<'_>,
+    decls: &Decls,
+    (chain, side): (usize, usize),
+    text: &str,
+    value: Result<&Labeled, String>,
+) -> Expansion {
+    let (components, more) = match value {
+        Err(why) => (Err(why), false),
+        Ok(v) => {
+            let all: Vec<Vec<usize>> = assignments(decls.dim, v.labels.len()).collect();
+            let shown = all
+                .iter()
+                .take(RECORDED_COMPONENTS)
+                .map(|idx| {
+                    let at = v
+                        .labels
+                        .iter()
+                        .zip(idx)
+                        .map(|(&c, &i)| (c, i + 1))
+                        .collect();
+                    (
+                        at,
+                        v.tensor
+                            .get(idx)
+                            .display_truncated(&env.vars, RECORDED_TERMS),
+                    )
+                })
+                .collect();
+            (Ok(shown), all.len() > RECORDED_COMPONENTS)
+        }
+    };
+    Expansion {
+        chain: chain + 1,
+        side: side + 1,
+        text: text.trim().to_owned(),
+        components,
+        more,
+    }
+}
+
+/// Every side of the chains from `from` on, expanded for the record after the
+/// decision is made (so that the record never changes the decision).
+fn expand_rest(
+    env: &mut ExactEnv<'_>,
+    decls: &Decls,
+    check: &Check,
+    from: usize,
+    record: &mut Vec<Expansion>,
+) {
+    for (ci, chain) in check.chains.iter().enumerate().skip(from) {
+        for (si, side) in chain.iter().enumerate() {
+            let value = match &side.node {
+                Err(e) => Err(format!("ill-formed as printed: {}", e.message)),
+                Ok(node) => env
+                    .eval(node, &side.origin)
+                    .map_err(|d| format!("cannot expand: {}", d.message)),
+            };
+            let e = expansion(
+                env,
+                decls,
+                (ci, si),
+                &side.text,
+                value.as_ref().map_err(Clone::clone),
+            );
+            record.push(e);
+        }
+    }
+}
+
+fn decide_recording(
+    decls: &Decls,
+    check: &Check,
+    mut record: Option<&mut Vec<Expansion>>,
+) -> Result<Outcome, Diagnostic> {
     // A verbatim transcription whose indices are ill-formed fails as printed.
     for (ci, chain) in check.chains.iter().enumerate() {
         for (si, side) in chain.iter().enumerate() {
@@ -28,6 +121,11 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                 let mut d = side.origin.diagnostic(e.span, e.message.clone());
                 if let Some(h) = &e.help {
                     d = d.with_help(h.clone());
+                }
+                if let Some(record) = record.as_deref_mut() {
+                    if let Ok(mut env) = ExactEnv::new(decls, &check.defs, &check.assumptions) {
+                        expand_rest(&mut env, decls, check, 0, record);
+                    }
                 }
                 return Ok(Outcome::fails(Method::IndexCheck, Strength::Proof, 1)
                     .with_counterexample(Counterexample {
@@ -46,9 +144,13 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     let mut identities = Identities::new(&normal);
     for (ci, chain) in check.chains.iter().enumerate() {
         let mut values = Vec::with_capacity(chain.len());
-        for side in chain {
+        for (si, side) in chain.iter().enumerate() {
             let node = side.node.as_ref().expect("ill-formed sides handled above");
-            values.push(env.eval(node, &side.origin)?);
+            let value = env.eval(node, &side.origin)?;
+            if let Some(record) = record.as_deref_mut() {
+                record.push(expansion(&env, decls, (ci, si), &side.text, Ok(&value)));
+            }
+            values.push(value);
         }
         for k in 0..chain.len() - 1 {
             let (l, r) = (&values[k], &values[k + 1]);
@@ -89,6 +191,9 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                     {
                         Ok(how) => cx.reverified = Some(how),
                         Err(why) => {
+                            if let Some(record) = record.as_deref_mut() {
+                                expand_rest(&mut env, decls, check, ci + 1, record);
+                            }
                             return Ok(Outcome::undecided(Method::Exact, identities.components())
                                 .with_finding(Finding::Unconfirmed {
                                     difference: cx.difference.clone(),
@@ -96,6 +201,9 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
                                 }));
                         }
                     }
+                }
+                if let Some(record) = record.as_deref_mut() {
+                    expand_rest(&mut env, decls, check, ci + 1, record);
                 }
                 return Ok(
                     Outcome::fails(Method::Exact, Strength::Proof, identities.components())

@@ -1,7 +1,9 @@
 //! What a decision found beyond its verdict and its counterexample, as data: why a
 //! claim is undecided, the witness of an existential claim, how a derivative was
 //! compared. Strategies record a [`Finding`]; only `report` turns it into words
-//! (`report::words`), and JSON carries it as it is.
+//! (`report::words`), and JSON carries it as it is. On request (`explain`), a decision
+//! also keeps a [`Record`] of what it evaluated, so that the explanation shows the
+//! decision's own expansions and states instead of recomputing them.
 
 use crate::derivation::GradientConvention;
 use serde::Serialize;
@@ -132,4 +134,39 @@ pub enum Rejection {
     InterpreterSatisfied { lhs: f64, rhs: f64, residual: f64 },
     /// The interpreter cannot evaluate the sides there.
     CannotEvaluate { message: String },
+}
+
+/// What a decision evaluated, kept when asked (`strategy::decide_recorded`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Record {
+    /// The exact strategy: every side's canonical expansion.
+    pub expansions: Vec<Expansion>,
+    /// The sampled strategies: the first states the decision drew, with the value of
+    /// each side (or of the function) there.
+    pub states: Vec<SampledState>,
+}
+
+/// One side of one chain, expanded.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Expansion {
+    pub chain: usize,
+    pub side: usize,
+    pub text: String,
+    /// Each component: the free indices' values (1-based) and the canonical
+    /// polynomial, truncated; or why the side could not be expanded.
+    pub components: Result<Vec<Component>, String>,
+    /// Whether components were left out.
+    pub more: bool,
+}
+
+/// One component of an expanded side: the free indices' values (1-based) and the
+/// canonical polynomial, truncated.
+pub type Component = (Vec<(char, usize)>, String);
+
+/// A state a sampled decision drew, and the value of each expression there (`None`:
+/// not a scalar or not defined).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SampledState {
+    pub point: Point,
+    pub values: Vec<(String, Option<f64>)>,
 }

@@ -51,15 +51,53 @@ pub fn decide(
     decls: &crate::lang::Decls,
     check: &crate::derivation::Check,
 ) -> Result<Outcome, Diagnostic> {
+    decide_keeping(decls, check, false)
+}
+
+/// Decides one check and keeps what the decision evaluated (`Outcome::record`): the
+/// canonical expansion of every side, or the first states drawn.
+pub fn decide_recorded(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+) -> Result<Outcome, Diagnostic> {
+    decide_keeping(decls, check, true)
+}
+
+fn decide_keeping(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+    keep: bool,
+) -> Result<Outcome, Diagnostic> {
     use crate::derivation::Strategy;
-    match &check.strategy {
-        Strategy::Exact => exact::decide(decls, check),
-        Strategy::Numeric { .. } => numeric::decide_numeric(decls, check),
-        Strategy::Gradient { .. } => numeric::decide_gradient(decls, check),
-        Strategy::Convex { .. } => numeric::decide_convex(decls, check),
+    let sink = sampler::Sink::default();
+    let states = keep.then_some(&sink);
+    let mut outcome = match &check.strategy {
+        Strategy::Exact => exact::decide(decls, check, keep),
+        Strategy::Numeric { .. } => numeric::decide_numeric(decls, check, states),
+        Strategy::Gradient { .. } => numeric::decide_gradient(decls, check, states),
+        Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),
         Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
         Strategy::Appendix { step, origin } => appendix::decide(*step, origin, decls, check),
+    }?;
+    if keep {
+        outcome.record.get_or_insert_with(Default::default).states = sink.into_inner();
     }
+    Ok(outcome)
+}
+
+/// Decides a claim and its correction, keeping what each decision evaluated (for
+/// `explain`).
+pub fn decide_claim_recorded(claim: &Claim) -> Result<Decided<'_>, Diagnostic> {
+    let outcome = decide_recorded(&claim.decls, &claim.check)?;
+    let correction = match &claim.correction {
+        Some(c) => Some(decide_recorded(&claim.decls, &c.check)?),
+        None => None,
+    };
+    Ok(Decided {
+        claim,
+        outcome,
+        correction,
+    })
 }
 
 /// Decides a claim and its correction.

@@ -18,7 +18,7 @@ use super::finding::{Finding, Point, Unresolved};
 use super::quadrature::{self, Level};
 use super::real::component_pairs;
 pub use super::sampler::SINGULAR_EPS;
-use super::sampler::{describe, relation_holds, Sampler, State};
+use super::sampler::{describe, relation_holds, Sampler, Sink, State};
 use super::{
     reverify, search, Counterexample, Method, NumericEvidence, Outcome, Reverified, SearchEvidence,
     Strength,
@@ -415,7 +415,11 @@ impl Tally {
 }
 
 /// Decides a `strategy = "numeric"` check.
-pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+pub fn decide_numeric(
+    decls: &Decls,
+    check: &Check,
+    sink: Option<&Sink>,
+) -> Result<Outcome, Diagnostic> {
     let Strategy::Numeric {
         sampling,
         relation,
@@ -426,6 +430,7 @@ pub fn decide_numeric(decls: &Decls, check: &Check) -> Result<Outcome, Diagnosti
     };
     let anchor = first_side(check)?;
     let mut sampler = Sampler::new(decls, check, sampling, &anchor)?;
+    sampler.record(sink, sides(check));
     let mut tally = Tally::new();
     let (found, search) = sample_and_search(&mut sampler, *relation, &[], &mut tally)?;
     let residual = match relation {
@@ -720,7 +725,11 @@ fn through_adaptive_average(method: Method) -> Outcome {
 }
 
 /// Decides a `strategy = "gradient"` check.
-pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+pub fn decide_gradient(
+    decls: &Decls,
+    check: &Check,
+    sink: Option<&Sink>,
+) -> Result<Outcome, Diagnostic> {
     let Strategy::Gradient {
         sampling,
         function,
@@ -732,6 +741,7 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
     };
     let wrt: Vec<String> = closed_forms.iter().map(|(s, _)| s.clone()).collect();
     let mut sampler = Sampler::new(decls, check, sampling, function)?;
+    sampler.record(sink, vec![function.clone()]);
     let vars =
         variables(&sampler, &wrt).map_err(|m| function.origin.diagnostic(function.node.span, m))?;
     let convention = match (vars.tied.first(), convention) {
@@ -935,7 +945,11 @@ pub fn decide_gradient(decls: &Decls, check: &Check) -> Result<Outcome, Diagnost
 }
 
 /// Decides a `strategy = "convex"` check.
-pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+pub fn decide_convex(
+    decls: &Decls,
+    check: &Check,
+    sink: Option<&Sink>,
+) -> Result<Outcome, Diagnostic> {
     let Strategy::Convex {
         sampling,
         function,
@@ -945,6 +959,7 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         unreachable!("dispatched on the strategy")
     };
     let mut sampler = Sampler::new(decls, check, sampling, function)?;
+    sampler.record(sink, vec![function.clone()]);
     let vars =
         variables(&sampler, wrt).map_err(|m| function.origin.diagnostic(function.node.span, m))?;
     let mut excluded = 0;
@@ -1043,60 +1058,19 @@ pub fn decide_convex(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic
         }))
 }
 
-/// The first `k` sampled states of a sampled check, with the value of every side (or
-/// of the function), for `explain`: the same states the decision used, in order.
-pub fn trace(decls: &Decls, check: &Check, k: usize) -> Result<Vec<String>, Diagnostic> {
-    let (sampling, exprs): (&Sampling, Vec<Expression>) = match &check.strategy {
-        Strategy::Numeric { sampling, .. } => {
-            let sides = check
-                .chains
-                .iter()
-                .flatten()
-                .filter_map(|s| {
-                    s.node.as_ref().ok().map(|n| Expression {
-                        text: s.text.clone(),
-                        origin: s.origin.clone(),
-                        node: n.clone(),
-                    })
-                })
-                .collect();
-            (sampling, sides)
-        }
-        Strategy::Gradient {
-            sampling, function, ..
-        }
-        | Strategy::Convex {
-            sampling, function, ..
-        } => (sampling, vec![function.clone()]),
-        Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. } => {
-            return Ok(Vec::new())
-        }
-    };
-    let Some(anchor) = exprs.first() else {
-        return Ok(Vec::new());
-    };
-    let mut sampler = Sampler::new(decls, check, sampling, anchor)?;
-    let mut excluded = 0;
-    let mut lines = Vec::new();
-    for j in 0..k {
-        let state = sampler.next(&[], &mut excluded)?;
-        let values: Vec<String> = exprs
-            .iter()
-            .map(|e| match sampler.scalar(&state, e) {
-                Ok(v) => format!("`{}` = {v:.9}", e.text.trim()),
-                Err(_) => format!("`{}` is not a scalar here", e.text.trim()),
+/// Every well-formed side of every chain, as an expression (what a recorded numeric
+/// decision keeps the values of).
+fn sides(check: &Check) -> Vec<Expression> {
+    check
+        .chains
+        .iter()
+        .flatten()
+        .filter_map(|s| {
+            s.node.as_ref().ok().map(|n| Expression {
+                text: s.text.clone(),
+                origin: s.origin.clone(),
+                node: n.clone(),
             })
-            .collect();
-        let point: Vec<String> = describe(&state, decls)
-            .into_iter()
-            .map(|(a, b)| format!("{a}={b}"))
-            .collect();
-        lines.push(format!(
-            "{}. {}; {}",
-            j + 1,
-            point.join(", "),
-            values.join(", ")
-        ));
-    }
-    Ok(lines)
+        })
+        .collect()
 }

@@ -12,7 +12,7 @@
 //! o.verdict = Verdict::Holds;
 //! ```
 
-use super::finding::Finding;
+use super::finding::{Finding, Record};
 use crate::derivation::Verdict;
 use crate::kernel::certificate::Certificate;
 use serde::Serialize;
@@ -123,6 +123,8 @@ pub struct Outcome {
     /// What the decision found beyond the verdict (why it is undecided, a witness, how
     /// a derivative was compared), as data.
     pub finding: Option<Finding>,
+    /// What the decision evaluated, when it was asked to keep it.
+    pub record: Option<Record>,
 }
 
 impl Outcome {
@@ -137,6 +139,7 @@ impl Outcome {
             counterexample: None,
             numeric: None,
             finding: None,
+            record: None,
         }
     }
 

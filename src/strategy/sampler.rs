@@ -3,6 +3,7 @@
 //! interpreter as fallback), and describing them in counterexamples.
 
 use super::assume::Parametrisation;
+use super::finding::SampledState;
 use super::float::Rng;
 use super::numeric::TOL;
 use super::quadrature::{Level, Quadrature};
@@ -50,7 +51,16 @@ pub(super) struct Sampler<'a> {
     pub(super) fine: Quadrature,
     pub(super) coarse: Quadrature,
     pub(super) arbiter: Quadrature,
+    /// The first states drawn, with the values of `recording`'s expressions, kept for
+    /// `explain` (nothing is kept unless [`Sampler::record`] asked for it).
+    recording: Option<(usize, Vec<Expression>, &'a Sink)>,
 }
+
+/// Where a sampled decision keeps the states it drew, for `explain`.
+pub type Sink = RefCell<Vec<SampledState>>;
+
+/// How many drawn states a recorded decision keeps.
+pub const RECORDED_STATES: usize = 3;
 
 impl<'a> Sampler<'a> {
     pub(super) fn new(
@@ -70,6 +80,7 @@ impl<'a> Sampler<'a> {
             fine: Quadrature::new(Level::Fine),
             coarse: Quadrature::new(Level::Coarse),
             arbiter: Quadrature::new(Level::Arbiter),
+            recording: None,
         })
     }
 
@@ -298,6 +309,32 @@ impl<'a> Sampler<'a> {
 
     /// The next state satisfying the hypotheses (and `extra`), or an error when they
     /// reject almost every draw. `excluded` counts singular states skipped.
+    /// Keeps the first [`RECORDED_STATES`] states drawn, with the values of `exprs`
+    /// there, in `sink` (when there is one).
+    pub(super) fn record(&mut self, sink: Option<&'a Sink>, exprs: Vec<Expression>) {
+        self.recording = sink.map(|s| (RECORDED_STATES, exprs, s));
+    }
+
+    fn keep(&mut self, state: &State) {
+        let Some((k, exprs, sink)) = &self.recording else {
+            return;
+        };
+        if sink.borrow().len() >= *k {
+            return;
+        }
+        let values = exprs
+            .iter()
+            .map(|e| {
+                let v = self.scalar(state, e).ok().filter(|v| !v.is_nan());
+                (e.text.trim().to_owned(), v)
+            })
+            .collect();
+        sink.borrow_mut().push(SampledState {
+            point: describe(state, self.decls),
+            values,
+        });
+    }
+
     pub(super) fn next(
         &mut self,
         extra: &[Constraint],
@@ -312,6 +349,7 @@ impl<'a> Sampler<'a> {
                 *excluded += 1;
                 continue;
             }
+            self.keep(&s);
             return Ok(s);
         }
         Err(self.error(
