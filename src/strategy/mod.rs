@@ -88,23 +88,18 @@ fn decide_keeping(
 /// Decides a claim and its correction, keeping what each decision evaluated (for
 /// `explain`).
 pub fn decide_claim_recorded(claim: &Claim) -> Result<Decided<'_>, Diagnostic> {
-    let outcome = decide_recorded(&claim.decls, &claim.check)?;
-    let correction = match &claim.correction {
-        Some(c) => Some(decide_recorded(&claim.decls, &c.check)?),
-        None => None,
-    };
-    Ok(Decided {
-        claim,
-        outcome,
-        correction,
-    })
+    decide_claim_keeping(claim, true)
 }
 
 /// Decides a claim and its correction.
 pub fn decide_claim(claim: &Claim) -> Result<Decided<'_>, Diagnostic> {
-    let outcome = decide(&claim.decls, &claim.check)?;
+    decide_claim_keeping(claim, false)
+}
+
+fn decide_claim_keeping(claim: &Claim, keep: bool) -> Result<Decided<'_>, Diagnostic> {
+    let outcome = decide_keeping(&claim.decls, &claim.check, keep)?;
     let correction = match &claim.correction {
-        Some(c) => Some(decide(&claim.decls, &c.check)?),
+        Some(c) => Some(decide_keeping(&claim.decls, &c.check, keep)?),
         None => None,
     };
     Ok(Decided {
