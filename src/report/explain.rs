@@ -127,7 +127,7 @@ fn expansions(out: &mut String, record: Option<&Record>) {
         let _ = writeln!(out, "Chain {}, side {}: {}", e.chain, e.side, e.text);
         match &e.components {
             Err(why) => {
-                let _ = writeln!(out, "    ({why})");
+                let _ = writeln!(out, "    {why}");
             }
             Ok(components) => {
                 for (at, poly) in components {

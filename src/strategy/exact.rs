@@ -95,7 +95,7 @@ fn expand_rest(
                 Err(e) => Err(format!("ill-formed as printed: {}", e.message)),
                 Ok(node) => env
                     .eval(node, &side.origin)
-                    .map_err(|d| format!("cannot expand: {}", d.message)),
+                    .map_err(|d| format!("(cannot expand: {})", d.message)),
             };
             let e = expansion(
                 env,

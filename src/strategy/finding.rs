@@ -153,7 +153,8 @@ pub struct Expansion {
     pub side: usize,
     pub text: String,
     /// Each component: the free indices' values (1-based) and the canonical
-    /// polynomial, truncated; or why the side could not be expanded.
+    /// polynomial, truncated; or why the side could not be expanded, as `explain`
+    /// prints it.
     pub components: Result<Vec<Component>, String>,
     /// Whether components were left out.
     pub more: bool,
