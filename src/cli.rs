@@ -7,7 +7,7 @@ use crate::report;
 use crate::strategy::{decide_claim, decide_claim_recorded, Decided};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// Checks the derivations of Papanicolopoulos & Veveakis, "Sliding and rolling
@@ -183,7 +183,8 @@ impl Progress {
     fn done(&mut self, n: usize) {
         if self.shown {
             eprintln!(
-                "\r\x1b[2Kdecided {n} claims in {:.1} s",
+                "\r\x1b[2Kdecided {n} claim{} in {:.1} s",
+                if n == 1 { "" } else { "s" },
                 self.started.elapsed().as_secs_f64()
             );
         }
@@ -293,26 +294,75 @@ fn read(dir: Option<PathBuf>, files: &[PathBuf]) -> Result<Vec<DerivationFile>, 
     })
 }
 
-/// Renders `rows` in the requested format.
-fn render(rows: &[Decided<'_>], args: &OutputArgs, errata: bool) -> String {
+/// Renders `rows` in the requested format, credited to the papers of the rows (of
+/// the files read, when there are no rows) before the errata filter.
+fn render(
+    files: &[DerivationFile],
+    rows: &[Decided<'_>],
+    args: &OutputArgs,
+    errata: bool,
+) -> String {
+    let papers: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
+    let paper = report::paper_of(&report::refs(rows), &papers);
     let rows: Vec<&Decided<'_>> = rows
         .iter()
         .filter(|r| !errata || report::is_erratum(r))
         .collect();
     match (args.format, errata) {
-        (Format::Markdown, false) => report::markdown::render(&rows),
-        (Format::Markdown, true) => report::errata::markdown(&rows),
-        (Format::Latex, false) => report::latex::render(&rows, args.standalone),
-        (Format::Latex, true) => report::latex::errata(&rows, args.standalone),
-        (Format::Json, _) => report::json::render(&rows),
+        (Format::Markdown, false) => report::markdown::render(&rows, &paper),
+        (Format::Markdown, true) => report::errata::markdown(&rows, &paper),
+        (Format::Latex, false) => report::latex::render(&rows, args.standalone, &paper),
+        (Format::Latex, true) => report::latex::errata(&rows, args.standalone, &paper),
+        (Format::Json, _) => report::json::render(&rows, &paper),
         (Format::Csv, _) => report::csv::render(&rows),
     }
 }
 
-fn emit(text: &str, out_file: &Option<PathBuf>, out: &mut dyn Write) -> Result<(), RunError> {
+/// `--out` must not name a file that was read as input.
+fn refuse_inputs(path: &Path, inputs: &[&str]) -> Result<(), RunError> {
+    let Ok(target) = path.canonicalize() else {
+        return Ok(()); // It does not exist yet, so it is no input.
+    };
+    for input in inputs {
+        if Path::new(input).canonicalize().is_ok_and(|p| p == target) {
+            return Err(RunError::Input(format!(
+                "error: --out {} is an input file; refusing to write the table over it\n  \
+                 = help: name another file",
+                path.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Writes through `FILE.tmp-PID` beside `path`, then renames it over `path`.
+fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(format!(".tmp-{}", std::process::id()));
+    let tmp = path.with_file_name(name);
+    let written = std::fs::write(&tmp, text).and_then(|()| std::fs::rename(&tmp, path));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    written
+}
+
+/// Writes `text` to `out_file` (or `out`). A file is never one of the `inputs`, and is
+/// written through a temporary file in the same directory renamed over it, so that an
+/// interrupted run never leaves half a table.
+fn emit(
+    text: &str,
+    out_file: &Option<PathBuf>,
+    inputs: &[&str],
+    out: &mut dyn Write,
+) -> Result<(), RunError> {
     match out_file {
-        Some(path) => std::fs::write(path, text)
-            .map_err(|e| RunError::Input(format!("error: cannot write {}: {e}", path.display())))?,
+        Some(path) => {
+            refuse_inputs(path, inputs)?;
+            write_atomically(path, text).map_err(|e| {
+                RunError::Input(format!("error: cannot write {}: {e}", path.display()))
+            })?
+        }
         None => {
             out.write_all(text.as_bytes())?;
             out.flush()?;
@@ -333,7 +383,13 @@ fn table(
         progress.tick(k, n, id)
     })?;
     progress.done(rows.len());
-    emit(&render(&rows, args, errata), &args.out, out)?;
+    let inputs: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
+    emit(
+        &render(&files, &rows, args, errata),
+        &args.out,
+        &inputs,
+        out,
+    )?;
     Ok(if rows.iter().all(Decided::as_expected) {
         Status::AsExpected
     } else {
@@ -363,13 +419,13 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Status, RunError> {
                 FigureFormat::Svg => crate::model::fig6::svg(&rows)
                     .map_err(|e| RunError::Input(format!("error: {e}")))?,
             };
-            emit(&text, &a.out, out)?;
+            emit(&text, &a.out, &[], out)?;
             Ok(Status::AsExpected)
         }
         Command::Explain(a) => {
             let files = read(a.dir, &a.files)?;
             let rows = decide_with_progress(&files, Some(&a.id), true, &mut |_, _, _| {})?;
-            emit(&report::explain::render(&rows[0]), &None, out)?;
+            emit(&report::explain::render(&rows[0]), &None, &[], out)?;
             Ok(if rows[0].as_expected() {
                 Status::AsExpected
             } else {

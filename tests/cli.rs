@@ -363,3 +363,97 @@ fn fig6_writes_the_table_and_the_plot() {
     assert_eq!(again.stdout, picture.as_bytes());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A user's file with one claim that holds, with or without `paper = …`.
+fn user_file(paper: Option<&str>) -> String {
+    let paper = paper.map_or(String::new(), |p| format!("paper = \"{p}\"\n"));
+    format!(
+        "{paper}section = \"t\"\ntitle = \"mine\"\ndimension = 3\nscalars = [\"x\"]\n\n[[claim]]\nid = \"sq\"\nprinted = 'x'\nexpect = \"holds\"\nsides = [\"(x + 1)^2\", \"x^2 + 2 x + 1\"]\n"
+    )
+}
+
+#[test]
+fn a_user_file_is_never_credited_to_the_paper() {
+    let dir = dir_with("untitled", &user_file(None));
+    let file = dir.join("claims.toml");
+    let untitled = format!("untitled derivations: {}", file.display());
+    for format in ["markdown", "latex", "json"] {
+        // A LaTeX fragment names no work; the standalone document does.
+        let out = run(&[
+            "verify",
+            file.to_str().unwrap(),
+            "--format",
+            format,
+            "--standalone",
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        let stdout = text(&out.stdout);
+        assert!(!stdout.contains("Papanicolopoulos"), "{format}: {stdout}");
+        let shown = if format == "latex" {
+            untitled.replace('_', "\\_")
+        } else {
+            untitled.clone()
+        };
+        assert!(stdout.contains(&shown), "{format}: {stdout}");
+    }
+    // The errata of a directory with nothing failing are credited the same way.
+    let out = run(&["errata", "--dir", dir.to_str().unwrap()]);
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("untitled derivations:") && !stdout.contains("Papanicolopoulos"));
+    // A title, when the file gives one, is used as written.
+    let dir = dir_with("titled", &user_file(Some("My notes on plasticity")));
+    let out = run(&["verify", dir.join("claims.toml").to_str().unwrap()]);
+    assert!(text(&out.stdout).contains("\nMy notes on plasticity.\n"));
+    // One claim is "1 claim".
+    assert!(
+        text(&out.stdout).contains("1 claim: 1 hold,"),
+        "{}",
+        text(&out.stdout)
+    );
+}
+
+#[test]
+fn out_never_overwrites_an_input_file() {
+    let dir = dir_with("overwrite", &user_file(None));
+    let file = dir.join("claims.toml");
+    let before = std::fs::read(&file).unwrap();
+    // The same file, and the same file under another spelling.
+    let other = dir.join(".").join("claims.toml");
+    for target in [&file, &other] {
+        let out = run(&[
+            "verify",
+            file.to_str().unwrap(),
+            "--out",
+            target.to_str().unwrap(),
+        ]);
+        assert_eq!(out.status.code(), Some(2));
+        assert!(
+            text(&out.stderr).contains("is an input file"),
+            "{}",
+            text(&out.stderr)
+        );
+        assert_eq!(
+            std::fs::read(&file).unwrap(),
+            before,
+            "the input is untouched"
+        );
+    }
+    // Another file is written whole, and no temporary file is left beside it.
+    let table = dir.join("table.md");
+    let out = run(&[
+        "verify",
+        file.to_str().unwrap(),
+        "--out",
+        table.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(std::fs::read_to_string(&table)
+        .unwrap()
+        .starts_with("# Derivation table"));
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(Result::ok)
+        .filter(|e| e.file_name().to_string_lossy().contains(".tmp-"))
+        .collect();
+    assert!(leftovers.is_empty());
+}

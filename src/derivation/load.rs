@@ -200,6 +200,7 @@ impl Loader {
         }
         Ok((
             DerivationFile {
+                paper: self.paper(&raw),
                 path: self.file.path.clone(),
                 section: raw.section.get_ref().clone(),
                 title: raw.title.get_ref().clone(),
@@ -643,6 +644,15 @@ impl Loader {
         })
     }
 
+    /// The work a file's claims are credited to: its `paper = …`, or, without one,
+    /// "untitled derivations: FILE" (a user's file never inherits another paper's name).
+    fn paper(&self, raw: &RawFile) -> String {
+        match &raw.paper {
+            Some(p) => p.get_ref().clone(),
+            None => format!("untitled derivations: {}", self.file.path),
+        }
+    }
+
     fn claim(
         &self,
         c: &RawClaim,
@@ -719,11 +729,7 @@ impl Loader {
             }
         };
         Ok(Claim {
-            paper: raw
-                .paper
-                .as_ref()
-                .map_or(super::model::PAPER, |p| p.get_ref().as_str())
-                .to_owned(),
+            paper: self.paper(raw),
             id: c.id.get_ref().clone(),
             section: c.section.as_ref().unwrap_or(&raw.section).get_ref().clone(),
             statement: c.printed.get_ref().clone(),

@@ -13,5 +13,4 @@ pub use load::{load_dir, load_files, load_str, LoadError};
 pub use model::{
     AppendixStep, Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Definition,
     DerivationFile, Expression, GradientConvention, Relation, Sampling, Side, Strategy, Verdict,
-    PAPER,
 };

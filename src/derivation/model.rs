@@ -379,11 +379,7 @@ pub struct Correction {
     pub check: Check,
 }
 
-/// The paper of this corpus, the default `paper` of a derivation file.
-pub const PAPER: &str =
-    "Papanicolopoulos & Veveakis, Sliding and rolling dissipation in Cosserat plasticity";
-
-/// One checkable statement of the paper.
+/// One checkable statement of a derivation file.
 #[derive(Clone, Debug)]
 pub struct Claim {
     /// The work the claim comes from.
@@ -408,6 +404,9 @@ pub struct Claim {
 /// A whole derivation file, checked.
 #[derive(Clone, Debug)]
 pub struct DerivationFile {
+    /// The work the claims are credited to (`paper = …`, or "untitled derivations:
+    /// FILE").
+    pub paper: String,
     pub path: String,
     pub section: String,
     pub title: String,

@@ -11,7 +11,7 @@ pub type S = Spanned<String>;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawFile {
-    /// The work the claims come from (defaults to the paper of this corpus).
+    /// The work the claims come from; without it, "untitled derivations: FILE".
     pub paper: Option<S>,
     pub section: S,
     pub title: S,

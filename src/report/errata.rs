@@ -2,14 +2,14 @@
 //! the counterexample, the correction and its verdict, and the reason — ready to paste
 //! into an erratum.
 
+use super::evidence;
 use super::markdown::{math, statement};
-use super::{evidence, paper_of};
 use crate::strategy::Decided;
 use std::fmt::Write as _;
 
 /// The errata in Markdown, one section per statement.
-pub fn markdown(rows: &[&Decided<'_>]) -> String {
-    let mut out = format!("# Errata\n\n{}.\n\n", paper_of(rows));
+pub fn markdown(rows: &[&Decided<'_>], paper: &str) -> String {
+    let mut out = format!("# Errata\n\n{paper}.\n\n");
     if rows.is_empty() {
         out.push_str("Every printed statement checked holds.\n");
         return out;

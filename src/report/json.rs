@@ -5,7 +5,7 @@
 //! null), `counterexample`, `correction`), and
 //! `summary` (`holds`, `fails`, `conditional`, `undecided`, `unexpected`).
 
-use super::{paper_of, Summary};
+use super::Summary;
 use crate::kernel::certificate::Certificate;
 use crate::strategy::finding::Finding;
 use crate::strategy::{Counterexample, Decided, Method, NumericEvidence, Strength};
@@ -56,7 +56,7 @@ struct CorrectionRow<'a> {
 }
 
 /// Renders the table as pretty-printed JSON (deterministic: fixed field order).
-pub fn render(rows: &[&Decided<'_>]) -> String {
+pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
     let claims = rows
         .iter()
         .map(|r| {
@@ -97,9 +97,8 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
             }
         })
         .collect();
-    let paper = paper_of(rows);
     let report = Report {
-        paper: &paper,
+        paper,
         claims,
         summary: Summary::of(rows),
     };

@@ -1,7 +1,7 @@
 //! The derivation table in Markdown, with statements as inline LaTeX (`$…$`), ready to
 //! paste into a README, a review or an erratum.
 
-use super::{full_evidence, paper_of, verdict_label, Summary};
+use super::{full_evidence, verdict_label, Summary};
 use crate::strategy::Decided;
 use std::fmt::Write as _;
 
@@ -18,10 +18,10 @@ pub fn math(s: &str) -> String {
 }
 
 /// Renders the whole table with its summary line.
-pub fn render(rows: &[&Decided<'_>]) -> String {
+pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "# Derivation table\n");
-    let _ = writeln!(out, "{}.\n", paper_of(rows));
+    let _ = writeln!(out, "{paper}.\n");
     let _ = writeln!(
         out,
         "| claim | § | statement (as printed) | verdict | method | evidence |"

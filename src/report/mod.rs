@@ -12,21 +12,23 @@ pub mod words;
 use crate::strategy::{Counterexample, Decided, Outcome};
 use serde::Serialize;
 
-pub use crate::derivation::PAPER;
-
-/// The work the rows come from: the papers of their files, in order, or this corpus's.
-pub fn paper_of(rows: &[&Decided<'_>]) -> String {
+/// The work a table is credited to: the papers of its rows' files, in order; with no
+/// rows, the papers of the files read (`files_papers`). A file without `paper = …` is
+/// "untitled derivations: FILE", never another work.
+pub fn paper_of(rows: &[&Decided<'_>], files_papers: &[&str]) -> String {
     let mut papers: Vec<&str> = Vec::new();
-    for r in rows {
-        if !papers.contains(&r.claim.paper.as_str()) {
-            papers.push(&r.claim.paper);
+    let all = rows.iter().map(|r| r.claim.paper.as_str());
+    let all: Vec<&str> = if rows.is_empty() {
+        files_papers.to_vec()
+    } else {
+        all.collect()
+    };
+    for p in all {
+        if !papers.contains(&p) {
+            papers.push(p);
         }
     }
-    if papers.is_empty() {
-        PAPER.to_owned()
-    } else {
-        papers.join("; ")
-    }
+    papers.join("; ")
 }
 
 /// Verdict counts over a table.
@@ -51,8 +53,12 @@ impl Summary {
             String::new()
         };
         format!(
-            "{n} claims: {} hold, {} fail, {} conditional{undecided}; {} unexpected.",
-            self.holds, self.fails, self.conditional, self.unexpected
+            "{n} claim{}: {} hold, {} fail, {} conditional{undecided}; {} unexpected.",
+            if n == 1 { "" } else { "s" },
+            self.holds,
+            self.fails,
+            self.conditional,
+            self.unexpected
         )
     }
 
