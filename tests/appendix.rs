@@ -371,6 +371,19 @@ fn figure_columns_follow_the_two_routes() {
             assert!((r.derived[k].unwrap() - expected).abs() <= 1e-9 * expected);
         }
     }
-    assert_eq!(fig6::decimal(0.05), "0.0500000000000");
+    // Grid values as written; other values to 12 significant digits, no trailing zeros.
+    assert_eq!(fig6::decimal(0.05), "0.05");
+    assert_eq!(fig6::decimal(3.0), "3");
+    assert_eq!(fig6::decimal(1.25), "1.25");
     assert_eq!(fig6::decimal(15.825916248913), "15.8259162489");
+    assert_eq!(fig6::decimal(66.12287614497), "66.122876145");
+    assert_eq!(fig6::decimal(0.0), "0");
+    let csv = fig6::csv(&rows);
+    let grid: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(&grid[..4], ["0.05", "0.1", "0.15", "0.2"]);
+    assert_eq!(grid[59], "3");
 }
