@@ -129,6 +129,18 @@ pub struct Side {
     pub node: Result<Node, LangError>,
 }
 
+impl Side {
+    /// The side as an expression to evaluate, or its index error.
+    pub fn expression(&self) -> Result<Expression, &LangError> {
+        let node = self.node.as_ref()?;
+        Ok(Expression {
+            text: self.text.clone(),
+            origin: self.origin.clone(),
+            node: node.clone(),
+        })
+    }
+}
+
 /// Everything needed to decide one statement: definitions, assumptions and one or
 /// more chains `a = b = c` whose consecutive members must be equal.
 #[derive(Clone, Debug)]

@@ -220,14 +220,8 @@ fn first_side(check: &Check) -> Result<Expression, Diagnostic> {
         .first()
         .and_then(|c| c.first())
         .expect("numeric checks have sides");
-    match &side.node {
-        Ok(node) => Ok(Expression {
-            text: side.text.clone(),
-            origin: side.origin.clone(),
-            node: node.clone(),
-        }),
-        Err(e) => Err(side.origin.diagnostic(e.span, e.message.clone())),
-    }
+    side.expression()
+        .map_err(|e| side.origin.diagnostic(e.span, e.message.clone()))
 }
 
 /// The evidence of a sampled verdict; `derivatives` says the singular set is where the
@@ -1065,12 +1059,6 @@ fn sides(check: &Check) -> Vec<Expression> {
         .chains
         .iter()
         .flatten()
-        .filter_map(|s| {
-            s.node.as_ref().ok().map(|n| Expression {
-                text: s.text.clone(),
-                origin: s.origin.clone(),
-                node: n.clone(),
-            })
-        })
+        .filter_map(|s| s.expression().ok())
         .collect()
 }
