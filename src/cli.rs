@@ -18,9 +18,13 @@ use std::time::{Duration, Instant};
 #[command(
     after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then).\nSee README.md for the derivation-file format."
 )]
+#[command(args_conflicts_with_subcommands = true)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Without a subcommand, the options of `check`.
+    #[command(flatten)]
+    pub check: CheckArgs,
 }
 
 #[derive(Debug, Subcommand)]
@@ -62,9 +66,10 @@ pub enum FigureFormat {
 /// Options shared by the commands that print a table.
 #[derive(Debug, Clone, clap::Args, Default)]
 pub struct OutputArgs {
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = Format::Markdown)]
-    pub format: Format,
+    /// Output format [default: compact when standard output is a terminal and there
+    /// is no --out, else markdown]. Piped output is always byte-identical.
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
     /// With --format latex: a complete document instead of a table fragment.
     #[arg(long)]
     pub standalone: bool,
@@ -97,10 +102,11 @@ pub struct ExplainArgs {
     /// The claim to explain (e.g. eq33).
     pub id: String,
     /// Directory of derivation files (as for `check`).
-    #[arg(long, value_name = "DIR")]
+    #[arg(long, value_name = "DIR", conflicts_with = "files")]
     pub dir: Option<PathBuf>,
-    /// Derivation files to read instead of a directory.
-    #[arg(long = "file", value_name = "FILE")]
+    /// Derivation files to read instead of a directory (one or more after one
+    /// `--file`, which may also be repeated).
+    #[arg(long = "file", value_name = "FILE", num_args = 1..)]
     pub files: Vec<PathBuf>,
 }
 
@@ -115,7 +121,10 @@ pub struct VerifyArgs {
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum Format {
-    /// A Markdown table with statements as inline LaTeX.
+    /// One line per claim (verdict, strength, method, a short line of evidence),
+    /// failures highlighted; the default on a terminal.
+    Compact,
+    /// A Markdown table with statements as inline LaTeX and the full evidence.
     #[default]
     Markdown,
     /// A LaTeX longtable (a fragment; --standalone for a whole document).
@@ -301,6 +310,7 @@ fn render(
     rows: &[Decided<'_>],
     args: &OutputArgs,
     errata: bool,
+    terminal: bool,
 ) -> String {
     let papers: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
     let paper = report::paper_of(&report::refs(rows), &papers);
@@ -308,7 +318,17 @@ fn render(
         .iter()
         .filter(|r| !errata || report::is_erratum(r))
         .collect();
-    match (args.format, errata) {
+    let format = args.format.unwrap_or(if terminal && args.out.is_none() {
+        Format::Compact
+    } else {
+        Format::Markdown
+    });
+    match (format, errata) {
+        (Format::Compact, _) => report::compact::render(
+            &rows,
+            &paper,
+            terminal && args.out.is_none() && std::env::var_os("NO_COLOR").is_none(),
+        ),
         (Format::Markdown, false) => report::markdown::render(&rows, &paper),
         (Format::Markdown, true) => report::errata::markdown(&rows, &paper),
         (Format::Latex, false) => report::latex::render(&rows, args.standalone, &paper),
@@ -375,7 +395,7 @@ fn table(
     mut files: Vec<DerivationFile>,
     args: &OutputArgs,
     errata: bool,
-    out: &mut dyn Write,
+    out: &mut Output<'_>,
 ) -> Result<Status, RunError> {
     override_sampling(&mut files, args.seed, args.samples);
     let mut progress = Progress::new();
@@ -385,10 +405,10 @@ fn table(
     progress.done(rows.len());
     let inputs: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
     emit(
-        &render(&files, &rows, args, errata),
+        &render(&files, &rows, args, errata, out.terminal),
         &args.out,
         &inputs,
-        out,
+        out.stream,
     )?;
     Ok(if rows.iter().all(Decided::as_expected) {
         Status::AsExpected
@@ -397,12 +417,17 @@ fn table(
     })
 }
 
+/// Where a run writes its report.
+pub struct Output<'a> {
+    pub stream: &'a mut dyn Write,
+    /// Whether `stream` is a terminal: the table is then compact and coloured unless
+    /// a format is asked for.
+    pub terminal: bool,
+}
+
 /// Runs the command line, writing the report to `out`.
-pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Status, RunError> {
-    match cli
-        .command
-        .unwrap_or_else(|| Command::Check(CheckArgs::default()))
-    {
+pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
+    match cli.command.unwrap_or(Command::Check(cli.check)) {
         Command::Check(a) => table(read(a.dir, &[])?, &a.output, false, out),
         Command::Errata(a) => table(read(a.dir, &[])?, &a.output, true, out),
         Command::Verify(a) => table(read(None, &a.files)?, &a.output, false, out),
@@ -419,13 +444,13 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<Status, RunError> {
                 FigureFormat::Svg => crate::model::fig6::svg(&rows)
                     .map_err(|e| RunError::Input(format!("error: {e}")))?,
             };
-            emit(&text, &a.out, &[], out)?;
+            emit(&text, &a.out, &[], out.stream)?;
             Ok(Status::AsExpected)
         }
         Command::Explain(a) => {
             let files = read(a.dir, &a.files)?;
             let rows = decide_with_progress(&files, Some(&a.id), true, &mut |_, _, _| {})?;
-            emit(&report::explain::render(&rows[0]), &None, &[], out)?;
+            emit(&report::explain::render(&rows[0]), &None, &[], out.stream)?;
             Ok(if rows[0].as_expected() {
                 Status::AsExpected
             } else {

@@ -7,6 +7,7 @@
 
 pub mod cli;
 pub mod derivation;
+pub mod digits;
 pub mod kernel;
 pub mod lang;
 pub mod model;

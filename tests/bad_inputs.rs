@@ -4,7 +4,7 @@
 //! as a diff to review.
 
 use clap::Parser;
-use cosserat_check::cli::{run, Cli, RunError};
+use cosserat_check::cli::{run, Cli, Output, RunError};
 use std::path::Path;
 
 fn bad_files() -> Vec<String> {
@@ -27,7 +27,15 @@ fn every_bad_file_gets_a_located_message_and_no_output() {
         let path = format!("tests/bad/{name}");
         let cli = Cli::try_parse_from(["cosserat-check", "verify", &path]).unwrap();
         let mut out = Vec::new();
-        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(cli, &mut out)));
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            run(
+                cli,
+                &mut Output {
+                    stream: &mut out,
+                    terminal: false,
+                },
+            )
+        }));
         let message = match result {
             Err(_) => panic!("{name}: the checker panicked"),
             Ok(Ok(status)) => panic!("{name}: accepted ({status:?}) instead of refused"),

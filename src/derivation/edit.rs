@@ -3,11 +3,8 @@
 //! original. The original claim is never modified.
 
 use super::model::{Check, Side};
-use crate::lang::{
-    parse_expr, Decls, DefSig, LangError, NodeKind, Origin, Scope, SourceFile, Target,
-};
+use crate::lang::{parse_expr, Decls, DefSig, LangError, Origin, Scope, SourceFile};
 use crate::lang::{ErrorKind, Node};
-use std::collections::BTreeSet;
 
 fn parse_checked(decls: &Decls, sigs: &[DefSig], text: &str) -> Result<(Node, Origin), LangError> {
     let origin = Origin::whole(SourceFile::new("<edited>", text));
@@ -71,46 +68,5 @@ impl Check {
         out.defs[index].origin = origin;
         out.defs[index].text = format!("{} = {body}", def.sig.name);
         Ok(out)
-    }
-
-    /// Indices (into `defs`) of the definitions the sides depend on, directly or
-    /// through other definitions, in definition order.
-    pub fn dependencies(&self) -> Vec<usize> {
-        let mut names = BTreeSet::new();
-        let mut stack: Vec<&Node> = self
-            .chains
-            .iter()
-            .flatten()
-            .filter_map(|s| s.node.as_ref().ok())
-            .collect();
-        stack.extend(self.strategy.expressions().into_iter().map(|e| &e.node));
-        while let Some(n) = stack.pop() {
-            match &n.kind {
-                NodeKind::Leaf {
-                    target: Target::Def(name),
-                    ..
-                } => {
-                    if names.insert(name.clone()) {
-                        if let Some(d) = self.defs.iter().rev().find(|d| &d.sig.name == name) {
-                            stack.push(&d.body);
-                        }
-                    }
-                }
-                NodeKind::Leaf { .. } | NodeKind::Const(_) => {}
-                NodeKind::Sum(xs) | NodeKind::Product(xs) => stack.extend(xs),
-                NodeKind::Div(a, b) => {
-                    stack.push(a);
-                    stack.push(b);
-                }
-                NodeKind::Neg(a)
-                | NodeKind::Pow(a, _)
-                | NodeKind::Apply(_, a)
-                | NodeKind::Avg(a)
-                | NodeKind::MaxN(a) => stack.push(a),
-            }
-        }
-        (0..self.defs.len())
-            .filter(|&k| names.contains(&self.defs[k].sig.name))
-            .collect()
     }
 }

@@ -328,6 +328,11 @@ impl Loader {
         let body = self.rhs(&origin, text, eq, decls, &sigs)?;
         let mut want = formal.clone();
         want.sort_unstable();
+        let body = if body.is_literal_zero() {
+            body.zero_with_free(&want)
+        } else {
+            body
+        };
         if body.free_letters() != want {
             return Err(origin
                 .diagnostic(

@@ -6,6 +6,7 @@ pub mod edit;
 pub mod load;
 pub mod model;
 mod raw;
+mod reads;
 mod spans;
 mod spec;
 
@@ -14,3 +15,4 @@ pub use model::{
     AppendixStep, Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Definition,
     DerivationFile, Expression, GradientConvention, Relation, Sampling, Side, Strategy, Verdict,
 };
+pub use reads::Reads;

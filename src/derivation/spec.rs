@@ -177,6 +177,11 @@ impl Loader {
         let node = Scope { decls, defs: sigs }
             .check(&e)
             .map_err(|e| self.lang(&origin, e))?;
+        let node = if node.is_literal_zero() {
+            node.zero_with_free(free)
+        } else {
+            node
+        };
         if node.free_letters() != free {
             return Err(origin
                 .diagnostic(

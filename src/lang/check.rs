@@ -86,6 +86,20 @@ impl Node {
         matches!(&self.kind, NodeKind::Const(q) if q.is_zero())
     }
 
+    /// The literal `0` standing for a zero tensor with the free indices `letters`
+    /// (sorted), where a context expects them: a definition `z_ij = 0`, a closed-form
+    /// gradient `mu = "0"`. Every route evaluates a constant with free indices as that
+    /// constant in every component.
+    pub fn zero_with_free(&self, letters: &[char]) -> Node {
+        debug_assert!(self.is_literal_zero());
+        Node {
+            kind: NodeKind::Const(Rational::int(0)),
+            free: letters.iter().map(|&c| (c, self.span)).collect(),
+            bound: Vec::new(),
+            span: self.span,
+        }
+    }
+
     /// Whether two sides of an equation carry the same free indices (the literal `0`
     /// matches any): the one rule every reader of sides applies.
     pub fn matches_free_indices(&self, other: &Node) -> bool {
@@ -344,6 +358,10 @@ impl Scope<'_> {
         let mut nodes: Vec<Node> = Vec::with_capacity(terms.len());
         for (neg, t) in terms {
             let n = self.check(t)?;
+            // The literal 0 is a zero of any rank: as a term it adds nothing.
+            if n.is_literal_zero() {
+                continue;
+            }
             if let Some(first) = nodes.first() {
                 if first.free_letters() != n.free_letters() {
                     return Err(LangError::new(
@@ -365,7 +383,10 @@ impl Scope<'_> {
                 n
             });
         }
-        let free = nodes[0].free.clone();
+        let Some(first) = nodes.first() else {
+            return Ok(leafless(NodeKind::Const(Rational::int(0)), e.span));
+        };
+        let free = first.free.clone();
         let bound = nodes.iter().flat_map(|n| n.bound.iter().copied()).collect();
         Ok(Node {
             kind: NodeKind::Sum(nodes),

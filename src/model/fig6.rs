@@ -45,21 +45,10 @@ pub fn rows(p: &Params, d: &Derivation) -> Vec<Row> {
         .collect()
 }
 
-/// `x` as a plain decimal rounded to 12 significant digits, without trailing zeros:
-/// a grid value such as 0.05 is printed as it is written.
+/// A CSV cell: 12 significant digits without trailing zeros, so that a grid value such
+/// as 0.05 is printed as it is written.
 pub fn decimal(x: f64) -> String {
-    let magnitude = if x == 0.0 {
-        0
-    } else {
-        x.abs().log10().floor() as i32
-    };
-    let decimals = (11 - magnitude).max(0) as usize;
-    let s = format!("{x:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        s
-    }
+    crate::digits::significant(x, 12)
 }
 
 /// The CSV: `f_r,paper,nu=0,nu=0.25,nu=0.45`, empty cells where A is not real.

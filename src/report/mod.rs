@@ -1,6 +1,7 @@
 //! Reports: the derivation table in Markdown and JSON. Rendering only; every verdict
 //! has been decided before anything here runs.
 
+pub mod compact;
 pub mod csv;
 pub mod errata;
 pub mod explain;
@@ -132,9 +133,17 @@ pub fn full_evidence(r: &Decided<'_>, statement: &dyn Fn(&str) -> String) -> Str
 pub fn evidence(o: &Outcome) -> String {
     let mut parts = Vec::new();
     if let Some(n) = &o.numeric {
+        let within = n
+            .domain
+            .as_ref()
+            .map(|d| format!(" with {d}"))
+            .unwrap_or_default();
         let mut line = format!(
-            "{} samples (seed {}), {} {:.1e}, tolerance {}",
-            n.samples, n.seed, n.residual, n.largest_residual, n.tolerance
+            "{} samples{within} (seed {}): {}, tolerance {}",
+            n.samples,
+            n.seed,
+            words::measure(n.residual, n.largest_residual, false),
+            n.tolerance
         );
         if let Some(x) = &n.exclusion {
             line.push_str(&format!("; excluded {} samples with {x}", n.excluded));
@@ -142,10 +151,10 @@ pub fn evidence(o: &Outcome) -> String {
         if let Some(s) = &n.search {
             let at: Vec<String> = s.at.iter().map(|(k, v)| format!("{k}={v}")).collect();
             line.push_str(&format!(
-                "; search for the worst case: {} evaluations from {} starts, worst {:.1e} at {}",
+                "; search for the worst case: {} evaluations from {} starts, {} at {}",
                 s.evaluations,
                 s.starts,
-                s.worst_margin,
+                words::measure(n.residual, s.worst_margin, true),
                 at.join(", ")
             ));
         }
@@ -178,22 +187,29 @@ fn counterexample_text(cx: &Counterexample) -> String {
     if let Some(m) = &cx.ill_formed {
         parts.push(format!("ill-formed: {m}"));
     }
-    if cx.difference.is_empty() && cx.lhs_value.is_some() {
-        // A numeric counterexample: a sample where the relation fails.
+    if cx.difference.is_empty() && (cx.lhs_value.is_some() || !cx.aux.is_empty()) {
+        // A sampled counterexample: a state where the relation fails, its values
+        // there, then the numbers that are not coordinates of the state.
         let at = if cx.indices.is_empty() {
             String::new()
         } else {
             let idx: Vec<String> = cx.indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
             format!(" at {}", idx.join(", "))
         };
+        let values = match (&cx.lhs_value, &cx.rhs_value) {
+            (Some(l), Some(r)) => format!(": left {l}, right {r}"),
+            _ => String::new(),
+        };
         let pts: Vec<String> = cx.point.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let state = if pts.is_empty() {
+            "with every variable it reads 0".to_owned()
+        } else {
+            format!("at {}", pts.join(", "))
+        };
+        let aux: String = cx.aux.iter().map(|(k, v)| format!("; {k} {v}")).collect();
         parts.push(format!(
-            "counterexample to `{}` vs `{}`{at}: left {}, right {} at {}",
-            cx.lhs,
-            cx.rhs,
-            cx.lhs_value.as_deref().unwrap_or("?"),
-            cx.rhs_value.as_deref().unwrap_or("?"),
-            pts.join(", ")
+            "counterexample to `{}` vs `{}`{at}{values} {state}{aux}",
+            cx.lhs, cx.rhs
         ));
     }
     if !cx.difference.is_empty() {

@@ -1,7 +1,9 @@
 //! Findings in words: the only place where what a decision recorded
 //! (`strategy::Finding`) becomes a sentence.
 
+use crate::digits;
 use crate::strategy::finding::{Finding, Point, Rejection, Unresolved};
+use crate::strategy::Measure;
 
 /// A finding as one clause of the evidence.
 pub fn finding(f: &Finding) -> String {
@@ -59,8 +61,10 @@ pub fn finding(f: &Finding) -> String {
             central,
         } => format!(
             "undecided: the closed form is undefined at a sample ({message}), and ∂/∂{component} does \
-             not exist there (num-dual {num_dual:.9}, central difference {central:.9}); declare the \
-             singular set with `singular = …` to exclude such states"
+             not exist there (num-dual {}, central difference {}); declare the \
+             singular set with `singular = …` to exclude such states",
+            value(*num_dual),
+            value(*central)
         ),
         Finding::DerivativeRoutesDisagree {
             component,
@@ -69,9 +73,12 @@ pub fn finding(f: &Finding) -> String {
             closed,
             at,
         } => format!(
-            "undecided: at a sample, ∂/∂{component} is {num_dual:.9} by num-dual, {central:.9} by \
-             central differences and {closed:.9} by the closed form; the two derivative routes do not \
+            "undecided: at a sample, ∂/∂{component} is {} by num-dual, {} by \
+             central differences and {} by the closed form; the two derivative routes do not \
              agree there, so no verdict is given (point: {})",
+            value(*num_dual),
+            value(*central),
+            value(*closed),
             point(at)
         ),
         Finding::ClosedFormDisagrees => {
@@ -106,14 +113,17 @@ pub fn finding(f: &Finding) -> String {
             curvature,
             at,
         } => format!(
-            "undecided: num-dual gives the Hessian an eigenvalue {eigenvalue:.9} at a sample, but the \
-             second difference of the function along its eigenvector is {curvature:.9}; the two \
+            "undecided: num-dual gives the Hessian an eigenvalue {} at a sample, but the \
+             second difference of the function along its eigenvector is {}; the two \
              routes do not agree, so no verdict is given (point: {})",
+            value(*eigenvalue),
+            value(*curvature),
             point(at)
         ),
         Finding::NegativeEigenvalue { curvature } => format!(
             "the Hessian has a negative eigenvalue; the second difference along its eigenvector is \
-             {curvature:.9}"
+             {}",
+            value(*curvature)
         ),
         Finding::ConvexAgrees { variables } => {
             format!("Hessian in {variables} variables positive semidefinite at every sample")
@@ -187,6 +197,42 @@ pub fn rejection(r: &Rejection) -> String {
             format!("the interpreter cannot evaluate the sides at the point: {message}")
         }
     }
+}
+
+/// What a sampled decision measured, with its extreme over the samples (`worst`
+/// false) or the worst value the search for the worst case found (`worst` true).
+pub fn measure(m: Measure, v: f64, worst: bool) -> String {
+    match (m, worst) {
+        (Measure::RelativeDifference, false) => {
+            format!("the sides differ by at most {v:.1e} (relative)")
+        }
+        (Measure::RelativeDifference, true) => format!("largest relative difference {v:.1e}"),
+        (Measure::RelativeViolation, false) if v <= 0.0 => format!(
+            "the inequality held at every sample, by a relative margin of at least {:.1e}",
+            v.abs()
+        ),
+        (Measure::RelativeViolation, true) if v <= 0.0 => {
+            format!("smallest relative margin {:.1e} (held)", v.abs())
+        }
+        (Measure::RelativeViolation, _) => format!("largest relative violation {v:.1e}"),
+        (Measure::DifferenceFromClosedForm, false) => {
+            format!("the closed form is off by at most {v:.1e} (relative)")
+        }
+        (Measure::DifferenceFromClosedForm, true) => {
+            format!("largest relative difference from the closed form {v:.1e}")
+        }
+        (Measure::RelativeEigenvalue, false) => {
+            format!("Hessian eigenvalues ≥ {v:.1e} (relative to 1 + max |λ|)")
+        }
+        (Measure::RelativeEigenvalue, true) => {
+            format!("smallest Hessian eigenvalue {v:.1e} (relative to 1 + max |λ|)")
+        }
+    }
+}
+
+/// A value compared in a verdict, to [`digits::VALUE`] significant digits.
+fn value(x: f64) -> String {
+    digits::significant(x, digits::VALUE)
 }
 
 /// A point as `name = value, …`.

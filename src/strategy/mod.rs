@@ -21,7 +21,7 @@ pub mod walk;
 pub mod witness;
 
 pub use outcome::{
-    Counterexample, Method, NumericEvidence, Outcome, Reverified, SearchEvidence, Strength,
+    Counterexample, Measure, Method, NumericEvidence, Outcome, Reverified, SearchEvidence, Strength,
 };
 
 use crate::derivation::Claim;

@@ -18,19 +18,20 @@ use super::finding::{Finding, Point, Unresolved};
 use super::quadrature::{self, Level};
 use super::real::component_pairs;
 pub use super::sampler::SINGULAR_EPS;
-use super::sampler::{describe, relation_holds, Sampler, Sink, State};
+use super::sampler::{relation_holds, Sampler, Sink, State};
 use super::{
-    reverify, search, Counterexample, Method, NumericEvidence, Outcome, Reverified, SearchEvidence,
-    Strength,
+    reverify, search, Counterexample, Measure, Method, NumericEvidence, Outcome, Reverified,
+    SearchEvidence, Strength,
 };
 use crate::derivation::{
     AssumptionKind, Check, Expression, GradientConvention, Relation, Sampling, Strategy,
 };
+use crate::digits::{self, significant};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic};
 use nalgebra::{DVector, SymmetricEigen};
 use num_dual::{gradient, hessian, Dual2DVec64, DualDVec64, DualNum};
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 pub use super::float::TOL;
 
@@ -169,7 +170,7 @@ fn check_state(
                                 limit: QUADRATURE_MAX,
                                 budget: (!converged).then_some(quadrature::MAX_EVALUATIONS),
                             },
-                            describe(state, sampler.decls),
+                            sampler.describe(state),
                         ));
                     }
                     if res.is_finite() && res > TOL {
@@ -183,7 +184,7 @@ fn check_state(
                                     clear: QUADRATURE_CLEAR,
                                     error,
                                 },
-                                describe(state, sampler.decls),
+                                sampler.describe(state),
                             ));
                         }
                     }
@@ -201,9 +202,9 @@ fn check_state(
                             .zip(&a)
                             .map(|(c, v)| (c.to_string(), v + 1))
                             .collect(),
-                        point: describe(state, sampler.decls),
-                        lhs_value: Some(format!("{l:.9}")),
-                        rhs_value: Some(format!("{r:.9}")),
+                        point: sampler.describe(state),
+                        lhs_value: Some(significant(l, digits::VALUE)),
+                        rhs_value: Some(significant(r, digits::VALUE)),
                         ..Counterexample::default()
                     }));
                 }
@@ -229,7 +230,7 @@ fn first_side(check: &Check) -> Result<Expression, Diagnostic> {
 fn sampled_evidence(
     sampling: &Sampling,
     largest: f64,
-    residual: &'static str,
+    residual: Measure,
     excluded: usize,
     tolerance: String,
     derivatives: bool,
@@ -336,7 +337,7 @@ fn sample_and_search(
         at: result
             .worst_state
             .as_ref()
-            .map(|s| describe(s, sampler.decls))
+            .map(|s| sampler.describe(s))
             .unwrap_or_default(),
     };
     if let Some(why) = unresolved {
@@ -373,10 +374,7 @@ fn confirmed(
             cx.reverified = Some(how);
             Found::Violation(Box::new(state), cx)
         }
-        Err(why) => Found::Unresolved(
-            Unresolved::NotConfirmed(why),
-            describe(&state, sampler.decls),
-        ),
+        Err(why) => Found::Unresolved(Unresolved::NotConfirmed(why), sampler.describe(&state)),
     }
 }
 
@@ -428,8 +426,8 @@ pub fn decide_numeric(
     let mut tally = Tally::new();
     let (found, search) = sample_and_search(&mut sampler, *relation, &[], &mut tally)?;
     let residual = match relation {
-        Relation::Eq => "largest relative residual",
-        Relation::Le | Relation::Ge => "largest relative violation (≤ 0: satisfied)",
+        Relation::Eq => Measure::RelativeDifference,
+        Relation::Le | Relation::Ge => Measure::RelativeViolation,
     };
     let evidence = |tally: &Tally, search: Option<SearchEvidence>, domain: Option<String>| {
         let tolerance = if tally.quadrature > 0.0 {
@@ -834,7 +832,7 @@ pub fn decide_gradient(
                         equality: 1,
                         lhs: format!("∂({})", function.text.trim()),
                         rhs: e.text.clone(),
-                        point: describe(&state, decls),
+                        point: sampler.describe(&state),
                         lhs_value: Some("(num-dual = central differences)".into()),
                         rhs_value: Some(format!("undefined: {}", r.message)),
                         reverified: Some(Reverified::CentralDifferences),
@@ -887,13 +885,12 @@ pub fn decide_gradient(
                         num_dual: ad,
                         central: fd,
                         closed: cf,
-                        at: describe(&state, decls),
+                        at: sampler.describe(&state),
                     },
                 ));
             }
             // num-dual and central differences agree, and the closed form differs.
-            let mut point = describe(&state, decls);
-            point.insert("central difference".into(), format!("{fd:.9}"));
+            let point = sampler.describe(&state);
             return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
                 .with_counterexample(Counterexample {
                     chain: 1,
@@ -905,8 +902,12 @@ pub fn decide_gradient(
                         .map(|(_, e)| e.text.clone())
                         .unwrap_or_default(),
                     point,
-                    lhs_value: Some(format!("{ad:.9}")),
-                    rhs_value: Some(format!("{cf:.9}")),
+                    lhs_value: Some(significant(ad, digits::VALUE)),
+                    rhs_value: Some(significant(cf, digits::VALUE)),
+                    aux: BTreeMap::from([(
+                        "central difference".to_owned(),
+                        significant(fd, digits::VALUE),
+                    )]),
                     reverified: Some(Reverified::CentralDifferences),
                     ..Counterexample::default()
                 })
@@ -922,7 +923,7 @@ pub fn decide_gradient(
         .with_numeric(sampled_evidence(
             sampling,
             largest,
-            "largest relative difference from the closed form",
+            Measure::DifferenceFromClosedForm,
             excluded,
             format!("{TOL:e} relative vs closed form, {FD_TOL:e} vs central differences"),
             true,
@@ -976,7 +977,7 @@ pub fn decide_convex(
             return Ok(
                 Outcome::undecided(Method::Convex, sampling.samples).with_finding(
                     Finding::HessianNotFinite {
-                        at: describe(&state, decls),
+                        at: sampler.describe(&state),
                     },
                 ),
             );
@@ -1010,7 +1011,7 @@ pub fn decide_convex(
             let confirmed = curvature.is_finite()
                 && curvature < -SECOND_DIFFERENCE_TOL * (1.0 + max_abs)
                 && (curvature - min).abs() <= 0.5 * min.abs();
-            let mut point = describe(&state, decls);
+            let point = sampler.describe(&state);
             if !confirmed {
                 return Ok(
                     Outcome::undecided(Method::Convex, sampling.samples).with_finding(
@@ -1022,7 +1023,6 @@ pub fn decide_convex(
                     ),
                 );
             }
-            point.insert("smallest eigenvalue".into(), format!("{min:.9}"));
             return Ok(
                 Outcome::fails(Method::Convex, Strength::Sampled, sampling.samples)
                     .with_counterexample(Counterexample {
@@ -1031,6 +1031,10 @@ pub fn decide_convex(
                         lhs: format!("Hessian of {}", function.text.trim()),
                         rhs: "positive semidefinite".into(),
                         point,
+                        aux: BTreeMap::from([(
+                            "smallest eigenvalue".to_owned(),
+                            significant(min, digits::VALUE),
+                        )]),
                         reverified: Some(Reverified::SecondDifferences),
                         ..Counterexample::default()
                     })
@@ -1042,7 +1046,7 @@ pub fn decide_convex(
         .with_numeric(sampled_evidence(
             sampling,
             smallest,
-            "smallest eigenvalue / (1 + max|λ|)",
+            Measure::RelativeEigenvalue,
             excluded,
             format!("smallest eigenvalue ≥ −{TOL:e}·(1 + max|λ|)"),
             true,

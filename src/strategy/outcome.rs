@@ -79,6 +79,9 @@ pub struct Counterexample {
     pub point: BTreeMap<String, String>,
     pub lhs_value: Option<String>,
     pub rhs_value: Option<String>,
+    /// Numbers that belong to the counterexample but are not coordinates of its point
+    /// (a central difference, the negative eigenvalue of a Hessian).
+    pub aux: BTreeMap<String, String>,
     /// Set when the statement is ill-formed in its indices as printed.
     pub ill_formed: Option<String>,
     /// How the counterexample was confirmed by a second evaluation (`reverify`).
@@ -230,12 +233,11 @@ impl Outcome {
 pub struct NumericEvidence {
     pub samples: usize,
     pub seed: u64,
-    /// Largest relative residual (equalities) or relative violation (inequalities,
-    /// ≤ 0 when satisfied) over the samples; for convexity, the smallest relative
-    /// eigenvalue.
+    /// The extreme of `residual` over the samples: the largest, or for convexity the
+    /// smallest.
     pub largest_residual: f64,
-    /// What `largest_residual` measures, in words.
-    pub residual: &'static str,
+    /// What `largest_residual` measures.
+    pub residual: Measure,
     /// Samples excluded because they lie on the singular set.
     pub excluded: usize,
     pub exclusion: Option<String>,
@@ -244,6 +246,23 @@ pub struct NumericEvidence {
     pub tolerance: String,
     /// The adversarial search that followed the random samples.
     pub search: Option<SearchEvidence>,
+}
+
+/// What a sampled decision measured at every sample (`report::words::measure` says it
+/// in words).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Measure {
+    /// Equalities: |l − r| / (1 + |l| + |r|); the largest is reported.
+    RelativeDifference,
+    /// Inequalities: (l − r) / (1 + |l| + |r|) for `<=` ((r − l) / … for `>=`); negative
+    /// where the inequality holds, its magnitude the relative margin to spare.
+    RelativeViolation,
+    /// Gradients: the relative difference between num-dual and the closed form.
+    DifferenceFromClosedForm,
+    /// Convexity: the smallest Hessian eigenvalue divided by 1 + max |λ|; the smallest
+    /// is reported.
+    RelativeEigenvalue,
 }
 
 /// What the search for the worst violation did (`strategy::search`).

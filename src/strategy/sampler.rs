@@ -9,7 +9,8 @@ use super::numeric::TOL;
 use super::quadrature::{Level, Quadrature};
 use super::real::{Labeled, RealEnv, RealError};
 use super::tape::Tape;
-use crate::derivation::{AssumptionKind, Check, Constraint, Expression, Relation, Sampling};
+use crate::derivation::{AssumptionKind, Check, Constraint, Expression, Reads, Relation, Sampling};
+use crate::digits::{self, significant};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic, Node};
 use num_dual::DualNum;
@@ -54,6 +55,8 @@ pub(super) struct Sampler<'a> {
     /// The first states drawn, with the values of `recording`'s expressions, kept for
     /// `explain` (nothing is kept unless [`Sampler::record`] asked for it).
     recording: Option<(usize, Vec<Expression>, &'a Sink)>,
+    /// What the statement reads: a described state shows only these symbols.
+    reads: Reads,
 }
 
 /// Where a sampled decision keeps the states it drew, for `explain`.
@@ -81,6 +84,7 @@ impl<'a> Sampler<'a> {
             coarse: Quadrature::new(Level::Coarse),
             arbiter: Quadrature::new(Level::Arbiter),
             recording: None,
+            reads: check.reads(),
         })
     }
 
@@ -330,7 +334,7 @@ impl<'a> Sampler<'a> {
             })
             .collect();
         sink.borrow_mut().push(SampledState {
-            point: describe(state, self.decls),
+            point: self.describe(state),
             values,
         });
     }
@@ -374,29 +378,40 @@ pub(super) fn relation_holds(rel: Relation, l: f64, r: f64) -> (bool, f64) {
     (residual <= TOL, residual)
 }
 
-/// The state's nonzero values, for a counterexample.
-pub(super) fn describe(state: &State, decls: &Decls) -> BTreeMap<String, String> {
-    let mut out = BTreeMap::new();
-    for (name, t) in &state.symbols {
-        let rank = t.rank();
-        for idx in assignments(decls.dim, rank) {
-            let v = *t.get(&idx);
-            if v != 0.0 {
-                let key = if rank == 0 {
-                    name.clone()
-                } else {
-                    format!(
-                        "{name}_{}",
-                        idx.iter().map(|i| (i + 1).to_string()).collect::<String>()
-                    )
-                };
-                out.insert(key, format!("{v:.6}"));
+impl Sampler<'_> {
+    /// The state as a counterexample shows it: the nonzero components of the symbols
+    /// the statement reads (never every declared symbol), and the normal when it
+    /// reads the normal, to [`digits::POINT`] significant digits.
+    pub(super) fn describe(&self, state: &State) -> BTreeMap<String, String> {
+        let mut out = BTreeMap::new();
+        for (name, t) in &state.symbols {
+            if !self.reads.symbols.contains(name) {
+                continue;
+            }
+            let rank = t.rank();
+            for idx in assignments(self.decls.dim, rank) {
+                let v = *t.get(&idx);
+                if v != 0.0 {
+                    let key = if rank == 0 {
+                        name.clone()
+                    } else {
+                        format!(
+                            "{name}_{}",
+                            idx.iter().map(|i| (i + 1).to_string()).collect::<String>()
+                        )
+                    };
+                    out.insert(key, significant(v, digits::POINT));
+                }
             }
         }
+        if self.decls.normal.is_some() && self.reads.normal {
+            let n: Vec<String> = state
+                .n
+                .iter()
+                .map(|&x| significant(x, digits::POINT))
+                .collect();
+            out.insert("n".into(), format!("({})", n.join(", ")));
+        }
+        out
     }
-    if decls.normal.is_some() {
-        let n: Vec<String> = state.n.iter().map(|x| format!("{x:.6}")).collect();
-        out.insert("n".into(), format!("({})", n.join(", ")));
-    }
-    out
 }

@@ -103,7 +103,12 @@ pub fn walk<R: Ring>(
     let d = ring.dim();
     let labels = node.free_letters();
     let value = match &node.kind {
-        NodeKind::Const(q) => Tensor::scalar(d, ring.constant(q)),
+        // A constant is a scalar, except the literal 0 where a context gave it free
+        // indices (`Node::zero_with_free`): zero in every component.
+        NodeKind::Const(q) => {
+            let c = ring.constant(q);
+            Tensor::from_fn(d, labels.len(), |_| c.clone())
+        }
         NodeKind::Leaf { target, slots } => {
             let base = match target {
                 Target::Delta => ring.delta(),

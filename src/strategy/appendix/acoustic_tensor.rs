@@ -172,7 +172,7 @@ pub(super) fn critical_hardening(p: &Params, d: &Derivation) -> Result<Outcome, 
         .with_counterexample(Counterexample {
             lhs: "max over θ of h_2^cr".into(),
             rhs: "0".into(),
-            lhs_value: Some(format!("{h:.6}")),
+            lhs_value: Some(crate::digits::significant(h, crate::digits::POINT)),
             rhs_value: Some("0".into()),
             point: describe_point(&at),
             ..Counterexample::default()

@@ -174,8 +174,8 @@ pub(super) fn thickness_decreases(p: &Params, d: &Derivation) -> Result<Outcome,
         out = out.with_counterexample(Counterexample {
             lhs: "d_B/R_g at f_r = 1".into(),
             rhs: "d_B/R_g at f_r = 2".into(),
-            lhs_value: Some(format!("{:.9}", db(&a1))),
-            rhs_value: Some(format!("{:.9}", db(&a2v))),
+            lhs_value: Some(crate::digits::significant(db(&a1), crate::digits::VALUE)),
+            rhs_value: Some(crate::digits::significant(db(&a2v), crate::digits::VALUE)),
             point: BTreeMap::from([("f_r".to_owned(), "1 → 2".to_owned())]),
             ..Counterexample::default()
         });

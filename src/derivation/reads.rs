@@ -1,0 +1,106 @@
+//! What a statement reads: the definitions it depends on (mutation testing edits
+//! them) and the symbols whose values decide it (a counterexample shows those, and
+//! only those).
+
+use super::model::{AssumptionKind, Check};
+use crate::lang::{Node, NodeKind, Target};
+use std::collections::BTreeSet;
+
+/// The symbols a statement reads, and whether it reads the normal.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Reads {
+    pub symbols: BTreeSet<String>,
+    pub normal: bool,
+}
+
+impl Check {
+    /// Every node the statement evaluates: its sides, its strategy's expressions
+    /// (function, closed forms, hypotheses, domain, singular set) and the bodies of
+    /// the definitions they use, directly or through other definitions. The second
+    /// value names those definitions.
+    fn reachable(&self) -> (Vec<&Node>, BTreeSet<&str>) {
+        let mut names = BTreeSet::new();
+        let mut stack: Vec<&Node> = self
+            .chains
+            .iter()
+            .flatten()
+            .filter_map(|s| s.node.as_ref().ok())
+            .collect();
+        stack.extend(self.strategy.expressions().into_iter().map(|e| &e.node));
+        let mut seen = Vec::new();
+        while let Some(n) = stack.pop() {
+            seen.push(n);
+            match &n.kind {
+                NodeKind::Leaf {
+                    target: Target::Def(name),
+                    ..
+                } => {
+                    if names.insert(name.as_str()) {
+                        if let Some(d) = self.defs.iter().rev().find(|d| &d.sig.name == name) {
+                            stack.push(&d.body);
+                        }
+                    }
+                }
+                NodeKind::Leaf { .. } | NodeKind::Const(_) => {}
+                NodeKind::Sum(xs) | NodeKind::Product(xs) => stack.extend(xs),
+                NodeKind::Div(a, b) => stack.extend([&**a, &**b]),
+                NodeKind::Neg(a)
+                | NodeKind::Pow(a, _)
+                | NodeKind::Apply(_, a)
+                | NodeKind::Avg(a)
+                | NodeKind::MaxN(a) => stack.push(a),
+            }
+        }
+        (seen, names)
+    }
+
+    /// Indices (into `defs`) of the definitions the statement depends on, directly or
+    /// through other definitions, in definition order.
+    pub fn dependencies(&self) -> Vec<usize> {
+        let (_, names) = self.reachable();
+        (0..self.defs.len())
+            .filter(|&k| names.contains(self.defs[k].sig.name.as_str()))
+            .collect()
+    }
+
+    /// The symbols whose values decide the statement: those it reads, and those the
+    /// assumptions compute them from (`S = 3 V / (2 R_g)` makes `V` and `R_g` read
+    /// when `S` is), and whether it reads the normal.
+    pub fn reads(&self) -> Reads {
+        let (nodes, _) = self.reachable();
+        let mut out = Reads::default();
+        for n in &nodes {
+            match &n.kind {
+                NodeKind::Leaf {
+                    target: Target::Symbol(s),
+                    ..
+                } => {
+                    out.symbols.insert(s.clone());
+                }
+                NodeKind::Leaf {
+                    target: Target::Normal,
+                    ..
+                } => out.normal = true,
+                _ => {}
+            }
+        }
+        // Assumptions tie symbols together; follow them to a fixed point.
+        loop {
+            let before = out.symbols.len();
+            for a in &self.assumptions {
+                let body = match &a.kind {
+                    AssumptionKind::Component { body, .. }
+                    | AssumptionKind::Equals { body, .. } => body,
+                    _ => continue,
+                };
+                if out.symbols.contains(a.kind.symbol()) {
+                    out.symbols
+                        .extend(body.symbols().into_iter().map(str::to_owned));
+                }
+            }
+            if out.symbols.len() == before {
+                return out;
+            }
+        }
+    }
+}

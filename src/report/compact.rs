@@ -1,0 +1,169 @@
+//! The compact table for a terminal: one line per claim with its id, section,
+//! verdict, strength, method and one short line of evidence, failures highlighted.
+//! The full evidence stays in `explain`, `--format markdown`, JSON and HTML; this view
+//! only shortens it.
+
+use super::{certificate_words, words, Summary};
+use crate::derivation::Verdict;
+use crate::strategy::{Counterexample, Decided, Outcome, Strength};
+use std::fmt::Write as _;
+
+/// The widest the evidence column gets, in characters; longer evidence ends in `…`.
+pub const EVIDENCE_WIDTH: usize = 80;
+
+/// How the table marks failures: `color` adds ANSI colours (bold red for `fails`,
+/// yellow for `conditional` and `undecided`) to the words, which say it without them.
+pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
+    let header = ["claim", "§", "verdict", "strength", "method", "evidence"];
+    let lines: Vec<[String; 6]> = rows
+        .iter()
+        .map(|r| {
+            [
+                r.claim.id.clone(),
+                r.claim.section.clone(),
+                verdict(r),
+                match r.outcome.strength() {
+                    Strength::Proof => "proof",
+                    Strength::Sampled => "sampled",
+                }
+                .to_owned(),
+                r.outcome.method.as_str().to_owned(),
+                shorten(&short_evidence(r), EVIDENCE_WIDTH),
+            ]
+        })
+        .collect();
+    let width = |k: usize| {
+        lines
+            .iter()
+            .map(|l| l[k].chars().count())
+            .chain([header[k].chars().count()])
+            .max()
+            .unwrap_or(0)
+    };
+    let widths: Vec<usize> = (0..5).map(width).collect();
+    let mut out = String::new();
+    let _ = writeln!(out, "{paper}\n");
+    let row = |cells: [&str; 6], paint: Option<&str>| {
+        let mut line = String::new();
+        for (k, cell) in cells.iter().enumerate().take(5) {
+            let pad = widths[k] - cell.chars().count();
+            match (k, paint) {
+                (2, Some(code)) => {
+                    let _ = write!(line, "\x1b[{code}m{cell}\x1b[0m{}  ", " ".repeat(pad));
+                }
+                _ => {
+                    let _ = write!(line, "{cell}{}  ", " ".repeat(pad));
+                }
+            }
+        }
+        line.push_str(cells[5]);
+        line.trim_end().to_owned()
+    };
+    let _ = writeln!(out, "{}", row(header, None));
+    for (r, l) in rows.iter().zip(&lines) {
+        let paint = match (color, r.outcome.verdict(), r.as_expected()) {
+            (false, _, _) => None,
+            (true, _, false) | (true, Verdict::Fails, _) => Some("1;31"),
+            (true, Verdict::Conditional | Verdict::Undecided, _) => Some("33"),
+            (true, Verdict::Holds, _) => None,
+        };
+        let cells = [&l[0], &l[1], &l[2], &l[3], &l[4], &l[5]].map(String::as_str);
+        let _ = writeln!(out, "{}", row(cells, paint));
+    }
+    let _ = writeln!(
+        out,
+        "\n{}\nFull evidence: `cosserat-check explain ID`, or `--format markdown|json` (this \
+         compact view is printed only to a terminal).",
+        Summary::of(rows).sentence(rows.len())
+    );
+    out
+}
+
+/// The verdict in capitals when it accuses the paper (`FAILS`), so that a failure
+/// stands out without colour; marked `✗` when it is not the declared one.
+fn verdict(r: &Decided<'_>) -> String {
+    let v = r.outcome.verdict();
+    let mut text = match v {
+        Verdict::Fails => "FAILS".to_owned(),
+        _ => v.as_str().to_owned(),
+    };
+    if !r.as_expected() {
+        let _ = write!(text, " ✗ (declared {})", r.claim.expect);
+    }
+    text
+}
+
+/// One short line: what decided the claim, and for a failure what its correction
+/// gives.
+fn short_evidence(r: &Decided<'_>) -> String {
+    let mut line = outcome_line(&r.outcome);
+    if let Some(c) = &r.correction {
+        let _ = write!(line, "; correction {}", c.verdict_text());
+    }
+    line
+}
+
+fn outcome_line(o: &Outcome) -> String {
+    if let Some(cx) = &o.counterexample {
+        return counterexample_line(cx);
+    }
+    if let (Verdict::Undecided, Some(f)) = (o.verdict(), &o.finding) {
+        return words::finding(f);
+    }
+    if let Some(c) = o.certificate() {
+        return certificate_words(c);
+    }
+    if let Some(n) = &o.numeric {
+        return format!(
+            "{} samples (seed {}): {}",
+            n.samples,
+            n.seed,
+            words::measure(n.residual, n.largest_residual, false)
+        );
+    }
+    o.finding.as_ref().map(words::finding).unwrap_or_default()
+}
+
+fn counterexample_line(cx: &Counterexample) -> String {
+    if let Some(m) = &cx.ill_formed {
+        return format!("ill-formed: {m}");
+    }
+    let at: Vec<String> = cx.indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
+    let at = if at.is_empty() {
+        String::new()
+    } else {
+        format!("at {}: ", at.join(", "))
+    };
+    match (&cx.lhs_value, &cx.rhs_value) {
+        (Some(l), Some(r)) => format!("{at}left {l}, right {r}"),
+        _ if !cx.difference.is_empty() => format!("{at}left − right = {}", cx.difference),
+        _ => {
+            let aux: Vec<String> = cx.aux.iter().map(|(k, v)| format!("{k} {v}")).collect();
+            format!("{at}{} is not {}; {}", cx.lhs, cx.rhs, aux.join(", "))
+        }
+    }
+}
+
+/// `text` cut to `width` characters, the last one `…` when anything was cut.
+fn shorten(text: &str, width: usize) -> String {
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    if text.chars().count() <= width {
+        text
+    } else {
+        let mut cut: String = text.chars().take(width.saturating_sub(1)).collect();
+        cut.push('…');
+        cut
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shorten;
+
+    #[test]
+    fn long_evidence_is_cut_with_an_ellipsis() {
+        assert_eq!(shorten("a  b", 10), "a b");
+        assert_eq!(shorten("abcdef", 4), "abc…");
+        assert_eq!(shorten("αβγδ", 4), "αβγδ");
+    }
+}
