@@ -4,10 +4,12 @@
 
 use crate::derivation::{load_dir, load_files, DerivationFile, LoadError, Strategy};
 use crate::report;
+use crate::strategy::watch::{self, Watch};
 use crate::strategy::{decide_claim, decide_claim_recorded, Decided};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// Checks the derivations of Papanicolopoulos & Veveakis, "Sliding and rolling
@@ -85,6 +87,23 @@ pub struct OutputArgs {
     /// Override the sample count of every numeric claim (at least 50).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(50..=1_000_000))]
     pub samples: Option<u64>,
+    /// Time limit per claim, in seconds: a claim not decided within it is
+    /// `undecided (time limit)` [default: 600].
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
+    pub time_limit: Option<Duration>,
+}
+
+fn parse_seconds(s: &str) -> Result<Duration, String> {
+    let x: f64 = s
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number of seconds"))?;
+    if x.is_finite() && x > 0.0 && x <= 1e9 {
+        Ok(Duration::from_secs_f64(x))
+    } else {
+        Err(format!(
+            "`{s}`: the time limit must be a positive number of seconds"
+        ))
+    }
 }
 
 #[derive(Debug, Clone, clap::Args, Default)]
@@ -166,7 +185,9 @@ fn default_dir() -> PathBuf {
     }
 }
 
-/// Progress on stderr for long runs, only when stderr is a terminal.
+/// Progress on stderr for long runs, only when stderr is a terminal: claims decided out
+/// of all, and what each worker is doing (the claim, samples or search evaluations done
+/// out of the total, seconds).
 struct Progress {
     started: Instant,
     enabled: bool,
@@ -182,9 +203,14 @@ impl Progress {
         }
     }
 
-    fn tick(&mut self, k: usize, n: usize, id: &str) {
+    fn show(&mut self, done: usize, n: usize, working: &[String]) {
         if self.enabled && self.started.elapsed() > Duration::from_secs(1) {
-            eprint!("\r\x1b[2Kdeciding {k}/{n}: {id}");
+            let now = if working.is_empty() {
+                String::new()
+            } else {
+                format!(" · {}", working.join(" · "))
+            };
+            eprint!("\r\x1b[2Kdecided {done}/{n}{now}");
             self.shown = true;
         }
     }
@@ -200,21 +226,41 @@ impl Progress {
     }
 }
 
+/// How claims are decided: with their records (for `explain`), under a time limit.
+#[derive(Clone, Copy)]
+struct Run {
+    keep: bool,
+    limit: Duration,
+}
+
 /// Decides every claim of the files (or only `only`), in file and claim order.
 pub fn decide_all<'f>(
     files: &'f [DerivationFile],
     only: Option<&str>,
 ) -> Result<Vec<Decided<'f>>, RunError> {
-    decide_with_progress(files, only, false, &mut |_, _, _| {})
+    let run = Run {
+        keep: false,
+        limit: watch::DEFAULT_LIMIT,
+    };
+    decide_with_progress(files, only, run, &mut Progress::quiet())
 }
 
-/// Decides the claims (all, or the one with id `only`); with `keep`, each outcome
-/// records what its decision evaluated (for `explain`).
+impl Progress {
+    fn quiet() -> Self {
+        Progress {
+            enabled: false,
+            ..Progress::new()
+        }
+    }
+}
+
+/// Decides the claims (all, or the one with id `only`), each under its time limit;
+/// with `run.keep`, each outcome records what its decision evaluated (for `explain`).
 fn decide_with_progress<'f>(
     files: &'f [DerivationFile],
     only: Option<&str>,
-    keep: bool,
-    progress: &mut dyn FnMut(usize, usize, &str),
+    run: Run,
+    progress: &mut Progress,
 ) -> Result<Vec<Decided<'f>>, RunError> {
     let claims: Vec<_> = files
         .iter()
@@ -233,36 +279,60 @@ fn decide_with_progress<'f>(
         )));
     }
     let n = claims.len();
-    // Claims are independent: two workers (this machine's cores) decide them, and the
-    // results are put back in claim order, so the output and the first error reported
-    // do not depend on scheduling.
+    // Claims are independent: two workers (this machine's cores) take the next claim
+    // as they finish one, and the results are put back in claim order, so the output
+    // and the first error reported do not depend on scheduling.
     let workers = std::thread::available_parallelism()
         .map_or(1, usize::from)
-        .clamp(1, 2);
+        .clamp(1, 2)
+        .min(n.max(1));
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let watches: Vec<Mutex<Option<Arc<Watch>>>> = (0..workers).map(|_| Mutex::new(None)).collect();
     let mut slots: Vec<Option<Result<Decided<'f>, RunError>>> = (0..n).map(|_| None).collect();
     std::thread::scope(|scope| {
         let (tx, rx) = std::sync::mpsc::channel();
-        for w in 0..workers {
-            let tx = tx.clone();
-            let claims = &claims;
-            scope.spawn(move || {
-                for (k, c) in claims.iter().enumerate().filter(|(k, _)| k % workers == w) {
-                    let r = if keep {
+        for slot in &watches {
+            let (tx, claims, next) = (tx.clone(), &claims, &next);
+            scope.spawn(move || loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(c) = claims.get(k) else { return };
+                let w = Watch::new(&c.id, run.limit);
+                *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(w.clone());
+                let r = watch::under(&w, || {
+                    if run.keep {
                         decide_claim_recorded(c)
                     } else {
                         decide_claim(c)
                     }
-                    .map_err(|d| RunError::Input(d.to_string()));
-                    if tx.send((k, r)).is_err() {
-                        return;
-                    }
+                })
+                .map_err(|d| RunError::Input(d.to_string()));
+                *slot.lock().unwrap_or_else(|e| e.into_inner()) = None;
+                if tx.send((k, r)).is_err() {
+                    return;
                 }
             });
         }
         drop(tx);
-        for (done, (k, r)) in rx.into_iter().enumerate() {
-            progress(done + 1, n, &claims[k].id);
-            slots[k] = Some(r);
+        let mut done = 0;
+        loop {
+            match rx.recv_timeout(Duration::from_millis(200)) {
+                Ok((k, r)) => {
+                    slots[k] = Some(r);
+                    done += 1;
+                }
+                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+            }
+            let working: Vec<String> = watches
+                .iter()
+                .filter_map(|w| {
+                    w.lock()
+                        .unwrap_or_else(|e| e.into_inner())
+                        .as_ref()
+                        .map(|w| w.status())
+                })
+                .collect();
+            progress.show(done, n, &working);
         }
     });
     slots
@@ -399,9 +469,11 @@ fn table(
 ) -> Result<Status, RunError> {
     override_sampling(&mut files, args.seed, args.samples);
     let mut progress = Progress::new();
-    let rows = decide_with_progress(&files, args.only.as_deref(), false, &mut |k, n, id| {
-        progress.tick(k, n, id)
-    })?;
+    let run = Run {
+        keep: false,
+        limit: args.time_limit.unwrap_or(watch::DEFAULT_LIMIT),
+    };
+    let rows = decide_with_progress(&files, args.only.as_deref(), run, &mut progress)?;
     progress.done(rows.len());
     let inputs: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
     emit(
@@ -449,7 +521,11 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
         }
         Command::Explain(a) => {
             let files = read(a.dir, &a.files)?;
-            let rows = decide_with_progress(&files, Some(&a.id), true, &mut |_, _, _| {})?;
+            let run = Run {
+                keep: true,
+                limit: watch::DEFAULT_LIMIT,
+            };
+            let rows = decide_with_progress(&files, Some(&a.id), run, &mut Progress::new())?;
             emit(&report::explain::render(&rows[0]), &None, &[], out.stream)?;
             Ok(if rows[0].as_expected() {
                 Status::AsExpected

@@ -459,3 +459,81 @@ fn out_never_overwrites_an_input_file() {
         .collect();
     assert!(leftovers.is_empty());
 }
+
+#[test]
+fn options_work_without_the_subcommand() {
+    let out = run(&["--only", "eq33", "--format", "json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["claims"][0]["id"], "eq33");
+    let both = run(&["--only", "eq33", "check"]);
+    assert_eq!(both.status.code(), Some(2));
+}
+
+#[test]
+fn explain_reads_several_files_after_one_flag() {
+    let out = run(&[
+        "explain",
+        "eq33",
+        "--file",
+        "derivations/3.3-fabric-averaging.toml",
+        "derivations/3.4-invariants.toml",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).starts_with("# eq33"));
+}
+
+#[test]
+fn a_runaway_claim_is_undecided_at_the_time_limit() {
+    let started = std::time::Instant::now();
+    let out = run(&[
+        "--only",
+        "eq47",
+        "--samples",
+        "1000000",
+        "--time-limit",
+        "0.2",
+        "--format",
+        "json",
+    ]);
+    assert!(started.elapsed().as_secs_f64() < 20.0);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["claims"][0]["verdict"], "undecided");
+    assert_eq!(v["claims"][0]["finding"]["kind"], "time-limit");
+    assert!(v["claims"][0]["detail"]
+        .as_str()
+        .unwrap()
+        .contains("undecided (time limit)"));
+    for bad in ["0", "-1", "soon", "inf"] {
+        let refused = run(&["--only", "eq47", "--time-limit", bad]);
+        assert_eq!(refused.status.code(), Some(2), "{bad}");
+    }
+}
+
+#[test]
+fn devices_fifos_directories_and_huge_files_are_refused_promptly() {
+    let dir = dir_with("bounded", "");
+    let fifo = dir.join("fifo.toml");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    let huge = dir.join("huge.toml");
+    std::fs::write(&huge, "#".repeat(5 << 20)).unwrap();
+    let mut cases = vec![
+        ("/dev/zero".to_owned(), "not a regular file"),
+        (dir.display().to_string(), "a directory"),
+        (huge.display().to_string(), "4 MiB"),
+    ];
+    if made.is_ok_and(|s| s.success()) {
+        cases.push((fifo.display().to_string(), "not a regular file"));
+    }
+    for (path, why) in cases {
+        let started = std::time::Instant::now();
+        let out = run(&["verify", &path]);
+        assert!(started.elapsed().as_secs_f64() < 10.0, "{path}");
+        assert_eq!(out.status.code(), Some(2), "{path}");
+        let err = text(&out.stderr);
+        assert!(err.contains(&path) && err.contains(why), "{path}: {err}");
+        assert!(out.stdout.is_empty());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

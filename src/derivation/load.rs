@@ -96,12 +96,53 @@ pub fn load_files(paths: &[impl AsRef<Path>]) -> Result<Vec<DerivationFile>, Loa
 
 type IdDiag = Box<dyn Fn(String) -> Diagnostic>;
 
+/// The largest derivation file read, in bytes (the paper's largest is about 20 kB).
+pub const MAX_FILE_BYTES: u64 = 4 << 20;
+/// The longest claim id, in characters.
+pub const MAX_ID_CHARS: usize = 100;
+
+/// The bytes of a derivation file: a regular file (never a device such as /dev/zero,
+/// a FIFO that could block forever, or a directory) of at most [`MAX_FILE_BYTES`].
+fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
+    use std::io::Read;
+    let label = path.display().to_string();
+    let io = |message: String| LoadError::Io {
+        path: label.clone(),
+        message,
+    };
+    let meta = std::fs::metadata(path).map_err(|e| io(e.to_string()))?;
+    if !meta.is_file() {
+        let what = if meta.is_dir() {
+            "a directory"
+        } else {
+            "not a regular file (a device, FIFO or socket)"
+        };
+        return Err(io(format!(
+            "{what}; derivation files are regular files (use --dir for a directory)"
+        )));
+    }
+    let too_big = || {
+        io(format!(
+            "larger than the {} MiB a derivation file may have",
+            MAX_FILE_BYTES >> 20
+        ))
+    };
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(too_big());
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(|e| io(e.to_string()))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_big());
+    }
+    Ok(bytes)
+}
+
 fn load_file_with_ids(path: &Path) -> Result<(DerivationFile, Vec<(String, IdDiag)>), LoadError> {
     let label = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| LoadError::Io {
-        path: label.clone(),
-        message: e.to_string(),
-    })?;
+    let bytes = read_bounded(path)?;
     let text = match String::from_utf8(bytes) {
         Ok(t) => t,
         Err(e) => {
@@ -169,8 +210,8 @@ impl Loader {
         })?;
         let decls = Arc::new(self.decls(&raw)?);
         let mut defs = Vec::new();
-        for d in &raw.define {
-            let def = self.definition(d, &decls, &defs)?;
+        for (k, d) in raw.define.iter().enumerate() {
+            let def = self.definition(d, &decls, &defs, &raw.define[k + 1..])?;
             defs.push(def);
         }
         let mut claims = Vec::new();
@@ -178,6 +219,19 @@ impl Loader {
         let mut local_ids = BTreeMap::new();
         for c in &raw.claim {
             let id = c.id.get_ref().clone();
+            if id.chars().count() > MAX_ID_CHARS {
+                let start = c.id.span().start;
+                return Err(self
+                    .diag(
+                        start..start + 1,
+                        format!(
+                            "this claim id has {} characters; ids have at most {MAX_ID_CHARS}",
+                            id.chars().count()
+                        ),
+                    )
+                    .with_help("ids name a claim in tables and on the command line, like eq33")
+                    .into());
+            }
             if !valid_id(&id) {
                 return Err(self
                     .diag(c.id.span(), format!("`{id}` is not a valid claim id"))
@@ -218,7 +272,7 @@ impl Loader {
                     raw.dimension.span(),
                     format!("dimension must be 2 or 3, not {dim}"),
                 )
-                .with_help("the paper works in 3D (Section 3) and 2D (Sections 4–6)"));
+                .with_help("indices run over 1..3 in space (dimension = 3) or 1..2 in a plane (dimension = 2)"));
         }
         let mut decls = Decls {
             dim: dim as usize,
@@ -298,11 +352,14 @@ impl Loader {
         }
     }
 
+    /// One definition of a `define` list; `later` are the ones after it in the same
+    /// list, so that a name used before its definition is named as such.
     fn definition(
         &self,
         s: &S,
         decls: &Decls,
         visible: &[Definition],
+        later: &[S],
     ) -> Result<Definition, Diagnostic> {
         let origin = self.origin(s);
         let text = s.get_ref();
@@ -325,7 +382,14 @@ impl Loader {
                 .with_help("choose a new name; definitions cannot redefine a name"));
         }
         let sigs: Vec<DefSig> = visible.iter().map(|d| d.sig.clone()).collect();
-        let body = self.rhs(&origin, text, eq, decls, &sigs)?;
+        let body =
+            self.rhs(&origin, text, eq, decls, &sigs)
+                .map_err(|(d, unknown)| {
+                    match unknown.and_then(|u| self.defined_later(&u, later)) {
+                        Some(help) => d.with_help(help),
+                        None => d,
+                    }
+                })?;
         let mut want = formal.clone();
         want.sort_unstable();
         let body = if body.is_literal_zero() {
@@ -391,6 +455,8 @@ impl Loader {
         Ok((base, indices.iter().map(|t| t.ch).collect(), e.span))
     }
 
+    /// The right side of `name = expression`; an error names the unknown name it is
+    /// about, if any.
     fn rhs(
         &self,
         origin: &Origin,
@@ -398,13 +464,28 @@ impl Loader {
         eq: usize,
         decls: &Decls,
         defs: &[DefSig],
-    ) -> Result<crate::lang::Node, Diagnostic> {
+    ) -> Result<crate::lang::Node, (Diagnostic, Option<String>)> {
         let rhs_text = &text[eq + 1..];
         let sub = sub_origin(origin, eq + 1..text.len());
-        let e = parse_expr(rhs_text).map_err(|e| self.lang(&sub, e))?;
-        Scope { decls, defs }
-            .check(&e)
-            .map_err(|e| self.lang(&sub, e))
+        let e = parse_expr(rhs_text).map_err(|e| (self.lang(&sub, e), None))?;
+        Scope { decls, defs }.check(&e).map_err(|e| {
+            let unknown = e.unknown.clone();
+            (self.lang(&sub, e), unknown)
+        })
+    }
+
+    /// The help for a name used before its definition further down the same list.
+    fn defined_later(&self, name: &str, later: &[S]) -> Option<String> {
+        let s = later.iter().find(|s| {
+            let text = s.get_ref();
+            let lhs = text.split('=').next().unwrap_or_default().trim();
+            lhs.split('_').next() == Some(name)
+        })?;
+        let line = self.file.line_col(s.span().start).0;
+        Some(format!(
+            "`{name}` is defined later, at line {line}; definitions are read in order, so \
+             move its definition above this one"
+        ))
     }
 
     /// `X_13 = expr`: a fixed component of a declared symbol. `None` when the left side
@@ -442,7 +523,7 @@ impl Loader {
             }
             index.push(d - 1);
         }
-        let body = self.rhs(origin, text, eq, decls, &[])?;
+        let body = self.rhs(origin, text, eq, decls, &[]).map_err(|(d, _)| d)?;
         if !body.free.is_empty() {
             return Err(origin.diagnostic(
                 Span::new(eq + 1, text.len()),
@@ -493,7 +574,7 @@ impl Loader {
                         ))
                 }
             }
-            let body = self.rhs(origin, text, eq, decls, &[])?;
+            let body = self.rhs(origin, text, eq, decls, &[]).map_err(|(d, _)| d)?;
             let mut want = formal.clone();
             want.sort_unstable();
             if body.free_letters() != want {
@@ -561,8 +642,8 @@ impl Loader {
         needs_sides: bool,
     ) -> Result<Check, Diagnostic> {
         let mut defs = defs.to_vec();
-        for d in define {
-            let def = self.definition(d, decls, &defs)?;
+        for (k, d) in define.iter().enumerate() {
+            let def = self.definition(d, decls, &defs, &define[k + 1..])?;
             defs.push(def);
         }
         let assumptions = assume

@@ -349,7 +349,10 @@ impl Scope<'_> {
         } else {
             format!("did you mean {}?", close.join(" or "))
         };
-        LangError::new(ErrorKind::Name, span, format!("unknown name `{base}`")).help(help)
+        let mut e =
+            LangError::new(ErrorKind::Name, span, format!("unknown name `{base}`")).help(help);
+        e.unknown = Some(base.to_owned());
+        e
     }
 
     fn sum(&self, e: &Expr) -> Result<Node, LangError> {

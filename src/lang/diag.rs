@@ -120,6 +120,9 @@ impl Origin {
     }
 }
 
+/// The most characters of a source line a diagnostic shows.
+const SHOWN_CHARS: usize = 120;
+
 /// A user-facing error located in a file.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
@@ -146,14 +149,30 @@ impl fmt::Display for Diagnostic {
         writeln!(f, "error: {}", self.message)?;
         writeln!(f, "{pad} --> {}:{}:{}", self.path, self.line, self.col)?;
         writeln!(f, "{pad} |")?;
-        writeln!(f, "{num} | {}", self.line_text)?;
-        let lead: String = self
-            .line_text
-            .chars()
-            .take(self.col - 1)
-            .map(|c| if c == '\t' { '\t' } else { ' ' })
+        // A long line is shown as a window around the caret, marked `…` where cut.
+        let chars: Vec<char> = self.line_text.chars().collect();
+        let at = (self.col - 1).min(chars.len());
+        let from = if chars.len() > SHOWN_CHARS {
+            at.saturating_sub(SHOWN_CHARS / 3)
+        } else {
+            0
+        };
+        let to = chars.len().min(from + SHOWN_CHARS);
+        let (open, close) = (
+            if from > 0 { "…" } else { "" },
+            if to < chars.len() { "…" } else { "" },
+        );
+        let shown: String = chars[from..to].iter().collect();
+        writeln!(f, "{num} | {open}{shown}{close}")?;
+        let lead: String = std::iter::repeat_n(' ', open.chars().count())
+            .chain(
+                chars[from..at]
+                    .iter()
+                    .map(|&c| if c == '\t' { '\t' } else { ' ' }),
+            )
             .collect();
-        write!(f, "{pad} | {lead}{}", "^".repeat(self.width))?;
+        let width = self.width.min((to - at).max(1));
+        write!(f, "{pad} | {lead}{}", "^".repeat(width))?;
         if let Some(help) = &self.help {
             write!(f, "\n{pad} = help: {help}")?;
         }
@@ -176,6 +195,25 @@ mod tests {
             text,
             "error: index `k` occurs three times\n  --> x.toml:2:24\n  |\n2 | sides = [\"sigma_ki n_k n_k\"]\n  |                        ^^^\n  = help: rename one pair"
         );
+    }
+
+    #[test]
+    fn a_long_line_is_shown_as_a_window_around_the_caret() {
+        let text = format!("id = \"{}\"", "x".repeat(200_000));
+        let file = SourceFile::new("z.toml", text.as_str());
+        let d = file
+            .diagnostic(Span::new(100_006, 100_007), "here")
+            .to_string();
+        let shown = d.lines().nth(3).unwrap();
+        assert!(shown.chars().count() < 130, "{shown}");
+        assert!(
+            shown.starts_with("1 | …x") && shown.ends_with("x…"),
+            "{shown}"
+        );
+        let caret = d.lines().nth(4).unwrap();
+        assert_eq!(caret.find('^').unwrap() - "  | ".len(), 41, "{caret}");
+        let short = file.diagnostic(Span::new(3, 4), "start").to_string();
+        assert!(short.lines().nth(4).unwrap().ends_with("   ^"), "{short}");
     }
 
     #[test]

@@ -112,6 +112,9 @@ pub struct LangError {
     pub span: Span,
     pub message: String,
     pub help: Option<String>,
+    /// The name that was not found, for a caller that knows more about it (a
+    /// definition further down the file).
+    pub unknown: Option<String>,
 }
 
 impl LangError {
@@ -121,6 +124,7 @@ impl LangError {
             span,
             message: message.into(),
             help: None,
+            unknown: None,
         }
     }
 

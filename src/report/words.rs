@@ -9,6 +9,11 @@ use crate::strategy::Measure;
 pub fn finding(f: &Finding) -> String {
     match f {
         Finding::NothingCompared => "no component was compared, so nothing was proved".into(),
+        Finding::TimeLimit { seconds } => format!(
+            "undecided (time limit): the decision did not finish within {} s (raise it with \
+             `--time-limit SECONDS`, or lower `samples`)",
+            digits::significant(*seconds, 6)
+        ),
         Finding::Unconfirmed { difference, why } => format!(
             "undecided: the sides differ as polynomials ({difference}), but the counterexample was \
              not confirmed by a second evaluation: {}",

@@ -18,6 +18,8 @@ pub type Point = BTreeMap<String, String>;
 pub enum Finding {
     /// The exact strategy compared no component, so nothing was proved.
     NothingCompared,
+    /// The decision did not finish within the per-claim time limit (`--time-limit`).
+    TimeLimit { seconds: f64 },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.
     Unconfirmed { difference: String, why: Rejection },

@@ -18,6 +18,7 @@ pub mod sampler;
 pub mod search;
 pub mod tape;
 pub mod walk;
+pub mod watch;
 pub mod witness;
 
 pub use outcome::{
@@ -71,14 +72,33 @@ fn decide_keeping(
     use crate::derivation::Strategy;
     let sink = sampler::Sink::default();
     let states = keep.then_some(&sink);
-    let mut outcome = match &check.strategy {
+    let decided = match &check.strategy {
         Strategy::Exact => exact::decide(decls, check, keep),
         Strategy::Numeric { .. } => numeric::decide_numeric(decls, check, states),
         Strategy::Gradient { .. } => numeric::decide_gradient(decls, check, states),
         Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),
         Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
         Strategy::Appendix { step, origin } => appendix::decide(*step, origin, decls, check),
-    }?;
+    };
+    // A decision stopped by the time limit (`watch::check`) is undecided, whatever
+    // error the stop surfaced as; one that finished in time stands.
+    let mut outcome = match (decided, watch::expired()) {
+        (Ok(o), _) => o,
+        (Err(_), Some(limit)) => {
+            let method = match &check.strategy {
+                Strategy::Numeric { .. } => Method::Numeric,
+                Strategy::Gradient { .. } => Method::Gradient,
+                Strategy::Convex { .. } => Method::Convex,
+                Strategy::Exact => Method::Exact,
+                Strategy::NotCircle { .. } => Method::Witness,
+                Strategy::Appendix { .. } => Method::Symbolic,
+            };
+            Outcome::undecided(method, 0).with_finding(finding::Finding::TimeLimit {
+                seconds: limit.as_secs_f64(),
+            })
+        }
+        (Err(e), None) => return Err(e),
+    };
     if keep {
         outcome.record.get_or_insert_with(Default::default).states = sink.into_inner();
     }

@@ -57,6 +57,8 @@ pub(super) struct Sampler<'a> {
     recording: Option<(usize, Vec<Expression>, &'a Sink)>,
     /// What the statement reads: a described state shows only these symbols.
     reads: Reads,
+    /// Samples drawn so far (for progress).
+    drawn: usize,
 }
 
 /// Where a sampled decision keeps the states it drew, for `explain`.
@@ -85,6 +87,18 @@ impl<'a> Sampler<'a> {
             arbiter: Quadrature::new(Level::Arbiter),
             recording: None,
             reads: check.reads(),
+            drawn: 0,
+        })
+    }
+
+    /// An error once the claim's time limit has passed (`watch`): the decision stops,
+    /// and `strategy::decide` makes the claim undecided.
+    pub(super) fn time_left(&self) -> Result<(), Diagnostic> {
+        super::watch::check().map_err(|_| {
+            self.error(
+                "the per-claim time limit has passed".into(),
+                "raise --time-limit",
+            )
         })
     }
 
@@ -344,6 +358,9 @@ impl<'a> Sampler<'a> {
         extra: &[Constraint],
         excluded: &mut usize,
     ) -> Result<State, Diagnostic> {
+        self.time_left()?;
+        self.drawn += 1;
+        super::watch::progress("samples", self.drawn, self.sampling.samples);
         for _ in 0..MAX_DRAWS_PER_SAMPLE {
             let s = self.draw()?;
             if !self.satisfies(&s, &self.sampling.given)? || !self.satisfies(&s, extra)? {

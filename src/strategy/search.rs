@@ -227,6 +227,8 @@ pub(super) fn worst_case(
     // A state inside the hypotheses and off the singular set, with its margin; `None`
     // for a point the search may not visit.
     let mut visit = |x: &[f64], result: &mut SearchResult| -> Result<Option<f64>, Diagnostic> {
+        sampler.time_left()?;
+        super::watch::progress("search", result.evaluations, budget);
         let state = to_state(sampler, &coords, &template, x)?;
         if !sampler.satisfies(&state, &sampler.sampling.given)?
             || !sampler.satisfies(&state, extra)?
