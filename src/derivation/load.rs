@@ -382,14 +382,7 @@ impl Loader {
                 .with_help("choose a new name; definitions cannot redefine a name"));
         }
         let sigs: Vec<DefSig> = visible.iter().map(|d| d.sig.clone()).collect();
-        let body =
-            self.rhs(&origin, text, eq, decls, &sigs)
-                .map_err(|(d, unknown)| {
-                    match unknown.and_then(|u| self.defined_later(&u, later)) {
-                        Some(help) => d.with_help(help),
-                        None => d,
-                    }
-                })?;
+        let body = self.rhs(&origin, text, eq, decls, &sigs, later)?;
         let mut want = formal.clone();
         want.sort_unstable();
         let body = if body.is_literal_zero() {
@@ -455,8 +448,8 @@ impl Loader {
         Ok((base, indices.iter().map(|t| t.ch).collect(), e.span))
     }
 
-    /// The right side of `name = expression`; an error names the unknown name it is
-    /// about, if any.
+    /// The right side of `name = expression`; `later` are the definitions after this
+    /// one in its list, so that a name used before its definition is named as such.
     fn rhs(
         &self,
         origin: &Origin,
@@ -464,13 +457,21 @@ impl Loader {
         eq: usize,
         decls: &Decls,
         defs: &[DefSig],
-    ) -> Result<crate::lang::Node, (Diagnostic, Option<String>)> {
+        later: &[S],
+    ) -> Result<crate::lang::Node, Diagnostic> {
         let rhs_text = &text[eq + 1..];
         let sub = sub_origin(origin, eq + 1..text.len());
-        let e = parse_expr(rhs_text).map_err(|e| (self.lang(&sub, e), None))?;
+        let e = parse_expr(rhs_text).map_err(|e| self.lang(&sub, e))?;
         Scope { decls, defs }.check(&e).map_err(|e| {
-            let unknown = e.unknown.clone();
-            (self.lang(&sub, e), unknown)
+            let later = e
+                .unknown
+                .as_deref()
+                .and_then(|u| self.defined_later(u, later));
+            let d = self.lang(&sub, e);
+            match later {
+                Some(help) => d.with_help(help),
+                None => d,
+            }
         })
     }
 
@@ -523,7 +524,7 @@ impl Loader {
             }
             index.push(d - 1);
         }
-        let body = self.rhs(origin, text, eq, decls, &[]).map_err(|(d, _)| d)?;
+        let body = self.rhs(origin, text, eq, decls, &[], &[])?;
         if !body.free.is_empty() {
             return Err(origin.diagnostic(
                 Span::new(eq + 1, text.len()),
@@ -574,7 +575,7 @@ impl Loader {
                         ))
                 }
             }
-            let body = self.rhs(origin, text, eq, decls, &[]).map_err(|(d, _)| d)?;
+            let body = self.rhs(origin, text, eq, decls, &[], &[])?;
             let mut want = formal.clone();
             want.sort_unstable();
             if body.free_letters() != want {
