@@ -105,7 +105,15 @@ fn short_evidence(r: &Decided<'_>) -> String {
 
 fn outcome_line(o: &Outcome) -> String {
     if let Some(cx) = &o.counterexample {
-        return counterexample_line(cx);
+        return match (
+            o.verdict(),
+            o.numeric.as_ref().and_then(|n| n.domain.as_ref()),
+        ) {
+            (Verdict::Conditional, Some(domain)) => {
+                format!("holds with {domain}; outside, {}", counterexample_line(cx))
+            }
+            _ => counterexample_line(cx),
+        };
     }
     if let (Verdict::Undecided, Some(f)) = (o.verdict(), &o.finding) {
         return words::finding(f);
