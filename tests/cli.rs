@@ -537,3 +537,28 @@ fn devices_fifos_directories_and_huge_files_are_refused_promptly() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn progress_on_a_terminal_names_the_claim_and_counts_its_samples() {
+    // `script` (util-linux) gives the run a terminal; without it there is nothing to show.
+    let bin = env!("CARGO_BIN_EXE_cosserat-check");
+    let out_file =
+        std::env::temp_dir().join(format!("cosserat-progress-{}.md", std::process::id()));
+    let command = format!(
+        "{bin} --only eq47 --samples 1000000 --time-limit 2.5 --out {}",
+        out_file.display()
+    );
+    let Ok(out) = Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+    else {
+        eprintln!("note: `script` is not installed; progress on a terminal not tested");
+        return;
+    };
+    let shown = text(&out.stdout);
+    assert!(shown.contains("decided 0/1 · eq47: samples "), "{shown}");
+    assert!(shown.contains("/1000000, "), "{shown}");
+    assert!(shown.contains("decided 1 claim in "), "{shown}");
+    let _ = std::fs::remove_file(&out_file);
+}

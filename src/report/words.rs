@@ -247,3 +247,26 @@ pub fn point(at: &Point) -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_satisfied_inequality_is_said_as_a_margin_not_a_negative_violation() {
+        let held = measure(Measure::RelativeViolation, -8.6e-4, false);
+        assert_eq!(
+            held,
+            "the inequality held at every sample, by a relative margin of at least 8.6e-4"
+        );
+        assert_eq!(
+            measure(Measure::RelativeViolation, 0.0, true),
+            "smallest relative margin 0.0e0 (held)"
+        );
+        assert_eq!(
+            measure(Measure::RelativeViolation, 0.25, false),
+            "largest relative violation 2.5e-1"
+        );
+        assert!(!held.contains("-8.6") && !held.contains("≤ 0"));
+    }
+}
