@@ -161,7 +161,10 @@ fn states(out: &mut String, record: Option<&Record>) {
             .values
             .iter()
             .map(|(e, v)| match v {
-                Some(v) => format!("`{e}` = {v:.9}"),
+                Some(v) => format!(
+                    "`{e}` = {}",
+                    crate::digits::significant(*v, crate::digits::VALUE)
+                ),
                 None => format!("`{e}` is not a scalar here"),
             })
             .collect();
