@@ -6,7 +6,9 @@
 //! indices of a name swapped, each term's sign flipped, each term dropped, each function
 //! replaced by a neighbour (sqrt → identity, cos ↔ sin, avg → identity, …) — and the
 //! mutant is decided by the claim's own strategy. A mutant is refuted when its verdict
-//! differs from the declared one, or rejected when the validator refuses it.
+//! differs from the declared one, rejected when the validator refuses it, and undecided
+//! (never counted as refuted) when the checker cannot decide it: a mutated function
+//! with no derivative at a sample, a mutated locus for which no witness is found.
 //!
 //! Survivors must be equivalent (the mutated statement is still true):
 //! - for the exact strategy, the independent floating-point route (`strategy::float`:
@@ -40,6 +42,7 @@ struct Tally {
     killed: usize,
     late: usize,
     rejected: usize,
+    undecided: usize,
     equivalent: usize,
 }
 
@@ -48,6 +51,8 @@ enum Fate {
     /// Survived 50 samples but not the second sampling.
     Late,
     Rejected,
+    /// The checker could not decide the mutant: not a refutation.
+    Undecided,
     Survived,
     /// The exact and float routes disagree: a bug in one of them.
     Disagreement(String),
@@ -92,6 +97,9 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     let Ok(outcome) = decide(decls, &light) else {
         return Fate::Rejected;
     };
+    if outcome.verdict() == Verdict::Undecided {
+        return Fate::Undecided;
+    }
     if matches!(check.strategy, Strategy::Exact) {
         match float::decide(decls, &check, FLOAT_SAMPLES, 7) {
             Ok(Some(v)) if v != outcome.verdict() => {
@@ -207,6 +215,7 @@ fn every_mutant_of_every_proved_statement_is_refuted() {
     let mut per_claim: Vec<String> = Vec::new();
     let mut survivors: Vec<(String, String, String, &str)> = Vec::new();
     let mut disagreements: Vec<String> = Vec::new();
+    let mut undecided: Vec<String> = Vec::new();
     for ((name, _, check, _), result) in jobs.iter().zip(results) {
         let strategy = strategy_name(&check.strategy);
         let mut kinds: BTreeMap<MutantKind, (usize, usize)> = BTreeMap::new();
@@ -223,6 +232,10 @@ fn every_mutant_of_every_proved_statement_is_refuted() {
                     k.0 += 1;
                 }
                 Fate::Rejected => entry.rejected += 1,
+                Fate::Undecided => {
+                    entry.undecided += 1;
+                    undecided.push(format!("{name}, {place}: {text}"));
+                }
                 Fate::Survived => {
                     entry.equivalent += 1;
                     k.1 += 1;
@@ -241,15 +254,16 @@ fn every_mutant_of_every_proved_statement_is_refuted() {
     }
 
     let mut report = String::from(
-        "strategy | kind | mutants | refuted | refuted on resampling | rejected as ill-formed | equivalent (still true)\n",
+        "strategy | kind | mutants | refuted | refuted on resampling | rejected as ill-formed | undecided (not refuted) | equivalent (still true)\n",
     );
     for ((strategy, kind), t) in &per_kind {
         report.push_str(&format!(
-            "{strategy} | {kind} | {} | {} | {} | {} | {}\n",
-            t.killed + t.late + t.rejected + t.equivalent,
+            "{strategy} | {kind} | {} | {} | {} | {} | {} | {}\n",
+            t.killed + t.late + t.rejected + t.undecided + t.equivalent,
             t.killed,
             t.late,
             t.rejected,
+            t.undecided,
             t.equivalent
         ));
     }
@@ -269,6 +283,11 @@ fn every_mutant_of_every_proved_statement_is_refuted() {
     ));
     for (name, place, text, _) in survivors.iter().filter(|s| s.3 != "exact") {
         report.push_str(&format!("{name}, {place}: {text}\n"));
+    }
+    report.push_str("\nUndecided mutants (neither refuted nor shown true):\n");
+    for line in &undecided {
+        report.push_str(line);
+        report.push('\n');
     }
     println!("{report}");
 

@@ -9,6 +9,9 @@ use crate::strategy::Measure;
 pub fn finding(f: &Finding) -> String {
     match f {
         Finding::NothingCompared => "no component was compared, so nothing was proved".into(),
+        Finding::ResourceLimit { what, at, help } => format!(
+            "undecided (resource limit): {what} (at {at}); {help}"
+        ),
         Finding::TimeLimit { seconds } => format!(
             "undecided (time limit): the decision did not finish within {} s (raise it with \
              `--time-limit SECONDS`, or lower `samples`)",

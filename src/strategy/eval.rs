@@ -219,23 +219,53 @@ impl<'a> ExactEnv<'a> {
     /// Evaluates a checked node; `origin` locates errors in its text. Refuses (with a
     /// located error) any component that grows past [`MAX_TERMS`] terms, and an
     /// expansion that takes more than [`MAX_WORK`] term products in all.
-    pub fn eval(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Diagnostic> {
+    pub fn eval(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Refusal> {
         let mut ring = ExactRing { env: self, origin };
         match walk::walk(&mut ring, node, &()) {
             Ok(tensor) => Ok(Labeled {
                 labels: node.free_letters(),
                 tensor,
             }),
-            Err(Failure::Located(d)) => Err(d),
-            Err(Failure::OverBudget) => Err(too_much(origin, node)),
+            Err(Failure::Located(d)) => Err(Refusal::Input(d)),
+            Err(Failure::Limit(d)) => Err(Refusal::Limit(d)),
+            Err(Failure::OverBudget) => Err(Refusal::Limit(too_much(origin, node))),
+        }
+    }
+}
+
+/// Why an exact evaluation gave no value: the input cannot be evaluated exactly (a
+/// function with no polynomial value: the file should say `strategy = "numeric"`), or
+/// it can, but past a resource limit ([`MAX_WORK`], [`MAX_TERMS`], the size of a
+/// power), which makes the claim undecided rather than the file malformed.
+#[derive(Clone, Debug)]
+pub enum Refusal {
+    Input(Diagnostic),
+    Limit(Diagnostic),
+}
+
+impl Refusal {
+    pub fn diagnostic(&self) -> &Diagnostic {
+        match self {
+            Refusal::Input(d) | Refusal::Limit(d) => d,
+        }
+    }
+}
+
+/// Where a caller cannot decide anything without the value, both are errors.
+impl From<Refusal> for Diagnostic {
+    fn from(r: Refusal) -> Self {
+        match r {
+            Refusal::Input(d) | Refusal::Limit(d) => d,
         }
     }
 }
 
 /// Why an exact evaluation stopped: the work budget ran out in a contraction (located
-/// by the walk at the contraction's node), or a located error.
+/// by the walk at the contraction's node), a located resource limit, or a located
+/// input error.
 enum Failure {
     OverBudget,
+    Limit(Diagnostic),
     Located(Diagnostic),
 }
 
@@ -249,6 +279,15 @@ struct ExactRing<'e, 'a> {
 impl ExactRing<'_, '_> {
     fn error(&self, node: &Node, message: impl Into<String>, help: &str) -> Failure {
         Failure::Located(
+            self.origin
+                .diagnostic(node.span, message)
+                .with_help(help.to_owned()),
+        )
+    }
+
+    /// A resource limit reached at `node`.
+    fn limit(&self, node: &Node, message: impl Into<String>, help: &str) -> Failure {
+        Failure::Limit(
             self.origin
                 .diagnostic(node.span, message)
                 .with_help(help.to_owned()),
@@ -360,7 +399,7 @@ impl Ring for ExactRing<'_, '_> {
             || terms > MAX_TERMS as f64
             || max_bits.saturating_mul(u64::from(k)) > MAX_COEFFICIENT_BITS;
         if too_big {
-            return Err(self.error(
+            return Err(self.limit(
                 node,
                 "this power is too large to expand exactly",
                 &format!(
@@ -413,7 +452,7 @@ impl Ring for ExactRing<'_, '_> {
             .iter()
             .find(|p| p.num_terms() > MAX_TERMS)
         {
-            return Err(self.error(
+            return Err(self.limit(
                 node,
                 format!(
                     "this expands to {} terms, more than the limit of {MAX_TERMS}",
@@ -427,7 +466,7 @@ impl Ring for ExactRing<'_, '_> {
 
     fn at(&mut self, e: Failure, node: &Node) -> Failure {
         match e {
-            Failure::OverBudget => Failure::Located(too_much(self.origin, node)),
+            Failure::OverBudget => Failure::Limit(too_much(self.origin, node)),
             located => located,
         }
     }

@@ -5,7 +5,7 @@
 //! a rational point that satisfies the assumptions (a point on the unit sphere for
 //! the normal).
 
-use super::eval::{component_name, ExactEnv, Labeled};
+use super::eval::{component_name, ExactEnv, Labeled, Refusal};
 use super::finding::{Expansion, Finding, Record};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::Check;
@@ -95,7 +95,7 @@ fn expand_rest(
                 Err(e) => Err(format!("ill-formed as printed: {}", e.message)),
                 Ok(node) => env
                     .eval(node, &side.origin)
-                    .map_err(|d| format!("(cannot expand: {})", d.message)),
+                    .map_err(|r| format!("(cannot expand: {})", r.diagnostic().message)),
             };
             let e = expansion(
                 env,
@@ -146,7 +146,21 @@ fn decide_recording(
         let mut values = Vec::with_capacity(chain.len());
         for (si, side) in chain.iter().enumerate() {
             let node = side.node.as_ref().expect("ill-formed sides handled above");
-            let value = env.eval(node, &side.origin)?;
+            let value = match env.eval(node, &side.origin) {
+                Ok(v) => v,
+                Err(Refusal::Input(d)) => return Err(d),
+                // The statement is fine; expanding it exactly costs more than the
+                // checker allows. That decides nothing about it.
+                Err(Refusal::Limit(d)) => {
+                    return Ok(Outcome::undecided(Method::Exact, 0).with_finding(
+                        Finding::ResourceLimit {
+                            what: d.message.clone(),
+                            at: location(&d),
+                            help: d.help.clone().unwrap_or_default(),
+                        },
+                    ))
+                }
+            };
             if let Some(record) = record.as_deref_mut() {
                 record.push(expansion(&env, decls, (ci, si), &side.text, Ok(&value)));
             }

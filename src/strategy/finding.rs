@@ -20,6 +20,13 @@ pub enum Finding {
     NothingCompared,
     /// The decision did not finish within the per-claim time limit (`--time-limit`).
     TimeLimit { seconds: f64 },
+    /// Expanding the statement exactly passes a resource limit (work, terms, the size
+    /// of a power) at `at` (file:line:col).
+    ResourceLimit {
+        what: String,
+        at: String,
+        help: String,
+    },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.
     Unconfirmed { difference: String, why: Rejection },
