@@ -151,6 +151,11 @@ fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
                 Func::Cos => &["sin"],
                 Func::Sin => &["cos"],
                 Func::Tan => &["sin"],
+                Func::Exp => &["log", ""],
+                Func::Log => &["exp", ""],
+                Func::Atan => &["tan", ""],
+                Func::Asin => &["acos"],
+                Func::Acos => &["asin"],
             };
             for n in neighbours {
                 out.push((MutantKind::Function, at.clone(), (*n).to_owned()));

@@ -141,8 +141,14 @@ fn a_tape_reports_the_interpreters_errors() {
     let negative = [-4.0, 1.0];
     let err = tape.eval(&negative, &[1.0, 0.0], &fine()).unwrap_err();
     assert!(
-        err.message.contains("sqrt of a negative number"),
+        err.message.contains("sqrt(…) of a negative number (-4)"),
         "{}",
         err.message
     );
+    let env = RealEnv::new(
+        &claim.decls,
+        &claim.check.defs,
+        HashMap::from([("a".to_owned(), Tensor::from_fn(2, 1, |i| [-4.0, 1.0][i[0]]))]),
+    );
+    assert_eq!(err, env.eval(node, &[1.0, 0.0]).unwrap_err());
 }

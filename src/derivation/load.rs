@@ -295,8 +295,14 @@ impl Loader {
                 || decls.normal.as_ref() == Some(&name)
             {
                 return Err(self
-                    .diag(s.span(), format!("`{name}` is declared twice or is a built-in name"))
-                    .with_help("built-in names: delta, eps, sqrt, abs, cos, sin, tan, avg, maxn; choose another name"));
+                    .diag(
+                        s.span(),
+                        format!("`{name}` is declared twice or is a built-in name"),
+                    )
+                    .with_help(format!(
+                        "built-in names: {}; choose another name",
+                        RESERVED.join(", ")
+                    )));
             }
             decls.symbols.insert(name, rank);
             Ok(())

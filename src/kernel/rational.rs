@@ -15,6 +15,10 @@ use std::cmp::Ordering;
 use std::fmt;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
+/// The largest power of ten a decimal literal may carry (`1e300`): enough for any
+/// physical constant, small enough that no literal makes a huge integer.
+pub const MAX_DECIMAL_EXPONENT: i64 = 300;
+
 /// The representation: `Small(n, d)` with d > 0, gcd(n, d) = 1 and n ≠ i64::MIN (so
 /// that negation stays small), used exactly when the value fits; `Big` otherwise.
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
@@ -86,8 +90,30 @@ impl Rational {
         BigRational::from_float(x).map(from_big_reduced)
     }
 
-    /// Parses a plain decimal literal such as `12`, `0.25` or `3.` exactly.
+    /// A decimal literal such as `12`, `0.25`, `3.` or `2.5e-3`, exactly; `None` for anything else
+    /// and for exponents beyond ±[`MAX_DECIMAL_EXPONENT`].
     pub fn parse_decimal(text: &str) -> Option<Self> {
+        // Scientific notation: a mantissa times an exact power of ten (`1e-3` is 1/1000).
+        if let Some((mantissa, exponent)) = text.split_once(['e', 'E']) {
+            let m = Rational::parse_decimal(mantissa)?;
+            let digits = exponent.strip_prefix(['+', '-']).unwrap_or(exponent);
+            if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+                return None;
+            }
+            let e: i64 = exponent.parse().ok()?;
+            if e.abs() > MAX_DECIMAL_EXPONENT {
+                return None;
+            }
+            let power = from_big_reduced(BigRational::from_integer(num_traits::pow(
+                BigInt::from(10),
+                e.unsigned_abs() as usize,
+            )));
+            return if e < 0 {
+                m.checked_div(&power)
+            } else {
+                Some(&m * &power)
+            };
+        }
         let (int_part, frac_part) = match text.split_once('.') {
             Some((a, b)) => (a, b),
             None => (text, ""),
@@ -404,6 +430,13 @@ mod tests {
         assert_eq!(Rational::parse_decimal("3."), Some(Rational::int(3)));
         assert_eq!(Rational::parse_decimal("."), None);
         assert_eq!(Rational::parse_decimal("1.2.3"), None);
+        assert_eq!(Rational::parse_decimal("1e-3"), Some(q(1, 1000)));
+        assert_eq!(Rational::parse_decimal("2.5E+2"), Some(Rational::int(250)));
+        assert_eq!(Rational::parse_decimal("25e-1"), Some(q(5, 2)));
+        assert_eq!(Rational::parse_decimal("1e"), None);
+        assert_eq!(Rational::parse_decimal("1e+"), None);
+        assert_eq!(Rational::parse_decimal("e3"), None);
+        assert_eq!(Rational::parse_decimal("1e400"), None);
     }
 
     #[test]

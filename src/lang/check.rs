@@ -44,6 +44,8 @@ pub enum Target {
     Delta,
     Eps,
     Normal,
+    /// π: a real constant, not a rational (exact mode refuses it).
+    Pi,
 }
 
 /// One index slot of a leaf (the kernel's contraction reads the same slots).
@@ -72,7 +74,8 @@ pub enum NodeKind {
     Div(Box<Node>, Box<Node>),
     Neg(Box<Node>),
     Pow(Box<Node>, u32),
-    /// A scalar function (`sqrt`, `abs`, `cos`, `sin`, `tan`) of a scalar.
+    /// A scalar function (`sqrt`, `abs`, `cos`, `sin`, `tan`, `exp`, `log`, `atan`,
+    /// `asin`, `acos`) of a scalar.
     Apply(Func, Box<Node>),
     Avg(Box<Node>),
     /// The maximum over the orientation of the normal of a scalar.
@@ -151,8 +154,9 @@ pub fn letters(ls: &[char]) -> String {
 }
 
 /// Names that cannot be declared: built-ins and functions.
-pub const RESERVED: [&str; 9] = [
-    "delta", "eps", "sqrt", "abs", "cos", "sin", "tan", "avg", "maxn",
+pub const RESERVED: [&str; 15] = [
+    "delta", "eps", "pi", "sqrt", "abs", "cos", "sin", "tan", "exp", "log", "atan", "asin", "acos",
+    "avg", "maxn",
 ];
 
 /// Resolves and validates expressions against declarations and visible definitions.
@@ -272,6 +276,7 @@ impl Scope<'_> {
         }
         let (target, rank) = match base {
             "delta" => (Target::Delta, 2),
+            "pi" => (Target::Pi, 0),
             "eps" => (Target::Eps, dim),
             _ if self.decls.normal.as_deref() == Some(base) => (Target::Normal, 1),
             _ => {

@@ -8,8 +8,10 @@
 //! unary  := '-' unary | power
 //! power  := atom ('^' integer)?
 //! atom   := number | name | func '(' expr ')' | '(' expr ')'
-//! func   := 'sqrt' | 'abs' | 'cos' | 'sin' | 'tan' | 'avg' | 'maxn'
-//! name   := letter alnum* ('_' alnum+)?             -- sigma_ki, n_k, R_g, delta_ij
+//! func   := 'sqrt' | 'abs' | 'cos' | 'sin' | 'tan' | 'exp' | 'log' | 'atan' | 'asin'
+//!         | 'acos' | 'avg' | 'maxn'
+//! name   := letter alnum* ('_' alnum+)?             -- sigma_ki, n_k, R_g, delta_ij, pi
+//! number := digits ('.' digits)? (('e' | 'E') ('+' | '-')? digits)?   -- 2.5e-3
 //! ```
 //!
 //! A name's suffix after `_` is its index list (one character per slot, a digit being a
@@ -35,6 +37,12 @@ pub enum Func {
     Cos,
     Sin,
     Tan,
+    Exp,
+    /// The natural logarithm.
+    Log,
+    Atan,
+    Asin,
+    Acos,
     /// The average over the contact normal.
     Avg,
     /// The maximum over the orientation of the contact normal.
@@ -50,6 +58,11 @@ impl Func {
             "cos" => Func::Cos,
             "sin" => Func::Sin,
             "tan" => Func::Tan,
+            "exp" => Func::Exp,
+            "log" => Func::Log,
+            "atan" => Func::Atan,
+            "asin" => Func::Asin,
+            "acos" => Func::Acos,
             "avg" => Func::Avg,
             "maxn" => Func::MaxN,
             _ => return None,
@@ -63,6 +76,11 @@ impl Func {
             Func::Cos => "cos",
             Func::Sin => "sin",
             Func::Tan => "tan",
+            Func::Exp => "exp",
+            Func::Log => "log",
+            Func::Atan => "atan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
             Func::Avg => "avg",
             Func::MaxN => "maxn",
         }
@@ -163,6 +181,16 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
             while k < src.len() && (bytes[k].is_ascii_digit() || bytes[k] == b'.') {
                 k += 1;
             }
+            // Scientific notation: `e` or `E`, an optional sign, and digits (`1e-3`).
+            if k < src.len() && matches!(bytes[k], b'e' | b'E') {
+                let sign = usize::from(matches!(bytes.get(k + 1), Some(b'+' | b'-')));
+                if bytes.get(k + 1 + sign).is_some_and(u8::is_ascii_digit) {
+                    k += 1 + sign;
+                    while k < src.len() && bytes[k].is_ascii_digit() {
+                        k += 1;
+                    }
+                }
+            }
             let text = &src[start..k];
             let value = Rational::parse_decimal(text).ok_or_else(|| {
                 LangError::new(
@@ -170,7 +198,7 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
                     Span::new(start, k),
                     format!("`{text}` is not a number"),
                 )
-                .help("write integers or decimals such as 3 or 0.25; fractions as 1/3")
+                .help("write integers or decimals such as 3, 0.25 or 2.5e-3 (exponents up to ±300); fractions as 1/3")
             })?;
             out.push((Tok::Num(value), Span::new(start, k)));
         } else if c.is_ascii_alphabetic() {
@@ -490,6 +518,15 @@ mod tests {
         assert_eq!(shape(&e), "((-a) - (-b))");
         let e = parse_expr("avg(n_i n_j) - sqrt(4)").unwrap();
         assert_eq!(shape(&e), "(Avg(n_i n_j) - Sqrt4)");
+    }
+
+    #[test]
+    fn scientific_notation_is_one_number() {
+        let e = parse_expr("2.5e-3 x + 1E2 - 3e_ijk").unwrap();
+        assert_eq!(shape(&e), "(((1/400 x) + 100) - (3 e_ijk))");
+        let e = parse_expr("2eps_ijk").unwrap();
+        assert_eq!(shape(&e), "(2 eps_ijk)");
+        assert!(parse_expr("1e999").is_err());
     }
 
     #[test]

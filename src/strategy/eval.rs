@@ -410,6 +410,14 @@ impl Ring for ExactRing<'_, '_> {
         Ok(p.pow(k))
     }
 
+    fn pi(&mut self, node: &Node) -> Result<Poly, Failure> {
+        Err(self.error(
+            node,
+            "π is not a rational number, so it has no exact polynomial value",
+            "decide this claim with strategy = \"numeric\"",
+        ))
+    }
+
     fn apply(&mut self, f: Func, p: Poly, node: &Node) -> Result<Poly, Failure> {
         match f {
             Func::Sqrt => p

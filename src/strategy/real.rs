@@ -342,19 +342,11 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     }
 
     fn apply(&mut self, f: Func, x: T, node: &Node) -> Result<T, RealError> {
-        Ok(match f {
-            Func::Sqrt => {
-                if x.re() < 0.0 {
-                    return Err(err(node, format!("sqrt of a negative number ({})", x.re())));
-                }
-                x.sqrt()
-            }
-            Func::Abs => x.abs(),
-            Func::Cos => x.cos(),
-            Func::Sin => x.sin(),
-            Func::Tan => x.tan(),
-            Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
-        })
+        elementary(f, x).map_err(|m| err(node, m))
+    }
+
+    fn pi(&mut self, _node: &Node) -> Result<T, RealError> {
+        Ok(T::from(std::f64::consts::PI))
     }
 
     fn average(&mut self, a: &Node, node: &Node, _n: &[f64]) -> Result<Tensor<T>, RealError> {
@@ -389,4 +381,28 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     fn not_scalar(&mut self, node: &Node) -> RealError {
         err(node, "expected a scalar")
     }
+}
+
+/// A scalar function of a number (`f64` or num-dual), or why it is undefined there: the
+/// one definition the interpreter and the compiled tapes share.
+pub(super) fn elementary<T: DualNum<Primitive = f64>>(f: Func, x: T) -> Result<T, String> {
+    let outside = |what: &str| Err(format!("{}(…) of {} ({})", f.name(), what, x.re()));
+    Ok(match f {
+        Func::Sqrt if x.re() < 0.0 => return outside("a negative number"),
+        Func::Sqrt => x.sqrt(),
+        Func::Abs => x.abs(),
+        Func::Cos => x.cos(),
+        Func::Sin => x.sin(),
+        Func::Tan => x.tan(),
+        Func::Exp => x.exp(),
+        Func::Log if x.re() <= 0.0 => return outside("a number that is not positive"),
+        Func::Log => x.ln(),
+        Func::Atan => x.atan(),
+        Func::Asin | Func::Acos if !(-1.0..=1.0).contains(&x.re()) => {
+            return outside("a number outside [−1, 1]")
+        }
+        Func::Asin => x.asin(),
+        Func::Acos => x.acos(),
+        Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
+    })
 }

@@ -44,11 +44,9 @@ enum Op {
     Neg(usize),
     Div(usize, usize, Span),
     Powi(usize, i32),
-    Sqrt(usize, Span),
-    Abs(usize),
-    Cos(usize),
-    Sin(usize),
-    Tan(usize),
+    /// A scalar function ([`super::real::elementary`]); the span locates its domain
+    /// errors.
+    Apply(Func, usize, Span),
     /// max over θ of the sub-tape's output (index into [`Tape::maxn`]).
     MaxN(usize, Span),
     /// Component `c` (in [`assignments`] order) of the adaptive average of the
@@ -168,13 +166,7 @@ impl Tape {
                     live[a] = true;
                     live[b] = true;
                 }
-                Op::Neg(a)
-                | Op::Powi(a, _)
-                | Op::Sqrt(a, _)
-                | Op::Abs(a)
-                | Op::Cos(a)
-                | Op::Sin(a)
-                | Op::Tan(a) => live[a] = true,
+                Op::Neg(a) | Op::Powi(a, _) | Op::Apply(_, a, _) => live[a] = true,
                 Op::MaxN(t, _) => self.maxn[t].mark_read(read),
                 Op::Avg(t, _) => self.avgs[t].mark_read(read),
             }
@@ -226,19 +218,8 @@ impl Tape {
                     v[a].clone() / v[b].clone()
                 }
                 Op::Powi(a, k) => v[a].powi(k),
-                Op::Sqrt(a, span) => {
-                    if v[a].re() < 0.0 {
-                        return Err(RealError {
-                            span,
-                            message: format!("sqrt of a negative number ({})", v[a].re()),
-                        });
-                    }
-                    v[a].sqrt()
-                }
-                Op::Abs(a) => v[a].abs(),
-                Op::Cos(a) => v[a].cos(),
-                Op::Sin(a) => v[a].sin(),
-                Op::Tan(a) => v[a].tan(),
+                Op::Apply(f, a, span) => super::real::elementary(f, v[a].clone())
+                    .map_err(|message| RealError { span, message })?,
                 Op::MaxN(k, span) => self.maxn[k].max_over_angle(inputs, n, span, quad)?,
                 Op::Avg(k, c) => {
                     if averages[k].is_none() {
@@ -358,11 +339,7 @@ impl<'a> Compiler<'a> {
             Op::Div(a, b, _) => Some(Key::Bin(2, *a, *b)),
             Op::Neg(a) => Some(Key::Un(0, *a, 0)),
             Op::Powi(a, k) => Some(Key::Un(1, *a, *k)),
-            Op::Sqrt(a, _) => Some(Key::Un(2, *a, 0)),
-            Op::Abs(a) => Some(Key::Un(3, *a, 0)),
-            Op::Cos(a) => Some(Key::Un(4, *a, 0)),
-            Op::Sin(a) => Some(Key::Un(5, *a, 0)),
-            Op::Tan(a) => Some(Key::Un(6, *a, 0)),
+            Op::Apply(f, a, _) => Some(Key::Un(2 + *f as u8, *a, 0)),
             Op::MaxN(..) | Op::Avg(..) => None,
         };
         if let Some(k) = &key {
@@ -547,15 +524,12 @@ impl Ring for Compiler<'_> {
     }
 
     fn apply(&mut self, f: Func, x: usize, node: &Node) -> Result<usize, Unsupported> {
-        let op = match f {
-            Func::Sqrt => Op::Sqrt(x, node.span),
-            Func::Abs => Op::Abs(x),
-            Func::Cos => Op::Cos(x),
-            Func::Sin => Op::Sin(x),
-            Func::Tan => Op::Tan(x),
-            Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
-        };
-        Ok(self.push(op))
+        debug_assert!(!matches!(f, Func::Avg | Func::MaxN), "their own node kinds");
+        Ok(self.push(Op::Apply(f, x, node.span)))
+    }
+
+    fn pi(&mut self, _node: &Node) -> Result<usize, Unsupported> {
+        Ok(self.c(std::f64::consts::PI))
     }
 
     fn average(

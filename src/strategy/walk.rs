@@ -64,6 +64,8 @@ pub trait Ring: Arithmetic {
     ) -> Result<Self::Value, Self::Error>;
     fn power(&mut self, x: Self::Value, k: u32, node: &Node) -> Result<Self::Value, Self::Error>;
     fn apply(&mut self, f: Func, x: Self::Value, node: &Node) -> Result<Self::Value, Self::Error>;
+    /// π (`node` locates a refusal: it is not rational).
+    fn pi(&mut self, node: &Node) -> Result<Self::Value, Self::Error>;
     /// `avg(arg)` over the unit normal.
     fn average(
         &mut self,
@@ -113,6 +115,7 @@ pub fn walk<R: Ring>(
             let base = match target {
                 Target::Delta => ring.delta(),
                 Target::Eps => ring.epsilon(),
+                Target::Pi => Tensor::scalar(d, ring.pi(node)?),
                 Target::Normal => ring.normal(n),
                 Target::Symbol(s) => ring.symbol(s, node)?,
                 Target::Def(name) => ring.definition(name, node, n)?,

@@ -1,0 +1,33 @@
+//! Scientific notation (exact), π and exp, log, atan, asin, acos (sampled): identities
+//! hold, their wrong twins fail, and exact mode refuses π with a located error.
+
+use cosserat_check::cli::decide_all;
+use cosserat_check::derivation::{load_files, load_str};
+
+#[test]
+fn identities_hold_and_their_twins_fail() {
+    let files = load_files(&["tests/soundness/notation.toml"]).unwrap();
+    let rows = decide_all(&files, None).unwrap();
+    assert_eq!(rows.len(), 10);
+    for r in &rows {
+        assert!(
+            r.as_expected(),
+            "{}: {} (declared {}): {}",
+            r.claim.id,
+            r.outcome.verdict_text(),
+            r.claim.expect,
+            cosserat_check::report::evidence(&r.outcome)
+        );
+    }
+}
+
+#[test]
+fn exact_mode_refuses_pi_where_it_stands() {
+    let text = "section = \"t\"\ntitle = \"t\"\ndimension = 2\nscalars = [\"x\"]\n\n[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nsides = [\"2 pi x\", \"pi x + pi x\"]\n";
+    let files = load_str("pi.toml", text).unwrap();
+    let err = decide_all(std::slice::from_ref(&files), None)
+        .expect_err("exact mode refuses pi")
+        .to_string();
+    assert!(err.contains("pi.toml:10:13"), "{err}");
+    assert!(err.contains("π is not a rational number"), "{err}");
+}
