@@ -5,7 +5,7 @@
 //! original.
 
 use crate::lang::parse_expr;
-use crate::lang::parser::{Expr, ExprKind, Func};
+use crate::lang::parser::{Expr, ExprKind, Func, Func2};
 use std::fmt;
 
 /// The kind of slip a mutant makes.
@@ -161,6 +161,18 @@ fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
                 out.push((MutantKind::Function, at.clone(), (*n).to_owned()));
             }
             collect(src, a, out);
+        }
+        ExprKind::Call2(func, a, b) => {
+            // min ↔ max; atan2's arguments are mutated as any operands.
+            let name = func.name();
+            let at = e.span.start..e.span.start + name.len();
+            match func {
+                Func2::Min => out.push((MutantKind::Function, at, "max".to_owned())),
+                Func2::Max => out.push((MutantKind::Function, at, "min".to_owned())),
+                Func2::Atan2 | Func2::Pow => {}
+            }
+            collect(src, a, out);
+            collect(src, b, out);
         }
         ExprKind::Neg(a) | ExprKind::Pow(a, _) => collect(src, a, out),
         ExprKind::Mul(a, b) | ExprKind::Div(a, b) => {

@@ -8,7 +8,7 @@ use cosserat_check::derivation::{load_files, load_str};
 fn identities_hold_and_their_twins_fail() {
     let files = load_files(&["tests/soundness/notation.toml"]).unwrap();
     let rows = decide_all(&files, None).unwrap();
-    assert_eq!(rows.len(), 10);
+    assert_eq!(rows.len(), 18);
     for r in &rows {
         assert!(
             r.as_expected(),

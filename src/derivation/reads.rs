@@ -43,7 +43,7 @@ impl Check {
                 }
                 NodeKind::Leaf { .. } | NodeKind::Const(_) => {}
                 NodeKind::Sum(xs) | NodeKind::Product(xs) => stack.extend(xs),
-                NodeKind::Div(a, b) => stack.extend([&**a, &**b]),
+                NodeKind::Div(a, b) | NodeKind::Apply2(_, a, b) => stack.extend([&**a, &**b]),
                 NodeKind::Neg(a)
                 | NodeKind::Pow(a, _)
                 | NodeKind::Apply(_, a)

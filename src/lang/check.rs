@@ -11,7 +11,7 @@
 //!   `eps` has rank d.
 
 use super::diag::Span;
-use super::parser::{ErrorKind, Expr, ExprKind, Func, IndexTok, LangError};
+use super::parser::{ErrorKind, Expr, ExprKind, Func, Func2, IndexTok, LangError};
 use crate::kernel::Rational;
 use std::collections::BTreeMap;
 
@@ -74,6 +74,8 @@ pub enum NodeKind {
     Div(Box<Node>, Box<Node>),
     Neg(Box<Node>),
     Pow(Box<Node>, u32),
+    /// A function of two scalars (`atan2`, `min`, `max`, a real power).
+    Apply2(Func2, Box<Node>, Box<Node>),
     /// A scalar function (`sqrt`, `abs`, `cos`, `sin`, `tan`, `exp`, `log`, `atan`,
     /// `asin`, `acos`) of a scalar.
     Apply(Func, Box<Node>),
@@ -129,7 +131,7 @@ impl Node {
                     }
                 }
                 NodeKind::Sum(xs) | NodeKind::Product(xs) => stack.extend(xs),
-                NodeKind::Div(a, b) => stack.extend([&**a, &**b]),
+                NodeKind::Div(a, b) | NodeKind::Apply2(_, a, b) => stack.extend([&**a, &**b]),
                 NodeKind::Neg(a)
                 | NodeKind::Pow(a, _)
                 | NodeKind::Apply(_, a)
@@ -234,6 +236,21 @@ impl Scope<'_> {
                 let a = self.scalar_arg(a, func.name())?;
                 let func = *func;
                 Ok(wrap(a, e.span, |a| NodeKind::Apply(func, Box::new(a))))
+            }
+            ExprKind::Call2(func, a, b) => {
+                let what = match func {
+                    Func2::Pow => "a real power",
+                    f => f.name(),
+                };
+                let (a, b) = (self.scalar_arg(a, what)?, self.scalar_arg(b, what)?);
+                let mut bound = a.bound.clone();
+                bound.extend(&b.bound);
+                Ok(Node {
+                    free: Vec::new(),
+                    bound,
+                    span: e.span,
+                    kind: NodeKind::Apply2(*func, Box::new(a), Box::new(b)),
+                })
             }
         }
     }

@@ -87,6 +87,37 @@ impl Func {
     }
 }
 
+/// The functions of two scalars: `atan2(y, x)`, `min(a, b)`, `max(a, b)`, and the real
+/// power `x^(p/q)` (written with `^`, any exponent that is not a whole number).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Func2 {
+    Atan2,
+    Min,
+    Max,
+    /// `x^y` for x > 0 (and x = 0 with y > 0).
+    Pow,
+}
+
+impl Func2 {
+    pub fn from_name(name: &str) -> Option<Func2> {
+        Some(match name {
+            "atan2" => Func2::Atan2,
+            "min" => Func2::Min,
+            "max" => Func2::Max,
+            _ => return None,
+        })
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Func2::Atan2 => "atan2",
+            Func2::Min => "min",
+            Func2::Max => "max",
+            Func2::Pow => "^",
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     Number(Rational),
@@ -104,6 +135,7 @@ pub enum ExprKind {
     Div(Box<Expr>, Box<Expr>),
     Pow(Box<Expr>, u32),
     Call(Func, Box<Expr>),
+    Call2(Func2, Box<Expr>, Box<Expr>),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -233,7 +265,7 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
                 },
                 Span::new(start, k),
             ));
-        } else if "+-*/^()".contains(c) {
+        } else if "+-*/^(),".contains(c) {
             k += 1;
             out.push((Tok::Op(c), Span::new(start, k)));
         } else {
@@ -279,6 +311,19 @@ pub fn parse_expr(src: &str) -> Result<Expr, LangError> {
                 .help("an operator may be missing here"),
         ),
     }
+}
+
+/// The value of an expression made of numbers only (`1/3`, `-2`), if it is one.
+fn constant(e: &Expr) -> Option<Rational> {
+    Some(match &e.kind {
+        ExprKind::Number(q) => q.clone(),
+        ExprKind::Neg(a) => -constant(a)?,
+        ExprKind::Add(a, b) => &constant(a)? + &constant(b)?,
+        ExprKind::Sub(a, b) => &constant(a)? - &constant(b)?,
+        ExprKind::Mul(a, b) => &constant(a)? * &constant(b)?,
+        ExprKind::Div(a, b) => constant(a)?.checked_div(&constant(b)?)?,
+        _ => return None,
+    })
 }
 
 /// Nesting deeper than this is refused rather than risking the stack.
@@ -381,6 +426,35 @@ impl Parser {
         let base = self.atom()?;
         if let Tok::Op('^') = self.peek() {
             let (_, caret) = self.bump();
+            // `x^(e)`: a parenthesised exponent; a whole number is an ordinary power,
+            // a negative whole number a division, anything else a real power.
+            if let Tok::Op('(') = self.peek() {
+                let exponent = self.parenthesised()?;
+                let span = base.span.to(exponent.span);
+                let whole = constant(&exponent).and_then(|q| {
+                    q.is_integer()
+                        .then(|| q.to_string().parse::<i64>().ok())
+                        .flatten()
+                });
+                let kind = match whole {
+                    Some(k) if (0..=i64::from(MAX_POWER)).contains(&k) => {
+                        ExprKind::Pow(Box::new(base), k as u32)
+                    }
+                    Some(k) if (-i64::from(MAX_POWER)..0).contains(&k) => {
+                        let one = Expr {
+                            kind: ExprKind::Number(Rational::int(1)),
+                            span,
+                        };
+                        let pow = Expr {
+                            kind: ExprKind::Pow(Box::new(base), k.unsigned_abs() as u32),
+                            span,
+                        };
+                        ExprKind::Div(Box::new(one), Box::new(pow))
+                    }
+                    _ => ExprKind::Call2(Func2::Pow, Box::new(base), Box::new(exponent)),
+                };
+                return Ok(Expr { kind, span });
+            }
             let (tok, span) = self.bump();
             let exp = match tok {
                 Tok::Num(q) if q.is_integer() && !q.is_negative() => q
@@ -388,16 +462,28 @@ impl Parser {
                     .parse::<u32>()
                     .ok()
                     .filter(|&e| e <= MAX_POWER),
+                Tok::Num(q) if !q.is_integer() => {
+                    // `x^0.5`: a real power.
+                    let span = base.span.to(span);
+                    let exponent = Expr {
+                        kind: ExprKind::Number(q),
+                        span,
+                    };
+                    return Ok(Expr {
+                        kind: ExprKind::Call2(Func2::Pow, Box::new(base), Box::new(exponent)),
+                        span,
+                    });
+                }
                 _ => None,
             };
             let Some(exp) = exp else {
                 return Err(LangError::new(
                     ErrorKind::Syntax,
                     if span.end > span.start { span } else { caret },
-                    "`^` must be followed by a whole number",
+                    "`^` must be followed by a number or a parenthesised exponent",
                 )
                 .help(format!(
-                    "write a power as x^2; exponents run from 0 to {MAX_POWER}"
+                    "write x^2 (whole exponents from 0 to {MAX_POWER}), x^(-1), x^(1/3) or x^0.5"
                 )));
             };
             let span = base.span.to(span);
@@ -421,6 +507,43 @@ impl Parser {
                 base,
                 indices,
             } => {
+                if let Some(func) = Func2::from_name(&full) {
+                    if *self.peek() != Tok::Op('(') {
+                        return Err(LangError::new(
+                            ErrorKind::Syntax,
+                            span,
+                            format!("`{full}` must be followed by `(`"),
+                        )
+                        .help(format!("write {full}(a, b)")));
+                    }
+                    let (_, open) = self.bump();
+                    self.enter()?;
+                    let a = self.expr()?;
+                    let comma = self.bump();
+                    if comma.0 != Tok::Op(',') {
+                        return Err(LangError::new(
+                            ErrorKind::Syntax,
+                            comma.1,
+                            format!("{full}(…) takes two arguments separated by `,`"),
+                        )
+                        .help(format!("write {full}(a, b)")));
+                    }
+                    let b = self.expr()?;
+                    let close = self.bump();
+                    if close.0 != Tok::Op(')') {
+                        return Err(LangError::new(
+                            ErrorKind::Syntax,
+                            open,
+                            format!("`(` of {full}(…) is not closed after two arguments"),
+                        ));
+                    }
+                    self.depth -= 1;
+                    let span = span.to(close.1);
+                    return Ok(Expr {
+                        kind: ExprKind::Call2(func, Box::new(a), Box::new(b)),
+                        span,
+                    });
+                }
                 let func = Func::from_name(&full);
                 if let Some(func) = func {
                     if *self.peek() != Tok::Op('(') {
@@ -503,6 +626,7 @@ mod tests {
             ExprKind::Div(a, b) => format!("({} / {})", shape(a), shape(b)),
             ExprKind::Pow(a, k) => format!("{}^{k}", shape(a)),
             ExprKind::Call(f, a) => format!("{f:?}{}", shape(a)),
+            ExprKind::Call2(f, a, b) => format!("{f:?}({}, {})", shape(a), shape(b)),
         }
     }
 
@@ -527,6 +651,20 @@ mod tests {
         let e = parse_expr("2eps_ijk").unwrap();
         assert_eq!(shape(&e), "(2 eps_ijk)");
         assert!(parse_expr("1e999").is_err());
+    }
+
+    #[test]
+    fn two_argument_functions_and_real_powers() {
+        let e = parse_expr("max(a, b^2) + atan2(y, x) min(1, 2)").unwrap();
+        assert_eq!(shape(&e), "(Max(a, b^2) + (Atan2(y, x) Min(1, 2)))");
+        let e = parse_expr("x^(1/3) + x^0.5 + x^(-2) + x^(4/2)").unwrap();
+        assert_eq!(
+            shape(&e),
+            "(((Pow(x, (1 / 3)) + Pow(x, 1/2)) + (1 / x^2)) + x^2)"
+        );
+        assert!(parse_expr("max(a)").is_err());
+        assert!(parse_expr("max(a, b, c)").is_err());
+        assert!(parse_expr("x^y").is_err());
     }
 
     #[test]

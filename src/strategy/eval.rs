@@ -11,7 +11,7 @@ use super::walk::{self, Ring};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::einsum::{Arithmetic, Polynomials};
 use crate::kernel::{assignments, Poly, PolyError, Rational, Tensor, Var, VarTable};
-use crate::lang::parser::Func;
+use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Diagnostic, Node, Origin};
 use num_traits::{One, Zero};
 use std::collections::HashMap;
@@ -408,6 +408,18 @@ impl Ring for ExactRing<'_, '_> {
             ));
         }
         Ok(p.pow(k))
+    }
+
+    fn apply2(&mut self, f: Func2, _x: Poly, _y: Poly, node: &Node) -> Result<Poly, Failure> {
+        let what = match f {
+            Func2::Pow => "a power with an exponent that is not a whole number".to_owned(),
+            f => format!("{}(…, …)", f.name()),
+        };
+        Err(self.error(
+            node,
+            format!("{what} has no exact polynomial value"),
+            "decide this claim with strategy = \"numeric\"",
+        ))
     }
 
     fn pi(&mut self, node: &Node) -> Result<Poly, Failure> {

@@ -17,7 +17,7 @@ use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::einsum::Arithmetic;
 use crate::kernel::Rational;
 use crate::kernel::{assignments, Tensor};
-use crate::lang::parser::Func;
+use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node, Span};
 use num_dual::DualNum;
 use std::cell::RefCell;
@@ -345,6 +345,10 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
         elementary(f, x).map_err(|m| err(node, m))
     }
 
+    fn apply2(&mut self, f: Func2, x: T, y: T, node: &Node) -> Result<T, RealError> {
+        elementary2(f, x, y).map_err(|m| err(node, m))
+    }
+
     fn pi(&mut self, _node: &Node) -> Result<T, RealError> {
         Ok(T::from(std::f64::consts::PI))
     }
@@ -404,5 +408,36 @@ pub(super) fn elementary<T: DualNum<Primitive = f64>>(f: Func, x: T) -> Result<T
         Func::Asin => x.asin(),
         Func::Acos => x.acos(),
         Func::Avg | Func::MaxN => unreachable!("checked as their own node kinds"),
+    })
+}
+
+/// A function of two numbers, or why it is undefined there (shared with the tapes).
+/// `min` and `max` pick an argument by value, so their derivative is the picked one's.
+pub(super) fn elementary2<T: DualNum<Primitive = f64>>(f: Func2, x: T, y: T) -> Result<T, String> {
+    Ok(match f {
+        Func2::Atan2 => x.atan2(y),
+        Func2::Min => {
+            if y.re() < x.re() {
+                y
+            } else {
+                x
+            }
+        }
+        Func2::Max => {
+            if y.re() > x.re() {
+                y
+            } else {
+                x
+            }
+        }
+        Func2::Pow if x.re() > 0.0 => x.powd(y),
+        Func2::Pow if x.re() == 0.0 && y.re() > 0.0 => x * T::zero(),
+        Func2::Pow => {
+            return Err(format!(
+                "{}^({}): a real power needs a positive base",
+                x.re(),
+                y.re()
+            ))
+        }
     })
 }

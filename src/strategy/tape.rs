@@ -24,7 +24,7 @@ use crate::derivation::Definition;
 use crate::kernel::einsum::Arithmetic;
 use crate::kernel::Rational;
 use crate::kernel::{assignments, Tensor};
-use crate::lang::parser::Func;
+use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node, Span};
 use num_dual::DualNum;
 use std::collections::HashMap;
@@ -47,6 +47,8 @@ enum Op {
     /// A scalar function ([`super::real::elementary`]); the span locates its domain
     /// errors.
     Apply(Func, usize, Span),
+    /// A function of two numbers ([`super::real::elementary2`]).
+    Apply2(Func2, usize, usize, Span),
     /// max over θ of the sub-tape's output (index into [`Tape::maxn`]).
     MaxN(usize, Span),
     /// Component `c` (in [`assignments`] order) of the adaptive average of the
@@ -162,7 +164,7 @@ impl Tape {
             match self.ops[k] {
                 Op::Input(i) => read[i] = true,
                 Op::Normal(_) | Op::Angle(_) | Op::Const(_) => {}
-                Op::Add(a, b) | Op::Mul(a, b) | Op::Div(a, b, _) => {
+                Op::Add(a, b) | Op::Mul(a, b) | Op::Div(a, b, _) | Op::Apply2(_, a, b, _) => {
                     live[a] = true;
                     live[b] = true;
                 }
@@ -220,6 +222,10 @@ impl Tape {
                 Op::Powi(a, k) => v[a].powi(k),
                 Op::Apply(f, a, span) => super::real::elementary(f, v[a].clone())
                     .map_err(|message| RealError { span, message })?,
+                Op::Apply2(f, a, b, span) => {
+                    super::real::elementary2(f, v[a].clone(), v[b].clone())
+                        .map_err(|message| RealError { span, message })?
+                }
                 Op::MaxN(k, span) => self.maxn[k].max_over_angle(inputs, n, span, quad)?,
                 Op::Avg(k, c) => {
                     if averages[k].is_none() {
@@ -340,6 +346,7 @@ impl<'a> Compiler<'a> {
             Op::Neg(a) => Some(Key::Un(0, *a, 0)),
             Op::Powi(a, k) => Some(Key::Un(1, *a, *k)),
             Op::Apply(f, a, _) => Some(Key::Un(2 + *f as u8, *a, 0)),
+            Op::Apply2(f, a, b, _) => Some(Key::Bin(3 + *f as u8, *a, *b)),
             Op::MaxN(..) | Op::Avg(..) => None,
         };
         if let Some(k) = &key {
@@ -526,6 +533,10 @@ impl Ring for Compiler<'_> {
     fn apply(&mut self, f: Func, x: usize, node: &Node) -> Result<usize, Unsupported> {
         debug_assert!(!matches!(f, Func::Avg | Func::MaxN), "their own node kinds");
         Ok(self.push(Op::Apply(f, x, node.span)))
+    }
+
+    fn apply2(&mut self, f: Func2, x: usize, y: usize, node: &Node) -> Result<usize, Unsupported> {
+        Ok(self.push(Op::Apply2(f, x, y, node.span)))
     }
 
     fn pi(&mut self, _node: &Node) -> Result<usize, Unsupported> {

@@ -16,7 +16,7 @@
 use crate::derivation::Definition;
 use crate::kernel::einsum::{einsum, Arithmetic, Slot};
 use crate::kernel::{Rational, Tensor};
-use crate::lang::parser::Func;
+use crate::lang::parser::{Func, Func2};
 use crate::lang::{Node, NodeKind, Target};
 use std::collections::HashMap;
 
@@ -64,6 +64,14 @@ pub trait Ring: Arithmetic {
     ) -> Result<Self::Value, Self::Error>;
     fn power(&mut self, x: Self::Value, k: u32, node: &Node) -> Result<Self::Value, Self::Error>;
     fn apply(&mut self, f: Func, x: Self::Value, node: &Node) -> Result<Self::Value, Self::Error>;
+    /// A function of two scalars.
+    fn apply2(
+        &mut self,
+        f: Func2,
+        x: Self::Value,
+        y: Self::Value,
+        node: &Node,
+    ) -> Result<Self::Value, Self::Error>;
     /// π (`node` locates a refusal: it is not rational).
     fn pi(&mut self, node: &Node) -> Result<Self::Value, Self::Error>;
     /// `avg(arg)` over the unit normal.
@@ -175,6 +183,10 @@ pub fn walk<R: Ring>(
             let x = scalar(ring, a, n)?;
             Tensor::scalar(d, ring.apply(*f, x, node)?)
         }
+        NodeKind::Apply2(f, a, b) => {
+            let (x, y) = (scalar(ring, a, n)?, scalar(ring, b, n)?);
+            Tensor::scalar(d, ring.apply2(*f, x, y, node)?)
+        }
         NodeKind::Avg(a) => ring.average(a, node, n)?,
         NodeKind::MaxN(a) => Tensor::scalar(d, ring.maximum(a, node)?),
     };
@@ -232,6 +244,12 @@ pub fn normal_degree(
             0 => Some(0),
             _ => None,
         },
+        NodeKind::Apply2(_, a, b) => {
+            match (normal_degree(a, defs, memo)?, normal_degree(b, defs, memo)?) {
+                (0, 0) => Some(0),
+                _ => None,
+            }
+        }
     }
 }
 
