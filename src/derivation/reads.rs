@@ -30,26 +30,18 @@ impl Check {
         let mut seen = Vec::new();
         while let Some(n) = stack.pop() {
             seen.push(n);
-            match &n.kind {
-                NodeKind::Leaf {
-                    target: Target::Def(name),
-                    ..
-                } => {
-                    if names.insert(name.as_str()) {
-                        if let Some(d) = self.defs.iter().rev().find(|d| &d.sig.name == name) {
-                            stack.push(&d.body);
-                        }
+            if let NodeKind::Leaf {
+                target: Target::Def(name),
+                ..
+            } = &n.kind
+            {
+                if names.insert(name.as_str()) {
+                    if let Some(d) = self.defs.iter().rev().find(|d| &d.sig.name == name) {
+                        stack.push(&d.body);
                     }
                 }
-                NodeKind::Leaf { .. } | NodeKind::Const(_) => {}
-                NodeKind::Sum(xs) | NodeKind::Product(xs) => stack.extend(xs),
-                NodeKind::Div(a, b) | NodeKind::Apply2(_, a, b) => stack.extend([&**a, &**b]),
-                NodeKind::Neg(a)
-                | NodeKind::Pow(a, _)
-                | NodeKind::Apply(_, a)
-                | NodeKind::Avg(a)
-                | NodeKind::MaxN(a) => stack.push(a),
             }
+            stack.extend(n.children());
         }
         (seen, names)
     }

@@ -118,26 +118,33 @@ impl Node {
         self.free.iter().map(|&(c, _)| c).collect()
     }
 
+    /// The node's direct operands, in order.
+    pub fn children(&self) -> Vec<&Node> {
+        match &self.kind {
+            NodeKind::Const(_) | NodeKind::Leaf { .. } => Vec::new(),
+            NodeKind::Sum(xs) | NodeKind::Product(xs) => xs.iter().collect(),
+            NodeKind::Div(a, b) | NodeKind::Apply2(_, a, b) => vec![a, b],
+            NodeKind::Neg(a)
+            | NodeKind::Pow(a, _)
+            | NodeKind::Apply(_, a)
+            | NodeKind::Avg(a)
+            | NodeKind::MaxN(a) => vec![a],
+        }
+    }
+
     /// The declared symbols the node refers to directly (not through definitions).
     pub fn symbols(&self) -> std::collections::BTreeSet<&str> {
         let mut out = std::collections::BTreeSet::new();
         let mut stack = vec![self];
         while let Some(node) = stack.pop() {
-            match &node.kind {
-                NodeKind::Const(_) => {}
-                NodeKind::Leaf { target, .. } => {
-                    if let Target::Symbol(s) = target {
-                        out.insert(s.as_str());
-                    }
-                }
-                NodeKind::Sum(xs) | NodeKind::Product(xs) => stack.extend(xs),
-                NodeKind::Div(a, b) | NodeKind::Apply2(_, a, b) => stack.extend([&**a, &**b]),
-                NodeKind::Neg(a)
-                | NodeKind::Pow(a, _)
-                | NodeKind::Apply(_, a)
-                | NodeKind::Avg(a)
-                | NodeKind::MaxN(a) => stack.push(a),
+            if let NodeKind::Leaf {
+                target: Target::Symbol(s),
+                ..
+            } = &node.kind
+            {
+                out.insert(s.as_str());
             }
+            stack.extend(node.children());
         }
         out
     }
