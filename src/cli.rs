@@ -203,6 +203,14 @@ impl Progress {
         }
     }
 
+    /// Progress that is never shown (library callers).
+    fn quiet() -> Self {
+        Progress {
+            enabled: false,
+            ..Progress::new()
+        }
+    }
+
     fn show(&mut self, done: usize, n: usize, working: &[String]) {
         if self.enabled && self.started.elapsed() > Duration::from_secs(1) {
             let now = if working.is_empty() {
@@ -243,15 +251,6 @@ pub fn decide_all<'f>(
         limit: watch::DEFAULT_LIMIT,
     };
     decide_with_progress(files, only, run, &mut Progress::quiet())
-}
-
-impl Progress {
-    fn quiet() -> Self {
-        Progress {
-            enabled: false,
-            ..Progress::new()
-        }
-    }
 }
 
 /// Decides the claims (all, or the one with id `only`), each under its time limit;
