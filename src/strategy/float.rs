@@ -99,6 +99,12 @@ impl Rng {
         (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     }
 
+    /// Uniform in 0..n (n > 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        let k = ((self.uniform() + 1.0) / 2.0 * n as f64) as usize;
+        k.min(n - 1)
+    }
+
     /// A random unit normal (in the 1-2 plane for plane problems), padded to the
     /// dimension with zeros.
     pub fn unit_normal(&mut self, decls: &Decls) -> Vec<f64> {
