@@ -451,7 +451,17 @@ impl Parser {
                         };
                         ExprKind::Div(Box::new(one), Box::new(pow))
                     }
-                    _ => ExprKind::Call2(Func2::Pow, Box::new(base), Box::new(exponent)),
+                    Some(_) => {
+                        return Err(LangError::new(
+                            ErrorKind::Syntax,
+                            exponent.span,
+                            "this whole exponent is too large",
+                        )
+                        .help(format!(
+                            "whole exponents run from -{MAX_POWER} to {MAX_POWER}"
+                        )))
+                    }
+                    None => ExprKind::Call2(Func2::Pow, Box::new(base), Box::new(exponent)),
                 };
                 return Ok(Expr { kind, span });
             }
@@ -665,6 +675,9 @@ mod tests {
         assert!(parse_expr("max(a)").is_err());
         assert!(parse_expr("max(a, b, c)").is_err());
         assert!(parse_expr("x^y").is_err());
+        assert!(parse_expr("x^(65)").is_err());
+        assert!(parse_expr("x^(-130/2)").is_err());
+        assert!(parse_expr("x^(64) x^(-64)").is_ok());
     }
 
     #[test]
