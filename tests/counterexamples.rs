@@ -103,3 +103,27 @@ fn numbers_have_significant_digits_not_fixed_decimals() {
         }
     })
 }
+
+#[test]
+fn small_values_keep_their_significant_digits() {
+    use cosserat_check::digits::{significant, POINT, VALUE};
+    let files = load_files(&["tests/user/small-values.toml"]).unwrap();
+    let rows = decide_all(&files, None).unwrap();
+    let cx = counterexample(&rows, "small-slip");
+    let shown = &cx.point["lambda"];
+    let x: f64 = shown.parse().unwrap();
+    assert!((1e-5..=2e-5).contains(&x), "{shown}");
+    // Six significant digits (a fixed six decimals would print 0.000015).
+    assert_eq!(shown, &significant(x, POINT));
+    let mantissa = shown.split('e').next().unwrap().replace(['.', '-'], "");
+    assert!(mantissa.trim_start_matches('0').len() >= 5, "{shown}");
+    for v in [&cx.lhs_value, &cx.rhs_value] {
+        let v = v.as_deref().unwrap();
+        let y: f64 = v.parse().unwrap();
+        assert_eq!(v, significant(y, VALUE), "{v}");
+        assert!(
+            v.contains('e'),
+            "{v}: a value of 1e-5 is written in scientific notation"
+        );
+    }
+}
