@@ -95,7 +95,7 @@ pub fn svg(rows: &[Row]) -> Result<String, String> {
         chart
             .configure_mesh()
             .x_desc("rolling resistance f_r")
-            .y_desc("shear band thickness d_B / R_g")
+            .y_desc("shear band thickness d_B / R_g (axis cut at 50)")
             .draw()
             .map_err(|e| err(&e))?;
         let styles = [
