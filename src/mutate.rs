@@ -5,7 +5,7 @@
 //! original.
 
 use crate::lang::parse_expr;
-use crate::lang::parser::{Expr, ExprKind, Func, Func2};
+use crate::lang::parser::{Expr, ExprKind, Func, Func2, IndexTok};
 use std::fmt;
 
 /// The kind of slip a mutant makes.
@@ -95,27 +95,19 @@ fn collect(src: &str, e: &Expr, out: &mut Vec<Edit>) {
             if base == "delta" {
                 return;
             }
-            for a in 0..indices.len() {
-                for b in a + 1..indices.len() {
-                    let (x, y) = (indices[a], indices[b]);
-                    if x.ch == y.ch {
-                        continue;
-                    }
-                    // Two single-character edits, applied as one replacement of the
-                    // span from the first to the second index.
-                    let lo = x.span.start;
-                    let hi = y.span.end;
-                    let mut middle: Vec<char> = Vec::new();
-                    for t in &indices[a..=b] {
-                        middle.push(t.ch);
-                    }
-                    let last = middle.len() - 1;
-                    middle.swap(0, last);
-                    out.push((
-                        MutantKind::SwapIndices,
-                        lo..hi,
-                        middle.into_iter().collect(),
-                    ));
+            swaps(src, indices, out);
+        }
+        ExprKind::Deriv { inner, indices, .. } => {
+            // `sigma_ij,j` → `sigma_ji,j`, `sigma_ij,i`: the field's indices and the
+            // derivative's trade places as one list.
+            match &inner.kind {
+                ExprKind::Name { indices: own, .. } => {
+                    let all: Vec<IndexTok> = own.iter().chain(indices).copied().collect();
+                    swaps(src, &all, out);
+                }
+                _ => {
+                    swaps(src, indices, out);
+                    collect(src, inner, out);
                 }
             }
         }
@@ -140,9 +132,11 @@ fn collect(src: &str, e: &Expr, out: &mut Vec<Edit>) {
 /// Recurses into the children of a node that is not itself a sum.
 fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
     match &e.kind {
-        ExprKind::Number(_) | ExprKind::Name { .. } | ExprKind::Add(..) | ExprKind::Sub(..) => {
-            collect(src, e, out)
-        }
+        ExprKind::Number(_)
+        | ExprKind::Name { .. }
+        | ExprKind::Add(..)
+        | ExprKind::Sub(..)
+        | ExprKind::Deriv { .. } => collect(src, e, out),
         ExprKind::Call(func, a) => {
             let name = func.name();
             let at = e.span.start..e.span.start + name.len();
@@ -178,6 +172,26 @@ fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
         ExprKind::Mul(a, b) | ExprKind::Div(a, b) => {
             collect(src, a, out);
             collect(src, b, out);
+        }
+    }
+}
+
+/// Every swap of two different index letters of one list: the text from the first to
+/// the second, with its two ends exchanged (what lies between, a comma included, stays).
+fn swaps(src: &str, indices: &[IndexTok], out: &mut Vec<Edit>) {
+    for a in 0..indices.len() {
+        for b in a + 1..indices.len() {
+            let (x, y) = (indices[a], indices[b]);
+            if x.ch == y.ch {
+                continue;
+            }
+            let (lo, hi) = (x.span.start, y.span.end);
+            let middle = &src[x.span.end..y.span.start];
+            out.push((
+                MutantKind::SwapIndices,
+                lo..hi,
+                format!("{}{middle}{}", y.ch, x.ch),
+            ));
         }
     }
 }

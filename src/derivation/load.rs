@@ -278,7 +278,7 @@ impl Loader {
             dim: dim as usize,
             normal: None,
             normal_in_plane: raw.normal_in_plane,
-            symbols: BTreeMap::new(),
+            ..Decls::default()
         };
         if raw.normal_in_plane && (dim != 3 || raw.normal.is_none()) {
             let at = raw
@@ -340,11 +340,29 @@ impl Loader {
             }
             declare(&mut decls, s.get_ref().trim().to_owned(), 0, s)?;
         }
+        if let Some(p) = &raw.position {
+            let (base, idx) = self.name_token(p)?;
+            if !idx.is_empty() {
+                return Err(self
+                    .diag(
+                        p.span(),
+                        "the position is named without indices, e.g. \"x\"",
+                    )
+                    .with_help("write position = \"x\" and use it as x_i"));
+            }
+            declare(&mut decls, base.clone(), 1, p)?;
+            decls.position = Some(base);
+        }
+        for f in &raw.fields {
+            let (name, rank, deps) = self.field(f, &decls)?;
+            declare(&mut decls, name.clone(), rank, f)?;
+            decls.fields.insert(name, deps);
+        }
         Ok(decls)
     }
 
     /// A single name token (`sigma_ij`, `R_g`, `n`): its base and index characters.
-    fn name_token(&self, s: &S) -> Result<(String, Vec<char>), Diagnostic> {
+    pub(super) fn name_token(&self, s: &S) -> Result<(String, Vec<char>), Diagnostic> {
         let origin = self.origin(s);
         let e = parse_expr(s.get_ref()).map_err(|e| self.lang(&origin, e))?;
         match e.kind {

@@ -3,6 +3,7 @@
 //! [`model`] types.
 
 pub mod edit;
+mod fields;
 pub mod load;
 pub mod model;
 mod raw;

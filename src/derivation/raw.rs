@@ -25,6 +25,11 @@ pub struct RawFile {
     pub tensors: Vec<S>,
     #[serde(default)]
     pub scalars: Vec<S>,
+    /// Tensors that vary with the position: `u_i`, `theta`, `v_i(x_2)`.
+    #[serde(default)]
+    pub fields: Vec<S>,
+    /// The name of the position vector, e.g. "x".
+    pub position: Option<S>,
     #[serde(default)]
     pub define: Vec<S>,
     #[serde(default)]

@@ -11,6 +11,8 @@ use std::collections::BTreeSet;
 pub struct Reads {
     pub symbols: BTreeSet<String>,
     pub normal: bool,
+    /// Whether it differentiates with respect to the position.
+    pub differentiates: bool,
 }
 
 impl Check {
@@ -73,6 +75,7 @@ impl Check {
                     target: Target::Normal,
                     ..
                 } => out.normal = true,
+                NodeKind::Deriv(..) => out.differentiates = true,
                 _ => {}
             }
         }

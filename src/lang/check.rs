@@ -25,8 +25,21 @@ pub struct Decls {
     /// The normal lies in the 1-2 plane (n_3 = 0) and is uniform on its unit circle:
     /// plane problems with a 3D index range (Section 4).
     pub normal_in_plane: bool,
-    /// Declared symbols and their ranks (0 for scalars such as `R_g`).
+    /// Declared symbols and their ranks (0 for scalars such as `R_g`). Fields and the
+    /// position are symbols too: at one point, a field is a tensor like any other.
     pub symbols: BTreeMap<String, usize>,
+    /// The fields (symbols that vary with the position), each with the coordinates it
+    /// depends on: `deps[k]` for x_{k+1}.
+    pub fields: BTreeMap<String, Vec<bool>>,
+    /// The name of the position vector x_i, if the file declares one.
+    pub position: Option<String>,
+}
+
+impl Decls {
+    /// Whether `name` is a field or the position: something a derivative can act on.
+    pub fn varies(&self, name: &str) -> bool {
+        self.fields.contains_key(name) || self.position.as_deref() == Some(name)
+    }
 }
 
 /// A definition visible in a scope: its name and formal index letters.
@@ -82,6 +95,9 @@ pub enum NodeKind {
     Avg(Box<Node>),
     /// The maximum over the orientation of the normal of a scalar.
     MaxN(Box<Node>),
+    /// The derivative of a node with respect to one coordinate of the position, the
+    /// coordinate given by the slot: `u_j,i` is `Deriv(u_j, i)`; `u_j,ik` nests two.
+    Deriv(Box<Node>, Slot),
 }
 
 impl Node {
@@ -128,7 +144,8 @@ impl Node {
             | NodeKind::Pow(a, _)
             | NodeKind::Apply(_, a)
             | NodeKind::Avg(a)
-            | NodeKind::MaxN(a) => vec![a],
+            | NodeKind::MaxN(a)
+            | NodeKind::Deriv(a, _) => vec![a],
         }
     }
 
@@ -244,6 +261,11 @@ impl Scope<'_> {
                 let func = *func;
                 Ok(wrap(a, e.span, |a| NodeKind::Apply(func, Box::new(a))))
             }
+            ExprKind::Deriv {
+                inner,
+                indices,
+                wrt,
+            } => self.derivative(inner, indices, wrt.as_ref(), e.span),
             ExprKind::Call2(func, a, b) => {
                 let what = match func {
                     Func2::Pow => "a real power",
@@ -260,6 +282,111 @@ impl Scope<'_> {
                 })
             }
         }
+    }
+
+    /// `u_j,i…` or `d(expr)/dx_i…`: one [`NodeKind::Deriv`] per index, innermost
+    /// first, so that `u_i,i` is a divergence and `u_i,jj` a Laplacian.
+    fn derivative(
+        &self,
+        inner: &Expr,
+        indices: &[IndexTok],
+        wrt: Option<&(String, Span)>,
+        span: Span,
+    ) -> Result<Node, LangError> {
+        let position = self.decls.position.as_deref();
+        if let Some((name, at)) = wrt {
+            if position != Some(name.as_str()) {
+                let help = match position {
+                    Some(p) => format!("the position is `{p}`: write d(…)/d{p}_i"),
+                    None => {
+                        "declare the position at the top of the file: position = \"x\"".to_owned()
+                    }
+                };
+                return Err(LangError::new(
+                    ErrorKind::Name,
+                    *at,
+                    format!("`{name}` is not the declared position"),
+                )
+                .help(help));
+            }
+        }
+        let mut node = self.check(inner)?;
+        if wrt.is_none() {
+            // A comma on a name that cannot vary is a slip, not a zero.
+            let varies = match &node.kind {
+                NodeKind::Leaf {
+                    target: Target::Symbol(s),
+                    ..
+                } => self.decls.varies(s),
+                NodeKind::Leaf {
+                    target: Target::Def(_),
+                    ..
+                } => true,
+                _ => false,
+            };
+            if !varies {
+                let ExprKind::Name { base, full, .. } = &inner.kind else {
+                    unreachable!("the comma form follows a name")
+                };
+                let name = if self.decls.symbols.contains_key(full) {
+                    full
+                } else {
+                    base
+                };
+                return Err(LangError::new(
+                    ErrorKind::Name,
+                    inner.span,
+                    format!("`{name}` is not a field, so its derivative is zero"),
+                )
+                .help(format!(
+                    "declare it in `fields` (e.g. fields = [\"{}\"]) if it varies with the position",
+                    inner_text(inner)
+                )));
+            }
+        }
+        let dim = self.decls.dim;
+        for t in indices {
+            let slot = match t.ch.to_digit(10) {
+                Some(k) if (1..=dim as u32).contains(&k) => Slot::Fixed(k as usize - 1),
+                Some(k) => {
+                    return Err(LangError::new(
+                        ErrorKind::Dimension,
+                        t.span,
+                        format!("coordinate {k} is outside 1..={dim} in {dim}D"),
+                    )
+                    .help(format!("coordinates run from 1 to {dim}")))
+                }
+                None => Slot::Letter(t.ch),
+            };
+            if node.bound.contains(&t.ch) {
+                return Err(LangError::new(
+                    ErrorKind::Index,
+                    t.span,
+                    format!(
+                        "index `{}` is summed inside what is differentiated and used again here",
+                        t.ch
+                    ),
+                )
+                .help(format!("rename the summed `{}` inside", t.ch)));
+            }
+            let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
+            for &(c, s) in &node.free {
+                counts.entry(c).or_default().push(s);
+            }
+            if let Slot::Letter(c) = slot {
+                counts.entry(c).or_default().push(t.span);
+            }
+            let (free, mut bound) = tally(counts)?;
+            bound.extend(&node.bound);
+            node = Node {
+                kind: NodeKind::Deriv(Box::new(node), slot),
+                free,
+                bound,
+                span: span.to(t.span),
+            };
+        }
+        node.span = span;
+        Ok(node)
     }
 
     fn scalar_arg(&self, a: &Expr, what: &str) -> Result<Node, LangError> {
@@ -500,6 +627,20 @@ fn reject_reuse(nodes: &[&Node]) -> Result<(), LangError> {
     Ok(())
 }
 
+/// A name as declared in `fields`: `u_j` for `u_j,i`.
+fn inner_text(e: &Expr) -> String {
+    match &e.kind {
+        ExprKind::Name { base, indices, .. } if !indices.is_empty() => {
+            format!(
+                "{base}_{}",
+                indices.iter().map(|t| t.ch).collect::<String>()
+            )
+        }
+        ExprKind::Name { full, .. } => full.clone(),
+        _ => String::new(),
+    }
+}
+
 fn flatten_sum<'e>(e: &'e Expr, neg: bool, out: &mut Vec<(bool, &'e Expr)>) {
     match &e.kind {
         ExprKind::Add(a, b) => {
@@ -574,6 +715,7 @@ mod tests {
                 .into_iter()
                 .map(|(k, v)| (k.to_string(), v))
                 .collect(),
+            ..Decls::default()
         }
     }
 

@@ -7,7 +7,9 @@
 //! term   := unary (('*' | '/') unary | unary)*      -- `a b` means `a * b`
 //! unary  := '-' unary | power
 //! power  := atom ('^' integer)?
-//! atom   := number | name | func '(' expr ')' | '(' expr ')'
+//! atom   := number | name derivs? | func '(' expr ')' | '(' expr ')'
+//!         | 'd(' expr ')/d' position '_' index+       -- d(u_i u_i)/dx_j
+//! derivs := ',' index+                                -- u_j,i  sigma_ij,j  theta_,kk
 //! func   := 'sqrt' | 'abs' | 'cos' | 'sin' | 'tan' | 'exp' | 'log' | 'atan' | 'asin'
 //!         | 'acos' | 'avg' | 'maxn'
 //! name   := letter alnum* ('_' alnum+)?             -- sigma_ki, n_k, R_g, delta_ij, pi
@@ -136,6 +138,14 @@ pub enum ExprKind {
     Pow(Box<Expr>, u32),
     Call(Func, Box<Expr>),
     Call2(Func2, Box<Expr>, Box<Expr>),
+    /// Derivatives with respect to the position, one per index, in order: `u_j,i`
+    /// (`wrt` is `None`) or `d(expr)/dx_i` (`wrt` is the position's name as written,
+    /// checked against the declared one).
+    Deriv {
+        inner: Box<Expr>,
+        indices: Vec<IndexTok>,
+        wrt: Option<(String, Span)>,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -191,6 +201,10 @@ enum Tok {
         full: String,
         base: String,
         indices: Vec<IndexTok>,
+        /// The indices after a comma: `u_j,i` has derivative index `i`.
+        derivs: Vec<IndexTok>,
+        /// Where the name itself ends (before the comma).
+        name_end: usize,
     },
     Op(char),
     End,
@@ -239,6 +253,8 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
             }
             let base = src[start..k].to_owned();
             let mut indices = Vec::new();
+            // `theta_,i`: a scalar's derivative has an empty index list.
+            let bare_comma = bytes.get(k) == Some(&b'_') && bytes.get(k + 1) == Some(&b',');
             if k + 1 < src.len() && bytes[k] == b'_' && bytes[k + 1].is_ascii_alphanumeric() {
                 k += 1;
                 while k < src.len() && bytes[k].is_ascii_alphanumeric() {
@@ -248,6 +264,8 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
                     });
                     k += 1;
                 }
+            } else if bare_comma {
+                k += 1;
             } else if k < src.len() && bytes[k] == b'_' {
                 return Err(LangError::new(
                     ErrorKind::Syntax,
@@ -256,12 +274,44 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
                 )
                 .help("write indices right after the underscore, as in sigma_ki"));
             }
-            let full = src[start..k].to_owned();
+            let name_end = k;
+            let full = src[start..k].trim_end_matches('_').to_owned();
+            let mut derivs = Vec::new();
+            if bare_comma || !indices.is_empty() {
+                // A comma right after an indexed name, followed by index characters
+                // and no further `_` or `(`, starts derivative indices (`u_j,i`);
+                // otherwise it separates arguments (`min(u_1,v_2)`).
+                let mut end = k + 1;
+                while end < src.len() && bytes[end].is_ascii_alphanumeric() {
+                    end += 1;
+                }
+                let is_derivative = bytes.get(k) == Some(&b',')
+                    && end > k + 1
+                    && !matches!(bytes.get(end), Some(b'_' | b'('));
+                if is_derivative {
+                    derivs = (k + 1..end)
+                        .map(|j| IndexTok {
+                            ch: bytes[j] as char,
+                            span: Span::new(j, j + 1),
+                        })
+                        .collect();
+                    k = end;
+                } else if bare_comma {
+                    return Err(LangError::new(
+                        ErrorKind::Syntax,
+                        Span::new(start, k + 1),
+                        "`_,` must be followed by derivative indices",
+                    )
+                    .help("write a scalar field's derivative as theta_,i"));
+                }
+            }
             out.push((
                 Tok::Name {
                     full,
                     base,
                     indices,
+                    derivs,
+                    name_end,
                 },
                 Span::new(start, k),
             ));
@@ -516,7 +566,32 @@ impl Parser {
                 full,
                 base,
                 indices,
+                derivs,
+                name_end,
             } => {
+                if !derivs.is_empty() {
+                    let inner = Expr {
+                        kind: ExprKind::Name {
+                            full,
+                            base,
+                            indices,
+                        },
+                        span: Span::new(span.start, name_end),
+                    };
+                    return Ok(Expr {
+                        kind: ExprKind::Deriv {
+                            inner: Box::new(inner),
+                            indices: derivs,
+                            wrt: None,
+                        },
+                        span,
+                    });
+                }
+                if full == "d" && indices.is_empty() {
+                    if let Some(e) = self.derivative_quotient(span)? {
+                        return Ok(e);
+                    }
+                }
                 if let Some(func) = Func2::from_name(&full) {
                     if *self.peek() != Tok::Op('(') {
                         return Err(LangError::new(
@@ -596,6 +671,68 @@ impl Parser {
         }
     }
 
+    /// After a name `d`: `d(expr)/dx_i…` as a derivative, when the tokens have that
+    /// shape (`None` leaves them alone: `d (a + b)` is a product).
+    fn derivative_quotient(&mut self, d: Span) -> Result<Option<Expr>, LangError> {
+        if *self.peek() != Tok::Op('(') {
+            return Ok(None);
+        }
+        let mut depth = 0usize;
+        let mut close = None;
+        for (j, (t, _)) in self.toks.iter().enumerate().skip(self.pos) {
+            match t {
+                Tok::Op('(') => depth += 1,
+                Tok::Op(')') => {
+                    depth -= 1;
+                    if depth == 0 {
+                        close = Some(j);
+                        break;
+                    }
+                }
+                Tok::End => break,
+                _ => {}
+            }
+        }
+        let Some(close) = close else {
+            return Ok(None);
+        };
+        let wrt = match (self.toks.get(close + 1), self.toks.get(close + 2)) {
+            (
+                Some((Tok::Op('/'), _)),
+                Some((
+                    Tok::Name {
+                        base,
+                        indices,
+                        derivs,
+                        ..
+                    },
+                    span,
+                )),
+            ) if base.len() > 1
+                && base.starts_with('d')
+                && !indices.is_empty()
+                && derivs.is_empty() =>
+            {
+                (base[1..].to_owned(), *span, indices.clone())
+            }
+            _ => return Ok(None),
+        };
+        self.enter()?;
+        let inner = self.parenthesised()?;
+        self.depth -= 1;
+        self.bump(); // `/`
+        self.bump(); // `dx_i`
+        let (name, wrt_span, indices) = wrt;
+        Ok(Some(Expr {
+            kind: ExprKind::Deriv {
+                inner: Box::new(inner),
+                indices,
+                wrt: Some((name, Span::new(wrt_span.start + 1, wrt_span.end))),
+            },
+            span: d.to(wrt_span),
+        }))
+    }
+
     /// `( expr )`, returning the inner expression with the parentheses' span.
     fn parenthesised(&mut self) -> Result<Expr, LangError> {
         let (_, open) = self.bump();
@@ -637,6 +774,16 @@ mod tests {
             ExprKind::Pow(a, k) => format!("{}^{k}", shape(a)),
             ExprKind::Call(f, a) => format!("{f:?}{}", shape(a)),
             ExprKind::Call2(f, a, b) => format!("{f:?}({}, {})", shape(a), shape(b)),
+            ExprKind::Deriv {
+                inner,
+                indices,
+                wrt,
+            } => format!(
+                "D[{}{}]({})",
+                wrt.as_ref().map_or(String::new(), |w| format!("{}:", w.0)),
+                indices.iter().map(|t| t.ch).collect::<String>(),
+                shape(inner)
+            ),
         }
     }
 
@@ -678,6 +825,28 @@ mod tests {
         assert!(parse_expr("x^(65)").is_err());
         assert!(parse_expr("x^(-130/2)").is_err());
         assert!(parse_expr("x^(64) x^(-64)").is_ok());
+    }
+
+    #[test]
+    fn derivatives_by_comma_and_by_quotient() {
+        let e = parse_expr("sigma_ij,j + u_j,ik - theta_,k n_k").unwrap();
+        assert_eq!(
+            shape(&e),
+            "((D[j](sigma_ij) + D[ik](u_j)) - (D[k](theta) n_k))"
+        );
+        let e = parse_expr("d(u_i u_i)/dx_j + d (a + b) - d(a)/b").unwrap();
+        assert_eq!(
+            shape(&e),
+            "((D[x:j]((u_i u_i)) + (d (a + b))) - ((d a) / b))"
+        );
+        // A comma followed by a name with `_` or a call separates arguments.
+        let e = parse_expr("min(u_1,v_2) + max(u_1,sqrt(2))").unwrap();
+        assert_eq!(shape(&e), "(Min(u_1, v_2) + Max(u_1, Sqrt2))");
+        let e = parse_expr("min(u_1, v)").unwrap();
+        assert_eq!(shape(&e), "Min(u_1, v)");
+        assert!(parse_expr("theta_, i").is_err());
+        let e = parse_expr("d(d(w)/dx_1)/dx_12").unwrap();
+        assert_eq!(shape(&e), "D[x:12](D[x:1](w))");
     }
 
     #[test]

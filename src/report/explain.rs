@@ -23,9 +23,39 @@ fn setting(decls: &Decls) -> String {
         };
         let _ = write!(s, "; normal {n} (unit, {where_})");
     }
+    if let Some(x) = &decls.position {
+        let _ = write!(s, "; position {x}");
+    }
+    let rank = |k: &str, r: usize| {
+        if r == 0 {
+            k.to_owned()
+        } else {
+            format!("{k} (rank {r})")
+        }
+    };
+    let fields: Vec<String> = decls
+        .fields
+        .iter()
+        .map(|(k, deps)| {
+            let r = decls.symbols.get(k).copied().unwrap_or(0);
+            let on: Vec<String> = (1..=decls.dim)
+                .filter(|j| deps[j - 1])
+                .map(|j| format!("{}_{j}", decls.position.as_deref().unwrap_or("x")))
+                .collect();
+            if on.len() == decls.dim {
+                rank(k, r)
+            } else {
+                format!("{} on {}", rank(k, r), on.join(", "))
+            }
+        })
+        .collect();
+    if !fields.is_empty() {
+        let _ = write!(s, "; fields: {}", fields.join(", "));
+    }
     let symbols: Vec<String> = decls
         .symbols
         .iter()
+        .filter(|(k, _)| !decls.varies(k))
         .map(|(k, r)| {
             if *r == 0 {
                 k.clone()

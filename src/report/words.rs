@@ -54,6 +54,7 @@ pub fn finding(f: &Finding) -> String {
         Finding::HoldsOnDomain { samples, domain } => format!(
             "holds on {samples} samples with {domain}; the counterexample lies outside that domain"
         ),
+        Finding::DerivativesNotSampled => "not decided: the statement differentiates fields, and only the exact strategy does so (a sample is a point, not a field); write it as a polynomial identity with strategy = \"exact\"".to_owned(),
         Finding::ThroughAdaptiveAverage => {
             "the function averages an argument that is not a polynomial in n (adaptive \
              quadrature); derivatives through it are not checked"

@@ -57,11 +57,42 @@ impl Labeled {
     }
 }
 
+/// What a polynomial variable stands for where a derivative acts on it: a coordinate
+/// of the position, or one derivative of a field component at the point (a jet
+/// variable). Jet variables of different orders are independent: at one point, a
+/// smooth field's value and its derivatives can take any values, so two expressions
+/// in them agree for every field exactly when their canonical polynomials agree.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Varying {
+    /// Coordinate k (0-based) of the position.
+    Coordinate(usize),
+    /// Component `idx` of `field`, differentiated by the coordinates `orders`
+    /// (0-based, sorted: mixed partials commute).
+    Jet {
+        field: String,
+        idx: Vec<usize>,
+        orders: Vec<usize>,
+    },
+}
+
+/// The variable name of a field component's derivative: `u_2,13` is ∂²u_2/∂x_1∂x_3,
+/// `theta_,2` is ∂θ/∂x_2 (the component's own name when `orders` is empty).
+pub fn jet_name(field: &str, idx: &[usize], orders: &[usize]) -> String {
+    let mut name = component_name(field, idx);
+    if !orders.is_empty() {
+        name.push_str(if idx.is_empty() { "_," } else { "," });
+        name.extend(orders.iter().map(|k| char::from(b'1' + *k as u8)));
+    }
+    name
+}
+
 /// The exact evaluation environment of one claim.
 pub struct ExactEnv<'a> {
     decls: &'a Decls,
     defs: &'a [Definition],
     pub vars: VarTable,
+    /// The variables a derivative acts on (see [`Varying`]).
+    varying: HashMap<Var, Varying>,
     normal: Vec<Var>,
     symbols: HashMap<String, Tensor<Poly>>,
     cache: HashMap<String, Tensor<Poly>>,
@@ -156,6 +187,7 @@ impl<'a> ExactEnv<'a> {
             decls,
             defs: &[],
             vars,
+            varying: HashMap::new(),
             normal,
             symbols: HashMap::new(),
             cache: HashMap::new(),
@@ -176,16 +208,62 @@ impl<'a> ExactEnv<'a> {
 
     /// The variable of one component before any assumption, as a polynomial.
     pub fn component(&mut self, symbol: &str, idx: &[usize]) -> Poly {
-        let name = component_name(symbol, idx);
-        Poly::var(self.vars.intern(&name))
+        Poly::var(self.component_var(symbol, idx))
+    }
+
+    /// The variable of one component, registered as varying when the symbol is a
+    /// field or the position.
+    fn component_var(&mut self, symbol: &str, idx: &[usize]) -> Var {
+        let v = self.vars.intern(&component_name(symbol, idx));
+        if self.decls.fields.contains_key(symbol) {
+            self.varying.entry(v).or_insert_with(|| Varying::Jet {
+                field: symbol.to_owned(),
+                idx: idx.to_vec(),
+                orders: Vec::new(),
+            });
+        } else if self.decls.position.as_deref() == Some(symbol) {
+            self.varying.insert(v, Varying::Coordinate(idx[0]));
+        }
+        v
+    }
+
+    /// What the variables a derivative acts on stand for.
+    pub fn varying(&self) -> &HashMap<Var, Varying> {
+        &self.varying
+    }
+
+    /// ∂v/∂x_k for one variable: 1 or 0 for a coordinate, the next jet variable for a
+    /// field that depends on x_k, and `None` (zero) for everything else.
+    fn derivative_of_var(&mut self, v: Var, k: usize) -> Option<Poly> {
+        match self.varying.get(&v)? {
+            Varying::Coordinate(j) => (*j == k).then(Poly::one),
+            Varying::Jet { field, idx, orders } => {
+                if !self.decls.fields.get(field).is_some_and(|deps| deps[k]) {
+                    return None;
+                }
+                let mut orders = orders.clone();
+                orders.push(k);
+                orders.sort_unstable();
+                let (field, idx) = (field.clone(), idx.clone());
+                let w = self.vars.intern(&jet_name(&field, &idx, &orders));
+                self.varying.insert(w, Varying::Jet { field, idx, orders });
+                Some(Poly::var(w))
+            }
+        }
     }
 
     /// Every component of every declared symbol, by its variable.
     pub fn component_vars(&mut self) -> HashMap<Var, Component> {
         let mut out = HashMap::new();
-        for (name, &rank) in &self.decls.symbols {
+        let symbols: Vec<(String, usize)> = self
+            .decls
+            .symbols
+            .iter()
+            .map(|(k, &r)| (k.clone(), r))
+            .collect();
+        for (name, rank) in symbols {
             for idx in assignments(self.decls.dim, rank) {
-                let v = self.vars.intern(&component_name(name, &idx));
+                let v = self.component_var(&name, &idx);
                 out.insert(v, (name.clone(), idx));
             }
         }
@@ -208,10 +286,7 @@ impl<'a> ExactEnv<'a> {
             return t.clone();
         }
         let rank = self.decls.symbols.get(name).copied().unwrap_or(0);
-        let vars = &mut self.vars;
-        let t = Tensor::from_fn(self.decls.dim, rank, |idx| {
-            Poly::var(vars.intern(&component_name(name, idx)))
-        });
+        let t = Tensor::from_fn(self.decls.dim, rank, |idx| self.component(name, idx));
         self.symbols.insert(name.to_owned(), t.clone());
         t
     }
@@ -464,6 +539,38 @@ impl Ring for ExactRing<'_, '_> {
             "maxn(…) is a maximum over orientations, not a polynomial",
             "decide this claim with strategy = \"numeric\"",
         ))
+    }
+
+    /// The total derivative D_k p = Σ_v ∂p/∂v · ∂v/∂x_k over the variables of p
+    /// (the chain rule on jet variables), for every component and every k.
+    fn derivatives(&mut self, a: &Node, _node: &Node, _n: &()) -> Result<Tensor<Poly>, Failure> {
+        let v = walk::walk(self, a, &())?;
+        let d = self.env.decls.dim;
+        let mut values = Vec::with_capacity(v.components().len() * d);
+        for p in v.components() {
+            let mut vars: Vec<Var> = p
+                .terms()
+                .flat_map(|(m, _)| m.factors().iter().map(|&(x, _)| x))
+                .collect();
+            vars.sort_unstable();
+            vars.dedup();
+            for k in 0..d {
+                let mut acc = Poly::zero();
+                for &x in &vars {
+                    if let Some(dx) = self.env.derivative_of_var(x, k) {
+                        let term = self.mul(p.derivative(x), &dx)?;
+                        acc = self.add(acc, term)?;
+                    }
+                }
+                values.push(acc);
+            }
+        }
+        // Components are stored with the last slot fastest, so the coordinate slot
+        // added last comes out in this order.
+        let mut it = values.into_iter();
+        Ok(Tensor::from_fn(d, v.rank() + 1, |_| {
+            it.next().expect("one value per component and coordinate")
+        }))
     }
 
     fn leave(&mut self, node: &Node, value: Tensor<Poly>) -> Result<Tensor<Poly>, Failure> {

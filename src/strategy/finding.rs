@@ -56,6 +56,9 @@ pub enum Finding {
     HoldsOnDomain { samples: usize, domain: String },
     /// A derivative through an average by adaptive quadrature is not checked.
     ThroughAdaptiveAverage,
+    /// The statement differentiates fields, which only the exact strategy does: a
+    /// sample is a point, not a field.
+    DerivativesNotSampled,
     /// A closed-form gradient undefined at a sample where the derivative exists.
     ClosedFormUndefined { message: String },
     /// The closed form is undefined at a sample where the derivative does not exist.

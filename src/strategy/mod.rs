@@ -17,6 +17,7 @@ mod reverify;
 pub mod sampler;
 pub mod search;
 pub mod tape;
+pub mod taylor;
 pub mod walk;
 pub mod watch;
 pub mod witness;
@@ -72,6 +73,19 @@ fn decide_keeping(
     use crate::derivation::Strategy;
     let sink = sampler::Sink::default();
     let states = keep.then_some(&sink);
+    let method = match &check.strategy {
+        Strategy::Numeric { .. } => Method::Numeric,
+        Strategy::Gradient { .. } => Method::Gradient,
+        Strategy::Convex { .. } => Method::Convex,
+        Strategy::Exact => Method::Exact,
+        Strategy::NotCircle { .. } => Method::Witness,
+        Strategy::Appendix { .. } => Method::Symbolic,
+    };
+    if method != Method::Exact && check.reads().differentiates {
+        return Ok(
+            Outcome::undecided(method, 0).with_finding(finding::Finding::DerivativesNotSampled)
+        );
+    }
     let decided = match &check.strategy {
         Strategy::Exact => exact::decide(decls, check, keep),
         Strategy::Numeric { .. } => numeric::decide_numeric(decls, check, states),
@@ -85,14 +99,6 @@ fn decide_keeping(
     let mut outcome = match (decided, watch::expired()) {
         (Ok(o), _) => o,
         (Err(_), Some(limit)) => {
-            let method = match &check.strategy {
-                Strategy::Numeric { .. } => Method::Numeric,
-                Strategy::Gradient { .. } => Method::Gradient,
-                Strategy::Convex { .. } => Method::Convex,
-                Strategy::Exact => Method::Exact,
-                Strategy::NotCircle { .. } => Method::Witness,
-                Strategy::Appendix { .. } => Method::Symbolic,
-            };
             Outcome::undecided(method, 0).with_finding(finding::Finding::TimeLimit {
                 seconds: limit.as_secs_f64(),
             })

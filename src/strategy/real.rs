@@ -12,6 +12,7 @@
 
 use super::assume::Parametrisation;
 use super::quadrature::{Level, Quadrature};
+use super::taylor::{self, TaylorFields};
 use super::walk::{self, Ring};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::einsum::Arithmetic;
@@ -70,6 +71,12 @@ pub struct RealEnv<'a, T> {
     /// The accuracy of averages of arguments that are not polynomials in n, and what
     /// they reported.
     pub quadrature: Quadrature,
+    /// The fields as functions of the position, where a claim differentiates them
+    /// (the second route of a derivative claim); `None`: derivatives are refused.
+    pub fields: Option<TaylorFields>,
+    /// Where the fields are evaluated (the centre of `fields` until a derivative
+    /// moves it).
+    position: RefCell<Vec<f64>>,
 }
 
 impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
@@ -86,7 +93,16 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             degrees: RefCell::new(HashMap::new()),
             rules: RefCell::new(HashMap::new()),
             quadrature: Quadrature::new(Level::Fine),
+            fields: None,
+            position: RefCell::new(Vec::new()),
         }
+    }
+
+    /// Evaluates fields as the given Taylor polynomials, at their centre.
+    pub fn with_fields(mut self, fields: TaylorFields) -> Self {
+        *self.position.borrow_mut() = fields.centre.clone();
+        self.fields = Some(fields);
+        self
     }
 
     fn def(&self, name: &str) -> Option<&'a Definition> {
@@ -299,6 +315,30 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     }
 
     fn symbol(&mut self, name: &str, node: &Node) -> Result<Tensor<T>, RealError> {
+        if let Some(fields) = &self.fields {
+            let x = self.position.borrow();
+            let d = self.decls.dim;
+            if self.decls.position.as_deref() == Some(name) {
+                return Ok(Tensor::from_fn(d, 1, |i| T::from(x[i[0]])));
+            }
+            if fields.has(name) {
+                let rank = self.decls.symbols.get(name).copied().unwrap_or(0);
+                let mut missing = false;
+                let t = Tensor::from_fn(d, rank, |idx| {
+                    T::from(fields.value(name, idx, &x).unwrap_or_else(|| {
+                        missing = true;
+                        f64::NAN
+                    }))
+                });
+                if missing {
+                    return Err(err(
+                        node,
+                        format!("no Taylor polynomial for a component of {name}"),
+                    ));
+                }
+                return Ok(t);
+            }
+        }
         self.symbols
             .get(name)
             .cloned()
@@ -311,11 +351,15 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
             .def(name)
             .ok_or_else(|| err(node, format!("definition {name} not in scope")))?;
         // Definitions that do not involve the normal are the same for every n.
-        let key_n = if env.normal_degree(&def.body) == Some(0) {
+        let mut key_n: Vec<u64> = if env.normal_degree(&def.body) == Some(0) {
             Vec::new()
         } else {
             n.iter().map(|x| x.to_bits()).collect()
         };
+        // With fields, a definition's value also depends on where it is evaluated.
+        if env.fields.is_some() {
+            key_n.extend(env.position.borrow().iter().map(|x| x.to_bits()));
+        }
         let key = (name.to_owned(), key_n);
         let cached = env.memo.borrow().get(&key).cloned();
         if let Some(t) = cached {
@@ -380,6 +424,39 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
 
     fn maximum(&mut self, a: &Node, node: &Node) -> Result<T, RealError> {
         self.max_over_angle(node, a)
+    }
+
+    /// Central differences of `a`'s values at positions moved along each coordinate
+    /// (see [`super::taylor`]): only where the fields are explicit functions.
+    fn derivatives(&mut self, a: &Node, node: &Node, n: &[f64]) -> Result<Tensor<T>, RealError> {
+        let env: &RealEnv<'_, T> = self;
+        if env.fields.is_none() {
+            return Err(err(
+                node,
+                "a derivative of a field is decided exactly: sampling has no fields to differentiate",
+            ));
+        }
+        let d = env.decls.dim;
+        let centre = env.position.borrow().clone();
+        let mut per_coordinate = Vec::with_capacity(d);
+        for k in 0..d {
+            let mut values = Vec::with_capacity(4);
+            for step in [-2.0, -1.0, 1.0, 2.0] {
+                let mut x = centre.clone();
+                x[k] += step * taylor::STEP;
+                *env.position.borrow_mut() = x;
+                let value = walk::walk(&mut { env }, a, n);
+                *env.position.borrow_mut() = centre.clone();
+                values.push(value?);
+            }
+            per_coordinate.push(values);
+        }
+        let rank = a.free_letters().len();
+        Ok(Tensor::from_fn(d, rank + 1, |idx| {
+            let v = &per_coordinate[idx[rank]];
+            let at = |j: usize| v[j].get(&idx[..rank]).clone();
+            taylor::stencil([at(0), at(1), at(2), at(3)])
+        }))
     }
 
     fn not_scalar(&mut self, node: &Node) -> RealError {

@@ -21,8 +21,9 @@ use super::eval::{component_name, ExactEnv, Labeled};
 use super::finding::Rejection;
 use super::real::{component_pairs, RealEnv};
 use super::sampler::{relation_holds, Sampler, State};
+use super::taylor::{self, TaylorFields};
 use super::{Counterexample, Reverified};
-use crate::derivation::{Check, Constraint, Expression, Relation};
+use crate::derivation::{AssumptionKind, Check, Constraint, Expression, Relation};
 use crate::kernel::{Poly, Rational, Tensor, Var};
 use crate::lang::Decls;
 use std::collections::{BTreeMap, HashMap};
@@ -46,9 +47,16 @@ pub(super) fn exact_counterexample(
     // long as the assumptions can be evaluated there (`S = 3 V / (2 R_g)` cannot at
     // R_g = 0), so a few are tried.
     let mut last = String::new();
+    // Derivatives of fields are taken by central differences (see `taylor`), to the
+    // stencil's accuracy rather than to rounding.
+    let agreement = if env.varying().is_empty() {
+        AGREEMENT
+    } else {
+        taylor::AGREEMENT
+    };
     for absent in [0.0, 1.0, 0.577_215_664_901_532_9] {
         match float_values(decls, check, env, point, absent, cx) {
-            Ok((lf, rf)) => return confirm(lf, rf, lhs, rhs),
+            Ok((lf, rf)) => return confirm(lf, rf, lhs, rhs, agreement),
             Err(why) => last = why,
         }
     }
@@ -56,10 +64,16 @@ pub(super) fn exact_counterexample(
 }
 
 /// Whether the interpreter's values agree with the exact ones.
-fn confirm(lf: f64, rf: f64, lhs: &Rational, rhs: &Rational) -> Result<Reverified, Rejection> {
+fn confirm(
+    lf: f64,
+    rf: f64,
+    lhs: &Rational,
+    rhs: &Rational,
+    agreement: f64,
+) -> Result<Reverified, Rejection> {
     let agrees = |f: f64, q: &Rational| {
         let e = q.to_f64();
-        f.is_finite() && (f - e).abs() <= AGREEMENT * (1.0 + e.abs())
+        f.is_finite() && (f - e).abs() <= agreement * (1.0 + e.abs())
     };
     if agrees(lf, lhs) && agrees(rf, rhs) {
         Ok(Reverified::FloatingPoint)
@@ -112,6 +126,9 @@ fn float_values(
     }
     n.resize(d, 0.0);
     let mut real = RealEnv::new(decls, &check.defs, symbols);
+    if !env.varying().is_empty() {
+        real = real.with_fields(taylor_fields(decls, check, env, point, absent)?);
+    }
     if let Some(p) = env.parametrisation() {
         real.assume(p, &check.assumptions, &n)
             .map_err(|e| format!("the assumptions cannot be evaluated there: {}", e.message))?;
@@ -123,6 +140,40 @@ fn float_values(
     };
     let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
     pick(d, &l, &r, cx)
+}
+
+/// The fields as Taylor polynomials with the point's jet values, components tied by
+/// the assumptions tied term by term.
+fn taylor_fields(
+    decls: &Decls,
+    check: &Check,
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+    absent: f64,
+) -> Result<TaylorFields, String> {
+    let at = |v: Var| point.get(&v).cloned();
+    let mut fields = TaylorFields::new(decls.dim, env.varying(), &env.vars, &at, absent);
+    if let Some(p) = env.parametrisation() {
+        for ((symbol, idx), terms, constant) in p.dependents() {
+            if decls.fields.contains_key(symbol) {
+                let terms: Vec<_> = terms
+                    .iter()
+                    .map(|((s, i), q)| ((s.clone(), i.clone()), q.to_f64()))
+                    .collect();
+                fields.tie((symbol, idx), &terms, constant.to_f64());
+            }
+        }
+        for &k in p.substitutions() {
+            if let AssumptionKind::Equals { symbol, .. } = &check.assumptions[k].kind {
+                if decls.varies(symbol) {
+                    return Err(format!(
+                        "the assumption defining the field `{symbol}` by an expression is not evaluated by differences"
+                    ));
+                }
+            }
+        }
+    }
+    Ok(fields)
 }
 
 /// The counterexample's component of both sides.

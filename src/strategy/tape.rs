@@ -583,6 +583,15 @@ impl Ring for Compiler<'_> {
         acc.ok_or_else(|| Unsupported("empty quadrature rule".into()))
     }
 
+    fn derivatives(
+        &mut self,
+        _a: &Node,
+        _node: &Node,
+        _n: &[usize],
+    ) -> Result<Tensor<usize>, Unsupported> {
+        Err(Unsupported("derivatives of fields".into()))
+    }
+
     fn maximum(&mut self, a: &Node, node: &Node) -> Result<usize, Unsupported> {
         if self.decls.dim == 3 && !self.decls.normal_in_plane {
             return Err(Unsupported("maxn needs an in-plane normal".into()));

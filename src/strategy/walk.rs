@@ -83,6 +83,15 @@ pub trait Ring: Arithmetic {
     ) -> Result<Tensor<Self::Value>, Self::Error>;
     /// `maxn(arg)` over the in-plane orientation of the normal.
     fn maximum(&mut self, arg: &Node, node: &Node) -> Result<Self::Value, Self::Error>;
+    /// The derivatives of `arg` with respect to every coordinate of the position: a
+    /// tensor with `arg`'s slots (its free letters, sorted) and one more, last, for the
+    /// coordinate.
+    fn derivatives(
+        &mut self,
+        arg: &Node,
+        node: &Node,
+        n: &Self::Normal,
+    ) -> Result<Tensor<Self::Value>, Self::Error>;
     /// Called before a node is evaluated (a budget on the walk).
     fn enter(&mut self, _node: &Node) -> Result<(), Self::Error> {
         Ok(())
@@ -189,6 +198,12 @@ pub fn walk<R: Ring>(
         }
         NodeKind::Avg(a) => ring.average(a, node, n)?,
         NodeKind::MaxN(a) => Tensor::scalar(d, ring.maximum(a, node)?),
+        NodeKind::Deriv(a, slot) => {
+            let t = ring.derivatives(a, node, n)?;
+            let mut slots: Vec<Slot> = a.free_letters().into_iter().map(Slot::Letter).collect();
+            slots.push(*slot);
+            contract(ring, &[(&t, slots)], &labels, node)?
+        }
     };
     ring.leave(node, value)
 }
@@ -228,7 +243,7 @@ pub fn normal_degree(
             }
             _ => Some(0),
         },
-        NodeKind::Neg(a) => normal_degree(a, defs, memo),
+        NodeKind::Neg(a) | NodeKind::Deriv(a, _) => normal_degree(a, defs, memo),
         NodeKind::Sum(xs) => xs
             .iter()
             .try_fold(0, |m, x| Some(m.max(normal_degree(x, defs, memo)?))),
