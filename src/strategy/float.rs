@@ -10,6 +10,7 @@
 
 use super::assume::Parametrisation;
 use super::real::{component_pairs, RealEnv};
+use super::taylor::{self, TaylorFields};
 use crate::derivation::{Check, Verdict};
 use crate::kernel::Tensor;
 use crate::lang::Decls;
@@ -19,6 +20,11 @@ use std::collections::HashMap;
 /// are O(1), expressions have a few hundred operations at most, so rounding stays
 /// near 1e-14; a wrong statement differs by O(1e-2) or more at a random point.
 pub const TOL: f64 = 1e-9;
+
+/// Degree of the random polynomial fields: derivatives up to this order are random,
+/// higher ones zero (a statement with fifth derivatives is not distinguished from one
+/// without them).
+pub const FIELD_DEGREE: u32 = 4;
 
 /// Quadrature nodes and weights (weights sum to 1) for the uniform average over the
 /// unit circle or sphere, exact for polynomials in n of degree ≤ 15.
@@ -131,7 +137,8 @@ pub fn rule_for(decls: &Decls, degree: usize) -> Vec<(Vec<f64>, f64)> {
 }
 
 /// The float route's verdict on a check: `holds` when every equality agrees within
-/// [`TOL`] at `samples` seeded random points, else `fails`. `Ok(None)` when the check
+/// [`TOL`] (with field derivatives, [`taylor::AGREEMENT`]) at `samples` seeded random
+/// points, else `fails`. `Ok(None)` when the check
 /// has an ill-formed (verbatim) side or averages an argument that is not a polynomial
 /// in n, which this route does not judge.
 pub fn decide(
@@ -146,12 +153,24 @@ pub fn decide(
     let d = decls.dim;
     let parametrisation = Parametrisation::new(decls, &check.assumptions).map_err(|e| e.message)?;
     let mut rng = Rng::new(seed);
+    // Derivatives of fields: random polynomial fields, differentiated by central
+    // differences, to the stencil's accuracy.
+    let differentiates = check.reads().differentiates;
+    let tol = if differentiates {
+        taylor::AGREEMENT
+    } else {
+        TOL
+    };
     for _ in 0..samples {
         let mut symbols: HashMap<String, Tensor<f64>> = HashMap::new();
         for (name, &rank) in &decls.symbols {
             symbols.insert(name.clone(), Tensor::from_fn(d, rank, |_| rng.uniform()));
         }
         let mut env = RealEnv::new(decls, &check.defs, symbols);
+        if differentiates {
+            let fields = TaylorFields::random(decls, FIELD_DEGREE, &mut || rng.uniform());
+            env = env.with_fields(fields);
+        }
         let n = rng.unit_normal(decls);
         env.assume(&parametrisation, &check.assumptions, &n)
             .map_err(|e| e.message)?;
@@ -170,7 +189,7 @@ pub fn decide(
                 for (_, l, r) in pairs {
                     if !l.is_finite()
                         || !r.is_finite()
-                        || (l - r).abs() > TOL * (1.0 + l.abs() + r.abs())
+                        || (l - r).abs() > tol * (1.0 + l.abs() + r.abs())
                     {
                         return Ok(Some(Verdict::Fails));
                     }

@@ -96,6 +96,9 @@ pub enum Reverified {
     Exact,
     /// The `f64` interpreter on the expression tree agrees with the exact values.
     FloatingPoint,
+    /// The `f64` interpreter, with each field an explicit Taylor polynomial and every
+    /// derivative a central difference, agrees with the exact values.
+    TaylorDifferences,
     /// The `f64` interpreter (not the compiled tape) confirms the violation.
     Interpreter,
     /// Central differences of the function agree with the num-dual derivative.

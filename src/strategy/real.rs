@@ -77,6 +77,9 @@ pub struct RealEnv<'a, T> {
     /// Where the fields are evaluated (the centre of `fields` until a derivative
     /// moves it).
     position: RefCell<Vec<f64>>,
+    /// Fields that an assumption defines by an expression (`u_i = A_ij x_j`), with
+    /// fields in use: evaluated from that expression wherever the position is.
+    defined_fields: HashMap<String, (Vec<char>, Node, Vec<f64>)>,
 }
 
 impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
@@ -95,6 +98,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             quadrature: Quadrature::new(Level::Fine),
             fields: None,
             position: RefCell::new(Vec::new()),
+            defined_fields: HashMap::new(),
         }
     }
 
@@ -181,6 +185,18 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
         n: &[f64],
     ) -> Result<(), RealError> {
         self.memo.borrow_mut().clear();
+        if let Some(fields) = &mut self.fields {
+            // A component tied to others is tied as a function of the position.
+            for ((symbol, idx), terms, constant) in parametrisation.dependents() {
+                if self.decls.fields.contains_key(symbol) {
+                    let terms: Vec<_> = terms
+                        .iter()
+                        .map(|((s, i), q)| ((s.clone(), i.clone()), q.to_f64()))
+                        .collect();
+                    fields.tie((symbol, idx), &terms, constant.to_f64());
+                }
+            }
+        }
         for ((symbol, idx), terms, constant) in parametrisation.dependents() {
             let value = terms
                 .iter()
@@ -204,6 +220,11 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             else {
                 unreachable!("substitutions are equations")
             };
+            if self.fields.is_some() && self.decls.varies(symbol) {
+                self.defined_fields
+                    .insert(symbol.clone(), (formal.clone(), body.clone(), n.to_vec()));
+                continue;
+            }
             let t = walk::in_formal_order(&mut &*self, body, formal, n)?;
             self.symbols.insert(symbol.clone(), t);
             self.memo.borrow_mut().clear();
@@ -315,6 +336,11 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     }
 
     fn symbol(&mut self, name: &str, node: &Node) -> Result<Tensor<T>, RealError> {
+        if let Some((formal, body, n)) = self.defined_fields.get(name) {
+            // A field given by an expression of the position: its value where the
+            // position now is.
+            return walk::in_formal_order(&mut &**self, body, formal, n);
+        }
         if let Some(fields) = &self.fields {
             let x = self.position.borrow();
             let d = self.decls.dim;

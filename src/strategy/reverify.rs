@@ -23,7 +23,7 @@ use super::real::{component_pairs, RealEnv};
 use super::sampler::{relation_holds, Sampler, State};
 use super::taylor::{self, TaylorFields};
 use super::{Counterexample, Reverified};
-use crate::derivation::{AssumptionKind, Check, Constraint, Expression, Relation};
+use crate::derivation::{Check, Constraint, Expression, Relation};
 use crate::kernel::{Poly, Rational, Tensor, Var};
 use crate::lang::Decls;
 use std::collections::{BTreeMap, HashMap};
@@ -49,14 +49,14 @@ pub(super) fn exact_counterexample(
     let mut last = String::new();
     // Derivatives of fields are taken by central differences (see `taylor`), to the
     // stencil's accuracy rather than to rounding.
-    let agreement = if env.varying().is_empty() {
-        AGREEMENT
+    let (agreement, how) = if env.varying().is_empty() {
+        (AGREEMENT, Reverified::FloatingPoint)
     } else {
-        taylor::AGREEMENT
+        (taylor::AGREEMENT, Reverified::TaylorDifferences)
     };
     for absent in [0.0, 1.0, 0.577_215_664_901_532_9] {
         match float_values(decls, check, env, point, absent, cx) {
-            Ok((lf, rf)) => return confirm(lf, rf, lhs, rhs, agreement),
+            Ok((lf, rf)) => return confirm(lf, rf, lhs, rhs, agreement, how),
             Err(why) => last = why,
         }
     }
@@ -70,13 +70,14 @@ fn confirm(
     lhs: &Rational,
     rhs: &Rational,
     agreement: f64,
+    how: Reverified,
 ) -> Result<Reverified, Rejection> {
     let agrees = |f: f64, q: &Rational| {
         let e = q.to_f64();
         f.is_finite() && (f - e).abs() <= agreement * (1.0 + e.abs())
     };
     if agrees(lf, lhs) && agrees(rf, rhs) {
-        Ok(Reverified::FloatingPoint)
+        Ok(how)
     } else {
         Err(Rejection::InterpreterDisagrees {
             lhs: lf,
@@ -127,7 +128,7 @@ fn float_values(
     n.resize(d, 0.0);
     let mut real = RealEnv::new(decls, &check.defs, symbols);
     if !env.varying().is_empty() {
-        real = real.with_fields(taylor_fields(decls, check, env, point, absent)?);
+        real = real.with_fields(taylor_fields(decls, env, point, absent));
     }
     if let Some(p) = env.parametrisation() {
         real.assume(p, &check.assumptions, &n)
@@ -142,38 +143,16 @@ fn float_values(
     pick(d, &l, &r, cx)
 }
 
-/// The fields as Taylor polynomials with the point's jet values, components tied by
-/// the assumptions tied term by term.
+/// The fields as Taylor polynomials with the point's jet values (`RealEnv::assume`
+/// ties the components that assumptions tie to others).
 fn taylor_fields(
     decls: &Decls,
-    check: &Check,
     env: &ExactEnv<'_>,
     point: &BTreeMap<Var, Rational>,
     absent: f64,
-) -> Result<TaylorFields, String> {
+) -> TaylorFields {
     let at = |v: Var| point.get(&v).cloned();
-    let mut fields = TaylorFields::new(decls.dim, env.varying(), &env.vars, &at, absent);
-    if let Some(p) = env.parametrisation() {
-        for ((symbol, idx), terms, constant) in p.dependents() {
-            if decls.fields.contains_key(symbol) {
-                let terms: Vec<_> = terms
-                    .iter()
-                    .map(|((s, i), q)| ((s.clone(), i.clone()), q.to_f64()))
-                    .collect();
-                fields.tie((symbol, idx), &terms, constant.to_f64());
-            }
-        }
-        for &k in p.substitutions() {
-            if let AssumptionKind::Equals { symbol, .. } = &check.assumptions[k].kind {
-                if decls.varies(symbol) {
-                    return Err(format!(
-                        "the assumption defining the field `{symbol}` by an expression is not evaluated by differences"
-                    ));
-                }
-            }
-        }
-    }
-    Ok(fields)
+    TaylorFields::new(decls.dim, env.varying(), &env.vars, &at, absent)
 }
 
 /// The counterexample's component of both sides.

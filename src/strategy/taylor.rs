@@ -6,7 +6,8 @@
 //! values at nearby positions. The two share no differentiation code.
 
 use super::eval::Varying;
-use crate::kernel::{Rational, Var, VarTable};
+use crate::kernel::{assignments, Rational, Var, VarTable};
+use crate::lang::Decls;
 use num_dual::DualNum;
 use std::collections::{BTreeMap, HashMap};
 
@@ -20,12 +21,19 @@ pub const STEP: f64 = 1e-3;
 /// derivatives deep (ε/h³ ≈ 2e-7), with a margin.
 pub const AGREEMENT: f64 = 1e-5;
 
+/// A field component: the field's name and the component's indices (0-based).
+type Component = (String, Vec<usize>);
+
+/// A polynomial in the displacement from the centre: (exponent of each coordinate,
+/// coefficient).
+type Polynomial = Vec<(Vec<u32>, f64)>;
+
 /// The fields of a claim as Taylor polynomials about `centre`.
 #[derive(Clone, Debug, Default)]
 pub struct TaylorFields {
     pub centre: Vec<f64>,
     /// (field, component) → (exponent of each coordinate, coefficient / α!).
-    terms: HashMap<(String, Vec<usize>), Vec<(Vec<u32>, f64)>>,
+    terms: HashMap<Component, Polynomial>,
 }
 
 impl TaylorFields {
@@ -41,7 +49,7 @@ impl TaylorFields {
         absent: f64,
     ) -> Self {
         let mut centre = vec![absent; dim];
-        let mut jets: BTreeMap<(String, Vec<usize>), Vec<(Vec<u32>, f64)>> = BTreeMap::new();
+        let mut jets: BTreeMap<Component, Polynomial> = BTreeMap::new();
         let mut ordered: Vec<(&Var, &Varying)> = varying.iter().collect();
         ordered.sort_by_key(|(v, _)| vars.name(**v).to_owned());
         for (&v, what) in ordered {
@@ -74,13 +82,48 @@ impl TaylorFields {
         }
     }
 
+    /// Random fields for sampling: every component of every field a polynomial of
+    /// degree ≤ `order` in the coordinates it depends on, coefficients from `uniform`,
+    /// about a random centre.
+    pub fn random(decls: &Decls, order: u32, uniform: &mut dyn FnMut() -> f64) -> Self {
+        let dim = decls.dim;
+        let centre: Vec<f64> = (0..dim).map(|_| uniform()).collect();
+        let mut terms = HashMap::new();
+        for (field, deps) in &decls.fields {
+            let rank = decls.symbols.get(field).copied().unwrap_or(0);
+            let exponents: Vec<Vec<u32>> = (0..(order + 1).pow(dim as u32))
+                .map(|mut flat| {
+                    (0..dim)
+                        .map(|k| {
+                            let e = flat % (order + 1);
+                            flat /= order + 1;
+                            if deps[k] {
+                                e
+                            } else {
+                                0
+                            }
+                        })
+                        .collect::<Vec<u32>>()
+                })
+                .filter(|e| e.iter().sum::<u32>() <= order)
+                .collect::<std::collections::BTreeSet<_>>()
+                .into_iter()
+                .collect();
+            for idx in assignments(dim, rank) {
+                let poly = exponents.iter().map(|e| (e.clone(), uniform())).collect();
+                terms.insert((field.clone(), idx), poly);
+            }
+        }
+        TaylorFields { centre, terms }
+    }
+
     /// Sets a component that the point does not determine through its own jets (a
     /// component an assumption ties to others) to a combination of other components:
     /// `Σ q · other + constant`, term by term of the Taylor polynomials.
     pub fn tie(
         &mut self,
         (field, idx): (&str, &[usize]),
-        terms: &[((String, Vec<usize>), f64)],
+        terms: &[(Component, f64)],
         constant: f64,
     ) {
         let mut combined: BTreeMap<Vec<u32>, f64> = BTreeMap::new();
@@ -120,4 +163,67 @@ impl TaylorFields {
 /// The derivative by the five-point central stencil from values at −2h, −h, h, 2h.
 pub fn stencil<T: DualNum<Primitive = f64>>([m2, m1, p1, p2]: [T; 4]) -> T {
     (m2 - m1 * 8.0 + p1 * 8.0 - p2) * (1.0 / (12.0 * STEP))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// u(x) with u = 2, u_,1 = 3, u_,12 = 5, u_,11 = 4 at the centre (1, 0, -1).
+    fn field() -> TaylorFields {
+        let mut vars = VarTable::new();
+        let mut varying = HashMap::new();
+        let mut values = HashMap::new();
+        for (orders, value) in [(vec![], 2), (vec![0], 3), (vec![0, 1], 5), (vec![0, 0], 4)] {
+            let v = vars.intern(&format!("u{orders:?}"));
+            varying.insert(
+                v,
+                Varying::Jet {
+                    field: "u".into(),
+                    idx: vec![],
+                    orders,
+                },
+            );
+            values.insert(v, Rational::int(value));
+        }
+        for k in 0..3 {
+            let v = vars.intern(&format!("x{k}"));
+            varying.insert(v, Varying::Coordinate(k));
+            values.insert(v, Rational::int(1 - k as i64));
+        }
+        TaylorFields::new(3, &varying, &vars, &|v| values.get(&v).cloned(), 0.0)
+    }
+
+    #[test]
+    fn the_polynomial_has_the_jets_as_derivatives() {
+        let f = field();
+        assert_eq!(f.centre, vec![1.0, 0.0, -1.0]);
+        let u = |x: [f64; 3]| f.value("u", &[], &x).unwrap();
+        assert_eq!(u([1.0, 0.0, -1.0]), 2.0);
+        let h = STEP;
+        let d1 =
+            |x: [f64; 3]| stencil([-2.0, -1.0, 1.0, 2.0].map(|s| u([x[0] + s * h, x[1], x[2]])));
+        let d2 =
+            |x: [f64; 3]| stencil([-2.0, -1.0, 1.0, 2.0].map(|s| u([x[0], x[1] + s * h, x[2]])));
+        let c = [1.0, 0.0, -1.0];
+        assert!((d1(c) - 3.0).abs() < 1e-9);
+        assert!(d2(c).abs() < 1e-9);
+        let d11 = stencil([-2.0, -1.0, 1.0, 2.0].map(|s| d1([1.0 + s * h, 0.0, -1.0])));
+        let d12 = stencil([-2.0, -1.0, 1.0, 2.0].map(|s| d1([1.0, s * h, -1.0])));
+        assert!((d11 - 4.0).abs() < 1e-6, "{d11}");
+        assert!((d12 - 5.0).abs() < 1e-6, "{d12}");
+        assert!(f.value("v", &[], &c).is_none());
+    }
+
+    #[test]
+    fn a_tied_component_combines_the_others_term_by_term() {
+        let mut f = field();
+        f.tie(("w", &[]), &[(("u".into(), vec![]), -2.0)], 1.0);
+        let x = [1.5, 0.25, 0.0];
+        let (u, w) = (
+            f.value("u", &[], &x).unwrap(),
+            f.value("w", &[], &x).unwrap(),
+        );
+        assert!((w - (1.0 - 2.0 * u)).abs() < 1e-12);
+    }
 }

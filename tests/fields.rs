@@ -1,0 +1,113 @@
+//! Fields and their derivatives (issue 13, item 1): textbook field identities hold,
+//! their wrong twins fail with counterexamples confirmed by the second route (explicit
+//! Taylor-polynomial fields, derivatives by central differences), sampled strategies
+//! say undecided, and slips in the notation are located errors.
+
+use cosserat_check::cli::decide_all;
+use cosserat_check::derivation::Verdict;
+use cosserat_check::derivation::{load_files, load_str};
+use cosserat_check::strategy::Reverified;
+
+#[test]
+fn identities_hold_and_their_twins_fail_confirmed_by_differences() {
+    let files = load_files(&["tests/soundness/fields.toml"]).unwrap();
+    let rows = decide_all(&files, None).unwrap();
+    assert_eq!(rows.len(), 27);
+    let mut failed = 0;
+    for r in &rows {
+        assert!(
+            r.as_expected(),
+            "{}: {} (declared {}): {}",
+            r.claim.id,
+            r.outcome.verdict_text(),
+            r.claim.expect,
+            cosserat_check::report::evidence(&r.outcome)
+        );
+        if r.outcome.verdict() == Verdict::Fails {
+            failed += 1;
+            let cx = r.outcome.counterexample.as_ref().expect("a counterexample");
+            // The printed Laplacian of r^2 has no variables: nothing to differentiate
+            // numerically, and the interpreter confirms it as any other.
+            let how = cx.reverified.expect("re-verified");
+            assert!(
+                how == Reverified::TaylorDifferences || r.claim.id == "position-wrong",
+                "{}: {how:?}",
+                r.claim.id
+            );
+        }
+    }
+    assert_eq!(failed, 13);
+}
+
+fn one_claim(header: &str, claim: &str) -> String {
+    format!(
+        "section = \"t\"\ntitle = \"t\"\ndimension = 3\nposition = \"x\"\n{header}\n\n[[claim]]\nid = \"c\"\nprinted = 'c'\nexpect = \"holds\"\n{claim}\n"
+    )
+}
+
+fn error_of(text: &str) -> String {
+    match load_str("f.toml", text) {
+        Err(e) => e.to_string(),
+        Ok(f) => decide_all(std::slice::from_ref(&f), None)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_else(|| panic!("accepted: {text}")),
+    }
+}
+
+#[test]
+fn slips_are_located_errors() {
+    let fields = "fields = [\"u_i\"]\ntensors = [\"s_ij\"]";
+    let cases = [
+        (
+            "sides = [\"s_ij,j\", \"0\"]",
+            "f.toml:12:11",
+            "`s` is not a field, so its derivative is zero",
+        ),
+        (
+            "sides = [\"d(u_i)/dy_i\", \"0\"]",
+            "f.toml:12:19",
+            "`y` is not the declared position",
+        ),
+        (
+            "sides = [\"u_1,4\", \"0\"]",
+            "f.toml:12:15",
+            "coordinate 4 is outside 1..=3",
+        ),
+        (
+            "sides = [\"d(u_k u_k)/dx_k\", \"0\"]",
+            "f.toml:12:25",
+            "summed inside what is differentiated",
+        ),
+        ("sides = [\"u_i,j\", \"u_j\"]", "f.toml", "free indices"),
+    ];
+    for (claim, at, message) in cases {
+        let e = error_of(&one_claim(fields, claim));
+        assert!(e.contains(at) && e.contains(message), "{claim}: {e}");
+    }
+    let decl_cases = [
+        ("fields = [\"w_i(y_2)\"]", "`y_2` is not a coordinate"),
+        ("fields = [\"w_i(x_4)\"]", "`x_4` is not a coordinate"),
+        ("fields = [\"w_i(x_2, x_2)\"]", "x_2 is listed twice"),
+        ("fields = [\"w_i(x_2\"]", "never closed"),
+        ("fields = [\"w_ii\"]", "distinct index letters"),
+        ("fields = [\"u_i\", \"u_j\"]", "declared twice"),
+    ];
+    for (header, message) in decl_cases {
+        let e = error_of(&one_claim(header, "sides = [\"1\", \"1\"]"));
+        assert!(e.contains(message), "{header}: {e}");
+    }
+}
+
+#[test]
+fn sampled_strategies_leave_derivatives_undecided() {
+    let text = one_claim(
+        "fields = [\"u_i\"]",
+        "strategy = \"numeric\"\nsides = [\"sqrt(1 + u_i,j u_i,j)\", \"1\"]",
+    );
+    let f = load_str("f.toml", &text).unwrap();
+    let rows = decide_all(std::slice::from_ref(&f), None).unwrap();
+    assert_eq!(rows[0].outcome.verdict(), Verdict::Undecided);
+    let words = cosserat_check::report::evidence(&rows[0].outcome);
+    assert!(words.contains("differentiates fields"), "{words}");
+}
