@@ -111,3 +111,11 @@ fn sampled_strategies_leave_derivatives_undecided() {
     let words = cosserat_check::report::evidence(&rows[0].outcome);
     assert!(words.contains("differentiates fields"), "{words}");
 }
+
+#[test]
+fn the_worked_example_is_decided_as_declared() {
+    let files = load_files(&["derivations/examples/fields.toml"]).unwrap();
+    let rows = decide_all(&files, None).unwrap();
+    assert_eq!(rows.len(), 4);
+    assert!(rows.iter().all(|r| r.as_expected()));
+}

@@ -98,6 +98,18 @@ const DICTIONARY: &[&str] = &[
     "\\",
     "#",
     "'''",
+    ",i",
+    ",jk",
+    "_,k",
+    "u_i,j",
+    "d(",
+    ")/dx_i",
+    ")/dx_ij",
+    "(x_2)",
+    "(x_1, x_2)",
+    "position = \"x\"\n",
+    "fields = [\"u_i\", \"w_i(x_2)\", \"theta\"]\n",
+    "x_k x_k",
 ];
 
 /// xorshift64*: deterministic given the seed.
