@@ -452,6 +452,11 @@ impl Loader {
             indices,
         } = e.kind
         else {
+            if matches!(e.kind, ExprKind::Deriv { .. }) {
+                return Err(sub
+                    .diagnostic(e.span, "a derivative cannot be defined or assumed on its own")
+                    .with_help("constrain the field itself (an assumption on a field holds everywhere, so its derivatives follow), or name the value with a scalar"));
+            }
             return Err(sub.diagnostic(e.span, "the left side must be a single name such as t_i"));
         };
         if decls.is_some_and(|d| d.symbols.get(&full) == Some(&0)) {
