@@ -4,27 +4,21 @@
 //! say undecided, and slips in the notation are located errors.
 
 use cosserat_check::cli::decide_all;
+use cosserat_check::derivation::load_str;
 use cosserat_check::derivation::Verdict;
-use cosserat_check::derivation::{load_files, load_str};
 use cosserat_check::strategy::Reverified;
+
+mod common;
 
 #[test]
 fn identities_hold_and_their_twins_fail_confirmed_by_differences() {
-    let files = load_files(&["tests/soundness/fields.toml"]).unwrap();
-    let rows = decide_all(&files, None).unwrap();
-    assert_eq!(rows.len(), 27);
-    let mut failed = 0;
-    for r in &rows {
-        assert!(
-            r.as_expected(),
-            "{}: {} (declared {}): {}",
-            r.claim.id,
-            r.outcome.verdict_text(),
-            r.claim.expect,
-            cosserat_check::report::evidence(&r.outcome)
-        );
-        if r.outcome.verdict() == Verdict::Fails {
-            failed += 1;
+    common::assert_as_declared("tests/soundness/fields.toml", 27, |rows| {
+        let failed: Vec<_> = rows
+            .iter()
+            .filter(|r| r.outcome.verdict() == Verdict::Fails)
+            .collect();
+        assert_eq!(failed.len(), 13);
+        for r in failed {
             let cx = r.outcome.counterexample.as_ref().expect("a counterexample");
             // The printed Laplacian of r^2 has no variables: nothing to differentiate
             // numerically, and the interpreter confirms it as any other.
@@ -35,8 +29,7 @@ fn identities_hold_and_their_twins_fail_confirmed_by_differences() {
                 r.claim.id
             );
         }
-    }
-    assert_eq!(failed, 13);
+    });
 }
 
 fn one_claim(header: &str, claim: &str) -> String {
@@ -114,8 +107,5 @@ fn sampled_strategies_leave_derivatives_undecided() {
 
 #[test]
 fn the_worked_example_is_decided_as_declared() {
-    let files = load_files(&["derivations/examples/fields.toml"]).unwrap();
-    let rows = decide_all(&files, None).unwrap();
-    assert_eq!(rows.len(), 4);
-    assert!(rows.iter().all(|r| r.as_expected()));
+    common::assert_as_declared("derivations/examples/fields.toml", 4, |_| {});
 }

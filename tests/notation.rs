@@ -2,23 +2,13 @@
 //! hold, their wrong twins fail, and exact mode refuses π with a located error.
 
 use cosserat_check::cli::decide_all;
-use cosserat_check::derivation::{load_files, load_str};
+use cosserat_check::derivation::load_str;
+
+mod common;
 
 #[test]
 fn identities_hold_and_their_twins_fail() {
-    let files = load_files(&["tests/soundness/notation.toml"]).unwrap();
-    let rows = decide_all(&files, None).unwrap();
-    assert_eq!(rows.len(), 18);
-    for r in &rows {
-        assert!(
-            r.as_expected(),
-            "{}: {} (declared {}): {}",
-            r.claim.id,
-            r.outcome.verdict_text(),
-            r.claim.expect,
-            cosserat_check::report::evidence(&r.outcome)
-        );
-    }
+    common::assert_as_declared("tests/soundness/notation.toml", 18, |_| {});
 }
 
 #[test]

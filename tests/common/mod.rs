@@ -1,0 +1,24 @@
+//! Helpers shared by the test files that decide a soundness corpus.
+
+use cosserat_check::cli::decide_all;
+use cosserat_check::derivation::load_files;
+use cosserat_check::strategy::Decided;
+
+/// Decides every claim of `path`, asserts that there are `count` and that each verdict
+/// (and each correction's) is the declared one, and hands the rows to `inspect`.
+pub fn assert_as_declared(path: &str, count: usize, inspect: impl FnOnce(&[Decided<'_>])) {
+    let files = load_files(&[path]).unwrap();
+    let rows = decide_all(&files, None).unwrap();
+    assert_eq!(rows.len(), count, "{path}");
+    for r in &rows {
+        assert!(
+            r.as_expected(),
+            "{}: {} (declared {}): {}",
+            r.claim.id,
+            r.outcome.verdict_text(),
+            r.claim.expect,
+            cosserat_check::report::evidence(&r.outcome)
+        );
+    }
+    inspect(&rows);
+}
