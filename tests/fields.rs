@@ -20,12 +20,10 @@ fn identities_hold_and_their_twins_fail_confirmed_by_differences() {
         assert_eq!(failed.len(), 13);
         for r in failed {
             let cx = r.outcome.counterexample.as_ref().expect("a counterexample");
-            // The printed Laplacian of r^2 has no variables: nothing to differentiate
-            // numerically, and the interpreter confirms it as any other.
-            let how = cx.reverified.expect("re-verified");
-            assert!(
-                how == Reverified::TaylorDifferences || r.claim.id == "position-wrong",
-                "{}: {how:?}",
+            assert_eq!(
+                cx.reverified,
+                Some(Reverified::TaylorDifferences),
+                "{}",
                 r.claim.id
             );
         }
@@ -108,4 +106,20 @@ fn sampled_strategies_leave_derivatives_undecided() {
 #[test]
 fn the_worked_example_is_decided_as_declared() {
     common::assert_as_declared("derivations/examples/fields.toml", 4, |_| {});
+}
+
+#[test]
+fn a_pointwise_statement_about_fields_is_confirmed_at_the_point() {
+    // No derivative: the fields are values at a point, confirmed to rounding, not to
+    // the accuracy of differences.
+    let text = one_claim(
+        "fields = [\"u_i\"]",
+        "expect = \"fails\"\nreason = \"r\"\nsides = [\"u_i u_i\", \"u_1 u_1\"]",
+    )
+    .replace("expect = \"holds\"\n", "");
+    let f = load_str("f.toml", &text).unwrap();
+    let rows = decide_all(std::slice::from_ref(&f), None).unwrap();
+    assert!(rows[0].as_expected());
+    let cx = rows[0].outcome.counterexample.as_ref().unwrap();
+    assert_eq!(cx.reverified, Some(Reverified::FloatingPoint));
 }

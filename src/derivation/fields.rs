@@ -3,7 +3,7 @@
 //! list in parentheses restricts it to some (a simple-shear layer where everything
 //! depends on x_2 only). Derivatives with respect to the other coordinates are zero.
 
-use super::load::Loader;
+use super::load::{distinct_letters, Loader};
 use super::raw::S;
 use crate::lang::{Decls, Diagnostic, Span};
 
@@ -22,24 +22,8 @@ impl Loader {
         };
         let at =
             |start: usize, end: usize, msg: String| origin.diagnostic(Span::new(start, end), msg);
-        let (base, idx) = match crate::lang::parse_expr(head) {
-            Ok(e) => match e.kind {
-                crate::lang::parser::ExprKind::Name { base, indices, .. } => {
-                    (base, indices.iter().map(|t| t.ch).collect::<Vec<char>>())
-                }
-                _ => {
-                    return Err(at(
-                        0,
-                        head.len(),
-                        "expected a field's name, like u_i or theta".into(),
-                    ))
-                }
-            },
-            Err(e) => return Err(self.lang(&origin, e)),
-        };
-        let distinct = idx.iter().all(char::is_ascii_alphabetic)
-            && idx.iter().collect::<std::collections::BTreeSet<_>>().len() == idx.len();
-        if !distinct {
+        let (base, idx) = self.name_in(&origin, head, f.span())?;
+        if !distinct_letters(&idx) {
             return Err(at(
                 0,
                 head.len(),

@@ -48,6 +48,12 @@ impl From<Diagnostic> for LoadError {
     }
 }
 
+/// Whether declared index slots are letters, each used once (`sigma_ij`, not `w_ii`).
+pub(super) fn distinct_letters(idx: &[char]) -> bool {
+    idx.iter().all(char::is_ascii_alphabetic)
+        && idx.iter().collect::<std::collections::BTreeSet<_>>().len() == idx.len()
+}
+
 /// Reads every `*.toml` file directly in `dir` (sorted by name), and checks that
 /// claim ids are unique across them.
 pub fn load_dir(dir: &Path) -> Result<Vec<DerivationFile>, LoadError> {
@@ -318,9 +324,7 @@ impl Loader {
         }
         for t in &raw.tensors {
             let (base, idx) = self.name_token(t)?;
-            let distinct = idx.iter().all(|c| c.is_ascii_alphabetic())
-                && idx.iter().collect::<std::collections::BTreeSet<_>>().len() == idx.len();
-            if idx.is_empty() || !distinct {
+            if idx.is_empty() || !distinct_letters(&idx) {
                 return Err(self
                     .diag(
                         t.span(),
@@ -363,16 +367,23 @@ impl Loader {
 
     /// A single name token (`sigma_ij`, `R_g`, `n`): its base and index characters.
     pub(super) fn name_token(&self, s: &S) -> Result<(String, Vec<char>), Diagnostic> {
-        let origin = self.origin(s);
-        let e = parse_expr(s.get_ref()).map_err(|e| self.lang(&origin, e))?;
+        self.name_in(&self.origin(s), s.get_ref(), s.span())
+    }
+
+    /// A single name token in `text`, which `origin` locates; `whole` is where the
+    /// complaint that it is not one name points.
+    pub(super) fn name_in(
+        &self,
+        origin: &Origin,
+        text: &str,
+        whole: Range<usize>,
+    ) -> Result<(String, Vec<char>), Diagnostic> {
+        let e = parse_expr(text).map_err(|e| self.lang(origin, e))?;
         match e.kind {
             ExprKind::Name { base, indices, .. } => {
                 Ok((base, indices.iter().map(|t| t.ch).collect()))
             }
-            _ => Err(self.diag(
-                s.span(),
-                "expected a single name here, like sigma_ij or R_g",
-            )),
+            _ => Err(self.diag(whole, "expected a single name here, like sigma_ij or R_g")),
         }
     }
 

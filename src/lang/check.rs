@@ -382,10 +382,9 @@ impl Scope<'_> {
                 kind: NodeKind::Deriv(Box::new(node), slot),
                 free,
                 bound,
-                span: span.to(t.span),
+                span,
             };
         }
-        node.span = span;
         Ok(node)
     }
 

@@ -49,10 +49,10 @@ pub(super) fn exact_counterexample(
     let mut last = String::new();
     // Derivatives of fields are taken by central differences (see `taylor`), to the
     // stencil's accuracy rather than to rounding.
-    let (agreement, how) = if env.varying().is_empty() {
-        (AGREEMENT, Reverified::FloatingPoint)
-    } else {
+    let (agreement, how) = if check.reads().differentiates {
         (taylor::AGREEMENT, Reverified::TaylorDifferences)
+    } else {
+        (AGREEMENT, Reverified::FloatingPoint)
     };
     for absent in [0.0, 1.0, 0.577_215_664_901_532_9] {
         match float_values(decls, check, env, point, absent, cx) {
@@ -127,7 +127,9 @@ fn float_values(
     }
     n.resize(d, 0.0);
     let mut real = RealEnv::new(decls, &check.defs, symbols);
-    if !env.varying().is_empty() {
+    // Fields are functions of the position only where the statement differentiates
+    // them; elsewhere they are values at the point, like any symbol.
+    if check.reads().differentiates {
         real = real.with_fields(taylor_fields(decls, env, point, absent));
     }
     if let Some(p) = env.parametrisation() {
