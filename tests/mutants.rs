@@ -222,6 +222,26 @@ fn every_mutant_of_every_field_identity_is_refuted() {
     });
 }
 
+/// Mutants of rational identities (`tests/soundness/rational.toml`): the exact
+/// strategy on quotients, survivors confirmed by the float route's divisions.
+#[test]
+fn every_mutant_of_every_rational_identity_is_refuted() {
+    let files = load_files(&["tests/soundness/rational.toml"]).expect("rational loads");
+    let kinds = [
+        MutantKind::Coefficient,
+        MutantKind::SwapIndices,
+        MutantKind::FlipSign,
+        MutantKind::DropTerm,
+    ];
+    let report = sweep_files(&files, &kinds);
+    insta::with_settings!({
+        snapshot_path => concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"),
+        prepend_module_to_snapshot => false,
+    }, {
+        insta::assert_snapshot!("mutation_report_rational", report);
+    });
+}
+
 /// Sweeps every proved statement of `files`; the report, after asserting that the
 /// routes never disagree and that each of `kinds` had a refuted mutant.
 fn sweep_files(files: &[DerivationFile], kinds: &[MutantKind]) -> String {

@@ -14,7 +14,8 @@
 //! that a reader can audit it.
 
 use super::linear::determinant;
-use super::poly::{Poly, PolyError, Var};
+use super::poly::{Poly, PolyError, Var, VarTable};
+use super::quotient::{cleared_difference, Quotient};
 use super::sturm::{count_roots, Bound, UniPoly};
 use super::{RatFunc, Rational};
 use serde::Serialize;
@@ -28,6 +29,10 @@ pub enum Fact {
     PolynomialIdentity {
         components: usize,
         modulo_unit_normal: usize,
+        /// The factors of the denominators cleared before comparing: the identity
+        /// holds wherever each is nonzero (empty: polynomials, no condition).
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        nonzero: Vec<String>,
     },
     /// Two reduced rational functions identical.
     RationalFunctionIdentity,
@@ -164,25 +169,31 @@ impl Certificate {
 }
 
 /// Component-by-component comparison of canonical polynomials, certified only when
-/// every comparison made was an identity.
+/// every comparison made was an identity. Quotients are compared with their
+/// denominators cleared: `a/A = b/B` wherever A, B ≠ 0 exactly when the numerator of
+/// `a/A − b/B` over the least common multiple is the zero polynomial, and the
+/// certificate lists the factors that must not vanish.
 ///
 /// ```
 /// use cosserat_check::kernel::certificate::Identities;
-/// use cosserat_check::kernel::{Poly, Rational, VarTable};
+/// use cosserat_check::kernel::{Poly, Quotient, Rational, VarTable};
 /// let mut names = VarTable::new();
-/// let x = Poly::var(names.intern("x"));
+/// let x = Quotient::from(Poly::var(names.intern("x")));
+/// let two_x = Quotient::from(&Poly::constant(Rational::int(2)) * x.numerator());
 /// let mut check = Identities::new(&[]);
-/// assert_eq!(check.compare(&(&x + &x), &(&Poly::constant(Rational::int(2)) * &x)), Ok(None));
-/// assert!(check.certify().is_some());
+/// assert_eq!(check.compare(&two_x, &two_x.clone()), Ok(None));
+/// assert!(check.certify(&names).is_some());
 /// let mut check = Identities::new(&[]);
-/// assert!(check.compare(&x, &Poly::constant(Rational::int(1))).unwrap().is_some());
-/// assert!(check.certify().is_none(), "one difference, no certificate");
+/// let one = Quotient::from(Poly::constant(Rational::int(1)));
+/// assert!(check.compare(&x, &one).unwrap().is_some());
+/// assert!(check.certify(&names).is_none(), "one difference, no certificate");
 /// ```
 #[derive(Debug)]
 pub struct Identities<'n> {
     normal: &'n [Var],
     components: usize,
     modulo_unit_normal: usize,
+    nonzero: Vec<Poly>,
     refuted: bool,
 }
 
@@ -194,18 +205,39 @@ impl<'n> Identities<'n> {
             normal,
             components: 0,
             modulo_unit_normal: 0,
+            nonzero: Vec::new(),
             refuted: false,
         }
     }
 
-    /// Compares one component: `None` when the sides are identical (modulo n·n = 1),
-    /// else their reduced difference. An error is a reduction over the work budget.
-    pub fn compare(&mut self, lhs: &Poly, rhs: &Poly) -> Result<Option<Poly>, PolyError> {
-        let raw = lhs - rhs;
+    /// Compares one component: `None` when the sides are identical (modulo n·n = 1)
+    /// wherever their denominators are nonzero, else the numerator of their difference
+    /// over the common denominator, reduced. A denominator must not contain the normal.
+    pub fn compare(&mut self, lhs: &Quotient, rhs: &Quotient) -> Result<Option<Poly>, PolyError> {
+        let (raw, factors) = cleared_difference(lhs, rhs);
+        if factors
+            .iter()
+            .flat_map(|(f, _)| f.terms())
+            .any(|(m, _)| self.normal.iter().any(|&v| m.exponent(v) != 0))
+        {
+            return Err(PolyError::NegativeNormalPower);
+        }
         let diff = raw.reduce_on_sphere(self.normal)?;
         self.components += 1;
         if diff.is_zero() {
             self.modulo_unit_normal += usize::from(!raw.is_zero());
+            // Single-term divisors (3, V, 2*R_g) are read as nonzero, as always; the
+            // sums are the conditions worth stating.
+            let cancelled = lhs.conditions().iter().chain(rhs.conditions());
+            let sums = factors
+                .into_iter()
+                .map(|(f, _)| f)
+                .chain(cancelled.cloned());
+            for f in sums.filter(|f| f.num_terms() > 1) {
+                if !self.nonzero.contains(&f) {
+                    self.nonzero.push(f);
+                }
+            }
             Ok(None)
         } else {
             self.refuted = true;
@@ -224,12 +256,13 @@ impl<'n> Identities<'n> {
     }
 
     /// The certificate: only when at least one component was compared and none
-    /// differed.
-    pub fn certify(self) -> Option<Certificate> {
+    /// differed. `names` writes the denominators' factors.
+    pub fn certify(self, names: &VarTable) -> Option<Certificate> {
         (!self.refuted && self.components > 0).then(|| {
             Certificate::of(Fact::PolynomialIdentity {
                 components: self.components,
                 modulo_unit_normal: self.modulo_unit_normal,
+                nonzero: self.nonzero.iter().map(|f| f.display(names)).collect(),
             })
         })
     }
@@ -251,29 +284,87 @@ mod tests {
         let n1 = names.intern("n_1");
         let n2 = names.intern("n_2");
         let (a, b) = (Poly::var(n1), Poly::var(n2));
-        let one = Poly::constant(Rational::int(1));
+        let one = Quotient::from(Poly::constant(Rational::int(1)));
+        let square = Quotient::from(&(&a * &a) + &(&b * &b));
         let mut plain = Identities::new(&[]);
-        assert!(plain
-            .compare(&(&(&a * &a) + &(&b * &b)), &one)
-            .unwrap()
-            .is_some());
-        assert!(plain.certify().is_none());
+        assert!(plain.compare(&square, &one).unwrap().is_some());
+        assert!(plain.certify(&names).is_none());
         let normal = [n1, n2];
         let mut on_sphere = Identities::new(&normal);
-        assert_eq!(
-            on_sphere.compare(&(&(&a * &a) + &(&b * &b)), &one),
-            Ok(None)
-        );
+        assert_eq!(on_sphere.compare(&square, &one), Ok(None));
         assert!(on_sphere.used_unit_normal());
-        let cert = on_sphere.certify().unwrap();
+        let cert = on_sphere.certify(&names).unwrap();
         assert_eq!(
             cert.facts(),
             &[Fact::PolynomialIdentity {
                 components: 1,
-                modulo_unit_normal: 1
+                modulo_unit_normal: 1,
+                nonzero: Vec::new(),
             }]
         );
-        assert!(Identities::new(&[]).certify().is_none(), "nothing compared");
+        assert!(
+            Identities::new(&[]).certify(&names).is_none(),
+            "nothing compared"
+        );
+        // A denominator with the normal in it is refused: the reduction on the sphere
+        // would not be canonical for the quotient.
+        let over = one
+            .divide(&Quotient::from(&a + &one.numerator().clone()))
+            .unwrap();
+        assert_eq!(
+            Identities::new(&normal).compare(&over, &one),
+            Err(PolyError::NegativeNormalPower)
+        );
+    }
+
+    #[test]
+    fn quotients_are_compared_with_denominators_cleared() {
+        let mut names = VarTable::new();
+        let l = Poly::var(names.intern("lambda"));
+        let g = Poly::var(names.intern("G"));
+        let c = |k: i64| Poly::constant(Rational::int(k));
+        // E = G (3λ + 2G)/(λ + G) and ν = λ / (2(λ + G)) give E / (2(1 + ν)) = G.
+        let lg = Quotient::from(&l + &g);
+        let e = Quotient::from(&g * &(&(&c(3) * &l) + &(&c(2) * &g)))
+            .divide(&lg)
+            .unwrap();
+        let nu = Quotient::from(l.clone())
+            .divide(&Quotient::from(&c(2) * &(&l + &g)))
+            .unwrap();
+        let mut work = 10_000;
+        let mut ring = crate::kernel::quotient::Quotients {
+            work_left: &mut work,
+        };
+        use crate::kernel::einsum::Arithmetic;
+        let one_plus_nu = ring.add(Quotient::from(c(1)), nu).unwrap();
+        let two = Quotient::from(c(2));
+        let g_again = e.divide(&ring.mul(two, &one_plus_nu).unwrap()).unwrap();
+        let mut check = Identities::new(&[]);
+        assert_eq!(
+            check.compare(&g_again, &Quotient::from(g.clone())),
+            Ok(None)
+        );
+        let cert = check.certify(&names).unwrap();
+        // G again, with every divisor on the way listed: both cancelled.
+        assert_eq!(g_again.as_poly(), Some(&g));
+        assert!(
+            matches!(&cert.facts()[0], Fact::PolynomialIdentity { nonzero, .. }
+            if nonzero == &["lambda + G".to_owned(), "3*lambda + 2*G".to_owned()])
+        );
+        // A wrong Poisson ratio: λ/(λ + G) makes the difference nonzero.
+        let wrong = Quotient::from(l.clone()).divide(&lg).unwrap();
+        let mut check = Identities::new(&[]);
+        let diff = check.compare(&wrong, &nu_of(&l, &g)).unwrap().unwrap();
+        assert!(!diff.is_zero());
+        assert!(check.certify(&names).is_none());
+    }
+
+    fn nu_of(l: &Poly, g: &Poly) -> Quotient {
+        Quotient::from(l.clone())
+            .divide(&Quotient::from(
+                &Poly::constant(Rational::int(2)) * &(l + g),
+            ))
+            .unwrap()
     }
 
     #[test]

@@ -11,6 +11,7 @@ pub mod gcd;
 pub mod linear;
 pub mod moments;
 pub mod poly;
+pub mod quotient;
 pub mod ratfunc;
 pub mod rational;
 pub mod sturm;
@@ -18,6 +19,7 @@ pub mod tensor;
 
 pub use moments::{monomial_moment, tensor_moment};
 pub use poly::{Monomial, Poly, PolyError, Var, VarTable};
+pub use quotient::Quotient;
 pub use ratfunc::RatFunc;
 pub use rational::Rational;
 pub use tensor::{assignments, permutation_sign, Tensor};

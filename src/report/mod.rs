@@ -171,15 +171,40 @@ pub fn evidence(o: &Outcome) -> String {
                 ""
             };
             parts.push(format!(
-                "{} component check{}, every difference identically 0{unit}",
+                "{} component check{}, every difference identically 0{unit}{}",
                 o.checks,
-                if o.checks == 1 { "" } else { "s" }
+                if o.checks == 1 { "" } else { "s" },
+                domain(o)
             ));
         }
         None => {}
         Some(cx) => parts.push(counterexample_text(cx)),
     }
     parts.join("; ")
+}
+
+/// Where an identity of quotients holds: every divisor nonzero (empty for
+/// polynomials).
+fn domain(o: &Outcome) -> String {
+    use crate::kernel::certificate::Fact;
+    let nonzero = o
+        .certificate()
+        .iter()
+        .flat_map(|c| c.facts())
+        .find_map(|f| match f {
+            Fact::PolynomialIdentity { nonzero, .. } if !nonzero.is_empty() => Some(nonzero),
+            _ => None,
+        });
+    match nonzero {
+        None => String::new(),
+        Some(fs) => {
+            let conditions: Vec<String> = fs.iter().map(|f| format!("{f} ≠ 0")).collect();
+            format!(
+                " after clearing denominators; holds where {}",
+                conditions.join(", ")
+            )
+        }
+    }
 }
 
 fn counterexample_text(cx: &Counterexample) -> String {
@@ -267,6 +292,7 @@ pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String 
             Fact::PolynomialIdentity {
                 components,
                 modulo_unit_normal,
+                nonzero,
             } => {
                 let s = if *components == 1 { "" } else { "s" };
                 let modulo = if *modulo_unit_normal > 0 {
@@ -274,7 +300,16 @@ pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String 
                 } else {
                     String::new()
                 };
-                format!("canonical polynomials identical in {components} component{s}{modulo}")
+                if nonzero.is_empty() {
+                    format!("canonical polynomials identical in {components} component{s}{modulo}")
+                } else {
+                    let conditions: Vec<String> =
+                        nonzero.iter().map(|f| format!("{f} ≠ 0")).collect();
+                    format!(
+                        "numerators identical over a common denominator in {components} component{s}{modulo}; holds where {}",
+                        conditions.join(", ")
+                    )
+                }
             }
             Fact::RationalFunctionIdentity => "reduced rational functions identical".to_owned(),
             Fact::Proportional { factor } => format!("one polynomial is {factor} times the other"),

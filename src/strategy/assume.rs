@@ -304,7 +304,7 @@ fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, D
             if !env.is_affine(&value) {
                 return Err(not_affine());
             }
-            Role::Linear(vec![&var(env, symbol, index) - &value])
+            Role::Linear(vec![&var(env, symbol, index) - value.numerator()])
         }
         AssumptionKind::Equals {
             symbol,
@@ -323,7 +323,7 @@ fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, D
                 if !env.is_affine(p) {
                     return Ok(Role::Substitution);
                 }
-                out.push(&var(env, symbol, &idx) - p);
+                out.push(&var(env, symbol, &idx) - p.numerator());
             }
             Role::Linear(out)
         }

@@ -5,16 +5,23 @@
 //! component tensors before anything else is evaluated, and `avg(…)` applies the exact
 //! isotropic moments to the normal's monomials. The tree is walked by the one walk all
 //! routes share (`walk.rs`), in canonical polynomials under a work budget.
+//!
+//! A value is a [`Quotient`]: a polynomial, or one over a product of divisors when the
+//! statement divides by a sum of scalar parameters (`E / (2*(1 + nu))`). Divisors
+//! with the normal, a tensor component or a field in them are refused: the reduction
+//! on the unit sphere and the derivatives of fields assume a polynomial denominator
+//! free of them.
 
 use super::assume::{Component, Parametrisation};
 use super::walk::{self, Ring};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::einsum::{Arithmetic, Polynomials};
-use crate::kernel::{assignments, Poly, PolyError, Rational, Tensor, Var, VarTable};
+use crate::kernel::quotient::{DivideError, Quotients};
+use crate::kernel::{assignments, Poly, PolyError, Quotient, Rational, Tensor, Var, VarTable};
 use crate::lang::parser::{Func, Func2};
-use crate::lang::{Decls, Diagnostic, Node, Origin};
+use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin};
 use num_traits::{One, Zero};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Largest number of terms one component may reach before evaluation stops: keeps a
 /// hostile input (a product of hundreds of sums) from running for hours.
@@ -34,15 +41,15 @@ pub const MAX_COEFFICIENT_BITS: u64 = 100_000;
 pub const MAX_EXPONENT: i64 = 10_000;
 
 /// A tensor whose slots are labelled by index letters, sorted.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Labeled {
     pub labels: Vec<char>,
-    pub tensor: Tensor<Poly>,
+    pub tensor: Tensor<Quotient>,
 }
 
 impl Labeled {
     /// The component for the given values of (a superset of) its labels.
-    pub fn at(&self, assignment: &[(char, usize)]) -> &Poly {
+    pub fn at(&self, assignment: &[(char, usize)]) -> &Quotient {
         let idx: Vec<usize> = self
             .labels
             .iter()
@@ -93,9 +100,11 @@ pub struct ExactEnv<'a> {
     pub vars: VarTable,
     /// The variables a derivative acts on (see [`Varying`]).
     varying: HashMap<Var, Varying>,
+    /// Components of symbols of rank one or more: not allowed in a divisor.
+    tensor_components: HashSet<Var>,
     normal: Vec<Var>,
-    symbols: HashMap<String, Tensor<Poly>>,
-    cache: HashMap<String, Tensor<Poly>>,
+    symbols: HashMap<String, Tensor<Quotient>>,
+    cache: HashMap<String, Tensor<Quotient>>,
     /// Term products still allowed (see [`MAX_WORK`]).
     work_left: usize,
     parametrisation: Option<Parametrisation>,
@@ -151,7 +160,7 @@ impl<'a> ExactEnv<'a> {
                     &acc + &(&env.component(s, i) * &Poly::constant((*q).clone()))
                 });
             let mut t = env.symbol(symbol);
-            *t.get_mut(idx) = value;
+            *t.get_mut(idx) = Quotient::from(value);
             env.symbols.insert(symbol.clone(), t);
         }
         for &k in parametrisation.substitutions() {
@@ -188,6 +197,7 @@ impl<'a> ExactEnv<'a> {
             defs: &[],
             vars,
             varying: HashMap::new(),
+            tensor_components: HashSet::new(),
             normal,
             symbols: HashMap::new(),
             cache: HashMap::new(),
@@ -215,6 +225,9 @@ impl<'a> ExactEnv<'a> {
     /// field or the position.
     fn component_var(&mut self, symbol: &str, idx: &[usize]) -> Var {
         let v = self.vars.intern(&component_name(symbol, idx));
+        if !idx.is_empty() {
+            self.tensor_components.insert(v);
+        }
         if self.decls.fields.contains_key(symbol) {
             self.varying.entry(v).or_insert_with(|| Varying::Jet {
                 field: symbol.to_owned(),
@@ -270,23 +283,26 @@ impl<'a> ExactEnv<'a> {
         out
     }
 
-    /// Whether `p` is affine in the components with rational coefficients: no products,
+    /// Whether `q` is affine in the components with rational coefficients: no products,
     /// powers or divisions of variables, and no normal.
-    pub fn is_affine(&self, p: &Poly) -> bool {
-        p.terms().all(|(m, _)| match m.factors() {
-            [] => true,
-            [(v, 1)] => !self.normal.contains(v),
-            _ => false,
-        })
+    pub fn is_affine(&self, q: &Quotient) -> bool {
+        q.factors().is_empty()
+            && q.numerator().terms().all(|(m, _)| match m.factors() {
+                [] => true,
+                [(v, 1)] => !self.normal.contains(v),
+                _ => false,
+            })
     }
 
     /// The component tensor of a declared symbol (fresh variables on first use).
-    fn symbol(&mut self, name: &str) -> Tensor<Poly> {
+    fn symbol(&mut self, name: &str) -> Tensor<Quotient> {
         if let Some(t) = self.symbols.get(name) {
             return t.clone();
         }
         let rank = self.decls.symbols.get(name).copied().unwrap_or(0);
-        let t = Tensor::from_fn(self.decls.dim, rank, |idx| self.component(name, idx));
+        let t = Tensor::from_fn(self.decls.dim, rank, |idx| {
+            Quotient::from(self.component(name, idx))
+        });
         self.symbols.insert(name.to_owned(), t.clone());
         t
     }
@@ -370,28 +386,28 @@ impl ExactRing<'_, '_> {
     }
 }
 
-/// Canonical polynomials, products charged to the environment's work budget by the
-/// kernel's [`Polynomials`] arithmetic.
+/// Quotients of canonical polynomials, products charged to the environment's work
+/// budget by the kernel's [`Quotients`] arithmetic.
 impl Arithmetic for ExactRing<'_, '_> {
-    type Value = Poly;
+    type Value = Quotient;
     type Error = Failure;
-    fn zero(&mut self) -> Poly {
-        Poly::zero()
+    fn zero(&mut self) -> Quotient {
+        Quotient::default()
     }
-    fn one(&mut self) -> Poly {
-        Poly::one()
+    fn one(&mut self) -> Quotient {
+        Quotient::from(Poly::one())
     }
-    fn is_exact_zero(&self, x: &Poly) -> bool {
+    fn is_exact_zero(&self, x: &Quotient) -> bool {
         x.is_zero()
     }
-    fn mul(&mut self, a: Poly, b: &Poly) -> Result<Poly, Failure> {
-        let mut ring = Polynomials {
+    fn mul(&mut self, a: Quotient, b: &Quotient) -> Result<Quotient, Failure> {
+        let mut ring = Quotients {
             work_left: &mut self.env.work_left,
         };
         ring.mul(a, b).map_err(|_| Failure::OverBudget)
     }
-    fn add(&mut self, a: Poly, b: Poly) -> Result<Poly, Failure> {
-        let mut ring = Polynomials {
+    fn add(&mut self, a: Quotient, b: Quotient) -> Result<Quotient, Failure> {
+        let mut ring = Quotients {
             work_left: &mut self.env.work_left,
         };
         ring.add(a, b).map_err(|_| Failure::OverBudget)
@@ -406,27 +422,32 @@ impl Ring for ExactRing<'_, '_> {
         self.env.decls.dim
     }
 
-    fn constant(&mut self, q: &Rational) -> Poly {
-        Poly::constant(q.clone())
+    fn constant(&mut self, q: &Rational) -> Quotient {
+        Quotient::from(Poly::constant(q.clone()))
     }
 
-    fn neg(&mut self, x: Poly) -> Poly {
+    fn neg(&mut self, x: Quotient) -> Quotient {
         -x
     }
 
-    fn normal(&mut self, _n: &()) -> Tensor<Poly> {
+    fn normal(&mut self, _n: &()) -> Tensor<Quotient> {
         // An in-plane normal has no third component: n_3 = 0.
         let normal = &self.env.normal;
         Tensor::from_fn(self.env.decls.dim, 1, |i| {
-            normal.get(i[0]).map_or_else(Poly::zero, |&v| Poly::var(v))
+            Quotient::from(normal.get(i[0]).map_or_else(Poly::zero, |&v| Poly::var(v)))
         })
     }
 
-    fn symbol(&mut self, name: &str, _node: &Node) -> Result<Tensor<Poly>, Failure> {
+    fn symbol(&mut self, name: &str, _node: &Node) -> Result<Tensor<Quotient>, Failure> {
         Ok(self.env.symbol(name))
     }
 
-    fn definition(&mut self, name: &str, node: &Node, _n: &()) -> Result<Tensor<Poly>, Failure> {
+    fn definition(
+        &mut self,
+        name: &str,
+        node: &Node,
+        _n: &(),
+    ) -> Result<Tensor<Quotient>, Failure> {
         if let Some(t) = self.env.cache.get(name) {
             return Ok(t.clone());
         }
@@ -446,12 +467,64 @@ impl Ring for ExactRing<'_, '_> {
         Ok(t)
     }
 
-    fn divide(&mut self, x: Poly, den: &Poly, divisor: &Node) -> Result<Poly, Failure> {
-        x.checked_div(den)
-            .map_err(|e| Failure::Located(poly_error(self.origin, divisor, e)))
+    /// A single-term divisor (3, V, 2*R_g) divides the numerator as before; a sum must
+    /// be a polynomial in scalar parameters, and joins the denominator. A divisor
+    /// written as a product of scalars or a power, `(1 + nu) (1 - 2 nu)`, is divided
+    /// by one factor at a time, so that the factors stay apart in the denominator and
+    /// in the conditions where the statement holds.
+    fn divide(&mut self, x: Quotient, den: &Quotient, divisor: &Node) -> Result<Quotient, Failure> {
+        if den.factors().is_empty() && den.numerator().num_terms() > 1 {
+            let parts: Vec<(&Node, u32)> = match &divisor.kind {
+                NodeKind::Product(fs) if fs.iter().all(|f| f.free_letters().is_empty()) => {
+                    fs.iter().map(|f| (f, 1)).collect()
+                }
+                NodeKind::Pow(a, k) => vec![(&**a, *k)],
+                _ => Vec::new(),
+            };
+            if !parts.is_empty() {
+                let mut out = x;
+                for (part, k) in parts {
+                    let value = walk::scalar(self, part, &())?;
+                    for _ in 0..k {
+                        out = self.divide(out, &value, part)?;
+                    }
+                }
+                return Ok(out);
+            }
+        }
+        let env = &*self.env;
+        let single_term = den.factors().is_empty() && den.numerator().num_terms() == 1;
+        let offending = den
+            .variables()
+            .into_iter()
+            .filter(|_| !single_term)
+            .find(|v| {
+                env.normal.contains(v)
+                    || env.varying.contains_key(v)
+                    || env.tensor_components.contains(v)
+            });
+        if let Some(v) = offending {
+            let name = env.vars.name(v);
+            let what = if env.normal.contains(&v) {
+                format!("`{name}` is a component of the normal")
+            } else if env.varying.contains_key(&v) {
+                format!("`{name}` varies with position")
+            } else {
+                format!("`{name}` is a component of a tensor")
+            };
+            return Err(self.error(
+                divisor,
+                format!("exact mode divides by a sum only when it is a polynomial in scalar parameters; {what}"),
+                "decide this claim with strategy = \"numeric\", or multiply the statement out",
+            ));
+        }
+        x.divide(den).map_err(|DivideError::ByZero| {
+            Failure::Located(poly_error(self.origin, divisor, PolyError::DivisionByZero))
+        })
     }
 
-    fn power(&mut self, p: Poly, k: u32, node: &Node) -> Result<Poly, Failure> {
+    fn power(&mut self, q: Quotient, k: u32, node: &Node) -> Result<Quotient, Failure> {
+        let p = q.numerator();
         let max_exp = p
             .terms()
             .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| i64::from(e).abs()))
@@ -482,10 +555,28 @@ impl Ring for ExactRing<'_, '_> {
                 ),
             ));
         }
-        Ok(p.pow(k))
+        let degree: u32 = q
+            .factors()
+            .iter()
+            .map(|(f, m)| f.num_terms() as u32 * m)
+            .sum();
+        if u64::from(degree) * u64::from(k) > MAX_EXPONENT as u64 {
+            return Err(self.limit(
+                node,
+                "this power of a quotient is too large to expand exactly",
+                &format!("exponents up to {MAX_EXPONENT} are supported"),
+            ));
+        }
+        Ok(q.pow(k))
     }
 
-    fn apply2(&mut self, f: Func2, _x: Poly, _y: Poly, node: &Node) -> Result<Poly, Failure> {
+    fn apply2(
+        &mut self,
+        f: Func2,
+        _x: Quotient,
+        _y: Quotient,
+        node: &Node,
+    ) -> Result<Quotient, Failure> {
         let what = match f {
             Func2::Pow => "a power with an exponent that is not a whole number".to_owned(),
             f => format!("{}(…, …)", f.name()),
@@ -497,7 +588,7 @@ impl Ring for ExactRing<'_, '_> {
         ))
     }
 
-    fn pi(&mut self, node: &Node) -> Result<Poly, Failure> {
+    fn pi(&mut self, node: &Node) -> Result<Quotient, Failure> {
         Err(self.error(
             node,
             "π is not a rational number, so it has no exact polynomial value",
@@ -505,12 +596,12 @@ impl Ring for ExactRing<'_, '_> {
         ))
     }
 
-    fn apply(&mut self, f: Func, p: Poly, node: &Node) -> Result<Poly, Failure> {
+    fn apply(&mut self, f: Func, p: Quotient, node: &Node) -> Result<Quotient, Failure> {
         match f {
             Func::Sqrt => p
                 .as_constant()
                 .and_then(|q| q.sqrt_exact())
-                .map(Poly::constant)
+                .map(|q| Quotient::from(Poly::constant(q)))
                 .ok_or_else(|| {
                     self.error(
                         node,
@@ -526,14 +617,15 @@ impl Ring for ExactRing<'_, '_> {
         }
     }
 
-    fn average(&mut self, a: &Node, node: &Node, _n: &()) -> Result<Tensor<Poly>, Failure> {
+    /// The average acts on the numerator: no divisor contains the normal.
+    fn average(&mut self, a: &Node, node: &Node, _n: &()) -> Result<Tensor<Quotient>, Failure> {
         let v = walk::walk(self, a, &())?;
         let normal = self.env.normal.clone();
-        v.try_map(|p| p.average_over_normal(&normal))
+        v.try_map(|q| Ok(q.with_numerator(q.numerator().average_over_normal(&normal)?)))
             .map_err(|e| Failure::Located(poly_error(self.origin, node, e)))
     }
 
-    fn maximum(&mut self, _a: &Node, node: &Node) -> Result<Poly, Failure> {
+    fn maximum(&mut self, _a: &Node, node: &Node) -> Result<Quotient, Failure> {
         Err(self.error(
             node,
             "maxn(…) is a maximum over orientations, not a polynomial",
@@ -542,12 +634,19 @@ impl Ring for ExactRing<'_, '_> {
     }
 
     /// The total derivative D_k p = Σ_v ∂p/∂v · ∂v/∂x_k over the variables of p
-    /// (the chain rule on jet variables), for every component and every k.
-    fn derivatives(&mut self, a: &Node, _node: &Node, _n: &()) -> Result<Tensor<Poly>, Failure> {
+    /// (the chain rule on jet variables), for every component and every k. No divisor
+    /// varies with position, so the derivative acts on the numerator alone.
+    fn derivatives(
+        &mut self,
+        a: &Node,
+        _node: &Node,
+        _n: &(),
+    ) -> Result<Tensor<Quotient>, Failure> {
         let v = walk::walk(self, a, &())?;
         let d = self.env.decls.dim;
         let mut values = Vec::with_capacity(v.components().len() * d);
-        for p in v.components() {
+        for q in v.components() {
+            let p = q.numerator();
             let mut vars: Vec<Var> = p
                 .terms()
                 .flat_map(|(m, _)| m.factors().iter().map(|&(x, _)| x))
@@ -558,11 +657,16 @@ impl Ring for ExactRing<'_, '_> {
                 let mut acc = Poly::zero();
                 for &x in &vars {
                     if let Some(dx) = self.env.derivative_of_var(x, k) {
-                        let term = self.mul(p.derivative(x), &dx)?;
-                        acc = self.add(acc, term)?;
+                        let mut ring = Polynomials {
+                            work_left: &mut self.env.work_left,
+                        };
+                        let term = ring
+                            .mul(p.derivative(x), &dx)
+                            .map_err(|_| Failure::OverBudget)?;
+                        acc += &term;
                     }
                 }
-                values.push(acc);
+                values.push(q.with_numerator(acc));
             }
         }
         // Components are stored with the last slot fastest, so the coordinate slot
@@ -573,17 +677,17 @@ impl Ring for ExactRing<'_, '_> {
         }))
     }
 
-    fn leave(&mut self, node: &Node, value: Tensor<Poly>) -> Result<Tensor<Poly>, Failure> {
+    fn leave(&mut self, node: &Node, value: Tensor<Quotient>) -> Result<Tensor<Quotient>, Failure> {
         if let Some(big) = value
             .components()
             .iter()
-            .find(|p| p.num_terms() > MAX_TERMS)
+            .find(|q| q.numerator().num_terms() > MAX_TERMS)
         {
             return Err(self.limit(
                 node,
                 format!(
                     "this expands to {} terms, more than the limit of {MAX_TERMS}",
-                    big.num_terms()
+                    big.numerator().num_terms()
                 ),
                 "split the statement with definitions, or decide it numerically",
             ));
@@ -613,7 +717,7 @@ fn too_much(origin: &Origin, node: &Node) -> Diagnostic {
 }
 
 /// Reorders a sorted-label tensor into a definition's formal index order.
-fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Poly> {
+fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Quotient> {
     let perm: Vec<usize> = formal
         .iter()
         .map(|c| {

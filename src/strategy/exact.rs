@@ -10,7 +10,8 @@ use super::finding::{Expansion, Finding, Record};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::Check;
 use crate::kernel::certificate::Identities;
-use crate::kernel::{assignments, Poly, Rational, Var, VarTable};
+use crate::kernel::quotient::{cleared_difference, over};
+use crate::kernel::{assignments, Poly, Quotient, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
@@ -182,6 +183,8 @@ fn decide_recording(
                 };
                 let (mut cx, point, values) =
                     counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
+                let (_, common) = cleared_difference(lp, rp);
+                cx.difference = over(&diff, &common, &env.vars, SHOWN_TERMS);
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
                 cx.chain = ci + 1;
                 cx.reduced_on_sphere = diff
@@ -228,7 +231,7 @@ fn decide_recording(
         }
     }
     let (checks, used_unit) = (identities.components(), identities.used_unit_normal());
-    Ok(match identities.certify() {
+    Ok(match identities.certify(&env.vars) {
         Some(certificate) => Outcome::proved(Method::Exact, checks, certificate),
         None => Outcome::undecided(Method::Exact, checks).with_finding(Finding::NothingCompared),
     }
@@ -332,8 +335,8 @@ fn sphere_point(rng: &mut SplitMix, dim: usize) -> Vec<Rational> {
 fn counterexample(
     names: &VarTable,
     normal: &[Var],
-    lhs: &Poly,
-    rhs: &Poly,
+    lhs: &Quotient,
+    rhs: &Quotient,
     diff: &Poly,
 ) -> (
     Counterexample,
@@ -341,11 +344,8 @@ fn counterexample(
     Option<(Rational, Rational)>,
 ) {
     let difference = diff.display_truncated(names, SHOWN_TERMS);
-    let mut used: Vec<Var> = lhs
-        .terms()
-        .chain(rhs.terms())
-        .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
-        .collect();
+    let mut used: Vec<Var> = lhs.variables();
+    used.extend(rhs.variables());
     used.sort_unstable();
     used.dedup();
     let mut rng = SplitMix(0x05EE_DC05_E4A7);

@@ -24,7 +24,7 @@ use super::sampler::{relation_holds, Sampler, State};
 use super::taylor::{self, TaylorFields};
 use super::{Counterexample, Reverified};
 use crate::derivation::{Check, Constraint, Expression, Relation};
-use crate::kernel::{Poly, Rational, Tensor, Var};
+use crate::kernel::{Quotient, Rational, Tensor, Var};
 use crate::lang::Decls;
 use std::collections::{BTreeMap, HashMap};
 
@@ -211,7 +211,7 @@ fn exactly(
     let scalar = |e: &Expression, poly: &mut dyn FnMut(&Expression) -> Option<Labeled>| {
         poly(e).and_then(|v| v.tensor.into_scalar())
     };
-    let mut hypotheses: Vec<(Relation, Poly, Poly)> = Vec::new();
+    let mut hypotheses: Vec<(Relation, Quotient, Quotient)> = Vec::new();
     for Constraint {
         lhs, relation, rhs, ..
     } in &sampler.sampling.given

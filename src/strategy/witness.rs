@@ -11,7 +11,7 @@ use super::finding::Finding;
 use super::{Method, Outcome};
 use crate::derivation::{Check, Strategy};
 use crate::kernel::certificate::{Certificate, Fact};
-use crate::kernel::{Poly, Rational, Var};
+use crate::kernel::{Quotient, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
 
@@ -51,9 +51,9 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
             .with_help("use dimension = 2, or normal_in_plane = true"));
     }
     let mut used: Vec<Var> = px
-        .terms()
-        .chain(py.terms())
-        .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
+        .variables()
+        .into_iter()
+        .chain(py.variables())
         .filter(|v| !normal.contains(v))
         .collect();
     used.sort_unstable();
@@ -84,7 +84,7 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
                     state.get(&v).cloned().unwrap_or_else(|| Rational::int(0))
                 }
             };
-            let value = |p: &Poly| p.eval(&at);
+            let value = |p: &Quotient| p.eval(&at);
             match (value(&px), value(&py)) {
                 (Some(a), Some(b)) => points.push((a, b)),
                 _ => break,

@@ -28,12 +28,15 @@ pub(super) fn printed_law(
             .as_ref()
             .map_err(|e| side.origin.diagnostic(e.span, e.message.clone()))?;
         let l = env.eval(node, &side.origin)?;
-        l.tensor.into_scalar().ok_or_else(|| {
-            side.origin.diagnostic(
-                Span::new(0, side.text.len()),
-                "a balance law is a scalar equation",
-            )
-        })
+        l.tensor
+            .into_scalar()
+            .and_then(|q| q.as_poly().cloned())
+            .ok_or_else(|| {
+                side.origin.diagnostic(
+                    Span::new(0, side.text.len()),
+                    "a balance law is a scalar polynomial equation",
+                )
+            })
     };
     let law = &value(0)? - &value(1)?;
     let text = format!("{} = {}", chain[0].text, chain[1].text);
