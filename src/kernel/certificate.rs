@@ -262,7 +262,12 @@ impl<'n> Identities<'n> {
             Certificate::of(Fact::PolynomialIdentity {
                 components: self.components,
                 modulo_unit_normal: self.modulo_unit_normal,
-                nonzero: self.nonzero.iter().map(|f| f.display(names)).collect(),
+                nonzero: {
+                    let mut shown: Vec<String> =
+                        self.nonzero.iter().map(|f| f.display(names)).collect();
+                    shown.sort();
+                    shown
+                },
             })
         })
     }
@@ -349,7 +354,7 @@ mod tests {
         assert_eq!(g_again.as_poly(), Some(&g));
         assert!(
             matches!(&cert.facts()[0], Fact::PolynomialIdentity { nonzero, .. }
-            if nonzero == &["lambda + G".to_owned(), "3*lambda + 2*G".to_owned()])
+            if nonzero == &["3*lambda + 2*G".to_owned(), "lambda + G".to_owned()])
         );
         // A wrong Poisson ratio: λ/(λ + G) makes the difference nonzero.
         let wrong = Quotient::from(l.clone()).divide(&lg).unwrap();
