@@ -1,5 +1,6 @@
 //! Scientific notation (exact), π and exp, log, atan, asin, acos (sampled): identities
-//! hold, their wrong twins fail, and exact mode refuses π with a located error.
+//! hold, their wrong twins fail, and exact mode refuses π with a located error; names
+//! with `_` inside (`sigma_el_ij`, `E_lg`) read as declared.
 
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::load_str;
@@ -9,6 +10,11 @@ mod common;
 #[test]
 fn identities_hold_and_their_twins_fail() {
     common::assert_as_declared("tests/soundness/notation.toml", 18, |_| {});
+}
+
+#[test]
+fn names_with_underscores_hold_and_their_twins_fail() {
+    common::assert_as_declared("tests/soundness/names.toml", 8, |_| {});
 }
 
 #[test]

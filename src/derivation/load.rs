@@ -310,6 +310,12 @@ impl Loader {
                         RESERVED.join(", ")
                     )));
             }
+            let known = decls.symbols.iter().map(|(k, &r)| (k.as_str(), r));
+            if let Some(clash) = read_two_ways(&name, rank, known) {
+                return Err(self.diag(s.span(), clash).with_help(
+                    "rename one of them: a name's last `_` segment is read as its indices",
+                ));
+            }
             decls.symbols.insert(name, rank);
             Ok(())
         };
@@ -403,7 +409,7 @@ impl Loader {
                 .diagnostic(Span::new(0, text.len()), "a definition needs `=`")
                 .with_help("write it as name_ij = expression, e.g. t_i = sigma_ki n_k"));
         };
-        let (name, formal, name_span) = self.lhs_name(&origin, text, eq, None)?;
+        let (name, formal, name_span) = self.lhs_name(&origin, text, eq, Some(decls))?;
         if RESERVED.contains(&name.as_str())
             || decls.symbols.contains_key(&name)
             || decls.normal.as_ref() == Some(&name)
@@ -415,6 +421,16 @@ impl Loader {
                     format!("`{name}` is already declared or defined"),
                 )
                 .with_help("choose a new name; definitions cannot redefine a name"));
+        }
+        let known = decls
+            .symbols
+            .iter()
+            .map(|(k, &r)| (k.as_str(), r))
+            .chain(visible.iter().map(|d| (d.sig.name.as_str(), d.sig.formal.len())));
+        if let Some(clash) = read_two_ways(&name, formal.len(), known) {
+            return Err(origin.diagnostic(name_span, clash).with_help(
+                "rename one of them: a name's last `_` segment is read as its indices",
+            ));
         }
         let sigs: Vec<DefSig> = visible.iter().map(|d| d.sig.clone()).collect();
         let body = self.rhs(&origin, text, eq, decls, &sigs, later)?;
@@ -470,7 +486,12 @@ impl Loader {
             }
             return Err(sub.diagnostic(e.span, "the left side must be a single name such as t_i"));
         };
-        if decls.is_some_and(|d| d.symbols.get(&full) == Some(&0)) {
+        // `R_g` declared as a scalar, or `E_lg` when `E` is a scalar (it takes no
+        // indices, so the whole token is a name).
+        if decls.is_some_and(|d| {
+            d.symbols.get(&full) == Some(&0)
+                || (!indices.is_empty() && d.symbols.get(&base) == Some(&0))
+        }) {
             return Ok((full, Vec::new(), e.span));
         }
         let letters_only = indices.iter().all(|t| t.ch.is_ascii_alphabetic());
@@ -876,4 +897,33 @@ fn valid_id(id: &str) -> bool {
         && id
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+}
+
+/// The complaint when a new name can be read two ways: a scalar `E_lg` where `E` has
+/// rank 2 (is it E with indices l, g?), or a tensor `E` of rank 2 where a scalar `E_lg`
+/// exists. `known` lists the names already declared or defined, with their ranks.
+fn read_two_ways<'k>(
+    name: &str,
+    rank: usize,
+    mut known: impl Iterator<Item = (&'k str, usize)>,
+) -> Option<String> {
+    let clash = |scalar: &str, base: &str, r: usize| {
+        let suffix: Vec<String> = scalar[base.len() + 1..].chars().map(String::from).collect();
+        format!(
+            "`{scalar}` could also be read as `{base}` (rank {r}) with indices {}",
+            suffix.join(", ")
+        )
+    };
+    if rank == 0 {
+        let (base, suffix) = name.rsplit_once('_')?;
+        let (_, r) = known.find(|&(k, r)| k == base && r == suffix.len() && r > 0)?;
+        Some(clash(name, base, r))
+    } else {
+        let (scalar, _) = known.find(|&(k, r)| {
+            r == 0
+                && k.rsplit_once('_')
+                    .is_some_and(|(b, suffix)| b == name && suffix.len() == rank)
+        })?;
+        Some(clash(scalar, name, rank))
+    }
 }

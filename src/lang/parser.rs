@@ -12,13 +12,15 @@
 //! derivs := ',' index+                                -- u_j,i  sigma_ij,j  theta_,kk
 //! func   := 'sqrt' | 'abs' | 'cos' | 'sin' | 'tan' | 'exp' | 'log' | 'atan' | 'asin'
 //!         | 'acos' | 'avg' | 'maxn'
-//! name   := letter alnum* ('_' alnum+)?             -- sigma_ki, n_k, R_g, delta_ij, pi
+//! name   := letter alnum* ('_' alnum+)*             -- sigma_ki, n_k, R_g, sigma_el_ij
 //! number := digits ('.' digits)? (('e' | 'E') ('+' | '-')? digits)?   -- 2.5e-3
 //! ```
 //!
-//! A name's suffix after `_` is its index list (one character per slot, a digit being a
-//! fixed component 1..=d) unless the whole name is a declared scalar such as `R_g`;
-//! that is resolved later, in [`super::check`], where the declarations are known.
+//! A name's suffix after its last `_` is its index list (one character per slot, a
+//! digit being a fixed component 1..=d), and what comes before is the name
+//! (`sigma_el_ij`), unless the whole token is a declared scalar such as `R_g`; that is
+//! resolved later, in [`super::check`], where the declarations are known (and where a
+//! spelling that could be read both ways is refused when it is declared).
 
 use super::diag::Span;
 use crate::kernel::Rational;
@@ -123,8 +125,8 @@ impl Func2 {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     Number(Rational),
-    /// `full` is the whole token (`R_g`), `base` the part before `_` (`R`), and
-    /// `indices` the characters after it.
+    /// `full` is the whole token (`R_g`, `sigma_el_ij`), `base` the part before the
+    /// last `_` (`R`, `sigma_el`), and `indices` the characters after it.
     Name {
         full: String,
         base: String,
@@ -251,11 +253,14 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
             while k < src.len() && bytes[k].is_ascii_alphanumeric() {
                 k += 1;
             }
-            let base = src[start..k].to_owned();
+            // Segments `_alnum+`: the last is the index list, the ones before it belong
+            // to the name (`sigma_el_ij` is `sigma_el` with indices i, j).
+            let mut base_end = k;
             let mut indices = Vec::new();
-            // `theta_,i`: a scalar's derivative has an empty index list.
-            let bare_comma = bytes.get(k) == Some(&b'_') && bytes.get(k + 1) == Some(&b',');
-            if k + 1 < src.len() && bytes[k] == b'_' && bytes[k + 1].is_ascii_alphanumeric() {
+            while k + 1 < src.len() && bytes[k] == b'_' && bytes[k + 1].is_ascii_alphanumeric() {
+                // The previous segment, if any, ends here and joins the name.
+                base_end = if indices.is_empty() { base_end } else { k };
+                indices.clear();
                 k += 1;
                 while k < src.len() && bytes[k].is_ascii_alphanumeric() {
                     indices.push(IndexTok {
@@ -264,7 +269,16 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
                     });
                     k += 1;
                 }
-            } else if bare_comma {
+            }
+            // `theta_,i`, `phi_el_,i`: a scalar's derivative has an empty index list;
+            // every segment then belongs to the name.
+            let bare_comma = bytes.get(k) == Some(&b'_') && bytes.get(k + 1) == Some(&b',');
+            if bare_comma {
+                base_end = k;
+                indices.clear();
+            }
+            let base = src[start..base_end].to_owned();
+            if bare_comma {
                 k += 1;
             } else if k < src.len() && bytes[k] == b'_' {
                 return Err(LangError::new(
