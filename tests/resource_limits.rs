@@ -10,7 +10,7 @@ use cosserat_check::strategy::finding::Finding;
 fn a_limit_makes_one_claim_undecided_and_the_rest_are_decided() {
     let files = load_files(&["tests/soundness/resource-limits.toml"]).unwrap();
     let rows = decide_all(&files, None).unwrap();
-    assert_eq!(rows.len(), 5);
+    assert_eq!(rows.len(), 6);
     for r in &rows {
         assert!(
             r.as_expected(),
@@ -35,6 +35,7 @@ fn a_limit_makes_one_claim_undecided_and_the_rest_are_decided() {
     assert_eq!(
         verdicts,
         [
+            Verdict::Undecided,
             Verdict::Undecided,
             Verdict::Undecided,
             Verdict::Undecided,

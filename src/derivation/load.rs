@@ -422,11 +422,11 @@ impl Loader {
                 )
                 .with_help("choose a new name; definitions cannot redefine a name"));
         }
-        let known = decls
-            .symbols
-            .iter()
-            .map(|(k, &r)| (k.as_str(), r))
-            .chain(visible.iter().map(|d| (d.sig.name.as_str(), d.sig.formal.len())));
+        let known = decls.symbols.iter().map(|(k, &r)| (k.as_str(), r)).chain(
+            visible
+                .iter()
+                .map(|d| (d.sig.name.as_str(), d.sig.formal.len())),
+        );
         if let Some(clash) = read_two_ways(&name, formal.len(), known) {
             return Err(origin.diagnostic(name_span, clash).with_help(
                 "rename one of them: a name's last `_` segment is read as its indices",

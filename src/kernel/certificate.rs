@@ -214,7 +214,7 @@ impl<'n> Identities<'n> {
     /// wherever their denominators are nonzero, else the numerator of their difference
     /// over the common denominator, reduced. A denominator must not contain the normal.
     pub fn compare(&mut self, lhs: &Quotient, rhs: &Quotient) -> Result<Option<Poly>, PolyError> {
-        let (raw, factors) = cleared_difference(lhs, rhs);
+        let (raw, factors) = cleared_difference(lhs, rhs).ok_or(PolyError::TooLarge)?;
         if factors
             .iter()
             .flat_map(|(f, _)| f.terms())

@@ -163,6 +163,8 @@ pub enum PolyError {
     DivisionBySum,
     #[error("a negative power of a component of the normal cannot be averaged or reduced on the unit sphere")]
     NegativeNormalPower,
+    #[error("clearing the denominators takes more than 1000000 term products")]
+    TooLarge,
 }
 
 /// A sparse Laurent polynomial with exact rational coefficients, in canonical form.

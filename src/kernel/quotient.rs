@@ -294,6 +294,9 @@ impl Open {
             self.den.clear();
             return self;
         }
+        if self.num.num_terms() > TIDY_TERMS {
+            return self;
+        }
         let mut k = 0;
         while k < self.den.len() {
             match divide_laurent(&self.num, &self.den[k].0) {
@@ -523,16 +526,29 @@ impl std::ops::Neg for Quotient {
 /// Clears the denominators of `a − b`: the numerator of the difference over the least
 /// common multiple of both denominators, and that multiple's factors. `a = b` wherever
 /// every factor is nonzero exactly when the numerator is the zero polynomial.
-pub fn cleared_difference(a: &Quotient, b: &Quotient) -> (Poly, Vec<(Poly, u32)>) {
+/// `None` when clearing takes more than [`CLEARING_WORK`] term products.
+pub fn cleared_difference(a: &Quotient, b: &Quotient) -> Option<(Poly, Vec<(Poly, u32)>)> {
     if a.factors().is_empty() && b.factors().is_empty() {
-        return (&a.num - &b.num, Vec::new());
+        return Some((&a.num - &b.num, Vec::new()));
     }
     let common = Open::common(a.factors(), b.factors());
-    let times =
-        |p: &Poly, fs: &[(Poly, u32)]| fs.iter().fold(p.clone(), |acc, (f, k)| &acc * &f.pow(*k));
-    let num = &times(&a.num, &common.a_lacks) - &times(&b.num, &common.b_lacks);
-    (num, common.lcm)
+    let mut work = CLEARING_WORK;
+    let mut ring = Quotients {
+        work_left: &mut work,
+    };
+    let left = ring.times(a.num.clone(), &common.a_lacks).ok()?;
+    let right = ring.times(b.num.clone(), &common.b_lacks).ok()?;
+    Some((&left - &right, common.lcm))
 }
+
+/// Term products one comparison may spend clearing denominators (as much as a whole
+/// claim's evaluation may: `strategy::eval::MAX_WORK`).
+pub const CLEARING_WORK: usize = 1_000_000;
+
+/// Numerators larger than this are not tried for cancellation: exact division of a
+/// large polynomial costs time quadratic in its size, and cancelling only tidies the
+/// display (comparisons clear denominators anyway).
+const TIDY_TERMS: usize = 2_000;
 
 #[cfg(test)]
 mod tests {
@@ -624,9 +640,9 @@ mod tests {
                     .unwrap(),
             )
             .unwrap();
-        let (num, _) = cleared_difference(&s, &one);
+        let (num, _) = cleared_difference(&s, &one).unwrap();
         assert!(num.is_zero());
-        let (num, lcm) = cleared_difference(&a, &one);
+        let (num, lcm) = cleared_difference(&a, &one).unwrap();
         assert_eq!(num.display(&names), "-x - y + 1");
         assert_eq!(lcm.len(), 1);
         let _ = names.intern("z");

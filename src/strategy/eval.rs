@@ -127,6 +127,7 @@ fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
             "exact mode divides only by a single term such as 3, V or 2*R_g"
         }
         PolyError::NegativeNormalPower => "keep components of the normal out of divisors",
+        PolyError::TooLarge => "split the statement with definitions, or decide it numerically",
     };
     origin.diagnostic(node.span, e.to_string()).with_help(help)
 }

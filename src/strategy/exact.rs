@@ -11,7 +11,7 @@ use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::Check;
 use crate::kernel::certificate::Identities;
 use crate::kernel::quotient::{cleared_difference, over};
-use crate::kernel::{assignments, Poly, Quotient, Rational, Var, VarTable};
+use crate::kernel::{assignments, Poly, PolyError, Quotient, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
@@ -173,17 +173,34 @@ fn decide_recording(
             for a in assignments(decls.dim, labels.len()) {
                 let assignment: Vec<(char, usize)> = labels.iter().copied().zip(a).collect();
                 let (lp, rp) = (l.at(&assignment), r.at(&assignment));
-                let compared = identities.compare(lp, rp).map_err(|e| {
-                    chain[k]
-                        .origin
-                        .diagnostic(Default::default(), e.to_string())
-                })?;
+                let compared = match identities.compare(lp, rp) {
+                    Ok(c) => c,
+                    // A size, not a property of the statement: undecided.
+                    Err(PolyError::TooLarge) => {
+                        let d = chain[k]
+                            .origin
+                            .diagnostic(Default::default(), PolyError::TooLarge.to_string());
+                        return Ok(Outcome::undecided(Method::Exact, identities.components())
+                            .with_finding(Finding::ResourceLimit {
+                                what: d.message.clone(),
+                                at: location(&d),
+                                help:
+                                    "split the statement with definitions, or decide it numerically"
+                                        .to_owned(),
+                            }));
+                    }
+                    Err(e) => {
+                        return Err(chain[k]
+                            .origin
+                            .diagnostic(Default::default(), e.to_string()))
+                    }
+                };
                 let Some(diff) = compared else {
                     continue;
                 };
                 let (mut cx, point, values) =
                     counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
-                let (_, common) = cleared_difference(lp, rp);
+                let (_, common) = cleared_difference(lp, rp).expect("cleared in the comparison");
                 cx.difference = over(&diff, &common, &env.vars, SHOWN_TERMS);
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
                 cx.chain = ci + 1;
