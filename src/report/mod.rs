@@ -197,14 +197,14 @@ fn domain(o: &Outcome) -> String {
         });
     match nonzero {
         None => String::new(),
-        Some(fs) => {
-            let conditions: Vec<String> = fs.iter().map(|f| format!("{f} ≠ 0")).collect();
-            format!(
-                " after clearing denominators; holds where {}",
-                conditions.join(", ")
-            )
-        }
+        Some(fs) => format!(" after clearing denominators; {}", holds_where(fs)),
     }
+}
+
+/// `holds where f ≠ 0, g ≠ 0` for the factors of cleared denominators.
+fn holds_where(factors: &[String]) -> String {
+    let conditions: Vec<String> = factors.iter().map(|f| format!("{f} ≠ 0")).collect();
+    format!("holds where {}", conditions.join(", "))
 }
 
 fn counterexample_text(cx: &Counterexample) -> String {
@@ -303,11 +303,9 @@ pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String 
                 if nonzero.is_empty() {
                     format!("canonical polynomials identical in {components} component{s}{modulo}")
                 } else {
-                    let conditions: Vec<String> =
-                        nonzero.iter().map(|f| format!("{f} ≠ 0")).collect();
                     format!(
-                        "numerators identical over a common denominator in {components} component{s}{modulo}; holds where {}",
-                        conditions.join(", ")
+                        "numerators identical over a common denominator in {components} component{s}{modulo}; {}",
+                        holds_where(nonzero)
                     )
                 }
             }
