@@ -15,7 +15,7 @@
 
 use super::linear::determinant;
 use super::poly::{Poly, PolyError, Var, VarTable};
-use super::quotient::{cleared_difference, Quotient};
+use super::quotient::{cleared_difference, over, Quotient};
 use super::sturm::{count_roots, Bound, UniPoly};
 use super::{RatFunc, Rational};
 use serde::Serialize;
@@ -168,6 +168,21 @@ impl Certificate {
     }
 }
 
+/// The difference of two sides that are not identical: `numerator / Π factor^k`, the
+/// numerator reduced modulo n·n = 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Difference {
+    pub numerator: Poly,
+    pub denominator: Vec<(Poly, u32)>,
+}
+
+impl Difference {
+    /// Plain text, at most `max_terms` terms of the numerator.
+    pub fn display(&self, names: &VarTable, max_terms: usize) -> String {
+        over(&self.numerator, &self.denominator, names, max_terms)
+    }
+}
+
 /// Component-by-component comparison of canonical polynomials, certified only when
 /// every comparison made was an identity. Quotients are compared with their
 /// denominators cleared: `a/A = b/B` wherever A, B ≠ 0 exactly when the numerator of
@@ -211,9 +226,13 @@ impl<'n> Identities<'n> {
     }
 
     /// Compares one component: `None` when the sides are identical (modulo n·n = 1)
-    /// wherever their denominators are nonzero, else the numerator of their difference
+    /// wherever their denominators are nonzero, else their difference: its numerator
     /// over the common denominator, reduced. A denominator must not contain the normal.
-    pub fn compare(&mut self, lhs: &Quotient, rhs: &Quotient) -> Result<Option<Poly>, PolyError> {
+    pub fn compare(
+        &mut self,
+        lhs: &Quotient,
+        rhs: &Quotient,
+    ) -> Result<Option<Difference>, PolyError> {
         let (raw, factors) = cleared_difference(lhs, rhs).ok_or(PolyError::TooLarge)?;
         if factors
             .iter()
@@ -226,22 +245,22 @@ impl<'n> Identities<'n> {
         self.components += 1;
         if diff.is_zero() {
             self.modulo_unit_normal += usize::from(!raw.is_zero());
+            // The conditions hold every factor of the denominators, cancelled or not.
             // Single-term divisors (3, V, 2*R_g) are read as nonzero, as always; the
             // sums are the conditions worth stating.
-            let cancelled = lhs.conditions().iter().chain(rhs.conditions());
-            let sums = factors
-                .into_iter()
-                .map(|(f, _)| f)
-                .chain(cancelled.cloned());
-            for f in sums.filter(|f| f.num_terms() > 1) {
-                if !self.nonzero.contains(&f) {
-                    self.nonzero.push(f);
+            let conditions = lhs.conditions().iter().chain(rhs.conditions());
+            for f in conditions.filter(|f| f.num_terms() > 1) {
+                if !self.nonzero.contains(f) {
+                    self.nonzero.push(f.clone());
                 }
             }
             Ok(None)
         } else {
             self.refuted = true;
-            Ok(Some(diff))
+            Ok(Some(Difference {
+                numerator: diff,
+                denominator: factors,
+            }))
         }
     }
 
@@ -360,7 +379,8 @@ mod tests {
         let wrong = Quotient::from(l.clone()).divide(&lg).unwrap();
         let mut check = Identities::new(&[]);
         let diff = check.compare(&wrong, &nu_of(&l, &g)).unwrap().unwrap();
-        assert!(!diff.is_zero());
+        assert!(!diff.numerator.is_zero());
+        assert_eq!(diff.denominator.len(), 1, "over lambda + G alone");
         assert!(check.certify(&names).is_none());
     }
 

@@ -485,10 +485,12 @@ impl Ring for ExactRing<'_, '_> {
             if !parts.is_empty() {
                 let mut out = x;
                 for (part, k) in parts {
+                    // x / a^k = x · (1/a)^k: one division, then a power under its limits.
                     let value = walk::scalar(self, part, &())?;
-                    for _ in 0..k {
-                        out = self.divide(out, &value, part)?;
-                    }
+                    let one = Arithmetic::one(self);
+                    let inverse = self.divide(one, &value, part)?;
+                    let inverse = self.power(inverse, k, divisor)?;
+                    out = self.mul(out, &inverse)?;
                 }
                 return Ok(out);
             }
@@ -556,12 +558,10 @@ impl Ring for ExactRing<'_, '_> {
                 ),
             ));
         }
-        let degree: u32 = q
-            .factors()
-            .iter()
-            .map(|(f, m)| f.num_terms() as u32 * m)
-            .sum();
-        if u64::from(degree) * u64::from(k) > MAX_EXPONENT as u64 {
+        // A denominator's factors are not expanded, but their multiplicities are
+        // exponents too.
+        let multiplicity = q.factors().iter().map(|&(_, m)| m).max().unwrap_or(0);
+        if i64::from(multiplicity) * i64::from(k) > MAX_EXPONENT {
             return Err(self.limit(
                 node,
                 "this power of a quotient is too large to expand exactly",

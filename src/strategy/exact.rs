@@ -9,9 +9,8 @@ use super::eval::{component_name, ExactEnv, Labeled, Refusal};
 use super::finding::{Expansion, Finding, Record};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::Check;
-use crate::kernel::certificate::Identities;
-use crate::kernel::quotient::{cleared_difference, over};
-use crate::kernel::{assignments, Poly, PolyError, Quotient, Rational, Var, VarTable};
+use crate::kernel::certificate::{Difference, Identities};
+use crate::kernel::{assignments, PolyError, Quotient, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
@@ -200,11 +199,10 @@ fn decide_recording(
                 };
                 let (mut cx, point, values) =
                     counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
-                let (_, common) = cleared_difference(lp, rp).expect("cleared in the comparison");
-                cx.difference = over(&diff, &common, &env.vars, SHOWN_TERMS);
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
                 cx.chain = ci + 1;
                 cx.reduced_on_sphere = diff
+                    .numerator
                     .terms()
                     .any(|(m, _)| normal.iter().any(|&v| m.exponent(v) != 0));
                 cx.equality = k + 1;
@@ -354,13 +352,13 @@ fn counterexample(
     normal: &[Var],
     lhs: &Quotient,
     rhs: &Quotient,
-    diff: &Poly,
+    diff: &Difference,
 ) -> (
     Counterexample,
     BTreeMap<Var, Rational>,
     Option<(Rational, Rational)>,
 ) {
-    let difference = diff.display_truncated(names, SHOWN_TERMS);
+    let difference = diff.display(names, SHOWN_TERMS);
     let mut used: Vec<Var> = lhs.variables();
     used.extend(rhs.variables());
     used.sort_unstable();
