@@ -352,29 +352,14 @@ pub fn over(num: &Poly, factors: &[(Poly, u32)], names: &VarTable, max_terms: us
     };
     let parts: Vec<String> = factors
         .iter()
-        .map(|(f, k)| {
-            let f = f.display(names);
-            if *k == 1 {
-                f
-            } else {
-                format!("({f})^{k}")
-            }
+        .map(|(f, k)| match k {
+            1 => format!("({})", f.display(names)),
+            _ => format!("({})^{k}", f.display(names)),
         })
         .collect();
-    if parts.len() == 1 && factors[0].1 == 1 {
-        format!("{num} / ({})", parts[0])
-    } else {
-        let parts: Vec<String> = parts
-            .into_iter()
-            .map(|p| {
-                if p.starts_with('(') {
-                    p
-                } else {
-                    format!("({p})")
-                }
-            })
-            .collect();
-        format!("{num} / ({})", parts.join(" "))
+    match parts.as_slice() {
+        [one] => format!("{num} / {one}"),
+        _ => format!("{num} / ({})", parts.join(" ")),
     }
 }
 
