@@ -167,6 +167,7 @@ fn main() {
             Strategy::NotCircle { .. } => "witness",
             Strategy::Appendix { .. } => "appendix",
             Strategy::Exact => "exact",
+            Strategy::Proportional => "proportional",
         };
         rows.push((format!("claim {} ({strategy})", c.id), format!("{t:.1} ms")));
     }

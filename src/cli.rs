@@ -350,9 +350,10 @@ fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: O
                 Strategy::Numeric { sampling, .. }
                 | Strategy::Gradient { sampling, .. }
                 | Strategy::Convex { sampling, .. } => sampling,
-                Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. } => {
-                    continue
-                }
+                Strategy::Exact
+                | Strategy::Proportional
+                | Strategy::NotCircle { .. }
+                | Strategy::Appendix { .. } => continue,
             };
             if let Some(s) = seed {
                 sampling.seed = s;

@@ -169,6 +169,9 @@ fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
             collect(src, b, out);
         }
         ExprKind::Neg(a) | ExprKind::Pow(a, _) => collect(src, a, out),
+        // The varied field is named, not computed: only the density is mutated (a
+        // swapped index of the field would leave the free indices unbalanced).
+        ExprKind::Variation { body, .. } => collect(src, body, out),
         ExprKind::Mul(a, b) | ExprKind::Div(a, b) => {
             collect(src, a, out);
             collect(src, b, out);

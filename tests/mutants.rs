@@ -63,6 +63,7 @@ enum Fate {
 fn strategy_name(s: &Strategy) -> &'static str {
     match s {
         Strategy::Exact => "exact",
+        Strategy::Proportional => "proportional",
         Strategy::Numeric { .. } => "numeric",
         Strategy::Gradient { .. } => "gradient",
         Strategy::Convex { .. } => "convex",
@@ -82,7 +83,10 @@ fn resampled(mut check: Check, samples: usize, seed: Option<u64>) -> Check {
                 sampling.seed = s;
             }
         }
-        Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. } => {}
+        Strategy::Exact
+        | Strategy::Proportional
+        | Strategy::NotCircle { .. }
+        | Strategy::Appendix { .. } => {}
     }
     check
 }
@@ -93,7 +97,10 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     };
     let sampled = !matches!(
         check.strategy,
-        Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. }
+        Strategy::Exact
+            | Strategy::Proportional
+            | Strategy::NotCircle { .. }
+            | Strategy::Appendix { .. }
     );
     let light = resampled(check.clone(), SAMPLED, None);
     let Ok(outcome) = decide(decls, &light) else {
@@ -102,7 +109,7 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     if outcome.verdict() == Verdict::Undecided {
         return Fate::Undecided;
     }
-    if matches!(check.strategy, Strategy::Exact) {
+    if matches!(check.strategy, Strategy::Exact | Strategy::Proportional) {
         match float::decide(decls, &check, FLOAT_SAMPLES, 7) {
             Ok(Some(v)) if v != outcome.verdict() => {
                 return Fate::Disagreement(format!("exact {}, float {v}", outcome.verdict()));
@@ -217,6 +224,15 @@ fn every_mutant_of_every_rational_identity_is_refuted() {
 }
 
 /// Sweeps `files` and compares the report with the snapshot `name`.
+/// Mutants of balance laws derived from a virtual power
+/// (`tests/soundness/balance-laws.toml`): the exact strategy on `variation(…)`, each
+/// verdict cross-checked by the perturbation route.
+#[test]
+fn every_mutant_of_every_balance_law_is_refuted() {
+    let files = load_files(&["tests/soundness/balance-laws.toml"]).expect("balance laws load");
+    assert_swept(&files, &ALGEBRAIC, "mutation_report_balance");
+}
+
 fn assert_swept(files: &[DerivationFile], kinds: &[MutantKind], name: &str) {
     let report = sweep_files(files, kinds);
     insta::with_settings!({
@@ -322,13 +338,19 @@ fn sweep_files(files: &[DerivationFile], kinds: &[MutantKind]) -> String {
     report.push_str(
         "\nEquivalent mutants of exact statements (still true; confirmed by the float route):\n",
     );
-    for (name, place, text, _) in survivors.iter().filter(|s| s.3 == "exact") {
+    for (name, place, text, _) in survivors
+        .iter()
+        .filter(|s| matches!(s.3, "exact" | "proportional"))
+    {
         report.push_str(&format!("{name}, {place}: {text}\n"));
     }
     report.push_str(&format!(
         "\nEquivalent mutants of sampled statements (still true at {RESAMPLED} further samples, seed {RESAMPLE_SEED}):\n"
     ));
-    for (name, place, text, _) in survivors.iter().filter(|s| s.3 != "exact") {
+    for (name, place, text, _) in survivors
+        .iter()
+        .filter(|s| !matches!(s.3, "exact" | "proportional"))
+    {
         report.push_str(&format!("{name}, {place}: {text}\n"));
     }
     report.push_str("\nUndecided mutants (neither refuted nor shown true):\n");

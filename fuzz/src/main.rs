@@ -117,6 +117,12 @@ const DICTIONARY: &[&str] = &[
     "position = \"x\"\n",
     "fields = [\"u_i\", \"w_i(x_2)\", \"theta\"]\n",
     "x_k x_k",
+    "variation(",
+    ", u_j)",
+    ", theta)",
+    "strategy = \"proportional\"\n",
+    "variation(sigma_ij u_j,i, u_k)",
+    "variation(u_i,jj u_i,kk, u_m)",
 ];
 
 /// xorshift64*: deterministic given the seed.
@@ -215,7 +221,10 @@ fn exercise(data: &[u8]) {
     for claim in &file.claims {
         if matches!(
             claim.check.strategy,
-            Strategy::Exact | Strategy::NotCircle { .. } | Strategy::Appendix { .. }
+            Strategy::Exact
+                | Strategy::Proportional
+                | Strategy::NotCircle { .. }
+                | Strategy::Appendix { .. }
         ) {
             let _ = decide(&claim.decls, &claim.check);
             continue;

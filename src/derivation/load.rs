@@ -785,6 +785,20 @@ impl Loader {
         })
     }
 
+    /// A proportionality compares exactly two sides: one factor for one pair.
+    fn one_pair_if_proportional(&self, c: &RawClaim, check: &Check) -> Result<(), Diagnostic> {
+        let pair = check.chains.len() == 1 && check.chains[0].len() == 2;
+        match (&check.strategy, &c.strategy) {
+            (Strategy::Proportional, Some(at)) if !pair => Err(self
+                .diag(
+                    at.span(),
+                    "strategy = \"proportional\" compares exactly two sides",
+                )
+                .with_help("write sides = [\"left\", \"right\"]: left = λ · right for one nonzero constant λ")),
+            _ => Ok(()),
+        }
+    }
+
     fn verdict(&self, s: &S) -> Result<Verdict, Diagnostic> {
         Verdict::parse(s.get_ref()).ok_or_else(|| {
             self.diag(s.span(), format!("unknown verdict `{}`", s.get_ref()))
@@ -817,7 +831,7 @@ impl Loader {
         let needs_sides = c
             .strategy
             .as_ref()
-            .is_none_or(|s| matches!(s.get_ref().as_str(), "exact" | "numeric"));
+            .is_none_or(|s| matches!(s.get_ref().as_str(), "exact" | "proportional" | "numeric"));
         if let Some(at) = &c.step {
             if c.strategy
                 .as_ref()
@@ -840,6 +854,7 @@ impl Loader {
             needs_sides,
         )?;
         check.strategy = self.strategy(c, decls, &check.defs)?;
+        self.one_pair_if_proportional(c, &check)?;
         // File-wide assumptions come first, then the claim's own.
         let mut assumptions = raw
             .assume
@@ -865,6 +880,7 @@ impl Loader {
                     needs_sides,
                 )?;
                 inner.strategy = check.strategy.clone();
+                self.one_pair_if_proportional(c, &inner)?;
                 let mut assumptions = check.assumptions.clone();
                 assumptions.append(&mut inner.assumptions);
                 inner.assumptions = assumptions;

@@ -71,6 +71,18 @@ pub struct Assumption {
 }
 
 impl Assumption {
+    /// Every symbol the assumption mentions: the one it is about and those in its
+    /// right side.
+    pub fn symbols(&self) -> Vec<String> {
+        let mut out = vec![self.kind.symbol().to_owned()];
+        if let AssumptionKind::Component { body, .. } | AssumptionKind::Equals { body, .. } =
+            &self.kind
+        {
+            out.extend(body.symbols().into_iter().map(str::to_owned));
+        }
+        out
+    }
+
     /// A diagnostic that points at the whole assumption.
     pub fn diagnostic(&self, message: impl Into<String>) -> crate::lang::Diagnostic {
         self.origin
@@ -259,7 +271,7 @@ impl Strategy {
     pub fn expressions(&self) -> Vec<&Expression> {
         let mut out = Vec::new();
         match self {
-            Strategy::Exact => {}
+            Strategy::Exact | Strategy::Proportional => {}
             Strategy::Numeric {
                 sampling, domain, ..
             } => {
@@ -300,6 +312,9 @@ impl Strategy {
 pub enum Strategy {
     /// Canonical polynomial expansion (the default).
     Exact,
+    /// Canonical expansion of `left = λ · right` for one nonzero constant λ, the same
+    /// in every component: two sides that agree up to a sign or scale convention.
+    Proportional,
     /// Seeded random states in f64; `domain`, when given, is where a statement that
     /// fails is claimed to hold (verdict `conditional`).
     Numeric {

@@ -75,7 +75,7 @@ impl Check {
                     target: Target::Normal,
                     ..
                 } => out.normal = true,
-                NodeKind::Deriv(..) => out.differentiates = true,
+                NodeKind::Deriv(..) | NodeKind::Variation { .. } => out.differentiates = true,
                 _ => {}
             }
         }

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 pub const DEFAULT_SAMPLES: usize = 200;
 pub const MIN_SAMPLES: usize = 50;
 
-const STRATEGIES: &str = "exact, numeric, gradient, convex, not-circle or appendix";
+const STRATEGIES: &str = "exact, proportional, numeric, gradient, convex, not-circle or appendix";
 
 impl Loader {
     /// The strategy of a claim; `defs` are the claim's visible definitions.
@@ -53,6 +53,7 @@ impl Loader {
         }
         Ok(match name {
             "exact" => Strategy::Exact,
+            "proportional" => Strategy::Proportional,
             "numeric" => {
                 let relation = match &c.relation {
                     None => Relation::Eq,

@@ -210,6 +210,8 @@ pub struct Identities<'n> {
     modulo_unit_normal: usize,
     nonzero: Vec<Poly>,
     refuted: bool,
+    /// Compare `lhs` with `factor · rhs` (a proportionality with this nonzero factor).
+    factor: Option<Rational>,
 }
 
 impl<'n> Identities<'n> {
@@ -222,7 +224,18 @@ impl<'n> Identities<'n> {
             modulo_unit_normal: 0,
             nonzero: Vec::new(),
             refuted: false,
+            factor: None,
         }
+    }
+
+    /// A comparison of `lhs` with `factor · rhs`, whose certificate also records that
+    /// the factor is nonzero (`None` for a zero factor). Which factor to try is the
+    /// caller's guess; the kernel verifies the identities it implies.
+    pub fn proportional(normal: &'n [Var], factor: Rational) -> Option<Self> {
+        (!factor.is_zero()).then(|| Identities {
+            factor: Some(factor),
+            ..Identities::new(normal)
+        })
     }
 
     /// Compares one component: `None` when the sides are identical (modulo n·n = 1)
@@ -233,6 +246,14 @@ impl<'n> Identities<'n> {
         lhs: &Quotient,
         rhs: &Quotient,
     ) -> Result<Option<Difference>, PolyError> {
+        let scaled;
+        let rhs = match &self.factor {
+            Some(f) => {
+                scaled = rhs.with_numerator(rhs.numerator() * &Poly::constant(f.clone()));
+                &scaled
+            }
+            None => rhs,
+        };
         let (raw, factors) = cleared_difference(lhs, rhs).ok_or(PolyError::TooLarge)?;
         if factors
             .iter()
@@ -278,7 +299,12 @@ impl<'n> Identities<'n> {
     /// differed. `names` writes the denominators' factors.
     pub fn certify(self, names: &VarTable) -> Option<Certificate> {
         (!self.refuted && self.components > 0).then(|| {
-            Certificate::of(Fact::PolynomialIdentity {
+            let factor = self.factor.as_ref().map(|f| {
+                Certificate::of(Fact::Proportional {
+                    factor: f.to_string(),
+                })
+            });
+            let identity = Certificate::of(Fact::PolynomialIdentity {
                 components: self.components,
                 modulo_unit_normal: self.modulo_unit_normal,
                 nonzero: {
@@ -287,7 +313,11 @@ impl<'n> Identities<'n> {
                     shown.sort();
                     shown
                 },
-            })
+            });
+            match factor {
+                Some(f) => identity.and(f),
+                None => identity,
+            }
         })
     }
 }

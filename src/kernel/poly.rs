@@ -260,6 +260,18 @@ impl Poly {
         Ok(self * &inv)
     }
 
+    /// The variables that occur, sorted.
+    pub fn variables(&self) -> Vec<Var> {
+        let mut vars: Vec<Var> = self
+            .terms
+            .keys()
+            .flat_map(|m| m.factors().iter().map(|&(v, _)| v))
+            .collect();
+        vars.sort_unstable();
+        vars.dedup();
+        vars
+    }
+
     /// ∂/∂v, exactly (Laurent exponents included).
     pub fn derivative(&self, v: Var) -> Poly {
         let mut out = Poly::default();

@@ -154,8 +154,7 @@ impl Quotient {
         let mut vars: Vec<Var> = std::iter::once(&self.num)
             .chain(self.factors().iter().map(|(f, _)| f))
             .chain(self.conditions())
-            .flat_map(|p| p.terms())
-            .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
+            .flat_map(Poly::variables)
             .collect();
         vars.sort_unstable();
         vars.dedup();

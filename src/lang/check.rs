@@ -98,6 +98,16 @@ pub enum NodeKind {
     /// The derivative of a node with respect to one coordinate of the position, the
     /// coordinate given by the slot: `u_j,i` is `Deriv(u_j, i)`; `u_j,ik` nests two.
     Deriv(Box<Node>, Slot),
+    /// `variation(P, v_j)`: the variational (Euler–Lagrange) derivative of the density
+    /// `P` with respect to the field `v`, one component per slot of `v`:
+    /// Σ_α (−1)^|α| D_α (∂P/∂v_j,α) over the field's derivatives v_j,α that `P`
+    /// reads. Convention: δ∫P dV = ∫ variation(P, v_j) δv_j dV + boundary terms, so
+    /// for P = σ_ij v_j,i it is −σ_ij,i.
+    Variation {
+        body: Box<Node>,
+        field: String,
+        slots: Vec<Slot>,
+    },
 }
 
 impl Node {
@@ -145,7 +155,8 @@ impl Node {
             | NodeKind::Apply(_, a)
             | NodeKind::Avg(a)
             | NodeKind::MaxN(a)
-            | NodeKind::Deriv(a, _) => vec![a],
+            | NodeKind::Deriv(a, _)
+            | NodeKind::Variation { body: a, .. } => vec![a],
         }
     }
 
@@ -167,6 +178,12 @@ impl Node {
     }
 }
 
+/// Whether a variation occurs in `node` (not looking into definitions).
+fn contains_variation(node: &Node) -> bool {
+    matches!(node.kind, NodeKind::Variation { .. })
+        || node.children().into_iter().any(contains_variation)
+}
+
 /// Formats a list of index letters for messages: `i, l` or `none`.
 pub fn letters(ls: &[char]) -> String {
     if ls.is_empty() {
@@ -180,9 +197,23 @@ pub fn letters(ls: &[char]) -> String {
 }
 
 /// Names that cannot be declared: built-ins and functions.
-pub const RESERVED: [&str; 15] = [
-    "delta", "eps", "pi", "sqrt", "abs", "cos", "sin", "tan", "exp", "log", "atan", "asin", "acos",
-    "avg", "maxn",
+pub const RESERVED: [&str; 16] = [
+    "delta",
+    "eps",
+    "pi",
+    "sqrt",
+    "abs",
+    "cos",
+    "sin",
+    "tan",
+    "exp",
+    "log",
+    "atan",
+    "asin",
+    "acos",
+    "avg",
+    "maxn",
+    super::parser::VARIATION,
 ];
 
 /// Resolves and validates expressions against declarations and visible definitions.
@@ -266,6 +297,7 @@ impl Scope<'_> {
                 indices,
                 wrt,
             } => self.derivative(inner, indices, wrt.as_ref(), e.span),
+            ExprKind::Variation { body, field } => self.variation(body, field, e.span),
             ExprKind::Call2(func, a, b) => {
                 let what = match func {
                     Func2::Pow => "a real power",
@@ -386,6 +418,76 @@ impl Scope<'_> {
             };
         }
         Ok(node)
+    }
+
+    /// `variation(P, v_j)`: the density `P` and a field written with its own index
+    /// letters, which become free indices of the result (the field's slots follow
+    /// `P`'s). See [`NodeKind::Variation`] for the sign convention.
+    fn variation(&self, body: &Expr, field: &Expr, span: Span) -> Result<Node, LangError> {
+        let body = self.check(body)?;
+        if contains_variation(&body) {
+            return Err(LangError::new(
+                ErrorKind::Syntax,
+                body.span,
+                "a variation inside a variation is not supported",
+            )
+            .help("name the inner one with a definition and vary that definition's density"));
+        }
+        let ExprKind::Name {
+            full,
+            base,
+            indices,
+        } = &field.kind
+        else {
+            return Err(LangError::new(
+                ErrorKind::Syntax,
+                field.span,
+                "the second argument of variation(…) is a field with its indices, such as v_j",
+            ));
+        };
+        let field_node = self.name(full, base, indices, field.span)?;
+        let (name, slots) = match &field_node.kind {
+            NodeKind::Leaf {
+                target: Target::Symbol(s),
+                slots,
+            } if self.decls.fields.contains_key(s) => (s.clone(), slots.clone()),
+            _ => {
+                return Err(LangError::new(
+                    ErrorKind::Name,
+                    field.span,
+                    format!("`{}` is not a declared field", inner_text(field)),
+                )
+                .help("vary a field declared in `fields`, e.g. fields = [\"v_i\"]"))
+            }
+        };
+        let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
+        for &(c, s) in &body.free {
+            counts.entry(c).or_default().push(s);
+        }
+        for &(c, s) in &field_node.free {
+            if body.bound.contains(&c) || counts.contains_key(&c) {
+                return Err(LangError::new(
+                    ErrorKind::Index,
+                    s,
+                    format!("index `{c}` of the varied field is also an index of the density"),
+                )
+                .help("give the varied field index letters the density does not use"));
+            }
+            counts.insert(c, vec![s]);
+        }
+        let (free, mut bound) = tally(counts)?;
+        bound.extend(&body.bound);
+        bound.extend(&field_node.bound);
+        Ok(Node {
+            kind: NodeKind::Variation {
+                body: Box::new(body),
+                field: name,
+                slots,
+            },
+            free,
+            bound,
+            span,
+        })
     }
 
     fn scalar_arg(&self, a: &Expr, what: &str) -> Result<Node, LangError> {

@@ -148,7 +148,16 @@ pub enum ExprKind {
         indices: Vec<IndexTok>,
         wrt: Option<(String, Span)>,
     },
+    /// `variation(P, v_j)`: the variational derivative of the density `P` with
+    /// respect to the field `v` (see [`super::check::Scope`]).
+    Variation {
+        body: Box<Expr>,
+        field: Box<Expr>,
+    },
 }
+
+/// The name of the variational derivative, `variation(P, v_j)`.
+pub const VARIATION: &str = "variation";
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Expr {
@@ -607,39 +616,19 @@ impl Parser {
                     }
                 }
                 if let Some(func) = Func2::from_name(&full) {
-                    if *self.peek() != Tok::Op('(') {
-                        return Err(LangError::new(
-                            ErrorKind::Syntax,
-                            span,
-                            format!("`{full}` must be followed by `(`"),
-                        )
-                        .help(format!("write {full}(a, b)")));
-                    }
-                    let (_, open) = self.bump();
-                    self.enter()?;
-                    let a = self.expr()?;
-                    let comma = self.bump();
-                    if comma.0 != Tok::Op(',') {
-                        return Err(LangError::new(
-                            ErrorKind::Syntax,
-                            comma.1,
-                            format!("{full}(…) takes two arguments separated by `,`"),
-                        )
-                        .help(format!("write {full}(a, b)")));
-                    }
-                    let b = self.expr()?;
-                    let close = self.bump();
-                    if close.0 != Tok::Op(')') {
-                        return Err(LangError::new(
-                            ErrorKind::Syntax,
-                            open,
-                            format!("`(` of {full}(…) is not closed after two arguments"),
-                        ));
-                    }
-                    self.depth -= 1;
-                    let span = span.to(close.1);
+                    let (a, b, span) = self.two_arguments(&full, span)?;
                     return Ok(Expr {
                         kind: ExprKind::Call2(func, Box::new(a), Box::new(b)),
+                        span,
+                    });
+                }
+                if full == VARIATION {
+                    let (body, field, span) = self.two_arguments(&full, span)?;
+                    return Ok(Expr {
+                        kind: ExprKind::Variation {
+                            body: Box::new(body),
+                            field: Box::new(field),
+                        },
                         span,
                     });
                 }
@@ -747,6 +736,41 @@ impl Parser {
         }))
     }
 
+    /// `name(a, b)` after the name: both arguments and the span up to `)`.
+    fn two_arguments(&mut self, full: &str, span: Span) -> Result<(Expr, Expr, Span), LangError> {
+        if *self.peek() != Tok::Op('(') {
+            return Err(LangError::new(
+                ErrorKind::Syntax,
+                span,
+                format!("`{full}` must be followed by `(`"),
+            )
+            .help(format!("write {full}(a, b)")));
+        }
+        let (_, open) = self.bump();
+        self.enter()?;
+        let a = self.expr()?;
+        let comma = self.bump();
+        if comma.0 != Tok::Op(',') {
+            return Err(LangError::new(
+                ErrorKind::Syntax,
+                comma.1,
+                format!("{full}(…) takes two arguments separated by `,`"),
+            )
+            .help(format!("write {full}(a, b)")));
+        }
+        let b = self.expr()?;
+        let close = self.bump();
+        if close.0 != Tok::Op(')') {
+            return Err(LangError::new(
+                ErrorKind::Syntax,
+                open,
+                format!("`(` of {full}(…) is not closed after two arguments"),
+            ));
+        }
+        self.depth -= 1;
+        Ok((a, b, span.to(close.1)))
+    }
+
     /// `( expr )`, returning the inner expression with the parentheses' span.
     fn parenthesised(&mut self) -> Result<Expr, LangError> {
         let (_, open) = self.bump();
@@ -798,6 +822,9 @@ mod tests {
                 indices.iter().map(|t| t.ch).collect::<String>(),
                 shape(inner)
             ),
+            ExprKind::Variation { body, field } => {
+                format!("Variation({}, {})", shape(body), shape(field))
+            }
         }
     }
 

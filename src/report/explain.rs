@@ -81,7 +81,7 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
         let _ = writeln!(out, "Assumptions: {}", texts.join("; "));
     }
     match &check.strategy {
-        Strategy::Exact => expansions(out, outcome.record.as_ref()),
+        Strategy::Exact | Strategy::Proportional => expansions(out, outcome.record.as_ref()),
         Strategy::Numeric { sampling, .. }
         | Strategy::Gradient { sampling, .. }
         | Strategy::Convex { sampling, .. } => {

@@ -171,9 +171,10 @@ pub fn evidence(o: &Outcome) -> String {
                 ""
             };
             parts.push(format!(
-                "{} component check{}, every difference identically 0{unit}{}",
+                "{} component check{}{}, every difference identically 0{unit}{}",
                 o.checks,
                 if o.checks == 1 { "" } else { "s" },
+                factor(o),
                 domain(o)
             ));
         }
@@ -181,6 +182,19 @@ pub fn evidence(o: &Outcome) -> String {
         Some(cx) => parts.push(counterexample_text(cx)),
     }
     parts.join("; ")
+}
+
+/// For a proportionality, the factor the components were compared with.
+fn factor(o: &Outcome) -> String {
+    use crate::kernel::certificate::Fact;
+    o.certificate()
+        .iter()
+        .flat_map(|c| c.facts())
+        .find_map(|f| match f {
+            Fact::Proportional { factor } => Some(format!(" of left = {factor} · right")),
+            _ => None,
+        })
+        .unwrap_or_default()
 }
 
 /// Where an identity of quotients holds: every divisor nonzero (empty for
@@ -278,6 +292,29 @@ fn counterexample_text(cx: &Counterexample) -> String {
             };
             parts.push(format!("values{where_}: left {l}, right {r}"));
         }
+    }
+    if let Some(f) = &cx.factor {
+        let idx: Vec<String> = f.indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
+        let at = if idx.is_empty() {
+            String::new()
+        } else {
+            format!(" at {}", idx.join(", "))
+        };
+        let pts: Vec<String> = f
+            .point
+            .iter()
+            .filter(|(_, v)| v.as_str() != "0")
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect();
+        let point = if pts.is_empty() {
+            "with every variable 0".to_owned()
+        } else {
+            format!("at {}, other variables 0", pts.join(", "))
+        };
+        parts.push(format!(
+            "the factor {} is fixed by left/right{at}, {point} (left {}, right {}), so no constant factor works",
+            f.factor, f.lhs_value, f.rhs_value
+        ));
     }
     parts.join("; ")
 }

@@ -107,6 +107,9 @@ pub struct ExactEnv<'a> {
     cache: HashMap<String, Tensor<Quotient>>,
     /// Term products still allowed (see [`MAX_WORK`]).
     work_left: usize,
+    /// Every symbol an assumption mentions (on either side): such a field cannot be
+    /// varied component by component.
+    assumed: HashSet<String>,
     parametrisation: Option<Parametrisation>,
 }
 
@@ -178,6 +181,7 @@ impl<'a> ExactEnv<'a> {
             let t = to_formal_order(&value, formal);
             env.symbols.insert(symbol.clone(), t);
         }
+        env.assumed = assumptions.iter().flat_map(Assumption::symbols).collect();
         env.parametrisation = Some(parametrisation);
         Ok(env)
     }
@@ -203,6 +207,7 @@ impl<'a> ExactEnv<'a> {
             symbols: HashMap::new(),
             cache: HashMap::new(),
             work_left: MAX_WORK,
+            assumed: HashSet::new(),
             parametrisation: None,
         }
     }
@@ -375,6 +380,23 @@ impl ExactRing<'_, '_> {
                 .diagnostic(node.span, message)
                 .with_help(help.to_owned()),
         )
+    }
+
+    /// D_k p: Σ_v ∂p/∂v · ∂v/∂x_k over the variables of p, charged to the budget.
+    fn total_derivative(&mut self, p: &Poly, k: usize) -> Result<Poly, Failure> {
+        let mut acc = Poly::zero();
+        for x in p.variables() {
+            if let Some(dx) = self.env.derivative_of_var(x, k) {
+                let mut ring = Polynomials {
+                    work_left: &mut self.env.work_left,
+                };
+                let term = ring
+                    .mul(p.derivative(x), &dx)
+                    .map_err(|_| Failure::OverBudget)?;
+                acc += &term;
+            }
+        }
+        Ok(acc)
     }
 
     /// A resource limit reached at `node`.
@@ -647,27 +669,9 @@ impl Ring for ExactRing<'_, '_> {
         let d = self.env.decls.dim;
         let mut values = Vec::with_capacity(v.components().len() * d);
         for q in v.components() {
-            let p = q.numerator();
-            let mut vars: Vec<Var> = p
-                .terms()
-                .flat_map(|(m, _)| m.factors().iter().map(|&(x, _)| x))
-                .collect();
-            vars.sort_unstable();
-            vars.dedup();
             for k in 0..d {
-                let mut acc = Poly::zero();
-                for &x in &vars {
-                    if let Some(dx) = self.env.derivative_of_var(x, k) {
-                        let mut ring = Polynomials {
-                            work_left: &mut self.env.work_left,
-                        };
-                        let term = ring
-                            .mul(p.derivative(x), &dx)
-                            .map_err(|_| Failure::OverBudget)?;
-                        acc += &term;
-                    }
-                }
-                values.push(q.with_numerator(acc));
+                let dk = self.total_derivative(q.numerator(), k)?;
+                values.push(q.with_numerator(dk));
             }
         }
         // Components are stored with the last slot fastest, so the coordinate slot
@@ -675,6 +679,66 @@ impl Ring for ExactRing<'_, '_> {
         let mut it = values.into_iter();
         Ok(Tensor::from_fn(d, v.rank() + 1, |_| {
             it.next().expect("one value per component and coordinate")
+        }))
+    }
+
+    /// The Euler operator on jet variables: for each component v_j of the field,
+    /// Σ_α (−1)^|α| D_α (∂P/∂v_j,α) over the jet variables v_j,α that P's numerator
+    /// contains. A field that an assumption mentions is refused: its components are
+    /// then not independent, and varying them one by one would be wrong.
+    fn variations(
+        &mut self,
+        body: &Node,
+        field: &str,
+        node: &Node,
+        _n: &(),
+    ) -> Result<Tensor<Quotient>, Failure> {
+        if self.env.assumed.contains(field) {
+            return Err(self.error(
+                node,
+                format!("`{field}` is varied, but an assumption constrains it"),
+                "vary a field that no assumption mentions; write the constraint into the density instead",
+            ));
+        }
+        let v = walk::walk(self, body, &())?;
+        let d = self.env.decls.dim;
+        let rank = self.env.decls.symbols.get(field).copied().unwrap_or(0);
+        let components: Vec<Vec<usize>> = assignments(d, rank).collect();
+        let mut values = Vec::with_capacity(v.components().len() * components.len());
+        for q in v.components() {
+            let p = q.numerator();
+            let mut jets: Vec<(Var, Vec<usize>, Vec<usize>)> = p
+                .variables()
+                .into_iter()
+                .filter_map(|x| match self.env.varying.get(&x) {
+                    Some(Varying::Jet {
+                        field: f,
+                        idx,
+                        orders,
+                    }) if f == field => Some((x, idx.clone(), orders.clone())),
+                    _ => None,
+                })
+                .collect();
+            jets.sort_unstable();
+            for idx in &components {
+                let mut acc = Poly::zero();
+                for (x, _, orders) in jets.iter().filter(|(_, i, _)| i == idx) {
+                    let mut term = p.derivative(*x);
+                    for &k in orders {
+                        term = self.total_derivative(&term, k)?;
+                    }
+                    if orders.len() % 2 == 1 {
+                        term = -term;
+                    }
+                    acc += &term;
+                }
+                values.push(q.with_numerator(acc));
+            }
+        }
+        let mut it = values.into_iter();
+        Ok(Tensor::from_fn(d, v.rank() + rank, |_| {
+            it.next()
+                .expect("one value per component of the density and of the field")
         }))
     }
 

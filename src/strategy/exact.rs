@@ -7,10 +7,11 @@
 
 use super::eval::{component_name, ExactEnv, Labeled, Refusal};
 use super::finding::{Expansion, Finding, Record};
+use super::proportional::{self, Reference};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
-use crate::derivation::Check;
+use crate::derivation::{Check, Strategy};
 use crate::kernel::certificate::{Difference, Identities};
-use crate::kernel::{assignments, PolyError, Quotient, Rational, Var, VarTable};
+use crate::kernel::{assignments, Poly, PolyError, Quotient, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
@@ -169,6 +170,33 @@ fn decide_recording(
         for k in 0..chain.len() - 1 {
             let (l, r) = (&values[k], &values[k + 1]);
             let labels = union(&l.labels, &r.labels);
+            // A proportionality fixes its factor first; its sides are one pair
+            // (`load.rs`), so the comparison becomes `left = factor · right`.
+            let mut reference = None;
+            if matches!(check.strategy, Strategy::Proportional) {
+                match proportional::reference(&env, decls.dim, (l, r), &labels) {
+                    Err(why) => {
+                        return Ok(Outcome::undecided(Method::Exact, 0).with_finding(
+                            Finding::ResourceLimit {
+                                what: why,
+                                at: location(&chain[k].origin.diagnostic(Default::default(), "")),
+                                help: "decide the claim as an identity with the factor written out"
+                                    .to_owned(),
+                            },
+                        ))
+                    }
+                    // The right side is zero everywhere: proportional exactly when the
+                    // left side is zero too, a plain identity.
+                    Ok(None) => {}
+                    Ok(Some(found)) => {
+                        match Identities::proportional(&normal, found.factor()) {
+                            Some(ids) => identities = ids,
+                            None => return zero_factor(&env, decls, check, &found, (l, r), record),
+                        }
+                        reference = Some(found);
+                    }
+                }
+            }
             for a in assignments(decls.dim, labels.len()) {
                 let assignment: Vec<(char, usize)> = labels.iter().copied().zip(a).collect();
                 let (lp, rp) = (l.at(&assignment), r.at(&assignment));
@@ -197,8 +225,14 @@ fn decide_recording(
                 let Some(diff) = compared else {
                     continue;
                 };
-                let (mut cx, point, values) =
-                    counterexample(&env.vars, env.normal_vars(), lp, rp, &diff);
+                let scaled = reference.as_ref().map(|f| scale(rp, &f.factor()));
+                let (mut cx, point, mut values) = counterexample(
+                    &env.vars,
+                    env.normal_vars(),
+                    lp,
+                    scaled.as_ref().unwrap_or(rp),
+                    &diff,
+                );
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
                 cx.chain = ci + 1;
                 cx.reduced_on_sphere = diff
@@ -208,10 +242,40 @@ fn decide_recording(
                 cx.equality = k + 1;
                 cx.lhs = chain[k].text.trim().to_owned();
                 cx.rhs = chain[k + 1].text.trim().to_owned();
-                cx.indices = assignment
-                    .iter()
-                    .map(|&(c, v)| (c.to_string(), v + 1))
-                    .collect();
+                if let Some(found) = &reference {
+                    // The factor's point is a second witness: confirm it too, and
+                    // compare the interpreter's right side unscaled.
+                    satisfies_assumptions(&env, &found.point, &chain[k].origin)?;
+                    let shown = Counterexample {
+                        chain: ci + 1,
+                        equality: k + 1,
+                        indices: index_values(&found.assignment),
+                        ..Counterexample::default()
+                    };
+                    if let Err(why) = reverify::exact_counterexample(
+                        decls,
+                        check,
+                        &env,
+                        &found.point,
+                        (&found.lhs, &found.rhs),
+                        &shown,
+                    ) {
+                        return Ok(Outcome::undecided(Method::Exact, identities.components())
+                            .with_finding(Finding::Unconfirmed {
+                                difference: cx.difference.clone(),
+                                why,
+                            }));
+                    }
+                    let factor = found.factor();
+                    cx.rhs = format!("{factor} · ({})", cx.rhs);
+                    let (lq, rq) = (l.at(&found.assignment), r.at(&found.assignment));
+                    cx.factor = Some(Box::new(found.witness(&env, lq, rq)));
+                    values = values.map(|(lv, rv)| {
+                        let unscaled = rv.checked_div(&factor).expect("nonzero factor");
+                        (lv, unscaled)
+                    });
+                }
+                cx.indices = index_values(&assignment);
                 let (ln, rn) = (&chain[k].node, &chain[k + 1].node);
                 let matching = matches!((ln, rn), (Ok(a), Ok(b)) if a.matches_free_indices(b));
                 if !matching {
@@ -278,6 +342,72 @@ fn satisfies_assumptions(
             "internal error: a counterexample violates the assumptions; no verdict is given",
         ))
     }
+}
+
+/// Index values for a report, 1-based.
+fn index_values(assignment: &[(char, usize)]) -> BTreeMap<String, usize> {
+    assignment
+        .iter()
+        .map(|&(c, v)| (c.to_string(), v + 1))
+        .collect()
+}
+
+/// `factor · q`.
+fn scale(q: &Quotient, factor: &Rational) -> Quotient {
+    q.with_numerator(q.numerator() * &Poly::constant(factor.clone()))
+}
+
+/// A proportionality refuted at its reference: the left side is 0 where the right
+/// side is not, so no nonzero factor works.
+fn zero_factor(
+    env: &ExactEnv<'_>,
+    decls: &Decls,
+    check: &Check,
+    found: &Reference,
+    (l, r): (&Labeled, &Labeled),
+    record: Option<&mut Vec<Expansion>>,
+) -> Result<Outcome, Diagnostic> {
+    let chain = &check.chains[0];
+    satisfies_assumptions(env, &found.point, &chain[0].origin)?;
+    let (lq, rq) = (l.at(&found.assignment), r.at(&found.assignment));
+    let mut cx = Counterexample {
+        chain: 1,
+        equality: 1,
+        lhs: chain[0].text.trim().to_owned(),
+        rhs: chain[1].text.trim().to_owned(),
+        indices: index_values(&found.assignment),
+        point: shown_point(&env.vars, lq, rq, &found.point),
+        lhs_value: Some(found.lhs.to_string()),
+        rhs_value: Some(found.rhs.to_string()),
+        aux: BTreeMap::from([(
+            "factor".to_owned(),
+            "left/right is 0 here, and the factor must be nonzero".to_owned(),
+        )]),
+        ..Counterexample::default()
+    };
+    match reverify::exact_counterexample(
+        decls,
+        check,
+        env,
+        &found.point,
+        (&found.lhs, &found.rhs),
+        &cx,
+    ) {
+        Ok(how) => cx.reverified = Some(how),
+        Err(why) => {
+            return Ok(
+                Outcome::undecided(Method::Exact, 0).with_finding(Finding::Unconfirmed {
+                    difference: String::new(),
+                    why,
+                }),
+            )
+        }
+    }
+    if let Some(record) = record {
+        let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
+        expand_rest(&mut env, decls, check, 0, record);
+    }
+    Ok(Outcome::fails(Method::Exact, Strength::Proof, 0).with_counterexample(cx))
 }
 
 fn location(d: &Diagnostic) -> String {
@@ -358,23 +488,60 @@ fn counterexample(
     BTreeMap<Var, Rational>,
     Option<(Rational, Rational)>,
 ) {
-    let difference = diff.display(names, SHOWN_TERMS);
+    let mut cx = Counterexample {
+        difference: diff.display(names, SHOWN_TERMS),
+        ..Counterexample::default()
+    };
+    match point_where_differ(normal, lhs, rhs) {
+        Some((point, l, r)) => {
+            cx.point = shown_point(names, lhs, rhs, &point);
+            cx.lhs_value = Some(l.to_string());
+            cx.rhs_value = Some(r.to_string());
+            (cx, point, Some((l, r)))
+        }
+        None => (cx, BTreeMap::new(), None),
+    }
+}
+
+/// The coordinates of `point` that the two sides use, by name, for the report.
+pub(super) fn shown_point(
+    names: &VarTable,
+    lhs: &Quotient,
+    rhs: &Quotient,
+    point: &BTreeMap<Var, Rational>,
+) -> BTreeMap<String, String> {
+    let used = used_variables(lhs, rhs);
+    point
+        .iter()
+        .filter(|(v, _)| used.contains(v))
+        .map(|(&v, q)| (names.name(v).to_owned(), q.to_string()))
+        .collect()
+}
+
+fn used_variables(lhs: &Quotient, rhs: &Quotient) -> Vec<Var> {
     let mut used: Vec<Var> = lhs.variables();
     used.extend(rhs.variables());
     used.sort_unstable();
     used.dedup();
+    used
+}
+
+/// A rational point where both sides are defined and differ, with their values there:
+/// sparse points first (one variable 1, the rest 0) because they read best, then dense
+/// ones; the normal always lies on the unit sphere, and the point carries the whole
+/// normal (for the second evaluation). The same sides always get the same point.
+pub(super) fn point_where_differ(
+    normal: &[Var],
+    lhs: &Quotient,
+    rhs: &Quotient,
+) -> Option<(BTreeMap<Var, Rational>, Rational, Rational)> {
+    let used = used_variables(lhs, rhs);
     let mut rng = SplitMix(0x05EE_DC05_E4A7);
-    let mut cx = Counterexample {
-        difference,
-        ..Counterexample::default()
-    };
     let others: Vec<Var> = used
         .iter()
         .copied()
         .filter(|v| !normal.contains(v))
         .collect();
-    // Sparse points first (one variable 1, the rest 0) because they read best, then
-    // dense ones; the normal always lies on the unit sphere.
     let sparse = others.iter().map(|&v| Some(v)).chain(std::iter::once(None));
     let candidates = sparse
         .flat_map(|one| (0..4).map(move |_| one))
@@ -397,19 +564,11 @@ fn counterexample(
             continue;
         };
         if l != r {
-            cx.point = point
-                .iter()
-                .map(|(&v, q)| (names.name(v).to_owned(), q.to_string()))
-                .collect();
-            cx.lhs_value = Some(l.to_string());
-            cx.rhs_value = Some(r.to_string());
-            // The whole normal, for the second evaluation (the display keeps only the
-            // components the sides use).
             for (k, &v) in normal.iter().enumerate() {
                 point.entry(v).or_insert_with(|| n[k].clone());
             }
-            return (cx, point, Some((l, r)));
+            return Some((point, l, r));
         }
     }
-    (cx, BTreeMap::new(), None)
+    None
 }

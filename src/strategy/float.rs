@@ -11,7 +11,7 @@
 use super::assume::Parametrisation;
 use super::real::{component_pairs, RealEnv};
 use super::taylor::{self, TaylorFields};
-use crate::derivation::{Check, Verdict};
+use crate::derivation::{Check, Strategy, Verdict};
 use crate::kernel::Tensor;
 use crate::lang::Decls;
 use std::collections::HashMap;
@@ -161,6 +161,8 @@ pub fn decide(
     } else {
         TOL
     };
+    let proportional = matches!(check.strategy, Strategy::Proportional);
+    let mut factor: Option<f64> = None;
     for _ in 0..samples {
         let mut symbols: HashMap<String, Tensor<f64>> = HashMap::new();
         for (name, &rank) in &decls.symbols {
@@ -186,11 +188,30 @@ pub fn decide(
             }
             for w in values.windows(2) {
                 let (_, pairs) = component_pairs(d, &w[0], &w[1]);
+                // A proportionality takes its factor from the pair with the largest
+                // right side of the first sample where one is clearly nonzero (above
+                // 100 tolerances, so that rounding noise never sets it), and holds it
+                // fixed after that; until then the sides are compared as equal.
+                if proportional && factor.is_none() {
+                    let largest = pairs
+                        .iter()
+                        .max_by(|a, b| a.2.abs().total_cmp(&b.2.abs()))
+                        .filter(|p| p.2.abs() > 100.0 * tol);
+                    if let Some((_, l, r)) = largest {
+                        let f = l / r;
+                        if !f.is_finite() || f.abs() <= tol {
+                            return Ok(Some(Verdict::Fails));
+                        }
+                        factor = Some(f);
+                    }
+                }
+                let scale = factor.unwrap_or(1.0);
                 for (_, l, r) in pairs {
-                    if !l.is_finite()
-                        || !r.is_finite()
-                        || (l - r).abs() > tol * (1.0 + l.abs() + r.abs())
-                    {
+                    if !l.is_finite() || !r.is_finite() {
+                        return Ok(Some(Verdict::Fails));
+                    }
+                    let r = scale * r;
+                    if (l - r).abs() > tol * (1.0 + l.abs() + r.abs()) {
                         return Ok(Some(Verdict::Fails));
                     }
                 }

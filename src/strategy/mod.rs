@@ -11,6 +11,7 @@ pub mod finding;
 pub mod float;
 pub mod numeric;
 mod outcome;
+mod proportional;
 pub mod quadrature;
 pub mod real;
 mod reverify;
@@ -18,12 +19,14 @@ pub mod sampler;
 pub mod search;
 pub mod tape;
 pub mod taylor;
+mod variation;
 pub mod walk;
 pub mod watch;
 pub mod witness;
 
 pub use outcome::{
-    Counterexample, Measure, Method, NumericEvidence, Outcome, Reverified, SearchEvidence, Strength,
+    Counterexample, FactorWitness, Measure, Method, NumericEvidence, Outcome, Reverified,
+    SearchEvidence, Strength,
 };
 
 use crate::derivation::Claim;
@@ -77,7 +80,7 @@ fn decide_keeping(
         Strategy::Numeric { .. } => Method::Numeric,
         Strategy::Gradient { .. } => Method::Gradient,
         Strategy::Convex { .. } => Method::Convex,
-        Strategy::Exact => Method::Exact,
+        Strategy::Exact | Strategy::Proportional => Method::Exact,
         Strategy::NotCircle { .. } => Method::Witness,
         Strategy::Appendix { .. } => Method::Symbolic,
     };
@@ -87,7 +90,7 @@ fn decide_keeping(
         );
     }
     let decided = match &check.strategy {
-        Strategy::Exact => exact::decide(decls, check, keep),
+        Strategy::Exact | Strategy::Proportional => exact::decide(decls, check, keep),
         Strategy::Numeric { .. } => numeric::decide_numeric(decls, check, states),
         Strategy::Gradient { .. } => numeric::decide_gradient(decls, check, states),
         Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),

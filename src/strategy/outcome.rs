@@ -86,6 +86,20 @@ pub struct Counterexample {
     pub ill_formed: Option<String>,
     /// How the counterexample was confirmed by a second evaluation (`reverify`).
     pub reverified: Option<Reverified>,
+    /// For a proportionality: where the factor was fixed (the comparison that fails
+    /// is then `left = factor · right`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub factor: Option<Box<FactorWitness>>,
+}
+
+/// Where a proportionality's factor was fixed: left/right at one component and point.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct FactorWitness {
+    pub factor: String,
+    pub indices: BTreeMap<String, usize>,
+    pub point: BTreeMap<String, String>,
+    pub lhs_value: String,
+    pub rhs_value: String,
 }
 
 /// The second evaluation that confirmed a counterexample.

@@ -13,6 +13,7 @@
 use super::assume::Parametrisation;
 use super::quadrature::{Level, Quadrature};
 use super::taylor::{self, TaylorFields};
+use super::variation::{self, Perturbation};
 use super::walk::{self, Ring};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::einsum::Arithmetic;
@@ -21,7 +22,7 @@ use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node, Span};
 use num_dual::DualNum;
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -76,7 +77,12 @@ pub struct RealEnv<'a, T> {
     pub fields: Option<TaylorFields>,
     /// Where the fields are evaluated (the centre of `fields` until a derivative
     /// moves it).
-    position: RefCell<Vec<f64>>,
+    pub(super) position: RefCell<Vec<f64>>,
+    /// A perturbation added to one field component while a variation is taken
+    /// (see [`super::variation`]).
+    pub(super) perturbation: RefCell<Option<Perturbation>>,
+    /// Counts changes of `perturbation`: definition values are memoised per epoch.
+    epoch: Cell<u64>,
     /// Fields that an assumption defines by an expression (`u_i = A_ij x_j`), with
     /// fields in use: evaluated from that expression wherever the position is.
     defined_fields: HashMap<String, (Vec<char>, Node, Vec<f64>)>,
@@ -98,8 +104,35 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             quadrature: Quadrature::new(Level::Fine),
             fields: None,
             position: RefCell::new(Vec::new()),
+            perturbation: RefCell::new(None),
+            epoch: Cell::new(0),
             defined_fields: HashMap::new(),
         }
+    }
+
+    /// Sets (or, with `None`, removes) the perturbation of a field component.
+    pub(super) fn perturb(&self, p: Option<Perturbation>) {
+        *self.perturbation.borrow_mut() = p;
+        self.epoch.set(self.epoch.get() + 1);
+    }
+
+    /// `t`, the value of `name` at `x`, plus the perturbation when it is of `name`.
+    fn perturbed(&self, name: &str, mut t: Tensor<T>, x: &[f64]) -> Tensor<T> {
+        if let Some(p) = self
+            .perturbation
+            .borrow()
+            .as_ref()
+            .filter(|p| p.field == name)
+        {
+            let c = t.get_mut(&p.idx);
+            *c = c.clone() + T::from(p.at(x));
+        }
+        t
+    }
+
+    /// Whether an assumption defines the field by an expression of the position.
+    pub(super) fn defines(&self, field: &str) -> bool {
+        self.defined_fields.contains_key(field)
     }
 
     /// Evaluates fields as the given Taylor polynomials, at their centre.
@@ -362,13 +395,19 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
                         format!("no Taylor polynomial for a component of {name}"),
                     ));
                 }
-                return Ok(t);
+                return Ok(self.perturbed(name, t, &x));
             }
         }
-        self.symbols
+        let t = self
+            .symbols
             .get(name)
             .cloned()
-            .ok_or_else(|| err(node, format!("no value for symbol {name}")))
+            .ok_or_else(|| err(node, format!("no value for symbol {name}")))?;
+        match &self.fields {
+            // A field the point gives no jets: constant, plus any perturbation.
+            Some(_) => Ok(self.perturbed(name, t, &self.position.borrow())),
+            None => Ok(t),
+        }
     }
 
     fn definition(&mut self, name: &str, node: &Node, n: &[f64]) -> Result<Tensor<T>, RealError> {
@@ -385,6 +424,7 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
         // With fields, a definition's value also depends on where it is evaluated.
         if env.fields.is_some() {
             key_n.extend(env.position.borrow().iter().map(|x| x.to_bits()));
+            key_n.push(env.epoch.get());
         }
         let key = (name.to_owned(), key_n);
         let cached = env.memo.borrow().get(&key).cloned();
@@ -483,6 +523,16 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
             let at = |j: usize| v[j].get(&idx[..rank]).clone();
             taylor::stencil([at(0), at(1), at(2), at(3)])
         }))
+    }
+
+    fn variations(
+        &mut self,
+        body: &Node,
+        field: &str,
+        node: &Node,
+        n: &[f64],
+    ) -> Result<Tensor<T>, RealError> {
+        variation::variations(self, body, field, node, n)
     }
 
     fn not_scalar(&mut self, node: &Node) -> RealError {

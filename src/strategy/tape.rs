@@ -592,6 +592,16 @@ impl Ring for Compiler<'_> {
         Err(Unsupported("derivatives of fields".into()))
     }
 
+    fn variations(
+        &mut self,
+        _body: &Node,
+        _field: &str,
+        _node: &Node,
+        _n: &[usize],
+    ) -> Result<Tensor<usize>, Unsupported> {
+        Err(Unsupported("variations of fields".into()))
+    }
+
     fn maximum(&mut self, a: &Node, node: &Node) -> Result<usize, Unsupported> {
         if self.decls.dim == 3 && !self.decls.normal_in_plane {
             return Err(Unsupported("maxn needs an in-plane normal".into()));

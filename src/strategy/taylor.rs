@@ -161,8 +161,13 @@ impl TaylorFields {
 }
 
 /// The derivative by the five-point central stencil from values at −2h, −h, h, 2h.
-pub fn stencil<T: DualNum<Primitive = f64>>([m2, m1, p1, p2]: [T; 4]) -> T {
-    (m2 - m1 * 8.0 + p1 * 8.0 - p2) * (1.0 / (12.0 * STEP))
+pub fn stencil<T: DualNum<Primitive = f64>>(values: [T; 4]) -> T {
+    stencil_with(values, STEP)
+}
+
+/// The five-point stencil with step `h`.
+pub fn stencil_with<T: DualNum<Primitive = f64>>([m2, m1, p1, p2]: [T; 4], h: f64) -> T {
+    (m2 - m1 * 8.0 + p1 * 8.0 - p2) * (1.0 / (12.0 * h))
 }
 
 #[cfg(test)]

@@ -92,6 +92,16 @@ pub trait Ring: Arithmetic {
         node: &Node,
         n: &Self::Normal,
     ) -> Result<Tensor<Self::Value>, Self::Error>;
+    /// The variational derivatives of the density `body` with respect to every
+    /// component of `field` (see [`NodeKind::Variation`]): a tensor with `body`'s
+    /// slots (its free letters, sorted) followed by the field's slots.
+    fn variations(
+        &mut self,
+        body: &Node,
+        field: &str,
+        node: &Node,
+        n: &Self::Normal,
+    ) -> Result<Tensor<Self::Value>, Self::Error>;
     /// Called before a node is evaluated (a budget on the walk).
     fn enter(&mut self, _node: &Node) -> Result<(), Self::Error> {
         Ok(())
@@ -204,6 +214,16 @@ pub fn walk<R: Ring>(
             slots.push(*slot);
             contract(ring, &[(&t, slots)], &labels, node)?
         }
+        NodeKind::Variation {
+            body,
+            field,
+            slots: field_slots,
+        } => {
+            let t = ring.variations(body, field, node, n)?;
+            let mut slots: Vec<Slot> = body.free_letters().into_iter().map(Slot::Letter).collect();
+            slots.extend(field_slots.iter().copied());
+            contract(ring, &[(&t, slots)], &labels, node)?
+        }
     };
     ring.leave(node, value)
 }
@@ -243,7 +263,9 @@ pub fn normal_degree(
             }
             _ => Some(0),
         },
-        NodeKind::Neg(a) | NodeKind::Deriv(a, _) => normal_degree(a, defs, memo),
+        NodeKind::Neg(a) | NodeKind::Deriv(a, _) | NodeKind::Variation { body: a, .. } => {
+            normal_degree(a, defs, memo)
+        }
         NodeKind::Sum(xs) => xs
             .iter()
             .try_fold(0, |m, x| Some(m.max(normal_degree(x, defs, memo)?))),

@@ -1,0 +1,294 @@
+//! The second route of `variation(P, v_j)`: the Euler operator by perturbing the
+//! field, not by differentiating with respect to jet variables.
+//!
+//! At a point y, ∂P/∂v_j,α is the rate of change of P(y) when v_j is perturbed by
+//! ε (x − y)^α / α!: that perturbation has, at y, the α-th derivative 1 and every other
+//! derivative 0. The route evaluates P with the perturbed field for four values of ε
+//! (the five-point stencil in ε), then applies the total derivatives D_α by central
+//! differences of that whole procedure at positions moved from y, the perturbation
+//! moving with them. It shares the expression walk with the exact route and nothing
+//! else: no jet variables, no symbolic ∂P/∂v_j,α.
+
+use super::real::{RealEnv, RealError};
+use super::taylor;
+use super::walk;
+use crate::derivation::Definition;
+use crate::kernel::{assignments, Tensor};
+use crate::lang::{Node, NodeKind, Target};
+use num_dual::DualNum;
+use std::collections::HashMap;
+
+/// Step of the differences in ε and along the coordinates of α. The five-point
+/// stencil is exact for polynomials of degree ≤ 4, so for the usual densities
+/// (quadratic in the field) the ε-difference has no truncation error at any step, and
+/// a step ten times the interpreter's keeps the rounding of the nested differences
+/// (each level multiplies it by about 1.5/h) well below the agreement required.
+const VARIATION_STEP: f64 = 1e-2;
+
+/// A perturbation of one field component: `amount · Π (x_k − centre_k)^e_k / e_k!`.
+#[derive(Clone, Debug)]
+pub struct Perturbation {
+    pub field: String,
+    pub idx: Vec<usize>,
+    pub exponents: Vec<u32>,
+    pub centre: Vec<f64>,
+    pub amount: f64,
+}
+
+impl Perturbation {
+    /// Its value at `x`.
+    pub fn at(&self, x: &[f64]) -> f64 {
+        self.exponents.iter().zip(x.iter().zip(&self.centre)).fold(
+            self.amount,
+            |acc, (&e, (xi, ci))| {
+                acc * (xi - ci).powi(e as i32) / (1..=e).map(f64::from).product::<f64>()
+            },
+        )
+    }
+}
+
+/// The highest order of derivative of `field` that `node` can contain (through
+/// definitions), `None` when it does not read the field: the multi-indices α the
+/// route must visit. An upper bound is enough, since a term with ∂P/∂v_j,α = 0
+/// contributes only rounding.
+pub fn field_order(
+    node: &Node,
+    defs: &[Definition],
+    field: &str,
+    memo: &mut HashMap<String, Option<usize>>,
+) -> Option<usize> {
+    match &node.kind {
+        NodeKind::Leaf {
+            target: Target::Symbol(s),
+            ..
+        } => (s == field).then_some(0),
+        NodeKind::Leaf {
+            target: Target::Def(name),
+            ..
+        } => {
+            if let Some(o) = memo.get(name) {
+                return *o;
+            }
+            memo.insert(name.clone(), None);
+            let o = defs
+                .iter()
+                .rev()
+                .find(|d| &d.sig.name == name)
+                .and_then(|d| field_order(&d.body, defs, field, memo));
+            memo.insert(name.clone(), o);
+            o
+        }
+        NodeKind::Deriv(a, _) => field_order(a, defs, field, memo).map(|o| o + 1),
+        _ => node
+            .children()
+            .into_iter()
+            .filter_map(|c| field_order(c, defs, field, memo))
+            .max(),
+    }
+}
+
+/// The deepest nesting of derivatives in `node` (through definitions): each level is a
+/// central difference whose rounding the next level amplifies, and whose cost
+/// multiplies.
+fn nesting(node: &Node, defs: &[Definition], memo: &mut HashMap<String, usize>) -> usize {
+    match &node.kind {
+        NodeKind::Leaf {
+            target: Target::Def(name),
+            ..
+        } => {
+            if let Some(&k) = memo.get(name) {
+                return k;
+            }
+            memo.insert(name.clone(), 0);
+            let k = defs
+                .iter()
+                .rev()
+                .find(|d| &d.sig.name == name)
+                .map_or(0, |d| nesting(&d.body, defs, memo));
+            memo.insert(name.clone(), k);
+            k
+        }
+        NodeKind::Deriv(a, _) => nesting(a, defs, memo) + 1,
+        _ => node
+            .children()
+            .into_iter()
+            .map(|c| nesting(c, defs, memo))
+            .max()
+            .unwrap_or(0),
+    }
+}
+
+/// Largest number of nested central differences the route takes (the derivatives
+/// inside the density plus those of α): a second-gradient density (u_i,jj, moved off
+/// twice) needs 4. Deeper nesting would be slow and, in `f64`, not accurate enough.
+pub const MAX_NESTING: usize = 4;
+
+/// Multisets of `coords` of sizes 0..=`order`, each sorted.
+fn multi_indices(coords: &[usize], order: usize) -> Vec<Vec<usize>> {
+    let mut out = vec![Vec::new()];
+    let mut last = vec![Vec::new()];
+    for _ in 0..order {
+        let mut next = Vec::new();
+        for a in &last {
+            for &k in coords.iter().filter(|&&k| a.last().is_none_or(|&l| k >= l)) {
+                let mut b: Vec<usize> = a.clone();
+                b.push(k);
+                next.push(b);
+            }
+        }
+        out.extend(next.iter().cloned());
+        last = next;
+    }
+    out
+}
+
+/// The variational derivatives of `body` with respect to `field` (slots: the body's,
+/// then the field's), by perturbation and central differences.
+pub fn variations<T: DualNum<Primitive = f64>>(
+    env: &RealEnv<'_, T>,
+    body: &Node,
+    field: &str,
+    node: &Node,
+    n: &[f64],
+) -> Result<Tensor<T>, RealError> {
+    let fail = |m: &str| RealError {
+        span: node.span,
+        message: m.to_owned(),
+    };
+    if env.fields.is_none() {
+        return Err(fail(
+            "a variation is decided exactly: sampling has no fields to perturb",
+        ));
+    }
+    if env.defines(field) {
+        return Err(fail(
+            "the varied field is defined by an assumption, so it cannot be varied",
+        ));
+    }
+    if env.perturbation.borrow().is_some() {
+        return Err(fail("a variation inside a variation is not supported"));
+    }
+    let d = env.decls.dim;
+    let deps = &env.decls.fields[field];
+    let coords: Vec<usize> = (0..d).filter(|&k| deps[k]).collect();
+    let order = field_order(body, env.defs, field, &mut HashMap::new()).unwrap_or(0);
+    let depth = nesting(body, env.defs, &mut HashMap::new()) + order;
+    if depth > MAX_NESTING {
+        return Err(fail(&format!(
+            "the variation needs {depth} nested central differences, more than the {MAX_NESTING} this route resolves"
+        )));
+    }
+    let alphas = multi_indices(&coords, order);
+    let rank = env.decls.symbols.get(field).copied().unwrap_or(0);
+    let body_rank = body.free_letters().len();
+    let mut per_component = Vec::new();
+    for idx in assignments(d, rank) {
+        let mut acc = Tensor::from_fn(d, body_rank, |_| T::zero());
+        for alpha in &alphas {
+            let mut exponents = vec![0u32; d];
+            for &k in alpha {
+                exponents[k] += 1;
+            }
+            let rate = |env: &RealEnv<'_, T>| -> Result<Tensor<T>, RealError> {
+                let centre = env.position.borrow().clone();
+                let mut values = Vec::with_capacity(4);
+                for step in [-2.0, -1.0, 1.0, 2.0] {
+                    env.perturb(Some(Perturbation {
+                        field: field.to_owned(),
+                        idx: idx.clone(),
+                        exponents: exponents.clone(),
+                        centre: centre.clone(),
+                        amount: step * VARIATION_STEP,
+                    }));
+                    let v = walk::walk(&mut { env }, body, n);
+                    env.perturb(None);
+                    values.push(v?);
+                }
+                Ok(stencils(&values))
+            };
+            let term = along(env, alpha, &rate)?;
+            let sign = if alpha.len() % 2 == 1 { -1.0 } else { 1.0 };
+            acc = Tensor::from_fn(d, body_rank, |i| {
+                acc.get(i).clone() + term.get(i).clone() * sign
+            });
+        }
+        per_component.push(acc);
+    }
+    // Body slots first, the field's last (fastest).
+    let comps: Vec<Vec<usize>> = assignments(d, rank).collect();
+    Ok(Tensor::from_fn(d, body_rank + rank, |i| {
+        let c = comps
+            .iter()
+            .position(|x| x[..] == i[body_rank..])
+            .expect("every field component");
+        per_component[c].get(&i[..body_rank]).clone()
+    }))
+}
+
+/// A value computed wherever the environment's position is.
+type AtPosition<'f, T> = dyn Fn(&RealEnv<'_, T>) -> Result<Tensor<T>, RealError> + 'f;
+
+/// The total derivative D_α of `f` (a function of where the position is), by nested
+/// central differences, one coordinate of α per level.
+fn along<T: DualNum<Primitive = f64>>(
+    env: &RealEnv<'_, T>,
+    alpha: &[usize],
+    f: &AtPosition<'_, T>,
+) -> Result<Tensor<T>, RealError> {
+    let Some((&k, rest)) = alpha.split_first() else {
+        return f(env);
+    };
+    let centre = env.position.borrow().clone();
+    let mut values = Vec::with_capacity(4);
+    for step in [-2.0, -1.0, 1.0, 2.0] {
+        let mut x = centre.clone();
+        x[k] += step * VARIATION_STEP;
+        *env.position.borrow_mut() = x;
+        let v = along(env, rest, f);
+        *env.position.borrow_mut() = centre.clone();
+        values.push(v?);
+    }
+    Ok(stencils(&values))
+}
+
+/// The five-point stencil applied component by component.
+fn stencils<T: DualNum<Primitive = f64>>(values: &[Tensor<T>]) -> Tensor<T> {
+    let t = &values[0];
+    Tensor::from_fn(t.dim(), t.rank(), |i| {
+        taylor::stencil_with(
+            [0, 1, 2, 3].map(|j| values[j].get(i).clone()),
+            VARIATION_STEP,
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn multi_indices_are_the_sorted_multisets() {
+        assert_eq!(multi_indices(&[0, 1, 2], 0), vec![Vec::<usize>::new()]);
+        let two = multi_indices(&[0, 2], 2);
+        assert_eq!(
+            two,
+            vec![vec![], vec![0], vec![2], vec![0, 0], vec![0, 2], vec![2, 2]]
+        );
+        // 1 + 3 + 6 in three coordinates up to order 2.
+        assert_eq!(multi_indices(&[0, 1, 2], 2).len(), 10);
+    }
+
+    #[test]
+    fn a_perturbation_has_one_unit_derivative_at_its_centre() {
+        let p = Perturbation {
+            field: "v".into(),
+            idx: vec![0],
+            exponents: vec![2, 1],
+            centre: vec![0.5, -1.0],
+            amount: 3.0,
+        };
+        // 3 (x−0.5)² (y+1) / 2 at (1.5, 1): 3 · 1 · 2 / 2.
+        assert!((p.at(&[1.5, 1.0]) - 3.0).abs() < 1e-15);
+        assert_eq!(p.at(&[0.5, 7.0]), 0.0);
+    }
+}
