@@ -14,6 +14,7 @@ pub mod poly;
 pub mod quotient;
 pub mod ratfunc;
 pub mod rational;
+pub mod residue;
 pub mod sturm;
 pub mod tensor;
 

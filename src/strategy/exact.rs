@@ -11,7 +11,7 @@ use super::proportional::{self, Reference};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::{Check, Strategy};
 use crate::kernel::certificate::{Difference, Identities};
-use crate::kernel::{assignments, Poly, PolyError, Quotient, Rational, Var, VarTable};
+use crate::kernel::{assignments, residue, Poly, PolyError, Quotient, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
@@ -558,6 +558,19 @@ pub(super) fn point_where_differ(
                 (None, None) => Rational::int(rng.small()),
             };
             point.insert(v, value);
+        }
+        // Screen modulo a prime first: equal residues mean (almost surely) equal
+        // values, and the exact evaluation of a high power at a dense point costs
+        // bigint arithmetic that is wasted on a candidate that will be skipped.
+        let residues: BTreeMap<Var, Option<u64>> = point
+            .iter()
+            .map(|(&v, q)| (v, residue::of_rational(q)))
+            .collect();
+        if residues.values().all(Option::is_some) {
+            let value = |v: Var| residues.get(&v).copied().flatten().unwrap_or(0);
+            if !residue::differ(lhs, rhs, &value) {
+                continue;
+            }
         }
         let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
         let (Some(l), Some(r)) = (lhs.eval(&at), rhs.eval(&at)) else {

@@ -1,0 +1,109 @@
+//! Values modulo a large prime: a cheap screen for "are these two rationals
+//! different?". The map ℚ → 𝔽_p (defined where p divides no denominator) is a ring
+//! homomorphism, so two values with different residues are different; equal residues
+//! decide nothing. The counterexample search uses it to skip candidate points whose
+//! exact evaluation (bigint powers of high degree) would be wasted.
+
+use super::poly::{Poly, Var};
+use super::quotient::Quotient;
+use super::rational::Rational;
+use num_bigint::BigInt;
+use num_traits::{Signed, ToPrimitive};
+
+/// The Mersenne prime 2⁶¹ − 1.
+pub const P: u64 = (1 << 61) - 1;
+
+fn mul(a: u64, b: u64) -> u64 {
+    ((u128::from(a) * u128::from(b)) % u128::from(P)) as u64
+}
+
+fn pow(mut a: u64, mut e: u64) -> u64 {
+    let mut r = 1;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = mul(r, a);
+        }
+        a = mul(a, a);
+        e >>= 1;
+    }
+    r
+}
+
+/// a⁻¹ mod P, `None` for 0.
+fn inverse(a: u64) -> Option<u64> {
+    (a != 0).then(|| pow(a, P - 2))
+}
+
+fn of_int(n: &BigInt) -> u64 {
+    let m = (n.abs() % BigInt::from(P)).to_u64().expect("below P");
+    if n.is_negative() && m != 0 {
+        P - m
+    } else {
+        m
+    }
+}
+
+/// The residue of a rational, `None` when P divides its denominator.
+pub fn of_rational(q: &Rational) -> Option<u64> {
+    Some(mul(of_int(&q.numer()), inverse(of_int(&q.denom()))?))
+}
+
+/// A polynomial's residue at a point given by residues (`None` where a negative power
+/// meets a zero residue or a coefficient's denominator vanishes mod P).
+pub fn of_poly(p: &Poly, value: &dyn Fn(Var) -> u64) -> Option<u64> {
+    let mut total = 0u64;
+    for (m, c) in p.terms() {
+        let mut t = of_rational(c)?;
+        for &(v, e) in m.factors() {
+            let x = value(v);
+            let x = if e < 0 { inverse(x)? } else { x };
+            t = mul(t, pow(x, u64::from(e.unsigned_abs())));
+        }
+        total = (total + t) % P;
+    }
+    Some(total)
+}
+
+/// A quotient's residue (its conditions are not checked: an exact evaluation does that).
+pub fn of_quotient(q: &Quotient, value: &dyn Fn(Var) -> u64) -> Option<u64> {
+    let mut den = 1;
+    for (f, k) in q.factors() {
+        den = mul(den, pow(of_poly(f, value)?, u64::from(*k)));
+    }
+    Some(mul(of_poly(q.numerator(), value)?, inverse(den)?))
+}
+
+/// Whether `a` and `b` certainly differ at the point (`false`: maybe equal).
+pub fn differ(a: &Quotient, b: &Quotient, value: &dyn Fn(Var) -> u64) -> bool {
+    match (of_quotient(a, value), of_quotient(b, value)) {
+        (Some(x), Some(y)) => x != y,
+        // A denominator vanishes mod P: no screen; let the exact evaluation decide.
+        _ => true,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::VarTable;
+
+    #[test]
+    fn residues_respect_arithmetic() {
+        let half = Rational::ratio(1, 2).unwrap();
+        assert_eq!(mul(of_rational(&half).unwrap(), 2), 1);
+        assert_eq!(of_rational(&Rational::int(-1)), Some(P - 1));
+        let mut names = VarTable::new();
+        let x = names.intern("x");
+        // (x + 1)^2 − x^2 − 2x − 1 = 0 at any residue.
+        let px = Poly::var(x);
+        let one = Poly::constant(Rational::int(1));
+        let sq = &(&px + &one) * &(&px + &one);
+        let expanded = &(&(&px * &px) + &(&px * &Poly::constant(Rational::int(2)))) + &one;
+        let at = |_: Var| 123_456_789u64;
+        assert_eq!(of_poly(&sq, &at), of_poly(&expanded, &at));
+        assert_ne!(of_poly(&sq, &at), of_poly(&(&px * &px), &at));
+        // x^-1 at 0 is undefined.
+        let inv = Poly::term(crate::kernel::poly::Monomial::var(x, -1), Rational::int(1));
+        assert_eq!(of_poly(&inv, &|_| 0), None);
+    }
+}
