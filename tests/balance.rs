@@ -14,20 +14,7 @@ const CORPUS: &str = "tests/soundness/balance-laws.toml";
 #[test]
 fn laws_hold_and_their_twins_fail_confirmed_by_perturbation() {
     common::assert_as_declared(CORPUS, 22, |rows| {
-        let failed: Vec<_> = rows
-            .iter()
-            .filter(|r| r.outcome.verdict() == Verdict::Fails)
-            .collect();
-        assert_eq!(failed.len(), 12);
-        for r in failed {
-            let cx = r.outcome.counterexample.as_ref().expect("a counterexample");
-            assert_eq!(
-                cx.reverified,
-                Some(Reverified::TaylorDifferences),
-                "{}",
-                r.claim.id
-            );
-        }
+        common::assert_failures_confirmed(rows, 12, Reverified::TaylorDifferences);
         // A refuted proportionality shows where its factor was fixed.
         let wrong = rows
             .iter()

@@ -13,20 +13,7 @@ mod common;
 #[test]
 fn identities_hold_and_their_twins_fail_confirmed_by_differences() {
     common::assert_as_declared("tests/soundness/fields.toml", 27, |rows| {
-        let failed: Vec<_> = rows
-            .iter()
-            .filter(|r| r.outcome.verdict() == Verdict::Fails)
-            .collect();
-        assert_eq!(failed.len(), 13);
-        for r in failed {
-            let cx = r.outcome.counterexample.as_ref().expect("a counterexample");
-            assert_eq!(
-                cx.reverified,
-                Some(Reverified::TaylorDifferences),
-                "{}",
-                r.claim.id
-            );
-        }
+        common::assert_failures_confirmed(rows, 13, Reverified::TaylorDifferences);
     });
 }
 

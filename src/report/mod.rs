@@ -221,6 +221,15 @@ fn holds_where(factors: &[String]) -> String {
     format!("holds where {}", conditions.join(", "))
 }
 
+/// ` at i=1, j=2` for index values (empty for none).
+fn at_indices(indices: &std::collections::BTreeMap<String, usize>) -> String {
+    if indices.is_empty() {
+        return String::new();
+    }
+    let idx: Vec<String> = indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
+    format!(" at {}", idx.join(", "))
+}
+
 fn counterexample_text(cx: &Counterexample) -> String {
     let mut parts = Vec::new();
     if let Some(m) = &cx.ill_formed {
@@ -229,12 +238,7 @@ fn counterexample_text(cx: &Counterexample) -> String {
     if cx.difference.is_empty() && (cx.lhs_value.is_some() || !cx.aux.is_empty()) {
         // A sampled counterexample: a state where the relation fails, its values
         // there, then the numbers that are not coordinates of the state.
-        let at = if cx.indices.is_empty() {
-            String::new()
-        } else {
-            let idx: Vec<String> = cx.indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
-            format!(" at {}", idx.join(", "))
-        };
+        let at = at_indices(&cx.indices);
         let values = match (&cx.lhs_value, &cx.rhs_value) {
             (Some(l), Some(r)) => format!(": left {l}, right {r}"),
             _ => String::new(),
@@ -252,12 +256,7 @@ fn counterexample_text(cx: &Counterexample) -> String {
         ));
     }
     if !cx.difference.is_empty() {
-        let at = if cx.indices.is_empty() {
-            String::new()
-        } else {
-            let idx: Vec<String> = cx.indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
-            format!(" at {}", idx.join(", "))
-        };
+        let at = at_indices(&cx.indices);
         let modulo = if cx.reduced_on_sphere {
             " (mod n·n = 1)"
         } else {
@@ -294,12 +293,7 @@ fn counterexample_text(cx: &Counterexample) -> String {
         }
     }
     if let Some(f) = &cx.factor {
-        let idx: Vec<String> = f.indices.iter().map(|(c, v)| format!("{c}={v}")).collect();
-        let at = if idx.is_empty() {
-            String::new()
-        } else {
-            format!(" at {}", idx.join(", "))
-        };
+        let at = at_indices(&f.indices);
         let pts: Vec<String> = f
             .point
             .iter()

@@ -22,3 +22,23 @@ pub fn assert_as_declared(path: &str, count: usize, inspect: impl FnOnce(&[Decid
     }
     inspect(&rows);
 }
+
+/// Asserts that `count` rows fail and that each failure's counterexample was confirmed
+/// by the second evaluation `how`.
+#[allow(dead_code)]
+pub fn assert_failures_confirmed(
+    rows: &[Decided<'_>],
+    count: usize,
+    how: cosserat_check::strategy::Reverified,
+) {
+    use cosserat_check::derivation::Verdict;
+    let failed: Vec<_> = rows
+        .iter()
+        .filter(|r| r.outcome.verdict() == Verdict::Fails)
+        .collect();
+    assert_eq!(failed.len(), count);
+    for r in failed {
+        let cx = r.outcome.counterexample.as_ref().expect("a counterexample");
+        assert_eq!(cx.reverified, Some(how), "{}", r.claim.id);
+    }
+}
