@@ -191,7 +191,7 @@ fn decide_recording(
                     Ok(Some(found)) => {
                         match Identities::proportional(&normal, found.factor()) {
                             Some(ids) => identities = ids,
-                            None => return zero_factor(&env, decls, check, &found, (l, r), record),
+                            None => return zero_factor(&env, decls, check, &found, (l, r)),
                         }
                         reference = Some(found);
                     }
@@ -358,14 +358,14 @@ fn scale(q: &Quotient, factor: &Rational) -> Quotient {
 }
 
 /// A proportionality refuted at its reference: the left side is 0 where the right
-/// side is not, so no nonzero factor works.
+/// side is not, so no nonzero factor works. (Its one pair of sides is already in the
+/// record, if one is kept.)
 fn zero_factor(
     env: &ExactEnv<'_>,
     decls: &Decls,
     check: &Check,
     found: &Reference,
     (l, r): (&Labeled, &Labeled),
-    record: Option<&mut Vec<Expansion>>,
 ) -> Result<Outcome, Diagnostic> {
     let chain = &check.chains[0];
     satisfies_assumptions(env, &found.point, &chain[0].origin)?;
@@ -402,10 +402,6 @@ fn zero_factor(
                 }),
             )
         }
-    }
-    if let Some(record) = record {
-        let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
-        expand_rest(&mut env, decls, check, 0, record);
     }
     Ok(Outcome::fails(Method::Exact, Strength::Proof, 0).with_counterexample(cx))
 }
