@@ -92,17 +92,6 @@ fn the_sign_convention_is_the_hand_derivation() {
     );
 }
 
-fn error_of(header: &str, claim: &str) -> String {
-    let text = one_claim(header, claim);
-    match load_str("f.toml", &text) {
-        Err(e) => e.to_string(),
-        Ok(f) => decide_all(std::slice::from_ref(&f), None)
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_else(|| panic!("accepted: {claim}")),
-    }
-}
-
 #[test]
 fn slips_are_located_errors() {
     let cases = [
@@ -142,9 +131,15 @@ fn slips_are_located_errors() {
             "f.toml:12:12",
             "compares exactly two sides",
         ),
+        (
+            "",
+            "strategy = \"proportional\"\nrelation = \"<=\"\nsides = [\"v_1\", \"v_1\"]",
+            "f.toml:13:12",
+            "`relation` applies to strategy = \"numeric\" only",
+        ),
     ];
     for (header, claim, at, message) in cases {
-        let e = error_of(header, claim);
+        let e = common::error_of(&one_claim(header, claim));
         assert!(e.contains(at) && e.contains(message), "{claim}: {e}");
     }
 }

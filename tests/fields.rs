@@ -23,16 +23,6 @@ fn one_claim(header: &str, claim: &str) -> String {
     )
 }
 
-fn error_of(text: &str) -> String {
-    match load_str("f.toml", text) {
-        Err(e) => e.to_string(),
-        Ok(f) => decide_all(std::slice::from_ref(&f), None)
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_else(|| panic!("accepted: {text}")),
-    }
-}
-
 #[test]
 fn slips_are_located_errors() {
     let fields = "fields = [\"u_i\"]\ntensors = [\"s_ij\"]";
@@ -60,7 +50,7 @@ fn slips_are_located_errors() {
         ("sides = [\"u_i,j\", \"u_j\"]", "f.toml", "free indices"),
     ];
     for (claim, at, message) in cases {
-        let e = error_of(&one_claim(fields, claim));
+        let e = common::error_of(&one_claim(fields, claim));
         assert!(e.contains(at) && e.contains(message), "{claim}: {e}");
     }
     let decl_cases = [
@@ -72,7 +62,7 @@ fn slips_are_located_errors() {
         ("fields = [\"u_i\", \"u_j\"]", "declared twice"),
     ];
     for (header, message) in decl_cases {
-        let e = error_of(&one_claim(header, "sides = [\"1\", \"1\"]"));
+        let e = common::error_of(&one_claim(header, "sides = [\"1\", \"1\"]"));
         assert!(e.contains(message), "{header}: {e}");
     }
 }

@@ -43,6 +43,13 @@ impl Loader {
             })
         };
         let scalar = |s: &S| self.expression(s, decls, &sigs, &[]);
+        if let (Some(text), false) = (&c.relation, name == "numeric") {
+            return Err(self
+                .diag(text.span(), "`relation` applies to strategy = \"numeric\" only")
+                .with_help(
+                    "exact and proportional claims compare their sides as equations; remove it, or use strategy = \"numeric\"",
+                ));
+        }
         if let (Some(text), false) = (&c.convention, name == "gradient") {
             return Err(self
                 .diag(

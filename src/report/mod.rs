@@ -221,6 +221,15 @@ fn holds_where(factors: &[String]) -> String {
     format!("holds where {}", conditions.join(", "))
 }
 
+/// `name=value` for the coordinates of a point that are not 0.
+fn nonzero_coordinates(point: &std::collections::BTreeMap<String, String>) -> Vec<String> {
+    point
+        .iter()
+        .filter(|(_, v)| v.as_str() != "0")
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect()
+}
+
 /// ` at i=1, j=2` for index values (empty for none).
 fn at_indices(indices: &std::collections::BTreeMap<String, usize>) -> String {
     if indices.is_empty() {
@@ -272,12 +281,7 @@ fn counterexample_text(cx: &Counterexample) -> String {
             cx.equality, cx.lhs, cx.rhs, cx.difference
         ));
         if let (Some(l), Some(r)) = (&cx.lhs_value, &cx.rhs_value) {
-            let shown: Vec<String> = cx
-                .point
-                .iter()
-                .filter(|(_, v)| v.as_str() != "0")
-                .map(|(k, v)| format!("{k}={v}"))
-                .collect();
+            let shown = nonzero_coordinates(&cx.point);
             let zeros = cx.point.len() - shown.len();
             let where_ = match (shown.len(), zeros) {
                 (0, 0) => String::new(),
@@ -294,12 +298,7 @@ fn counterexample_text(cx: &Counterexample) -> String {
     }
     if let Some(f) = &cx.factor {
         let at = at_indices(&f.indices);
-        let pts: Vec<String> = f
-            .point
-            .iter()
-            .filter(|(_, v)| v.as_str() != "0")
-            .map(|(k, v)| format!("{k}={v}"))
-            .collect();
+        let pts = nonzero_coordinates(&f.point);
         let point = if pts.is_empty() {
             "with every variable 0".to_owned()
         } else {

@@ -130,6 +130,28 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
         t
     }
 
+    /// The central difference along coordinate `k` with step `h` of `f`, a value
+    /// computed wherever the position is: `f` at the position moved by each of
+    /// [`taylor::STEPS`], the position restored after each.
+    pub(super) fn difference_along(
+        &self,
+        k: usize,
+        h: f64,
+        f: &mut dyn FnMut(&Self) -> Result<Tensor<T>, RealError>,
+    ) -> Result<Tensor<T>, RealError> {
+        let centre = self.position.borrow().clone();
+        let mut values = Vec::with_capacity(4);
+        for step in taylor::STEPS {
+            let mut x = centre.clone();
+            x[k] += step * h;
+            *self.position.borrow_mut() = x;
+            let value = f(self);
+            *self.position.borrow_mut() = centre.clone();
+            values.push(value?);
+        }
+        Ok(taylor::stencil_tensor(&values, h))
+    }
+
     /// Whether an assumption defines the field by an expression of the position.
     pub(super) fn defines(&self, field: &str) -> bool {
         self.defined_fields.contains_key(field)
@@ -503,25 +525,15 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
             ));
         }
         let d = env.decls.dim;
-        let centre = env.position.borrow().clone();
         let mut per_coordinate = Vec::with_capacity(d);
         for k in 0..d {
-            let mut values = Vec::with_capacity(4);
-            for step in [-2.0, -1.0, 1.0, 2.0] {
-                let mut x = centre.clone();
-                x[k] += step * taylor::STEP;
-                *env.position.borrow_mut() = x;
-                let value = walk::walk(&mut { env }, a, n);
-                *env.position.borrow_mut() = centre.clone();
-                values.push(value?);
-            }
-            per_coordinate.push(values);
+            per_coordinate.push(
+                env.difference_along(k, taylor::STEP, &mut |env| walk::walk(&mut { env }, a, n))?,
+            );
         }
         let rank = a.free_letters().len();
         Ok(Tensor::from_fn(d, rank + 1, |idx| {
-            let v = &per_coordinate[idx[rank]];
-            let at = |j: usize| v[j].get(&idx[..rank]).clone();
-            taylor::stencil([at(0), at(1), at(2), at(3)])
+            per_coordinate[idx[rank]].get(&idx[..rank]).clone()
         }))
     }
 

@@ -6,7 +6,7 @@
 //! values at nearby positions. The two share no differentiation code.
 
 use super::eval::Varying;
-use crate::kernel::{assignments, Rational, Var, VarTable};
+use crate::kernel::{assignments, Rational, Tensor, Var, VarTable};
 use crate::lang::Decls;
 use num_dual::DualNum;
 use std::collections::{BTreeMap, HashMap};
@@ -160,12 +160,20 @@ impl TaylorFields {
     }
 }
 
-/// The derivative by the five-point central stencil from values at −2h, −h, h, 2h.
-pub fn stencil<T: DualNum<Primitive = f64>>(values: [T; 4]) -> T {
-    stencil_with(values, STEP)
+/// The positions of the stencil, in steps: −2h, −h, h, 2h.
+pub const STEPS: [f64; 4] = [-2.0, -1.0, 1.0, 2.0];
+
+/// The five-point stencil with step `h`, component by component, from the values at
+/// the four [`STEPS`].
+pub fn stencil_tensor<T: DualNum<Primitive = f64>>(values: &[Tensor<T>], h: f64) -> Tensor<T> {
+    let t = &values[0];
+    Tensor::from_fn(t.dim(), t.rank(), |i| {
+        stencil_with([0, 1, 2, 3].map(|j| values[j].get(i).clone()), h)
+    })
 }
 
-/// The five-point stencil with step `h`.
+/// The derivative by the five-point central stencil with step `h`, from the values at
+/// the four [`STEPS`].
 pub fn stencil_with<T: DualNum<Primitive = f64>>([m2, m1, p1, p2]: [T; 4], h: f64) -> T {
     (m2 - m1 * 8.0 + p1 * 8.0 - p2) * (1.0 / (12.0 * h))
 }
@@ -206,15 +214,13 @@ mod tests {
         let u = |x: [f64; 3]| f.value("u", &[], &x).unwrap();
         assert_eq!(u([1.0, 0.0, -1.0]), 2.0);
         let h = STEP;
-        let d1 =
-            |x: [f64; 3]| stencil([-2.0, -1.0, 1.0, 2.0].map(|s| u([x[0] + s * h, x[1], x[2]])));
-        let d2 =
-            |x: [f64; 3]| stencil([-2.0, -1.0, 1.0, 2.0].map(|s| u([x[0], x[1] + s * h, x[2]])));
+        let d1 = |x: [f64; 3]| stencil_with(STEPS.map(|s| u([x[0] + s * h, x[1], x[2]])), h);
+        let d2 = |x: [f64; 3]| stencil_with(STEPS.map(|s| u([x[0], x[1] + s * h, x[2]])), h);
         let c = [1.0, 0.0, -1.0];
         assert!((d1(c) - 3.0).abs() < 1e-9);
         assert!(d2(c).abs() < 1e-9);
-        let d11 = stencil([-2.0, -1.0, 1.0, 2.0].map(|s| d1([1.0 + s * h, 0.0, -1.0])));
-        let d12 = stencil([-2.0, -1.0, 1.0, 2.0].map(|s| d1([1.0, s * h, -1.0])));
+        let d11 = stencil_with(STEPS.map(|s| d1([1.0 + s * h, 0.0, -1.0])), h);
+        let d12 = stencil_with(STEPS.map(|s| d1([1.0, s * h, -1.0])), h);
         assert!((d11 - 4.0).abs() < 1e-6, "{d11}");
         assert!((d12 - 5.0).abs() < 1e-6, "{d12}");
         assert!(f.value("v", &[], &c).is_none());

@@ -47,21 +47,19 @@ impl Perturbation {
     }
 }
 
-/// The highest order of derivative of `field` that `node` can contain (through
-/// definitions), `None` when it does not read the field: the multi-indices α the
-/// route must visit. An upper bound is enough, since a term with ∂P/∂v_j,α = 0
-/// contributes only rounding.
-pub fn field_order(
+/// The deepest nesting of derivatives above a leaf that `counts` accepts, through
+/// definitions (`None`: no such leaf). With the varied field's leaves, it bounds the
+/// order of its derivatives that the density reads: the multi-indices α the route
+/// visits (a bound is enough, since a term with ∂P/∂v_j,α = 0 contributes only
+/// rounding). With every leaf, it is the depth of the central differences inside the
+/// density: each level amplifies the rounding of the next and multiplies the cost.
+fn deepest(
     node: &Node,
     defs: &[Definition],
-    field: &str,
+    counts: &dyn Fn(&Node) -> bool,
     memo: &mut HashMap<String, Option<usize>>,
 ) -> Option<usize> {
     match &node.kind {
-        NodeKind::Leaf {
-            target: Target::Symbol(s),
-            ..
-        } => (s == field).then_some(0),
         NodeKind::Leaf {
             target: Target::Def(name),
             ..
@@ -74,47 +72,21 @@ pub fn field_order(
                 .iter()
                 .rev()
                 .find(|d| &d.sig.name == name)
-                .and_then(|d| field_order(&d.body, defs, field, memo));
+                .and_then(|d| deepest(&d.body, defs, counts, memo));
             memo.insert(name.clone(), o);
             o
         }
-        NodeKind::Deriv(a, _) => field_order(a, defs, field, memo).map(|o| o + 1),
-        _ => node
-            .children()
-            .into_iter()
-            .filter_map(|c| field_order(c, defs, field, memo))
-            .max(),
-    }
-}
-
-/// The deepest nesting of derivatives in `node` (through definitions): each level is a
-/// central difference whose rounding the next level amplifies, and whose cost
-/// multiplies.
-fn nesting(node: &Node, defs: &[Definition], memo: &mut HashMap<String, usize>) -> usize {
-    match &node.kind {
-        NodeKind::Leaf {
-            target: Target::Def(name),
-            ..
-        } => {
-            if let Some(&k) = memo.get(name) {
-                return k;
+        NodeKind::Deriv(a, _) => deepest(a, defs, counts, memo).map(|o| o + 1),
+        _ => {
+            let children = node.children();
+            if children.is_empty() {
+                return counts(node).then_some(0);
             }
-            memo.insert(name.clone(), 0);
-            let k = defs
-                .iter()
-                .rev()
-                .find(|d| &d.sig.name == name)
-                .map_or(0, |d| nesting(&d.body, defs, memo));
-            memo.insert(name.clone(), k);
-            k
+            children
+                .into_iter()
+                .filter_map(|c| deepest(c, defs, counts, memo))
+                .max()
         }
-        NodeKind::Deriv(a, _) => nesting(a, defs, memo) + 1,
-        _ => node
-            .children()
-            .into_iter()
-            .map(|c| nesting(c, defs, memo))
-            .max()
-            .unwrap_or(0),
     }
 }
 
@@ -171,8 +143,10 @@ pub fn variations<T: DualNum<Primitive = f64>>(
     let d = env.decls.dim;
     let deps = &env.decls.fields[field];
     let coords: Vec<usize> = (0..d).filter(|&k| deps[k]).collect();
-    let order = field_order(body, env.defs, field, &mut HashMap::new()).unwrap_or(0);
-    let depth = nesting(body, env.defs, &mut HashMap::new()) + order;
+    let is_field = |x: &Node| matches!(&x.kind, NodeKind::Leaf { target: Target::Symbol(s), .. } if s == field);
+    let order = deepest(body, env.defs, &is_field, &mut HashMap::new()).unwrap_or(0);
+    let inside = deepest(body, env.defs, &|_| true, &mut HashMap::new()).unwrap_or(0);
+    let depth = inside + order;
     if depth > MAX_NESTING {
         return Err(fail(&format!(
             "the variation needs {depth} nested central differences, more than the {MAX_NESTING} this route resolves"
@@ -192,7 +166,7 @@ pub fn variations<T: DualNum<Primitive = f64>>(
             let rate = |env: &RealEnv<'_, T>| -> Result<Tensor<T>, RealError> {
                 let centre = env.position.borrow().clone();
                 let mut values = Vec::with_capacity(4);
-                for step in [-2.0, -1.0, 1.0, 2.0] {
+                for step in taylor::STEPS {
                     env.perturb(Some(Perturbation {
                         field: field.to_owned(),
                         idx: idx.clone(),
@@ -204,7 +178,7 @@ pub fn variations<T: DualNum<Primitive = f64>>(
                     env.perturb(None);
                     values.push(v?);
                 }
-                Ok(stencils(&values))
+                Ok(taylor::stencil_tensor(&values, VARIATION_STEP))
             };
             let term = along(env, alpha, &rate)?;
             let sign = if alpha.len() % 2 == 1 { -1.0 } else { 1.0 };
@@ -215,13 +189,14 @@ pub fn variations<T: DualNum<Primitive = f64>>(
         per_component.push(acc);
     }
     // Body slots first, the field's last (fastest).
-    let comps: Vec<Vec<usize>> = assignments(d, rank).collect();
-    Ok(Tensor::from_fn(d, body_rank + rank, |i| {
-        let c = comps
-            .iter()
-            .position(|x| x[..] == i[body_rank..])
-            .expect("every field component");
-        per_component[c].get(&i[..body_rank]).clone()
+    let mut values = Vec::with_capacity(per_component.len() * per_component[0].components().len());
+    for b in 0..per_component[0].components().len() {
+        values.extend(per_component.iter().map(|t| t.components()[b].clone()));
+    }
+    let mut it = values.into_iter();
+    Ok(Tensor::from_fn(d, body_rank + rank, |_| {
+        it.next()
+            .expect("one value per component of the density and of the field")
     }))
 }
 
@@ -238,28 +213,7 @@ fn along<T: DualNum<Primitive = f64>>(
     let Some((&k, rest)) = alpha.split_first() else {
         return f(env);
     };
-    let centre = env.position.borrow().clone();
-    let mut values = Vec::with_capacity(4);
-    for step in [-2.0, -1.0, 1.0, 2.0] {
-        let mut x = centre.clone();
-        x[k] += step * VARIATION_STEP;
-        *env.position.borrow_mut() = x;
-        let v = along(env, rest, f);
-        *env.position.borrow_mut() = centre.clone();
-        values.push(v?);
-    }
-    Ok(stencils(&values))
-}
-
-/// The five-point stencil applied component by component.
-fn stencils<T: DualNum<Primitive = f64>>(values: &[Tensor<T>]) -> Tensor<T> {
-    let t = &values[0];
-    Tensor::from_fn(t.dim(), t.rank(), |i| {
-        taylor::stencil_with(
-            [0, 1, 2, 3].map(|j| values[j].get(i).clone()),
-            VARIATION_STEP,
-        )
-    })
+    env.difference_along(k, VARIATION_STEP, &mut |env| along(env, rest, f))
 }
 
 #[cfg(test)]

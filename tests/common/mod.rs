@@ -42,3 +42,15 @@ pub fn assert_failures_confirmed(
         assert_eq!(cx.reverified, Some(how), "{}", r.claim.id);
     }
 }
+
+/// The located error a file gets: from loading, or else from deciding it.
+#[allow(dead_code)]
+pub fn error_of(text: &str) -> String {
+    match cosserat_check::derivation::load_str("f.toml", text) {
+        Err(e) => e.to_string(),
+        Ok(f) => decide_all(std::slice::from_ref(&f), None)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_else(|| panic!("accepted: {text}")),
+    }
+}
