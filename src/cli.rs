@@ -350,6 +350,15 @@ fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: O
                 Strategy::Numeric { sampling, .. }
                 | Strategy::Gradient { sampling, .. }
                 | Strategy::Convex { sampling, .. } => sampling,
+                Strategy::Scalar {
+                    samples: n,
+                    seed: s,
+                    ..
+                } => {
+                    *s = seed.unwrap_or(*s);
+                    *n = samples.map_or(*n, |k| k as usize);
+                    continue;
+                }
                 Strategy::Exact
                 | Strategy::Proportional
                 | Strategy::NotCircle { .. }

@@ -2,8 +2,8 @@
 //! becomes a [`Diagnostic`] naming the file, line and column; nothing panics.
 
 use super::model::{
-    Assumption, AssumptionKind, Check, Claim, Correction, Definition, DerivationFile, Side,
-    Strategy, Verdict,
+    Assumption, AssumptionKind, Check, Claim, Correction, Definition, DerivationFile, ScalarClaim,
+    Side, Strategy, Verdict,
 };
 use super::raw::{RawClaim, RawFile, S};
 use super::spans::{content_map, sub_origin};
@@ -785,17 +785,52 @@ impl Loader {
         })
     }
 
-    /// A proportionality compares exactly two sides: one factor for one pair.
-    fn one_pair_if_proportional(&self, c: &RawClaim, check: &Check) -> Result<(), Diagnostic> {
+    /// A proportionality or a sign claim compares exactly two sides: one factor, or one
+    /// difference, for one pair.
+    fn one_pair_if_needed(&self, c: &RawClaim, check: &Check) -> Result<(), Diagnostic> {
         let pair = check.chains.len() == 1 && check.chains[0].len() == 2;
-        match (&check.strategy, &c.strategy) {
-            (Strategy::Proportional, Some(at)) if !pair => Err(self
-                .diag(
-                    at.span(),
-                    "strategy = \"proportional\" compares exactly two sides",
-                )
-                .with_help("write sides = [\"left\", \"right\"]: left = λ · right for one nonzero constant λ")),
-            _ => Ok(()),
+        let help = match (&check.strategy, &c.strategy) {
+            (Strategy::Proportional, Some(at)) if !pair => (at, "strategy = \"proportional\"", "left = λ · right for one nonzero constant λ"),
+            (
+                Strategy::Scalar {
+                    claim: ScalarClaim::Sign(_),
+                    ..
+                },
+                Some(at),
+            ) if !pair => (at, "strategy = \"sign\"", "left − right has the sign of `relation`"),
+            _ => return Ok(()),
+        };
+        Err(self
+            .diag(help.0.span(), format!("{} compares exactly two sides", help.1))
+            .with_help(format!("write sides = [\"left\", \"right\"]: {}", help.2)))
+    }
+
+    /// A correction's own `function`, for the claim kinds that have one.
+    fn corrected_function(
+        &self,
+        r: &super::raw::RawCorrection,
+        check: &mut Check,
+        decls: &Decls,
+    ) -> Result<(), Diagnostic> {
+        let Some(text) = &r.function else {
+            return Ok(());
+        };
+        let sigs: Vec<_> = check.defs.iter().map(|d| d.sig.clone()).collect();
+        let corrected = self.expression(text, decls, &sigs, &[])?;
+        match &mut check.strategy {
+            Strategy::Scalar {
+                claim:
+                    ScalarClaim::Monotone { function, .. }
+                    | ScalarClaim::Limit { function, .. }
+                    | ScalarClaim::Roots { function, .. },
+                ..
+            } => {
+                *function = corrected;
+                Ok(())
+            }
+            _ => Err(self
+                .diag(text.span(), "`function` in a correction applies to monotone, limit and roots claims")
+                .with_help("a correction of other claims gives its own `sides`")),
         }
     }
 
@@ -831,7 +866,12 @@ impl Loader {
         let needs_sides = c
             .strategy
             .as_ref()
-            .is_none_or(|s| matches!(s.get_ref().as_str(), "exact" | "proportional" | "numeric"));
+            .is_none_or(|s| {
+                matches!(
+                    s.get_ref().as_str(),
+                    "exact" | "proportional" | "numeric" | "sign"
+                )
+            });
         if let Some(at) = &c.step {
             if c.strategy
                 .as_ref()
@@ -854,7 +894,7 @@ impl Loader {
             needs_sides,
         )?;
         check.strategy = self.strategy(c, decls, &check.defs)?;
-        self.one_pair_if_proportional(c, &check)?;
+        self.one_pair_if_needed(c, &check)?;
         // File-wide assumptions come first, then the claim's own.
         let mut assumptions = raw
             .assume
@@ -880,7 +920,8 @@ impl Loader {
                     needs_sides,
                 )?;
                 inner.strategy = check.strategy.clone();
-                self.one_pair_if_proportional(c, &inner)?;
+                self.corrected_function(r, &mut inner, decls)?;
+                self.one_pair_if_needed(c, &inner)?;
                 let mut assumptions = check.assumptions.clone();
                 assumptions.append(&mut inner.assumptions);
                 inner.assumptions = assumptions;

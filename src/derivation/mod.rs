@@ -8,12 +8,14 @@ pub mod load;
 pub mod model;
 mod raw;
 mod reads;
+mod scalar;
 mod spans;
 mod spec;
 
 pub use load::{load_dir, load_files, load_str, LoadError};
 pub use model::{
     AppendixStep, Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Definition,
-    DerivationFile, Expression, GradientConvention, Relation, Sampling, Side, Strategy, Verdict,
+    DerivationFile, Expression, GradientConvention, LimitValue, ParamBox, Relation, Sampling,
+    ScalarClaim, Side, Strategy, Verdict,
 };
 pub use reads::Reads;

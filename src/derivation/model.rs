@@ -1,6 +1,8 @@
 //! The checked, in-memory form of derivation files: claims whose expressions have
 //! already passed name resolution and index validation.
 
+use crate::kernel::limit::Approach;
+use crate::kernel::sign::{Interval, Sign};
 use crate::lang::{Decls, DefSig, LangError, Node, Origin};
 use serde::Serialize;
 use std::fmt;
@@ -301,6 +303,24 @@ impl Strategy {
                 out.push(x);
                 out.push(y);
             }
+            Strategy::Scalar { claim, .. } => match claim {
+                ScalarClaim::Sign(_) => {}
+                ScalarClaim::Monotone { function, .. } => out.push(function),
+                ScalarClaim::Limit {
+                    function, value, ..
+                } => {
+                    out.push(function);
+                    if let LimitValue::Finite(v) = value {
+                        out.push(v);
+                    }
+                }
+                ScalarClaim::Roots {
+                    function, roots, ..
+                } => {
+                    out.push(function);
+                    out.extend(roots);
+                }
+            },
             Strategy::Appendix { .. } => {}
         }
         out
@@ -342,10 +362,106 @@ pub enum Strategy {
     /// The locus of (x, y) over the orientations of the normal is not a circle: an
     /// exact witness state with four points on no common circle or line.
     NotCircle { x: Expression, y: Expression },
+    /// A claim about a scalar rational function of the parameters (its sign, its
+    /// monotonicity in one of them, a limit, its real roots) on a box of parameter
+    /// values, decided by `strategy::scalar`: exactly (Sturm sequences, coefficient
+    /// signs, lowest orders) where the kernel can, by exact evaluation at seeded
+    /// sample points otherwise.
+    Scalar {
+        claim: ScalarClaim,
+        domain: ParamBox,
+        /// Sample count and seed of the sampled route (several parameters, no
+        /// certificate).
+        samples: usize,
+        seed: u64,
+    },
     /// A step of Appendix A, derived with exact rational functions by `crate::model`
     /// and decided by `strategy::appendix` (the sides, when given, are the printed
     /// statement the step compares with).
     Appendix { step: AppendixStep, origin: Origin },
+}
+
+/// What a scalar claim states (see [`Strategy::Scalar`]).
+#[derive(Clone, Debug)]
+pub enum ScalarClaim {
+    /// `left − right` has this sign (`strategy = "sign"`; the claim's one pair of sides
+    /// and its `relation`).
+    Sign(Sign),
+    /// `function` increases (or decreases) in `variable`: its derivative is ≥ 0 (≤ 0)
+    /// wherever defined, and it has no pole in the domain (`strategy = "monotone"`).
+    Monotone {
+        function: Expression,
+        variable: String,
+        increasing: bool,
+    },
+    /// `function` tends to `value` as `variable` tends to `to` (`strategy = "limit"`).
+    Limit {
+        function: Expression,
+        variable: String,
+        to: Approach,
+        value: LimitValue,
+    },
+    /// The real roots of `function` in `variable` on the domain are exactly `roots`
+    /// (`strategy = "roots"`).
+    Roots {
+        function: Expression,
+        variable: String,
+        roots: Vec<Expression>,
+    },
+}
+
+impl ScalarClaim {
+    /// The function and the variable the claim is about (none for a sign claim, whose
+    /// function is the difference of its sides).
+    pub fn function(&self) -> Option<(&Expression, &str)> {
+        match self {
+            ScalarClaim::Sign(_) => None,
+            ScalarClaim::Monotone {
+                function, variable, ..
+            }
+            | ScalarClaim::Limit {
+                function, variable, ..
+            }
+            | ScalarClaim::Roots {
+                function, variable, ..
+            } => Some((function, variable)),
+        }
+    }
+}
+
+/// The value a limit claim states.
+#[derive(Clone, Debug)]
+pub enum LimitValue {
+    Finite(Expression),
+    /// `+infinity` or `-infinity`.
+    Signed(bool),
+    /// `infinity`: |f| → ∞, whatever the sign.
+    Unsigned,
+}
+
+/// A box of parameter values: an interval per bounded parameter (`given = ["f_r > 0",
+/// "0 < nu < 1/2"]`); parameters not listed range over the real line.
+#[derive(Clone, Debug, Default)]
+pub struct ParamBox {
+    pub bounds: Vec<(String, Interval)>,
+}
+
+impl ParamBox {
+    pub fn interval(&self, symbol: &str) -> Interval {
+        self.bounds
+            .iter()
+            .find(|(s, _)| s == symbol)
+            .map_or_else(Interval::real_line, |(_, i)| i.clone())
+    }
+
+    /// `0 < f_r, 0 < nu < 1/2`, or "every real value".
+    pub fn describe(&self) -> String {
+        if self.bounds.is_empty() {
+            return "every real value of the parameters".to_owned();
+        }
+        let parts: Vec<String> = self.bounds.iter().map(|(s, i)| i.describe(s)).collect();
+        parts.join(", ")
+    }
 }
 
 /// The steps of Appendix A and Section 6 that `strategy = "appendix"` can decide.

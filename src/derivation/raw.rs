@@ -56,9 +56,11 @@ pub struct RawClaim {
     pub sides: Option<Vec<S>>,
     pub chains: Option<Vec<Vec<S>>>,
     pub correction: Option<RawCorrection>,
-    /// exact (default) | numeric | gradient | convex | not-circle | appendix
+    /// exact (default) | proportional | numeric | gradient | convex | not-circle |
+    /// sign | monotone | limit | roots | appendix
     pub strategy: Option<S>,
-    /// == (default) | <= | >=, between consecutive sides (numeric only).
+    /// == (default) | <= | >=, between consecutive sides (numeric); > | >= | < | <=
+    /// between the two sides (sign).
     pub relation: Option<S>,
     pub samples: Option<Spanned<i64>>,
     pub seed: Option<Spanned<i64>>,
@@ -82,6 +84,17 @@ pub struct RawClaim {
     pub y: Option<S>,
     /// The Appendix step (strategy = "appendix").
     pub step: Option<S>,
+    /// The parameter a monotone, limit or roots claim is about.
+    #[serde(rename = "in")]
+    pub variable: Option<S>,
+    /// increasing | decreasing (strategy = "monotone").
+    pub direction: Option<S>,
+    /// Where the parameter goes: "0", "0+", "1-", "infinity", "-infinity" (strategy = "limit").
+    pub tends_to: Option<S>,
+    /// The limit: an expression, or "infinity", "+infinity", "-infinity".
+    pub limit: Option<S>,
+    /// Every real root in the domain, exactly (strategy = "roots").
+    pub roots: Option<Vec<S>>,
 }
 
 #[derive(Deserialize)]
@@ -98,4 +111,6 @@ pub struct RawCorrection {
     pub assume: Vec<S>,
     pub sides: Option<Vec<S>>,
     pub chains: Option<Vec<Vec<S>>>,
+    /// The corrected function of a monotone, limit or roots claim.
+    pub function: Option<S>,
 }

@@ -17,7 +17,8 @@ use std::collections::BTreeMap;
 pub const DEFAULT_SAMPLES: usize = 200;
 pub const MIN_SAMPLES: usize = 50;
 
-const STRATEGIES: &str = "exact, proportional, numeric, gradient, convex, not-circle or appendix";
+const STRATEGIES: &str =
+    "exact, proportional, numeric, gradient, convex, not-circle, sign, monotone, limit, roots or appendix";
 
 impl Loader {
     /// The strategy of a claim; `defs` are the claim's visible definitions.
@@ -43,9 +44,12 @@ impl Loader {
             })
         };
         let scalar = |s: &S| self.expression(s, decls, &sigs, &[]);
-        if let (Some(text), false) = (&c.relation, name == "numeric") {
+        if let (Some(text), false) = (&c.relation, matches!(name, "numeric" | "sign")) {
             return Err(self
-                .diag(text.span(), "`relation` applies to strategy = \"numeric\" only")
+                .diag(
+                    text.span(),
+                    "`relation` applies to strategy = \"numeric\" or \"sign\" only",
+                )
                 .with_help(
                     "exact and proportional claims compare their sides as equations; remove it, or use strategy = \"numeric\"",
                 ));
@@ -160,6 +164,9 @@ impl Loader {
                     origin: self.origin(&step),
                 }
             }
+            "sign" | "monotone" | "limit" | "roots" => {
+                self.scalar_strategy(name, c, decls, defs)?
+            }
             "not-circle" => Strategy::NotCircle {
                 x: scalar(&need(&c.x, "x")?)?,
                 y: scalar(&need(&c.y, "y")?)?,
@@ -173,7 +180,7 @@ impl Loader {
     }
 
     /// A checked expression whose free indices must be exactly `free` (letters).
-    fn expression(
+    pub(super) fn expression(
         &self,
         s: &S,
         decls: &Decls,

@@ -16,6 +16,8 @@
 use super::linear::determinant;
 use super::poly::{Poly, PolyError, Var, VarTable};
 use super::quotient::{cleared_difference, over, Quotient};
+use super::limit::{self, Approach, Expansion, Limit};
+use super::sign::{self, Interval, Sign, Violation};
 use super::sturm::{count_roots, Bound, UniPoly};
 use super::{RatFunc, Rational};
 use serde::Serialize;
@@ -49,6 +51,32 @@ pub enum Fact {
     NotConcyclic { determinant: String },
     /// A rational matrix times a nonzero rational vector is exactly zero.
     NullVector { vector: Vec<String> },
+    /// A rational function of one variable has the stated sign on an interval wherever
+    /// it is defined: the real roots of numerator · denominator isolated (Sturm), the
+    /// sign exact at a rational point of each piece between them and at closed ends.
+    SignOnInterval {
+        interval: String,
+        relation: String,
+        pieces: usize,
+        /// Poles inside the interval, where the function is undefined.
+        poles: usize,
+    },
+    /// A rational function of several variables has the stated sign on a box: after
+    /// moving every variable onto t ≥ 0, numerator and denominator have coefficients
+    /// of one sign (one case per sign of each unbounded variable).
+    CoefficientSigns { substitution: String, cases: usize },
+    /// The real roots of a rational function of one variable on an interval are
+    /// exactly the listed rationals (Sturm isolation of every root).
+    Roots { interval: String, roots: Vec<String> },
+    /// The limit of a rational function, from the lowest orders of numerator and
+    /// denominator, wherever the listed polynomials are nonzero.
+    Limit {
+        variable: String,
+        to: String,
+        value: String,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        nonzero: Vec<String>,
+    },
 }
 
 /// Facts verified by the kernel; a conjunction when there are several.
@@ -145,6 +173,140 @@ impl Certificate {
                 determinant: det.to_string(),
             })
         })
+    }
+
+    /// `num / den` (polynomials in `v` alone, not necessarily coprime: a common factor
+    /// is a point where the expression is undefined) satisfies `want` on `interval`
+    /// wherever it is defined. `Err` carries where it does not (`None`: `f` is not a function
+    /// of `v` alone, or the interval is empty).
+    pub fn sign_on_interval(
+        (num, den): (&Poly, &Poly),
+        v: Var,
+        interval: &Interval,
+        want: Sign,
+        names: &VarTable,
+    ) -> Result<Self, Option<Violation>> {
+        let chart = sign::chart_of((num, den), v, interval).ok_or(None)?;
+        match chart.violation(want) {
+            Some(v) => Err(Some(v)),
+            None => Ok(Self::of(Fact::SignOnInterval {
+                interval: interval.describe(names.name(v)),
+                relation: want.relation().to_owned(),
+                pieces: chart.pieces.len(),
+                poles: chart.poles(),
+            })),
+        }
+    }
+
+    /// The zeros of `num / den` (polynomials in `v` alone; common roots are undefined
+    /// points, not zeros) on `interval` are exactly `roots`. `Err` carries the zeros
+    /// found (empty when `num / den` is not a function of `v` alone).
+    pub fn roots_exactly(
+        (num, den): (&Poly, &Poly),
+        v: Var,
+        interval: &Interval,
+        roots: &[Rational],
+        names: &VarTable,
+    ) -> Result<Self, Vec<sign::Real>> {
+        let chart = sign::chart_of((num, den), v, interval).ok_or_else(Vec::new)?;
+        let zeros = chart.zeros();
+        let mut stated: Vec<&Rational> = roots.iter().collect();
+        stated.sort();
+        stated.dedup();
+        let exact = zeros.len() == stated.len()
+            && zeros
+                .iter()
+                .zip(&stated)
+                .all(|(z, r)| *z == sign::Real::Exact((*r).clone()));
+        if !exact {
+            return Err(zeros);
+        }
+        Ok(Self::of(Fact::Roots {
+            interval: interval.describe(names.name(v)),
+            roots: stated.iter().map(ToString::to_string).collect(),
+        }))
+    }
+
+    /// `f` satisfies `want` on the box `domain` (an interval per variable; variables
+    /// of `f` not listed range over the real line), certified when every variable can
+    /// be moved onto t ≥ 0 so that numerator and denominator have coefficients of one
+    /// sign. `None`: no such certificate (which says nothing about the claim).
+    pub fn sign_by_coefficients(
+        f: &RatFunc,
+        domain: &[(Var, Interval)],
+        want: Sign,
+        names: &VarTable,
+    ) -> Option<Self> {
+        let (cases, substitution) = sign::orthant_cases(f, domain, names)?;
+        let count = cases.len();
+        for (g, closed) in cases {
+            let n = sign::coefficient_sign(g.numerator(), &closed)?;
+            let d = sign::coefficient_sign(g.denominator(), &closed)?;
+            // The denominator's zeros are poles; only its sign matters.
+            let value = n.sign * d.sign;
+            let admitted = if want.admits(0) {
+                want.admits(value)
+            } else {
+                want.admits(value) && n.nonzero_on_closed
+            };
+            if !admitted {
+                return None;
+            }
+        }
+        Some(Self::of(Fact::CoefficientSigns {
+            substitution,
+            cases: count,
+        }))
+    }
+
+    /// `lim f = claimed` as `v` tends to `to`, wherever the expansion's conditions
+    /// hold. `Err` carries the expansion when the limit differs (or is infinite).
+    pub fn limit(
+        f: &RatFunc,
+        v: Var,
+        to: &Approach,
+        claimed: &RatFunc,
+        names: &VarTable,
+    ) -> Result<Self, Option<Expansion>> {
+        let e = limit::expand(f, v, to).ok_or(None)?;
+        match &e.limit {
+            Limit::Finite(value) if value == claimed => Ok(Self::of(Fact::Limit {
+                variable: names.name(v).to_owned(),
+                to: to.to_string(),
+                value: value.display(names),
+                nonzero: e.nonzero.iter().map(|p| p.display(names)).collect(),
+            })),
+            _ => Err(Some(e)),
+        }
+    }
+
+    /// `|f| → ∞` as `v` tends to `to`, with the sign of the returned rational function
+    /// (the caller decides that sign), wherever the expansion's conditions hold.
+    pub fn diverges(
+        f: &RatFunc,
+        v: Var,
+        to: &Approach,
+        names: &VarTable,
+    ) -> Result<(Self, Option<RatFunc>), Option<Expansion>> {
+        let e = limit::expand(f, v, to).ok_or(None)?;
+        let sign_of = match &e.limit {
+            Limit::Infinite { sign_of } => Some(sign_of.clone()),
+            Limit::InfiniteBothSigns => None,
+            Limit::Finite(_) => return Err(Some(e)),
+        };
+        let value = match &sign_of {
+            Some(s) => format!("∞ with the sign of {}", s.display(names)),
+            None => "∞ in absolute value, with opposite signs on the two sides".to_owned(),
+        };
+        Ok((
+            Self::of(Fact::Limit {
+                variable: names.name(v).to_owned(),
+                to: to.to_string(),
+                value,
+                nonzero: e.nonzero.iter().map(|p| p.display(names)).collect(),
+            }),
+            sign_of,
+        ))
     }
 
     /// `matrix · vector = 0` exactly, with `vector ≠ 0`.

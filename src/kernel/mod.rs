@@ -8,6 +8,7 @@
 pub mod certificate;
 pub mod einsum;
 pub mod gcd;
+pub mod limit;
 pub mod linear;
 pub mod moments;
 pub mod poly;
@@ -15,6 +16,7 @@ pub mod quotient;
 pub mod ratfunc;
 pub mod rational;
 pub mod residue;
+pub mod sign;
 pub mod sturm;
 pub mod tensor;
 

@@ -198,6 +198,46 @@ impl Rational {
         (&root * &root == r).then(|| from_big_reduced(root))
     }
 
+    /// The largest integer not above `self`.
+    pub fn floor(&self) -> Self {
+        use num_integer::Integer;
+        Rational::from_big(self.numer().div_floor(&self.denom()), BigInt::from(1))
+            .expect("1 is nonzero")
+    }
+
+    /// The simplest rational strictly between `a` and `b` (`a < b`): the one with the
+    /// smallest denominator, and among those the smallest absolute numerator (the
+    /// Stern–Brocot descent by continued fractions). Sample points chosen this way
+    /// read as `1` or `3/2` rather than as bisection midpoints.
+    pub fn simplest_between(a: &Rational, b: &Rational) -> Rational {
+        debug_assert!(a < b);
+        let zero = Rational::int(0);
+        if a.is_negative() && !b.is_negative() && !b.is_zero() {
+            return zero;
+        }
+        if !b.is_negative() && !b.is_zero() {
+            // 0 ≤ a < b.
+            let one = Rational::int(1);
+            let fl = a.floor();
+            let next = &fl + &one;
+            if next < *b {
+                return next;
+            }
+            // fl ≤ a < b ≤ fl + 1: descend into the fractional parts.
+            let (fa, fb) = (a - &fl, b - &fl);
+            let inner = if fa.is_zero() {
+                &fb.recip().expect("b > fl").floor() + &one
+            } else {
+                Rational::simplest_between(
+                    &fb.recip().expect("b > fl"),
+                    &fa.recip().expect("fa ≠ 0"),
+                )
+            };
+            return &fl + &inner.recip().expect("inner ≥ 1");
+        }
+        -Rational::simplest_between(&-b, &-a)
+    }
+
     /// The numerator (the sign is carried here; the denominator is positive).
     pub fn numer(&self) -> BigInt {
         match &self.0 {
@@ -380,6 +420,36 @@ mod tests {
 
     fn q(n: i64, d: i64) -> Rational {
         Rational::ratio(n, d).unwrap()
+    }
+
+    #[test]
+    fn floor_rounds_towards_minus_infinity() {
+        assert_eq!(q(7, 2).floor(), Rational::int(3));
+        assert_eq!(q(-7, 2).floor(), Rational::int(-4));
+        assert_eq!(Rational::int(-3).floor(), Rational::int(-3));
+    }
+
+    #[test]
+    fn simplest_rational_between_two() {
+        let s = |a: Rational, b: Rational| Rational::simplest_between(&a, &b);
+        assert_eq!(s(q(-1, 3), q(1, 2)), Rational::int(0));
+        assert_eq!(s(q(1, 3), q(1, 2)), q(2, 5));
+        assert_eq!(s(Rational::int(0), Rational::int(1)), q(1, 2));
+        assert_eq!(s(Rational::int(2), q(7, 3)), q(9, 4));
+        assert_eq!(s(q(-1, 2), q(-1, 3)), q(-2, 5));
+        assert_eq!(s(q(-1, 2), Rational::int(0)), q(-1, 3));
+        assert_eq!(s(q(3, 2), q(7, 2)), Rational::int(2));
+        // Brute force: no rational with a smaller denominator lies strictly between.
+        for (a, b) in [(q(31, 100), q(32, 100)), (q(-7, 11), q(-5, 8)), (q(1, 1000), q(1, 999))] {
+            let x = s(a.clone(), b.clone());
+            assert!(a < x && x < b);
+            let d = x.denom().to_i64().unwrap();
+            for den in 1..d {
+                let lo = (&a * &Rational::int(den)).floor();
+                let cand = (&lo + &Rational::int(1)).checked_div(&Rational::int(den)).unwrap();
+                assert!(!(a < cand && cand < b), "{cand} is simpler than {x}");
+            }
+        }
     }
 
     #[test]

@@ -202,46 +202,100 @@ pub fn count_roots(p: &UniPoly, a: &Bound, b: &Bound) -> usize {
     sign_changes(&seq, a).saturating_sub(sign_changes(&seq, b))
 }
 
-/// The distinct real roots of `p` in (a, b), each isolated in an interval [lo, hi] of
-/// rationals no wider than `width` (bisection with Sturm counts). Finite `a`, `b`
-/// that are not roots.
+/// The distinct real roots of `p` in (a, b), in increasing order, each either exact,
+/// `(r, r)`, or isolated in `(lo, hi)` with `lo < hi`, `hi − lo ≤ width`, exactly one
+/// root inside and neither end a root of `p` (bisection with Sturm counts). `a < b`
+/// must not be roots.
+///
+/// A midpoint that is a root is kept exactly and divided out of the polynomial that
+/// the halves go on with, so that no root next to it is lost.
 pub fn isolate_roots(
     p: &UniPoly,
     a: &Rational,
     b: &Rational,
     width: &Rational,
 ) -> Vec<(Rational, Rational)> {
-    let seq = sturm_sequence(p);
-    let count = |lo: &Rational, hi: &Rational| {
-        sign_changes(&seq, &Bound::At(lo.clone()))
-            .saturating_sub(sign_changes(&seq, &Bound::At(hi.clone())))
-    };
+    if p.is_zero() {
+        return Vec::new();
+    }
     let half = Rational::ratio(1, 2).expect("2 ≠ 0");
+    // Polynomials by index, each with its Sturm sequence: `p`, and `p` with exact
+    // roots divided out.
+    let mut polys = vec![(p.clone(), sturm_sequence(p))];
+    let count = |seq: &[UniPoly], lo: &Rational, hi: &Rational| {
+        sign_changes(seq, &Bound::At(lo.clone()))
+            .saturating_sub(sign_changes(seq, &Bound::At(hi.clone())))
+    };
     let mut out = Vec::new();
-    let mut stack = vec![(a.clone(), b.clone())];
-    while let Some((lo, hi)) = stack.pop() {
-        let n = count(&lo, &hi);
+    let mut stack = vec![(0, a.clone(), b.clone())];
+    while let Some((k, lo, hi)) = stack.pop() {
+        let n = count(&polys[k].1, &lo, &hi);
         if n == 0 {
             continue;
         }
-        if n == 1 && &hi - &lo <= *width {
+        // One root, narrow enough, and no end that is an exact root found earlier.
+        let clean = |x: &Rational| !p.eval(x).is_zero();
+        if n == 1 && &hi - &lo <= *width && clean(&lo) && clean(&hi) {
             out.push((lo, hi));
             continue;
         }
         let mid = &(&lo + &hi) * &half;
-        if p.eval(&mid).is_zero() {
+        if polys[k].0.eval(&mid).is_zero() {
             out.push((mid.clone(), mid.clone()));
-            // Nudge the halves off the exact root so no bound is a root.
-            let eps = &(&hi - &lo) * &Rational::ratio(1, 1 << 20).expect("nonzero");
-            stack.push((&mid + &eps, hi));
-            stack.push((lo, &mid - &eps));
+            let q = polys[k].0.without_root_at(&mid);
+            let seq = sturm_sequence(&q);
+            polys.push((q, seq));
+            let j = polys.len() - 1;
+            stack.push((j, mid.clone(), hi));
+            stack.push((j, lo, mid));
         } else {
-            stack.push((mid.clone(), hi));
-            stack.push((lo, mid));
+            stack.push((k, mid.clone(), hi));
+            stack.push((k, lo, mid));
         }
     }
     out.sort();
     out
+}
+
+impl UniPoly {
+    /// The coefficients from the constant term up.
+    pub fn coefficients(&self) -> &[Rational] {
+        &self.0
+    }
+
+    /// The product of two polynomials.
+    pub fn mul(&self, other: &UniPoly) -> UniPoly {
+        if self.is_zero() || other.is_zero() {
+            return UniPoly(Vec::new());
+        }
+        let mut c = vec![Rational::zero(); self.0.len() + other.0.len() - 1];
+        for (i, a) in self.0.iter().enumerate() {
+            for (j, b) in other.0.iter().enumerate() {
+                c[i + j] += &(a * b);
+            }
+        }
+        UniPoly::new(c)
+    }
+
+    /// A rational `B` with every real root strictly inside (−B, B) (Cauchy's bound,
+    /// 1 + max |c_i / c_n|); `p` nonzero.
+    pub fn root_bound(&self) -> Rational {
+        let n = self.0.len() - 1;
+        let lead = &self.0[n];
+        let largest = self.0[..n]
+            .iter()
+            .map(|c| {
+                let r = c.checked_div(lead).expect("nonzero leading coefficient");
+                if r.is_negative() {
+                    -r
+                } else {
+                    r
+                }
+            })
+            .max()
+            .unwrap_or_else(Rational::zero);
+        &largest + &Rational::int(1)
+    }
 }
 
 #[cfg(test)]

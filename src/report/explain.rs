@@ -82,6 +82,18 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
     }
     match &check.strategy {
         Strategy::Exact | Strategy::Proportional => expansions(out, outcome.record.as_ref()),
+        Strategy::Scalar {
+            domain,
+            samples,
+            seed,
+            ..
+        } => {
+            let _ = writeln!(
+                out,
+                "Parameters: {}; with several parameters and no certificate, {samples} exact samples, seed {seed}",
+                domain.describe()
+            );
+        }
         Strategy::Numeric { sampling, .. }
         | Strategy::Gradient { sampling, .. }
         | Strategy::Convex { sampling, .. } => {

@@ -162,6 +162,12 @@ pub fn evidence(o: &Outcome) -> String {
     }
     if let Some(f) = &o.finding {
         parts.push(words::finding(f));
+        // A rational-function claim's proof: the kernel's facts, in words.
+        if let (crate::strategy::finding::Finding::RationalFunction(_), Some(c)) =
+            (f, o.certificate())
+        {
+            parts.push(format!("proof: {}", certificate_words(c)));
+        }
     }
     match &o.counterexample {
         None if o.numeric.is_none() && o.finding.is_none() => {
@@ -349,6 +355,49 @@ pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String 
             }
             Fact::NullVector { vector } => {
                 format!("an exact null vector ({})", vector.join(", "))
+            }
+            Fact::SignOnInterval {
+                interval,
+                relation,
+                pieces,
+                poles,
+            } => {
+                let s = if *pieces == 1 { "" } else { "s" };
+                let undefined = match poles {
+                    0 => String::new(),
+                    1 => " except at 1 pole".to_owned(),
+                    n => format!(" except at {n} poles"),
+                };
+                format!(
+                    "{relation} for {interval}{undefined} (Sturm: real roots isolated, the sign exact on each of {pieces} piece{s})"
+                )
+            }
+            Fact::Roots { interval, roots } => {
+                if roots.is_empty() {
+                    format!("no real root for {interval} (Sturm isolation)")
+                } else {
+                    format!(
+                        "the real roots for {interval} are exactly {} (Sturm isolation)",
+                        roots.join(", ")
+                    )
+                }
+            }
+            Fact::CoefficientSigns { substitution, cases } => {
+                let s = if *cases == 1 { "" } else { "s" };
+                format!("numerator and denominator have coefficients of one sign after {substitution} ({cases} case{s})")
+            }
+            Fact::Limit {
+                variable,
+                to,
+                value,
+                nonzero,
+            } => {
+                let limit = format!("the limit as {variable} → {to} is {value} (lowest orders)");
+                if nonzero.is_empty() {
+                    limit
+                } else {
+                    format!("{limit}; {}", holds_where(nonzero))
+                }
             }
         })
         .collect();

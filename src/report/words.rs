@@ -138,7 +138,38 @@ pub fn finding(f: &Finding) -> String {
             format!("Hessian in {variables} variables positive semidefinite at every sample")
         }
         Finding::Appendix { text } => text.clone(),
+        Finding::RationalFunction(e) => rational_evidence(e),
     }
+}
+
+/// The evidence of a claim about a rational function.
+fn rational_evidence(e: &crate::strategy::finding::RationalEvidence) -> String {
+    let mut parts = vec![format!("decided {} on {}", e.decided, e.domain)];
+    if let Some(l) = &e.limit {
+        parts.push(format!("the limit is {l}"));
+    }
+    if !e.points.is_empty() {
+        parts.push(e.points.join(", "));
+    }
+    if let Some(h) = &e.holds_on {
+        parts.push(format!("holds on {h}"));
+    }
+    if let Some(s) = &e.sampled {
+        parts.push(format!(
+            "sampled: {} exact samples (seed {}{}), {} search evaluations; the smallest margin {} at {}",
+            s.samples,
+            s.seed,
+            if s.excluded > 0 {
+                format!(", {} undefined and excluded", s.excluded)
+            } else {
+                String::new()
+            },
+            s.search_evaluations,
+            s.smallest_margin,
+            point(&s.at)
+        ));
+    }
+    parts.join("; ")
 }
 
 /// Why a state was not judged, and where.

@@ -406,7 +406,7 @@ fn zero_factor(
     Ok(Outcome::fails(Method::Exact, Strength::Proof, 0).with_counterexample(cx))
 }
 
-fn location(d: &Diagnostic) -> String {
+pub(super) fn location(d: &Diagnostic) -> String {
     format!("{}:{}:{}", d.path, d.line, d.col)
 }
 

@@ -37,6 +37,9 @@ pub enum Finding {
         points: Vec<(String, String)>,
         determinant: String,
     },
+    /// What a claim about a rational function of parameters decided
+    /// (`strategy::scalar`).
+    RationalFunction(RationalEvidence),
     /// No witness among `attempts` rational states (not a counterexample).
     NoWitness { attempts: usize },
     /// A sampled state the checker could not judge.
@@ -182,4 +185,41 @@ pub type Component = (Vec<(char, usize)>, String);
 pub struct SampledState {
     pub point: Point,
     pub values: Vec<(String, Option<f64>)>,
+}
+
+/// The evidence of a sign, monotone, limit or roots claim.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RationalEvidence {
+    /// The rational function decided, reduced: `left − right` (sign), the derivative
+    /// (monotone), the function (limit, roots).
+    pub decided: String,
+    /// The parameter box.
+    pub domain: String,
+    /// The real points that matter: turning points, roots, poles (exact, or isolated
+    /// with ten digits).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub points: Vec<String>,
+    /// Where a claim that fails on the domain holds (verdict `conditional`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub holds_on: Option<String>,
+    /// The limit found, for a limit claim.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limit: Option<String>,
+    /// Present when the verdict rests on seeded samples rather than a certificate.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sampled: Option<SampledSign>,
+}
+
+/// Seeded exact samples of a rational function of several parameters, with an
+/// adversarial search for the smallest margin.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SampledSign {
+    pub samples: usize,
+    pub seed: u64,
+    /// Samples where the expression is undefined (a divisor vanishes).
+    pub excluded: usize,
+    pub search_evaluations: usize,
+    /// The value closest to breaking the claim (exact, at `at`).
+    pub smallest_margin: String,
+    pub at: Point,
 }

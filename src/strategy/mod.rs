@@ -16,6 +16,7 @@ pub mod quadrature;
 pub mod real;
 mod reverify;
 pub mod sampler;
+mod scalar;
 pub mod search;
 pub mod tape;
 pub mod taylor;
@@ -82,6 +83,7 @@ fn decide_keeping(
         Strategy::Convex { .. } => Method::Convex,
         Strategy::Exact | Strategy::Proportional => Method::Exact,
         Strategy::NotCircle { .. } => Method::Witness,
+        Strategy::Scalar { .. } => Method::RationalFunction,
         Strategy::Appendix { .. } => Method::Symbolic,
     };
     if method != Method::Exact && check.reads().differentiates {
@@ -95,6 +97,7 @@ fn decide_keeping(
         Strategy::Gradient { .. } => numeric::decide_gradient(decls, check, states),
         Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),
         Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
+        Strategy::Scalar { .. } => scalar::decide(decls, check),
         Strategy::Appendix { step, origin } => appendix::decide(*step, origin, decls, check),
     };
     // A decision stopped by the time limit (`watch::check`) is undecided, whatever

@@ -32,6 +32,9 @@ pub enum Method {
     Gradient,
     /// num-dual Hessians, positive semidefinite.
     Convex,
+    /// A claim about a rational function of parameters: Sturm sign charts, coefficient
+    /// signs, lowest orders, or exact seeded samples.
+    RationalFunction,
     /// An exact witness of an existential statement.
     Witness,
     /// Exact rational functions (Appendix A), with a floating-point second route.
@@ -57,6 +60,7 @@ impl Method {
             Method::Convex => "convex",
             Method::Witness => "witness",
             Method::Symbolic => "symbolic",
+            Method::RationalFunction => "rational-function",
         }
     }
 }

@@ -98,6 +98,48 @@ fn float_values(
     absent: f64,
     cx: &Counterexample,
 ) -> Result<(f64, f64), String> {
+    let (real, n) = interpreter_at(decls, check, env, point, absent)?;
+    let chain = &check.chains[cx.chain - 1];
+    let side = |k: usize| -> Result<super::real::Labeled<f64>, String> {
+        let node = chain[k].node.as_ref().map_err(|e| e.message.clone())?;
+        real.eval(node, &n).map_err(|e| e.message)
+    };
+    let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
+    pick(decls.dim, &l, &r, cx)
+}
+
+/// A scalar expression by the interpreter at `point` (the variables it leaves out set
+/// to 0, 1 or Euler's constant, the first at which the assumptions can be evaluated).
+pub(super) fn interpret_scalar(
+    decls: &Decls,
+    check: &Check,
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+    node: &crate::lang::Node,
+) -> Result<f64, String> {
+    let mut last = String::new();
+    for absent in [0.0, 1.0, 0.577_215_664_901_532_9] {
+        let value = interpreter_at(decls, check, env, point, absent).and_then(|(real, n)| {
+            let (_, v) = real.eval(node, &n).map_err(|e| e.message)?;
+            v.into_scalar().ok_or_else(|| "not a scalar".to_owned())
+        });
+        match value {
+            Ok(v) => return Ok(v),
+            Err(why) => last = why,
+        }
+    }
+    Err(last)
+}
+
+/// The interpreter's environment at `point`, the variables it leaves out set to
+/// `absent`, with the normal it evaluates at.
+fn interpreter_at<'c>(
+    decls: &'c Decls,
+    check: &'c Check,
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+    absent: f64,
+) -> Result<(RealEnv<'c, f64>, Vec<f64>), String> {
     let value = |name: &str| {
         env.vars
             .lookup(name)
@@ -136,13 +178,7 @@ fn float_values(
         real.assume(p, &check.assumptions, &n)
             .map_err(|e| format!("the assumptions cannot be evaluated there: {}", e.message))?;
     }
-    let chain = &check.chains[cx.chain - 1];
-    let side = |k: usize| -> Result<super::real::Labeled<f64>, String> {
-        let node = chain[k].node.as_ref().map_err(|e| e.message.clone())?;
-        real.eval(node, &n).map_err(|e| e.message)
-    };
-    let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
-    pick(d, &l, &r, cx)
+    Ok((real, n))
 }
 
 /// The fields as Taylor polynomials with the point's jet values (`RealEnv::assume`

@@ -1,0 +1,324 @@
+//! Reading the scalar claim kinds (`strategy = "sign" | "monotone" | "limit" |
+//! "roots"`): the parameter box of `given`, the variable of `in`, where it tends to,
+//! the stated limit and roots.
+
+use super::load::Loader;
+use super::model::{Definition, Expression, LimitValue, ParamBox, ScalarClaim, Strategy};
+use super::raw::{RawClaim, S};
+use super::spec::DEFAULT_SAMPLES;
+use crate::kernel::limit::{Approach, Side};
+use crate::kernel::sign::{End, Interval, Sign};
+use crate::kernel::Rational;
+use crate::lang::{Decls, DefSig, Diagnostic};
+
+/// The comparison operators of a bound, longest first so that `<=` is not read as `<`.
+const OPERATORS: [&str; 6] = ["<=", ">=", "≤", "≥", "<", ">"];
+
+impl Loader {
+    /// The strategy of a scalar claim of kind `name`.
+    pub(super) fn scalar_strategy(
+        &self,
+        name: &str,
+        c: &RawClaim,
+        decls: &Decls,
+        defs: &[Definition],
+    ) -> Result<Strategy, Diagnostic> {
+        let sigs: Vec<DefSig> = defs.iter().map(|d| d.sig.clone()).collect();
+        let anchor = c.strategy.as_ref().unwrap_or(&c.id);
+        let need = |field: &Option<S>, what: &str, example: &str| -> Result<S, Diagnostic> {
+            field.clone().ok_or_else(|| {
+                self.diag(
+                    anchor.span(),
+                    format!("strategy = \"{name}\" needs `{what}`"),
+                )
+                .with_help(format!("e.g. {example}"))
+            })
+        };
+        if !c.ranges.is_empty() || c.singular.is_some() || !c.domain.is_empty() {
+            return Err(self
+                .diag(anchor.span(), format!("strategy = \"{name}\" takes its parameter box from `given`; `ranges`, `singular` and `domain` belong to the sampled strategies"))
+                .with_help("given = [\"f_r > 0\", \"0 < nu < 1/2\"]"));
+        }
+        let scalar = |s: &S| self.scalar_expression(s, decls, &sigs);
+        let variable = |c: &RawClaim| -> Result<String, Diagnostic> {
+            let v = need(&c.variable, "in", "in = \"f_r\", the parameter")?;
+            self.parameter(&v, decls)
+        };
+        let function = || scalar(&need(&c.function, "function", "function = \"A2\"")?);
+        let claim = match name {
+            "sign" => {
+                let r = need(&c.relation, "relation", "relation = \">\"")?;
+                let want = match r.get_ref().as_str() {
+                    ">" => Sign::Positive,
+                    ">=" | "≥" => Sign::NonNegative,
+                    "<" => Sign::Negative,
+                    "<=" | "≤" => Sign::NonPositive,
+                    other => {
+                        return Err(self
+                            .diag(r.span(), format!("unknown relation `{other}` for a sign claim"))
+                            .with_help("relation is one of \">\", \">=\", \"<\", \"<=\": left − right has that sign"))
+                    }
+                };
+                ScalarClaim::Sign(want)
+            }
+            "monotone" => {
+                let d = need(
+                    &c.direction,
+                    "direction",
+                    "direction = \"increasing\"",
+                )?;
+                let increasing = match d.get_ref().as_str() {
+                    "increasing" => true,
+                    "decreasing" => false,
+                    other => {
+                        return Err(self
+                            .diag(d.span(), format!("unknown direction `{other}`"))
+                            .with_help("direction is \"increasing\" or \"decreasing\""))
+                    }
+                };
+                ScalarClaim::Monotone {
+                    function: function()?,
+                    variable: variable(c)?,
+                    increasing,
+                }
+            }
+            "limit" => {
+                let to = need(&c.tends_to, "tends_to", "tends_to = \"0+\"")?;
+                let value = need(&c.limit, "limit", "limit = \"0\" or \"+infinity\"")?;
+                ScalarClaim::Limit {
+                    function: function()?,
+                    variable: variable(c)?,
+                    to: self.approach(&to)?,
+                    value: match value.get_ref().trim() {
+                        "infinity" => LimitValue::Unsigned,
+                        "+infinity" => LimitValue::Signed(true),
+                        "-infinity" => LimitValue::Signed(false),
+                        _ => LimitValue::Finite(scalar(&value)?),
+                    },
+                }
+            }
+            "roots" => {
+                let Some(roots) = &c.roots else {
+                    return Err(self
+                        .diag(anchor.span(), "strategy = \"roots\" needs `roots`")
+                        .with_help("roots = [\"1/2\", \"-3\"]: every real root in the domain (roots = [] for none)"));
+                };
+                ScalarClaim::Roots {
+                    function: function()?,
+                    variable: variable(c)?,
+                    roots: roots.iter().map(scalar).collect::<Result<_, _>>()?,
+                }
+            }
+            _ => unreachable!("called for the scalar kinds only"),
+        };
+        for (field, key) in [
+            (&c.variable, "in"),
+            (&c.direction, "direction"),
+            (&c.tends_to, "tends_to"),
+            (&c.limit, "limit"),
+        ] {
+            let used = match key {
+                "in" => claim.function().is_some(),
+                "direction" => matches!(claim, ScalarClaim::Monotone { .. }),
+                _ => matches!(claim, ScalarClaim::Limit { .. }),
+            };
+            if let (Some(at), false) = (field, used) {
+                return Err(self
+                    .diag(at.span(), format!("`{key}` does not apply to strategy = \"{name}\""))
+                    .with_help("see README.md, section \"Claims about rational functions\""));
+            }
+        }
+        if let (Some(f), ScalarClaim::Sign(_)) = (&c.function, &claim) {
+            return Err(self
+                .diag(f.span(), "a sign claim compares its `sides`; `function` does not apply")
+                .with_help("sides = [\"A2\", \"0\"] with relation = \">\""));
+        }
+        let samples = match &c.samples {
+            None => DEFAULT_SAMPLES,
+            Some(n) if (50..=1_000_000).contains(n.get_ref()) => *n.get_ref() as usize,
+            Some(n) => {
+                return Err(self
+                    .diag(n.span(), "samples must be between 50 and 1000000")
+                    .with_help("samples are drawn only when no exact route applies"))
+            }
+        };
+        let seed = match &c.seed {
+            None => 1,
+            Some(s) if *s.get_ref() >= 0 => *s.get_ref() as u64,
+            Some(s) => return Err(self.diag(s.span(), "seed must be a non-negative integer")),
+        };
+        Ok(Strategy::Scalar {
+            claim,
+            domain: self.param_box(&c.given, decls)?,
+            samples,
+            seed,
+        })
+    }
+
+    /// A scalar expression with no free index.
+    fn scalar_expression(
+        &self,
+        s: &S,
+        decls: &Decls,
+        sigs: &[DefSig],
+    ) -> Result<Expression, Diagnostic> {
+        self.expression(s, decls, sigs, &[])
+    }
+
+    /// A declared scalar (rank 0, not a field).
+    fn parameter(&self, s: &S, decls: &Decls) -> Result<String, Diagnostic> {
+        let name = s.get_ref().trim();
+        match decls.symbols.get(name) {
+            Some(0) if !decls.fields.contains_key(name) => Ok(name.to_owned()),
+            Some(_) => Err(self
+                .diag(s.span(), format!("`{name}` is not a scalar parameter"))
+                .with_help("scalar claims are about declared scalars: scalars = [\"f_r\"]")),
+            None => Err(self
+                .diag(s.span(), format!("`{name}` is not declared"))
+                .with_help("declare it: scalars = [\"…\"]")),
+        }
+    }
+
+    /// `0`, `0+`, `1/2-`, `infinity`, `-infinity`.
+    fn approach(&self, s: &S) -> Result<Approach, Diagnostic> {
+        let text = s.get_ref().trim();
+        let bad = || {
+            self.diag(s.span(), format!("cannot read `{text}` as where the parameter tends"))
+                .with_help("tends_to is a rational with an optional side (\"0\", \"0+\", \"1/2-\"), \"infinity\" or \"-infinity\"")
+        };
+        Ok(match text {
+            "infinity" | "+infinity" => Approach::PlusInfinity,
+            "-infinity" => Approach::MinusInfinity,
+            _ => {
+                let (number, side) = if let Some(n) = text.strip_suffix('+') {
+                    (n, Side::Above)
+                } else if let Some(n) = text.strip_suffix('-') {
+                    (n, Side::Below)
+                } else {
+                    (text, Side::Both)
+                };
+                Approach::At(rational(number).ok_or_else(bad)?, side)
+            }
+        })
+    }
+
+    /// The box of `given`: each entry bounds one declared scalar by rationals
+    /// (`f_r > 0`, `0 < nu < 1/2`, `K >= 1`); several entries on one scalar intersect.
+    fn param_box(&self, given: &[S], decls: &Decls) -> Result<ParamBox, Diagnostic> {
+        let mut out = ParamBox::default();
+        for g in given {
+            let text = g.get_ref();
+            let bad = |why: &str| {
+                self.diag(g.span(), format!("cannot read `{text}` as a bound: {why}"))
+                    .with_help("write \"x > 0\", \"x <= 1/2\" or \"0 < x < 1\" with a declared scalar and rational bounds")
+            };
+            let mut parts: Vec<&str> = Vec::new();
+            let mut ops: Vec<&str> = Vec::new();
+            let mut rest = text.as_str();
+            while let Some((k, op)) = OPERATORS
+                .iter()
+                .filter_map(|op| rest.find(op).map(|k| (k, *op)))
+                .min_by_key(|(k, op)| (*k, std::cmp::Reverse(op.len())))
+            {
+                parts.push(&rest[..k]);
+                ops.push(op);
+                rest = &rest[k + op.len()..];
+            }
+            parts.push(rest);
+            let parts: Vec<&str> = parts.iter().map(|p| p.trim()).collect();
+            let upper = |op: &str| matches!(op, "<" | "<=" | "≤");
+            let strict = |op: &str| matches!(op, "<" | ">");
+            let end = |x: Rational, op: &str| {
+                if strict(op) {
+                    End::Open(x)
+                } else {
+                    End::Closed(x)
+                }
+            };
+            // Read as `lo op symbol op hi` in increasing order.
+            let (symbol, interval) = match (parts.as_slice(), ops.as_slice()) {
+                ([a, b], [op]) => match (rational(a), rational(b)) {
+                    (None, Some(x)) if upper(op) => (*a, (End::Unbounded, end(x, op))),
+                    (None, Some(x)) => (*a, (end(x, op), End::Unbounded)),
+                    (Some(x), None) if upper(op) => (*b, (end(x, op), End::Unbounded)),
+                    (Some(x), None) => (*b, (End::Unbounded, end(x, op))),
+                    _ => return Err(bad("one side is a scalar, the other a rational")),
+                },
+                ([a, b, c], [o1, o2]) if upper(o1) == upper(o2) => {
+                    let (Some(x), Some(y)) = (rational(a), rational(c)) else {
+                        return Err(bad("the outer parts are rationals"));
+                    };
+                    if upper(o1) {
+                        (*b, (end(x, o1), end(y, o2)))
+                    } else {
+                        (*b, (end(y, o2), end(x, o1)))
+                    }
+                }
+                _ => return Err(bad("one or two comparisons, in one direction")),
+            };
+            let name = self.parameter(&toml::Spanned::new(g.span(), symbol.to_owned()), decls)?;
+            let new = Interval {
+                lo: interval.0,
+                hi: interval.1,
+            };
+            let merged = match out.bounds.iter().position(|(s, _)| *s == name) {
+                Some(k) => {
+                    let (_, old) = out.bounds.remove(k);
+                    intersect(&old, &new)
+                }
+                None => new,
+            };
+            if merged.is_empty() {
+                return Err(bad("no value satisfies it (with the other bounds on the same scalar)"));
+            }
+            out.bounds.push((name, merged));
+        }
+        Ok(out)
+    }
+}
+
+/// A rational literal: `3`, `-0.25`, `1/2`, `-7/3`.
+fn rational(text: &str) -> Option<Rational> {
+    let t = text.trim();
+    let (negative, body) = match t.strip_prefix('-') {
+        Some(b) => (true, b.trim()),
+        None => (false, t.strip_prefix('+').unwrap_or(t).trim()),
+    };
+    let value = match body.split_once('/') {
+        Some((n, d)) => Rational::parse_decimal(n.trim())?.checked_div(&Rational::parse_decimal(d.trim())?)?,
+        None => Rational::parse_decimal(body)?,
+    };
+    Some(if negative { -value } else { value })
+}
+
+/// The intersection of two intervals.
+fn intersect(a: &Interval, b: &Interval) -> Interval {
+    let pick = |x: &End, y: &End, lower: bool| -> End {
+        let v = |e: &End| match e {
+            End::Unbounded => None,
+            End::Open(r) | End::Closed(r) => Some(r.clone()),
+        };
+        match (v(x), v(y)) {
+            (None, _) => y.clone(),
+            (_, None) => x.clone(),
+            (Some(p), Some(q)) if p == q => {
+                if matches!(x, End::Open(_)) {
+                    x.clone()
+                } else {
+                    y.clone()
+                }
+            }
+            (Some(p), Some(q)) => {
+                if (p > q) == lower {
+                    x.clone()
+                } else {
+                    y.clone()
+                }
+            }
+        }
+    };
+    Interval {
+        lo: pick(&a.lo, &b.lo, true),
+        hi: pick(&a.hi, &b.hi, false),
+    }
+}

@@ -1,0 +1,262 @@
+//! Claims about scalar rational functions of parameters: `sign`, `monotone`, `limit`
+//! and `roots` (see [`ScalarClaim`]).
+//!
+//! Every expression is evaluated exactly to a reduced rational function of the
+//! parameters it uses. With one parameter, the kernel decides it completely: Sturm
+//! sequences give the sign chart (`kernel::sign`), lowest orders give limits
+//! (`kernel::limit`). With several, a certificate is tried first (coefficients of one
+//! sign after moving every parameter onto t ≥ 0); without one, the function is
+//! evaluated exactly at seeded rational points of the box and an adversarial search
+//! looks for the smallest margin, so that a `holds` is labelled sampled and a `fails`
+//! carries an exact counterexample. Every counterexample is re-evaluated by the
+//! floating-point interpreter on the expression tree before it is printed.
+
+mod limit;
+mod monotone;
+mod roots;
+mod sample;
+mod sign;
+
+use super::eval::{ExactEnv, Refusal};
+use super::finding::{Finding, RationalEvidence};
+use super::{Method, Outcome};
+use crate::derivation::{Check, Expression, ParamBox, ScalarClaim, Strategy};
+use crate::kernel::sign::Interval;
+use crate::kernel::{Poly, Quotient, RatFunc, Rational, Var};
+use crate::lang::{Decls, Diagnostic};
+use num_traits::One;
+use std::collections::BTreeMap;
+
+/// Why a decision stopped early: bad input (exit 2), or an outcome already reached
+/// (undecided at a resource limit).
+enum Stop {
+    Input(Diagnostic),
+    Outcome(Box<Outcome>),
+}
+
+impl From<Diagnostic> for Stop {
+    fn from(d: Diagnostic) -> Self {
+        Stop::Input(d)
+    }
+}
+
+/// Decides a `strategy = "sign" | "monotone" | "limit" | "roots"` check.
+pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+    let Strategy::Scalar {
+        claim,
+        domain,
+        samples,
+        seed,
+    } = &check.strategy
+    else {
+        unreachable!("dispatched on the strategy")
+    };
+    let env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
+    let mut cx = Context {
+        env,
+        decls,
+        check,
+        domain,
+        samples: *samples,
+        seed: *seed,
+    };
+    let decided = match claim {
+        ScalarClaim::Sign(want) => sign::decide(&mut cx, *want),
+        ScalarClaim::Monotone {
+            function,
+            variable,
+            increasing,
+        } => monotone::decide(&mut cx, function, variable, *increasing),
+        ScalarClaim::Limit {
+            function,
+            variable,
+            to,
+            value,
+        } => limit::decide(&mut cx, function, variable, to, value),
+        ScalarClaim::Roots {
+            function,
+            variable,
+            roots,
+        } => roots::decide(&mut cx, function, variable, roots),
+    };
+    match decided {
+        Ok(o) => Ok(o),
+        Err(Stop::Outcome(o)) => Ok(*o),
+        Err(Stop::Input(d)) => Err(d),
+    }
+}
+
+/// What every scalar decision works with.
+struct Context<'a> {
+    env: ExactEnv<'a>,
+    decls: &'a Decls,
+    check: &'a Check,
+    domain: &'a ParamBox,
+    samples: usize,
+    seed: u64,
+}
+
+/// An expression evaluated exactly: the reduced rational function, and every divisor
+/// the expression was divided by on its way (cancelled or not), where it is undefined.
+struct Exact {
+    f: RatFunc,
+    conditions: Vec<Poly>,
+}
+
+impl Exact {
+    /// Numerator and denominator of `f`, both multiplied by every divisor: their
+    /// common roots are where the expression is undefined.
+    fn cleared(&self) -> (Poly, Poly) {
+        let c = self.conditions.iter().fold(Poly::one(), |acc, p| &acc * p);
+        (self.f.numerator() * &c, self.f.denominator() * &c)
+    }
+
+    /// The exact value at a point; `None` where the expression is undefined.
+    fn eval(&self, point: &BTreeMap<Var, Rational>) -> Option<Rational> {
+        let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        for c in &self.conditions {
+            if c.eval(&at)?.is_zero() {
+                return None;
+            }
+        }
+        self.f.eval(&at)
+    }
+
+    /// Every variable of the function and of its divisors, sorted.
+    fn variables(&self) -> Vec<Var> {
+        let mut vars = variables(&self.f);
+        vars.extend(self.conditions.iter().flat_map(Poly::variables));
+        vars.sort_unstable();
+        vars.dedup();
+        vars
+    }
+
+    /// `self − other`, undefined where either is.
+    fn minus(&self, other: &Exact) -> Exact {
+        Exact {
+            f: &self.f - &other.f,
+            conditions: self
+                .conditions
+                .iter()
+                .chain(&other.conditions)
+                .cloned()
+                .collect(),
+        }
+    }
+}
+
+impl Context<'_> {
+    /// `e` evaluated exactly (a scalar, checked by the loader).
+    fn exact(&mut self, e: &Expression) -> Result<Exact, Stop> {
+        let labeled = match self.env.eval(&e.node, &e.origin) {
+            Ok(v) => v,
+            Err(Refusal::Input(d)) => return Err(Stop::Input(d)),
+            Err(Refusal::Limit(d)) => {
+                return Err(Stop::Outcome(Box::new(
+                    Outcome::undecided(Method::RationalFunction, 0).with_finding(
+                        Finding::ResourceLimit {
+                            what: d.message.clone(),
+                            at: super::exact::location(&d),
+                            help: d.help.clone().unwrap_or_default(),
+                        },
+                    ),
+                )))
+            }
+        };
+        let quotient = labeled.at(&[]).clone();
+        let normal = self.env.normal_vars();
+        if quotient.variables().iter().any(|v| normal.contains(v)) {
+            return Err(Stop::Input(
+                e.origin
+                    .diagnostic(
+                        e.node.span,
+                        "a claim about a rational function of parameters cannot depend on the unit normal",
+                    )
+                    .with_help("average over the normal first, or use strategy = \"numeric\""),
+            ));
+        }
+        Ok(Exact {
+            f: to_ratfunc(&quotient),
+            conditions: quotient.conditions().to_vec(),
+        })
+    }
+
+    /// The variable of a declared scalar parameter (`None`: the function does not use it).
+    fn var(&self, name: &str) -> Option<Var> {
+        self.env.vars.lookup(name)
+    }
+
+    fn name(&self, v: Var) -> String {
+        self.env.vars.name(v).to_owned()
+    }
+
+    /// The interval of a variable in the box (the real line when not bounded).
+    fn interval(&self, v: Var) -> Interval {
+        self.domain.interval(self.env.vars.name(v))
+    }
+
+    /// The box on `vars`.
+    fn box_on(&self, vars: &[Var]) -> Vec<(Var, Interval)> {
+        vars.iter().map(|&v| (v, self.interval(v))).collect()
+    }
+
+    /// A point as the reports show it.
+    fn shown(&self, point: &BTreeMap<Var, Rational>) -> BTreeMap<String, String> {
+        point
+            .iter()
+            .map(|(&v, x)| (self.name(v), readable(x)))
+            .collect()
+    }
+
+    /// The evidence skeleton: what was decided, on which box.
+    fn evidence(&self, decided: &RatFunc) -> RationalEvidence {
+        RationalEvidence {
+            decided: decided.display(&self.env.vars),
+            domain: self.domain.describe(),
+            points: Vec::new(),
+            holds_on: None,
+            limit: None,
+            sampled: None,
+        }
+    }
+
+    /// `e` by the floating-point interpreter at `point`.
+    fn interpret(&self, e: &Expression, point: &BTreeMap<Var, Rational>) -> Result<f64, String> {
+        super::reverify::interpret_scalar(self.decls, self.check, &self.env, point, &e.node)
+    }
+}
+
+/// The variables of a rational function, sorted.
+fn variables(f: &RatFunc) -> Vec<Var> {
+    let mut vars = f.numerator().variables();
+    vars.extend(f.denominator().variables());
+    vars.sort_unstable();
+    vars.dedup();
+    vars
+}
+
+/// A quotient as a reduced rational function.
+fn to_ratfunc(q: &Quotient) -> RatFunc {
+    let den = q
+        .factors()
+        .iter()
+        .fold(Poly::one(), |acc, (f, k)| &acc * &f.pow(*k));
+    RatFunc::new(q.numerator(), &den).expect("a product of nonzero factors")
+}
+
+/// Relative agreement required between an exact value and the interpreter's.
+const AGREEMENT: f64 = 1e-9;
+
+fn agrees(float: f64, exact: &Rational) -> bool {
+    let e = exact.to_f64();
+    float.is_finite() && (float - e).abs() <= AGREEMENT * (1.0 + e.abs())
+}
+
+/// A rational as the reports show it: exact when short, else to ten digits.
+fn readable(x: &Rational) -> String {
+    if x.bits() <= 48 {
+        x.to_string()
+    } else {
+        format!("≈ {}", crate::digits::significant(x.to_f64(), 10))
+    }
+}

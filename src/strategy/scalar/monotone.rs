@@ -1,0 +1,325 @@
+//! `strategy = "monotone"`: a function increases (decreases) in one parameter on the
+//! box: its derivative is ≥ 0 (≤ 0) wherever defined, not identically 0, and the
+//! function has no pole in the domain. Of one parameter, the derivative's sign chart
+//! gives the exact turning points; a claim that holds between them and fails beyond is
+//! `conditional`, with the interval where it holds.
+
+use super::sign::{decide_function, Decided};
+use super::{Context, Exact, Stop};
+use crate::derivation::Expression;
+use crate::kernel::certificate::Certificate;
+use crate::kernel::sign::{chart_of, End, Interval, Real, Sign, SignChart};
+use crate::kernel::{Rational, Var};
+use crate::strategy::finding::{Finding, RationalEvidence};
+use crate::strategy::{Counterexample, Method, Outcome, Reverified, Strength};
+use std::collections::BTreeMap;
+
+pub(super) fn decide(
+    cx: &mut Context<'_>,
+    function: &Expression,
+    variable: &str,
+    increasing: bool,
+) -> Result<Outcome, Stop> {
+    let f = cx.exact(function)?;
+    let v = match cx.var(variable) {
+        Some(v) if f.variables().contains(&v) => v,
+        // Constant in the variable: it neither increases nor decreases.
+        _ => {
+            let v = cx.env.vars.intern(variable);
+            let evidence = cx.evidence(&f.f);
+            return Ok(constant(cx, function, &f, v, evidence));
+        }
+    };
+    let slope = Exact {
+        f: f.f.derivative(v),
+        conditions: f.conditions.clone(),
+    };
+    let want = if increasing {
+        Sign::NonNegative
+    } else {
+        Sign::NonPositive
+    };
+    let mut evidence = cx.evidence(&slope.f);
+    evidence.decided = format!("d/d{variable} ({}) = {}", function.text, evidence.decided);
+    if slope.f.is_zero() {
+        return Ok(constant(cx, function, &f, v, evidence));
+    }
+    let names = &cx.env.vars;
+    if f.variables() != [v] {
+        // Several parameters: the sign of the derivative on the box, and a
+        // denominator of one strict sign (no pole), each by the kernel if it can.
+        let den = Exact {
+            f: crate::kernel::RatFunc::from_poly(f.f.denominator()),
+            conditions: Vec::new(),
+        };
+        let bx = cx.box_on(&den.variables());
+        let pole_free = [Sign::Positive, Sign::Negative]
+            .into_iter()
+            .find_map(|s| Certificate::sign_by_coefficients(&den.f, &bx, s, names));
+        return Ok(match decide_function(cx, &slope, want, evidence.clone())? {
+            Decided::Holds(o) => match (o.certificate().cloned(), pole_free) {
+                (Some(c), Some(p)) => Outcome::proved(Method::RationalFunction, 1, c.and(p))
+                    .with_finding(Finding::RationalFunction(evidence)),
+                (Some(_), None) => {
+                    evidence.points.push("the denominator was not certified free of zeros on the box".to_owned());
+                    Outcome::undecided(Method::RationalFunction, 0)
+                        .with_finding(Finding::RationalFunction(evidence))
+                }
+                (None, _) => *o,
+            },
+            Decided::At(point) => two_points(cx, function, &f, v, &point, increasing, evidence),
+            Decided::AtRoot { evidence, .. } => Outcome::undecided(Method::RationalFunction, 0)
+                .with_finding(Finding::RationalFunction(evidence)),
+        });
+    }
+    let i = cx.interval(v);
+    let (num, den) = slope.cleared();
+    // Poles of the reduced function (a cancelled divisor is a removable point, not a
+    // pole that breaks monotonicity).
+    let (Some(chart), Some(of_f)) = (chart_of((&num, &den), v, &i), chart_of((f.f.numerator(), f.f.denominator()), v, &i)) else {
+        return Ok(Outcome::undecided(Method::RationalFunction, 0)
+            .with_finding(Finding::RationalFunction(evidence)));
+    };
+    let name = names.name(v).to_owned();
+    evidence.points = chart
+        .cuts
+        .iter()
+        .filter(|c| !c.pole)
+        .map(|c| format!("d/d{name} = 0 at {name} = {}", c.at))
+        .chain(of_f.cuts.iter().filter(|c| c.pole).map(|c| format!("pole at {name} = {}", c.at)))
+        .collect();
+    let runs = runs(&chart, &of_f, want);
+    let whole = runs.len() == 1 && runs[0].first == 0 && runs[0].last == chart.pieces.len() - 1;
+    if whole && of_f.poles() == 0 {
+        return Ok(
+            match Certificate::sign_on_interval((&num, &den), v, &i, want, names) {
+                Ok(c) => Outcome::proved(Method::RationalFunction, 1, c)
+                    .with_finding(Finding::RationalFunction(evidence)),
+                Err(_) => Outcome::undecided(Method::RationalFunction, 0)
+                    .with_finding(Finding::RationalFunction(evidence)),
+            },
+        );
+    }
+    // A piece where the derivative has the wrong sign, or a pole: a counterexample.
+    let bad = chart.pieces.iter().position(|p| !want.admits(p.sign()));
+    let witness = match bad {
+        Some(k) => {
+            let s = chart.pieces[k].sample.clone();
+            two_points(cx, function, &f, v, &BTreeMap::from([(v, s)]), increasing, evidence.clone())
+        }
+        None => across_pole(cx, function, &f, v, &of_f, increasing, evidence.clone()),
+    };
+    if witness.verdict() != crate::derivation::Verdict::Fails || runs.is_empty() {
+        return Ok(witness);
+    }
+    // Where it holds: the runs of admitted pieces, the first one certified on its
+    // rational inner interval.
+    let described: Vec<String> = runs.iter().map(|r| r.describe(&chart, &i, &name)).collect();
+    evidence.holds_on = Some(described.join(" and "));
+    let inner = runs[0].inner(&chart, &i);
+    let certificate = Certificate::sign_on_interval((&num, &den), v, &inner, want, names).ok();
+    let mut out = Outcome::conditional(Method::RationalFunction, 1, certificate)
+        .with_finding(Finding::RationalFunction(evidence));
+    out.counterexample = witness.counterexample;
+    Ok(out)
+}
+
+/// A maximal run of consecutive pieces where the derivative has the claimed sign,
+/// joined at zeros of the derivative (not at poles of the function).
+struct Run {
+    first: usize,
+    last: usize,
+}
+
+fn runs(chart: &SignChart, of_f: &SignChart, want: Sign) -> Vec<Run> {
+    let poles: Vec<f64> = of_f.cuts.iter().filter(|c| c.pole).map(|c| c.at.approx()).collect();
+    let mut out: Vec<Run> = Vec::new();
+    for (k, p) in chart.pieces.iter().enumerate() {
+        if !want.admits(p.sign()) {
+            continue;
+        }
+        // Joined to the previous run when the cut between is a zero of the slope and
+        // no pole of the function lies there.
+        let joined = out.last().is_some_and(|r| {
+            r.last + 1 == k && {
+                let cut = &chart.cuts[k - 1];
+                !cut.pole && !poles.iter().any(|x| (x - cut.at.approx()).abs() < 1e-12)
+            }
+        });
+        if joined {
+            out.last_mut().expect("joined").last = k;
+        } else {
+            out.push(Run { first: k, last: k });
+        }
+    }
+    out
+}
+
+impl Run {
+    fn start(&self, chart: &SignChart, i: &Interval) -> End {
+        match self.first.checked_sub(1).map(|j| &chart.cuts[j]) {
+            None => i.lo.clone(),
+            Some(c) => match &c.at {
+                Real::Exact(r) if c.pole => End::Open(r.clone()),
+                Real::Exact(r) => End::Closed(r.clone()),
+                Real::Isolated { hi, .. } => End::Closed(hi.clone()),
+            },
+        }
+    }
+
+    fn end(&self, chart: &SignChart, i: &Interval) -> End {
+        match chart.cuts.get(self.last) {
+            None => i.hi.clone(),
+            Some(c) => match &c.at {
+                Real::Exact(r) if c.pole => End::Open(r.clone()),
+                Real::Exact(r) => End::Closed(r.clone()),
+                Real::Isolated { lo, .. } => End::Closed(lo.clone()),
+            },
+        }
+    }
+
+    /// The run with rational ends inside it (an isolated turning point replaced by the
+    /// near end of its isolating interval).
+    fn inner(&self, chart: &SignChart, i: &Interval) -> Interval {
+        Interval {
+            lo: self.start(chart, i),
+            hi: self.end(chart, i),
+        }
+    }
+
+    /// The run in words, turning points exact or to ten digits.
+    fn describe(&self, chart: &SignChart, i: &Interval, name: &str) -> String {
+        let lo = match self.first.checked_sub(1).map(|j| &chart.cuts[j].at) {
+            None => match &i.lo {
+                End::Unbounded => String::new(),
+                End::Open(a) => format!("{a} < "),
+                End::Closed(a) => format!("{a} ≤ "),
+            },
+            Some(r) => {
+                let strict = self.first.checked_sub(1).is_some_and(|j| chart.cuts[j].pole);
+                format!("{r} {} ", if strict { "<" } else { "≤" })
+            }
+        };
+        let hi = match chart.cuts.get(self.last).map(|c| &c.at) {
+            None => match &i.hi {
+                End::Unbounded => String::new(),
+                End::Open(b) => format!(" < {b}"),
+                End::Closed(b) => format!(" ≤ {b}"),
+            },
+            Some(r) => {
+                let strict = chart.cuts.get(self.last).is_some_and(|c| c.pole);
+                format!(" {} {r}", if strict { "<" } else { "≤" })
+            }
+        };
+        format!("{lo}{name}{hi}")
+    }
+}
+
+/// A function that does not change with the variable: two points with equal values.
+fn constant(cx: &Context<'_>, function: &Expression, f: &Exact, v: Var, evidence: RationalEvidence) -> Outcome {
+    let i = cx.interval(v);
+    if i.is_empty() {
+        return Outcome::undecided(Method::RationalFunction, 0);
+    }
+    let s = crate::kernel::sign::inner_point(&i);
+    let mut point = BTreeMap::from([(v, s)]);
+    for w in f.variables() {
+        point.entry(w).or_insert_with(|| Rational::int(1));
+    }
+    let mut out = pair(cx, function, f, v, &point, &(&point[&v] + &Rational::ratio(1, 1024).expect("nonzero")));
+    if !i.contains(&(&point[&v] + &Rational::ratio(1, 1024).expect("nonzero"))) {
+        out = Outcome::undecided(Method::RationalFunction, 0);
+    }
+    out.with_finding(Finding::RationalFunction(evidence))
+}
+
+/// Two points a < b near `point` in the variable where the function moves the wrong
+/// way, found by halving the step until the exact values show it.
+fn two_points(
+    cx: &Context<'_>,
+    function: &Expression,
+    f: &Exact,
+    v: Var,
+    point: &BTreeMap<Var, Rational>,
+    increasing: bool,
+    evidence: RationalEvidence,
+) -> Outcome {
+    let i = cx.interval(v);
+    let a = point[&v].clone();
+    let mut step = Rational::ratio(1, 16).expect("nonzero");
+    for _ in 0..60 {
+        let b = &a + &step;
+        let mut at_b = point.clone();
+        at_b.insert(v, b.clone());
+        if let (true, Some(fa), Some(fb)) = (i.contains(&b), f.eval(point), f.eval(&at_b)) {
+            if (fb < fa && increasing) || (fb > fa && !increasing) {
+                return pair(cx, function, f, v, point, &b)
+                    .with_finding(Finding::RationalFunction(evidence));
+            }
+        }
+        step = &step * &Rational::ratio(1, 2).expect("nonzero");
+    }
+    Outcome::undecided(Method::RationalFunction, 0).with_finding(Finding::RationalFunction(evidence))
+}
+
+/// Two points on either side of a pole of the function where it moves the wrong way.
+fn across_pole(
+    cx: &Context<'_>,
+    function: &Expression,
+    f: &Exact,
+    v: Var,
+    of_f: &SignChart,
+    increasing: bool,
+    evidence: RationalEvidence,
+) -> Outcome {
+    for (k, cut) in of_f.cuts.iter().enumerate().filter(|(_, c)| c.pole) {
+        let (a, b) = (of_f.pieces[k].sample.clone(), of_f.pieces[k + 1].sample.clone());
+        let (pa, pb) = (BTreeMap::from([(v, a)]), BTreeMap::from([(v, b.clone())]));
+        if let (Some(fa), Some(fb)) = (f.eval(&pa), f.eval(&pb)) {
+            if (fb < fa && increasing) || (fb > fa && !increasing) {
+                return pair(cx, function, f, v, &pa, &b)
+                    .with_finding(Finding::RationalFunction(evidence));
+            }
+        }
+        let _ = cut;
+    }
+    Outcome::undecided(Method::RationalFunction, 0).with_finding(Finding::RationalFunction(evidence))
+}
+
+/// `fails`: the function at `point` and at `point` with the variable moved to `b`,
+/// both values exact and confirmed by the interpreter.
+fn pair(
+    cx: &Context<'_>,
+    function: &Expression,
+    f: &Exact,
+    v: Var,
+    point: &BTreeMap<Var, Rational>,
+    b: &Rational,
+) -> Outcome {
+    let mut at_b = point.clone();
+    at_b.insert(v, b.clone());
+    let (Some(fa), Some(fb)) = (f.eval(point), f.eval(&at_b)) else {
+        return Outcome::undecided(Method::RationalFunction, 0);
+    };
+    let confirmed = matches!(
+        (cx.interpret(function, point), cx.interpret(function, &at_b)),
+        (Ok(x), Ok(y)) if super::agrees(x, &fa) && super::agrees(y, &fb)
+    );
+    if !confirmed {
+        return Outcome::undecided(Method::RationalFunction, 0);
+    }
+    let name = cx.name(v);
+    let mut shown = cx.shown(point);
+    shown.insert(name.clone(), format!("{} → {b}", point[&v]));
+    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(Counterexample {
+        chain: 1,
+        equality: 1,
+        lhs: format!("{} at {name} = {}", function.text, point[&v]),
+        rhs: format!("{} at {name} = {b}", function.text),
+        point: shown,
+        lhs_value: Some(fa.to_string()),
+        rhs_value: Some(fb.to_string()),
+        reverified: Some(Reverified::FloatingPoint),
+        ..Counterexample::default()
+    })
+}

@@ -1,0 +1,113 @@
+//! `strategy = "roots"`: the real roots of a function of one parameter on its interval
+//! are exactly the stated rationals. The kernel isolates every real root of the
+//! numerator (Sturm), so a root left out is found as surely as a stated one that is
+//! not a root.
+
+use super::{Context, Stop};
+use crate::derivation::Expression;
+use crate::kernel::certificate::Certificate;
+use crate::kernel::sign::Real;
+use crate::kernel::Rational;
+use crate::strategy::finding::Finding;
+use crate::strategy::{Counterexample, Method, Outcome, Reverified, Strength};
+use std::collections::BTreeMap;
+
+pub(super) fn decide(
+    cx: &mut Context<'_>,
+    function: &Expression,
+    variable: &str,
+    roots: &[Expression],
+) -> Result<Outcome, Stop> {
+    let f = cx.exact(function)?;
+    let v = cx.var(variable).unwrap_or_else(|| cx.env.vars.intern(variable));
+    let mut evidence = cx.evidence(&f.f);
+    evidence.decided = format!("{} = {}", function.text, evidence.decided);
+    let mut stated = Vec::with_capacity(roots.len());
+    for r in roots {
+        match cx.exact(r)?.f.as_constant() {
+            Some(q) => stated.push(q),
+            None => {
+                return Err(Stop::Input(
+                    r.origin
+                        .diagnostic(r.node.span, "a stated root must be a rational number")
+                        .with_help("roots are decided for functions of one parameter; fix the others with assumptions"),
+                ))
+            }
+        }
+    }
+    let others: Vec<_> = f.variables().into_iter().filter(|w| *w != v).collect();
+    if !others.is_empty() {
+        evidence.points.push(format!(
+            "the function also depends on {}; roots are decided for functions of one parameter only",
+            others.iter().map(|w| cx.name(*w)).collect::<Vec<_>>().join(", ")
+        ));
+        return Ok(Outcome::undecided(Method::RationalFunction, 0)
+            .with_finding(Finding::RationalFunction(evidence)));
+    }
+    let i = cx.interval(v);
+    let (num, den) = f.cleared();
+    let names = &cx.env.vars;
+    let zeros = match Certificate::roots_exactly((&num, &den), v, &i, &stated, names) {
+        Ok(c) => {
+            evidence.points = stated.iter().map(|r| format!("root {r}")).collect();
+            return Ok(Outcome::proved(Method::RationalFunction, 1, c)
+                .with_finding(Finding::RationalFunction(evidence)));
+        }
+        Err(zeros) => zeros,
+    };
+    let name = cx.name(v);
+    evidence.points = zeros.iter().map(|z| format!("root at {name} = {z}")).collect();
+    // A stated value that is no root, with its exact value.
+    for r in &stated {
+        if zeros.contains(&Real::Exact(r.clone())) {
+            continue;
+        }
+        let point = BTreeMap::from([(v, r.clone())]);
+        let value = f.eval(&point);
+        let confirmed = match (&value, cx.interpret(function, &point)) {
+            (Some(q), Ok(y)) => super::agrees(y, q),
+            (None, _) => true,
+            _ => false,
+        };
+        if !confirmed {
+            return Ok(Outcome::undecided(Method::RationalFunction, 0)
+                .with_finding(Finding::RationalFunction(evidence)));
+        }
+        let lhs_value = value.map_or_else(|| "undefined".to_owned(), |q| q.to_string());
+        let outside = if i.contains(r) { "" } else { " (outside the domain)" };
+        let how = Reverified::FloatingPoint;
+        return Ok(fails(function, &name, format!("{r}{outside}"), lhs_value, how)
+            .with_finding(Finding::RationalFunction(evidence)));
+    }
+    // A root that is not stated.
+    let missing = zeros
+        .iter()
+        .find(|z| !matches!(z, Real::Exact(x) if stated.contains(x)));
+    Ok(match missing {
+        // Found by Sturm isolation in the kernel: exact, whatever its value's digits.
+        Some(z) => fails(
+            function,
+            &name,
+            format!("{z} (a root not stated)"),
+            "0".to_owned(),
+            Reverified::Exact,
+        )
+            .with_finding(Finding::RationalFunction(evidence)),
+        None => Outcome::undecided(Method::RationalFunction, 0)
+            .with_finding(Finding::RationalFunction(evidence)),
+    })
+}
+
+fn fails(function: &Expression, name: &str, at: String, value: String, how: Reverified) -> Outcome {
+    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(Counterexample {
+        chain: 1,
+        equality: 1,
+        lhs: function.text.clone(),
+        rhs: "0".to_owned(),
+        point: BTreeMap::from([(name.to_owned(), at)]),
+        lhs_value: Some(value),
+        rhs_value: Some(Rational::int(0).to_string()),
+        reverified: Some(how),
+        ..Counterexample::default()
+    })
+}

@@ -1,0 +1,219 @@
+//! The sampled route of a claim about a function of several parameters: exact values
+//! at seeded rational points of the box, then an adversarial pattern search in `f64`
+//! from the points closest to breaking the claim, whose end points are evaluated
+//! exactly again. A violation found either way is an exact counterexample; none found
+//! is sampled evidence, never a proof.
+
+use super::{Context, Exact};
+use crate::kernel::sign::{sign_of, End, Interval, Sign};
+use crate::kernel::{Rational, Var};
+use crate::strategy::finding::SampledSign;
+use std::collections::BTreeMap;
+
+/// Pattern-search starts (the samples with the smallest margins) and steps per start.
+const STARTS: usize = 4;
+const STEPS: usize = 60;
+
+pub(super) enum Sampled {
+    /// The function breaks the claim here (exactly).
+    Violation { point: BTreeMap<Var, Rational> },
+    Holds(SampledSign),
+}
+
+/// A small deterministic generator (SplitMix64): the same seed, the same points.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// A dyadic rational strictly inside (0, 1).
+    fn unit(&mut self) -> Rational {
+        let k = (self.next() >> 44) as i64; // 20 bits
+        Rational::ratio(2 * k + 1, 1 << 21).expect("nonzero")
+    }
+
+    /// A positive dyadic spread over scales 2⁻⁶ … 2⁶.
+    fn spread(&mut self) -> Rational {
+        let scale = (self.next() % 13) as i32 - 6;
+        &self.unit() * &Rational::int(2).pow(scale).expect("nonzero")
+    }
+
+    /// A rational point of `i`; one time in sixteen a closed end itself.
+    fn draw(&mut self, i: &Interval) -> Rational {
+        if self.next() % 16 == 0 {
+            let ends: Vec<&Rational> = [&i.lo, &i.hi]
+                .into_iter()
+                .filter_map(|e| match e {
+                    End::Closed(x) => Some(x),
+                    _ => None,
+                })
+                .collect();
+            if let Some(x) = ends.get((self.next() % 2) as usize).or(ends.first()) {
+                return (*x).clone();
+            }
+        }
+        let value = |e: &End| match e {
+            End::Unbounded => None,
+            End::Open(x) | End::Closed(x) => Some(x.clone()),
+        };
+        match (value(&i.lo), value(&i.hi)) {
+            (Some(a), Some(b)) => &a + &(&(&b - &a) * &self.unit()),
+            (Some(a), None) => &a + &self.spread(),
+            (None, Some(b)) => &b - &self.spread(),
+            (None, None) if self.next() % 2 == 0 => self.spread(),
+            (None, None) => -self.spread(),
+        }
+    }
+}
+
+/// How far `value` is from breaking `want` (negative: broken).
+fn margin(value: &Rational, want: Sign) -> Rational {
+    match want {
+        Sign::Positive | Sign::NonNegative => value.clone(),
+        Sign::Negative | Sign::NonPositive => -value.clone(),
+    }
+}
+
+/// Samples `g` on the box of `vars` for the sign `want`.
+pub(super) fn search(cx: &Context<'_>, g: &Exact, vars: &[Var], want: Sign) -> Sampled {
+    let bx = cx.box_on(vars);
+    let mut rng = Rng(cx.seed ^ 0x5CA1_AB1E);
+    let mut excluded = 0;
+    let mut kept: Vec<(Rational, BTreeMap<Var, Rational>, Rational)> = Vec::new();
+    // Simple points first (small integers and halves inside the box, every
+    // combination up to 64): a counterexample there reads best.
+    let simple: Vec<Vec<Rational>> = bx
+        .iter()
+        .map(|(_, i)| {
+            let mut c: Vec<Rational> = [(1, 1), (-1, 1), (1, 2), (-1, 2), (2, 1), (-2, 1)]
+                .iter()
+                .map(|&(n, d)| Rational::ratio(n, d).expect("nonzero"))
+                .filter(|x| i.contains(x))
+                .collect();
+            c.insert(0, crate::kernel::sign::inner_point(i));
+            c.dedup();
+            c
+        })
+        .collect();
+    let combos: usize = simple.iter().map(Vec::len).product();
+    if combos <= 64 {
+        for k in 0..combos {
+            let mut rest = k;
+            let point: BTreeMap<Var, Rational> = bx
+                .iter()
+                .zip(&simple)
+                .map(|((v, _), c)| {
+                    let x = c[rest % c.len()].clone();
+                    rest /= c.len();
+                    (*v, x)
+                })
+                .collect();
+            if let Some(value) = g.eval(&point) {
+                if !want.admits(sign_of(&value)) {
+                    return Sampled::Violation { point };
+                }
+            }
+        }
+    }
+    let mut drawn = 0;
+    // Undefined samples are redrawn, up to four times the sample count in all.
+    while kept.len() < cx.samples && drawn < 4 * cx.samples {
+        drawn += 1;
+        let point: BTreeMap<Var, Rational> = bx.iter().map(|(v, i)| (*v, rng.draw(i))).collect();
+        let Some(value) = g.eval(&point) else {
+            excluded += 1;
+            continue;
+        };
+        if !want.admits(sign_of(&value)) {
+            return Sampled::Violation { point };
+        }
+        kept.push((margin(&value, want), point, value));
+    }
+    kept.sort_by(|a, b| a.0.cmp(&b.0));
+    let mut evaluations = 0;
+    for (_, start, _) in kept.iter().take(STARTS).cloned().collect::<Vec<_>>() {
+        let (point, evals) = descend(g, &bx, start, want);
+        evaluations += evals;
+        if let Some(value) = g.eval(&point) {
+            if !want.admits(sign_of(&value)) {
+                return Sampled::Violation { point };
+            }
+            kept.push((margin(&value, want), point, value));
+        }
+    }
+    kept.sort_by(|a, b| a.0.cmp(&b.0));
+    let (smallest, at) = kept
+        .first()
+        .map(|(_, p, v)| (super::readable(v), cx.shown(p)))
+        .unwrap_or_else(|| ("none (every sample undefined)".to_owned(), BTreeMap::new()));
+    Sampled::Holds(SampledSign {
+        samples: kept.len(),
+        seed: cx.seed,
+        excluded,
+        search_evaluations: evaluations,
+        smallest_margin: smallest,
+        at,
+    })
+}
+
+/// A compass search in `f64` that lowers the margin from `start`, staying in the box;
+/// the end point is returned as exact rationals (every `f64` is one).
+fn descend(
+    g: &Exact,
+    bx: &[(Var, Interval)],
+    start: BTreeMap<Var, Rational>,
+    want: Sign,
+) -> (BTreeMap<Var, Rational>, usize) {
+    let sign = match want {
+        Sign::Positive | Sign::NonNegative => 1.0,
+        Sign::Negative | Sign::NonPositive => -1.0,
+    };
+    let vars: Vec<Var> = bx.iter().map(|(v, _)| *v).collect();
+    let mut x: Vec<f64> = vars.iter().map(|v| start[v].to_f64()).collect();
+    let f = |x: &[f64]| {
+        let at = |v: Var| vars.iter().position(|w| *w == v).map_or(0.0, |k| x[k]);
+        sign * g.f.eval_f64(&at)
+    };
+    let inside = |x: &[f64]| {
+        bx.iter().zip(x).all(|((_, i), &t)| {
+            Rational::from_f64_exact(t).is_some_and(|q| i.contains(&q))
+        })
+    };
+    let mut best = f(&x);
+    let mut evaluations = 1;
+    let mut step: Vec<f64> = x.iter().map(|t| 0.25 * (1.0 + t.abs())).collect();
+    for _ in 0..STEPS {
+        let mut improved = false;
+        for k in 0..x.len() {
+            for dir in [1.0, -1.0] {
+                let mut y = x.clone();
+                y[k] += dir * step[k];
+                if !inside(&y) {
+                    continue;
+                }
+                let v = f(&y);
+                evaluations += 1;
+                if v.is_finite() && v < best {
+                    best = v;
+                    x = y;
+                    improved = true;
+                }
+            }
+        }
+        if !improved {
+            step.iter_mut().for_each(|s| *s *= 0.5);
+        }
+    }
+    let point = vars
+        .iter()
+        .zip(&x)
+        .map(|(v, t)| (*v, Rational::from_f64_exact(*t).expect("finite")))
+        .collect();
+    (point, evaluations)
+}

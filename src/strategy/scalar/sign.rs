@@ -1,0 +1,252 @@
+//! `strategy = "sign"`: `left − right` has the stated sign at every point of the box
+//! where both sides are defined.
+
+use super::sample::{self, Sampled};
+use super::{Context, Exact, Stop};
+use crate::derivation::Expression;
+use crate::kernel::certificate::Certificate;
+use crate::kernel::sign::{Sign, Violation};
+use crate::kernel::{RatFunc, Rational, Var};
+use crate::strategy::finding::{Finding, RationalEvidence};
+use crate::strategy::{reverify, Counterexample, Method, Outcome, Strength};
+use std::collections::BTreeMap;
+
+pub(super) fn decide(cx: &mut Context<'_>, want: Sign) -> Result<Outcome, Stop> {
+    let [left, right] = sides(cx)?;
+    let (l, r) = (cx.exact(&left)?, cx.exact(&right)?);
+    let h = l.minus(&r);
+    let mut evidence = cx.evidence(&h.f);
+    evidence.decided = format!("left − right = {}", evidence.decided);
+    let decided = decide_function(cx, &h, want, evidence)?;
+    Ok(match decided {
+        Decided::Holds(o) => *o,
+        Decided::At(point) => counterexample(cx, (&left, &right), (&l, &r), &point),
+        Decided::AtRoot { var, lo, hi, evidence } => {
+            at_root(cx, (&left, &right), var, (&lo, &hi), evidence)
+        }
+    })
+}
+
+/// The claim's one pair of sides as expressions.
+fn sides(cx: &Context<'_>) -> Result<[Expression; 2], Stop> {
+    let chain = &cx.check.chains[0];
+    let one = |k: usize| -> Result<Expression, Stop> {
+        let side = &chain[k];
+        let node = side.node.clone().map_err(|e| {
+            Stop::Input(side.origin.diagnostic(e.span, e.message.clone()))
+        })?;
+        Ok(Expression {
+            text: side.text.clone(),
+            origin: side.origin.clone(),
+            node,
+        })
+    };
+    Ok([one(0)?, one(1)?])
+}
+
+/// How the sign of a function was decided.
+pub(super) enum Decided {
+    /// Proved, or sampled without a violation: the outcome, complete.
+    Holds(Box<Outcome>),
+    /// Broken at an exact rational point.
+    At(BTreeMap<Var, Rational>),
+    /// A strict sign broken at an irrational zero of the function of `var`, isolated in
+    /// (lo, hi).
+    AtRoot {
+        var: Var,
+        lo: Rational,
+        hi: Rational,
+        evidence: RationalEvidence,
+    },
+}
+
+/// Decides that `g` has the sign `want` on the box, with the kernel where it can.
+pub(super) fn decide_function(
+    cx: &Context<'_>,
+    g: &Exact,
+    want: Sign,
+    mut evidence: RationalEvidence,
+) -> Result<Decided, Stop> {
+    let names = &cx.env.vars;
+    let vars = g.variables();
+    let proved = |c: Certificate, e: RationalEvidence| {
+        Decided::Holds(Box::new(
+            Outcome::proved(Method::RationalFunction, 1, c)
+                .with_finding(Finding::RationalFunction(e)),
+        ))
+    };
+    // Identically zero: a non-strict sign holds everywhere, a strict one nowhere.
+    if g.f.is_zero() {
+        return Ok(match Certificate::rational_functions_equal(&g.f, &RatFunc::int(0)) {
+            Some(c) if want.admits(0) => proved(c, evidence),
+            _ => Decided::At(first_defined(cx, g, &vars)),
+        });
+    }
+    match vars.as_slice() {
+        [] => {
+            let box_ = cx.box_on(&vars);
+            Ok(match Certificate::sign_by_coefficients(&g.f, &box_, want, names) {
+                Some(c) => proved(c, evidence),
+                None => Decided::At(BTreeMap::new()),
+            })
+        }
+        [v] => {
+            let i = cx.interval(*v);
+            let (num, den) = g.cleared();
+            if let Some(chart) = crate::kernel::sign::chart_of((&num, &den), *v, &i) {
+                evidence.points = chart
+                    .cuts
+                    .iter()
+                    .map(|c| {
+                        let what = if c.pole { "pole" } else { "zero" };
+                        format!("{what} at {} = {}", names.name(*v), c.at)
+                    })
+                    .collect();
+            }
+            Ok(
+                match Certificate::sign_on_interval((&num, &den), *v, &i, want, names) {
+                    Ok(c) => proved(c, evidence),
+                    Err(Some(Violation::At { x, .. })) => Decided::At(BTreeMap::from([(*v, x)])),
+                    Err(Some(Violation::Zero { lo, hi })) => Decided::AtRoot {
+                        var: *v,
+                        lo,
+                        hi,
+                        evidence,
+                    },
+                    Err(None) => {
+                        return Err(Stop::Outcome(Box::new(
+                            Outcome::undecided(Method::RationalFunction, 0).with_finding(
+                                Finding::RationalFunction(evidence),
+                            ),
+                        )))
+                    }
+                },
+            )
+        }
+        _ => {
+            if let Some(c) = Certificate::sign_by_coefficients(&g.f, &cx.box_on(&vars), want, names)
+            {
+                return Ok(proved(c, evidence));
+            }
+            Ok(match sample::search(cx, g, &vars, want) {
+                Sampled::Violation { point } => Decided::At(point),
+                Sampled::Holds(s) => {
+                    let checks = s.samples;
+                    evidence.sampled = Some(s);
+                    Decided::Holds(Box::new(
+                        Outcome::holds_sampled(Method::RationalFunction, checks)
+                            .with_finding(Finding::RationalFunction(evidence)),
+                    ))
+                }
+            })
+        }
+    }
+}
+
+/// A point of the box where `g` is defined (for a function that is zero everywhere).
+fn first_defined(cx: &Context<'_>, g: &Exact, vars: &[Var]) -> BTreeMap<Var, Rational> {
+    let candidates = [1, 2, 3, -1].map(Rational::int);
+    for c in &candidates {
+        let p: BTreeMap<Var, Rational> = vars
+            .iter()
+            .map(|&v| {
+                let i = cx.interval(v);
+                let x = if i.contains(c) {
+                    c.clone()
+                } else {
+                    crate::kernel::sign::inner_point(&i)
+                };
+                (v, x)
+            })
+            .collect();
+        if g.eval(&p).is_some() {
+            return p;
+        }
+    }
+    BTreeMap::new()
+}
+
+/// The exact counterexample at `point`, confirmed by the interpreter.
+fn counterexample(
+    cx: &Context<'_>,
+    (left, right): (&Expression, &Expression),
+    (l, r): (&Exact, &Exact),
+    point: &BTreeMap<Var, Rational>,
+) -> Outcome {
+    let (Some(lv), Some(rv)) = (l.eval(point), r.eval(point)) else {
+        return Outcome::undecided(Method::RationalFunction, 0);
+    };
+    let mut shown = cx.shown(point);
+    if shown.is_empty() {
+        shown.insert("(no parameter)".to_owned(), "—".to_owned());
+    }
+    let mut found = Counterexample {
+        chain: 1,
+        equality: 1,
+        lhs: left.text.clone(),
+        rhs: right.text.clone(),
+        point: shown,
+        lhs_value: Some(lv.to_string()),
+        rhs_value: Some(rv.to_string()),
+        difference: (&lv - &rv).to_string(),
+        ..Counterexample::default()
+    };
+    match reverify::exact_counterexample(cx.decls, cx.check, &cx.env, point, (&lv, &rv), &found) {
+        Ok(how) => {
+            found.reverified = Some(how);
+            Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(found)
+        }
+        Err(why) => Outcome::undecided(Method::RationalFunction, 0).with_finding(
+            Finding::Unconfirmed {
+                difference: found.difference,
+                why,
+            },
+        ),
+    }
+}
+
+/// A strict sign broken at an irrational zero of `left − right`: both sides are equal
+/// there. The interpreter must find them equal to 1e-6 at the isolating interval's
+/// midpoint (at most 2⁻⁴⁰ from the zero).
+fn at_root(
+    cx: &Context<'_>,
+    (left, right): (&Expression, &Expression),
+    var: Var,
+    (lo, hi): (&Rational, &Rational),
+    evidence: RationalEvidence,
+) -> Outcome {
+    let mid = &(lo + hi) * &Rational::ratio(1, 2).expect("nonzero");
+    let point = BTreeMap::from([(var, mid.clone())]);
+    let values = cx
+        .interpret(left, &point)
+        .and_then(|a| cx.interpret(right, &point).map(|b| (a, b)));
+    let (a, b) = match values {
+        Ok((a, b)) if (a - b).abs() <= 1e-6 * (1.0 + a.abs() + b.abs()) => (a, b),
+        _ => {
+            return Outcome::undecided(Method::RationalFunction, 0)
+                .with_finding(Finding::RationalFunction(evidence))
+        }
+    };
+    let root = crate::kernel::sign::Real::Isolated {
+        lo: lo.clone(),
+        hi: hi.clone(),
+    };
+    let found = Counterexample {
+        chain: 1,
+        equality: 1,
+        lhs: left.text.clone(),
+        rhs: right.text.clone(),
+        point: BTreeMap::from([(
+            cx.name(var),
+            format!("{root} (the zero of left − right in ({lo}, {hi}))"),
+        )]),
+        lhs_value: Some(crate::digits::significant(a, crate::digits::VALUE)),
+        rhs_value: Some(crate::digits::significant(b, crate::digits::VALUE)),
+        difference: "0".to_owned(),
+        reverified: Some(crate::strategy::Reverified::FloatingPoint),
+        ..Counterexample::default()
+    };
+    Outcome::fails(Method::RationalFunction, Strength::Proof, 1)
+        .with_counterexample(found)
+        .with_finding(Finding::RationalFunction(evidence))
+}
