@@ -165,6 +165,7 @@ fn main() {
             Strategy::Gradient { .. } => "gradient",
             Strategy::Convex { .. } => "convex",
             Strategy::NotCircle { .. } => "witness",
+            Strategy::Scalar { .. } => "rational-function",
             Strategy::Appendix { .. } => "appendix",
             Strategy::Exact => "exact",
             Strategy::Proportional => "proportional",

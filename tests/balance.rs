@@ -135,7 +135,7 @@ fn slips_are_located_errors() {
             "",
             "strategy = \"proportional\"\nrelation = \"<=\"\nsides = [\"v_1\", \"v_1\"]",
             "f.toml:13:12",
-            "`relation` applies to strategy = \"numeric\" only",
+            "`relation` applies to strategy = \"numeric\" or \"sign\" only",
         ),
     ];
     for (header, claim, at, message) in cases {

@@ -68,6 +68,7 @@ fn strategy_name(s: &Strategy) -> &'static str {
         Strategy::Gradient { .. } => "gradient",
         Strategy::Convex { .. } => "convex",
         Strategy::NotCircle { .. } => "not-circle",
+        Strategy::Scalar { .. } => "rational-function",
         Strategy::Appendix { .. } => "appendix",
     }
 }
@@ -81,6 +82,16 @@ fn resampled(mut check: Check, samples: usize, seed: Option<u64>) -> Check {
             sampling.samples = samples;
             if let Some(s) = seed {
                 sampling.seed = s;
+            }
+        }
+        Strategy::Scalar {
+            samples: n,
+            seed: s,
+            ..
+        } => {
+            *n = samples;
+            if let Some(k) = seed {
+                *s = k;
             }
         }
         Strategy::Exact

@@ -41,19 +41,28 @@ fn scalar_claims_and_their_twins_are_decided_as_declared() {
             let r = rows.iter().find(|r| r.claim.id == id).unwrap();
             r.outcome.certificate().unwrap().facts().to_vec()
         };
-        assert!(matches!(facts("sign-pole-excluded")[0], Fact::SignOnInterval { poles: 1, .. }));
-        assert!(matches!(facts("sign-coefficients")[0], Fact::CoefficientSigns { .. }));
+        assert!(matches!(
+            facts("sign-pole-excluded")[0],
+            Fact::SignOnInterval { poles: 1, .. }
+        ));
+        assert!(matches!(
+            facts("sign-coefficients")[0],
+            Fact::CoefficientSigns { .. }
+        ));
         assert!(matches!(facts("limit-removable")[0], Fact::Limit { .. }));
         assert!(matches!(&facts("roots-cubic")[0], Fact::Roots { roots, .. } if roots.len() == 3));
         // Exact turning points and where the claim holds.
         assert!(evidence("hump-turning-point").contains("d/dx = 0 at x = 1; holds on 0 < x ≤ 1"));
-        assert!(evidence("cubic-turning-points").contains("holds on x ≤ ≈ -0.5773502692 and ≈ 0.5773502692 ≤ x"));
+        assert!(evidence("cubic-turning-points")
+            .contains("holds on x ≤ ≈ -0.5773502692 and ≈ 0.5773502692 ≤ x"));
         assert!(evidence("reciprocal-across-pole").contains("holds on x < 0 and 0 < x"));
         // A strict sign broken only at an irrational zero, and a root left out.
         assert!(evidence("sign-double-root-strict").contains("≈ -1.414213562"));
         assert!(evidence("roots-irrational-missed").contains("≈ 1.414213562 (a root not stated)"));
         assert!(evidence("limit-removable-twin").contains("left 2, right 1"));
-        assert!(evidence("limit-sign-from-parameter-twin").contains("left −∞ on some side, right +∞"));
+        assert!(
+            evidence("limit-sign-from-parameter-twin").contains("left −∞ on some side, right +∞")
+        );
     });
 }
 

@@ -123,6 +123,13 @@ const DICTIONARY: &[&str] = &[
     "strategy = \"proportional\"\n",
     "variation(sigma_ij u_j,i, u_k)",
     "variation(u_i,jj u_i,kk, u_m)",
+    "strategy = \"sign\"\nrelation = \">\"\n",
+    "strategy = \"monotone\"\nfunction = \"x/(1 + x^2)\"\nin = \"x\"\ndirection = \"increasing\"\n",
+    "strategy = \"limit\"\nfunction = \"1/x\"\nin = \"x\"\ntends_to = \"0+\"\nlimit = \"+infinity\"\n",
+    "strategy = \"roots\"\nfunction = \"x^3 - 7 x + 6\"\nin = \"x\"\nroots = [\"1\"]\n",
+    "given = [\"0 < x <= 1/2\"]\n",
+    "tends_to = \"-infinity\"\n",
+    "relation = \"<=\"\n",
 ];
 
 /// xorshift64*: deterministic given the seed.

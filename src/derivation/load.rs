@@ -790,18 +790,27 @@ impl Loader {
     fn one_pair_if_needed(&self, c: &RawClaim, check: &Check) -> Result<(), Diagnostic> {
         let pair = check.chains.len() == 1 && check.chains[0].len() == 2;
         let help = match (&check.strategy, &c.strategy) {
-            (Strategy::Proportional, Some(at)) if !pair => (at, "strategy = \"proportional\"", "left = λ · right for one nonzero constant λ"),
-            (
-                Strategy::Scalar {
-                    claim: ScalarClaim::Sign(_),
-                    ..
-                },
-                Some(at),
-            ) if !pair => (at, "strategy = \"sign\"", "left − right has the sign of `relation`"),
+            (Strategy::Proportional, Some(at)) if !pair => (
+                at,
+                "strategy = \"proportional\"",
+                "left = λ · right for one nonzero constant λ",
+            ),
+            (Strategy::Scalar { claim, .. }, Some(at))
+                if !pair && matches!(**claim, ScalarClaim::Sign(_)) =>
+            {
+                (
+                    at,
+                    "strategy = \"sign\"",
+                    "left − right has the sign of `relation`",
+                )
+            }
             _ => return Ok(()),
         };
         Err(self
-            .diag(help.0.span(), format!("{} compares exactly two sides", help.1))
+            .diag(
+                help.0.span(),
+                format!("{} compares exactly two sides", help.1),
+            )
             .with_help(format!("write sides = [\"left\", \"right\"]: {}", help.2)))
     }
 
@@ -817,19 +826,25 @@ impl Loader {
         };
         let sigs: Vec<_> = check.defs.iter().map(|d| d.sig.clone()).collect();
         let corrected = self.expression(text, decls, &sigs, &[])?;
-        match &mut check.strategy {
-            Strategy::Scalar {
-                claim:
-                    ScalarClaim::Monotone { function, .. }
-                    | ScalarClaim::Limit { function, .. }
-                    | ScalarClaim::Roots { function, .. },
-                ..
-            } => {
+        let target = match &mut check.strategy {
+            Strategy::Scalar { claim, .. } => match &mut **claim {
+                ScalarClaim::Monotone { function, .. }
+                | ScalarClaim::Limit { function, .. }
+                | ScalarClaim::Roots { function, .. } => Some(function),
+                ScalarClaim::Sign(_) => None,
+            },
+            _ => None,
+        };
+        match target {
+            Some(function) => {
                 *function = corrected;
                 Ok(())
             }
-            _ => Err(self
-                .diag(text.span(), "`function` in a correction applies to monotone, limit and roots claims")
+            None => Err(self
+                .diag(
+                    text.span(),
+                    "`function` in a correction applies to monotone, limit and roots claims",
+                )
                 .with_help("a correction of other claims gives its own `sides`")),
         }
     }
@@ -863,15 +878,12 @@ impl Loader {
                 .diag(c.expect.span(), format!("a claim expected to be `{expect}` needs a `reason`"))
                 .with_help("add reason = \"…\": one sentence saying why the printed statement does not hold"));
         }
-        let needs_sides = c
-            .strategy
-            .as_ref()
-            .is_none_or(|s| {
-                matches!(
-                    s.get_ref().as_str(),
-                    "exact" | "proportional" | "numeric" | "sign"
-                )
-            });
+        let needs_sides = c.strategy.as_ref().is_none_or(|s| {
+            matches!(
+                s.get_ref().as_str(),
+                "exact" | "proportional" | "numeric" | "sign"
+            )
+        });
         if let Some(at) = &c.step {
             if c.strategy
                 .as_ref()

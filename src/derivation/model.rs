@@ -303,7 +303,7 @@ impl Strategy {
                 out.push(x);
                 out.push(y);
             }
-            Strategy::Scalar { claim, .. } => match claim {
+            Strategy::Scalar { claim, .. } => match &**claim {
                 ScalarClaim::Sign(_) => {}
                 ScalarClaim::Monotone { function, .. } => out.push(function),
                 ScalarClaim::Limit {
@@ -368,7 +368,7 @@ pub enum Strategy {
     /// signs, lowest orders) where the kernel can, by exact evaluation at seeded
     /// sample points otherwise.
     Scalar {
-        claim: ScalarClaim,
+        claim: Box<ScalarClaim>,
         domain: ParamBox,
         /// Sample count and seed of the sampled route (several parameters, no
         /// certificate).
@@ -382,6 +382,8 @@ pub enum Strategy {
 }
 
 /// What a scalar claim states (see [`Strategy::Scalar`]).
+// Held boxed by `Strategy::Scalar`, so the variants' sizes cost nothing elsewhere.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 pub enum ScalarClaim {
     /// `left − right` has this sign (`strategy = "sign"`; the claim's one pair of sides

@@ -62,11 +62,7 @@ impl Loader {
                 ScalarClaim::Sign(want)
             }
             "monotone" => {
-                let d = need(
-                    &c.direction,
-                    "direction",
-                    "direction = \"increasing\"",
-                )?;
+                let d = need(&c.direction, "direction", "direction = \"increasing\"")?;
                 let increasing = match d.get_ref().as_str() {
                     "increasing" => true,
                     "decreasing" => false,
@@ -124,13 +120,19 @@ impl Loader {
             };
             if let (Some(at), false) = (field, used) {
                 return Err(self
-                    .diag(at.span(), format!("`{key}` does not apply to strategy = \"{name}\""))
+                    .diag(
+                        at.span(),
+                        format!("`{key}` does not apply to strategy = \"{name}\""),
+                    )
                     .with_help("see README.md, section \"Claims about rational functions\""));
             }
         }
         if let (Some(f), ScalarClaim::Sign(_)) = (&c.function, &claim) {
             return Err(self
-                .diag(f.span(), "a sign claim compares its `sides`; `function` does not apply")
+                .diag(
+                    f.span(),
+                    "a sign claim compares its `sides`; `function` does not apply",
+                )
                 .with_help("sides = [\"A2\", \"0\"] with relation = \">\""));
         }
         let samples = match &c.samples {
@@ -148,7 +150,7 @@ impl Loader {
             Some(s) => return Err(self.diag(s.span(), "seed must be a non-negative integer")),
         };
         Ok(Strategy::Scalar {
-            claim,
+            claim: Box::new(claim),
             domain: self.param_box(&c.given, decls)?,
             samples,
             seed,
@@ -269,7 +271,9 @@ impl Loader {
                 None => new,
             };
             if merged.is_empty() {
-                return Err(bad("no value satisfies it (with the other bounds on the same scalar)"));
+                return Err(bad(
+                    "no value satisfies it (with the other bounds on the same scalar)",
+                ));
             }
             out.bounds.push((name, merged));
         }
@@ -285,7 +289,9 @@ fn rational(text: &str) -> Option<Rational> {
         None => (false, t.strip_prefix('+').unwrap_or(t).trim()),
     };
     let value = match body.split_once('/') {
-        Some((n, d)) => Rational::parse_decimal(n.trim())?.checked_div(&Rational::parse_decimal(d.trim())?)?,
+        Some((n, d)) => {
+            Rational::parse_decimal(n.trim())?.checked_div(&Rational::parse_decimal(d.trim())?)?
+        }
         None => Rational::parse_decimal(body)?,
     };
     Some(if negative { -value } else { value })

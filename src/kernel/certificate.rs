@@ -13,10 +13,10 @@
 //! in the strategy that asks for the facts, and the facts are listed in the evidence so
 //! that a reader can audit it.
 
+use super::limit::{self, Approach, Expansion, Limit};
 use super::linear::determinant;
 use super::poly::{Poly, PolyError, Var, VarTable};
 use super::quotient::{cleared_difference, over, Quotient};
-use super::limit::{self, Approach, Expansion, Limit};
 use super::sign::{self, Interval, Sign, Violation};
 use super::sturm::{count_roots, Bound, UniPoly};
 use super::{RatFunc, Rational};
@@ -67,7 +67,10 @@ pub enum Fact {
     CoefficientSigns { substitution: String, cases: usize },
     /// The real roots of a rational function of one variable on an interval are
     /// exactly the listed rationals (Sturm isolation of every root).
-    Roots { interval: String, roots: Vec<String> },
+    Roots {
+        interval: String,
+        roots: Vec<String>,
+    },
     /// The limit of a rational function, from the lowest orders of numerator and
     /// denominator, wherever the listed polynomials are nonzero.
     Limit {
@@ -185,10 +188,10 @@ impl Certificate {
         interval: &Interval,
         want: Sign,
         names: &VarTable,
-    ) -> Result<Self, Option<Violation>> {
+    ) -> Result<Self, Option<Box<Violation>>> {
         let chart = sign::chart_of((num, den), v, interval).ok_or(None)?;
         match chart.violation(want) {
-            Some(v) => Err(Some(v)),
+            Some(v) => Err(Some(Box::new(v))),
             None => Ok(Self::of(Fact::SignOnInterval {
                 interval: interval.describe(names.name(v)),
                 relation: want.relation().to_owned(),

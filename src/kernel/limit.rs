@@ -65,7 +65,12 @@ fn lowest(p: &Poly, v: Var) -> (i32, Poly) {
     let a = p.terms().map(|(m, _)| m.exponent(v)).min().unwrap_or(0);
     let mut out = Poly::zero();
     for (m, c) in p.terms().filter(|(m, _)| m.exponent(v) == a) {
-        let rest = m.factors().iter().copied().filter(|&(w, _)| w != v).collect();
+        let rest = m
+            .factors()
+            .iter()
+            .copied()
+            .filter(|&(w, _)| w != v)
+            .collect();
         out.add_term(Monomial::from_factors(rest), c.clone());
     }
     (a, out)
@@ -133,14 +138,23 @@ mod tests {
         let (names, x, k) = setup();
         let (xs, ks) = (RatFunc::var(x), RatFunc::var(k));
         // (k x + x²) / (x + 2 x²) → k as x → 0; → 1/2 as x → ∞.
-        let f = &(&(&ks * &xs) + &(&xs * &xs))
-            / &(&xs + &(&RatFunc::int(2) * &(&xs * &xs)));
+        let f = &(&(&ks * &xs) + &(&xs * &xs)) / &(&xs + &(&RatFunc::int(2) * &(&xs * &xs)));
         let f = f.unwrap();
         let e = expand(&f, x, &Approach::At(Rational::int(0), Side::Both)).unwrap();
         assert_eq!(e.limit, Limit::Finite(ks.clone()));
         let e = expand(&f, x, &Approach::PlusInfinity).unwrap();
-        assert_eq!(e.limit, Limit::Finite(RatFunc::constant(Rational::ratio(1, 2).unwrap())));
-        assert!(e.nonzero.is_empty(), "{:?}", e.nonzero.iter().map(|p| p.display(&names)).collect::<Vec<_>>());
+        assert_eq!(
+            e.limit,
+            Limit::Finite(RatFunc::constant(Rational::ratio(1, 2).unwrap()))
+        );
+        assert!(
+            e.nonzero.is_empty(),
+            "{:?}",
+            e.nonzero
+                .iter()
+                .map(|p| p.display(&names))
+                .collect::<Vec<_>>()
+        );
     }
 
     #[test]
@@ -150,7 +164,12 @@ mod tests {
         // k / x: +∞·sign(k) from above, opposite from below, no signed limit two-sided.
         let f = (&ks / &xs).unwrap();
         let at = |side| expand(&f, x, &Approach::At(Rational::int(0), side)).unwrap();
-        assert_eq!(at(Side::Above).limit, Limit::Infinite { sign_of: ks.clone() });
+        assert_eq!(
+            at(Side::Above).limit,
+            Limit::Infinite {
+                sign_of: ks.clone()
+            }
+        );
         assert_eq!(at(Side::Below).limit, Limit::Infinite { sign_of: -&ks });
         assert_eq!(at(Side::Both).limit, Limit::InfiniteBothSigns);
         assert_eq!(at(Side::Above).nonzero.len(), 1, "k ≠ 0 is a condition");
@@ -158,10 +177,20 @@ mod tests {
         let one = RatFunc::int(1);
         let g = (&one / &(&(&xs - &one) * &(&xs - &one))).unwrap();
         let e = expand(&g, x, &Approach::At(Rational::int(1), Side::Both)).unwrap();
-        assert_eq!(e.limit, Limit::Infinite { sign_of: one.clone() });
+        assert_eq!(
+            e.limit,
+            Limit::Infinite {
+                sign_of: one.clone()
+            }
+        );
         // x³ → −∞ as x → −∞.
         let c = &xs * &(&xs * &xs);
         let e = expand(&c, x, &Approach::MinusInfinity).unwrap();
-        assert_eq!(e.limit, Limit::Infinite { sign_of: RatFunc::int(-1) });
+        assert_eq!(
+            e.limit,
+            Limit::Infinite {
+                sign_of: RatFunc::int(-1)
+            }
+        );
     }
 }

@@ -440,13 +440,19 @@ mod tests {
         assert_eq!(s(q(-1, 2), Rational::int(0)), q(-1, 3));
         assert_eq!(s(q(3, 2), q(7, 2)), Rational::int(2));
         // Brute force: no rational with a smaller denominator lies strictly between.
-        for (a, b) in [(q(31, 100), q(32, 100)), (q(-7, 11), q(-5, 8)), (q(1, 1000), q(1, 999))] {
+        for (a, b) in [
+            (q(31, 100), q(32, 100)),
+            (q(-7, 11), q(-5, 8)),
+            (q(1, 1000), q(1, 999)),
+        ] {
             let x = s(a.clone(), b.clone());
             assert!(a < x && x < b);
             let d = x.denom().to_i64().unwrap();
             for den in 1..d {
                 let lo = (&a * &Rational::int(den)).floor();
-                let cand = (&lo + &Rational::int(1)).checked_div(&Rational::int(den)).unwrap();
+                let cand = (&lo + &Rational::int(1))
+                    .checked_div(&Rational::int(den))
+                    .unwrap();
                 assert!(!(a < cand && cand < b), "{cand} is simpler than {x}");
             }
         }

@@ -10,8 +10,8 @@
 
 use super::poly::{Poly, Var, VarTable};
 use super::rational::Rational;
-use super::RatFunc;
 use super::sturm::{count_roots, isolate_roots, Bound, UniPoly};
+use super::RatFunc;
 use num_traits::Zero;
 use std::fmt;
 
@@ -144,7 +144,9 @@ impl fmt::Display for Real {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Real::Exact(x) => write!(f, "{x}"),
-            Real::Isolated { .. } => write!(f, "≈ {}", crate::digits::significant(self.approx(), 10)),
+            Real::Isolated { .. } => {
+                write!(f, "≈ {}", crate::digits::significant(self.approx(), 10))
+            }
         }
     }
 }
@@ -239,7 +241,11 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
     // Finite ends for the bisection: the interval's own, or the root bound, beyond
     // which `num · den` has no root. Roots at a finite end are the ends' business.
     let bound = product.root_bound();
-    let a = interval.lo.value().cloned().unwrap_or_else(|| -bound.clone());
+    let a = interval
+        .lo
+        .value()
+        .cloned()
+        .unwrap_or_else(|| -bound.clone());
     let b = interval.hi.value().cloned().unwrap_or(bound);
     let inner = product.without_root_at(&a).without_root_at(&b);
     // A rational root is usually the simplest rational of its isolating interval:
@@ -310,6 +316,10 @@ pub fn chart_of((num, den): (&Poly, &Poly), v: Var, interval: &Interval) -> Opti
     chart(&num, &den, interval)
 }
 
+/// One case of [`orthant_cases`]: the moved function and the variables whose t = 0 lies
+/// in the domain.
+pub type OrthantCase = (RatFunc, Vec<Var>);
+
 /// The most cases [`orthant_cases`] enumerates: two per unbounded variable.
 const MAX_CASES: usize = 64;
 
@@ -321,7 +331,7 @@ pub fn orthant_cases(
     f: &RatFunc,
     domain: &[(Var, Interval)],
     names: &VarTable,
-) -> Option<(Vec<(RatFunc, Vec<Var>)>, String)> {
+) -> Option<(Vec<OrthantCase>, String)> {
     let mut vars: Vec<Var> = f.numerator().variables();
     vars.extend(f.denominator().variables());
     vars.sort_unstable();
@@ -334,7 +344,10 @@ pub fn orthant_cases(
     let mut per_var: Vec<(Var, Vec<(RatFunc, bool)>)> = Vec::new();
     let mut words = Vec::new();
     for &v in &vars {
-        let i = domain.iter().find(|(w, _)| *w == v).map_or(&whole, |(_, i)| i);
+        let i = domain
+            .iter()
+            .find(|(w, _)| *w == v)
+            .map_or(&whole, |(_, i)| i);
         let name = names.name(v);
         let closed_lo = matches!(i.lo, End::Closed(_));
         let closed_hi = matches!(i.hi, End::Closed(_));
@@ -344,7 +357,11 @@ pub fn orthant_cases(
                 vec![(t(v), true), (-&t(v), true)]
             }
             (Some(a), None) => {
-                words.push(if a.is_zero() { format!("{name} = t") } else { format!("{name} = {a} + t") });
+                words.push(if a.is_zero() {
+                    format!("{name} = t")
+                } else {
+                    format!("{name} = {a} + t")
+                });
                 vec![(&c(a) + &t(v), closed_lo)]
             }
             (None, Some(b)) => {
@@ -458,7 +475,7 @@ impl SignChart {
         }
         // A zero of `num` inside breaks a strict sign.
         if !want.admits(0) {
-            for c in self.cuts.iter().filter(|c| !c.pole) {
+            if let Some(c) = self.cuts.iter().find(|c| !c.pole) {
                 return Some(match &c.at {
                     Real::Exact(x) => Violation::At {
                         x: x.clone(),
@@ -564,7 +581,10 @@ mod tests {
         assert_eq!(c.poles(), 1);
         assert_eq!(c.violation(Sign::Positive), None);
         let c = chart(&up(&[1]), &up(&[-1, 1]), &open_from(0)).unwrap();
-        assert!(matches!(c.violation(Sign::Positive), Some(Violation::At { .. })));
+        assert!(matches!(
+            c.violation(Sign::Positive),
+            Some(Violation::At { .. })
+        ));
     }
 
     #[test]

@@ -25,7 +25,9 @@ pub(super) fn decide(
     value: &LimitValue,
 ) -> Result<Outcome, Stop> {
     let f = cx.exact(function)?;
-    let v = cx.var(variable).unwrap_or_else(|| cx.env.vars.intern(variable));
+    let v = cx
+        .var(variable)
+        .unwrap_or_else(|| cx.env.vars.intern(variable));
     let names = &cx.env.vars;
     let found = klimit::expand(&f.f, v, to);
     let mut evidence = cx.evidence(&f.f);
@@ -53,7 +55,9 @@ pub(super) fn decide(
             Ok(match Certificate::limit(&f.f, v, to, &claimed.f, names) {
                 Ok(c) => Outcome::proved(Method::RationalFunction, 1, c)
                     .with_finding(Finding::RationalFunction(evidence)),
-                Err(_) => refuted(cx, Some(&claimed)).with_finding(Finding::RationalFunction(evidence)),
+                Err(_) => {
+                    refuted(cx, Some(&claimed)).with_finding(Finding::RationalFunction(evidence))
+                }
             })
         }
         LimitValue::Unsigned | LimitValue::Signed(_) => {
@@ -123,7 +127,11 @@ fn refutation(
             .map(|&w| {
                 let i = cx.interval(w);
                 let base = Rational::int(1 + k);
-                let x = if i.contains(&base) { base } else { inner_point(&i) };
+                let x = if i.contains(&base) {
+                    base
+                } else {
+                    inner_point(&i)
+                };
                 (w, x)
             })
             .collect();
@@ -145,7 +153,15 @@ fn refutation(
         if finite.is_some() && finite == stated {
             continue;
         }
-        return refuted_at(cx, (function, f), v, to, &point, (stated, plus), finite.is_none());
+        return refuted_at(
+            cx,
+            (function, f),
+            v,
+            to,
+            &point,
+            (stated, plus),
+            finite.is_none(),
+        );
     }
     Outcome::undecided(Method::RationalFunction, 0)
 }
@@ -193,9 +209,9 @@ fn refuted_at(
         .collect();
     let confirmed = match (&found, &stated) {
         // Both infinite: the stated sign is wrong on some side.
-        (None, None) => values.iter().any(|y| {
-            y.is_some_and(|y| y.abs() > 1e3 && plus.is_some_and(|p| (y > 0.0) != p))
-        }),
+        (None, None) => values
+            .iter()
+            .any(|y| y.is_some_and(|y| y.abs() > 1e3 && plus.is_some_and(|p| (y > 0.0) != p))),
         _ => values.iter().all(|y| {
             let Some(y) = *y else { return false };
             let dist = |q: &Option<Rational>| match q {
@@ -220,16 +236,21 @@ fn refuted_at(
         Some(false) => "−∞",
         None => "∞",
     };
-    let text = |q: &Option<Rational>, inf: &str| q.as_ref().map_or_else(|| inf.to_owned(), Rational::to_string);
-    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(Counterexample {
-        chain: 1,
-        equality: 1,
-        lhs: format!("lim {} as {name} → {to}", function.text),
-        rhs: "the stated limit".to_owned(),
-        point: shown,
-        lhs_value: Some(text(&found, infinite)),
-        rhs_value: Some(text(&stated, stated_text)),
-        reverified: Some(Reverified::FloatingPoint),
-        ..Counterexample::default()
-    })
+    let text = |q: &Option<Rational>, inf: &str| {
+        q.as_ref()
+            .map_or_else(|| inf.to_owned(), Rational::to_string)
+    };
+    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(
+        Counterexample {
+            chain: 1,
+            equality: 1,
+            lhs: format!("lim {} as {name} → {to}", function.text),
+            rhs: "the stated limit".to_owned(),
+            point: shown,
+            lhs_value: Some(text(&found, infinite)),
+            rhs_value: Some(text(&stated, stated_text)),
+            reverified: Some(Reverified::FloatingPoint),
+            ..Counterexample::default()
+        },
+    )
 }

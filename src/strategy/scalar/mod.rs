@@ -60,7 +60,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
         samples: *samples,
         seed: *seed,
     };
-    let decided = match claim {
+    let decided = match &**claim {
         ScalarClaim::Sign(want) => sign::decide(&mut cx, *want),
         ScalarClaim::Monotone {
             function,

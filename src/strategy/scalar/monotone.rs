@@ -61,7 +61,9 @@ pub(super) fn decide(
                 (Some(c), Some(p)) => Outcome::proved(Method::RationalFunction, 1, c.and(p))
                     .with_finding(Finding::RationalFunction(evidence)),
                 (Some(_), None) => {
-                    evidence.points.push("the denominator was not certified free of zeros on the box".to_owned());
+                    evidence.points.push(
+                        "the denominator was not certified free of zeros on the box".to_owned(),
+                    );
                     Outcome::undecided(Method::RationalFunction, 0)
                         .with_finding(Finding::RationalFunction(evidence))
                 }
@@ -69,14 +71,17 @@ pub(super) fn decide(
             },
             Decided::At(point) => two_points(cx, function, &f, v, &point, increasing, evidence),
             Decided::AtRoot { evidence, .. } => Outcome::undecided(Method::RationalFunction, 0)
-                .with_finding(Finding::RationalFunction(evidence)),
+                .with_finding(Finding::RationalFunction(*evidence)),
         });
     }
     let i = cx.interval(v);
     let (num, den) = slope.cleared();
     // Poles of the reduced function (a cancelled divisor is a removable point, not a
     // pole that breaks monotonicity).
-    let (Some(chart), Some(of_f)) = (chart_of((&num, &den), v, &i), chart_of((f.f.numerator(), f.f.denominator()), v, &i)) else {
+    let (Some(chart), Some(of_f)) = (
+        chart_of((&num, &den), v, &i),
+        chart_of((f.f.numerator(), f.f.denominator()), v, &i),
+    ) else {
         return Ok(Outcome::undecided(Method::RationalFunction, 0)
             .with_finding(Finding::RationalFunction(evidence)));
     };
@@ -86,7 +91,12 @@ pub(super) fn decide(
         .iter()
         .filter(|c| !c.pole)
         .map(|c| format!("d/d{name} = 0 at {name} = {}", c.at))
-        .chain(of_f.cuts.iter().filter(|c| c.pole).map(|c| format!("pole at {name} = {}", c.at)))
+        .chain(
+            of_f.cuts
+                .iter()
+                .filter(|c| c.pole)
+                .map(|c| format!("pole at {name} = {}", c.at)),
+        )
         .collect();
     let runs = runs(&chart, &of_f, want);
     let whole = runs.len() == 1 && runs[0].first == 0 && runs[0].last == chart.pieces.len() - 1;
@@ -105,7 +115,15 @@ pub(super) fn decide(
     let witness = match bad {
         Some(k) => {
             let s = chart.pieces[k].sample.clone();
-            two_points(cx, function, &f, v, &BTreeMap::from([(v, s)]), increasing, evidence.clone())
+            two_points(
+                cx,
+                function,
+                &f,
+                v,
+                &BTreeMap::from([(v, s)]),
+                increasing,
+                evidence.clone(),
+            )
         }
         None => across_pole(cx, function, &f, v, &of_f, increasing, evidence.clone()),
     };
@@ -132,7 +150,12 @@ struct Run {
 }
 
 fn runs(chart: &SignChart, of_f: &SignChart, want: Sign) -> Vec<Run> {
-    let poles: Vec<f64> = of_f.cuts.iter().filter(|c| c.pole).map(|c| c.at.approx()).collect();
+    let poles: Vec<f64> = of_f
+        .cuts
+        .iter()
+        .filter(|c| c.pole)
+        .map(|c| c.at.approx())
+        .collect();
     let mut out: Vec<Run> = Vec::new();
     for (k, p) in chart.pieces.iter().enumerate() {
         if !want.admits(p.sign()) {
@@ -196,7 +219,10 @@ impl Run {
                 End::Closed(a) => format!("{a} ≤ "),
             },
             Some(r) => {
-                let strict = self.first.checked_sub(1).is_some_and(|j| chart.cuts[j].pole);
+                let strict = self
+                    .first
+                    .checked_sub(1)
+                    .is_some_and(|j| chart.cuts[j].pole);
                 format!("{r} {} ", if strict { "<" } else { "≤" })
             }
         };
@@ -216,7 +242,13 @@ impl Run {
 }
 
 /// A function that does not change with the variable: two points with equal values.
-fn constant(cx: &Context<'_>, function: &Expression, f: &Exact, v: Var, evidence: RationalEvidence) -> Outcome {
+fn constant(
+    cx: &Context<'_>,
+    function: &Expression,
+    f: &Exact,
+    v: Var,
+    evidence: RationalEvidence,
+) -> Outcome {
     let i = cx.interval(v);
     if i.is_empty() {
         return Outcome::undecided(Method::RationalFunction, 0);
@@ -226,7 +258,14 @@ fn constant(cx: &Context<'_>, function: &Expression, f: &Exact, v: Var, evidence
     for w in f.variables() {
         point.entry(w).or_insert_with(|| Rational::int(1));
     }
-    let mut out = pair(cx, function, f, v, &point, &(&point[&v] + &Rational::ratio(1, 1024).expect("nonzero")));
+    let mut out = pair(
+        cx,
+        function,
+        f,
+        v,
+        &point,
+        &(&point[&v] + &Rational::ratio(1, 1024).expect("nonzero")),
+    );
     if !i.contains(&(&point[&v] + &Rational::ratio(1, 1024).expect("nonzero"))) {
         out = Outcome::undecided(Method::RationalFunction, 0);
     }
@@ -259,7 +298,8 @@ fn two_points(
         }
         step = &step * &Rational::ratio(1, 2).expect("nonzero");
     }
-    Outcome::undecided(Method::RationalFunction, 0).with_finding(Finding::RationalFunction(evidence))
+    Outcome::undecided(Method::RationalFunction, 0)
+        .with_finding(Finding::RationalFunction(evidence))
 }
 
 /// Two points on either side of a pole of the function where it moves the wrong way.
@@ -273,7 +313,10 @@ fn across_pole(
     evidence: RationalEvidence,
 ) -> Outcome {
     for (k, cut) in of_f.cuts.iter().enumerate().filter(|(_, c)| c.pole) {
-        let (a, b) = (of_f.pieces[k].sample.clone(), of_f.pieces[k + 1].sample.clone());
+        let (a, b) = (
+            of_f.pieces[k].sample.clone(),
+            of_f.pieces[k + 1].sample.clone(),
+        );
         let (pa, pb) = (BTreeMap::from([(v, a)]), BTreeMap::from([(v, b.clone())]));
         if let (Some(fa), Some(fb)) = (f.eval(&pa), f.eval(&pb)) {
             if (fb < fa && increasing) || (fb > fa && !increasing) {
@@ -283,7 +326,8 @@ fn across_pole(
         }
         let _ = cut;
     }
-    Outcome::undecided(Method::RationalFunction, 0).with_finding(Finding::RationalFunction(evidence))
+    Outcome::undecided(Method::RationalFunction, 0)
+        .with_finding(Finding::RationalFunction(evidence))
 }
 
 /// `fails`: the function at `point` and at `point` with the variable moved to `b`,
@@ -311,15 +355,17 @@ fn pair(
     let name = cx.name(v);
     let mut shown = cx.shown(point);
     shown.insert(name.clone(), format!("{} → {b}", point[&v]));
-    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(Counterexample {
-        chain: 1,
-        equality: 1,
-        lhs: format!("{} at {name} = {}", function.text, point[&v]),
-        rhs: format!("{} at {name} = {b}", function.text),
-        point: shown,
-        lhs_value: Some(fa.to_string()),
-        rhs_value: Some(fb.to_string()),
-        reverified: Some(Reverified::FloatingPoint),
-        ..Counterexample::default()
-    })
+    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(
+        Counterexample {
+            chain: 1,
+            equality: 1,
+            lhs: format!("{} at {name} = {}", function.text, point[&v]),
+            rhs: format!("{} at {name} = {b}", function.text),
+            point: shown,
+            lhs_value: Some(fa.to_string()),
+            rhs_value: Some(fb.to_string()),
+            reverified: Some(Reverified::FloatingPoint),
+            ..Counterexample::default()
+        },
+    )
 }

@@ -19,7 +19,9 @@ pub(super) fn decide(
     roots: &[Expression],
 ) -> Result<Outcome, Stop> {
     let f = cx.exact(function)?;
-    let v = cx.var(variable).unwrap_or_else(|| cx.env.vars.intern(variable));
+    let v = cx
+        .var(variable)
+        .unwrap_or_else(|| cx.env.vars.intern(variable));
     let mut evidence = cx.evidence(&f.f);
     evidence.decided = format!("{} = {}", function.text, evidence.decided);
     let mut stated = Vec::with_capacity(roots.len());
@@ -56,7 +58,10 @@ pub(super) fn decide(
         Err(zeros) => zeros,
     };
     let name = cx.name(v);
-    evidence.points = zeros.iter().map(|z| format!("root at {name} = {z}")).collect();
+    evidence.points = zeros
+        .iter()
+        .map(|z| format!("root at {name} = {z}"))
+        .collect();
     // A stated value that is no root, with its exact value.
     for r in &stated {
         if zeros.contains(&Real::Exact(r.clone())) {
@@ -74,10 +79,16 @@ pub(super) fn decide(
                 .with_finding(Finding::RationalFunction(evidence)));
         }
         let lhs_value = value.map_or_else(|| "undefined".to_owned(), |q| q.to_string());
-        let outside = if i.contains(r) { "" } else { " (outside the domain)" };
+        let outside = if i.contains(r) {
+            ""
+        } else {
+            " (outside the domain)"
+        };
         let how = Reverified::FloatingPoint;
-        return Ok(fails(function, &name, format!("{r}{outside}"), lhs_value, how)
-            .with_finding(Finding::RationalFunction(evidence)));
+        return Ok(
+            fails(function, &name, format!("{r}{outside}"), lhs_value, how)
+                .with_finding(Finding::RationalFunction(evidence)),
+        );
     }
     // A root that is not stated.
     let missing = zeros
@@ -92,22 +103,24 @@ pub(super) fn decide(
             "0".to_owned(),
             Reverified::Exact,
         )
-            .with_finding(Finding::RationalFunction(evidence)),
+        .with_finding(Finding::RationalFunction(evidence)),
         None => Outcome::undecided(Method::RationalFunction, 0)
             .with_finding(Finding::RationalFunction(evidence)),
     })
 }
 
 fn fails(function: &Expression, name: &str, at: String, value: String, how: Reverified) -> Outcome {
-    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(Counterexample {
-        chain: 1,
-        equality: 1,
-        lhs: function.text.clone(),
-        rhs: "0".to_owned(),
-        point: BTreeMap::from([(name.to_owned(), at)]),
-        lhs_value: Some(value),
-        rhs_value: Some(Rational::int(0).to_string()),
-        reverified: Some(how),
-        ..Counterexample::default()
-    })
+    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(
+        Counterexample {
+            chain: 1,
+            equality: 1,
+            lhs: function.text.clone(),
+            rhs: "0".to_owned(),
+            point: BTreeMap::from([(name.to_owned(), at)]),
+            lhs_value: Some(value),
+            rhs_value: Some(Rational::int(0).to_string()),
+            reverified: Some(how),
+            ..Counterexample::default()
+        },
+    )
 }

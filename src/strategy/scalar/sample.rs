@@ -16,7 +16,9 @@ const STEPS: usize = 60;
 
 pub(super) enum Sampled {
     /// The function breaks the claim here (exactly).
-    Violation { point: BTreeMap<Var, Rational> },
+    Violation {
+        point: BTreeMap<Var, Rational>,
+    },
     Holds(SampledSign),
 }
 
@@ -46,7 +48,7 @@ impl Rng {
 
     /// A rational point of `i`; one time in sixteen a closed end itself.
     fn draw(&mut self, i: &Interval) -> Rational {
-        if self.next() % 16 == 0 {
+        if self.next().is_multiple_of(16) {
             let ends: Vec<&Rational> = [&i.lo, &i.hi]
                 .into_iter()
                 .filter_map(|e| match e {
@@ -66,7 +68,7 @@ impl Rng {
             (Some(a), Some(b)) => &a + &(&(&b - &a) * &self.unit()),
             (Some(a), None) => &a + &self.spread(),
             (None, Some(b)) => &b - &self.spread(),
-            (None, None) if self.next() % 2 == 0 => self.spread(),
+            (None, None) if self.next().is_multiple_of(2) => self.spread(),
             (None, None) => -self.spread(),
         }
     }
@@ -181,9 +183,9 @@ fn descend(
         sign * g.f.eval_f64(&at)
     };
     let inside = |x: &[f64]| {
-        bx.iter().zip(x).all(|((_, i), &t)| {
-            Rational::from_f64_exact(t).is_some_and(|q| i.contains(&q))
-        })
+        bx.iter()
+            .zip(x)
+            .all(|((_, i), &t)| Rational::from_f64_exact(t).is_some_and(|q| i.contains(&q)))
     };
     let mut best = f(&x);
     let mut evaluations = 1;

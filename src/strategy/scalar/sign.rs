@@ -21,9 +21,12 @@ pub(super) fn decide(cx: &mut Context<'_>, want: Sign) -> Result<Outcome, Stop> 
     Ok(match decided {
         Decided::Holds(o) => *o,
         Decided::At(point) => counterexample(cx, (&left, &right), (&l, &r), &point),
-        Decided::AtRoot { var, lo, hi, evidence } => {
-            at_root(cx, (&left, &right), var, (&lo, &hi), evidence)
-        }
+        Decided::AtRoot {
+            var,
+            lo,
+            hi,
+            evidence,
+        } => at_root(cx, (&left, &right), var, (&lo, &hi), *evidence),
     })
 }
 
@@ -32,9 +35,10 @@ fn sides(cx: &Context<'_>) -> Result<[Expression; 2], Stop> {
     let chain = &cx.check.chains[0];
     let one = |k: usize| -> Result<Expression, Stop> {
         let side = &chain[k];
-        let node = side.node.clone().map_err(|e| {
-            Stop::Input(side.origin.diagnostic(e.span, e.message.clone()))
-        })?;
+        let node = side
+            .node
+            .clone()
+            .map_err(|e| Stop::Input(side.origin.diagnostic(e.span, e.message.clone())))?;
         Ok(Expression {
             text: side.text.clone(),
             origin: side.origin.clone(),
@@ -56,7 +60,7 @@ pub(super) enum Decided {
         var: Var,
         lo: Rational,
         hi: Rational,
-        evidence: RationalEvidence,
+        evidence: Box<RationalEvidence>,
     },
 }
 
@@ -77,18 +81,22 @@ pub(super) fn decide_function(
     };
     // Identically zero: a non-strict sign holds everywhere, a strict one nowhere.
     if g.f.is_zero() {
-        return Ok(match Certificate::rational_functions_equal(&g.f, &RatFunc::int(0)) {
-            Some(c) if want.admits(0) => proved(c, evidence),
-            _ => Decided::At(first_defined(cx, g, &vars)),
-        });
+        return Ok(
+            match Certificate::rational_functions_equal(&g.f, &RatFunc::int(0)) {
+                Some(c) if want.admits(0) => proved(c, evidence),
+                _ => Decided::At(first_defined(cx, g, &vars)),
+            },
+        );
     }
     match vars.as_slice() {
         [] => {
             let box_ = cx.box_on(&vars);
-            Ok(match Certificate::sign_by_coefficients(&g.f, &box_, want, names) {
-                Some(c) => proved(c, evidence),
-                None => Decided::At(BTreeMap::new()),
-            })
+            Ok(
+                match Certificate::sign_by_coefficients(&g.f, &box_, want, names) {
+                    Some(c) => proved(c, evidence),
+                    None => Decided::At(BTreeMap::new()),
+                },
+            )
         }
         [v] => {
             let i = cx.interval(*v);
@@ -106,18 +114,19 @@ pub(super) fn decide_function(
             Ok(
                 match Certificate::sign_on_interval((&num, &den), *v, &i, want, names) {
                     Ok(c) => proved(c, evidence),
-                    Err(Some(Violation::At { x, .. })) => Decided::At(BTreeMap::from([(*v, x)])),
-                    Err(Some(Violation::Zero { lo, hi })) => Decided::AtRoot {
-                        var: *v,
-                        lo,
-                        hi,
-                        evidence,
+                    Err(Some(violation)) => match *violation {
+                        Violation::At { x, .. } => Decided::At(BTreeMap::from([(*v, x)])),
+                        Violation::Zero { lo, hi } => Decided::AtRoot {
+                            var: *v,
+                            lo,
+                            hi,
+                            evidence: Box::new(evidence),
+                        },
                     },
                     Err(None) => {
                         return Err(Stop::Outcome(Box::new(
-                            Outcome::undecided(Method::RationalFunction, 0).with_finding(
-                                Finding::RationalFunction(evidence),
-                            ),
+                            Outcome::undecided(Method::RationalFunction, 0)
+                                .with_finding(Finding::RationalFunction(evidence)),
                         )))
                     }
                 },
@@ -196,12 +205,12 @@ fn counterexample(
             found.reverified = Some(how);
             Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(found)
         }
-        Err(why) => Outcome::undecided(Method::RationalFunction, 0).with_finding(
-            Finding::Unconfirmed {
+        Err(why) => {
+            Outcome::undecided(Method::RationalFunction, 0).with_finding(Finding::Unconfirmed {
                 difference: found.difference,
                 why,
-            },
-        ),
+            })
+        }
     }
 }
 
