@@ -24,6 +24,10 @@ fn scalar_claims_and_their_twins_are_decided_as_declared() {
                 Verdict::Holds => {
                     assert_eq!(o.strength(), Strength::Proof, "{id}");
                     assert!(!o.certificate().expect(id).facts().is_empty());
+                    assert!(
+                        cosserat_check::report::evidence(o).contains("proof: "),
+                        "{id}: the kernel's facts are shown"
+                    );
                 }
                 Verdict::Fails | Verdict::Conditional => {
                     let cx = o.counterexample.as_ref().expect(id);

@@ -1,6 +1,6 @@
 //! The sign of a univariate rational function on an interval, decided exactly.
 //!
-//! `f = num / den` (coprime) is continuous and nonzero between consecutive real roots
+//! `f = num / den` is continuous and nonzero between consecutive real roots
 //! of `num · den`, so its sign on each such piece is its sign at any one rational point
 //! of the piece. The roots are isolated by Sturm bisection ([`isolate_roots`]); every
 //! piece gets the simplest rational point that is known to lie inside it. The result,
@@ -205,8 +205,9 @@ fn isolation_width() -> Rational {
     Rational::ratio(1, 1 << 40).expect("nonzero")
 }
 
-/// The sign chart of `num / den` on `interval` (`num`, `den` coprime, `den` nonzero,
-/// the interval not empty). `None` for a zero denominator or an empty interval.
+/// The sign chart of `num / den` on `interval`. A common root of `num` and `den` is a
+/// pole: a point where the expression is undefined. `None` for a zero denominator or an
+/// empty interval.
 pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignChart> {
     if den.is_zero() || interval.is_empty() {
         return None;

@@ -426,12 +426,12 @@ fn mismatch(l: &Labeled, r: &Labeled) -> String {
     )
 }
 
-/// A deterministic generator (SplitMix64) for counterexample points: the same claim
-/// always gets the same point.
-struct SplitMix(u64);
+/// A deterministic generator (SplitMix64) for exact points: the same claim always gets
+/// the same point (counterexample points here, samples of `scalar`).
+pub(super) struct SplitMix(pub(super) u64);
 
 impl SplitMix {
-    fn next(&mut self) -> u64 {
+    pub(super) fn next(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);

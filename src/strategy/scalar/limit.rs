@@ -84,8 +84,7 @@ pub(super) fn decide(
                     None => *o,
                 },
                 Decided::At(point) => {
-                    let mut out =
-                        refuted_at(cx, (function, &f), v, to, &point, (None, Some(plus)), true);
+                    let mut out = refuted_at(cx, function, v, to, &point, (None, None, Some(plus)));
                     out.finding = Some(Finding::RationalFunction(evidence));
                     out
                 }
@@ -153,39 +152,21 @@ fn refutation(
         if finite.is_some() && finite == stated {
             continue;
         }
-        return refuted_at(
-            cx,
-            (function, f),
-            v,
-            to,
-            &point,
-            (stated, plus),
-            finite.is_none(),
-        );
+        return refuted_at(cx, function, v, to, &point, (finite, stated, plus));
     }
     Outcome::undecided(Method::RationalFunction, 0)
 }
 
-/// `fails` at `point` (the other parameters): the stated limit (`None`: infinite)
-/// against the found one, confirmed by the interpreter near the point.
+/// `fails` at `point` (the other parameters): the stated limit against the found one
+/// (`None`: infinite), confirmed by the interpreter near the point.
 fn refuted_at(
     cx: &Context<'_>,
-    (function, f): (&Expression, &Exact),
+    function: &Expression,
     v: Var,
     to: &Approach,
     point: &BTreeMap<Var, Rational>,
-    (stated, plus): (Option<Rational>, Option<bool>),
-    found_infinite: bool,
+    (found, stated, plus): (Option<Rational>, Option<Rational>, Option<bool>),
 ) -> Outcome {
-    let at = |w: Var| point.get(&w).cloned().unwrap_or_else(|| Rational::int(0));
-    let found = if found_infinite {
-        None
-    } else {
-        klimit::expand(&f.f, v, to).and_then(|e| match e.limit {
-            Limit::Finite(m) => m.eval(&at),
-            _ => None,
-        })
-    };
     // Near the point: 2⁻²⁴ from it, or 2²⁴ out (both sides of a two-sided approach).
     let near: Vec<Rational> = match to {
         Approach::At(c, side) => {

@@ -57,17 +57,19 @@ pub(super) fn decide(
             .into_iter()
             .find_map(|s| Certificate::sign_by_coefficients(&den.f, &bx, s, names));
         return Ok(match decide_function(cx, &slope, want, evidence.clone())? {
+            // Without a denominator certified free of zeros, a pole may break the
+            // monotonicity whatever the derivative's sign: nothing is decided.
+            Decided::Holds(_) if pole_free.is_none() => {
+                evidence
+                    .points
+                    .push("the denominator was not certified free of zeros on the box".to_owned());
+                Outcome::undecided(Method::RationalFunction, 0)
+                    .with_finding(Finding::RationalFunction(evidence))
+            }
             Decided::Holds(o) => match (o.certificate().cloned(), pole_free) {
                 (Some(c), Some(p)) => Outcome::proved(Method::RationalFunction, 1, c.and(p))
                     .with_finding(Finding::RationalFunction(evidence)),
-                (Some(_), None) => {
-                    evidence.points.push(
-                        "the denominator was not certified free of zeros on the box".to_owned(),
-                    );
-                    Outcome::undecided(Method::RationalFunction, 0)
-                        .with_finding(Finding::RationalFunction(evidence))
-                }
-                (None, _) => *o,
+                _ => *o,
             },
             Decided::At(point) => two_points(cx, function, &f, v, &point, increasing, evidence),
             Decided::AtRoot { evidence, .. } => Outcome::undecided(Method::RationalFunction, 0)
@@ -210,32 +212,24 @@ impl Run {
         }
     }
 
-    /// The run in words, turning points exact or to ten digits.
+    /// The run in words, turning points exact or to ten digits; strict at a pole.
     fn describe(&self, chart: &SignChart, i: &Interval, name: &str) -> String {
-        let lo = match self.first.checked_sub(1).map(|j| &chart.cuts[j].at) {
+        let relation = |c: &crate::kernel::sign::Cut| if c.pole { "<" } else { "≤" };
+        let lo = match self.first.checked_sub(1).map(|j| &chart.cuts[j]) {
             None => match &i.lo {
                 End::Unbounded => String::new(),
                 End::Open(a) => format!("{a} < "),
                 End::Closed(a) => format!("{a} ≤ "),
             },
-            Some(r) => {
-                let strict = self
-                    .first
-                    .checked_sub(1)
-                    .is_some_and(|j| chart.cuts[j].pole);
-                format!("{r} {} ", if strict { "<" } else { "≤" })
-            }
+            Some(c) => format!("{} {} ", c.at, relation(c)),
         };
-        let hi = match chart.cuts.get(self.last).map(|c| &c.at) {
+        let hi = match chart.cuts.get(self.last) {
             None => match &i.hi {
                 End::Unbounded => String::new(),
                 End::Open(b) => format!(" < {b}"),
                 End::Closed(b) => format!(" ≤ {b}"),
             },
-            Some(r) => {
-                let strict = chart.cuts.get(self.last).is_some_and(|c| c.pole);
-                format!(" {} {r}", if strict { "<" } else { "≤" })
-            }
+            Some(c) => format!(" {} {}", relation(c), c.at),
         };
         format!("{lo}{name}{hi}")
     }
@@ -258,17 +252,12 @@ fn constant(
     for w in f.variables() {
         point.entry(w).or_insert_with(|| Rational::int(1));
     }
-    let mut out = pair(
-        cx,
-        function,
-        f,
-        v,
-        &point,
-        &(&point[&v] + &Rational::ratio(1, 1024).expect("nonzero")),
-    );
-    if !i.contains(&(&point[&v] + &Rational::ratio(1, 1024).expect("nonzero"))) {
-        out = Outcome::undecided(Method::RationalFunction, 0);
-    }
+    let b = &point[&v] + &Rational::ratio(1, 1024).expect("nonzero");
+    let out = if i.contains(&b) {
+        pair(cx, function, f, v, &point, &b)
+    } else {
+        Outcome::undecided(Method::RationalFunction, 0)
+    };
     out.with_finding(Finding::RationalFunction(evidence))
 }
 
@@ -288,13 +277,9 @@ fn two_points(
     let mut step = Rational::ratio(1, 16).expect("nonzero");
     for _ in 0..60 {
         let b = &a + &step;
-        let mut at_b = point.clone();
-        at_b.insert(v, b.clone());
-        if let (true, Some(fa), Some(fb)) = (i.contains(&b), f.eval(point), f.eval(&at_b)) {
-            if (fb < fa && increasing) || (fb > fa && !increasing) {
-                return pair(cx, function, f, v, point, &b)
-                    .with_finding(Finding::RationalFunction(evidence));
-            }
+        if i.contains(&b) && wrong_way(f, point, v, &b, increasing) {
+            return pair(cx, function, f, v, point, &b)
+                .with_finding(Finding::RationalFunction(evidence));
         }
         step = &step * &Rational::ratio(1, 2).expect("nonzero");
     }
@@ -312,22 +297,33 @@ fn across_pole(
     increasing: bool,
     evidence: RationalEvidence,
 ) -> Outcome {
-    for (k, cut) in of_f.cuts.iter().enumerate().filter(|(_, c)| c.pole) {
-        let (a, b) = (
-            of_f.pieces[k].sample.clone(),
-            of_f.pieces[k + 1].sample.clone(),
-        );
-        let (pa, pb) = (BTreeMap::from([(v, a)]), BTreeMap::from([(v, b.clone())]));
-        if let (Some(fa), Some(fb)) = (f.eval(&pa), f.eval(&pb)) {
-            if (fb < fa && increasing) || (fb > fa && !increasing) {
-                return pair(cx, function, f, v, &pa, &b)
-                    .with_finding(Finding::RationalFunction(evidence));
-            }
+    for (k, _) in of_f.cuts.iter().enumerate().filter(|(_, c)| c.pole) {
+        let (a, b) = (&of_f.pieces[k].sample, &of_f.pieces[k + 1].sample);
+        let at_a = BTreeMap::from([(v, a.clone())]);
+        if wrong_way(f, &at_a, v, b, increasing) {
+            return pair(cx, function, f, v, &at_a, b)
+                .with_finding(Finding::RationalFunction(evidence));
         }
-        let _ = cut;
     }
     Outcome::undecided(Method::RationalFunction, 0)
         .with_finding(Finding::RationalFunction(evidence))
+}
+
+/// Whether the function, exactly, moves against the claimed direction from `point` to
+/// `point` with the variable moved up to `b`.
+fn wrong_way(
+    f: &Exact,
+    point: &BTreeMap<Var, Rational>,
+    v: Var,
+    b: &Rational,
+    increasing: bool,
+) -> bool {
+    let mut at_b = point.clone();
+    at_b.insert(v, b.clone());
+    match (f.eval(point), f.eval(&at_b)) {
+        (Some(fa), Some(fb)) => (fb < fa && increasing) || (fb > fa && !increasing),
+        _ => false,
+    }
 }
 
 /// `fails`: the function at `point` and at `point` with the variable moved to `b`,

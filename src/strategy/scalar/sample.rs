@@ -7,6 +7,7 @@
 use super::{Context, Exact};
 use crate::kernel::sign::{sign_of, End, Interval, Sign};
 use crate::kernel::{Rational, Var};
+use crate::strategy::exact::SplitMix;
 use crate::strategy::finding::SampledSign;
 use std::collections::BTreeMap;
 
@@ -22,16 +23,12 @@ pub(super) enum Sampled {
     Holds(SampledSign),
 }
 
-/// A small deterministic generator (SplitMix64): the same seed, the same points.
-struct Rng(u64);
+/// Exact sample points from the exact route's generator: the same seed, the same points.
+struct Rng(SplitMix);
 
 impl Rng {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next()
     }
 
     /// A dyadic rational strictly inside (0, 1).
@@ -85,7 +82,7 @@ fn margin(value: &Rational, want: Sign) -> Rational {
 /// Samples `g` on the box of `vars` for the sign `want`.
 pub(super) fn search(cx: &Context<'_>, g: &Exact, vars: &[Var], want: Sign) -> Sampled {
     let bx = cx.box_on(vars);
-    let mut rng = Rng(cx.seed ^ 0x5CA1_AB1E);
+    let mut rng = Rng(SplitMix(cx.seed ^ 0x5CA1_AB1E));
     let mut excluded = 0;
     let mut kept: Vec<(Rational, BTreeMap<Var, Rational>, Rational)> = Vec::new();
     // Simple points first (small integers and halves inside the box, every
