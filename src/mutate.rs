@@ -5,7 +5,7 @@
 //! original.
 
 use crate::lang::parse_expr;
-use crate::lang::parser::{Expr, ExprKind, Func, Func2, IndexTok};
+use crate::lang::parser::{Expr, ExprKind, Func, Func2, IndexTok, MatFunc};
 use std::fmt;
 
 /// The kind of slip a mutant makes.
@@ -21,7 +21,8 @@ pub enum MutantKind {
     /// still line up and the mutant is well-formed).
     DropTerm,
     /// A function is replaced by a neighbour: sqrt, abs, avg and maxn by the identity,
-    /// cos ↔ sin, tan → sin.
+    /// cos ↔ sin, tan → sin; for matrices inv ↔ adj, det → trace, and a transpose
+    /// dropped.
     Function,
 }
 
@@ -176,6 +177,72 @@ fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
             collect(src, a, out);
             collect(src, b, out);
         }
+        // Two different neighbouring entries of a row (or a column vector) trade places.
+        ExprKind::Matrix(rows) => {
+            let lines: Vec<Vec<&Expr>> = if rows.iter().all(|r| r.len() == 1) {
+                vec![rows.iter().map(|r| &r[0]).collect()]
+            } else {
+                rows.iter().map(|r| r.iter().collect()).collect()
+            };
+            for line in &lines {
+                for pair in line.windows(2) {
+                    let (x, y) = (pair[0], pair[1]);
+                    let (tx, ty) = (
+                        &src[x.span.start..x.span.end],
+                        &src[y.span.start..y.span.end],
+                    );
+                    if tx != ty {
+                        let middle = &src[x.span.end..y.span.start];
+                        out.push((
+                            MutantKind::SwapIndices,
+                            x.span.start..y.span.end,
+                            format!("{ty}{middle}{tx}"),
+                        ));
+                    }
+                }
+            }
+            for entry in rows.iter().flatten() {
+                collect(src, entry, out);
+            }
+        }
+        ExprKind::Entry(inner, at) => {
+            if let [(i, si), (j, sj)] = at[..] {
+                if i != j {
+                    out.push((
+                        MutantKind::SwapIndices,
+                        si.start..sj.end,
+                        format!("{j},{i}"),
+                    ));
+                }
+            }
+            collect(src, inner, out);
+        }
+        ExprKind::MatCall(func, args) => {
+            let name = func.name();
+            let at = e.span.start..e.span.start + name.len();
+            let written_as_call = src[e.span.start..].starts_with(name);
+            match func {
+                MatFunc::Inv if written_as_call => {
+                    out.push((MutantKind::Function, at, "adj".to_owned()))
+                }
+                MatFunc::Adj if written_as_call => {
+                    out.push((MutantKind::Function, at, "inv".to_owned()))
+                }
+                MatFunc::Det if written_as_call => {
+                    out.push((MutantKind::Function, at, "trace".to_owned()))
+                }
+                MatFunc::Transpose => {
+                    let inner = &args[0];
+                    let text = &src[inner.span.start..inner.span.end];
+                    let range = e.span.start..e.span.end;
+                    out.push((MutantKind::Function, range, format!("({text})")));
+                }
+                _ => {}
+            }
+            for a in args {
+                collect(src, a, out);
+            }
+        }
     }
 }
 
@@ -242,5 +309,19 @@ mod tests {
             .map(|m| m.text.as_str())
             .collect();
         assert_eq!(texts, vec!["(x) + cos(y)", "sqrt(x) + sin(y)"]);
+    }
+
+    #[test]
+    fn matrix_slips_are_generated() {
+        let texts =
+            |src: &str| -> Vec<String> { mutants(src).into_iter().map(|m| m.text).collect() };
+        let t = texts("[[a, b], [c, d]]");
+        assert!(t.contains(&"[[b, a], [c, d]]".to_owned()), "{t:?}");
+        assert!(t.contains(&"[[a, b], [d, c]]".to_owned()), "{t:?}");
+        let t = texts("inv(A) q^T + A[1,2]");
+        assert!(t.contains(&"adj(A) q^T + A[1,2]".to_owned()), "{t:?}");
+        assert!(t.contains(&"inv(A) (q) + A[1,2]".to_owned()), "{t:?}");
+        assert!(t.contains(&"inv(A) q^T + A[2,1]".to_owned()), "{t:?}");
+        assert!(texts("det(A)").contains(&"trace(A)".to_owned()));
     }
 }

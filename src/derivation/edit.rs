@@ -28,7 +28,9 @@ impl Check {
         let (node, origin) = parse_checked(decls, &sigs, text)?;
         let old = &self.chains[chain][side];
         if let Ok(old_node) = &old.node {
-            if !self.verbatim && !old_node.matches_free_indices(&node) {
+            if old_node.shape() != node.shape()
+                || (!self.verbatim && !old_node.matches_free_indices(&node))
+            {
                 return Err(LangError::new(
                     ErrorKind::Index,
                     node.span,
@@ -41,6 +43,7 @@ impl Check {
             text: text.to_owned(),
             origin,
             node: Ok(node),
+            entry: old.entry,
         };
         Ok(out)
     }
@@ -56,7 +59,7 @@ impl Check {
         let sigs: Vec<DefSig> = self.defs[..index].iter().map(|d| d.sig.clone()).collect();
         let (node, origin) = parse_checked(decls, &sigs, body)?;
         let def = &self.defs[index];
-        if node.free_letters() != def.body.free_letters() {
+        if node.free_letters() != def.body.free_letters() || node.shape() != def.body.shape() {
             return Err(LangError::new(
                 ErrorKind::Index,
                 node.span,

@@ -8,10 +8,12 @@ use super::model::{
 use super::raw::{RawClaim, RawFile, S};
 use super::spans::{content_map, sub_origin};
 use crate::lang::check::{letters, RESERVED};
+use crate::lang::matrix::{shape_words, MatrixOp, MatrixRead};
 use crate::lang::parser::ExprKind;
 use crate::lang::{
     parse_expr, Decls, DefSig, Diagnostic, ErrorKind, LangError, Origin, Scope, SourceFile, Span,
 };
+use crate::lang::{Node, NodeKind};
 use std::collections::BTreeMap;
 use std::fmt;
 use std::ops::Range;
@@ -270,6 +272,64 @@ impl Loader {
         ))
     }
 
+    /// `orders = { voigt = ["11", "22", "12", "21"] }`: each position a string of
+    /// components 1..=d, all of one length, none repeated.
+    fn orders(
+        &self,
+        raw: &RawFile,
+        dim: usize,
+    ) -> Result<BTreeMap<String, Vec<Vec<usize>>>, Diagnostic> {
+        let mut out = BTreeMap::new();
+        for (name, positions) in &raw.orders {
+            let Some(first) = positions.first() else {
+                return Err(self
+                    .diag(
+                        raw.dimension.span(),
+                        format!("the order `{name}` has no positions"),
+                    )
+                    .with_help(
+                        "list its positions, e.g. voigt = [\"11\", \"22\", \"12\", \"21\"]",
+                    ));
+            };
+            let valid_name = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+                && name.chars().all(|c| c.is_ascii_alphanumeric());
+            if !valid_name || RESERVED.contains(&name.as_str()) {
+                return Err(self
+                    .diag(first.span(), format!("`{name}` cannot name an order"))
+                    .with_help("an order's name is letters and digits, starting with a letter, and not a built-in"));
+            }
+            let width = first.get_ref().len();
+            let mut seen: Vec<Vec<usize>> = Vec::with_capacity(positions.len());
+            for p in positions {
+                let text = p.get_ref();
+                let comps: Option<Vec<usize>> = text
+                    .chars()
+                    .map(|c| {
+                        c.to_digit(10)
+                            .filter(|&k| (1..=dim as u32).contains(&k))
+                            .map(|k| k as usize - 1)
+                    })
+                    .collect();
+                let Some(comps) = comps.filter(|c| !c.is_empty() && c.len() == width) else {
+                    return Err(self
+                        .diag(p.span(), format!("`{text}` is not a position of {width} component{} in 1..={dim}", if width == 1 { "" } else { "s" }))
+                        .with_help("a position is written with one digit per index, as \"12\" for the component 12; all positions of an order have as many"));
+                };
+                if seen.contains(&comps) {
+                    return Err(self
+                        .diag(
+                            p.span(),
+                            format!("position `{text}` occurs twice in the order `{name}`"),
+                        )
+                        .with_help("each position has one place in an order"));
+                }
+                seen.push(comps);
+            }
+            out.insert(name.clone(), seen);
+        }
+        Ok(out)
+    }
+
     fn decls(&self, raw: &RawFile) -> Result<Decls, Diagnostic> {
         let dim = *raw.dimension.get_ref();
         if !(dim == 2 || dim == 3) {
@@ -286,6 +346,7 @@ impl Loader {
             normal_in_plane: raw.normal_in_plane,
             ..Decls::default()
         };
+        decls.orders = self.orders(raw, dim as usize)?;
         if raw.normal_in_plane && (dim != 3 || raw.normal.is_none()) {
             let at = raw
                 .normal
@@ -434,6 +495,33 @@ impl Loader {
         }
         let sigs: Vec<DefSig> = visible.iter().map(|d| d.sig.clone()).collect();
         let body = self.rhs(&origin, text, eq, decls, &sigs, later)?;
+        if let Some(shape) = body.shape() {
+            // A matrix has no indices: its whole left side is its name (`D_el`).
+            let whole = text[..eq].trim().to_owned();
+            if whole != name
+                && (RESERVED.contains(&whole.as_str())
+                    || decls.symbols.contains_key(&whole)
+                    || visible.iter().any(|d| d.sig.name == whole))
+            {
+                return Err(origin
+                    .diagnostic(
+                        name_span,
+                        format!("`{whole}` is already declared or defined"),
+                    )
+                    .with_help("choose a new name; definitions cannot redefine a name"));
+            }
+            return Ok(Definition {
+                sig: DefSig {
+                    name: whole,
+                    formal: Vec::new(),
+                    shape: Some(shape),
+                },
+                body,
+                origin,
+                text: text.clone(),
+            });
+        }
+        let shape = None;
         let mut want = formal.clone();
         want.sort_unstable();
         let body = if body.is_literal_zero() {
@@ -454,7 +542,11 @@ impl Loader {
                 .with_help("the defined name carries exactly the free indices of its right side"));
         }
         Ok(Definition {
-            sig: DefSig { name, formal },
+            sig: DefSig {
+                name,
+                formal,
+                shape,
+            },
             body,
             origin,
             text: text.clone(),
@@ -586,6 +678,7 @@ impl Loader {
             index.push(d - 1);
         }
         let body = self.rhs(origin, text, eq, decls, &[], &[])?;
+        no_matrix(origin, &body, "an assumption")?;
         if !body.free.is_empty() {
             return Err(origin.diagnostic(
                 Span::new(eq + 1, text.len()),
@@ -637,6 +730,8 @@ impl Loader {
                 }
             }
             let body = self.rhs(origin, text, eq, decls, &[], &[])?;
+            no_matrix(origin, &body, "an assumption")?;
+            no_matrix(origin, &body, "an assumption")?;
             let mut want = formal.clone();
             want.sort_unstable();
             if body.free_letters() != want {
@@ -772,10 +867,12 @@ impl Loader {
                     text: s.get_ref().clone(),
                     origin,
                     node,
+                    entry: None,
                 });
             }
             out.push(checked);
         }
+        let out = entrywise(out, &mut defs)?;
         Ok(Check {
             defs,
             assumptions,
@@ -995,4 +1092,123 @@ fn read_two_ways<'k>(
         })?;
         Some(clash(scalar, name, rank))
     }
+}
+
+/// Refuses a matrix where a scalar or tensor expression is expected.
+pub(super) fn no_matrix(origin: &Origin, node: &Node, what: &str) -> Result<(), Diagnostic> {
+    match node.shape() {
+        Some(shape) => Err(origin
+            .diagnostic(
+                node.span,
+                format!(
+                    "{what} takes a scalar or a tensor, but this is {}",
+                    shape_words(shape)
+                ),
+            )
+            .with_help("read a scalar off a matrix with det(…), trace(…) or A[i,j]")),
+        None => Ok(()),
+    }
+}
+
+/// A chain of matrices is decided entry by entry: one scalar chain per entry, each
+/// side read off the matrix as `(side)[i,j]`. A side that is not already a matrix
+/// definition becomes a claim-local one (named so that no file can write it), so that
+/// each side's matrix is computed once for all its entries.
+fn entrywise(
+    chains: Vec<Vec<Side>>,
+    defs: &mut Vec<Definition>,
+) -> Result<Vec<Vec<Side>>, Diagnostic> {
+    let mut out = Vec::with_capacity(chains.len());
+    for (ci, chain) in chains.into_iter().enumerate() {
+        let shapes: Vec<Option<(usize, usize)>> = chain
+            .iter()
+            .map(|s| s.node.as_ref().ok().and_then(Node::shape))
+            .collect();
+        let Some(shape) = shapes.iter().flatten().next().copied() else {
+            out.push(chain);
+            continue;
+        };
+        if let Some(k) = shapes.iter().position(|s| *s != Some(shape)) {
+            let side = &chain[k];
+            let what = shapes[k].map_or_else(|| "a scalar or tensor".to_owned(), shape_words);
+            return Err(side
+                .origin
+                .diagnostic(
+                    Span::new(0, side.text.len()),
+                    format!("this side is {what}, and the first matrix side {}", shape_words(shape)),
+                )
+                .with_help("both sides of a matrix equation have one shape; compare a scalar with det(…), trace(…) or A[i,j]"));
+        }
+        let mut matrices = Vec::with_capacity(chain.len());
+        for (si, side) in chain.iter().enumerate() {
+            let node = side
+                .node
+                .as_ref()
+                .expect("a side with a shape is well-formed");
+            let reference = match &node.kind {
+                NodeKind::Matrix {
+                    op: MatrixOp::Def(_),
+                    ..
+                } => node.clone(),
+                _ => {
+                    let name = format!("side {}.{}", ci + 1, si + 1);
+                    defs.push(Definition {
+                        sig: DefSig {
+                            name: name.clone(),
+                            formal: Vec::new(),
+                            shape: Some(shape),
+                        },
+                        body: node.clone(),
+                        origin: side.origin.clone(),
+                        text: format!("{name} = {}", side.text.trim()),
+                    });
+                    Node {
+                        kind: NodeKind::Matrix {
+                            rows: shape.0,
+                            cols: shape.1,
+                            op: MatrixOp::Def(name),
+                        },
+                        free: Vec::new(),
+                        bound: Vec::new(),
+                        span: node.span,
+                    }
+                }
+            };
+            matrices.push(reference);
+        }
+        for i in 0..shape.0 {
+            for j in 0..shape.1 {
+                let at = if shape.1 == 1 {
+                    format!("[{}]", i + 1)
+                } else {
+                    format!("[{},{}]", i + 1, j + 1)
+                };
+                let sides = chain
+                    .iter()
+                    .zip(&matrices)
+                    .map(|(side, m)| {
+                        let text = side.text.trim();
+                        let plain = text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+                        Side {
+                            text: if plain {
+                                format!("{text}{at}")
+                            } else {
+                                format!("({text}){at}")
+                            },
+                            origin: side.origin.clone(),
+                            node: Ok(Node {
+                                kind: NodeKind::Read(MatrixRead::Entry(i, j), Box::new(m.clone())),
+                                free: Vec::new(),
+                                bound: Vec::new(),
+                                span: m.span,
+                            }),
+                            entry: Some((i, j)),
+                        }
+                    })
+                    .collect();
+                out.push(sides);
+            }
+        }
+    }
+    Ok(out)
 }

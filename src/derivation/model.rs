@@ -141,6 +141,9 @@ pub struct Side {
     /// The checked expression; an index error is kept (not raised) only for a
     /// printed statement transcribed verbatim, where it is a finding about the paper.
     pub node: Result<Node, LangError>,
+    /// For a chain of matrices, decided entry by entry: the entry (row, column,
+    /// 0-based) this side reads off the matrix side as written.
+    pub entry: Option<(usize, usize)>,
 }
 
 impl Side {

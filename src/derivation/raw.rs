@@ -30,6 +30,9 @@ pub struct RawFile {
     pub fields: Vec<S>,
     /// The name of the position vector, e.g. "x".
     pub position: Option<S>,
+    /// The position orders of the matrix views: `voigt = ["11", "22", "12", "21"]`.
+    #[serde(default)]
+    pub orders: BTreeMap<String, Vec<S>>,
     #[serde(default)]
     pub define: Vec<S>,
     #[serde(default)]

@@ -32,12 +32,8 @@ impl Check {
         let mut seen = Vec::new();
         while let Some(n) = stack.pop() {
             seen.push(n);
-            if let NodeKind::Leaf {
-                target: Target::Def(name),
-                ..
-            } = &n.kind
-            {
-                if names.insert(name.as_str()) {
+            if let Some(name) = n.definition() {
+                if names.insert(name) {
                     if let Some(d) = self.defs.iter().rev().find(|d| &d.sig.name == name) {
                         stack.push(&d.body);
                     }

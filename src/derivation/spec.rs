@@ -192,6 +192,7 @@ impl Loader {
         let node = Scope { decls, defs: sigs }
             .check(&e)
             .map_err(|e| self.lang(&origin, e))?;
+        super::load::no_matrix(&origin, &node, "this field")?;
         let node = if node.is_literal_zero() {
             node.zero_with_free(free)
         } else {
@@ -238,6 +239,7 @@ impl Loader {
             let node = Scope { decls, defs: sigs }
                 .check(&e)
                 .map_err(|e| self.lang(&sub, e))?;
+            super::load::no_matrix(&sub, &node, "a constraint")?;
             if !node.free.is_empty() {
                 return Err(sub.diagnostic(node.span, "a constraint compares scalars"));
             }

@@ -10,6 +10,7 @@ pub mod einsum;
 pub mod gcd;
 pub mod limit;
 pub mod linear;
+pub mod matrix;
 pub mod moments;
 pub mod poly;
 pub mod quotient;

@@ -11,6 +11,7 @@
 //!   `eps` has rank d.
 
 use super::diag::Span;
+use super::matrix::{MatrixOp, MatrixRead};
 use super::parser::{ErrorKind, Expr, ExprKind, Func, Func2, IndexTok, LangError};
 use crate::kernel::Rational;
 use std::collections::BTreeMap;
@@ -33,6 +34,9 @@ pub struct Decls {
     pub fields: BTreeMap<String, Vec<bool>>,
     /// The name of the position vector x_i, if the file declares one.
     pub position: Option<String>,
+    /// The position orders of the matrix views (`voigt` → (1,1), (2,2), (1,2), (2,1)),
+    /// components 0-based.
+    pub orders: BTreeMap<String, Vec<Vec<usize>>>,
 }
 
 impl Decls {
@@ -47,6 +51,8 @@ impl Decls {
 pub struct DefSig {
     pub name: String,
     pub formal: Vec<char>,
+    /// The shape of a matrix definition (its `formal` is then empty).
+    pub shape: Option<(usize, usize)>,
 }
 
 /// What a name refers to.
@@ -108,6 +114,14 @@ pub enum NodeKind {
         field: String,
         slots: Vec<Slot>,
     },
+    /// A matrix (see [`super::matrix`]): no free index, `rows × cols` entries.
+    Matrix {
+        rows: usize,
+        cols: usize,
+        op: MatrixOp,
+    },
+    /// A scalar or a tensor read off a matrix: det, trace, an entry, the index view.
+    Read(MatrixRead, Box<Node>),
 }
 
 impl Node {
@@ -139,6 +153,21 @@ impl Node {
             || self.free_letters() == other.free_letters()
     }
 
+    /// The definition the node refers to directly: a tensor's (`t_i`) or a matrix's.
+    pub fn definition(&self) -> Option<&str> {
+        match &self.kind {
+            NodeKind::Leaf {
+                target: Target::Def(name),
+                ..
+            }
+            | NodeKind::Matrix {
+                op: MatrixOp::Def(name),
+                ..
+            } => Some(name),
+            _ => None,
+        }
+    }
+
     /// The free index letters, sorted.
     pub fn free_letters(&self) -> Vec<char> {
         self.free.iter().map(|&(c, _)| c).collect()
@@ -156,7 +185,19 @@ impl Node {
             | NodeKind::Avg(a)
             | NodeKind::MaxN(a)
             | NodeKind::Deriv(a, _)
-            | NodeKind::Variation { body: a, .. } => vec![a],
+            | NodeKind::Variation { body: a, .. }
+            | NodeKind::Read(_, a) => vec![a],
+            NodeKind::Matrix { op, .. } => match op {
+                MatrixOp::Literal(xs) | MatrixOp::Sum(xs) => xs.iter().collect(),
+                MatrixOp::Def(_) | MatrixOp::Identity => Vec::new(),
+                MatrixOp::Scale(a, b) | MatrixOp::Product(a, b) | MatrixOp::Solve(a, b) => {
+                    vec![a, b]
+                }
+                MatrixOp::Transpose(a)
+                | MatrixOp::Inverse(a)
+                | MatrixOp::Adjugate(a)
+                | MatrixOp::View { tensor: a, .. } => vec![a],
+            },
         }
     }
 
@@ -197,7 +238,7 @@ pub fn letters(ls: &[char]) -> String {
 }
 
 /// Names that cannot be declared: built-ins and functions.
-pub const RESERVED: [&str; 16] = [
+pub const RESERVED: [&str; 26] = [
     "delta",
     "eps",
     "pi",
@@ -214,6 +255,16 @@ pub const RESERVED: [&str; 16] = [
     "avg",
     "maxn",
     super::parser::VARIATION,
+    "det",
+    "trace",
+    "inv",
+    "adj",
+    "transpose",
+    "solve",
+    "identity",
+    "matrix",
+    "vector",
+    "tensor",
 ];
 
 /// Resolves and validates expressions against declarations and visible definitions.
@@ -233,13 +284,23 @@ impl Scope<'_> {
             } => self.name(full, base, indices, e.span),
             ExprKind::Neg(a) => {
                 let a = self.check(a)?;
+                if a.shape().is_some() {
+                    return Ok(self.matrix_neg(a, e.span));
+                }
                 Ok(wrap(a, e.span, |a| NodeKind::Neg(Box::new(a))))
             }
+            ExprKind::Matrix(rows) => self.literal(rows, e.span),
+            ExprKind::Entry(inner, at) => self.entry(inner, at, e.span),
+            ExprKind::MatCall(f, args) => self.mat_call(*f, args, e.span),
             ExprKind::Add(..) | ExprKind::Sub(..) => self.sum(e),
             ExprKind::Mul(..) => self.product(e),
             ExprKind::Div(a, b) => {
                 let num = self.check(a)?;
                 let den = self.check(b)?;
+                if num.shape().is_some() {
+                    return self.matrix_divide(num, den, e.span);
+                }
+                self.not_matrix(&den, "a divisor")?;
                 if let Some(&(c, span)) = den.free.first() {
                     return Err(LangError::new(
                         ErrorKind::Index,
@@ -264,6 +325,10 @@ impl Scope<'_> {
                 })
             }
             ExprKind::Pow(a, k) => {
+                let checked = self.check(a)?;
+                if checked.shape().is_some() {
+                    return self.matrix_power(checked, *k, e.span);
+                }
                 let a = self.scalar_arg(a, "a power")?;
                 let k = *k;
                 Ok(wrap(a, e.span, |a| NodeKind::Pow(Box::new(a), k)))
@@ -282,6 +347,7 @@ impl Scope<'_> {
                 }
                 if *func == Func::Avg {
                     let a = self.check(a)?;
+                    self.not_matrix(&a, "avg(…)")?;
                     return Ok(wrap(a, e.span, |a| NodeKind::Avg(Box::new(a))));
                 }
                 let a = self.scalar_arg(a, "maxn")?;
@@ -343,6 +409,7 @@ impl Scope<'_> {
             }
         }
         let mut node = self.check(inner)?;
+        self.not_matrix(&node, "a derivative")?;
         if wrt.is_none() {
             // A comma on a name that cannot vary is a slip, not a zero.
             let varies = match &node.kind {
@@ -425,6 +492,7 @@ impl Scope<'_> {
     /// `P`'s). See [`NodeKind::Variation`] for the sign convention.
     fn variation(&self, body: &Expr, field: &Expr, span: Span) -> Result<Node, LangError> {
         let body = self.check(body)?;
+        self.not_matrix(&body, "variation(…)")?;
         if contains_variation(&body) {
             return Err(LangError::new(
                 ErrorKind::Syntax,
@@ -492,6 +560,7 @@ impl Scope<'_> {
 
     fn scalar_arg(&self, a: &Expr, what: &str) -> Result<Node, LangError> {
         let a = self.check(a)?;
+        self.not_matrix(&a, what)?;
         if let Some(&(c, span)) = a.free.first() {
             return Err(LangError::new(
                 ErrorKind::Index,
@@ -517,6 +586,9 @@ impl Scope<'_> {
     ) -> Result<Node, LangError> {
         let dim = self.decls.dim;
         let def = |n: &str| self.defs.iter().rev().find(|d| d.name == n);
+        if let Some(shape) = def(full).and_then(|d| d.shape) {
+            return Ok(self.matrix_def(full, shape, span));
+        }
         // A whole token such as `R_g` may itself be a scalar's name.
         if !indices.is_empty() {
             if self.decls.symbols.get(full) == Some(&0) {
@@ -622,6 +694,10 @@ impl Scope<'_> {
             if n.is_literal_zero() {
                 continue;
             }
+            if n.shape().is_some() || nodes.first().is_some_and(|f| f.shape().is_some()) {
+                nodes.push(if neg { self.matrix_neg(n, t.span) } else { n });
+                continue;
+            }
             if let Some(first) = nodes.first() {
                 if first.free_letters() != n.free_letters() {
                     return Err(LangError::new(
@@ -646,6 +722,9 @@ impl Scope<'_> {
         let Some(first) = nodes.first() else {
             return Ok(leafless(NodeKind::Const(Rational::int(0)), e.span));
         };
+        if nodes.iter().any(|n| n.shape().is_some()) {
+            return self.matrix_sum(nodes, e.span);
+        }
         let free = first.free.clone();
         let bound = nodes.iter().flat_map(|n| n.bound.iter().copied()).collect();
         Ok(Node {
@@ -663,6 +742,9 @@ impl Scope<'_> {
             .into_iter()
             .map(|f| self.check(f))
             .collect::<Result<Vec<_>, _>>()?;
+        if nodes.iter().any(|n| n.shape().is_some()) {
+            return self.matrix_product(nodes, e.span);
+        }
         let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
         for n in &nodes {
             for &(c, s) in &n.free {
@@ -825,6 +907,7 @@ mod tests {
         let defs = vec![DefSig {
             name: "t".into(),
             formal: vec!['i'],
+            shape: None,
         }];
         Scope {
             decls: &d,

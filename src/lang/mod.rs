@@ -1,9 +1,11 @@
 //! The index-notation language of the derivation files: lexer and parser
 //! ([`parser`]), name resolution and index validation ([`check`]), and diagnostics
-//! that point at file, line and column ([`diag`]).
+//! that point at file, line and column ([`diag`]); the matrix language is typed in
+//! [`matrix`].
 
 pub mod check;
 pub mod diag;
+pub mod matrix;
 pub mod parser;
 
 pub use check::{Decls, DefSig, Node, NodeKind, Scope, Slot, Target};

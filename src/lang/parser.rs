@@ -6,12 +6,18 @@
 //! expr   := term (('+' | '-') term)*
 //! term   := unary (('*' | '/') unary | unary)*      -- `a b` means `a * b`
 //! unary  := '-' unary | power
-//! power  := atom ('^' integer)?
+//! power  := post ('^' integer | '^T')?                  -- A^T is the transpose
+//! post   := atom ('[' integer (',' integer)? ']')?     -- A[1,2], v[3]: no space before '['
 //! atom   := number | name derivs? | func '(' expr ')' | '(' expr ')'
 //!         | 'd(' expr ')/d' position '_' index+       -- d(u_i u_i)/dx_j
+//!         | '[' expr (',' expr)* ']'                   -- a column vector
+//!         | '[' row (',' row)* ']'                     -- a matrix, row := '[' expr (',' expr)* ']'
+//!         | mfunc '(' expr (',' expr)* ')'             -- det(A), solve(A, b), matrix(D_ijkl, v_ij, v_kl)
 //! derivs := ',' index+                                -- u_j,i  sigma_ij,j  theta_,kk
 //! func   := 'sqrt' | 'abs' | 'cos' | 'sin' | 'tan' | 'exp' | 'log' | 'atan' | 'asin'
 //!         | 'acos' | 'avg' | 'maxn'
+//! mfunc  := 'det' | 'trace' | 'inv' | 'adj' | 'transpose' | 'solve' | 'identity'
+//!         | 'matrix' | 'vector' | 'tensor'
 //! name   := letter alnum* ('_' alnum+)*             -- sigma_ki, n_k, R_g, sigma_el_ij
 //! number := digits ('.' digits)? (('e' | 'E') ('+' | '-')? digits)?   -- 2.5e-3
 //! ```
@@ -122,6 +128,86 @@ impl Func2 {
     }
 }
 
+/// The functions of the matrix language (see [`super::check`] for their types).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MatFunc {
+    Det,
+    Trace,
+    Inv,
+    /// The adjugate (transposed cofactor matrix).
+    Adj,
+    Transpose,
+    /// `solve(A, b)`: x with A x = b.
+    Solve,
+    /// `identity(n)`: the n×n identity.
+    Identity,
+    /// `matrix(T_ijkl, o_ij, o_kl)`: the matrix view of a tensor in declared orders.
+    Matrix,
+    /// `vector(t_ij, o_ij)`: the column-vector view of a tensor.
+    Vector,
+    /// `tensor(M, o_ij, o_kl)` or `tensor(v, o_ij)`: the index view of a matrix.
+    Tensor,
+}
+
+impl MatFunc {
+    pub fn from_name(name: &str) -> Option<MatFunc> {
+        Some(match name {
+            "det" => MatFunc::Det,
+            "trace" => MatFunc::Trace,
+            "inv" => MatFunc::Inv,
+            "adj" => MatFunc::Adj,
+            "transpose" => MatFunc::Transpose,
+            "solve" => MatFunc::Solve,
+            "identity" => MatFunc::Identity,
+            "matrix" => MatFunc::Matrix,
+            "vector" => MatFunc::Vector,
+            "tensor" => MatFunc::Tensor,
+            _ => return None,
+        })
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            MatFunc::Det => "det",
+            MatFunc::Trace => "trace",
+            MatFunc::Inv => "inv",
+            MatFunc::Adj => "adj",
+            MatFunc::Transpose => "transpose",
+            MatFunc::Solve => "solve",
+            MatFunc::Identity => "identity",
+            MatFunc::Matrix => "matrix",
+            MatFunc::Vector => "vector",
+            MatFunc::Tensor => "tensor",
+        }
+    }
+
+    /// The numbers of arguments accepted.
+    pub fn arity(self) -> std::ops::RangeInclusive<usize> {
+        match self {
+            MatFunc::Solve | MatFunc::Vector => 2..=2,
+            MatFunc::Matrix => 3..=3,
+            MatFunc::Tensor => 2..=3,
+            _ => 1..=1,
+        }
+    }
+
+    /// How the call is written, for messages.
+    pub fn usage(self) -> &'static str {
+        match self {
+            MatFunc::Solve => "solve(A, b)",
+            MatFunc::Identity => "identity(4)",
+            MatFunc::Matrix => "matrix(D_ijkl, voigt_ij, voigt_kl)",
+            MatFunc::Vector => "vector(sigma_ij, voigt_ij)",
+            MatFunc::Tensor => "tensor(M, voigt_ij, voigt_kl) or tensor(v, voigt_ij)",
+            MatFunc::Det => "det(A)",
+            MatFunc::Trace => "trace(A)",
+            MatFunc::Inv => "inv(A)",
+            MatFunc::Adj => "adj(A)",
+            MatFunc::Transpose => "transpose(A) or A^T",
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     Number(Rational),
@@ -154,6 +240,11 @@ pub enum ExprKind {
         body: Box<Expr>,
         field: Box<Expr>,
     },
+    /// A matrix literal, row by row; `[a, b, c]` is a column (three rows of one).
+    Matrix(Vec<Vec<Expr>>),
+    /// `A[i,j]` or `v[i]`: one entry, 1-based as written.
+    Entry(Box<Expr>, Vec<(usize, Span)>),
+    MatCall(MatFunc, Vec<Expr>),
 }
 
 /// The name of the variational derivative, `variation(P, v_j)`.
@@ -338,7 +429,7 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
                 },
                 Span::new(start, k),
             ));
-        } else if "+-*/^(),".contains(c) {
+        } else if "+-*/^(),[]".contains(c) {
             k += 1;
             out.push((Tok::Op(c), Span::new(start, k)));
         } else {
@@ -457,7 +548,10 @@ impl Parser {
     }
 
     fn starts_atom(&self) -> bool {
-        matches!(self.peek(), Tok::Num(_) | Tok::Name { .. } | Tok::Op('('))
+        matches!(
+            self.peek(),
+            Tok::Num(_) | Tok::Name { .. } | Tok::Op('(') | Tok::Op('[')
+        )
     }
 
     fn term(&mut self) -> Result<Expr, LangError> {
@@ -496,9 +590,19 @@ impl Parser {
     }
 
     fn power(&mut self) -> Result<Expr, LangError> {
-        let base = self.atom()?;
+        let base = self.postfix()?;
         if let Tok::Op('^') = self.peek() {
             let (_, caret) = self.bump();
+            // `A^T`: the transpose.
+            if matches!(self.peek(), Tok::Name { full, derivs, .. } if full == "T" && derivs.is_empty())
+            {
+                let (_, t) = self.bump();
+                let span = base.span.to(t);
+                return Ok(Expr {
+                    kind: ExprKind::MatCall(MatFunc::Transpose, vec![base]),
+                    span,
+                });
+            }
             // `x^(e)`: a parenthesised exponent; a whole number is an ordinary power,
             // a negative whole number a division, anything else a real power.
             if let Tok::Op('(') = self.peek() {
@@ -566,7 +670,7 @@ impl Parser {
                     "`^` must be followed by a number or a parenthesised exponent",
                 )
                 .help(format!(
-                    "write x^2 (whole exponents from 0 to {MAX_POWER}), x^(-1), x^(1/3) or x^0.5"
+                    "write x^2 (whole exponents from 0 to {MAX_POWER}), x^(-1), x^(1/3), x^0.5, or A^T for a transpose"
                 )));
             };
             let span = base.span.to(span);
@@ -622,6 +726,26 @@ impl Parser {
                         span,
                     });
                 }
+                if let Some(func) = MatFunc::from_name(&full) {
+                    let (args, span) = self.arguments(&full, span)?;
+                    if !func.arity().contains(&args.len()) {
+                        return Err(LangError::new(
+                            ErrorKind::Syntax,
+                            span,
+                            format!(
+                                "{full}(…) takes {} argument{}, not {}",
+                                arity_words(func),
+                                if *func.arity().end() == 1 { "" } else { "s" },
+                                args.len()
+                            ),
+                        )
+                        .help(format!("write {}", func.usage())));
+                    }
+                    return Ok(Expr {
+                        kind: ExprKind::MatCall(func, args),
+                        span,
+                    });
+                }
                 if full == VARIATION {
                     let (body, field, span) = self.two_arguments(&full, span)?;
                     return Ok(Expr {
@@ -662,6 +786,7 @@ impl Parser {
                 self.pos -= 1;
                 self.parenthesised()
             }
+            Tok::Op('[') => self.literal(span),
             Tok::End => Err(
                 LangError::new(ErrorKind::Syntax, span, "expression ends too early")
                     .help("an operand is missing at the end"),
@@ -771,6 +896,165 @@ impl Parser {
         Ok((a, b, span.to(close.1)))
     }
 
+    /// An atom and the entry picked from it, `A[2,3]` or `v[2]`: the `[` must touch
+    /// what precedes it (`A [1, 2]` is A times a column vector).
+    fn postfix(&mut self) -> Result<Expr, LangError> {
+        let atom = self.atom()?;
+        if !(*self.peek() == Tok::Op('[') && self.span().start == atom.span.end) {
+            return Ok(atom);
+        }
+        let (_, open) = self.bump();
+        let mut at = Vec::new();
+        loop {
+            match self.bump() {
+                (Tok::Num(q), span) if q.is_integer() && !q.is_negative() && !q.is_zero() => {
+                    let k = q.to_string().parse::<usize>().unwrap_or(usize::MAX);
+                    at.push((k, span));
+                }
+                (_, span) => {
+                    return Err(LangError::new(
+                        ErrorKind::Syntax,
+                        span,
+                        "an entry is picked with whole numbers from 1, as in A[2,3] or v[2]",
+                    ))
+                }
+            }
+            match self.bump() {
+                (Tok::Op(','), _) if at.len() < 2 => {}
+                (Tok::Op(']'), close) => {
+                    let span = atom.span.to(close);
+                    return Ok(Expr {
+                        kind: ExprKind::Entry(Box::new(atom), at),
+                        span,
+                    });
+                }
+                _ => {
+                    return Err(LangError::new(
+                        ErrorKind::Syntax,
+                        open,
+                        "this `[` is not closed after one or two entry numbers",
+                    )
+                    .help("write A[2,3] for a matrix entry or v[2] for a vector's"))
+                }
+            }
+        }
+    }
+
+    /// After `[`: a column vector `[a, b]`, or a matrix `[[a, b], [c, d]]` whose rows
+    /// are all bracketed and of one length.
+    fn literal(&mut self, open: Span) -> Result<Expr, LangError> {
+        self.enter()?;
+        let nested = *self.peek() == Tok::Op('[');
+        let mut rows: Vec<Vec<Expr>> = Vec::new();
+        let close = loop {
+            if nested {
+                let (t, row_open) = self.bump();
+                if t != Tok::Op('[') {
+                    return Err(LangError::new(
+                        ErrorKind::Syntax,
+                        row_open,
+                        "every row of a matrix is written in brackets",
+                    )
+                    .help("write [[a, b], [c, d]]"));
+                }
+                let (row, _) = self.elements(row_open)?;
+                if let Some(first) = rows.first() {
+                    if first.len() != row.len() {
+                        return Err(LangError::new(
+                            ErrorKind::Syntax,
+                            row_open,
+                            format!(
+                                "this row has {} entries, the first row {}",
+                                row.len(),
+                                first.len()
+                            ),
+                        )
+                        .help("every row of a matrix has the same number of entries"));
+                    }
+                }
+                rows.push(row);
+                match self.bump() {
+                    (Tok::Op(','), _) => {}
+                    (Tok::Op(']'), close) => break close,
+                    (_, span) => {
+                        return Err(LangError::new(
+                            ErrorKind::Syntax,
+                            span,
+                            "expected `,` or `]` after a row of a matrix",
+                        ))
+                    }
+                }
+            } else {
+                let (column, close) = self.elements(open)?;
+                rows = column.into_iter().map(|e| vec![e]).collect();
+                break close;
+            }
+        };
+        self.depth -= 1;
+        Ok(Expr {
+            kind: ExprKind::Matrix(rows),
+            span: open.to(close),
+        })
+    }
+
+    /// `a, b, …]` after a `[`: the expressions and the span of `]`.
+    fn elements(&mut self, open: Span) -> Result<(Vec<Expr>, Span), LangError> {
+        let mut out = Vec::new();
+        loop {
+            if *self.peek() == Tok::Op('[') {
+                return Err(LangError::new(
+                    ErrorKind::Syntax,
+                    self.span(),
+                    "brackets nest two deep at most: a matrix's rows hold expressions",
+                ));
+            }
+            out.push(self.expr()?);
+            match self.bump() {
+                (Tok::Op(','), _) => {}
+                (Tok::Op(']'), close) => return Ok((out, close)),
+                (_, span) => {
+                    return Err(
+                        LangError::new(ErrorKind::Syntax, open, "this `[` is never closed")
+                            .help(format!("add `]` (at column {} or earlier)", span.start + 1)),
+                    )
+                }
+            }
+        }
+    }
+
+    /// `name(a, b, …)` after the name: the arguments and the span up to `)`.
+    fn arguments(&mut self, full: &str, span: Span) -> Result<(Vec<Expr>, Span), LangError> {
+        if *self.peek() != Tok::Op('(') {
+            return Err(LangError::new(
+                ErrorKind::Syntax,
+                span,
+                format!("`{full}` must be followed by `(`"),
+            )
+            .help(format!("write {full}(…)")));
+        }
+        let (_, open) = self.bump();
+        self.enter()?;
+        let mut args = Vec::new();
+        loop {
+            args.push(self.expr()?);
+            match self.bump() {
+                (Tok::Op(','), _) => {}
+                (Tok::Op(')'), close) => {
+                    self.depth -= 1;
+                    return Ok((args, span.to(close)));
+                }
+                _ => {
+                    return Err(LangError::new(
+                        ErrorKind::Syntax,
+                        open,
+                        format!("`(` of {full}(…) is never closed"),
+                    )
+                    .help("separate the arguments with `,` and close with `)`"))
+                }
+            }
+        }
+    }
+
     /// `( expr )`, returning the inner expression with the parentheses' span.
     fn parenthesised(&mut self) -> Result<Expr, LangError> {
         let (_, open) = self.bump();
@@ -785,6 +1069,15 @@ impl Parser {
                     .help(format!("add `)` (at column {} or earlier)", span.start + 1)),
             ),
         }
+    }
+}
+
+fn arity_words(f: MatFunc) -> String {
+    let r = f.arity();
+    if r.start() == r.end() {
+        r.start().to_string()
+    } else {
+        format!("{} or {}", r.start(), r.end())
     }
 }
 
@@ -825,6 +1118,57 @@ mod tests {
             ExprKind::Variation { body, field } => {
                 format!("Variation({}, {})", shape(body), shape(field))
             }
+            ExprKind::Matrix(rows) => format!(
+                "[{}]",
+                rows.iter()
+                    .map(|r| r.iter().map(shape).collect::<Vec<_>>().join(", "))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ),
+            ExprKind::Entry(a, at) => format!(
+                "{}[{}]",
+                shape(a),
+                at.iter()
+                    .map(|(k, _)| k.to_string())
+                    .collect::<Vec<_>>()
+                    .join(",")
+            ),
+            ExprKind::MatCall(f, args) => format!(
+                "{}({})",
+                f.name(),
+                args.iter().map(shape).collect::<Vec<_>>().join(", ")
+            ),
+        }
+    }
+
+    #[test]
+    fn matrices_vectors_entries_and_transposes() {
+        let e = parse_expr("[[a, b], [c, d]] [x, y]").unwrap();
+        assert_eq!(shape(&e), "([a, b; c, d] [x; y])");
+        let e = parse_expr("A[1,2] + v[3] - q^T D q").unwrap();
+        assert_eq!(shape(&e), "((A[1,2] + v[3]) - ((transpose(q) D) q))");
+        let e = parse_expr("(A B)[2,1]").unwrap();
+        assert_eq!(shape(&e), "(A B)[2,1]");
+        let e = parse_expr("solve(A, b) + matrix(D_ijkl, v_ij, v_kl)").unwrap();
+        assert_eq!(shape(&e), "(solve(A, b) + matrix(D_ijkl, v_ij, v_kl))");
+        for (bad, want) in [
+            ("[[a, b], [c]]", "this row has 1 entries, the first row 2"),
+            (
+                "[[a, b], c]",
+                "every row of a matrix is written in brackets",
+            ),
+            ("[a, b", "this `[` is never closed"),
+            ("A[0,1]", "an entry is picked with whole numbers from 1"),
+            (
+                "A[1,2,3]",
+                "this `[` is not closed after one or two entry numbers",
+            ),
+            ("det(A, B)", "det(…) takes 1 argument, not 2"),
+            ("solve(A)", "solve(…) takes 2 arguments, not 1"),
+            ("[[[a]]]", "brackets nest two deep at most"),
+        ] {
+            let e = parse_expr(bad).unwrap_err();
+            assert!(e.message.contains(want), "{bad}: {}", e.message);
         }
     }
 

@@ -770,6 +770,14 @@ impl Ring for ExactRing<'_, '_> {
     fn not_scalar(&mut self, node: &Node) -> Failure {
         Failure::Located(self.origin.diagnostic(node.span, "expected a scalar"))
     }
+
+    fn singular(&mut self, node: &Node) -> Failure {
+        self.error(
+            node,
+            "this system is singular: the determinant of its matrix is identically zero",
+            "a singular matrix has no inverse and the system no unique solution; check the matrix, or solve a reduced system",
+        )
+    }
 }
 
 fn too_much(origin: &Origin, node: &Node) -> Diagnostic {

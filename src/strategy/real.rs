@@ -550,6 +550,10 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     fn not_scalar(&mut self, node: &Node) -> RealError {
         err(node, "expected a scalar")
     }
+
+    fn singular(&mut self, node: &Node) -> RealError {
+        err(node, "singular matrix: its determinant is 0 here")
+    }
 }
 
 /// A scalar function of a number (`f64` or num-dual), or why it is undefined there: the

@@ -625,4 +625,8 @@ impl Ring for Compiler<'_> {
     fn not_scalar(&mut self, _node: &Node) -> Unsupported {
         Unsupported("expected a scalar".into())
     }
+
+    fn singular(&mut self, _node: &Node) -> Unsupported {
+        Unsupported("a singular matrix".into())
+    }
 }

@@ -59,23 +59,20 @@ fn deepest(
     counts: &dyn Fn(&Node) -> bool,
     memo: &mut HashMap<String, Option<usize>>,
 ) -> Option<usize> {
-    match &node.kind {
-        NodeKind::Leaf {
-            target: Target::Def(name),
-            ..
-        } => {
-            if let Some(o) = memo.get(name) {
-                return *o;
-            }
-            memo.insert(name.clone(), None);
-            let o = defs
-                .iter()
-                .rev()
-                .find(|d| &d.sig.name == name)
-                .and_then(|d| deepest(&d.body, defs, counts, memo));
-            memo.insert(name.clone(), o);
-            o
+    if let Some(name) = node.definition() {
+        if let Some(o) = memo.get(name) {
+            return *o;
         }
+        memo.insert(name.to_owned(), None);
+        let o = defs
+            .iter()
+            .rev()
+            .find(|d| d.sig.name == name)
+            .and_then(|d| deepest(&d.body, defs, counts, memo));
+        memo.insert(name.to_owned(), o);
+        return o;
+    }
+    match &node.kind {
         NodeKind::Deriv(a, _) => deepest(a, defs, counts, memo).map(|o| o + 1),
         _ => {
             let children = node.children();

@@ -15,7 +15,9 @@
 
 use crate::derivation::Definition;
 use crate::kernel::einsum::{einsum, Arithmetic, Slot};
+use crate::kernel::matrix::{self as linear, Matrix, Signed};
 use crate::kernel::{Rational, Tensor};
+use crate::lang::matrix::{MatrixOp, MatrixRead, Order};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Node, NodeKind, Target};
 use std::collections::HashMap;
@@ -120,6 +122,15 @@ pub trait Ring: Arithmetic {
     }
     /// An argument that should be a scalar is not.
     fn not_scalar(&mut self, node: &Node) -> Self::Error;
+    /// `inv(A)` or `solve(A, b)` of a matrix whose determinant is exactly zero.
+    fn singular(&mut self, node: &Node) -> Self::Error;
+}
+
+/// Every ring negates, so the kernel's determinants run in every ring.
+impl<R: Ring> Signed for R {
+    fn negate(&mut self, x: Self::Value) -> Self::Value {
+        self.neg(x)
+    }
 }
 
 /// The value of `node` in `ring`, with the normal `n` (outside `avg` and `maxn`).
@@ -224,8 +235,173 @@ pub fn walk<R: Ring>(
             slots.extend(field_slots.iter().copied());
             contract(ring, &[(&t, slots)], &labels, node)?
         }
+        // A matrix travels as the rank-1 list of its entries, row by row (how a
+        // definition's value is cached); its shape is the node's.
+        NodeKind::Matrix { .. } => {
+            let m = matrix(ring, node, n)?;
+            let len = m.entries().len();
+            let mut entries = m.into_entries().into_iter();
+            Tensor::from_fn(len, 1, |_| entries.next().expect("one value per entry"))
+        }
+        NodeKind::Read(read, a) => {
+            let m = matrix(ring, a, n)?;
+            match read {
+                MatrixRead::Det => Tensor::scalar(d, linear::determinant(ring, &m)?),
+                MatrixRead::Trace => {
+                    let mut acc = ring.zero();
+                    for k in 0..m.rows() {
+                        acc = ring.add(acc, m.get(k, k).clone())?;
+                    }
+                    Tensor::scalar(d, acc)
+                }
+                MatrixRead::Entry(i, j) => Tensor::scalar(d, m.get(*i, *j).clone()),
+                MatrixRead::Tensor { rows, cols } => {
+                    let zero = ring.zero();
+                    Tensor::from_fn(d, labels.len(), |idx| {
+                        let at = |o: &Order| {
+                            let values: Vec<usize> = o
+                                .slots
+                                .iter()
+                                .map(|s| match s {
+                                    Slot::Letter(c) => {
+                                        idx[labels
+                                            .iter()
+                                            .position(|l| l == c)
+                                            .expect("an order's letter is free")]
+                                    }
+                                    Slot::Fixed(k) => *k,
+                                })
+                                .collect();
+                            o.position_of(&values)
+                        };
+                        let col = cols.as_ref().map_or(Some(0), at);
+                        match (at(rows), col) {
+                            (Some(a), Some(b)) => m.get(a, b).clone(),
+                            _ => zero.clone(),
+                        }
+                    })
+                }
+            }
+        }
     };
     ring.leave(node, value)
+}
+
+/// The value of a matrix-valued node (see [`crate::lang::matrix`]).
+pub fn matrix<R: Ring>(
+    ring: &mut R,
+    node: &Node,
+    n: &R::Normal,
+) -> Result<Matrix<R::Value>, R::Error> {
+    let NodeKind::Matrix { rows, cols, op } = &node.kind else {
+        // A scalar standing for a 1×1 matrix.
+        let x = scalar(ring, node, n)?;
+        return Ok(Matrix::from_fn(1, 1, |_, _| x.clone()));
+    };
+    let (rows, cols) = (*rows, *cols);
+    let elementwise = |ring: &mut R, a: &Node| -> Result<Vec<R::Value>, R::Error> {
+        Ok(matrix(ring, a, n)?.into_entries())
+    };
+    let out = match op {
+        MatrixOp::Literal(entries) => {
+            let mut values = Vec::with_capacity(entries.len());
+            for e in entries {
+                values.push(scalar(ring, e, n)?);
+            }
+            values
+        }
+        MatrixOp::Def(name) => ring.definition(name, node, n)?.components().to_vec(),
+        MatrixOp::Identity => {
+            let (zero, one) = (ring.zero(), ring.one());
+            (0..rows * cols)
+                .map(|k| {
+                    if k / cols == k % cols {
+                        one.clone()
+                    } else {
+                        zero.clone()
+                    }
+                })
+                .collect()
+        }
+        MatrixOp::Sum(terms) => {
+            let mut acc = elementwise(ring, &terms[0])?;
+            for t in &terms[1..] {
+                let v = elementwise(ring, t)?;
+                let mut out = Vec::with_capacity(acc.len());
+                for (x, y) in acc.into_iter().zip(v) {
+                    out.push(ring.add(x, y)?);
+                }
+                acc = out;
+            }
+            acc
+        }
+        MatrixOp::Scale(s, m) => {
+            let s = scalar(ring, s, n)?;
+            let mut out = Vec::with_capacity(rows * cols);
+            for x in elementwise(ring, m)? {
+                out.push(ring.mul(x, &s)?);
+            }
+            out
+        }
+        MatrixOp::Product(a, b) => {
+            let (a, b) = (matrix(ring, a, n)?, matrix(ring, b, n)?);
+            linear::product(ring, &a, &b)?.into_entries()
+        }
+        MatrixOp::Transpose(a) => matrix(ring, a, n)?.transpose().into_entries(),
+        MatrixOp::Adjugate(a) => {
+            let a = matrix(ring, a, n)?;
+            linear::adjugate(ring, &a)?.into_entries()
+        }
+        MatrixOp::Inverse(a) | MatrixOp::Solve(a, _) => {
+            let am = matrix(ring, a, n)?;
+            let det = linear::determinant(ring, &am)?;
+            if ring.is_exact_zero(&det) {
+                return Err(ring.singular(node));
+            }
+            let mut adj = linear::adjugate(ring, &am)?;
+            if let MatrixOp::Solve(_, b) = op {
+                let b = matrix(ring, b, n)?;
+                adj = linear::product(ring, &adj, &b)?;
+            }
+            let mut out = Vec::with_capacity(rows * cols);
+            for x in adj.into_entries() {
+                out.push(ring.divide(x, &det, a)?);
+            }
+            out
+        }
+        MatrixOp::View {
+            tensor,
+            rows: ro,
+            cols: co,
+        } => {
+            let t = walk(ring, tensor, n)?;
+            let letters = tensor.free_letters();
+            let mut out = Vec::with_capacity(rows * cols);
+            for a in 0..rows {
+                for b in 0..cols {
+                    let mut values: Vec<(char, usize)> = Vec::with_capacity(letters.len());
+                    let mut bind = |o: &Order, p: usize| {
+                        for (s, &v) in o.slots.iter().zip(&o.positions[p]) {
+                            if let Slot::Letter(c) = s {
+                                values.push((*c, v));
+                            }
+                        }
+                    };
+                    bind(ro, a);
+                    if let Some(co) = co {
+                        bind(co, b);
+                    }
+                    let idx: Vec<usize> = letters
+                        .iter()
+                        .map(|c| values.iter().find(|(l, _)| l == c).map_or(0, |&(_, v)| v))
+                        .collect();
+                    out.push(t.get(&idx).clone());
+                }
+            }
+            out
+        }
+    };
+    Ok(Matrix::from_rows(rows, cols, out).expect("every operation keeps the node's shape"))
 }
 
 /// The value of a node that must be a scalar.
@@ -277,6 +453,48 @@ pub fn normal_degree(
             _ => None,
         },
         NodeKind::Pow(a, k) => Some(normal_degree(a, defs, memo)? * *k as usize),
+        // Determinants, inverses and solves multiply and divide entries: only
+        // entries free of n keep a known degree (0).
+        NodeKind::Matrix {
+            op: MatrixOp::Inverse(_) | MatrixOp::Adjugate(_) | MatrixOp::Solve(..),
+            ..
+        }
+        | NodeKind::Read(MatrixRead::Det, _) => {
+            match node
+                .children()
+                .into_iter()
+                .try_fold(0, |m, x| Some(m.max(normal_degree(x, defs, memo)?)))?
+            {
+                0 => Some(0),
+                _ => None,
+            }
+        }
+        NodeKind::Matrix {
+            op: MatrixOp::Def(name),
+            ..
+        } => {
+            if let Some(d) = memo.get(name) {
+                return *d;
+            }
+            let d = defs
+                .iter()
+                .rev()
+                .find(|x| &x.sig.name == name)
+                .and_then(|def| normal_degree(&def.body, defs, memo));
+            memo.insert(name.clone(), d);
+            d
+        }
+        NodeKind::Matrix {
+            op: MatrixOp::Scale(..) | MatrixOp::Product(..),
+            ..
+        } => node
+            .children()
+            .into_iter()
+            .try_fold(0, |m, x| Some(m + normal_degree(x, defs, memo)?)),
+        NodeKind::Matrix { .. } | NodeKind::Read(..) => node
+            .children()
+            .into_iter()
+            .try_fold(0, |m, x| Some(m.max(normal_degree(x, defs, memo)?))),
         NodeKind::Apply(_, a) => match normal_degree(a, defs, memo)? {
             0 => Some(0),
             _ => None,
@@ -298,6 +516,10 @@ pub fn in_formal_order<R: Ring>(
     n: &R::Normal,
 ) -> Result<Tensor<R::Value>, R::Error> {
     let t = walk(ring, body, n)?;
+    if body.shape().is_some() {
+        // A matrix's entries, row by row: no slots to reorder.
+        return Ok(t);
+    }
     let letters = body.free_letters();
     let perm: Vec<usize> = formal
         .iter()
