@@ -249,6 +249,17 @@ fn every_mutant_of_every_balance_law_is_refuted() {
     assert_swept(&files, &ALGEBRAIC, "mutation_report_balance");
 }
 
+/// Mutants of matrix claims (`tests/soundness/matrices.toml`): entries changed,
+/// neighbouring entries swapped, transposes dropped, inv ↔ adj, det → trace; the exact
+/// strategy entry by entry, survivors confirmed by the float route's linear algebra.
+#[test]
+fn every_mutant_of_every_matrix_claim_is_refuted() {
+    let files = load_files(&["tests/soundness/matrices.toml"]).expect("matrices load");
+    let mut all = ALGEBRAIC.to_vec();
+    all.push(MutantKind::Function);
+    assert_swept(&files, &all, "mutation_report_matrices");
+}
+
 fn assert_swept(files: &[DerivationFile], kinds: &[MutantKind], name: &str) {
     let report = sweep_files(files, kinds);
     insta::with_settings!({

@@ -34,7 +34,7 @@ impl Check {
             seen.push(n);
             if let Some(name) = n.definition() {
                 if names.insert(name) {
-                    if let Some(d) = self.defs.iter().rev().find(|d| &d.sig.name == name) {
+                    if let Some(d) = self.defs.iter().rev().find(|d| d.sig.name == name) {
                         stack.push(&d.body);
                     }
                 }

@@ -240,7 +240,7 @@ mod tests {
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
             let v = (s >> 33) as i64 % 7 - 3;
-            if zeros && (s >> 20) % 3 == 0 {
+            if zeros && (s >> 20).is_multiple_of(3) {
                 Rational::int(0)
             } else {
                 Rational::ratio(v, 1 + (s >> 40) as i64 % 3).expect("nonzero")

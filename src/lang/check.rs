@@ -694,8 +694,13 @@ impl Scope<'_> {
             if n.is_literal_zero() {
                 continue;
             }
-            if n.shape().is_some() || nodes.first().is_some_and(|f| f.shape().is_some()) {
+            if n.shape().is_some() {
                 nodes.push(if neg { self.matrix_neg(n, t.span) } else { n });
+                continue;
+            }
+            if nodes.first().is_some_and(|f| f.shape().is_some()) {
+                // A scalar among matrices: refused with the shapes by `matrix_sum`.
+                nodes.push(n);
                 continue;
             }
             if let Some(first) = nodes.first() {

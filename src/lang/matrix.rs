@@ -62,8 +62,8 @@ pub enum MatrixOp {
     /// component at the rows' position a and the columns' position b.
     View {
         tensor: Box<Node>,
-        rows: Order,
-        cols: Option<Order>,
+        rows: Box<Order>,
+        cols: Option<Box<Order>>,
     },
 }
 
@@ -78,8 +78,8 @@ pub enum MatrixRead {
     /// columns' position b) is the entry (a, b), and zero at positions the orders
     /// leave out.
     Tensor {
-        rows: Order,
-        cols: Option<Order>,
+        rows: Box<Order>,
+        cols: Option<Box<Order>>,
     },
 }
 
@@ -223,7 +223,7 @@ impl Scope<'_> {
                 ))
             }
         };
-        let (k, span_k) = at[at.len() - 1];
+        let span_k = at[at.len() - 1].1;
         if i > rows || j > cols {
             return Err(LangError::new(
                 ErrorKind::Dimension,
@@ -234,7 +234,6 @@ impl Scope<'_> {
                 "rows run from 1 to {rows}, columns from 1 to {cols}"
             )));
         }
-        let _ = k;
         Ok(Node {
             free: Vec::new(),
             bound: m.bound.clone(),
@@ -253,7 +252,7 @@ impl Scope<'_> {
             if t.shape() != Some(shape) {
                 let what = t
                     .shape()
-                    .map_or_else(|| "a scalar or tensor".to_owned(), |s| shape_words(s));
+                    .map_or_else(|| "a scalar or tensor".to_owned(), shape_words);
                 return Err(error(
                     t.span,
                     format!("this term is {what}, the others {}", shape_words(shape)),
@@ -293,12 +292,24 @@ impl Scope<'_> {
                 scalars.push(f);
                 continue;
             }
-            acc = Some(match acc {
-                None => f,
-                Some(a) => multiply(a, f)?,
-            });
+            match acc.take() {
+                None => acc = Some(f),
+                // A row times a column is the scalar it holds: it scales the rest.
+                Some(a) => match multiply(a, f)? {
+                    m if m.shape().is_some() => acc = Some(m),
+                    s => scalars.push(s),
+                },
+            }
         }
-        let m = acc.expect("called with a matrix factor");
+        let Some(m) = acc else {
+            let bound = bound_of(&scalars.iter().collect::<Vec<_>>());
+            return Ok(Node {
+                kind: NodeKind::Product(scalars),
+                free: Vec::new(),
+                bound,
+                span,
+            });
+        };
         Ok(match scalars.len() {
             0 => m,
             1 => scale(scalars.pop().expect("one scalar"), m, span),
@@ -338,7 +349,7 @@ impl Scope<'_> {
             kind: NodeKind::Div(Box::new(one), Box::new(den)),
             free: Vec::new(),
             bound,
-            span: span,
+            span,
         };
         Ok(scale(factor, m, span))
     }
@@ -429,8 +440,8 @@ impl Scope<'_> {
                 let bound = t.bound.clone();
                 let op = MatrixOp::View {
                     tensor: Box::new(t),
-                    rows,
-                    cols,
+                    rows: Box::new(rows),
+                    cols: cols.map(Box::new),
                 };
                 Ok(matrix(r, c, op, bound, span))
             }
@@ -479,7 +490,13 @@ impl Scope<'_> {
                 let free = counts.into_iter().map(|(ch, s)| (ch, s[0])).collect();
                 let bound = m.bound.clone();
                 Ok(Node {
-                    kind: NodeKind::Read(MatrixRead::Tensor { rows, cols }, Box::new(m)),
+                    kind: NodeKind::Read(
+                        MatrixRead::Tensor {
+                            rows: Box::new(rows),
+                            cols: cols.map(Box::new),
+                        },
+                        Box::new(m),
+                    ),
                     free,
                     bound,
                     span,

@@ -274,7 +274,7 @@ pub fn walk<R: Ring>(
                                 .collect();
                             o.position_of(&values)
                         };
-                        let col = cols.as_ref().map_or(Some(0), at);
+                        let col = cols.as_deref().map_or(Some(0), at);
                         match (at(rows), col) {
                             (Some(a), Some(b)) => m.get(a, b).clone(),
                             _ => zero.clone(),
