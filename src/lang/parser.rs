@@ -727,7 +727,8 @@ impl Parser {
                     });
                 }
                 if let Some(func) = MatFunc::from_name(&full) {
-                    let (args, span) = self.arguments(&full, span)?;
+                    let usage = format!("write {}", func.usage());
+                    let (args, span) = self.arguments(&full, span, &usage)?;
                     if !func.arity().contains(&args.len()) {
                         return Err(LangError::new(
                             ErrorKind::Syntax,
@@ -863,39 +864,20 @@ impl Parser {
 
     /// `name(a, b)` after the name: both arguments and the span up to `)`.
     fn two_arguments(&mut self, full: &str, span: Span) -> Result<(Expr, Expr, Span), LangError> {
-        if *self.peek() != Tok::Op('(') {
+        let usage = format!("write {full}(a, b)");
+        let (mut args, span) = self.arguments(full, span, &usage)?;
+        if args.len() != 2 {
             return Err(LangError::new(
                 ErrorKind::Syntax,
                 span,
-                format!("`{full}` must be followed by `(`"),
-            )
-            .help(format!("write {full}(a, b)")));
-        }
-        let (_, open) = self.bump();
-        self.enter()?;
-        let a = self.expr()?;
-        let comma = self.bump();
-        if comma.0 != Tok::Op(',') {
-            return Err(LangError::new(
-                ErrorKind::Syntax,
-                comma.1,
                 format!("{full}(…) takes two arguments separated by `,`"),
             )
-            .help(format!("write {full}(a, b)")));
+            .help(usage));
         }
-        let b = self.expr()?;
-        let close = self.bump();
-        if close.0 != Tok::Op(')') {
-            return Err(LangError::new(
-                ErrorKind::Syntax,
-                open,
-                format!("`(` of {full}(…) is not closed after two arguments"),
-            ));
-        }
-        self.depth -= 1;
-        Ok((a, b, span.to(close.1)))
+        let b = args.pop().expect("two arguments");
+        let a = args.pop().expect("two arguments");
+        Ok((a, b, span))
     }
-
     /// An atom and the entry picked from it, `A[2,3]` or `v[2]`: the `[` must touch
     /// what precedes it (`A [1, 2]` is A times a column vector).
     fn postfix(&mut self) -> Result<Expr, LangError> {
@@ -1023,14 +1005,19 @@ impl Parser {
     }
 
     /// `name(a, b, …)` after the name: the arguments and the span up to `)`.
-    fn arguments(&mut self, full: &str, span: Span) -> Result<(Vec<Expr>, Span), LangError> {
+    fn arguments(
+        &mut self,
+        full: &str,
+        span: Span,
+        usage: &str,
+    ) -> Result<(Vec<Expr>, Span), LangError> {
         if *self.peek() != Tok::Op('(') {
             return Err(LangError::new(
                 ErrorKind::Syntax,
                 span,
                 format!("`{full}` must be followed by `(`"),
             )
-            .help(format!("write {full}(…)")));
+            .help(usage.to_owned()));
         }
         let (_, open) = self.bump();
         self.enter()?;
@@ -1049,7 +1036,9 @@ impl Parser {
                         open,
                         format!("`(` of {full}(…) is never closed"),
                     )
-                    .help("separate the arguments with `,` and close with `)`"))
+                    .help(format!(
+                        "separate the arguments with `,` and close with `)`: {usage}"
+                    )))
                 }
             }
         }

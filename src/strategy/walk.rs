@@ -421,22 +421,22 @@ pub fn normal_degree(
     defs: &[Definition],
     memo: &mut HashMap<String, Option<usize>>,
 ) -> Option<usize> {
+    if let Some(name) = node.definition() {
+        if let Some(d) = memo.get(name) {
+            return *d;
+        }
+        let d = defs
+            .iter()
+            .rev()
+            .find(|x| x.sig.name == name)
+            .and_then(|def| normal_degree(&def.body, defs, memo));
+        memo.insert(name.to_owned(), d);
+        return d;
+    }
     match &node.kind {
         NodeKind::Const(_) | NodeKind::Avg(_) | NodeKind::MaxN(_) => Some(0),
         NodeKind::Leaf { target, .. } => match target {
             Target::Normal => Some(1),
-            Target::Def(name) => {
-                if let Some(d) = memo.get(name) {
-                    return *d;
-                }
-                let d = defs
-                    .iter()
-                    .rev()
-                    .find(|x| &x.sig.name == name)
-                    .and_then(|def| normal_degree(&def.body, defs, memo));
-                memo.insert(name.clone(), d);
-                d
-            }
             _ => Some(0),
         },
         NodeKind::Neg(a) | NodeKind::Deriv(a, _) | NodeKind::Variation { body: a, .. } => {
@@ -468,21 +468,6 @@ pub fn normal_degree(
                 0 => Some(0),
                 _ => None,
             }
-        }
-        NodeKind::Matrix {
-            op: MatrixOp::Def(name),
-            ..
-        } => {
-            if let Some(d) = memo.get(name) {
-                return *d;
-            }
-            let d = defs
-                .iter()
-                .rev()
-                .find(|x| &x.sig.name == name)
-                .and_then(|def| normal_degree(&def.body, defs, memo));
-            memo.insert(name.clone(), d);
-            d
         }
         NodeKind::Matrix {
             op: MatrixOp::Scale(..) | MatrixOp::Product(..),
