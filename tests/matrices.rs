@@ -76,6 +76,7 @@ fn malformed_matrix_statements_are_located_errors() {
         (claim("sides = [\"det(s_ij)\", \"x\"]"), "det(…) takes a matrix, but this is a tensor"),
         (claim("sides = [\"inv([[1, 2], [2, 4]])\", \"A\"]"), "this system is singular: the determinant of its matrix is identically zero"),
         (claim("sides = [\"solve([[x, x], [1, 1]], v)\", \"v\"]"), "this system is singular"),
+        (claim("strategy = \"numeric\"\nsamples = 50\nsides = [\"inv([[1, 2], [2, 4]]) cos(x)\", \"A\"]"), "singular matrix: its determinant is 0 here"),
         (claim("sides = [\"A\", \"A\"]\nassume = [\"x = [[1, 2], [3, 4]]\"]"), "an assumption takes a scalar or a tensor, but this is a 2×2 matrix"),
         (claim("strategy = \"sign\"\nsides = [\"A\", \"A\"]\nrelation = \">\""), "compares exactly two sides"),
         (claim("strategy = \"monotone\"\nfunction = \"A\"\nin = \"x\"\ndirection = \"increasing\""), "this field takes a scalar or a tensor, but this is a 2×2 matrix"),

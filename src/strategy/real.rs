@@ -551,6 +551,10 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
         err(node, "expected a scalar")
     }
 
+    fn vanishes(&self, det: &T) -> bool {
+        det.re() == 0.0
+    }
+
     fn singular(&mut self, node: &Node) -> RealError {
         err(node, "singular matrix: its determinant is 0 here")
     }

@@ -626,6 +626,11 @@ impl Ring for Compiler<'_> {
         Unsupported("expected a scalar".into())
     }
 
+    /// A determinant that folded to the constant 0: singular at every point.
+    fn vanishes(&self, det: &usize) -> bool {
+        self.folded(*det) == Some(0.0)
+    }
+
     fn singular(&mut self, _node: &Node) -> Unsupported {
         Unsupported("a singular matrix".into())
     }

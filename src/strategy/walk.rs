@@ -122,7 +122,13 @@ pub trait Ring: Arithmetic {
     }
     /// An argument that should be a scalar is not.
     fn not_scalar(&mut self, node: &Node) -> Self::Error;
-    /// `inv(A)` or `solve(A, b)` of a matrix whose determinant is exactly zero.
+    /// Whether a determinant is zero, so that `inv(A)` or `solve(A, b)` is refused as
+    /// singular ([`Ring::singular`]) rather than divided by: identically zero in exact
+    /// arithmetic, zero at the point in floating point.
+    fn vanishes(&self, det: &Self::Value) -> bool {
+        self.is_exact_zero(det)
+    }
+    /// `inv(A)` or `solve(A, b)` of a matrix whose determinant [`Ring::vanishes`].
     fn singular(&mut self, node: &Node) -> Self::Error;
 }
 
@@ -355,7 +361,7 @@ pub fn matrix<R: Ring>(
         MatrixOp::Inverse(a) | MatrixOp::Solve(a, _) => {
             let am = matrix(ring, a, n)?;
             let det = linear::determinant(ring, &am)?;
-            if ring.is_exact_zero(&det) {
+            if ring.vanishes(&det) {
                 return Err(ring.singular(node));
             }
             let mut adj = linear::adjugate(ring, &am)?;

@@ -180,27 +180,29 @@ fn runs(chart: &SignChart, of_f: &SignChart, want: Sign) -> Vec<Run> {
     out
 }
 
+/// Where a run ends at `cut` (the domain's own end `outer` when there is none): open
+/// at a pole, closed at an exact turning point, and at an isolated one the end of its
+/// isolating interval inside the run: its low end when the run ends there
+/// (`run_is_below`), its high end when the run starts there.
+fn run_end(cut: Option<&crate::kernel::sign::Cut>, outer: &End, run_is_below: bool) -> End {
+    match cut {
+        None => outer.clone(),
+        Some(c) => match &c.at {
+            Real::Exact(r) if c.pole => End::Open(r.clone()),
+            Real::Exact(r) => End::Closed(r.clone()),
+            Real::Isolated { lo, hi } => End::Closed(if run_is_below { lo } else { hi }.clone()),
+        },
+    }
+}
+
 impl Run {
     fn start(&self, chart: &SignChart, i: &Interval) -> End {
-        match self.first.checked_sub(1).map(|j| &chart.cuts[j]) {
-            None => i.lo.clone(),
-            Some(c) => match &c.at {
-                Real::Exact(r) if c.pole => End::Open(r.clone()),
-                Real::Exact(r) => End::Closed(r.clone()),
-                Real::Isolated { hi, .. } => End::Closed(hi.clone()),
-            },
-        }
+        let cut = self.first.checked_sub(1).map(|j| &chart.cuts[j]);
+        run_end(cut, &i.lo, false)
     }
 
     fn end(&self, chart: &SignChart, i: &Interval) -> End {
-        match chart.cuts.get(self.last) {
-            None => i.hi.clone(),
-            Some(c) => match &c.at {
-                Real::Exact(r) if c.pole => End::Open(r.clone()),
-                Real::Exact(r) => End::Closed(r.clone()),
-                Real::Isolated { lo, .. } => End::Closed(lo.clone()),
-            },
-        }
+        run_end(chart.cuts.get(self.last), &i.hi, true)
     }
 
     /// The run with rational ends inside it (an isolated turning point replaced by the
