@@ -141,7 +141,7 @@ fn main() {
     let exact_only: Vec<_> = files
         .iter()
         .flat_map(|f| &f.claims)
-        .filter(|c| matches!(c.check.strategy, Strategy::Exact))
+        .filter(|c| matches!(c.check.strategy, Strategy::Exact { .. }))
         .collect();
     let exact = median_ms(9, || {
         for c in &exact_only {
@@ -155,7 +155,7 @@ fn main() {
     for c in files
         .iter()
         .flat_map(|f| &f.claims)
-        .filter(|c| !matches!(c.check.strategy, Strategy::Exact))
+        .filter(|c| !matches!(c.check.strategy, Strategy::Exact { .. }))
     {
         let t = median_ms(3, || {
             black_box(decide_claim(c).unwrap());
@@ -167,8 +167,8 @@ fn main() {
             Strategy::NotCircle { .. } => "witness",
             Strategy::Scalar { .. } => "rational-function",
             Strategy::Appendix { .. } => "appendix",
-            Strategy::Exact => "exact",
-            Strategy::Proportional => "proportional",
+            Strategy::Exact { .. } => "exact",
+            Strategy::Proportional { .. } => "proportional",
         };
         rows.push((format!("claim {} ({strategy})", c.id), format!("{t:.1} ms")));
     }

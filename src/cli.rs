@@ -359,8 +359,8 @@ fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: O
                     *n = samples.map_or(*n, |k| k as usize);
                     continue;
                 }
-                Strategy::Exact
-                | Strategy::Proportional
+                Strategy::Exact { .. }
+                | Strategy::Proportional { .. }
                 | Strategy::NotCircle { .. }
                 | Strategy::Appendix { .. } => continue,
             };

@@ -170,9 +170,10 @@ fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
             collect(src, b, out);
         }
         ExprKind::Neg(a) | ExprKind::Pow(a, _) => collect(src, a, out),
-        // The varied field is named, not computed: only the density is mutated (a
-        // swapped index of the field would leave the free indices unbalanced).
-        ExprKind::Variation { body, .. } => collect(src, body, out),
+        // The varied field (or the symbol of a gradient) is named, not computed: only
+        // the body is mutated (a swapped index of the symbol would leave the free
+        // indices unbalanced).
+        ExprKind::Wrt { body, .. } => collect(src, body, out),
         ExprKind::Mul(a, b) | ExprKind::Div(a, b) => {
             collect(src, a, out);
             collect(src, b, out);

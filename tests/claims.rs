@@ -176,7 +176,10 @@ fn exact_verdicts_agree_with_the_independent_float_route() {
             pairs.push((&c.check, o));
         }
         for (check, outcome) in pairs {
-            if !matches!(check.strategy, Strategy::Exact | Strategy::Proportional) {
+            if !matches!(
+                check.strategy,
+                Strategy::Exact { .. } | Strategy::Proportional { .. }
+            ) {
                 continue;
             }
             assert_eq!(

@@ -62,8 +62,8 @@ enum Fate {
 
 fn strategy_name(s: &Strategy) -> &'static str {
     match s {
-        Strategy::Exact => "exact",
-        Strategy::Proportional => "proportional",
+        Strategy::Exact { .. } => "exact",
+        Strategy::Proportional { .. } => "proportional",
         Strategy::Numeric { .. } => "numeric",
         Strategy::Gradient { .. } => "gradient",
         Strategy::Convex { .. } => "convex",
@@ -94,8 +94,8 @@ fn resampled(mut check: Check, samples: usize, seed: Option<u64>) -> Check {
                 *s = k;
             }
         }
-        Strategy::Exact
-        | Strategy::Proportional
+        Strategy::Exact { .. }
+        | Strategy::Proportional { .. }
         | Strategy::NotCircle { .. }
         | Strategy::Appendix { .. } => {}
     }
@@ -108,8 +108,8 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     };
     let sampled = !matches!(
         check.strategy,
-        Strategy::Exact
-            | Strategy::Proportional
+        Strategy::Exact { .. }
+            | Strategy::Proportional { .. }
             | Strategy::NotCircle { .. }
             | Strategy::Appendix { .. }
     );
@@ -120,7 +120,10 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     if outcome.verdict() == Verdict::Undecided {
         return Fate::Undecided;
     }
-    if matches!(check.strategy, Strategy::Exact | Strategy::Proportional) {
+    if matches!(
+        check.strategy,
+        Strategy::Exact { .. } | Strategy::Proportional { .. }
+    ) {
         match float::decide(decls, &check, FLOAT_SAMPLES, 7) {
             Ok(Some(v)) if v != outcome.verdict() => {
                 return Fate::Disagreement(format!("exact {}, float {v}", outcome.verdict()));
@@ -239,7 +242,6 @@ fn every_mutant_of_every_rational_identity_is_refuted() {
     assert_swept(&files, &ALGEBRAIC, "mutation_report_rational");
 }
 
-/// Sweeps `files` and compares the report with the snapshot `name`.
 /// Mutants of balance laws derived from a virtual power
 /// (`tests/soundness/balance-laws.toml`): the exact strategy on `variation(…)`, each
 /// verdict cross-checked by the perturbation route.
@@ -260,6 +262,18 @@ fn every_mutant_of_every_matrix_claim_is_refuted() {
     assert_swept(&files, &all, "mutation_report_matrices");
 }
 
+/// Mutants of gradients at a state (`tests/soundness/states.toml`): coefficients,
+/// signs, terms and indices of the functions differentiated and of the closed forms,
+/// sqrt → identity; `grad` through the exact route and through num-dual numbers.
+#[test]
+fn every_mutant_of_every_gradient_at_a_state_is_refuted() {
+    let files = load_files(&["tests/soundness/states.toml"]).expect("states load");
+    let mut all = ALGEBRAIC.to_vec();
+    all.push(MutantKind::Function);
+    assert_swept(&files, &all, "mutation_report_states");
+}
+
+/// Sweeps `files` and compares the report with the snapshot `name`.
 fn assert_swept(files: &[DerivationFile], kinds: &[MutantKind], name: &str) {
     let report = sweep_files(files, kinds);
     insta::with_settings!({

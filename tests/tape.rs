@@ -46,8 +46,8 @@ fn the_tape_agrees_with_the_interpreter_on_every_sampled_expression() {
     for claim in files.iter().flat_map(|f| &f.claims) {
         if matches!(
             claim.check.strategy,
-            Strategy::Exact
-                | Strategy::Proportional
+            Strategy::Exact { .. }
+                | Strategy::Proportional { .. }
                 | Strategy::NotCircle { .. }
                 | Strategy::Appendix { .. }
         ) {

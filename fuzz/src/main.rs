@@ -150,6 +150,17 @@ const DICTIONARY: &[&str] = &[
     "orders = { voigt = [\"11\", \"22\", \"12\", \"21\"], plane = [\"1\", \"2\"] }\n",
     "define = [\"A = [[1, 2], [3, 4]]\", \"v = [1, 2]\"]\n",
     "inv([[1, 2], [2, 4]])",
+    "grad(",
+    "grad(F2, sigma_ij)",
+    "grad(sqrt(J2), sigma_kl)",
+    "grad(x^2 / (1 + x), x)",
+    "grad(grad(x^3, x), x)",
+    "grad(det(A), x)",
+    ", sigma_kl)",
+    "sqrt(tau^2)",
+    "given = [\"tau > 0\", \"s < 0\"]\n",
+    "given = [\"x >= 0\"]\n",
+    "assume = [\"sigma_ij = s delta_ij - f_r s (delta_i1 delta_j2 + delta_i2 delta_j1)\"]\n",
 ];
 
 /// xorshift64*: deterministic given the seed.
@@ -248,8 +259,8 @@ fn exercise(data: &[u8]) {
     for claim in &file.claims {
         if matches!(
             claim.check.strategy,
-            Strategy::Exact
-                | Strategy::Proportional
+            Strategy::Exact { .. }
+                | Strategy::Proportional { .. }
                 | Strategy::NotCircle { .. }
                 | Strategy::Appendix { .. }
         ) {

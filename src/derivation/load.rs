@@ -7,6 +7,7 @@ use super::model::{
 };
 use super::raw::{RawClaim, RawFile, S};
 use super::spans::{content_map, sub_origin};
+use crate::derivation::ParamBox;
 use crate::lang::check::{letters, RESERVED};
 use crate::lang::matrix::{shape_words, MatrixOp, MatrixRead};
 use crate::lang::parser::ExprKind;
@@ -878,7 +879,9 @@ impl Loader {
             assumptions,
             chains: out,
             verbatim,
-            strategy: Strategy::Exact,
+            strategy: Strategy::Exact {
+                domain: ParamBox::default(),
+            },
         })
     }
 
@@ -887,7 +890,7 @@ impl Loader {
     fn one_pair_if_needed(&self, c: &RawClaim, check: &Check) -> Result<(), Diagnostic> {
         let pair = check.chains.len() == 1 && check.chains[0].len() == 2;
         let help = match (&check.strategy, &c.strategy) {
-            (Strategy::Proportional, Some(at)) if !pair => (
+            (Strategy::Proportional { .. }, Some(at)) if !pair => (
                 at,
                 "strategy = \"proportional\"",
                 "left = λ · right for one nonzero constant λ",

@@ -271,12 +271,20 @@ pub struct Sampling {
 }
 
 impl Strategy {
+    /// The parameter box of an exact or proportional claim (`given`).
+    pub fn exact_domain(&self) -> Option<&ParamBox> {
+        match self {
+            Strategy::Exact { domain } | Strategy::Proportional { domain } => Some(domain),
+            _ => None,
+        }
+    }
+
     /// Every expression of the strategy itself (functions, closed forms, constraints,
     /// singular sets), for dependency analysis.
     pub fn expressions(&self) -> Vec<&Expression> {
         let mut out = Vec::new();
         match self {
-            Strategy::Exact | Strategy::Proportional => {}
+            Strategy::Exact { .. } | Strategy::Proportional { .. } => {}
             Strategy::Numeric {
                 sampling, domain, ..
             } => {
@@ -333,11 +341,12 @@ impl Strategy {
 /// The decision procedure of a claim.
 #[derive(Clone, Debug)]
 pub enum Strategy {
-    /// Canonical polynomial expansion (the default).
-    Exact,
+    /// Canonical polynomial expansion (the default). `domain` (`given`) bounds the
+    /// parameters: square roots take their sign on it, and a counterexample lies in it.
+    Exact { domain: ParamBox },
     /// Canonical expansion of `left = λ · right` for one nonzero constant λ, the same
     /// in every component: two sides that agree up to a sign or scale convention.
-    Proportional,
+    Proportional { domain: ParamBox },
     /// Seeded random states in f64; `domain`, when given, is where a statement that
     /// fails is claimed to hold (verdict `conditional`).
     Numeric {

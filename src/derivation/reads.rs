@@ -3,6 +3,7 @@
 //! only those).
 
 use super::model::{AssumptionKind, Check};
+use crate::lang::parser::Wrt;
 use crate::lang::{Node, NodeKind, Target};
 use std::collections::BTreeSet;
 
@@ -71,7 +72,10 @@ impl Check {
                     target: Target::Normal,
                     ..
                 } => out.normal = true,
-                NodeKind::Deriv(..) | NodeKind::Variation { .. } => out.differentiates = true,
+                NodeKind::Deriv(..)
+                | NodeKind::Wrt {
+                    op: Wrt::Variation, ..
+                } => out.differentiates = true,
                 _ => {}
             }
         }

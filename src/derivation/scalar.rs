@@ -206,7 +206,7 @@ impl Loader {
 
     /// The box of `given`: each entry bounds one declared scalar by rationals
     /// (`f_r > 0`, `0 < nu < 1/2`, `K >= 1`); several entries on one scalar intersect.
-    fn param_box(&self, given: &[S], decls: &Decls) -> Result<ParamBox, Diagnostic> {
+    pub(super) fn param_box(&self, given: &[S], decls: &Decls) -> Result<ParamBox, Diagnostic> {
         let mut out = ParamBox::default();
         for g in given {
             let text = g.get_ref();

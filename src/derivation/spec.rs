@@ -9,7 +9,7 @@ use super::model::{
 use super::raw::{RawClaim, S};
 use super::spans::sub_origin;
 use crate::lang::check::letters;
-use crate::lang::{parse_expr, Decls, DefSig, Diagnostic, Scope, Span};
+use crate::lang::{parse_expr, Decls, DefSig, Diagnostic, NodeKind, Scope, Span};
 use std::collections::BTreeMap;
 
 /// Default and smallest sample counts. Fewer than 50 random states would let a
@@ -63,8 +63,26 @@ impl Loader {
                 .with_help("remove it, or use strategy = \"gradient\""));
         }
         Ok(match name {
-            "exact" => Strategy::Exact,
-            "proportional" => Strategy::Proportional,
+            "exact" | "proportional" => {
+                let sampled = [
+                    c.samples.as_ref().map(|_| "samples"),
+                    c.seed.as_ref().map(|_| "seed"),
+                    (!c.ranges.is_empty()).then_some("ranges"),
+                    c.singular.as_ref().map(|_| "singular"),
+                    (!c.domain.is_empty()).then_some("domain"),
+                ];
+                if let Some(field) = sampled.into_iter().flatten().next() {
+                    return Err(self
+                        .diag(anchor.span(), format!("`{field}` belongs to the sampled strategies; strategy = \"{name}\" decides exactly"))
+                        .with_help("remove it, or bound the parameters of an exact claim with given = [\"f_r > 0\"]"));
+                }
+                let domain = self.param_box(&c.given, decls)?;
+                if name == "exact" {
+                    Strategy::Exact { domain }
+                } else {
+                    Strategy::Proportional { domain }
+                }
+            }
             "numeric" => {
                 let relation = match &c.relation {
                     None => Relation::Eq,
@@ -86,6 +104,7 @@ impl Loader {
             }
             "gradient" => {
                 let function = scalar(&need(&c.function, "function")?)?;
+                differentiable_once(&function, defs, name)?;
                 if c.gradient.is_empty() {
                     return Err(self
                         .diag(
@@ -126,6 +145,7 @@ impl Loader {
             }
             "convex" => {
                 let function = scalar(&need(&c.function, "function")?)?;
+                differentiable_once(&function, defs, name)?;
                 let mut wrt = Vec::new();
                 for w in &c.wrt {
                     if !decls.symbols.contains_key(w.get_ref()) {
@@ -312,4 +332,37 @@ impl Loader {
             singular,
         })
     }
+}
+
+/// Refuses a `grad(…)` in a function that a gradient or convex claim differentiates
+/// again, directly or through a definition: the sampled route takes a gradient with
+/// dual numbers seeded from real values, a first derivative only.
+fn differentiable_once(
+    f: &Expression,
+    defs: &[Definition],
+    strategy: &str,
+) -> Result<(), Diagnostic> {
+    let mut stack = vec![&f.node];
+    let mut seen: Vec<&str> = Vec::new();
+    while let Some(node) = stack.pop() {
+        if matches!(node.kind, NodeKind::Wrt { .. }) {
+            return Err(f
+                .origin
+                .diagnostic(
+                    f.node.span,
+                    format!("strategy = \"{strategy}\" differentiates this function, which takes grad(…) or variation(…) itself"),
+                )
+                .with_help("grad(…) takes first derivatives only: give this strategy the function without it"));
+        }
+        if let Some(name) = node.definition() {
+            if !seen.contains(&name) {
+                seen.push(name);
+                if let Some(d) = defs.iter().rev().find(|d| d.sig.name == name) {
+                    stack.push(&d.body);
+                }
+            }
+        }
+        stack.extend(node.children());
+    }
+    Ok(())
 }

@@ -71,6 +71,15 @@ pub enum Fact {
         interval: String,
         roots: Vec<String>,
     },
+    /// √radicand = root: root·root equals the radicand (denominators cleared,
+    /// canonical polynomials), and root ≥ 0 on the box by the coefficient signs
+    /// that follow ([`Fact::CoefficientSigns`]), or root is a nonnegative rational.
+    SquareRoot {
+        radicand: String,
+        root: String,
+        /// The box the sign was certified on (`given`), in words.
+        on: String,
+    },
     /// The limit of a rational function, from the lowest orders of numerator and
     /// denominator, wherever the listed polynomials are nonzero.
     Limit {
@@ -260,6 +269,56 @@ impl Certificate {
             substitution,
             cases: count,
         }))
+    }
+
+    /// √radicand = root on the box `domain` (variables not listed range over the real
+    /// line): root·root is the radicand wherever both are defined, and root ≥ 0 on the
+    /// box, certified by coefficient signs ([`Certificate::sign_by_coefficients`]).
+    /// `None`: not verified, which says nothing about the radicand.
+    pub fn square_root(
+        radicand: &Quotient,
+        root: &Quotient,
+        domain: &[(Var, Interval)],
+        names: &VarTable,
+    ) -> Option<Self> {
+        use super::einsum::Arithmetic;
+        let mut work = super::quotient::CLEARING_WORK;
+        let square = super::quotient::Quotients {
+            work_left: &mut work,
+        }
+        .mul(root.clone(), root)
+        .ok()?;
+        let (difference, _) = cleared_difference(&square, radicand)?;
+        if !difference.is_zero() {
+            return None;
+        }
+        let sign = match root.as_constant() {
+            Some(c) if !c.is_negative() => None,
+            Some(_) => return None,
+            None => Some(Self::sign_by_coefficients(
+                &root.to_ratfunc(),
+                domain,
+                Sign::NonNegative,
+                names,
+            )?),
+        };
+        let on: Vec<String> = domain
+            .iter()
+            .map(|(v, i)| i.describe(names.name(*v)))
+            .collect();
+        let fact = Self::of(Fact::SquareRoot {
+            radicand: radicand.display_truncated(names, 8),
+            root: root.display_truncated(names, 8),
+            on: if on.is_empty() {
+                "every real value".to_owned()
+            } else {
+                on.join(", ")
+            },
+        });
+        Some(match sign {
+            Some(s) => fact.and(s),
+            None => fact,
+        })
     }
 
     /// `lim f = claimed` as `v` tends to `to`, wherever the expansion's conditions

@@ -357,6 +357,78 @@ impl Poly {
         Ok(out)
     }
 
+    /// The square root of a perfect square: `r` with `r·r = self` and a positive
+    /// leading coefficient, or `None` when `self` is not the square of a (Laurent)
+    /// polynomial with rational coefficients, or its root would pass `max_terms`.
+    ///
+    /// Long division from the top in graded lexicographic order (compatible with
+    /// products, so leading terms multiply): the root's leading term is the square
+    /// root of `self`'s; each next term is the remainder's leading term over twice
+    /// the root's, and the remainder's leading monomial strictly decreases. A root's
+    /// exponents in each variable lie within half of `self`'s range in it (the top
+    /// and bottom parts of a square are squares), so a term outside that box proves
+    /// that `self` is not a square, and the division stops.
+    ///
+    /// ```
+    /// use cosserat_check::kernel::{Poly, Rational, VarTable};
+    /// let mut names = VarTable::new();
+    /// let (x, y) = (Poly::var(names.intern("x")), Poly::var(names.intern("y")));
+    /// let r = &(&x * &Poly::constant(Rational::int(2))) - &y;
+    /// assert_eq!((&r * &r).sqrt_exact(100), Some(r));
+    /// assert_eq!((&(&x * &x) + &y).sqrt_exact(100), None);
+    /// ```
+    pub fn sqrt_exact(&self, max_terms: usize) -> Option<Poly> {
+        let Some((m0, c0)) = self.leading() else {
+            return Some(Poly::zero());
+        };
+        let halved: Vec<(Var, i32)> = m0
+            .factors()
+            .iter()
+            .map(|&(v, e)| (e % 2 == 0).then_some((v, e / 2)))
+            .collect::<Option<_>>()?;
+        let lead_m = Monomial::from_factors(halved);
+        let lead_c = c0.sqrt_exact()?;
+        let bounds: Vec<(Var, i32, i32)> = self
+            .variables()
+            .into_iter()
+            .map(|v| {
+                let exps = self.terms.keys().map(|m| m.exponent(v));
+                let (lo, hi) =
+                    exps.fold((i32::MAX, i32::MIN), |(lo, hi), e| (lo.min(e), hi.max(e)));
+                (v, lo, hi)
+            })
+            .collect();
+        let in_box = |m: &Monomial| {
+            m.factors()
+                .iter()
+                .all(|(v, _)| bounds.iter().any(|(w, _, _)| w == v))
+                && bounds.iter().all(|&(v, lo, hi)| {
+                    let e = 2 * i64::from(m.exponent(v));
+                    i64::from(lo) <= e && e <= i64::from(hi)
+                })
+        };
+        let over_twice_lead = (&lead_c + &lead_c)
+            .recip()
+            .expect("a leading coefficient is nonzero");
+        let lead_inverse = lead_m.pow(-1);
+        let lead = Poly::term(lead_m, lead_c);
+        let mut root = lead.clone();
+        let mut rem = self - &(&lead * &lead);
+        let two = Poly::constant(Rational::int(2));
+        loop {
+            let Some((m, c)) = rem.leading() else {
+                return Some(root);
+            };
+            let tm = m.mul(&lead_inverse);
+            if !in_box(&tm) || root.num_terms() >= max_terms {
+                return None;
+            }
+            let t = Poly::term(tm, c * &over_twice_lead);
+            rem = &rem - &(&(&(&root * &t) * &two) + &(&t * &t));
+            root = &root + &t;
+        }
+    }
+
     /// The leading term in graded lexicographic order (the first term displayed).
     pub fn leading(&self) -> Option<(&Monomial, &Rational)> {
         self.terms.iter().min_by(|a, b| graded_lex_desc(a.0, b.0))

@@ -17,6 +17,7 @@ use super::einsum::{Arithmetic, OverBudget};
 use super::gcd::{canonical_scale, clear_denominator_monomial, divide_exact};
 use super::poly::{Monomial, Poly, Var, VarTable};
 use super::rational::Rational;
+use super::RatFunc;
 use num_traits::One;
 
 /// `num / Π factor^multiplicity`. Every factor is an ordinary polynomial of at least
@@ -103,6 +104,40 @@ fn union(to: &mut Vec<Poly>, from: &[Poly]) {
 }
 
 impl Quotient {
+    /// The square root of a perfect square of a rational function, up to sign: `r`
+    /// with `r·r = self` (see [`Poly::sqrt_exact`]), defined where `self` is. A
+    /// factor of odd multiplicity is first multiplied into the numerator and the
+    /// denominator, so that every multiplicity is even; the value is then a square
+    /// exactly when the numerator is. `None`: not a square (or its root's numerator
+    /// would pass `max_terms`).
+    pub fn sqrt_exact(&self, max_terms: usize) -> Option<Quotient> {
+        let mut num = self.num.clone();
+        let mut den = Vec::with_capacity(self.factors().len());
+        for (f, m) in self.factors() {
+            if m % 2 == 1 {
+                num = &num * f;
+            }
+            den.push((f.clone(), m.div_ceil(2)));
+        }
+        Some(
+            Open {
+                num: num.sqrt_exact(max_terms)?,
+                den,
+                conditions: self.conditions().to_vec(),
+            }
+            .close(),
+        )
+    }
+
+    /// The quotient as a reduced rational function.
+    pub fn to_ratfunc(&self) -> RatFunc {
+        let den = self
+            .factors()
+            .iter()
+            .fold(Poly::one(), |acc, (f, k)| &acc * &f.pow(*k));
+        RatFunc::new(&self.num, &den).expect("a product of nonzero factors")
+    }
+
     /// The numerator (a Laurent polynomial).
     pub fn numerator(&self) -> &Poly {
         &self.num

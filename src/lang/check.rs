@@ -12,7 +12,7 @@
 
 use super::diag::Span;
 use super::matrix::{MatrixOp, MatrixRead};
-use super::parser::{ErrorKind, Expr, ExprKind, Func, Func2, IndexTok, LangError};
+use super::parser::{ErrorKind, Expr, ExprKind, Func, Func2, IndexTok, LangError, Wrt};
 use crate::kernel::Rational;
 use std::collections::BTreeMap;
 
@@ -104,14 +104,20 @@ pub enum NodeKind {
     /// The derivative of a node with respect to one coordinate of the position, the
     /// coordinate given by the slot: `u_j,i` is `Deriv(u_j, i)`; `u_j,ik` nests two.
     Deriv(Box<Node>, Slot),
-    /// `variation(P, v_j)`: the variational (Euler–Lagrange) derivative of the density
-    /// `P` with respect to the field `v`, one component per slot of `v`:
-    /// Σ_α (−1)^|α| D_α (∂P/∂v_j,α) over the field's derivatives v_j,α that `P`
-    /// reads. Convention: δ∫P dV = ∫ variation(P, v_j) δv_j dV + boundary terms, so
-    /// for P = σ_ij v_j,i it is −σ_ij,i.
-    Variation {
+    /// A derivative of `body` with respect to every component of the declared
+    /// `symbol`, one component per slot of the symbol (they follow `body`'s):
+    /// - [`Wrt::Variation`], `variation(P, v_j)`: the variational (Euler–Lagrange)
+    ///   derivative of the density `P` with respect to the field `v`,
+    ///   Σ_α (−1)^|α| D_α (∂P/∂v_j,α) over the field's derivatives v_j,α that `P`
+    ///   reads. Convention: δ∫P dV = ∫ variation(P, v_j) δv_j dV + boundary terms, so
+    ///   for P = σ_ij v_j,i it is −σ_ij,i.
+    /// - [`Wrt::Grad`], `grad(F, sigma_ij)`: ∂F/∂σ_ij with every component of σ an
+    ///   independent variable and every other symbol held fixed, evaluated at the
+    ///   state the assumptions give (the assumptions apply after differentiating).
+    Wrt {
+        op: Wrt,
         body: Box<Node>,
-        field: String,
+        symbol: String,
         slots: Vec<Slot>,
     },
     /// A matrix (see [`super::matrix`]): no free index, `rows × cols` entries.
@@ -185,7 +191,7 @@ impl Node {
             | NodeKind::Avg(a)
             | NodeKind::MaxN(a)
             | NodeKind::Deriv(a, _)
-            | NodeKind::Variation { body: a, .. }
+            | NodeKind::Wrt { body: a, .. }
             | NodeKind::Read(_, a) => vec![a],
             NodeKind::Matrix { op, .. } => match op {
                 MatrixOp::Literal(xs) | MatrixOp::Sum(xs) => xs.iter().collect(),
@@ -219,10 +225,9 @@ impl Node {
     }
 }
 
-/// Whether a variation occurs in `node` (not looking into definitions).
-fn contains_variation(node: &Node) -> bool {
-    matches!(node.kind, NodeKind::Variation { .. })
-        || node.children().into_iter().any(contains_variation)
+/// Whether a variation or a gradient occurs in `node` (not looking into definitions).
+pub fn contains_wrt(node: &Node) -> bool {
+    matches!(node.kind, NodeKind::Wrt { .. }) || node.children().into_iter().any(contains_wrt)
 }
 
 /// Formats a list of index letters for messages: `i, l` or `none`.
@@ -238,7 +243,7 @@ pub fn letters(ls: &[char]) -> String {
 }
 
 /// Names that cannot be declared: built-ins and functions.
-pub const RESERVED: [&str; 26] = [
+pub const RESERVED: [&str; 27] = [
     "delta",
     "eps",
     "pi",
@@ -254,7 +259,8 @@ pub const RESERVED: [&str; 26] = [
     "acos",
     "avg",
     "maxn",
-    super::parser::VARIATION,
+    "variation",
+    "grad",
     "det",
     "trace",
     "inv",
@@ -363,7 +369,7 @@ impl Scope<'_> {
                 indices,
                 wrt,
             } => self.derivative(inner, indices, wrt.as_ref(), e.span),
-            ExprKind::Variation { body, field } => self.variation(body, field, e.span),
+            ExprKind::Wrt { op, body, symbol } => self.wrt(*op, body, symbol, e.span),
             ExprKind::Call2(func, a, b) => {
                 let what = match func {
                     Func2::Pow => "a real power",
@@ -487,69 +493,110 @@ impl Scope<'_> {
         Ok(node)
     }
 
-    /// `variation(P, v_j)`: the density `P` and a field written with its own index
-    /// letters, which become free indices of the result (the field's slots follow
-    /// `P`'s). See [`NodeKind::Variation`] for the sign convention.
-    fn variation(&self, body: &Expr, field: &Expr, span: Span) -> Result<Node, LangError> {
+    /// `variation(P, v_j)` or `grad(F, sigma_ij)`: the body and a symbol written with
+    /// its own index letters, which become free indices of the result (the symbol's
+    /// slots follow the body's). A variation takes a field; a gradient takes a
+    /// declared symbol that does not vary with position. See [`NodeKind::Wrt`].
+    fn wrt(&self, op: Wrt, body: &Expr, symbol: &Expr, span: Span) -> Result<Node, LangError> {
+        let name = op.name();
         let body = self.check(body)?;
-        self.not_matrix(&body, "variation(…)")?;
-        if contains_variation(&body) {
+        self.not_matrix(&body, &format!("{name}(…)"))?;
+        if contains_wrt(&body) {
             return Err(LangError::new(
                 ErrorKind::Syntax,
                 body.span,
-                "a variation inside a variation is not supported",
+                format!("a variation or gradient inside {name}(…) is not supported"),
             )
-            .help("name the inner one with a definition and vary that definition's density"));
+            .help("take one derivative with respect to a symbol at a time, in separate claims"));
         }
+        let example = match op {
+            Wrt::Variation => "a field with its indices, such as v_j",
+            Wrt::Grad => "a declared symbol with its indices, such as sigma_ij",
+        };
         let ExprKind::Name {
             full,
             base,
             indices,
-        } = &field.kind
+        } = &symbol.kind
         else {
             return Err(LangError::new(
                 ErrorKind::Syntax,
-                field.span,
-                "the second argument of variation(…) is a field with its indices, such as v_j",
+                symbol.span,
+                format!("the second argument of {name}(…) is {example}"),
             ));
         };
-        let field_node = self.name(full, base, indices, field.span)?;
-        let (name, slots) = match &field_node.kind {
+        let symbol_node = self.name(full, base, indices, symbol.span)?;
+        let (target, slots) = match &symbol_node.kind {
             NodeKind::Leaf {
                 target: Target::Symbol(s),
                 slots,
-            } if self.decls.fields.contains_key(s) => (s.clone(), slots.clone()),
-            _ => {
+            } => (s.clone(), slots.clone()),
+            _ => (String::new(), Vec::new()),
+        };
+        if target.is_empty() || (op == Wrt::Variation && !self.decls.fields.contains_key(&target)) {
+            let what = match op {
+                Wrt::Variation => "field",
+                Wrt::Grad => "symbol",
+            };
+            return Err(LangError::new(
+                ErrorKind::Name,
+                symbol.span,
+                format!("`{}` is not a declared {what}", inner_text(symbol)),
+            )
+            .help(match op {
+                Wrt::Variation => {
+                    "vary a field declared in `fields`, e.g. fields = [\"v_i\"]".to_owned()
+                }
+                Wrt::Grad => format!("the second argument of {name}(…) is {example}"),
+            }));
+        }
+        let varies = self.decls.varies(&target);
+        match op {
+            Wrt::Grad if varies => {
                 return Err(LangError::new(
                     ErrorKind::Name,
-                    field.span,
-                    format!("`{}` is not a declared field", inner_text(field)),
+                    symbol.span,
+                    format!("`{target}` varies with position, so grad(…) does not apply to it"),
                 )
-                .help("vary a field declared in `fields`, e.g. fields = [\"v_i\"]"))
+                .help("differentiate along the position with a comma (u_j,i), or vary a field with variation(…)"))
             }
-        };
+            _ => {}
+        }
+        if op == Wrt::Grad && slots.iter().any(|s| matches!(s, Slot::Fixed(_))) {
+            return Err(LangError::new(
+                ErrorKind::Index,
+                symbol.span,
+                "grad(…) takes the symbol with index letters, one per slot",
+            )
+            .help("write grad(F, sigma_ij) and pick a component of the result, e.g. with a definition Q_ij = grad(F, sigma_ij), then Q_12"));
+        }
         let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
         for &(c, s) in &body.free {
             counts.entry(c).or_default().push(s);
         }
-        for &(c, s) in &field_node.free {
+        for &(c, s) in &symbol_node.free {
             if body.bound.contains(&c) || counts.contains_key(&c) {
-                return Err(LangError::new(
-                    ErrorKind::Index,
-                    s,
-                    format!("index `{c}` of the varied field is also an index of the density"),
-                )
-                .help("give the varied field index letters the density does not use"));
+                let what = match op {
+                    Wrt::Variation => "of the varied field is also an index of the density",
+                    Wrt::Grad => {
+                        "of the symbol differentiated by is also an index of the expression"
+                    }
+                };
+                return Err(
+                    LangError::new(ErrorKind::Index, s, format!("index `{c}` {what}"))
+                        .help("give the symbol index letters the first argument does not use"),
+                );
             }
             counts.insert(c, vec![s]);
         }
         let (free, mut bound) = tally(counts)?;
         bound.extend(&body.bound);
-        bound.extend(&field_node.bound);
+        bound.extend(&symbol_node.bound);
         Ok(Node {
-            kind: NodeKind::Variation {
+            kind: NodeKind::Wrt {
+                op,
                 body: Box::new(body),
-                field: name,
+                symbol: target,
                 slots,
             },
             free,

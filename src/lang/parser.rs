@@ -234,11 +234,12 @@ pub enum ExprKind {
         indices: Vec<IndexTok>,
         wrt: Option<(String, Span)>,
     },
-    /// `variation(P, v_j)`: the variational derivative of the density `P` with
-    /// respect to the field `v` (see [`super::check::Scope`]).
-    Variation {
+    /// `variation(P, v_j)` or `grad(F, sigma_ij)`: a derivative with respect to a
+    /// declared symbol named with its own index letters (see [`Wrt`]).
+    Wrt {
+        op: Wrt,
         body: Box<Expr>,
-        field: Box<Expr>,
+        symbol: Box<Expr>,
     },
     /// A matrix literal, row by row; `[a, b, c]` is a column (three rows of one).
     Matrix(Vec<Vec<Expr>>),
@@ -247,8 +248,34 @@ pub enum ExprKind {
     MatCall(MatFunc, Vec<Expr>),
 }
 
-/// The name of the variational derivative, `variation(P, v_j)`.
-pub const VARIATION: &str = "variation";
+/// The derivatives taken with respect to a declared symbol rather than a coordinate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Wrt {
+    /// `variation(P, v_j)`: the variational (Euler–Lagrange) derivative of a density
+    /// with respect to a field.
+    Variation,
+    /// `grad(F, sigma_ij)`: the partial derivatives of an expression with respect to
+    /// the components of a symbol that is not a field, at the state the assumptions
+    /// give.
+    Grad,
+}
+
+impl Wrt {
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "variation" => Some(Wrt::Variation),
+            "grad" => Some(Wrt::Grad),
+            _ => None,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Wrt::Variation => "variation",
+            Wrt::Grad => "grad",
+        }
+    }
+}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Expr {
@@ -747,12 +774,13 @@ impl Parser {
                         span,
                     });
                 }
-                if full == VARIATION {
-                    let (body, field, span) = self.two_arguments(&full, span)?;
+                if let Some(op) = Wrt::from_name(&full) {
+                    let (body, symbol, span) = self.two_arguments(&full, span)?;
                     return Ok(Expr {
-                        kind: ExprKind::Variation {
+                        kind: ExprKind::Wrt {
+                            op,
                             body: Box::new(body),
-                            field: Box::new(field),
+                            symbol: Box::new(symbol),
                         },
                         span,
                     });
@@ -1104,8 +1132,8 @@ mod tests {
                 indices.iter().map(|t| t.ch).collect::<String>(),
                 shape(inner)
             ),
-            ExprKind::Variation { body, field } => {
-                format!("Variation({}, {})", shape(body), shape(field))
+            ExprKind::Wrt { op, body, symbol } => {
+                format!("{op:?}({}, {})", shape(body), shape(symbol))
             }
             ExprKind::Matrix(rows) => format!(
                 "[{}]",

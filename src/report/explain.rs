@@ -81,7 +81,9 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
         let _ = writeln!(out, "Assumptions: {}", texts.join("; "));
     }
     match &check.strategy {
-        Strategy::Exact | Strategy::Proportional => expansions(out, outcome.record.as_ref()),
+        Strategy::Exact { .. } | Strategy::Proportional { .. } => {
+            expansions(out, outcome.record.as_ref())
+        }
         Strategy::Scalar {
             domain,
             samples,

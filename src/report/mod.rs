@@ -177,17 +177,37 @@ pub fn evidence(o: &Outcome) -> String {
                 ""
             };
             parts.push(format!(
-                "{} component check{}{}, every difference identically 0{unit}{}",
+                "{} component check{}{}, every difference identically 0{unit}{}{}",
                 o.checks,
                 if o.checks == 1 { "" } else { "s" },
                 factor(o),
-                domain(o)
+                domain(o),
+                roots(o)
             ));
         }
         None => {}
         Some(cx) => parts.push(counterexample_text(cx)),
     }
     parts.join("; ")
+}
+
+/// The square roots an exact proof took, with where their signs were certified.
+fn roots(o: &Outcome) -> String {
+    use crate::kernel::certificate::Fact;
+    let facts: Vec<&Fact> = o.certificate().iter().flat_map(|c| c.facts()).collect();
+    let mut out = String::new();
+    for (k, f) in facts.iter().enumerate() {
+        if let Fact::SquareRoot { radicand, root, on } = f {
+            let sign = match facts.get(k + 1) {
+                Some(Fact::CoefficientSigns { substitution, .. }) => {
+                    format!(", ≥ 0 there by coefficient signs after {substitution}")
+                }
+                _ => String::new(),
+            };
+            out.push_str(&format!("; sqrt({radicand}) = {root} on {on}{sign}"));
+        }
+    }
+    out
 }
 
 /// For a proportionality, the factor the components were compared with.
@@ -385,6 +405,9 @@ pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String 
             Fact::CoefficientSigns { substitution, cases } => {
                 let s = if *cases == 1 { "" } else { "s" };
                 format!("numerator and denominator have coefficients of one sign after {substitution} ({cases} case{s})")
+            }
+            Fact::SquareRoot { radicand, root, on } => {
+                format!("sqrt({radicand}) = {root} on {on} (its square exactly, its sign as follows)")
             }
             Fact::Limit {
                 variable,

@@ -13,10 +13,14 @@
 //! free of them.
 
 use super::assume::{Component, Parametrisation};
+use super::jets::Jet;
 use super::walk::{self, Ring};
+use crate::derivation::ParamBox;
 use crate::derivation::{Assumption, AssumptionKind, Definition};
+use crate::kernel::certificate::Certificate;
 use crate::kernel::einsum::{Arithmetic, Polynomials};
 use crate::kernel::quotient::{DivideError, Quotients};
+use crate::kernel::sign::Interval;
 use crate::kernel::{assignments, Poly, PolyError, Quotient, Rational, Tensor, Var, VarTable};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin};
@@ -111,6 +115,13 @@ pub struct ExactEnv<'a> {
     /// varied component by component.
     assumed: HashSet<String>,
     parametrisation: Option<Parametrisation>,
+    /// The claim's box of parameter values (`given`): the sign of a square root is
+    /// certified on it.
+    domain: Vec<(Var, Interval)>,
+    /// The square roots taken exactly, each with the kernel's certificate.
+    roots: Vec<Certificate>,
+    /// Definitions with their derivatives by a symbol (`grad`), by (symbol, name).
+    pub(super) jet_cache: HashMap<(String, String), Tensor<Jet>>,
 }
 
 /// The variable name of a component: `sigma_12`, or the symbol's own name for a scalar.
@@ -209,7 +220,35 @@ impl<'a> ExactEnv<'a> {
             work_left: MAX_WORK,
             assumed: HashSet::new(),
             parametrisation: None,
+            domain: Vec::new(),
+            roots: Vec::new(),
+            jet_cache: HashMap::new(),
         }
+    }
+
+    /// Bounds the declared scalars by the claim's box (`given`), on which the sign of
+    /// every square root is certified.
+    pub fn set_domain(&mut self, domain: &ParamBox) {
+        self.domain = domain
+            .bounds
+            .iter()
+            .map(|(name, i)| (self.component_var(name, &[]), i.clone()))
+            .collect();
+    }
+
+    /// The definition `name` in scope (the innermost of that name).
+    pub(super) fn definition(&self, name: &str) -> Option<&'a Definition> {
+        self.defs.iter().rev().find(|d| d.sig.name == name)
+    }
+
+    /// The box of [`ExactEnv::set_domain`], by variable.
+    pub fn domain(&self) -> &[(Var, Interval)] {
+        &self.domain
+    }
+
+    /// The certificates of the square roots taken so far.
+    pub fn root_certificates(&self) -> &[Certificate] {
+        &self.roots
     }
 
     /// The normal's component variables (empty when the file declares no normal).
@@ -360,7 +399,7 @@ impl From<Refusal> for Diagnostic {
 /// Why an exact evaluation stopped: the work budget ran out in a contraction (located
 /// by the walk at the contraction's node), a located resource limit, or a located
 /// input error.
-enum Failure {
+pub(super) enum Failure {
     OverBudget,
     Limit(Diagnostic),
     Located(Diagnostic),
@@ -368,13 +407,13 @@ enum Failure {
 
 /// The exact environment as the walk's ring, with the origin that locates errors in
 /// the text being evaluated (a definition's body has its own).
-struct ExactRing<'e, 'a> {
-    env: &'e mut ExactEnv<'a>,
-    origin: &'e Origin,
+pub(super) struct ExactRing<'e, 'a> {
+    pub(super) env: &'e mut ExactEnv<'a>,
+    pub(super) origin: &'e Origin,
 }
 
 impl ExactRing<'_, '_> {
-    fn error(&self, node: &Node, message: impl Into<String>, help: &str) -> Failure {
+    pub(super) fn error(&self, node: &Node, message: impl Into<String>, help: &str) -> Failure {
         Failure::Located(
             self.origin
                 .diagnostic(node.span, message)
@@ -383,7 +422,7 @@ impl ExactRing<'_, '_> {
     }
 
     /// D_k p: Σ_v ∂p/∂v · ∂v/∂x_k over the variables of p, charged to the budget.
-    fn total_derivative(&mut self, p: &Poly, k: usize) -> Result<Poly, Failure> {
+    pub(super) fn total_derivative(&mut self, p: &Poly, k: usize) -> Result<Poly, Failure> {
         let mut acc = Poly::zero();
         for x in p.variables() {
             if let Some(dx) = self.env.derivative_of_var(x, k) {
@@ -406,6 +445,89 @@ impl ExactRing<'_, '_> {
                 .diagnostic(node.span, message)
                 .with_help(help.to_owned()),
         )
+    }
+}
+
+impl ExactRing<'_, '_> {
+    pub(super) fn env_dim(&self) -> usize {
+        self.env.decls.dim
+    }
+
+    /// The rank of a declared symbol.
+    pub(super) fn rank_of(&self, symbol: &str) -> usize {
+        self.env.decls.symbols.get(symbol).copied().unwrap_or(0)
+    }
+
+    /// The average of one component over the normal: it acts on the numerator, since
+    /// no divisor contains the normal.
+    pub(super) fn averaged(&self, q: &Quotient, node: &Node) -> Result<Quotient, Failure> {
+        q.numerator()
+            .average_over_normal(&self.env.normal)
+            .map(|p| q.with_numerator(p))
+            .map_err(|e| Failure::Located(poly_error(self.origin, node, e)))
+    }
+
+    /// Refuses a value with a component past [`MAX_TERMS`] terms.
+    pub(super) fn within_limits<'q>(
+        &self,
+        node: &Node,
+        values: impl IntoIterator<Item = &'q Quotient>,
+    ) -> Result<(), Failure> {
+        if let Some(big) = values
+            .into_iter()
+            .find(|q| q.numerator().num_terms() > MAX_TERMS)
+        {
+            return Err(self.limit(
+                node,
+                format!(
+                    "this expands to {} terms, more than the limit of {MAX_TERMS}",
+                    big.numerator().num_terms()
+                ),
+                "split the statement with definitions, or decide it numerically",
+            ));
+        }
+        Ok(())
+    }
+
+    /// √p exactly: a nonnegative rational, or a rational function whose square is
+    /// `p` and whose sign the kernel certifies on the claim's box (`given`), with
+    /// the certificate kept for the proof.
+    fn square_root(&mut self, p: &Quotient, node: &Node) -> Result<Quotient, Failure> {
+        if let Some(q) = p.as_constant() {
+            return q
+                .sqrt_exact()
+                .map(|q| Quotient::from(Poly::constant(q)))
+                .ok_or_else(|| {
+                    self.error(
+                        node,
+                        format!("sqrt({q}) is not a rational number"),
+                        "exact mode takes square roots of squares only; decide this claim with strategy = \"numeric\"",
+                    )
+                });
+        }
+        let Some(root) = p.sqrt_exact(MAX_TERMS) else {
+            return Err(self.error(
+                node,
+                "sqrt(…) of this expression has no exact value: it is not the square of a rational function here",
+                "exact mode takes square roots of squares (such as sqrt(tau^2) with given = [\"tau > 0\"]); decide this claim with strategy = \"numeric\" to sample it",
+            ));
+        };
+        let env = &mut *self.env;
+        for candidate in [root.clone(), -root.clone()] {
+            if let Some(c) = Certificate::square_root(p, &candidate, &env.domain, &env.vars) {
+                if !env.roots.contains(&c) {
+                    env.roots.push(c);
+                }
+                return Ok(candidate);
+            }
+        }
+        // The statement may well hold; without the sign it is not decided.
+        let shown = root.display_truncated(&self.env.vars, 8);
+        Err(self.limit(
+            node,
+            format!("sqrt(…) is ±({shown}) here, but the sign of {shown} on the claim's domain is not certified"),
+            "bound the parameters with given (such as given = [\"f_r > 0\", \"sigma < 0\"]) so that the root has one sign there",
+        ))
     }
 }
 
@@ -474,8 +596,7 @@ impl Ring for ExactRing<'_, '_> {
         if let Some(t) = self.env.cache.get(name) {
             return Ok(t.clone());
         }
-        let defs = self.env.defs;
-        let Some(def) = defs.iter().rev().find(|d| d.sig.name == name) else {
+        let Some(def) = self.env.definition(name) else {
             return Err(Failure::Located(self.origin.diagnostic(
                 node.span,
                 format!("internal: definition `{name}` is not in scope"),
@@ -621,17 +742,7 @@ impl Ring for ExactRing<'_, '_> {
 
     fn apply(&mut self, f: Func, p: Quotient, node: &Node) -> Result<Quotient, Failure> {
         match f {
-            Func::Sqrt => p
-                .as_constant()
-                .and_then(|q| q.sqrt_exact())
-                .map(|q| Quotient::from(Poly::constant(q)))
-                .ok_or_else(|| {
-                    self.error(
-                        node,
-                        "sqrt(…) of this expression has no exact polynomial value",
-                        "exact mode takes square roots of squares of rationals only; use strategy = \"numeric\"",
-                    )
-                }),
+            Func::Sqrt => self.square_root(&p, node),
             _ => Err(self.error(
                 node,
                 format!("{}(…) has no exact polynomial value", f.name()),
@@ -643,9 +754,7 @@ impl Ring for ExactRing<'_, '_> {
     /// The average acts on the numerator: no divisor contains the normal.
     fn average(&mut self, a: &Node, node: &Node, _n: &()) -> Result<Tensor<Quotient>, Failure> {
         let v = walk::walk(self, a, &())?;
-        let normal = self.env.normal.clone();
-        v.try_map(|q| Ok(q.with_numerator(q.numerator().average_over_normal(&normal)?)))
-            .map_err(|e| Failure::Located(poly_error(self.origin, node, e)))
+        v.try_map(|q| self.averaged(q, node))
     }
 
     fn maximum(&mut self, _a: &Node, node: &Node) -> Result<Quotient, Failure> {
@@ -742,21 +851,20 @@ impl Ring for ExactRing<'_, '_> {
         }))
     }
 
+    /// ∂body/∂symbol at the state, by the chain rule over exact quotients
+    /// ([`super::jets`]).
+    fn gradients(
+        &mut self,
+        body: &Node,
+        symbol: &str,
+        _node: &Node,
+        _n: &(),
+    ) -> Result<Tensor<Quotient>, Failure> {
+        super::jets::gradients(self, body, symbol)
+    }
+
     fn leave(&mut self, node: &Node, value: Tensor<Quotient>) -> Result<Tensor<Quotient>, Failure> {
-        if let Some(big) = value
-            .components()
-            .iter()
-            .find(|q| q.numerator().num_terms() > MAX_TERMS)
-        {
-            return Err(self.limit(
-                node,
-                format!(
-                    "this expands to {} terms, more than the limit of {MAX_TERMS}",
-                    big.numerator().num_terms()
-                ),
-                "split the statement with definitions, or decide it numerically",
-            ));
-        }
+        self.within_limits(node, value.components())?;
         Ok(value)
     }
 

@@ -10,7 +10,8 @@ use super::finding::{Expansion, Finding, Record};
 use super::proportional::{self, Reference};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::{Check, Strategy};
-use crate::kernel::certificate::{Difference, Identities};
+use crate::kernel::certificate::{Certificate, Difference, Identities};
+use crate::kernel::sign::{inner_point, End, Interval};
 use crate::kernel::{assignments, residue, Poly, PolyError, Quotient, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
@@ -141,6 +142,9 @@ fn decide_recording(
         }
     }
     let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
+    if let Some(domain) = check.strategy.exact_domain() {
+        env.set_domain(domain);
+    }
     let normal = env.normal_vars().to_vec();
     let mut identities = Identities::new(&normal);
     for (ci, chain) in check.chains.iter().enumerate() {
@@ -173,7 +177,7 @@ fn decide_recording(
             // A proportionality fixes its factor first; its sides are one pair
             // (`load.rs`), so the comparison becomes `left = factor · right`.
             let mut reference = None;
-            if matches!(check.strategy, Strategy::Proportional) {
+            if matches!(check.strategy, Strategy::Proportional { .. }) {
                 match proportional::reference(&env, decls.dim, (l, r), &labels) {
                     Err(why) => {
                         return Ok(Outcome::undecided(Method::Exact, 0).with_finding(
@@ -229,6 +233,7 @@ fn decide_recording(
                 let (mut cx, point, mut values) = counterexample(
                     &env.vars,
                     env.normal_vars(),
+                    env.domain(),
                     lp,
                     scaled.as_ref().unwrap_or(rp),
                     &diff,
@@ -311,7 +316,15 @@ fn decide_recording(
     }
     let (checks, used_unit) = (identities.components(), identities.used_unit_normal());
     Ok(match identities.certify(&env.vars) {
-        Some(certificate) => Outcome::proved(Method::Exact, checks, certificate),
+        Some(certificate) => {
+            // The square roots the sides took are part of the proof.
+            let roots = env.root_certificates().iter().cloned();
+            Outcome::proved(
+                Method::Exact,
+                checks,
+                roots.fold(certificate, Certificate::and),
+            )
+        }
         None => Outcome::undecided(Method::Exact, checks).with_finding(Finding::NothingCompared),
     }
     .using_unit_normal(used_unit))
@@ -476,6 +489,7 @@ fn sphere_point(rng: &mut SplitMix, dim: usize) -> Vec<Rational> {
 fn counterexample(
     names: &VarTable,
     normal: &[Var],
+    domain: &[(Var, Interval)],
     lhs: &Quotient,
     rhs: &Quotient,
     diff: &Difference,
@@ -488,7 +502,7 @@ fn counterexample(
         difference: diff.display(names, SHOWN_TERMS),
         ..Counterexample::default()
     };
-    match point_where_differ(normal, lhs, rhs) {
+    match point_where_differ(normal, lhs, rhs, domain) {
         Some((point, l, r)) => {
             cx.point = shown_point(names, lhs, rhs, &point);
             cx.lhs_value = Some(l.to_string());
@@ -522,6 +536,37 @@ fn used_variables(lhs: &Quotient, rhs: &Quotient) -> Vec<Var> {
     used
 }
 
+/// `x` when the interval holds it; otherwise a point inside that still moves with
+/// `x`, so that different draws give different points.
+fn into_interval(i: &Interval, x: Rational) -> Rational {
+    if i.contains(&x) {
+        return x;
+    }
+    let size = if x.is_negative() {
+        -x.clone()
+    } else {
+        x.clone()
+    };
+    let step = &size + &Rational::int(1);
+    let inside = match (&i.lo, &i.hi) {
+        (End::Unbounded, End::Unbounded) => x,
+        (End::Open(a) | End::Closed(a), End::Unbounded) => a + &step,
+        (End::Unbounded, End::Open(b) | End::Closed(b)) => b - &step,
+        // a + (b − a)·s/(s + 1), strictly inside for s ≥ 1.
+        (End::Open(a) | End::Closed(a), End::Open(b) | End::Closed(b)) => {
+            let fraction = step
+                .checked_div(&(&step + &Rational::int(1)))
+                .expect("s + 1 > 0");
+            a + &(&(b - a) * &fraction)
+        }
+    };
+    if i.contains(&inside) {
+        inside
+    } else {
+        inner_point(i)
+    }
+}
+
 /// A rational point where both sides are defined and differ, with their values there:
 /// sparse points first (one variable 1, the rest 0) because they read best, then dense
 /// ones; the normal always lies on the unit sphere, and the point carries the whole
@@ -530,8 +575,15 @@ pub(super) fn point_where_differ(
     normal: &[Var],
     lhs: &Quotient,
     rhs: &Quotient,
+    domain: &[(Var, Interval)],
 ) -> Option<(BTreeMap<Var, Rational>, Rational, Rational)> {
-    let used = used_variables(lhs, rhs);
+    // A bounded variable gets a value in its interval even where the sides do not
+    // read it: the interpreter that confirms the point evaluates the statement before
+    // the state is substituted (a square root of τ² at τ = 0 has no derivative).
+    let mut used = used_variables(lhs, rhs);
+    used.extend(domain.iter().map(|(v, _)| *v));
+    used.sort_unstable();
+    used.dedup();
     let mut rng = SplitMix(0x05EE_DC05_E4A7);
     let others: Vec<Var> = used
         .iter()
@@ -552,6 +604,10 @@ pub(super) fn point_where_differ(
                 (None, Some(Some(one))) => Rational::int(i64::from(v == one)),
                 (None, Some(None)) => Rational::int(0),
                 (None, None) => Rational::int(rng.small()),
+            };
+            let value = match domain.iter().find(|(w, _)| *w == v) {
+                Some((_, i)) => into_interval(i, value),
+                None => value,
             };
             point.insert(v, value);
         }

@@ -12,6 +12,7 @@ use super::assume::Parametrisation;
 use super::real::{component_pairs, RealEnv};
 use super::taylor::{self, TaylorFields};
 use crate::derivation::{Check, Strategy, Verdict};
+use crate::kernel::sign::{End, Interval};
 use crate::kernel::Tensor;
 use crate::lang::Decls;
 use std::collections::HashMap;
@@ -161,12 +162,20 @@ pub fn decide(
     } else {
         TOL
     };
-    let proportional = matches!(check.strategy, Strategy::Proportional);
+    let proportional = matches!(check.strategy, Strategy::Proportional { .. });
+    let domain = check.strategy.exact_domain();
     let mut factor: Option<f64> = None;
     for _ in 0..samples {
         let mut symbols: HashMap<String, Tensor<f64>> = HashMap::new();
         for (name, &rank) in &decls.symbols {
-            symbols.insert(name.clone(), Tensor::from_fn(d, rank, |_| rng.uniform()));
+            let mut t = Tensor::from_fn(d, rank, |_| rng.uniform());
+            // A scalar the claim bounds (`given`) is drawn inside its interval.
+            if let Some(i) = domain.map(|b| b.interval(name)) {
+                if rank == 0 {
+                    *t.get_mut(&[]) = inside(&i, *t.get(&[]));
+                }
+            }
+            symbols.insert(name.clone(), t);
         }
         let mut env = RealEnv::new(decls, &check.defs, symbols);
         if differentiates {
@@ -219,6 +228,21 @@ pub fn decide(
         }
     }
     Ok(Some(Verdict::Holds))
+}
+
+/// A value of the interval for a uniform draw `u` in [−1, 1], off its ends.
+fn inside(i: &Interval, u: f64) -> f64 {
+    let unit = 0.05 + 0.9 * (u + 1.0) / 2.0;
+    let end = |e: &End| match e {
+        End::Unbounded => None,
+        End::Open(x) | End::Closed(x) => Some(x.to_f64()),
+    };
+    match (end(&i.lo), end(&i.hi)) {
+        (None, None) => u,
+        (Some(a), None) => a + 2.0 * unit,
+        (None, Some(b)) => b - 2.0 * unit,
+        (Some(a), Some(b)) => a + (b - a) * unit,
+    }
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ pub mod eval;
 pub mod exact;
 pub mod finding;
 pub mod float;
+mod jets;
 pub mod numeric;
 mod outcome;
 mod proportional;
@@ -81,7 +82,7 @@ fn decide_keeping(
         Strategy::Numeric { .. } => Method::Numeric,
         Strategy::Gradient { .. } => Method::Gradient,
         Strategy::Convex { .. } => Method::Convex,
-        Strategy::Exact | Strategy::Proportional => Method::Exact,
+        Strategy::Exact { .. } | Strategy::Proportional { .. } => Method::Exact,
         Strategy::NotCircle { .. } => Method::Witness,
         Strategy::Scalar { .. } => Method::RationalFunction,
         Strategy::Appendix { .. } => Method::Symbolic,
@@ -92,7 +93,7 @@ fn decide_keeping(
         );
     }
     let decided = match &check.strategy {
-        Strategy::Exact | Strategy::Proportional => exact::decide(decls, check, keep),
+        Strategy::Exact { .. } | Strategy::Proportional { .. } => exact::decide(decls, check, keep),
         Strategy::Numeric { .. } => numeric::decide_numeric(decls, check, states),
         Strategy::Gradient { .. } => numeric::decide_gradient(decls, check, states),
         Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),

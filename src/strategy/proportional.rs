@@ -79,7 +79,8 @@ pub fn reference(
         let missed = || {
             "no rational point found where the right side is nonzero and the left side defined, to fix the factor".to_owned()
         };
-        let (point, rhs, _) = point_where_differ(normal, rp, &zero).ok_or_else(missed)?;
+        let (point, rhs, _) =
+            point_where_differ(normal, rp, &zero, env.domain()).ok_or_else(missed)?;
         let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
         let lhs = l.at(&assignment).eval(&at).ok_or_else(missed)?;
         return Ok(Some(Reference {

@@ -21,7 +21,8 @@ use crate::kernel::Rational;
 use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node, Span};
-use num_dual::DualNum;
+use nalgebra::{Dyn, U1};
+use num_dual::{Derivative, DualDVec64, DualNum};
 use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -86,6 +87,9 @@ pub struct RealEnv<'a, T> {
     /// Fields that an assumption defines by an expression (`u_i = A_ij x_j`), with
     /// fields in use: evaluated from that expression wherever the position is.
     defined_fields: HashMap<String, (Vec<char>, Node, Vec<f64>)>,
+    /// This environment evaluates the body of a `grad(…)`: its values are dual
+    /// numbers seeded from real ones, so a gradient inside is refused.
+    in_gradient: bool,
 }
 
 impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
@@ -107,6 +111,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             perturbation: RefCell::new(None),
             epoch: Cell::new(0),
             defined_fields: HashMap::new(),
+            in_gradient: false,
         }
     }
 
@@ -545,6 +550,64 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
         n: &[f64],
     ) -> Result<Tensor<T>, RealError> {
         variation::variations(self, body, field, node, n)
+    }
+
+    /// ∂body/∂symbol by forward-mode dual numbers (num-dual), every component of the
+    /// symbol seeded in one pass and every other value held at the sample: the
+    /// derivative at the state (see [`crate::lang::NodeKind::Wrt`]). The values
+    /// enter as real parts, so this is a first derivative only: the reader refuses a
+    /// gradient inside a function that a `gradient` or `convex` claim differentiates
+    /// again, and a gradient inside a gradient.
+    fn gradients(
+        &mut self,
+        body: &Node,
+        symbol: &str,
+        node: &Node,
+        n: &[f64],
+    ) -> Result<Tensor<T>, RealError> {
+        if self.fields.is_some() || !self.defined_fields.is_empty() {
+            return Err(err(
+                node,
+                "grad(…) is not sampled where fields vary with position",
+            ));
+        }
+        if self.in_gradient {
+            return Err(err(node, "a gradient inside grad(…) is not supported"));
+        }
+        let Some(wrt) = self.symbols.get(symbol) else {
+            return Err(err(node, format!("`{symbol}` has no value here")));
+        };
+        let size = wrt.components().len();
+        let lift = |x: &T| DualDVec64::from_re(x.re());
+        let mut symbols: HashMap<String, Tensor<DualDVec64>> = self
+            .symbols
+            .iter()
+            .map(|(k, t)| (k.clone(), t.map(lift)))
+            .collect();
+        let mut k = 0;
+        let seeded = wrt.map(|x| {
+            let mut v = lift(x);
+            v.eps = Derivative::derivative_generic(Dyn(size), U1, k);
+            k += 1;
+            v
+        });
+        symbols.insert(symbol.to_owned(), seeded);
+        let mut inner = RealEnv::new(self.decls, self.defs, symbols);
+        inner.quadrature = Quadrature::new(self.quadrature.level);
+        inner.in_gradient = true;
+        let (_, value) = inner.eval(body, n)?;
+        self.quadrature.absorb(&inner.quadrature);
+        let mut values = Vec::with_capacity(value.components().len() * size);
+        for c in value.components() {
+            let g = c.eps.clone().unwrap_generic(Dyn(size), U1);
+            values.extend(g.iter().map(|&x| T::from(x)));
+        }
+        let mut it = values.into_iter();
+        Ok(Tensor::from_fn(
+            self.decls.dim,
+            value.rank() + wrt.rank(),
+            |_| it.next().expect("one derivative per component and seed"),
+        ))
     }
 
     fn not_scalar(&mut self, node: &Node) -> RealError {

@@ -602,6 +602,17 @@ impl Ring for Compiler<'_> {
         Err(Unsupported("variations of fields".into()))
     }
 
+    /// The interpreter takes gradients with dual numbers.
+    fn gradients(
+        &mut self,
+        _body: &Node,
+        _symbol: &str,
+        _node: &Node,
+        _n: &[usize],
+    ) -> Result<Tensor<usize>, Unsupported> {
+        Err(Unsupported("gradients with respect to a symbol".into()))
+    }
+
     fn maximum(&mut self, a: &Node, node: &Node) -> Result<usize, Unsupported> {
         if self.decls.dim == 3 && !self.decls.normal_in_plane {
             return Err(Unsupported("maxn needs an in-plane normal".into()));

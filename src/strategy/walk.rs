@@ -18,7 +18,7 @@ use crate::kernel::einsum::{einsum, Arithmetic, Slot};
 use crate::kernel::matrix::{self as linear, Matrix, Signed};
 use crate::kernel::{Rational, Tensor};
 use crate::lang::matrix::{MatrixOp, MatrixRead, Order};
-use crate::lang::parser::{Func, Func2};
+use crate::lang::parser::{Func, Func2, Wrt};
 use crate::lang::{Node, NodeKind, Target};
 use std::collections::HashMap;
 
@@ -101,6 +101,16 @@ pub trait Ring: Arithmetic {
         &mut self,
         body: &Node,
         field: &str,
+        node: &Node,
+        n: &Self::Normal,
+    ) -> Result<Tensor<Self::Value>, Self::Error>;
+    /// The partial derivatives of `body` with respect to every component of the
+    /// declared `symbol` at the state (see [`NodeKind::Wrt`]): a tensor with `body`'s
+    /// slots (its free letters, sorted) followed by the symbol's slots.
+    fn gradients(
+        &mut self,
+        body: &Node,
+        symbol: &str,
         node: &Node,
         n: &Self::Normal,
     ) -> Result<Tensor<Self::Value>, Self::Error>;
@@ -231,12 +241,16 @@ pub fn walk<R: Ring>(
             slots.push(*slot);
             contract(ring, &[(&t, slots)], &labels, node)?
         }
-        NodeKind::Variation {
+        NodeKind::Wrt {
+            op,
             body,
-            field,
+            symbol,
             slots: field_slots,
         } => {
-            let t = ring.variations(body, field, node, n)?;
+            let t = match op {
+                Wrt::Variation => ring.variations(body, symbol, node, n)?,
+                Wrt::Grad => ring.gradients(body, symbol, node, n)?,
+            };
             let mut slots: Vec<Slot> = body.free_letters().into_iter().map(Slot::Letter).collect();
             slots.extend(field_slots.iter().copied());
             contract(ring, &[(&t, slots)], &labels, node)?
@@ -445,7 +459,8 @@ pub fn normal_degree(
             Target::Normal => Some(1),
             _ => Some(0),
         },
-        NodeKind::Neg(a) | NodeKind::Deriv(a, _) | NodeKind::Variation { body: a, .. } => {
+        // ∂/∂σ of a polynomial in n is one of no higher degree.
+        NodeKind::Neg(a) | NodeKind::Deriv(a, _) | NodeKind::Wrt { body: a, .. } => {
             normal_degree(a, defs, memo)
         }
         NodeKind::Sum(xs) => xs

@@ -176,7 +176,7 @@ impl Context<'_> {
             ));
         }
         Ok(Exact {
-            f: to_ratfunc(&quotient),
+            f: Quotient::to_ratfunc(&quotient),
             conditions: quotient.conditions().to_vec(),
         })
     }
@@ -233,15 +233,6 @@ fn variables(f: &RatFunc) -> Vec<Var> {
     vars.sort_unstable();
     vars.dedup();
     vars
-}
-
-/// A quotient as a reduced rational function.
-fn to_ratfunc(q: &Quotient) -> RatFunc {
-    let den = q
-        .factors()
-        .iter()
-        .fold(Poly::one(), |acc, (f, k)| &acc * &f.pow(*k));
-    RatFunc::new(q.numerator(), &den).expect("a product of nonzero factors")
 }
 
 /// Relative agreement required between an exact value and the interpreter's.

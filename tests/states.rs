@@ -1,0 +1,126 @@
+//! Evaluation at a state (issue 13, item 5): `grad(F, sigma_ij)` differentiates with
+//! every component independent and only then applies the assumptions (the state);
+//! square roots are exact where the state makes the radicand the square of a rational
+//! function whose sign the kernel certifies on the box of `given`, and sampled with
+//! num-dual numbers under `strategy = "numeric"`. Every claim that holds has a wrong
+//! twin that must come out `fails`, confirmed by the interpreter.
+
+use cosserat_check::derivation::Verdict;
+use cosserat_check::strategy::Strength;
+
+mod common;
+
+#[test]
+fn gradients_at_states_and_their_twins_are_decided_as_declared() {
+    common::assert_as_declared("tests/soundness/states.toml", 18, |rows| {
+        for r in rows {
+            let (o, id) = (&r.outcome, r.claim.id.as_str());
+            match o.verdict() {
+                Verdict::Holds if id == "drucker-prager-general" => {
+                    assert_eq!(
+                        o.strength(),
+                        Strength::Sampled,
+                        "no square at a general state"
+                    );
+                }
+                Verdict::Holds => assert_eq!(o.strength(), Strength::Proof, "{id}"),
+                Verdict::Fails => {
+                    if o.numeric.is_none() {
+                        let cx = o.counterexample.as_ref().expect(id);
+                        assert!(
+                            cx.reverified.is_some(),
+                            "{id}: confirmed by the interpreter"
+                        );
+                    }
+                }
+                v => panic!("{id}: {v:?}"),
+            }
+        }
+        let evidence = |id: &str| {
+            let r = rows.iter().find(|r| r.claim.id == id).unwrap();
+            cosserat_check::report::evidence(&r.outcome)
+        };
+        // The root and the box its sign was certified on are part of the proof.
+        let e = evidence("mises-uniaxial");
+        assert!(e.contains("sqrt(Y^2) = Y on 0 < Y"), "{e}");
+        assert!(evidence("mises-compression").contains("sqrt(Y^2) = -Y on Y < 0"));
+        // A counterexample lies inside the box.
+        assert!(evidence("mises-compression-wrong").contains("values at Y=-"));
+    });
+}
+
+#[test]
+fn the_worked_example_is_decided_as_declared() {
+    common::assert_as_declared("derivations/examples/states.toml", 7, |_| {});
+}
+
+fn file(body: &str) -> String {
+    format!(
+        "section = \"t\"\ntitle = \"t\"\ndimension = 2\nscalars = [\"x\", \"y\"]\ntensors = [\"s_ij\"]\nposition = \"p\"\nfields = [\"u_i\"]\n{body}\n"
+    )
+}
+
+fn claim(rest: &str) -> String {
+    file(&format!(
+        "[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\n{rest}"
+    ))
+}
+
+#[test]
+fn malformed_gradients_are_located_errors() {
+    let cases = [
+        (claim("sides = [\"grad(u_k u_k, u_i)\", \"2 u_i\"]"), "`u` varies with position, so grad(…) does not apply to it"),
+        (claim("sides = [\"grad(s_kk, s_1i)\", \"0\"]"), "grad(…) takes the symbol with index letters, one per slot"),
+        (claim("sides = [\"grad(s_ij, s_ij)\", \"0\"]"), "index `i` of the symbol differentiated by is also an index of the expression"),
+        (claim("sides = [\"grad(s_kk, delta_ij)\", \"0\"]"), "`delta_ij` is not a declared symbol"),
+        (claim("sides = [\"grad(grad(x^3, x), x)\", \"6 x\"]"), "a variation or gradient inside grad(…) is not supported"),
+        (claim("sides = [\"grad(x, 2)\", \"0\"]"), "the second argument of grad(…) is a declared symbol with its indices"),
+        (claim("sides = [\"grad([[x, y], [y, x]], x)\", \"0\"]"), "grad(…) takes a scalar or a tensor, but this is a 2×2 matrix"),
+        (claim("sides = [\"grad(sqrt(x^2 + y^2), x)\", \"0\"]"), "sqrt(…) of this expression has no exact value"),
+        (claim("samples = 60\nsides = [\"x\", \"x\"]"), "`samples` belongs to the sampled strategies"),
+        (claim("given = [\"x > y\"]\nsides = [\"x\", \"x\"]"), "cannot read `x > y` as a bound"),
+        (claim("strategy = \"gradient\"\nfunction = \"grad(x^2 s_kk, x)\"\ngradient = { s = \"2 x delta_ij\" }"), "differentiates this function, which takes grad(…) or variation(…) itself"),
+        (file("define = [\"g = grad(x^3, x)\"]\n[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"convex\"\nfunction = \"g\"\nwrt = [\"s\"]"), "differentiates this function, which takes grad(…) or variation(…) itself"),
+    ];
+    for (text, want) in cases {
+        let e = common::error_of(&text);
+        assert!(e.contains(want), "{text}\n→ {e}");
+        assert!(e.contains("f.toml:"), "located: {e}");
+    }
+}
+
+/// A root whose sign the box does not fix leaves the claim undecided, with the
+/// reason; the rest of the file is still decided.
+#[test]
+fn a_root_of_unknown_sign_is_undecided_not_guessed() {
+    let text = claim("expect = \"undecided\"\nreason = \"the sign of x is not given\"\nsides = [\"sqrt(x^2)\", \"x\"]\n[[claim]]\nid = \"d\"\nprinted = 'x'\nexpect = \"holds\"\ngiven = [\"x > 0\"]\nsides = [\"sqrt(x^2)\", \"x\"]").replacen("expect = \"holds\"\n", "", 1);
+    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
+    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
+    assert_eq!(rows[0].outcome.verdict(), Verdict::Undecided);
+    let e = cosserat_check::report::evidence(&rows[0].outcome);
+    assert!(
+        e.contains("the sign of x on the claim's domain is not certified"),
+        "{e}"
+    );
+    assert_eq!(rows[1].outcome.verdict(), Verdict::Holds);
+    assert_eq!(rows[1].outcome.strength(), Strength::Proof);
+}
+
+/// The exact route and num-dual numbers agree on a gradient at random states: a
+/// rational function of the components, differentiated both ways.
+#[test]
+fn exact_and_dual_gradients_agree() {
+    let text = file("[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nsides = [\"grad((s_ij s_ji)^2 / (1 + x^2) - s_12 s_21 s_11 / y, s_kl)\", \"4 s_ij s_ji s_lk / (1 + x^2) - (delta_k1 delta_l2 s_21 s_11 + delta_k2 delta_l1 s_12 s_11 + delta_k1 delta_l1 s_12 s_21) / y\"]\n[[claim]]\nid = \"d\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"numeric\"\nranges = { y = [0.5, 1.0] }\nsides = [\"grad((s_ij s_ji)^2 / (1 + x^2) - s_12 s_21 s_11 / y, s_kl)\", \"4 s_ij s_ji s_lk / (1 + x^2) - (delta_k1 delta_l2 s_21 s_11 + delta_k2 delta_l1 s_12 s_11 + delta_k1 delta_l1 s_12 s_21) / y\"]");
+    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
+    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
+    for r in &rows {
+        assert_eq!(
+            r.outcome.verdict(),
+            Verdict::Holds,
+            "{}",
+            cosserat_check::report::evidence(&r.outcome)
+        );
+    }
+    assert_eq!(rows[0].outcome.strength(), Strength::Proof);
+    assert_eq!(rows[1].outcome.strength(), Strength::Sampled);
+}
