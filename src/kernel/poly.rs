@@ -605,6 +605,49 @@ mod tests {
         (t, ps)
     }
 
+    /// Square roots of random squares are found (up to the sign the root's leading
+    /// coefficient fixes), and random squares plus a perturbation are not squares.
+    #[test]
+    fn square_roots_of_random_squares() {
+        let (_, xs) = vars(&["x", "y", "z"]);
+        let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..200 {
+            let mut r = Poly::zero();
+            for _ in 0..(1 + next() % 5) {
+                let m = Monomial::from_factors(
+                    (0..3)
+                        .map(|k| (k as Var, (next() % 4) as i32 - 1))
+                        .collect(),
+                );
+                let c = q((next() % 13) as i64 - 6, 1 + (next() % 4) as i64);
+                r.add_term(m, c);
+            }
+            let square = &r * &r;
+            let root = square.sqrt_exact(1000).expect("a square has a root");
+            assert!(root == r || root == -r.clone(), "{root:?} vs {r:?}");
+            // A square plus a term below its lowest order in x is no square unless it
+            // cancels to one; check the claimed root whenever one is returned.
+            let bumped = &square + &(&xs[0] * &Poly::constant(q(1, 1)));
+            if let Some(t) = bumped.sqrt_exact(1000) {
+                assert_eq!(&t * &t, bumped);
+            }
+        }
+        let (x, y) = (&xs[0], &xs[1]);
+        assert_eq!((&(x * x) + &Poly::constant(q(1, 1))).sqrt_exact(100), None);
+        assert_eq!((&(x * x) - &(y * y)).sqrt_exact(100), None);
+        assert_eq!(Poly::constant(q(2, 1)).sqrt_exact(100), None);
+        assert_eq!(
+            Poly::constant(q(9, 4)).sqrt_exact(100),
+            Some(Poly::constant(q(3, 2)))
+        );
+    }
+
     #[test]
     fn equal_polynomials_have_identical_representations() {
         let (_, v) = vars(&["x", "y"]);

@@ -12,6 +12,9 @@ pub fn finding(f: &Finding) -> String {
         Finding::ResourceLimit { what, at, help } => format!(
             "undecided (resource limit): {what} (at {at}); {help}"
         ),
+        Finding::Uncertified { what, at, help } => {
+            format!("undecided: {what} (at {at}); {help}")
+        }
         Finding::TimeLimit { seconds } => format!(
             "undecided (time limit): the decision did not finish within {} s (raise it with \
              `--time-limit SECONDS`, or lower `samples`)",

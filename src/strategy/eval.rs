@@ -364,6 +364,7 @@ impl<'a> ExactEnv<'a> {
             }),
             Err(Failure::Located(d)) => Err(Refusal::Input(d)),
             Err(Failure::Limit(d)) => Err(Refusal::Limit(d)),
+            Err(Failure::Uncertified(d)) => Err(Refusal::Uncertified(d)),
             Err(Failure::OverBudget) => Err(Refusal::Limit(too_much(origin, node))),
         }
     }
@@ -372,17 +373,43 @@ impl<'a> ExactEnv<'a> {
 /// Why an exact evaluation gave no value: the input cannot be evaluated exactly (a
 /// function with no polynomial value: the file should say `strategy = "numeric"`), or
 /// it can, but past a resource limit ([`MAX_WORK`], [`MAX_TERMS`], the size of a
-/// power), which makes the claim undecided rather than the file malformed.
+/// power), or the kernel cannot certify a value it needs (the sign of a square root on
+/// the claim's box); the last two make the claim undecided rather than the file
+/// malformed.
 #[derive(Clone, Debug)]
 pub enum Refusal {
     Input(Diagnostic),
     Limit(Diagnostic),
+    Uncertified(Diagnostic),
 }
 
 impl Refusal {
     pub fn diagnostic(&self) -> &Diagnostic {
         match self {
-            Refusal::Input(d) | Refusal::Limit(d) => d,
+            Refusal::Input(d) | Refusal::Limit(d) | Refusal::Uncertified(d) => d,
+        }
+    }
+
+    /// What makes the claim undecided, or `None` for malformed input.
+    pub fn finding(&self) -> Option<super::finding::Finding> {
+        use super::finding::Finding;
+        let parts = |d: &Diagnostic| {
+            (
+                d.message.clone(),
+                super::exact::location(d),
+                d.help.clone().unwrap_or_default(),
+            )
+        };
+        match self {
+            Refusal::Input(_) => None,
+            Refusal::Limit(d) => {
+                let (what, at, help) = parts(d);
+                Some(Finding::ResourceLimit { what, at, help })
+            }
+            Refusal::Uncertified(d) => {
+                let (what, at, help) = parts(d);
+                Some(Finding::Uncertified { what, at, help })
+            }
         }
     }
 }
@@ -391,7 +418,7 @@ impl Refusal {
 impl From<Refusal> for Diagnostic {
     fn from(r: Refusal) -> Self {
         match r {
-            Refusal::Input(d) | Refusal::Limit(d) => d,
+            Refusal::Input(d) | Refusal::Limit(d) | Refusal::Uncertified(d) => d,
         }
     }
 }
@@ -400,6 +427,8 @@ impl From<Refusal> for Diagnostic {
 /// by the walk at the contraction's node), a located resource limit, or a located
 /// input error.
 pub(super) enum Failure {
+    /// A value the kernel could not certify (see [`Refusal::Uncertified`]).
+    Uncertified(Diagnostic),
     OverBudget,
     Limit(Diagnostic),
     Located(Diagnostic),
@@ -523,10 +552,13 @@ impl ExactRing<'_, '_> {
         }
         // The statement may well hold; without the sign it is not decided.
         let shown = root.display_truncated(&self.env.vars, 8);
-        Err(self.limit(
-            node,
-            format!("sqrt(…) is ±({shown}) here, but the sign of {shown} on the claim's domain is not certified"),
-            "bound the parameters with given (such as given = [\"f_r > 0\", \"sigma < 0\"]) so that the root has one sign there",
+        Err(Failure::Uncertified(
+            self.origin
+                .diagnostic(
+                    node.span,
+                    format!("sqrt(…) is ±({shown}) here, but the sign of {shown} on the claim's domain is not certified"),
+                )
+                .with_help("bound the parameters with given (such as given = [\"f_r > 0\", \"sigma < 0\"]) so that the root has one sign there"),
         ))
     }
 }

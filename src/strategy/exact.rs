@@ -5,7 +5,7 @@
 //! a rational point that satisfies the assumptions (a point on the unit sphere for
 //! the normal).
 
-use super::eval::{component_name, ExactEnv, Labeled, Refusal};
+use super::eval::{component_name, ExactEnv, Labeled};
 use super::finding::{Expansion, Finding, Record};
 use super::proportional::{self, Reference};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
@@ -153,18 +153,13 @@ fn decide_recording(
             let node = side.node.as_ref().expect("ill-formed sides handled above");
             let value = match env.eval(node, &side.origin) {
                 Ok(v) => v,
-                Err(Refusal::Input(d)) => return Err(d),
-                // The statement is fine; expanding it exactly costs more than the
-                // checker allows. That decides nothing about it.
-                Err(Refusal::Limit(d)) => {
-                    return Ok(Outcome::undecided(Method::Exact, 0).with_finding(
-                        Finding::ResourceLimit {
-                            what: d.message.clone(),
-                            at: location(&d),
-                            help: d.help.clone().unwrap_or_default(),
-                        },
-                    ))
-                }
+                // The statement is fine, but expanding it exactly costs more than the
+                // checker allows, or needs a fact the kernel cannot certify. That
+                // decides nothing about it.
+                Err(r) => match r.finding() {
+                    Some(f) => return Ok(Outcome::undecided(Method::Exact, 0).with_finding(f)),
+                    None => return Err(r.into()),
+                },
             };
             if let Some(record) = record.as_deref_mut() {
                 record.push(expansion(&env, decls, (ci, si), &side.text, Ok(&value)));

@@ -27,6 +27,13 @@ pub enum Finding {
         at: String,
         help: String,
     },
+    /// An exact value the kernel could not certify, such as the sign of a square root
+    /// on the claim's box, at `at` (file:line:col).
+    Uncertified {
+        what: String,
+        at: String,
+        help: String,
+    },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.
     Unconfirmed { difference: String, why: Rejection },

@@ -17,8 +17,8 @@ mod roots;
 mod sample;
 mod sign;
 
-use super::eval::{ExactEnv, Refusal};
-use super::finding::{Finding, RationalEvidence};
+use super::eval::ExactEnv;
+use super::finding::RationalEvidence;
 use super::{Method, Outcome};
 use crate::derivation::{Check, Expression, ParamBox, ScalarClaim, Strategy};
 use crate::kernel::sign::Interval;
@@ -150,17 +150,13 @@ impl Context<'_> {
     fn exact(&mut self, e: &Expression) -> Result<Exact, Stop> {
         let labeled = match self.env.eval(&e.node, &e.origin) {
             Ok(v) => v,
-            Err(Refusal::Input(d)) => return Err(Stop::Input(d)),
-            Err(Refusal::Limit(d)) => {
-                return Err(Stop::Outcome(Box::new(
-                    Outcome::undecided(Method::RationalFunction, 0).with_finding(
-                        Finding::ResourceLimit {
-                            what: d.message.clone(),
-                            at: super::exact::location(&d),
-                            help: d.help.clone().unwrap_or_default(),
-                        },
-                    ),
-                )))
+            Err(r) => {
+                return Err(match r.finding() {
+                    Some(f) => Stop::Outcome(Box::new(
+                        Outcome::undecided(Method::RationalFunction, 0).with_finding(f),
+                    )),
+                    None => Stop::Input(r.into()),
+                })
             }
         };
         let quotient = labeled.at(&[]).clone();
