@@ -5,7 +5,7 @@
 //! original.
 
 use crate::lang::parse_expr;
-use crate::lang::parser::{Expr, ExprKind, Func, Func2, IndexTok, MatFunc};
+use crate::lang::parser::{Expr, ExprKind, Func, Func2, IndexTok, MatFunc, Wrt};
 use std::fmt;
 
 /// The kind of slip a mutant makes.
@@ -170,10 +170,15 @@ fn collect_inner(src: &str, e: &Expr, out: &mut Vec<Edit>) {
             collect(src, b, out);
         }
         ExprKind::Neg(a) | ExprKind::Pow(a, _) => collect(src, a, out),
-        // The varied field (or the symbol of a gradient) is named, not computed: only
-        // the body is mutated (a swapped index of the symbol would leave the free
-        // indices unbalanced).
-        ExprKind::Wrt { body, .. } => collect(src, body, out),
+        // The varied field is named, not computed: only the density is mutated. The
+        // symbol of a gradient has its letters swapped too, `grad(F, sigma_ji)`: the
+        // transposed gradient.
+        ExprKind::Wrt { op, body, symbol } => {
+            if let (Wrt::Grad, ExprKind::Name { indices, .. }) = (op, &symbol.kind) {
+                swaps(src, indices, out);
+            }
+            collect(src, body, out)
+        }
         ExprKind::Mul(a, b) | ExprKind::Div(a, b) => {
             collect(src, a, out);
             collect(src, b, out);
