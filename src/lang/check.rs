@@ -226,7 +226,7 @@ impl Node {
 }
 
 /// Whether a variation or a gradient occurs in `node` (not looking into definitions).
-pub fn contains_wrt(node: &Node) -> bool {
+fn contains_wrt(node: &Node) -> bool {
     matches!(node.kind, NodeKind::Wrt { .. }) || node.children().into_iter().any(contains_wrt)
 }
 
@@ -507,7 +507,14 @@ impl Scope<'_> {
                 body.span,
                 format!("a variation or gradient inside {name}(…) is not supported"),
             )
-            .help("take one derivative with respect to a symbol at a time, in separate claims"));
+            .help(match op {
+                Wrt::Variation => {
+                    "name the inner one with a definition and vary that definition's density"
+                }
+                Wrt::Grad => {
+                    "take one derivative with respect to a symbol at a time, in separate claims"
+                }
+            }));
         }
         let example = match op {
             Wrt::Variation => "a field with its indices, such as v_j",

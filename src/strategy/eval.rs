@@ -41,6 +41,10 @@ pub const MAX_WORK: usize = 1_000_000;
 /// 31^-64 to the 4096th power and took minutes).
 pub const MAX_COEFFICIENT_BITS: u64 = 100_000;
 
+/// Largest number of terms of an exact square root: the long division that finds it
+/// costs a pass over the remainder per term, so this bounds it well under a second.
+pub const MAX_ROOT_TERMS: usize = 2_000;
+
 /// Largest exponent a power may produce.
 pub const MAX_EXPONENT: i64 = 10_000;
 
@@ -534,7 +538,7 @@ impl ExactRing<'_, '_> {
                     )
                 });
         }
-        let Some(root) = p.sqrt_exact(MAX_TERMS) else {
+        let Some(root) = p.sqrt_exact(MAX_ROOT_TERMS) else {
             return Err(self.error(
                 node,
                 "sqrt(…) of this expression has no exact value: it is not the square of a rational function here",
