@@ -80,6 +80,11 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
         let texts: Vec<String> = check.assumptions.iter().map(|a| a.text.clone()).collect();
         let _ = writeln!(out, "Assumptions: {}", texts.join("; "));
     }
+    if let Some(domain) = check.strategy.exact_domain() {
+        if !domain.bounds.is_empty() {
+            let _ = writeln!(out, "Parameter box (given): {}", domain.describe());
+        }
+    }
     match &check.strategy {
         Strategy::Exact { .. } | Strategy::Proportional { .. } => {
             expansions(out, outcome.record.as_ref())
