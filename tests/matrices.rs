@@ -113,3 +113,25 @@ fn collapsing_products_and_mixed_sums_are_typed() {
         assert!(e.contains(want), "{sides}\n→ {e}");
     }
 }
+
+/// A definition is defined where all its entries are: a counterexample to one entry of
+/// a matrix whose other entries divide by G is taken where G ≠ 0, so that the
+/// interpreter, which evaluates the whole matrix, confirms it (found by the mutation
+/// sweep of eq. (57)).
+#[test]
+fn a_counterexample_avoids_the_poles_of_the_other_entries() {
+    let text = claim("expect = \"fails\"\nreason = \"wrong\"\nsides = [\"B[2,2]\", \"2\"]\ndefine = [\"B = [[1 + a / x, 1], [1, a + x]]\"]")
+        .replacen("expect = \"holds\"\n", "", 1);
+    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
+    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
+    let o = &rows[0].outcome;
+    assert_eq!(
+        o.verdict(),
+        Verdict::Fails,
+        "{}",
+        cosserat_check::report::evidence(o)
+    );
+    let cx = o.counterexample.as_ref().unwrap();
+    assert!(cx.reverified.is_some(), "confirmed by the interpreter");
+    assert_ne!(cx.point.get("x").map(String::as_str), Some("0"));
+}

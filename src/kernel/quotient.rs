@@ -129,6 +129,14 @@ impl Quotient {
         )
     }
 
+    /// The same value, defined only where `extra` are nonzero too: a component of a
+    /// definition is defined where the whole definition is.
+    pub fn with_conditions(&self, extra: &[Poly]) -> Quotient {
+        let mut open = self.open();
+        union(&mut open.conditions, extra);
+        open.close()
+    }
+
     /// The quotient as a reduced rational function.
     pub fn to_ratfunc(&self) -> RatFunc {
         let den = self

@@ -643,6 +643,22 @@ impl Ring for ExactRing<'_, '_> {
             origin: &def.origin,
         };
         let t = walk::in_formal_order(&mut inner, &def.body, &def.sig.formal, &())?;
+        // A definition is defined where every component is: reading one entry of a
+        // matrix whose other entries divide by G is undefined at G = 0 (and the
+        // interpreter that confirms a counterexample evaluates the whole definition).
+        let mut all: Vec<Poly> = Vec::new();
+        for q in t.components() {
+            for c in q.conditions() {
+                if !all.contains(c) {
+                    all.push(c.clone());
+                }
+            }
+        }
+        let t = if all.is_empty() {
+            t
+        } else {
+            t.map(|q| q.with_conditions(&all))
+        };
         self.env.cache.insert(name.to_owned(), t.clone());
         Ok(t)
     }
