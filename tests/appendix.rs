@@ -7,9 +7,63 @@ use cosserat_check::model::acoustic::{self, Contraction};
 use cosserat_check::model::shear_band::{self, MomentLaw};
 use cosserat_check::model::tangent::{self, ShearSign, YieldGradient};
 use cosserat_check::model::{fig6, ExactPoint, Params, Point};
-use cosserat_check::strategy::appendix::{
-    gradient_residuals, increasing_for_positive, FD_TOL, ROUTE_TOL,
-};
+use cosserat_check::strategy::appendix::{increasing_for_positive, ROUTE_TOL};
+
+/// Central-difference step and tolerance of the yield-gradient route.
+const FD_STEP: f64 = 1e-6;
+const FD_TOL: f64 = 1e-6;
+
+/// The second route of the Rust model's yield gradients, which the elastoplastic steps
+/// still use (`appA-yield-gradients` itself is decided from the derivation file): the
+/// exact Q and F against num-dual gradients and central differences of an
+/// independently written F₂, at states of both signs of τ.
+/// The exact gradient evaluated at `f_r`, as (Q_11, Q_22, Q_12, Q_21, F_13, F_23).
+fn exact_gradient_at(p: &Params, g: &tangent::YieldGradient, f_r: f64) -> [f64; 6] {
+    let at = |x: &RatFunc| x.eval_f64(&|v| if v == p.f_r { f_r } else { f64::NAN });
+    [
+        at(&g.q[0]),
+        at(&g.q[1]),
+        at(&g.q[2]),
+        at(&g.q[3]),
+        at(&g.f[0]),
+        at(&g.f[1]),
+    ]
+}
+
+/// The largest differences (exact vs num-dual, num-dual vs central differences) over
+/// the states of the check; `exact` gives the closed form for a shear sign.
+fn gradient_residuals(
+    p: &Params,
+    exact: &dyn Fn(ShearSign) -> Result<tangent::YieldGradient, String>,
+) -> Result<(f64, f64, usize), String> {
+    let (mut worst_exact, mut worst_fd, mut n) = (0.0f64, 0.0f64, 0);
+    for shear in [ShearSign::Positive, ShearSign::Negative] {
+        let g = exact(shear)?;
+        for f_r in [0.05, 0.3, 0.5, 1.0, 2.0, 3.0] {
+            for sigma in [-1.0, -2.5] {
+                for r_g in [1.0, 0.4] {
+                    let x = tangent::state_components(sigma, f_r, shear);
+                    let dual = tangent::yield_gradient_dual(x, f_r, r_g);
+                    let closed = exact_gradient_at(p, &g, f_r);
+                    for k in 0..6 {
+                        worst_exact = worst_exact.max((dual[k] - closed[k]).abs());
+                        let (mut xp, mut xm) = (x, x);
+                        xp[k] += FD_STEP;
+                        xm[k] -= FD_STEP;
+                        let fd = (tangent::rolling_yield(&xp, f_r, r_g)
+                            - tangent::rolling_yield(&xm, f_r, r_g))
+                            / (2.0 * FD_STEP);
+                        // μ-derivatives: F₂ is not differentiable across μ = 0 only when
+                        // q = r = 0, which the state avoids (τ ≠ 0).
+                        worst_fd = worst_fd.max((fd - dual[k]).abs());
+                        n += 1;
+                    }
+                }
+            }
+        }
+    }
+    Ok((worst_exact, worst_fd, n))
+}
 
 fn snapshot(name: &str, value: String) {
     insta::with_settings!({

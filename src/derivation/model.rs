@@ -481,7 +481,6 @@ impl ParamBox {
 /// The steps of Appendix A and Section 6 that `strategy = "appendix"` can decide.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AppendixStep {
-    YieldGradients,
     BandDirection,
     CriticalHardening,
     BPositive,
@@ -496,8 +495,7 @@ pub enum AppendixStep {
 }
 
 impl AppendixStep {
-    pub const ALL: [(AppendixStep, &'static str); 12] = [
-        (AppendixStep::YieldGradients, "yield-gradients"),
+    pub const ALL: [(AppendixStep, &'static str); 11] = [
         (AppendixStep::BandDirection, "band-direction"),
         (AppendixStep::CriticalHardening, "critical-hardening"),
         (AppendixStep::BPositive, "b-positive"),

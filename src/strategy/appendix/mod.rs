@@ -14,7 +14,7 @@ use crate::lang::{Decls, Diagnostic, Origin, Span};
 use crate::model::acoustic::{self, Contraction};
 use crate::model::balance::{self, Velocity};
 use crate::model::shear_band::{self, Derivation};
-use crate::model::tangent::{self, ShearSign};
+use crate::model::tangent::ShearSign;
 use crate::model::{ExactPoint, Params, Point};
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
@@ -22,18 +22,13 @@ use std::sync::OnceLock;
 mod acoustic_tensor;
 mod balance_laws;
 mod band;
-mod gradients;
 mod section6;
 
-pub use gradients::gradient_residuals;
 pub use section6::{increasing_for_positive, Monotonicity};
 
 /// Largest relative disagreement allowed between the exact derivation evaluated in
 /// `f64` and the independent floating-point route.
 pub const ROUTE_TOL: f64 = 1e-9;
-/// Central-difference step and tolerance for the gradient check.
-pub const FD_STEP: f64 = 1e-6;
-pub const FD_TOL: f64 = 1e-6;
 
 /// The derivation for τ > 0, computed once.
 fn derivations() -> &'static Result<(Params, Derivation), String> {
@@ -84,7 +79,6 @@ pub fn decide(
     let fail = |m: String| origin.diagnostic(Span::new(0, 0), m);
     let (p, d) = derivations().as_ref().map_err(|e| fail(e.clone()))?;
     match step {
-        AppendixStep::YieldGradients => gradients::yield_gradients(p).map_err(fail),
         AppendixStep::BandDirection => acoustic_tensor::band_direction(p, d).map_err(fail),
         AppendixStep::CriticalHardening => acoustic_tensor::critical_hardening(p, d).map_err(fail),
         AppendixStep::BPositive => Ok(acoustic_tensor::b_positive(p, d)),
