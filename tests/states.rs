@@ -77,6 +77,9 @@ fn malformed_gradients_are_located_errors() {
         (claim("sides = [\"grad(x, 2)\", \"0\"]"), "the second argument of grad(…) is a declared symbol with its indices"),
         (claim("sides = [\"grad([[x, y], [y, x]], x)\", \"0\"]"), "grad(…) takes a scalar or a tensor, but this is a 2×2 matrix"),
         (claim("sides = [\"grad(sqrt(x^2 + y^2), x)\", \"0\"]"), "sqrt(…) of this expression has no exact value"),
+        // Where the gradient does not exist (√ at 0, reached by the worst-case search),
+        // the sample is an error, never a counterexample to a true statement.
+        (claim("strategy = \"numeric\"\nsides = [\"grad(sqrt(x^2 + y^2), x)^2 + grad(sqrt(x^2 + y^2), y)^2\", \"1\"]"), "grad(…) does not exist at this sample"),
         (claim("samples = 60\nsides = [\"x\", \"x\"]"), "`samples` belongs to the sampled strategies"),
         (claim("given = [\"x > y\"]\nsides = [\"x\", \"x\"]"), "cannot read `x > y` as a bound"),
         (claim("strategy = \"gradient\"\nfunction = \"grad(x^2 s_kk, x)\"\ngradient = { s = \"2 x delta_ij\" }"), "differentiates this function, which takes grad(…) or variation(…) itself"),
@@ -87,6 +90,16 @@ fn malformed_gradients_are_located_errors() {
         assert!(e.contains(want), "{text}\n→ {e}");
         assert!(e.contains("f.toml:"), "located: {e}");
     }
+}
+
+/// With the set where it does not exist excluded, the same gradient holds.
+#[test]
+fn a_gradient_holds_off_the_set_where_it_does_not_exist() {
+    let text = claim("strategy = \"numeric\"\nsingular = \"x^2 + y^2\"\nsides = [\"grad(sqrt(x^2 + y^2), x)^2 + grad(sqrt(x^2 + y^2), y)^2\", \"1\"]");
+    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
+    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
+    assert_eq!(rows[0].outcome.verdict(), Verdict::Holds);
+    assert_eq!(rows[0].outcome.strength(), Strength::Sampled);
 }
 
 /// A root whose sign the box does not fix leaves the claim undecided, with the

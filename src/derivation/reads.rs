@@ -2,10 +2,34 @@
 //! them) and the symbols whose values decide it (a counterexample shows those, and
 //! only those).
 
-use super::model::{AssumptionKind, Check};
+use super::model::{AssumptionKind, Check, Definition};
 use crate::lang::parser::Wrt;
 use crate::lang::{Node, NodeKind, Target};
 use std::collections::BTreeSet;
+
+/// Every node reachable from `roots`, through the bodies of the definitions (in
+/// `defs`, the innermost of a name) they use, directly or through other definitions;
+/// and the names of those definitions.
+pub fn reachable<'a>(
+    roots: Vec<&'a Node>,
+    defs: &'a [Definition],
+) -> (Vec<&'a Node>, BTreeSet<&'a str>) {
+    let mut names = BTreeSet::new();
+    let mut stack = roots;
+    let mut seen = Vec::new();
+    while let Some(n) = stack.pop() {
+        seen.push(n);
+        if let Some(name) = n.definition() {
+            if names.insert(name) {
+                if let Some(d) = defs.iter().rev().find(|d| d.sig.name == name) {
+                    stack.push(&d.body);
+                }
+            }
+        }
+        stack.extend(n.children());
+    }
+    (seen, names)
+}
 
 /// The symbols a statement reads, and whether it reads the normal.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -22,27 +46,14 @@ impl Check {
     /// the definitions they use, directly or through other definitions. The second
     /// value names those definitions.
     fn reachable(&self) -> (Vec<&Node>, BTreeSet<&str>) {
-        let mut names = BTreeSet::new();
-        let mut stack: Vec<&Node> = self
+        let mut roots: Vec<&Node> = self
             .chains
             .iter()
             .flatten()
             .filter_map(|s| s.node.as_ref().ok())
             .collect();
-        stack.extend(self.strategy.expressions().into_iter().map(|e| &e.node));
-        let mut seen = Vec::new();
-        while let Some(n) = stack.pop() {
-            seen.push(n);
-            if let Some(name) = n.definition() {
-                if names.insert(name) {
-                    if let Some(d) = self.defs.iter().rev().find(|d| d.sig.name == name) {
-                        stack.push(&d.body);
-                    }
-                }
-            }
-            stack.extend(n.children());
-        }
-        (seen, names)
+        roots.extend(self.strategy.expressions().into_iter().map(|e| &e.node));
+        reachable(roots, &self.defs)
     }
 
     /// Indices (into `defs`) of the definitions the statement depends on, directly or

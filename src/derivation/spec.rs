@@ -342,27 +342,15 @@ fn differentiable_once(
     defs: &[Definition],
     strategy: &str,
 ) -> Result<(), Diagnostic> {
-    let mut stack = vec![&f.node];
-    let mut seen: Vec<&str> = Vec::new();
-    while let Some(node) = stack.pop() {
-        if matches!(node.kind, NodeKind::Wrt { .. }) {
-            return Err(f
-                .origin
-                .diagnostic(
-                    f.node.span,
-                    format!("strategy = \"{strategy}\" differentiates this function, which takes grad(…) or variation(…) itself"),
-                )
-                .with_help("grad(…) takes first derivatives only: give this strategy the function without it"));
-        }
-        if let Some(name) = node.definition() {
-            if !seen.contains(&name) {
-                seen.push(name);
-                if let Some(d) = defs.iter().rev().find(|d| d.sig.name == name) {
-                    stack.push(&d.body);
-                }
-            }
-        }
-        stack.extend(node.children());
+    let (nodes, _) = super::reads::reachable(vec![&f.node], defs);
+    if nodes.iter().any(|n| matches!(n.kind, NodeKind::Wrt { .. })) {
+        return Err(f
+            .origin
+            .diagnostic(
+                f.node.span,
+                format!("strategy = \"{strategy}\" differentiates this function, which takes grad(…) or variation(…) itself"),
+            )
+            .with_help("grad(…) takes first derivatives only: give this strategy the function without it"));
     }
     Ok(())
 }

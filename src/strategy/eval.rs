@@ -646,14 +646,7 @@ impl Ring for ExactRing<'_, '_> {
         // A definition is defined where every component is: reading one entry of a
         // matrix whose other entries divide by G is undefined at G = 0 (and the
         // interpreter that confirms a counterexample evaluates the whole definition).
-        let mut all: Vec<Poly> = Vec::new();
-        for q in t.components() {
-            for c in q.conditions() {
-                if !all.contains(c) {
-                    all.push(c.clone());
-                }
-            }
-        }
+        let all = conditions_of(t.components());
         let t = if all.is_empty() {
             t
         } else {
@@ -938,6 +931,19 @@ impl Ring for ExactRing<'_, '_> {
             "a singular matrix has no inverse and the system no unique solution; check the matrix, or solve a reduced system",
         )
     }
+}
+
+/// Every condition (a divisor that must not vanish) of the given values, once each.
+pub(super) fn conditions_of<'q>(values: impl IntoIterator<Item = &'q Quotient>) -> Vec<Poly> {
+    let mut all: Vec<Poly> = Vec::new();
+    for q in values {
+        for c in q.conditions() {
+            if !all.contains(c) {
+                all.push(c.clone());
+            }
+        }
+    }
+    all
 }
 
 fn too_much(origin: &Origin, node: &Node) -> Diagnostic {

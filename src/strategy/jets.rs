@@ -15,7 +15,7 @@
 //! The sampled route takes the same derivatives with num-dual numbers
 //! (`RealEnv::gradients`), a different method, so the two cross-check each other.
 
-use super::eval::{ExactRing, Failure};
+use super::eval::{conditions_of, ExactRing, Failure};
 use super::walk::{self, Ring};
 use crate::kernel::einsum::Arithmetic;
 use crate::kernel::{Poly, Quotient, Rational, Tensor};
@@ -234,17 +234,35 @@ impl Ring for Jets<'_, '_, '_> {
             size: self.size,
         };
         let t = walk::in_formal_order(&mut inner, &def.body, &def.sig.formal, &())?;
+        // Defined where the whole definition is, as in the exact route.
+        let all = conditions_of(
+            t.components()
+                .iter()
+                .flat_map(|j| std::iter::once(&j.value).chain(&j.partials)),
+        );
+        let t = if all.is_empty() {
+            t
+        } else {
+            t.map(|j| Jet {
+                value: j.value.with_conditions(&all),
+                partials: j.partials.iter().map(|p| p.with_conditions(&all)).collect(),
+            })
+        };
         self.base.env.jet_cache.insert(key, t.clone());
         Ok(t)
     }
 
-    /// (x/d)' = (x' − (x/d) d')/d.
+    /// (x/d)' = (x' − (x/d) d')/d, with 1/d taken once (the exact route's division
+    /// checks the divisor and records where it vanishes).
     fn divide(&mut self, x: Jet, den: &Jet, divisor: &Node) -> Result<Jet, Failure> {
-        let q = self.base.divide(x.value, &den.value, divisor)?;
+        let inverse = self
+            .base
+            .divide(Quotient::from(Poly::one()), &den.value, divisor)?;
+        let q = self.base.mul(x.value, &inverse)?;
         let partials = self.partials(&x.partials, &den.partials, |r, dx, dd| {
             let shifted = dd.map(|d| r.mul(q.clone(), d).map(|t| -t)).transpose()?;
             let top = plus(r, dx.cloned(), shifted)?;
-            r.divide(top, &den.value, divisor)
+            r.mul(top, &inverse)
         })?;
         Ok(Jet { value: q, partials })
     }
@@ -280,7 +298,10 @@ impl Ring for Jets<'_, '_, '_> {
             ));
         }
         let twice = self.base.add(value.clone(), value.clone())?;
-        let partials = self.each(&x, |r, p| r.divide(p.clone(), &twice, node))?;
+        let half_inverse = self
+            .base
+            .divide(Quotient::from(Poly::one()), &twice, node)?;
+        let partials = self.each(&x, |r, p| r.mul(p.clone(), &half_inverse))?;
         Ok(Jet { value, partials })
     }
 

@@ -600,6 +600,14 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
         let mut values = Vec::with_capacity(value.components().len() * size);
         for c in value.components() {
             let g = c.eps.clone().unwrap_generic(Dyn(size), U1);
+            // A derivative that is not finite does not exist here (√ at 0, a kink): an
+            // error at this sample, never a value that a comparison could call false.
+            if c.re.is_finite() && g.iter().any(|x| !x.is_finite()) {
+                return Err(err(
+                    node,
+                    format!("grad(…) does not exist at this sample: a derivative by `{symbol}` is not finite (exclude the set with `singular`)"),
+                ));
+            }
             values.extend(g.iter().map(|&x| T::from(x)));
         }
         let mut it = values.into_iter();
