@@ -146,7 +146,7 @@ fn slips_are_located_errors() {
 
 #[test]
 fn the_worked_example_is_decided_as_declared() {
-    common::assert_as_declared("derivations/examples/balance.toml", 6, |rows| {
+    common::assert_as_declared("derivations/examples/balance.toml", 7, |rows| {
         assert!(rows
             .iter()
             .any(|r| matches!(r.claim.check.strategy, Strategy::Proportional { .. })));

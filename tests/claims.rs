@@ -135,14 +135,14 @@ fn every_non_holding_verdict_carries_evidence_and_a_reason() {
             );
             if r.outcome.verdict() == Verdict::Conditional {
                 // Sampled strategies state the domain in their numeric evidence, the
-                // symbolic (Appendix) ones in their detail.
+                // exact ones in their finding ("holds on …" for a rational function).
                 let numeric = r.outcome.numeric.as_ref().and_then(|n| n.domain.as_ref());
                 let symbolic = r
                     .outcome
                     .finding
                     .as_ref()
                     .map(cosserat_check::report::words::finding)
-                    .filter(|d| d.contains("holds for"));
+                    .filter(|d| d.contains("holds for") || d.contains("holds on"));
                 assert!(
                     numeric.is_some() || symbolic.is_some(),
                     "{}: a conditional verdict states its domain",

@@ -478,38 +478,25 @@ impl ParamBox {
     }
 }
 
-/// The steps of Appendix A and Section 6 that `strategy = "appendix"` can decide.
+/// The steps of Appendix A that `strategy = "appendix"` can decide.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AppendixStep {
     BandDirection,
     CriticalHardening,
     BPositive,
-    BalanceV1,
-    BalanceV2,
-    BalanceW3,
     Eq61,
     BoundaryModes,
     Eq54,
-    NoBandWithoutRolling,
-    ThicknessDecreases,
 }
 
 impl AppendixStep {
-    pub const ALL: [(AppendixStep, &'static str); 11] = [
+    pub const ALL: [(AppendixStep, &'static str); 6] = [
         (AppendixStep::BandDirection, "band-direction"),
         (AppendixStep::CriticalHardening, "critical-hardening"),
         (AppendixStep::BPositive, "b-positive"),
-        (AppendixStep::BalanceV1, "balance-v1"),
-        (AppendixStep::BalanceV2, "balance-v2"),
-        (AppendixStep::BalanceW3, "balance-w3"),
         (AppendixStep::Eq61, "eq61"),
         (AppendixStep::BoundaryModes, "boundary-modes"),
         (AppendixStep::Eq54, "eq54"),
-        (
-            AppendixStep::NoBandWithoutRolling,
-            "no-band-without-rolling",
-        ),
-        (AppendixStep::ThicknessDecreases, "thickness-decreases"),
     ];
 
     pub fn parse(s: &str) -> Option<Self> {

@@ -366,7 +366,11 @@ pub fn orthant_cases(
                 vec![(&c(a) + &t(v), closed_lo)]
             }
             (None, Some(b)) => {
-                words.push(format!("{name} = {b} − t"));
+                words.push(if b.is_zero() {
+                    format!("{name} = −t")
+                } else {
+                    format!("{name} = {b} − t")
+                });
                 vec![(&c(b) - &t(v), closed_hi)]
             }
             (Some(a), Some(b)) if !closed_hi => {
@@ -401,7 +405,13 @@ pub fn orthant_cases(
         }
         cases = next;
     }
-    Some((cases, format!("{}, t ≥ 0", words.join(", "))))
+    // No variable: the text is empty and the report says "constants of one sign".
+    let words = if words.is_empty() {
+        String::new()
+    } else {
+        format!("{}, t ≥ 0", words.join(", "))
+    };
+    Some((cases, words))
 }
 
 /// A polynomial whose coefficients all have one sign.

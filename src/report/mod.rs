@@ -402,6 +402,9 @@ pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String 
                     )
                 }
             }
+            Fact::CoefficientSigns { substitution, .. } if substitution.is_empty() => {
+                "numerator and denominator are constants of one sign".to_owned()
+            }
             Fact::CoefficientSigns { substitution, cases } => {
                 let s = if *cases == 1 { "" } else { "s" };
                 format!("numerator and denominator have coefficients of one sign after {substitution} ({cases} case{s})")

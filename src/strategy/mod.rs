@@ -99,7 +99,7 @@ fn decide_keeping(
         Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),
         Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
         Strategy::Scalar { .. } => scalar::decide(decls, check),
-        Strategy::Appendix { step, origin } => appendix::decide(*step, origin, decls, check),
+        Strategy::Appendix { step, origin } => appendix::decide(*step, origin),
     };
     // A decision stopped by the time limit (`watch::check`) is undecided, whatever
     // error the stop surfaced as; one that finished in time stands.

@@ -3,16 +3,14 @@
 //! cross-checks the derivation by an independent floating-point route (num-dual
 //! gradients, nalgebra linear algebra) before a verdict is given.
 
-use super::eval::ExactEnv;
 use super::finding::Finding;
 use super::{Counterexample, Method, Outcome, Strength};
-use crate::derivation::{AppendixStep, Check, Verdict};
+use crate::derivation::AppendixStep;
 use crate::kernel::certificate::Certificate;
-use crate::kernel::sturm::{count_roots, isolate_roots, Bound, UniPoly};
-use crate::kernel::{Poly, RatFunc, Rational, VarTable};
-use crate::lang::{Decls, Diagnostic, Origin, Span};
+use crate::kernel::sturm::{count_roots, Bound, UniPoly};
+use crate::kernel::{Poly, RatFunc, Rational};
+use crate::lang::{Diagnostic, Origin, Span};
 use crate::model::acoustic::{self, Contraction};
-use crate::model::balance::{self, Velocity};
 use crate::model::shear_band::{self, Derivation};
 use crate::model::tangent::ShearSign;
 use crate::model::{ExactPoint, Params, Point};
@@ -20,11 +18,7 @@ use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
 mod acoustic_tensor;
-mod balance_laws;
 mod band;
-mod section6;
-
-pub use section6::{increasing_for_positive, Monotonicity};
 
 /// Largest relative disagreement allowed between the exact derivation evaluated in
 /// `f64` and the independent floating-point route.
@@ -70,28 +64,18 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
 }
 
-pub fn decide(
-    step: AppendixStep,
-    origin: &Origin,
-    decls: &Decls,
-    check: &Check,
-) -> Result<Outcome, Diagnostic> {
+pub fn decide(step: AppendixStep, origin: &Origin) -> Result<Outcome, Diagnostic> {
     let fail = |m: String| origin.diagnostic(Span::new(0, 0), m);
     let (p, d) = derivations().as_ref().map_err(|e| fail(e.clone()))?;
     match step {
         AppendixStep::BandDirection => acoustic_tensor::band_direction(p, d).map_err(fail),
         AppendixStep::CriticalHardening => acoustic_tensor::critical_hardening(p, d).map_err(fail),
         AppendixStep::BPositive => Ok(acoustic_tensor::b_positive(p, d)),
-        AppendixStep::BalanceV1 => balance_laws::balance_law(Velocity::V1, origin, decls, check),
-        AppendixStep::BalanceV2 => balance_laws::balance_law(Velocity::V2, origin, decls, check),
-        AppendixStep::BalanceW3 => balance_laws::balance_law(Velocity::W3, origin, decls, check),
         AppendixStep::Eq61 => derivation_negative_shear(p)
             .and_then(|d_neg| band::eq61(p, d, d_neg))
             .map_err(fail),
         AppendixStep::BoundaryModes => Ok(band::boundary_modes()),
         AppendixStep::Eq54 => band::eq54(p, d).map_err(fail),
-        AppendixStep::NoBandWithoutRolling => section6::no_band_without_rolling(p, d).map_err(fail),
-        AppendixStep::ThicknessDecreases => section6::thickness_decreases(p, d).map_err(fail),
     }
 }
 
