@@ -361,8 +361,7 @@ fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: O
                 }
                 Strategy::Exact { .. }
                 | Strategy::Proportional { .. }
-                | Strategy::NotCircle { .. }
-                | Strategy::Appendix { .. } => continue,
+                | Strategy::NotCircle { .. } => continue,
             };
             if let Some(s) = seed {
                 sampling.seed = s;

@@ -69,7 +69,6 @@ fn strategy_name(s: &Strategy) -> &'static str {
         Strategy::Convex { .. } => "convex",
         Strategy::NotCircle { .. } => "not-circle",
         Strategy::Scalar { .. } => "rational-function",
-        Strategy::Appendix { .. } => "appendix",
     }
 }
 
@@ -94,10 +93,7 @@ fn resampled(mut check: Check, samples: usize, seed: Option<u64>) -> Check {
                 *s = k;
             }
         }
-        Strategy::Exact { .. }
-        | Strategy::Proportional { .. }
-        | Strategy::NotCircle { .. }
-        | Strategy::Appendix { .. } => {}
+        Strategy::Exact { .. } | Strategy::Proportional { .. } | Strategy::NotCircle { .. } => {}
     }
     check
 }
@@ -108,10 +104,7 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     };
     let sampled = !matches!(
         check.strategy,
-        Strategy::Exact { .. }
-            | Strategy::Proportional { .. }
-            | Strategy::NotCircle { .. }
-            | Strategy::Appendix { .. }
+        Strategy::Exact { .. } | Strategy::Proportional { .. } | Strategy::NotCircle { .. }
     );
     let light = resampled(check.clone(), SAMPLED, None);
     let Ok(outcome) = decide(decls, &light) else {

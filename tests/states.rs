@@ -80,6 +80,9 @@ fn malformed_gradients_are_located_errors() {
         // Where the gradient does not exist (√ at 0, reached by the worst-case search),
         // the sample is an error, never a counterexample to a true statement.
         (claim("strategy = \"numeric\"\nsides = [\"grad(sqrt(x^2 + y^2), x)^2 + grad(sqrt(x^2 + y^2), y)^2\", \"1\"]"), "grad(…) does not exist at this sample"),
+        // √((s_12 − s_21)²) = |s_12 − s_21| has no derivative where s_12 = s_21, though
+        // the first partials of its radicand vanish there: an error, never 0.
+        (claim("assume = [\"s_ij = x delta_ij\"]\ngiven = [\"x > 0\"]\nsides = [\"grad(sqrt((s_12 - s_21)^2), s_ij)\", \"0\"]"), "its radicand is 0 at the state"),
         (claim("samples = 60\nsides = [\"x\", \"x\"]"), "`samples` belongs to the sampled strategies"),
         (claim("given = [\"x > y\"]\nsides = [\"x\", \"x\"]"), "cannot read `x > y` as a bound"),
         (claim("strategy = \"gradient\"\nfunction = \"grad(x^2 s_kk, x)\"\ngradient = { s = \"2 x delta_ij\" }"), "differentiates this function, which takes grad(…) or variation(…) itself"),
@@ -136,4 +139,27 @@ fn exact_and_dual_gradients_agree() {
     }
     assert_eq!(rows[0].outcome.strength(), Strength::Proof);
     assert_eq!(rows[1].outcome.strength(), Strength::Sampled);
+}
+
+/// A parameter that only fixes the sign of a square root (y in √(y²)/y = −1 on y < 0)
+/// is not a variable of the function, yet the interpreter that confirms a
+/// counterexample reads it: it must come from the box, and the point shows it.
+#[test]
+fn a_counterexample_takes_unread_parameters_from_the_box() {
+    let text = claim("expect = \"fails\"\nreason = \"x − 1 ≤ 0 fails for x > 1\"\nstrategy = \"sign\"\ngiven = [\"y < 0\"]\nsides = [\"x + sqrt(y^2) / y\", \"0\"]\nrelation = \"<=\"").replacen("expect = \"holds\"\n", "", 1);
+    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
+    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
+    let o = &rows[0].outcome;
+    assert_eq!(
+        o.verdict(),
+        Verdict::Fails,
+        "{}",
+        cosserat_check::report::evidence(o)
+    );
+    let cx = o.counterexample.as_ref().expect("a counterexample");
+    assert!(
+        cx.point.get("y").is_some_and(|y| y.starts_with('-')),
+        "{:?}",
+        cx.point
+    );
 }

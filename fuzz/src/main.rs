@@ -82,9 +82,9 @@ const DICTIONARY: &[&str] = &[
     "chains = [[",
     "strategy = \"numeric\"\n",
     "strategy = \"gradient\"\n",
-    "strategy = \"appendix\"\n",
-    "step = \"balance-w3\"\n",
-    "step = \"eq54\"\n",
+    "strategy = \"roots\"\n",
+    "strategy = \"monotone\"\n",
+    "solve(",
     "dsigma_21",
     "dmu_23",
     "verbatim = true\n",
@@ -262,7 +262,6 @@ fn exercise(data: &[u8]) {
             Strategy::Exact { .. }
                 | Strategy::Proportional { .. }
                 | Strategy::NotCircle { .. }
-                | Strategy::Appendix { .. }
         ) {
             let _ = decide(&claim.decls, &claim.check);
             continue;

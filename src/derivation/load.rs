@@ -984,16 +984,6 @@ impl Loader {
                 "exact" | "proportional" | "numeric" | "sign"
             )
         });
-        if let Some(at) = &c.step {
-            if c.strategy
-                .as_ref()
-                .is_none_or(|s| s.get_ref() != "appendix")
-            {
-                return Err(self
-                    .diag(at.span(), "`step` belongs to strategy = \"appendix\"")
-                    .with_help("add strategy = \"appendix\" or remove `step`"));
-            }
-        }
         let mut check = self.check(
             &c.id,
             decls,

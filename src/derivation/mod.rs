@@ -14,8 +14,8 @@ mod spec;
 
 pub use load::{load_dir, load_files, load_str, LoadError};
 pub use model::{
-    AppendixStep, Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Definition,
-    DerivationFile, Expression, GradientConvention, LimitValue, ParamBox, Relation, Sampling,
-    ScalarClaim, Side, Strategy, Verdict,
+    Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Definition, DerivationFile,
+    Expression, GradientConvention, LimitValue, ParamBox, Relation, Sampling, ScalarClaim, Side,
+    Strategy, Verdict,
 };
 pub use reads::Reads;

@@ -332,7 +332,6 @@ impl Strategy {
                     out.extend(roots);
                 }
             },
-            Strategy::Appendix { .. } => {}
         }
         out
     }
@@ -387,10 +386,6 @@ pub enum Strategy {
         samples: usize,
         seed: u64,
     },
-    /// A step of Appendix A, derived with exact rational functions by `crate::model`
-    /// and decided by `strategy::appendix` (the sides, when given, are the printed
-    /// statement the step compares with).
-    Appendix { step: AppendixStep, origin: Origin },
 }
 
 /// What a scalar claim states (see [`Strategy::Scalar`]).
@@ -475,40 +470,6 @@ impl ParamBox {
         }
         let parts: Vec<String> = self.bounds.iter().map(|(s, i)| i.describe(s)).collect();
         parts.join(", ")
-    }
-}
-
-/// The steps of Appendix A that `strategy = "appendix"` can decide.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum AppendixStep {
-    BandDirection,
-    CriticalHardening,
-    BPositive,
-    Eq61,
-    BoundaryModes,
-    Eq54,
-}
-
-impl AppendixStep {
-    pub const ALL: [(AppendixStep, &'static str); 6] = [
-        (AppendixStep::BandDirection, "band-direction"),
-        (AppendixStep::CriticalHardening, "critical-hardening"),
-        (AppendixStep::BPositive, "b-positive"),
-        (AppendixStep::Eq61, "eq61"),
-        (AppendixStep::BoundaryModes, "boundary-modes"),
-        (AppendixStep::Eq54, "eq54"),
-    ];
-
-    pub fn parse(s: &str) -> Option<Self> {
-        Self::ALL.iter().find(|(_, n)| *n == s).map(|(k, _)| *k)
-    }
-
-    pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(k, _)| *k == self)
-            .map(|(_, n)| *n)
-            .expect("every step is listed")
     }
 }
 

@@ -60,7 +60,7 @@ pub struct RawClaim {
     pub chains: Option<Vec<Vec<S>>>,
     pub correction: Option<RawCorrection>,
     /// exact (default) | proportional | numeric | gradient | convex | not-circle |
-    /// sign | monotone | limit | roots | appendix
+    /// sign | monotone | limit | roots
     pub strategy: Option<S>,
     /// == (default) | <= | >=, between consecutive sides (numeric); > | >= | < | <=
     /// between the two sides (sign).
@@ -85,8 +85,6 @@ pub struct RawClaim {
     pub wrt: Vec<S>,
     pub x: Option<S>,
     pub y: Option<S>,
-    /// The Appendix step (strategy = "appendix").
-    pub step: Option<S>,
     /// The parameter a monotone, limit or roots claim is about.
     #[serde(rename = "in")]
     pub variable: Option<S>,

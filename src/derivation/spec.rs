@@ -3,8 +3,7 @@
 
 use super::load::Loader;
 use super::model::{
-    AppendixStep, Constraint, Definition, Expression, GradientConvention, Relation, Sampling,
-    Strategy,
+    Constraint, Definition, Expression, GradientConvention, Relation, Sampling, Strategy,
 };
 use super::raw::{RawClaim, S};
 use super::spans::sub_origin;
@@ -18,7 +17,7 @@ pub const DEFAULT_SAMPLES: usize = 200;
 pub const MIN_SAMPLES: usize = 50;
 
 const STRATEGIES: &str =
-    "exact, proportional, numeric, gradient, convex, not-circle, sign, monotone, limit, roots or appendix";
+    "exact, proportional, numeric, gradient, convex, not-circle, sign, monotone, limit or roots";
 
 impl Loader {
     /// The strategy of a claim; `defs` are the claim's visible definitions.
@@ -166,22 +165,6 @@ impl Loader {
                     sampling: self.sampling(c, decls, &sigs)?,
                     function,
                     wrt,
-                }
-            }
-            "appendix" => {
-                let step = need(&c.step, "step")?;
-                let Some(kind) = AppendixStep::parse(step.get_ref()) else {
-                    let names: Vec<&str> = AppendixStep::ALL.iter().map(|(_, n)| *n).collect();
-                    return Err(self
-                        .diag(
-                            step.span(),
-                            format!("unknown appendix step `{}`", step.get_ref()),
-                        )
-                        .with_help(format!("step is one of {}", names.join(", "))));
-                };
-                Strategy::Appendix {
-                    step: kind,
-                    origin: self.origin(&step),
                 }
             }
             "sign" | "monotone" | "limit" | "roots" => {

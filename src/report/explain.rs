@@ -138,13 +138,6 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
         Strategy::NotCircle { x, y } => {
             let _ = writeln!(out, "Locus: x = {}, y = {}", x.text, y.text);
         }
-        Strategy::Appendix { step, .. } => {
-            let _ = writeln!(
-                out,
-                "Appendix step `{}`: derived with exact rational functions (src/model), cross-checked in f64",
-                step.name()
-            );
-        }
     }
     let _ = writeln!(
         out,

@@ -140,7 +140,6 @@ pub fn finding(f: &Finding) -> String {
         Finding::ConvexAgrees { variables } => {
             format!("Hessian in {variables} variables positive semidefinite at every sample")
         }
-        Finding::Appendix { text } => text.clone(),
         Finding::RationalFunction(e) => rational_evidence(e),
     }
 }

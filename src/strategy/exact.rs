@@ -10,7 +10,7 @@ use super::finding::{Expansion, Finding, Record};
 use super::proportional::{self, Reference};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::{Check, Strategy};
-use crate::kernel::certificate::{Certificate, Difference, Identities};
+use crate::kernel::certificate::{Difference, Identities};
 use crate::kernel::sign::{inner_point, End, Interval};
 use crate::kernel::{assignments, residue, Poly, PolyError, Quotient, Rational, Var, VarTable};
 use crate::lang::check::letters;
@@ -311,14 +311,9 @@ fn decide_recording(
     }
     let (checks, used_unit) = (identities.components(), identities.used_unit_normal());
     Ok(match identities.certify(&env.vars) {
+        // The square roots the sides took are part of the proof.
         Some(certificate) => {
-            // The square roots the sides took are part of the proof.
-            let roots = env.root_certificates().iter().cloned();
-            Outcome::proved(
-                Method::Exact,
-                checks,
-                roots.fold(certificate, Certificate::and),
-            )
+            Outcome::proved(Method::Exact, checks, certificate).resting_on(env.root_certificates())
         }
         None => Outcome::undecided(Method::Exact, checks).with_finding(Finding::NothingCompared),
     }

@@ -106,9 +106,6 @@ pub enum Finding {
     NegativeEigenvalue { curvature: f64 },
     /// The Hessian is positive semidefinite at every sample.
     ConvexAgrees { variables: usize },
-    /// A step of Appendix A in words, as `src/model` derives it (until the Appendix
-    /// is written as derivation files).
-    Appendix { text: String },
 }
 
 /// Why a sampled state could not be judged.

@@ -284,18 +284,22 @@ impl Ring for Jets<'_, '_, '_> {
         })
     }
 
-    /// (√x)' = x'/(2√x), where the exact route takes √x (a certified root).
+    /// (√x)' = x'/(2√x), where the exact route takes √x (a certified root). A radicand
+    /// that is 0 at the state is refused even when its first partials vanish there:
+    /// √((σ_12 − σ_21)²) = |σ_12 − σ_21| has no derivative at σ_12 = σ_21, and a jet
+    /// cannot tell that from √(σ_12⁴) (nor a zero skipped as exact from one that is
+    /// not), so no value is better than a wrong one.
     fn apply(&mut self, f: Func, x: Jet, node: &Node) -> Result<Jet, Failure> {
         let value = self.base.apply(f, x.value.clone(), node)?;
-        if x.is_constant() {
-            return Ok(Jet::constant(value));
-        }
         if value.is_zero() {
             return Err(self.base.error(
                 node,
                 "sqrt(…) is not differentiable here: its radicand is 0 at the state",
                 "differentiate where the radicand is positive",
             ));
+        }
+        if x.is_constant() {
+            return Ok(Jet::constant(value));
         }
         let twice = self.base.add(value.clone(), value.clone())?;
         let half_inverse = self

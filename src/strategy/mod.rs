@@ -3,7 +3,6 @@
 //! certificate). `Outcome` lives in its own module so that no strategy can reach its
 //! private fields: a proved `holds` is made only from a certificate.
 
-pub mod appendix;
 pub mod assume;
 pub mod eval;
 pub mod exact;
@@ -12,6 +11,7 @@ pub mod float;
 mod jets;
 pub mod numeric;
 mod outcome;
+pub mod probe;
 mod proportional;
 pub mod quadrature;
 pub mod real;
@@ -85,7 +85,6 @@ fn decide_keeping(
         Strategy::Exact { .. } | Strategy::Proportional { .. } => Method::Exact,
         Strategy::NotCircle { .. } => Method::Witness,
         Strategy::Scalar { .. } => Method::RationalFunction,
-        Strategy::Appendix { .. } => Method::Symbolic,
     };
     if method != Method::Exact && check.reads().differentiates {
         return Ok(
@@ -99,7 +98,6 @@ fn decide_keeping(
         Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),
         Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
         Strategy::Scalar { .. } => scalar::decide(decls, check),
-        Strategy::Appendix { step, origin } => appendix::decide(*step, origin),
     };
     // A decision stopped by the time limit (`watch::check`) is undecided, whatever
     // error the stop surfaced as; one that finished in time stands.

@@ -37,8 +37,6 @@ pub enum Method {
     RationalFunction,
     /// An exact witness of an existential statement.
     Witness,
-    /// Exact rational functions (Appendix A), with a floating-point second route.
-    Symbolic,
 }
 
 /// How strong a verdict's evidence is: a proof by exact computation, or no violation
@@ -59,7 +57,6 @@ impl Method {
             Method::Gradient => "gradient",
             Method::Convex => "convex",
             Method::Witness => "witness",
-            Method::Symbolic => "symbolic",
             Method::RationalFunction => "rational-function",
         }
     }
@@ -172,6 +169,15 @@ impl Outcome {
         let mut o = Outcome::new(Verdict::Holds, Strength::Proof, method, checks);
         o.certificate = Some(certificate);
         o
+    }
+
+    /// A proof that also rests on `premises` (the certified square roots the
+    /// expressions took): they join its certificate. Without a certificate, unchanged.
+    pub fn resting_on(mut self, premises: &[Certificate]) -> Self {
+        if let Some(c) = self.certificate.take() {
+            self.certificate = Some(premises.iter().cloned().fold(c, Certificate::and));
+        }
+        self
     }
 
     /// `holds` on sampled evidence: no violation among the samples and the search.

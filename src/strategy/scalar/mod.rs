@@ -21,7 +21,8 @@ use super::eval::ExactEnv;
 use super::finding::RationalEvidence;
 use super::{Method, Outcome};
 use crate::derivation::{Check, Expression, ParamBox, ScalarClaim, Strategy};
-use crate::kernel::sign::Interval;
+use crate::kernel::certificate::Certificate;
+use crate::kernel::sign::{Interval, Sign};
 use crate::kernel::{Poly, Quotient, RatFunc, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use num_traits::One;
@@ -51,7 +52,9 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     else {
         unreachable!("dispatched on the strategy")
     };
-    let env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
+    let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
+    // Square roots take their sign on the claim's box.
+    env.set_domain(domain);
     let mut cx = Context {
         env,
         decls,
@@ -80,7 +83,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
         } => roots::decide(&mut cx, function, variable, roots),
     };
     match decided {
-        Ok(o) => Ok(o),
+        Ok(o) => Ok(o.resting_on(cx.env.root_certificates())),
         Err(Stop::Outcome(o)) => Ok(*o),
         Err(Stop::Input(d)) => Err(d),
     }
@@ -171,9 +174,25 @@ impl Context<'_> {
                     .with_help("average over the normal first, or use strategy = \"numeric\""),
             ));
         }
+        // A divisor of one sign on the whole box never makes the expression undefined
+        // there; dropping it keeps a function of one parameter univariate when a
+        // square root divided by another (bounded) parameter.
+        let names = &self.env.vars;
+        let conditions = quotient
+            .conditions()
+            .iter()
+            .filter(|c| {
+                let f = RatFunc::from_poly(c);
+                let on = self.box_on(&c.variables());
+                ![Sign::Positive, Sign::Negative]
+                    .into_iter()
+                    .any(|s| Certificate::sign_by_coefficients(&f, &on, s, names).is_some())
+            })
+            .cloned()
+            .collect();
         Ok(Exact {
             f: Quotient::to_ratfunc(&quotient),
-            conditions: quotient.conditions().to_vec(),
+            conditions,
         })
     }
 
@@ -198,7 +217,7 @@ impl Context<'_> {
 
     /// A point as the reports show it.
     fn shown(&self, point: &BTreeMap<Var, Rational>) -> BTreeMap<String, String> {
-        point
+        self.complete(point)
             .iter()
             .map(|(&v, x)| (self.name(v), readable(x)))
             .collect()
@@ -218,7 +237,24 @@ impl Context<'_> {
 
     /// `e` by the floating-point interpreter at `point`.
     fn interpret(&self, e: &Expression, point: &BTreeMap<Var, Rational>) -> Result<f64, String> {
-        super::reverify::interpret_scalar(self.decls, self.check, &self.env, point, &e.node)
+        let point = self.complete(point);
+        super::reverify::interpret_scalar(self.decls, self.check, &self.env, &point, &e.node)
+    }
+
+    /// `point` with every parameter of the box that it leaves out set inside the box:
+    /// a parameter the function does not read can still decide the sign of a square
+    /// root on the way (σ in √(f_r² σ²)), so the interpreter that confirms the point,
+    /// and the reader, must take it from the box.
+    fn complete(&self, point: &BTreeMap<Var, Rational>) -> BTreeMap<Var, Rational> {
+        let mut point = point.clone();
+        for (name, i) in &self.domain.bounds {
+            if let Some(v) = self.env.vars.lookup(name) {
+                point
+                    .entry(v)
+                    .or_insert_with(|| crate::kernel::sign::inner_point(i));
+            }
+        }
+        point
     }
 }
 

@@ -62,6 +62,12 @@ pub(super) fn decide(
         .iter()
         .map(|z| format!("root at {name} = {z}"))
         .collect();
+    if zeros.is_empty() {
+        evidence.points.push(format!(
+            "no real root (Sturm isolation on {})",
+            i.describe(&name)
+        ));
+    }
     // A stated value that is no root, with its exact value.
     for r in &stated {
         if zeros.contains(&Real::Exact(r.clone())) {

@@ -200,7 +200,15 @@ fn counterexample(
         difference: (&lv - &rv).to_string(),
         ..Counterexample::default()
     };
-    match reverify::exact_counterexample(cx.decls, cx.check, &cx.env, point, (&lv, &rv), &found) {
+    let completed = cx.complete(point);
+    match reverify::exact_counterexample(
+        cx.decls,
+        cx.check,
+        &cx.env,
+        &completed,
+        (&lv, &rv),
+        &found,
+    ) {
         Ok(how) => {
             found.reverified = Some(how);
             Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(found)
