@@ -12,9 +12,9 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// Checks the derivations of Papanicolopoulos & Veveakis, "Sliding and rolling
-/// dissipation in Cosserat plasticity", equation by equation, and prints the
-/// derivation table. Without a subcommand it runs `check` on the paper.
+/// Decides every claim of a set of derivation files, equation by equation, and prints
+/// the derivation table. Without a subcommand it runs `check` on the corpus in
+/// ./derivations (the paper whose files ship with the crate).
 #[derive(Debug, Parser)]
 #[command(name = "cosserat-check", version, about, long_about = None)]
 #[command(
@@ -40,15 +40,39 @@ pub enum Command {
     Explain(ExplainArgs),
     /// Check your own derivation files (same format, table and exit codes).
     Verify(VerifyArgs),
-    /// Fig. 6: d_B/R_g against f_r = 0.05, 0.10, …, 3.00, from (54) as printed and
-    /// from the A² derived by following Appendix A as printed (h^C = 1/2, h_2 = 0,
-    /// ν = 0, 0.25, 0.45; empty cells where A is not real).
-    Fig6(Fig6Args),
+    /// Plot scalar expressions of a derivation file against one parameter: a figure
+    /// table of the file (--figure), or curves given here (--y, --x, --set).
+    Plot(PlotArgs),
 }
 
 #[derive(Debug, Clone, clap::Args)]
-pub struct Fig6Args {
-    /// Output format: the table of values or the plot.
+pub struct PlotArgs {
+    /// The derivation file whose definitions, declarations and assumptions the curves use.
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// A `[[figure]]` table of the file, by id (an unknown id lists the file's figures).
+    #[arg(long, value_name = "ID", conflicts_with_all = ["y", "x", "set", "given"])]
+    pub figure: Option<String>,
+    /// The curves: scalar expressions in the file's notation, separated by commas
+    /// (outside brackets) or given by repeating --y.
+    #[arg(long, value_name = "EXPR[,EXPR…]", required_unless_present = "figure")]
+    pub y: Vec<String>,
+    /// The parameter and its range: a declared scalar, NAME=FROM..TO[:STEP]
+    /// (decimals or fractions; 100 steps when STEP is left out; at most 10,000 points).
+    #[arg(
+        long,
+        value_name = "NAME=FROM..TO[:STEP]",
+        required_unless_present = "figure"
+    )]
+    pub x: Option<String>,
+    /// Fix a parameter for every curve, as an assumption NAME = VALUE (repeatable).
+    #[arg(long, value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// A bound on which square roots take their sign, as a claim's `given`
+    /// (e.g. 'sig < 0'; repeatable).
+    #[arg(long, value_name = "BOUND")]
+    pub given: Vec<String>,
+    /// Output format: the table of values or the picture.
     #[arg(long, value_enum, default_value_t = FigureFormat::Csv)]
     pub format: FigureFormat,
     /// Write to FILE instead of standard output.
@@ -58,10 +82,12 @@ pub struct Fig6Args {
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum FigureFormat {
-    /// Columns f_r, paper, nu=0, nu=0.25, nu=0.45 (12 significant digits).
+    /// The parameter, then one column per curve (12 significant digits; empty cells
+    /// where a curve is undefined).
     #[default]
     Csv,
-    /// The four curves with axis labels and a legend.
+    /// An SVG 85 mm wide (one journal column): the y range or a log axis from the data,
+    /// a colour-blind-safe palette with one dash pattern per curve, labels as mathematics.
     Svg,
 }
 
@@ -511,22 +537,7 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
         Command::Check(a) => table(read(a.dir, &[])?, &a.output, false, out),
         Command::Errata(a) => table(read(a.dir, &[])?, &a.output, true, out),
         Command::Verify(a) => table(read(None, &a.files)?, &a.output, false, out),
-        Command::Fig6(a) => {
-            let p = crate::model::Params::new();
-            let derivation =
-                crate::model::shear_band::derive(&p, crate::model::tangent::ShearSign::Positive)
-                    .map_err(|e| {
-                        RunError::Input(format!("error: the Appendix derivation failed: {e}"))
-                    })?;
-            let rows = crate::model::fig6::rows(&p, &derivation);
-            let text = match a.format {
-                FigureFormat::Csv => crate::model::fig6::csv(&rows),
-                FigureFormat::Svg => crate::model::fig6::svg(&rows)
-                    .map_err(|e| RunError::Input(format!("error: {e}")))?,
-            };
-            emit(&text, &a.out, &[], out.stream)?;
-            Ok(Status::AsExpected)
-        }
+        Command::Plot(a) => plot(&a, out),
         Command::Explain(a) => {
             let files = read(a.dir, &a.files)?;
             let run = Run {
@@ -542,6 +553,106 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             })
         }
     }
+}
+
+/// The figure `plot` draws: the file's table, or one made of the command line's curves.
+fn figure_of(a: &PlotArgs) -> Result<crate::derivation::Figure, RunError> {
+    let path = a.file.display().to_string();
+    if let Some(id) = &a.figure {
+        let file = load_files(std::slice::from_ref(&a.file))?.remove(0);
+        let ids: Vec<String> = file.figures.iter().map(|f| f.id.clone()).collect();
+        return file
+            .figures
+            .into_iter()
+            .find(|f| f.id == *id)
+            .ok_or_else(|| {
+                RunError::Input(format!(
+                    "error: {path} has no figure `{id}` (its figures: {})",
+                    if ids.is_empty() {
+                        "none".to_owned()
+                    } else {
+                        ids.join(", ")
+                    }
+                ))
+            });
+    }
+    let text = std::fs::read_to_string(&a.file)
+        .map_err(|e| RunError::Input(format!("error: cannot read {path}: {e}")))?;
+    let quoted = |s: &str| toml::Value::String(s.trim().to_owned()).to_string();
+    let list = |items: &[String]| {
+        let items: Vec<String> = items.iter().map(|s| quoted(s)).collect();
+        format!("[{}]", items.join(", "))
+    };
+    let curves: Vec<String> =
+        a.y.iter()
+            .flat_map(|y| split_top_level(y))
+            .map(|y| {
+                format!(
+                    "{{ y = {}, label = {} }}",
+                    quoted(&y),
+                    quoted(&format!("${}$", y.trim()))
+                )
+            })
+            .collect();
+    let sets: Vec<String> = a.set.iter().map(|s| s.replacen('=', " = ", 1)).collect();
+    let table = format!(
+        "\n\n# From the command line of `cosserat-check plot`:\n[[figure]]\nid = \"command-line\"\ntitle = {}\nx = {}\nset = {}\ngiven = {}\ncurves = [{}]\n",
+        quoted(&path),
+        quoted(a.x.as_deref().unwrap_or_default()),
+        list(&sets),
+        list(&a.given),
+        curves.join(", ")
+    );
+    let label = format!("{path} with the command line");
+    let mut file = crate::derivation::load_str(&label, &format!("{text}{table}"))?;
+    Ok(file
+        .figures
+        .pop()
+        .expect("the command line's figure is read"))
+}
+
+/// `EXPR,EXPR`: split at the commas outside brackets.
+fn split_top_level(s: &str) -> Vec<String> {
+    let (mut out, mut depth, mut current) = (Vec::new(), 0i32, String::new());
+    for c in s.chars() {
+        match c {
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' => depth -= 1,
+            ',' if depth == 0 => {
+                out.push(std::mem::take(&mut current));
+                continue;
+            }
+            _ => {}
+        }
+        current.push(c);
+    }
+    out.push(current);
+    out.into_iter().filter(|y| !y.trim().is_empty()).collect()
+}
+
+fn plot(a: &PlotArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
+    let figure = figure_of(a)?;
+    let mut columns = Vec::with_capacity(figure.curves.len());
+    for curve in &figure.curves {
+        let (values, gap) = crate::strategy::probe::curve_values(curve, &figure.x)
+            .map_err(|e| RunError::Input(format!("error: {e}")))?;
+        if let Some(why) = gap {
+            let missing = values.iter().filter(|v| v.is_none()).count();
+            eprintln!(
+                "note: `{}` is undefined at {missing} of {} points (first: {why}); left out of the curve",
+                report::plot::plain(&curve.label),
+                values.len()
+            );
+        }
+        columns.push(values);
+    }
+    let text = match a.format {
+        FigureFormat::Csv => report::plot::csv(&figure, &columns),
+        FigureFormat::Svg => report::plot::svg(&figure, &columns),
+    };
+    let input = a.file.display().to_string();
+    emit(&text, &a.out, &[input.as_str()], out.stream)?;
+    Ok(Status::AsExpected)
 }
 
 #[cfg(test)]

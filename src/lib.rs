@@ -10,7 +10,6 @@ pub mod derivation;
 pub mod digits;
 pub mod kernel;
 pub mod lang;
-pub mod model;
 pub mod mutate;
 pub mod report;
 pub mod strategy;

@@ -3,12 +3,13 @@
 //! num-dual gradients of a separately written F₂, nalgebra matrices, an LU solve, a
 //! bisection for the critical hardening — against the file's exact derivation.
 
+#[path = "appendix/route.rs"]
+mod route;
+
+use cosserat_check::derivation::load_files;
 use cosserat_check::kernel::{gcd, Poly, RatFunc, Rational, VarTable};
-use cosserat_check::model::acoustic;
-use cosserat_check::model::shear_band::{self};
-use cosserat_check::model::tangent::{self, ShearSign};
-use cosserat_check::model::{fig6, Params, Point};
-use cosserat_check::strategy::probe::Probe;
+use cosserat_check::strategy::probe::{curve_values, Probe};
+use route::{Point, ShearSign};
 
 /// Largest relative disagreement allowed between the file's exact derivation evaluated
 /// in `f64` and the independent floating-point route.
@@ -169,7 +170,7 @@ fn exact_and_float_routes_agree_on_a_squared_and_critical_hardening() {
             };
             for (law, a, b) in [(&a2, 1.0, -1.0), (&a2c, 1.0, 1.0)] {
                 let exact = at(law, &material(&pt));
-                let float = shear_band::a_squared_f64(&pt, shear, a, b).unwrap();
+                let float = route::a_squared(&pt, shear, a, b).unwrap();
                 assert!(
                     (exact - float).abs() <= ROUTE_TOL * exact.abs().max(1.0),
                     "{exact} vs {float}"
@@ -180,8 +181,7 @@ fn exact_and_float_routes_agree_on_a_squared_and_critical_hardening() {
                 let mut values = material(&Point { h_2: 0.0, ..pt });
                 values.push(("v", (theta / 2.0).tan()));
                 let exact = at(&h2cr, &values);
-                let float =
-                    acoustic::critical_hardening_f64(&Point { h_2: 0.0, ..pt }, shear, theta);
+                let float = route::critical_hardening(&Point { h_2: 0.0, ..pt }, shear, theta);
                 assert!(
                     (exact - float).abs() <= ROUTE_TOL * exact.abs().max(1.0),
                     "θ = {theta}: {exact} vs {float}"
@@ -215,9 +215,9 @@ fn the_relaxed_state_agrees_with_the_float_route() {
             h_2: 0.0,
             r_g: 1.0,
         };
-        let grad = tangent::yield_gradient_dual(components, f_r, 1.0);
-        let d_ep = tangent::elastoplastic_f64_with(&pt, &grad);
-        let float = shear_band::a_squared_f64_from(&d_ep, &pt, 1.0, -1.0).unwrap();
+        let grad = route::yield_gradient_dual(components, f_r, 1.0);
+        let d_ep = route::elastoplastic_with(&pt, &grad);
+        let float = route::a_squared_from(&d_ep, &pt, 1.0, -1.0).unwrap();
         let exact = at(&relaxed, &[("f_r", f_r), ("u", u)]);
         assert!(
             (exact - float).abs() <= ROUTE_TOL * exact.abs().max(1.0),
@@ -267,8 +267,8 @@ fn gradient_residuals(mutate: &dyn Fn(&mut [f64; 6])) -> (f64, f64, usize) {
         for f_r in [0.05, 0.3, 0.5, 1.0, 2.0, 3.0] {
             for sigma in [-1.0, -2.5] {
                 for r_g in [1.0, 0.4] {
-                    let x = tangent::state_components(sigma, f_r, shear);
-                    let dual = tangent::yield_gradient_dual(x, f_r, r_g);
+                    let x = route::state_components(sigma, f_r, shear);
+                    let dual = route::yield_gradient_dual(x, f_r, r_g);
                     let mut closed: [f64; 6] = std::array::from_fn(|k| {
                         file[k].0.eval_f64(&|v| match file[k].1.name(v) {
                             "f_r" => f_r,
@@ -282,8 +282,8 @@ fn gradient_residuals(mutate: &dyn Fn(&mut [f64; 6])) -> (f64, f64, usize) {
                         let (mut xp, mut xm) = (x, x);
                         xp[k] += FD_STEP;
                         xm[k] -= FD_STEP;
-                        let fd = (tangent::rolling_yield(&xp, f_r, r_g)
-                            - tangent::rolling_yield(&xm, f_r, r_g))
+                        let fd = (route::rolling_yield(&xp, f_r, r_g)
+                            - route::rolling_yield(&xm, f_r, r_g))
                             / (2.0 * FD_STEP);
                         worst_fd = worst_fd.max((fd - dual[k]).abs());
                         n += 1;
@@ -365,43 +365,41 @@ fn gcd_of_random_products_recovers_the_common_factor() {
 }
 
 #[test]
-fn figure_columns_follow_the_two_routes() {
-    let p = Params::new();
-    let d = shear_band::derive(&p, ShearSign::Positive).expect("the Appendix derives");
-    let rows = fig6::rows(&p, &d);
-    assert_eq!(rows.len(), 60);
-    for r in &rows {
-        let paper_a2 = 16.0 * r.f_r.powi(2) * (1.0 + 2.0 * r.f_r.powi(2))
-            / (1.0 + 8.0 * r.f_r.powi(2) * (1.0 + 3.0 * r.f_r.powi(2)));
+fn the_figure_follows_the_float_route() {
+    // Fig. 6 as the file's figure table plots it: (54) exactly as printed, and the
+    // derived curves against the nalgebra route at ν = 0, 0.25, 0.45.
+    let file = load_files(&[FILE]).unwrap().remove(0);
+    let fig = file.figures.iter().find(|f| f.id == "fig6").expect("fig6");
+    assert_eq!(fig.x.values.len(), 60);
+    let columns: Vec<Vec<Option<f64>>> = fig
+        .curves
+        .iter()
+        .map(|c| curve_values(c, &fig.x).unwrap().0)
+        .collect();
+    for (k, x) in fig.x.values.iter().enumerate() {
+        let f_r = x.to_f64();
+        let paper_a2 = 16.0 * f_r.powi(2) * (1.0 + 2.0 * f_r.powi(2))
+            / (1.0 + 8.0 * f_r.powi(2) * (1.0 + 3.0 * f_r.powi(2)));
         let expected = std::f64::consts::PI / paper_a2.sqrt();
-        assert!((r.paper.unwrap() - expected).abs() <= 1e-12 * expected);
-        for (k, (nu, _)) in fig6::POISSON.iter().enumerate() {
-            let a2 = shear_band::a_squared_f64(
-                &Point::figure(r.f_r, *nu),
-                ShearSign::Positive,
-                1.0,
-                -1.0,
-            )
-            .unwrap();
+        assert!((columns[0][k].unwrap() - expected).abs() <= 1e-12 * expected);
+        for (c, nu) in [0.0, 0.25, 0.45].into_iter().enumerate() {
+            let pt = Point {
+                f_r,
+                k: 1.0 / (1.0 - 2.0 * nu),
+                g: 1.0,
+                h_c: 0.5,
+                h_2: 0.0,
+                r_g: 1.0,
+            };
+            let a2 = route::a_squared(&pt, ShearSign::Positive, 1.0, -1.0).unwrap();
             let expected = std::f64::consts::PI / a2.sqrt();
-            assert!((r.derived[k].unwrap() - expected).abs() <= 1e-9 * expected);
+            let got = columns[c + 1][k].unwrap();
+            assert!(
+                (got - expected).abs() <= 1e-9 * expected,
+                "{got} vs {expected}"
+            );
         }
     }
-    // Grid values as written; other values to 12 significant digits, no trailing zeros.
-    assert_eq!(fig6::decimal(0.05), "0.05");
-    assert_eq!(fig6::decimal(3.0), "3");
-    assert_eq!(fig6::decimal(1.25), "1.25");
-    assert_eq!(fig6::decimal(15.825916248913), "15.8259162489");
-    assert_eq!(fig6::decimal(66.12287614497), "66.122876145");
-    assert_eq!(fig6::decimal(0.0), "0");
-    let csv = fig6::csv(&rows);
-    let grid: Vec<&str> = csv
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').next().unwrap())
-        .collect();
-    assert_eq!(&grid[..4], ["0.05", "0.1", "0.15", "0.2"]);
-    assert_eq!(grid[59], "3");
 }
 
 #[test]
@@ -417,13 +415,13 @@ fn both_routes_find_the_band_at_135_degrees() {
         r_g: 1.0,
     };
     let h2cr = exact("h2cr", &["u = 1"]);
-    let by_file = acoustic::maximise_over_orientation(|theta| {
+    let by_file = route::maximise_over_orientation(|theta| {
         let mut values = material(&pt);
         values.push(("v", (theta / 2.0).tan()));
         at(&h2cr, &values)
     });
-    let by_nalgebra = acoustic::maximise_over_orientation(|theta| {
-        acoustic::critical_hardening_f64(&pt, ShearSign::Positive, theta)
+    let by_nalgebra = route::maximise_over_orientation(|theta| {
+        route::critical_hardening(&pt, ShearSign::Positive, theta)
     });
     for (theta, h) in [by_file, by_nalgebra] {
         assert!(

@@ -285,6 +285,12 @@ fn every_subcommand_has_complete_help() {
         ("errata", &["--format", "--out", "--dir"][..]),
         ("explain", &["<ID>", "--dir", "--file"][..]),
         (
+            "plot",
+            &[
+                "<FILE>", "--figure", "--y", "--x", "--set", "--given", "--format", "--out",
+            ][..],
+        ),
+        (
             "verify",
             &[
                 "<FILE>",
@@ -305,16 +311,19 @@ fn every_subcommand_has_complete_help() {
     }
 }
 
+const APPENDIX: &str = "derivations/A-3-shear-band.toml";
+
 #[test]
-fn fig6_writes_the_table_and_the_plot() {
-    let csv = run(&["fig6"]);
+fn plot_draws_the_paper_figure_as_a_table_and_a_picture() {
+    let csv = run(&["plot", APPENDIX, "--figure", "fig6"]);
     assert_eq!(csv.status.code(), Some(0), "{}", text(&csv.stderr));
     let table = text(&csv.stdout);
     let lines: Vec<&str> = table.lines().collect();
-    assert_eq!(lines[0], "f_r,paper,nu=0,nu=0.25,nu=0.45");
+    assert_eq!(
+        lines[0],
+        "f_r,(54) as printed,\"derived, ν = 0\",\"derived, ν = 0.25\",\"derived, ν = 0.45\""
+    );
     assert_eq!(lines.len(), 61, "60 grid points and a header");
-    assert!(lines[1].starts_with("0.05,"));
-    assert!(lines[60].starts_with("3,"));
     for (k, line) in lines[1..].iter().enumerate() {
         let cells: Vec<&str> = line.split(',').collect();
         assert_eq!(cells.len(), 5, "{line}");
@@ -326,43 +335,142 @@ fn fig6_writes_the_table_and_the_plot() {
             assert!(c.parse::<f64>().is_ok_and(|v| v > 0.0), "{c}");
         }
     }
-    // Deterministic: the same bytes twice.
-    assert_eq!(run(&["fig6"]).stdout, csv.stdout);
+    // (54) at f_r = 0.05 and the derived curve at ν = 0.45 there, as the float route
+    // gives them (tests/appendix.rs compares every point).
+    assert!(lines[1].starts_with("0.05,15.8259162489,"), "{}", lines[1]);
+    assert!(lines[1].ends_with(",66.122876145"), "{}", lines[1]);
+    assert_eq!(
+        run(&["plot", APPENDIX, "--figure", "fig6"]).stdout,
+        csv.stdout
+    );
 
-    let dir = std::env::temp_dir().join(format!("cosserat-check-fig6-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("cosserat-check-plot-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let svg_path = dir.join("fig6.svg");
-    let svg = run(&[
-        "fig6",
-        "--format",
-        "svg",
-        "--out",
-        svg_path.to_str().unwrap(),
-    ]);
+    let args = ["plot", APPENDIX, "--figure", "fig6", "--format", "svg"];
+    let svg = run(&[&args[..], &["--out", svg_path.to_str().unwrap()]].concat());
     assert_eq!(svg.status.code(), Some(0), "{}", text(&svg.stderr));
     assert!(svg.stdout.is_empty());
     let picture = std::fs::read_to_string(&svg_path).unwrap();
-    assert!(picture.starts_with("<svg"));
-    for label in [
-        "rolling resistance f_r",
-        "d_B / R_g",
-        "paper, eq. (54)",
-        "derived, nu = 0.25",
-        "derived, nu = 0.45",
+    assert!(picture.starts_with("<svg") && picture.contains("width=\"85mm\""));
+    // Labels as mathematics: italic letters, subscripts, ν.
+    assert!(picture.contains("<tspan font-style=\"italic\">d</tspan><tspan baseline-shift=\"sub\" font-size=\"75%\"><tspan font-style=\"italic\">B</tspan></tspan>"));
+    assert!(picture.contains("<tspan font-style=\"italic\">ν</tspan> = 0.45"));
+    // Each curve and its legend mark, in its own colour and dash pattern.
+    for (colour, dash) in [
+        ("#000000", ""),
+        ("#E69F00", " stroke-dasharray=\"6 3\""),
+        ("#0072B2", " stroke-dasharray=\"2 2\""),
+        ("#009E73", " stroke-dasharray=\"8 3 2 3\""),
     ] {
-        assert!(picture.contains(label), "the SVG lacks {label}");
-    }
-    // Each curve and its legend mark: a 2-pixel polyline in the curve's colour.
-    for colour in ["#000000", "#0000FF", "#00FF00", "#FF0000"] {
-        let marker = format!("stroke=\"{colour}\" stroke-width=\"2\"");
+        let marker = format!("stroke=\"{colour}\" stroke-width=\"1.2\"{dash}/>");
         assert_eq!(
             picture.matches(&marker).count(),
             2,
             "curve and legend in {colour}"
         );
     }
-    let again = run(&["fig6", "--format", "svg"]);
-    assert_eq!(again.stdout, picture.as_bytes());
+    // Coordinates are not rounded to whole units.
+    assert!(picture.contains(".") && picture.contains("points=\""));
+    assert_eq!(run(&args).stdout, picture.as_bytes());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn plot_takes_curves_from_the_command_line() {
+    let out = run(&[
+        "plot",
+        APPENDIX,
+        "--y",
+        "A2eq54, 1 / A2eq54",
+        "--x",
+        "f_r=1..2:0.5",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    // By hand: (54) at f_r = 1 is 48/33, at 3/2 it is 198/140.5, at 2 it is 576/417.
+    assert_eq!(
+        text(&out.stdout),
+        "f_r,A2eq54,1 / A2eq54\n1,1.45454545455,0.6875\n1.5,1.40925266904,0.709595959596\n2,1.38129496403,0.723958333333\n"
+    );
+}
+
+#[test]
+fn plot_refuses_bad_input_with_exit_2_and_writes_nothing() {
+    let dir = std::env::temp_dir().join(format!("cosserat-check-plot-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let target = dir.join("out.svg");
+    let t = target.to_str().unwrap();
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &["plot", APPENDIX, "--figure", "fig9", "--out", t],
+            "has no figure `fig9` (its figures: fig6)",
+        ),
+        (
+            &["plot", APPENDIX, "--y", "A2", "--x", "nu=0..1", "--out", t],
+            "`nu` is not a declared scalar",
+        ),
+        (
+            &["plot", APPENDIX, "--y", "A2", "--x", "f_r=2..1", "--out", t],
+            "the range is empty",
+        ),
+        (
+            &[
+                "plot", APPENDIX, "--y", "A2 +", "--x", "f_r=1..2", "--out", t,
+            ],
+            "with the command line:",
+        ),
+        // A2 reads K, G, h^C, h_2 and the state: nothing fixes them here.
+        (
+            &[
+                "plot", APPENDIX, "--y", "A2", "--x", "f_r=1..2", "--given", "sig < 0", "--out", t,
+            ],
+            "neither f_r nor fixed",
+        ),
+        (
+            &[
+                "plot",
+                "no-such-file.toml",
+                "--y",
+                "x",
+                "--x",
+                "x=0..1",
+                "--out",
+                t,
+            ],
+            "cannot read no-such-file.toml",
+        ),
+    ];
+    for (args, want) in cases {
+        let out = run(args);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            text(&out.stderr)
+        );
+        assert!(
+            text(&out.stderr).contains(want),
+            "{args:?}: {}",
+            text(&out.stderr)
+        );
+        assert!(!target.exists(), "{args:?} wrote its output");
+    }
+    // A point where a curve is undefined is left out, and said so.
+    let out = run(&[
+        "plot",
+        APPENDIX,
+        "--y",
+        "sqrt(f_r - 1)",
+        "--x",
+        "f_r=0..2:1",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert_eq!(text(&out.stdout), "f_r,sqrt(f_r - 1)\n0,\n1,0\n2,1\n");
+    assert!(
+        text(&out.stderr).contains("is undefined at 1 of 3 points"),
+        "{}",
+        text(&out.stderr)
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

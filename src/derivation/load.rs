@@ -2,12 +2,13 @@
 //! becomes a [`Diagnostic`] naming the file, line and column; nothing panics.
 
 use super::model::{
-    Assumption, AssumptionKind, Check, Claim, Correction, Definition, DerivationFile, ScalarClaim,
-    Side, Strategy, Verdict,
+    Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
+    Figure, Grid, ScalarClaim, Side, Strategy, Verdict,
 };
-use super::raw::{RawClaim, RawFile, S};
+use super::raw::{RawClaim, RawFigure, RawFile, S};
 use super::spans::{content_map, sub_origin};
 use crate::derivation::ParamBox;
+use crate::kernel::Rational;
 use crate::lang::check::{letters, RESERVED};
 use crate::lang::matrix::{shape_words, MatrixOp, MatrixRead};
 use crate::lang::parser::ExprKind;
@@ -261,6 +262,19 @@ impl Loader {
             ));
             claims.push(self.claim(c, &raw, &decls, &defs)?);
         }
+        let mut figures = Vec::new();
+        for f in &raw.figure {
+            if figures.iter().any(|g: &Figure| g.id == *f.id.get_ref()) {
+                return Err(self
+                    .diag(
+                        f.id.span(),
+                        format!("duplicate figure id `{}`", f.id.get_ref()),
+                    )
+                    .with_help("every figure id is unique; rename one of them")
+                    .into());
+            }
+            figures.push(self.figure(f, &raw, &decls, &defs)?);
+        }
         Ok((
             DerivationFile {
                 paper: self.paper(&raw),
@@ -268,9 +282,87 @@ impl Loader {
                 section: raw.section.get_ref().clone(),
                 title: raw.title.get_ref().clone(),
                 claims,
+                figures,
             },
             ids,
         ))
+    }
+
+    /// File-wide assumptions come first, then the check's own.
+    fn file_assumptions_first(
+        &self,
+        raw: &RawFile,
+        decls: &Decls,
+        check: &mut Check,
+    ) -> Result<(), Diagnostic> {
+        let mut assumptions = raw
+            .assume
+            .iter()
+            .map(|a| self.assumption(a, decls))
+            .collect::<Result<Vec<_>, _>>()?;
+        assumptions.append(&mut check.assumptions);
+        check.assumptions = assumptions;
+        Ok(())
+    }
+
+    /// A `[[figure]]`: each curve is read like the side of a claim, with the file's
+    /// assumptions, then the figure's `set`, then the curve's, and the figure's box.
+    fn figure(
+        &self,
+        f: &RawFigure,
+        raw: &RawFile,
+        decls: &Arc<Decls>,
+        defs: &[Definition],
+    ) -> Result<Figure, Diagnostic> {
+        let x = self.grid(&f.x, decls)?;
+        if f.curves.is_empty() {
+            return Err(self
+                .diag(f.id.span(), "a figure needs at least one curve")
+                .with_help("curves = [{ y = \"…\", label = \"…\" }]"));
+        }
+        let domain = self.param_box(&f.given, decls)?;
+        let mut curves = Vec::new();
+        for c in &f.curves {
+            let mut assume: Vec<S> = f.set.clone();
+            assume.extend(c.set.iter().cloned());
+            let sides = Some(vec![c.y.clone(), c.y.clone()]);
+            let mut check =
+                self.check(&f.id, decls, defs, &[], &assume, &sides, &None, false, true)?;
+            self.file_assumptions_first(raw, decls, &mut check)?;
+            check.strategy = Strategy::Exact {
+                domain: domain.clone(),
+            };
+            curves.push(Curve {
+                label: c.label.get_ref().clone(),
+                text: c.y.get_ref().clone(),
+                decls: decls.clone(),
+                check,
+            });
+        }
+        Ok(Figure {
+            id: f.id.get_ref().clone(),
+            title: f.title.get_ref().clone(),
+            x_label: f
+                .x_label
+                .as_ref()
+                .map_or_else(|| x.name.clone(), |l| l.get_ref().clone()),
+            y_label: f
+                .y_label
+                .as_ref()
+                .map_or_else(String::new, |l| l.get_ref().clone()),
+            x,
+            curves,
+        })
+    }
+
+    /// `"f_r = 0.05 .. 3 : 0.05"`: a declared scalar, decimal or rational bounds and
+    /// step (100 steps when none is given), at most 10,000 points.
+    fn grid(&self, s: &S, decls: &Decls) -> Result<Grid, Diagnostic> {
+        let bad = |why: &str| {
+            self.diag(s.span(), format!("cannot read `{}` as a range: {why}", s.get_ref()))
+                .with_help("write \"f_r = 0.05 .. 3 : 0.05\" (a declared scalar, from .. to, and an optional step)")
+        };
+        parse_grid(s.get_ref(), decls).map_err(|why| bad(&why))
     }
 
     /// `orders = { voigt = ["11", "22", "12", "21"] }`: each position a string of
@@ -997,14 +1089,7 @@ impl Loader {
         )?;
         check.strategy = self.strategy(c, decls, &check.defs)?;
         self.one_pair_if_needed(c, &check)?;
-        // File-wide assumptions come first, then the claim's own.
-        let mut assumptions = raw
-            .assume
-            .iter()
-            .map(|a| self.assumption(a, decls))
-            .collect::<Result<Vec<_>, _>>()?;
-        assumptions.append(&mut check.assumptions);
-        check.assumptions = assumptions;
+        self.file_assumptions_first(raw, decls, &mut check)?;
         let correction = match &c.correction {
             None => None,
             Some(r) => {
@@ -1204,4 +1289,65 @@ fn entrywise(
         }
     }
     Ok(out)
+}
+
+/// The most points a figure's range may have.
+const MAX_POINTS: usize = 10_000;
+
+/// Reads `NAME = FROM .. TO [: STEP]` (also the `--x` of `plot`, without spaces).
+pub fn parse_grid(text: &str, decls: &Decls) -> Result<Grid, String> {
+    let (name, range) = text
+        .split_once('=')
+        .ok_or("no `=` between the parameter and its range")?;
+    let name = name.trim();
+    if decls.symbols.get(name).is_none_or(|&rank| rank != 0) {
+        return Err(format!("`{name}` is not a declared scalar"));
+    }
+    let (bounds, step) = match range.split_once(':') {
+        Some((b, st)) => (b, Some(st.trim())),
+        None => (range, None),
+    };
+    let (from, to) = bounds
+        .split_once("..")
+        .ok_or("no `..` between the bounds")?;
+    let number = |t: &str| {
+        let t = t.trim();
+        let (n, d) = t.split_once('/').unwrap_or((t, "1"));
+        let (n, d) = (n.trim(), d.trim());
+        let minus = n.strip_prefix('-');
+        let n = Rational::parse_decimal(minus.unwrap_or(n));
+        let n = if minus.is_some() { n.map(|x| -x) } else { n };
+        n.zip(Rational::parse_decimal(d))
+            .and_then(|(n, d)| n.checked_div(&d))
+            .ok_or(format!("`{t}` is not a number"))
+    };
+    let (from, to) = (number(from)?, number(to)?);
+    if to <= from {
+        return Err("the range is empty (`to` must exceed `from`)".into());
+    }
+    let span = &to - &from;
+    let step = match step {
+        Some(st) => number(st)?,
+        None => span
+            .checked_div(&Rational::int(100))
+            .expect("100 is not zero"),
+    };
+    if step.is_negative() || step.is_zero() {
+        return Err("the step must be positive".into());
+    }
+    let steps = span
+        .checked_div(&step)
+        .expect("the step is not zero")
+        .floor();
+    if steps >= Rational::int(MAX_POINTS as i64) {
+        return Err(format!("more than {MAX_POINTS} points"));
+    }
+    let count = steps.to_f64() as usize;
+    let values = (0..=count)
+        .map(|k| &from + &(&step * &Rational::int(k as i64)))
+        .collect();
+    Ok(Grid {
+        name: name.to_owned(),
+        values,
+    })
 }

@@ -12,10 +12,10 @@ mod scalar;
 mod spans;
 mod spec;
 
-pub use load::{load_dir, load_files, load_str, LoadError};
+pub use load::{load_dir, load_files, load_str, parse_grid, LoadError};
 pub use model::{
-    Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Definition, DerivationFile,
-    Expression, GradientConvention, LimitValue, ParamBox, Relation, Sampling, ScalarClaim, Side,
-    Strategy, Verdict,
+    Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Curve, Definition,
+    DerivationFile, Expression, Figure, GradientConvention, Grid, LimitValue, ParamBox, Relation,
+    Sampling, ScalarClaim, Side, Strategy, Verdict,
 };
 pub use reads::Reads;

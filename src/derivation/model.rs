@@ -514,4 +514,34 @@ pub struct DerivationFile {
     pub section: String,
     pub title: String,
     pub claims: Vec<Claim>,
+    /// The `[[figure]]` tables, for `plot`.
+    pub figures: Vec<Figure>,
+}
+
+/// A figure of a derivation file: curves of scalar expressions against one parameter.
+#[derive(Clone, Debug)]
+pub struct Figure {
+    pub id: String,
+    pub title: String,
+    pub x: Grid,
+    pub x_label: String,
+    pub y_label: String,
+    pub curves: Vec<Curve>,
+}
+
+/// The parameter of a figure and its values: `from + k·step` up to `to`, exactly.
+#[derive(Clone, Debug)]
+pub struct Grid {
+    pub name: String,
+    pub values: Vec<crate::kernel::Rational>,
+}
+
+/// One curve: its expression, read as the side of a claim with the figure's and the
+/// curve's assumptions and the figure's box.
+#[derive(Clone, Debug)]
+pub struct Curve {
+    pub label: String,
+    pub text: String,
+    pub decls: Arc<Decls>,
+    pub check: Check,
 }

@@ -37,6 +37,38 @@ pub struct RawFile {
     pub define: Vec<S>,
     #[serde(default)]
     pub claim: Vec<RawClaim>,
+    #[serde(default)]
+    pub figure: Vec<RawFigure>,
+}
+
+/// `[[figure]]`: curves of scalar expressions against one parameter (`plot`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFigure {
+    pub id: S,
+    pub title: S,
+    /// `"f_r = 0.05 .. 3 : 0.05"`: the parameter, its range and step.
+    pub x: S,
+    /// Axis labels as mathematics (`d_B/R_g`); the parameter's name and "value" without.
+    pub x_label: Option<S>,
+    pub y_label: Option<S>,
+    /// Assumptions for every curve (`"u = 1"`), after the file's own.
+    #[serde(default)]
+    pub set: Vec<S>,
+    /// The box on which square roots take their sign, as a claim's `given`.
+    #[serde(default)]
+    pub given: Vec<S>,
+    pub curves: Vec<RawCurve>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCurve {
+    pub y: S,
+    pub label: S,
+    /// Assumptions for this curve alone (`"K = 2"`).
+    #[serde(default)]
+    pub set: Vec<S>,
 }
 
 #[derive(Deserialize)]

@@ -1,14 +1,14 @@
 //! Exact division and greatest common divisors of multivariate polynomials over ℚ.
 //!
-//! The Appendix's elastoplastic tangent and its A² are rational functions of the
-//! material parameters; keeping them reduced (so that two equal functions print and
+//! An elastoplastic tangent, an acoustic determinant or a shear band's A² are rational
+//! functions of the material parameters; keeping them reduced (so that two equal functions print and
 //! compare identically) needs the gcd of numerator and denominator. The method is the
 //! textbook recursive one (Knuth, TAOCP vol. 2, §4.6.1; Geddes, Czapor & Labahn,
 //! ch. 7): view a polynomial as univariate in its largest variable with coefficients
 //! in the others, split off the content, run the primitive pseudo-remainder sequence,
 //! and recurse on the contents. It is not the fastest gcd (no modular or sparse
 //! interpolation), but every step is exact and small enough to audit, and the
-//! polynomials of the Appendix have a handful of variables and low degree.
+//! polynomials of such derivations have a handful of variables and low degree.
 //!
 //! Only ordinary polynomials (no negative exponents) are accepted: a Laurent
 //! polynomial is first cleared by [`clear_denominator_monomial`].

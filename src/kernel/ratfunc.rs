@@ -4,8 +4,9 @@
 //! coefficients, positive leading term). Two equal rational functions therefore have
 //! identical representations, so equality is structural, exactly as for [`Poly`].
 //!
-//! The Appendix (eqs. 55–62) is computed in this type: D^(el), the gradients of F₂ at
-//! the state of incipient failure, the elastoplastic tangent and A².
+//! Claims about parameters are decided in this type: signs, monotonicity, limits and
+//! roots of a rational function (`strategy::scalar`), and the exact values of
+//! definitions such as an elastoplastic tangent or a shear band's A².
 
 use super::gcd::{self, clear_denominator_monomial};
 use super::poly::{Poly, Var, VarTable};

@@ -8,6 +8,7 @@ pub mod explain;
 pub mod json;
 pub mod latex;
 pub mod markdown;
+pub mod plot;
 pub mod words;
 
 use crate::strategy::{Counterexample, Decided, Outcome};

@@ -7,7 +7,7 @@
 //! on the same box (`given`), the same arithmetic.
 
 use super::eval::ExactEnv;
-use crate::derivation::{load_str, Check, DerivationFile, LoadError};
+use crate::derivation::{load_str, Check, Curve, DerivationFile, Grid, LoadError};
 use crate::kernel::{Quotient, RatFunc, Rational, Var, VarTable};
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
@@ -104,4 +104,44 @@ impl Probe {
         }
         super::reverify::interpret_scalar(&self.decls, &self.check, &env, &point, node)
     }
+}
+
+/// A curve's values on its grid: `None` where the curve is undefined (a square root of
+/// a negative number, a pole), with the first reason. An error when a value depends on
+/// a parameter that is neither the grid's nor fixed by an assumption.
+pub fn curve_values(
+    curve: &Curve,
+    grid: &Grid,
+) -> Result<(Vec<Option<f64>>, Option<String>), String> {
+    let mut env = ExactEnv::new(&curve.decls, &curve.check.defs, &curve.check.assumptions)
+        .map_err(|d| d.to_string())?;
+    if let Some(domain) = curve.check.strategy.exact_domain() {
+        env.set_domain(domain);
+    }
+    let side = &curve.check.chains[0][0];
+    let node = side.node.as_ref().map_err(|e| e.message.clone())?;
+    let x = env.vars.intern(&grid.name);
+    let mut first_gap = None;
+    let mut values = Vec::with_capacity(grid.values.len());
+    for value in &grid.values {
+        let point = BTreeMap::from([(x, value.clone())]);
+        match super::reverify::interpret_scalar_strict(&curve.decls, &curve.check, &env, &point, node)
+        {
+            Ok(y) if y.is_finite() => values.push(Some(y)),
+            Ok(_) => {
+                return Err(format!(
+                    "`{}` is not a number at {} = {}: it reads a parameter that is neither {} nor fixed; give it with --set NAME=VALUE",
+                    curve.text,
+                    grid.name,
+                    value,
+                    grid.name
+                ))
+            }
+            Err(why) => {
+                first_gap.get_or_insert_with(|| format!("{} = {value}: {why}", grid.name));
+                values.push(None);
+            }
+        }
+    }
+    Ok((values, first_gap))
 }

@@ -119,16 +119,37 @@ pub(super) fn interpret_scalar(
 ) -> Result<f64, String> {
     let mut last = String::new();
     for absent in [0.0, 1.0, 0.577_215_664_901_532_9] {
-        let value = interpreter_at(decls, check, env, point, absent).and_then(|(real, n)| {
-            let (_, v) = real.eval(node, &n).map_err(|e| e.message)?;
-            v.into_scalar().ok_or_else(|| "not a scalar".to_owned())
-        });
-        match value {
+        match interpret_with(decls, check, env, point, node, absent) {
             Ok(v) => return Ok(v),
             Err(why) => last = why,
         }
     }
     Err(last)
+}
+
+/// [`interpret_scalar`] with every variable the point leaves out set to NaN, so that a
+/// value that depends on one is NaN rather than a guess.
+pub(super) fn interpret_scalar_strict(
+    decls: &Decls,
+    check: &Check,
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+    node: &crate::lang::Node,
+) -> Result<f64, String> {
+    interpret_with(decls, check, env, point, node, f64::NAN)
+}
+
+fn interpret_with(
+    decls: &Decls,
+    check: &Check,
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+    node: &crate::lang::Node,
+    absent: f64,
+) -> Result<f64, String> {
+    let (real, n) = interpreter_at(decls, check, env, point, absent)?;
+    let (_, v) = real.eval(node, &n).map_err(|e| e.message)?;
+    v.into_scalar().ok_or_else(|| "not a scalar".to_owned())
 }
 
 /// The interpreter's environment at `point`, the variables it leaves out set to
