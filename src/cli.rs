@@ -137,7 +137,7 @@ pub struct CheckArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Directory of derivation files (*.toml, read in name order). Defaults to
-    /// ./derivations, or the one shipped with the crate when there is none here.
+    /// ./derivations, or the paper's files embedded in the binary when there is none here.
     #[arg(long, value_name = "DIR")]
     pub dir: Option<PathBuf>,
 }
@@ -199,15 +199,6 @@ pub enum RunError {
 impl From<LoadError> for RunError {
     fn from(e: LoadError) -> Self {
         RunError::Input(e.to_string())
-    }
-}
-
-fn default_dir() -> PathBuf {
-    let here = PathBuf::from("derivations");
-    if here.is_dir() {
-        here
-    } else {
-        PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/derivations"))
     }
 }
 
@@ -401,7 +392,13 @@ fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: O
 
 fn read(dir: Option<PathBuf>, files: &[PathBuf]) -> Result<Vec<DerivationFile>, RunError> {
     Ok(if files.is_empty() {
-        load_dir(&dir.unwrap_or_else(default_dir))?
+        match dir {
+            Some(d) => load_dir(&d)?,
+            // ./derivations when there is one (an edited file is checked as edited),
+            // else the paper's files embedded in the binary.
+            None if Path::new("derivations").is_dir() => load_dir(Path::new("derivations"))?,
+            None => crate::corpus::load()?,
+        }
     } else {
         load_files(files)?
     })

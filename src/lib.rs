@@ -6,6 +6,7 @@
 //! with its evidence. Data flows one way: file → parse/validate → decide → report.
 
 pub mod cli;
+pub mod corpus;
 pub mod derivation;
 pub mod digits;
 pub mod kernel;

@@ -83,10 +83,26 @@ pub fn load_dir(dir: &Path) -> Result<Vec<DerivationFile>, LoadError> {
 
 /// Reads the given files in order, checking that claim ids are unique across them.
 pub fn load_files(paths: &[impl AsRef<Path>]) -> Result<Vec<DerivationFile>, LoadError> {
+    unique_ids(paths.iter().map(|p| load_file_with_ids(p.as_ref())))
+}
+
+/// Derivation files given as (label, text) pairs — the corpus embedded in the binary —
+/// in order, with claim ids unique across them.
+pub fn load_texts(sources: &[(&str, &str)]) -> Result<Vec<DerivationFile>, LoadError> {
+    unique_ids(
+        sources
+            .iter()
+            .map(|&(label, text)| Loader::new(SourceFile::new(label, text)).run()),
+    )
+}
+
+fn unique_ids(
+    loaded: impl Iterator<Item = Result<(DerivationFile, Vec<(String, IdDiag)>), LoadError>>,
+) -> Result<Vec<DerivationFile>, LoadError> {
     let mut files = Vec::new();
     let mut seen: BTreeMap<String, String> = BTreeMap::new();
-    for path in paths {
-        let (file, ids) = load_file_with_ids(path.as_ref())?;
+    for read in loaded {
+        let (file, ids) = read?;
         for (id, diag) in ids {
             if let Some(first) = seen.get(&id) {
                 return Err(

@@ -12,7 +12,7 @@ mod scalar;
 mod spans;
 mod spec;
 
-pub use load::{load_dir, load_files, load_str, parse_grid, LoadError};
+pub use load::{load_dir, load_files, load_str, load_texts, parse_grid, LoadError};
 pub use model::{
     Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Curve, Definition,
     DerivationFile, Expression, Figure, GradientConvention, Grid, LimitValue, ParamBox, Relation,
