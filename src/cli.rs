@@ -552,6 +552,25 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
     }
 }
 
+/// The one-line description of `--help`: what the tool is, and the works whose
+/// derivation files are embedded (their `paper = …` lines), which the default run checks.
+pub fn about() -> String {
+    let mut papers: Vec<&str> = Vec::new();
+    for (_, text) in crate::corpus::FILES {
+        let paper = text.lines().find_map(|l| {
+            let value = l.strip_prefix("paper = \"")?.strip_suffix('"')?;
+            Some(value)
+        });
+        if let Some(p) = paper.filter(|p| !papers.contains(p)) {
+            papers.push(p);
+        }
+    }
+    format!(
+        "A derivation checker for continuum mechanics: decides each claim of derivation files, equation by equation. Without files it checks {}.",
+        if papers.is_empty() { "./derivations".to_owned() } else { papers.join("; ") }
+    )
+}
+
 /// The figure `plot` draws: the file's table, or one made of the command line's curves.
 fn figure_of(a: &PlotArgs) -> Result<crate::derivation::Figure, RunError> {
     let path = a.file.display().to_string();

@@ -2,13 +2,15 @@
 //! All logic lives in the library (`cosserat_check::cli`); this only maps the result
 //! to an exit code.
 
-use clap::Parser;
-use cosserat_check::cli::{run, Cli, Output, Status};
+use clap::{CommandFactory, FromArgMatches};
+use cosserat_check::cli::{about, run, Cli, Output, Status};
 use std::io::IsTerminal;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    // The about text names the works of the embedded corpus, read from its files.
+    let matches = Cli::command().about(about()).get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let stdout = std::io::stdout();
     let terminal = stdout.is_terminal();
     let mut stream = stdout.lock();

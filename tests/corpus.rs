@@ -60,5 +60,8 @@ fn the_binary_checks_the_paper_without_the_source_tree() {
     );
     let table = String::from_utf8(out.stdout).unwrap();
     assert_eq!(table.lines().count(), 76, "a header and 75 claims");
-    assert!(table.contains("\n\"eq54\",\"6\","), "the Appendix's claims are there");
+    assert!(
+        table.contains("\n\"eq54\",\"6\","),
+        "the Appendix's claims are there"
+    );
 }
