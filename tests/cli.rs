@@ -400,7 +400,13 @@ fn plot_refuses_bad_input_with_exit_2_and_writes_nothing() {
     std::fs::create_dir_all(&dir).unwrap();
     let target = dir.join("out.svg");
     let t = target.to_str().unwrap();
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 7] = [
+        (
+            &[
+                "plot", APPENDIX, "--y", "A2", "--x", "u=0..1", "--set", "u=1", "--out", t,
+            ],
+            "`u` is the figure's parameter; an assumption cannot fix it",
+        ),
         (
             &["plot", APPENDIX, "--figure", "fig9", "--out", t],
             "has no figure `fig9` (its figures: fig6)",

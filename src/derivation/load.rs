@@ -345,6 +345,22 @@ impl Loader {
             let mut check =
                 self.check(&f.id, decls, defs, &[], &assume, &sides, &None, false, true)?;
             self.file_assumptions_first(raw, decls, &mut check)?;
+            // The range's parameter varies along the curve: an assumption that fixes it
+            // would silently make the curve flat.
+            if let Some(a) = check.assumptions.iter().find(|a| a.kind.symbol() == x.name) {
+                return Err(a
+                    .origin
+                    .diagnostic(
+                        crate::lang::Span::new(0, a.text.len()),
+                        format!(
+                            "`{}` is the figure's parameter; an assumption cannot fix it",
+                            x.name
+                        ),
+                    )
+                    .with_help(
+                        "remove this assumption for the figure, or plot against another parameter",
+                    ));
+            }
             check.strategy = Strategy::Exact {
                 domain: domain.clone(),
             };
