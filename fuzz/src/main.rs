@@ -11,6 +11,7 @@
 
 use cosserat_check::derivation::{load_str, Strategy};
 use cosserat_check::strategy::decide;
+use cosserat_check::strategy::probe::curve_values;
 use cosserat_check::strategy::quadrature::{Level, Quadrature};
 use cosserat_check::strategy::tape::Tape;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -83,6 +84,9 @@ const DICTIONARY: &[&str] = &[
     "strategy = \"numeric\"\n",
     "strategy = \"gradient\"\n",
     "strategy = \"roots\"\n",
+    "[[figure]]\nid = \"f\"\ntitle = \"t\"\nx = \"x = 0 .. 1 : 0.25\"\ncurves = [{ y = \"x\", label = \"l\" }]\n",
+    "x = \"x = 0 .. 1\"\n",
+    "set = [\"x = 1\"]\n",
     "strategy = \"monotone\"\n",
     "solve(",
     "dsigma_21",
@@ -256,12 +260,17 @@ fn exercise(data: &[u8]) {
     let Ok(file) = load_str("fuzz.toml", text) else {
         return;
     };
+    // Figures: every curve on a grid small enough to stay fast (at most 10,000 points
+    // are allowed, each one interpreter run).
+    for figure in file.figures.iter().filter(|f| f.x.values.len() <= 200) {
+        for curve in &figure.curves {
+            let _ = curve_values(curve, &figure.x);
+        }
+    }
     for claim in &file.claims {
         if matches!(
             claim.check.strategy,
-            Strategy::Exact { .. }
-                | Strategy::Proportional { .. }
-                | Strategy::NotCircle { .. }
+            Strategy::Exact { .. } | Strategy::Proportional { .. } | Strategy::NotCircle { .. }
         ) {
             let _ = decide(&claim.decls, &claim.check);
             continue;
