@@ -400,12 +400,25 @@ fn plot_refuses_bad_input_with_exit_2_and_writes_nothing() {
     std::fs::create_dir_all(&dir).unwrap();
     let target = dir.join("out.svg");
     let t = target.to_str().unwrap();
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 8] = [
         (
             &[
                 "plot", APPENDIX, "--y", "A2", "--x", "u=0..1", "--set", "u=1", "--out", t,
             ],
             "`u` is the figure's parameter; an assumption cannot fix it",
+        ),
+        (
+            &[
+                "plot",
+                APPENDIX,
+                "--y",
+                "A2eq54",
+                "--x",
+                "f_r=0..1:2",
+                "--out",
+                t,
+            ],
+            "a curve needs two points",
         ),
         (
             &["plot", APPENDIX, "--figure", "fig9", "--out", t],

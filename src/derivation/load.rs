@@ -1371,6 +1371,9 @@ pub fn parse_grid(text: &str, decls: &Decls) -> Result<Grid, String> {
         .checked_div(&step)
         .expect("the step is not zero")
         .floor();
+    if steps < Rational::int(1) {
+        return Err("the step is longer than the range: a curve needs two points".into());
+    }
     if steps >= Rational::int(MAX_POINTS as i64) {
         return Err(format!("more than {MAX_POINTS} points"));
     }
