@@ -721,8 +721,11 @@ impl Ring for ExactRing<'_, '_> {
             .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| i64::from(e).abs()))
             .max()
             .unwrap_or(0);
-        // Terms of p^k: at most num_terms^k, and at most the number of monomials of
-        // degree ≤ k·(max exponent) in p's variables.
+        // Terms of p^k: at most the number of multisets of k of p's t terms,
+        // C(t + k − 1, k) (each term of the expansion is one such product), and at most
+        // the number of monomials of degree ≤ k·(max exponent) in p's variables. The
+        // first is exact for a sum of distinct monomials such as (a_i n_i)^16: 153 terms,
+        // where the second says 74,613 (issue 18).
         let mut vars: Vec<_> = p
             .terms()
             .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
@@ -731,7 +734,9 @@ impl Ring for ExactRing<'_, '_> {
         vars.dedup();
         let degree = (max_exp * i64::from(k)) as f64;
         let monomials = (1..=vars.len()).fold(1.0, |acc, j| acc * (degree + j as f64) / j as f64);
-        let terms = (p.num_terms() as f64).powi(k as i32).min(monomials);
+        let t = p.num_terms() as f64;
+        let multisets = (1..=k).fold(1.0, |acc, j| acc * (t - 1.0 + f64::from(j)) / f64::from(j));
+        let terms = multisets.min(monomials);
         // Coefficients grow too: (q)^k has about k times the bits of q.
         let max_bits = p.terms().map(|(_, c)| c.bits()).max().unwrap_or(0);
         let too_big = max_exp * i64::from(k) > MAX_EXPONENT
