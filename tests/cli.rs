@@ -370,8 +370,20 @@ fn plot_draws_the_paper_figure_as_a_table_and_a_picture() {
             "curve and legend in {colour}"
         );
     }
-    // Coordinates are not rounded to whole units.
-    assert!(picture.contains(".") && picture.contains("points=\""));
+    // Coordinates are not rounded to whole units: the curves' points carry fractions.
+    let points: Vec<f64> = picture
+        .split("points=\"")
+        .skip(1)
+        .flat_map(|rest| rest.split('"').next().unwrap().split([' ', ',']))
+        .map(|c| c.parse::<f64>().unwrap())
+        .collect();
+    assert!(points.len() > 400, "{} coordinates", points.len());
+    let fractional = points.iter().filter(|c| c.fract() != 0.0).count();
+    assert!(
+        fractional > points.len() / 2,
+        "{fractional} of {} coordinates have a fraction",
+        points.len()
+    );
     assert_eq!(run(&args).stdout, picture.as_bytes());
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -122,9 +122,8 @@ fn collapsing_products_and_mixed_sums_are_typed() {
 fn a_counterexample_avoids_the_poles_of_the_other_entries() {
     let text = claim("expect = \"fails\"\nreason = \"wrong\"\nsides = [\"B[2,2]\", \"2\"]\ndefine = [\"B = [[1 + a / x, 1], [1, a + x]]\"]")
         .replacen("expect = \"holds\"\n", "", 1);
-    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
-    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
-    let o = &rows[0].outcome;
+    let outcomes = common::outcomes_of(&text);
+    let o = &outcomes[0];
     assert_eq!(
         o.verdict(),
         Verdict::Fails,

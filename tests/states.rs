@@ -99,10 +99,9 @@ fn malformed_gradients_are_located_errors() {
 #[test]
 fn a_gradient_holds_off_the_set_where_it_does_not_exist() {
     let text = claim("strategy = \"numeric\"\nsingular = \"x^2 + y^2\"\nsides = [\"grad(sqrt(x^2 + y^2), x)^2 + grad(sqrt(x^2 + y^2), y)^2\", \"1\"]");
-    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
-    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
-    assert_eq!(rows[0].outcome.verdict(), Verdict::Holds);
-    assert_eq!(rows[0].outcome.strength(), Strength::Sampled);
+    let outcomes = common::outcomes_of(&text);
+    assert_eq!(outcomes[0].verdict(), Verdict::Holds);
+    assert_eq!(outcomes[0].strength(), Strength::Sampled);
 }
 
 /// A root whose sign the box does not fix leaves the claim undecided, with the
@@ -110,16 +109,15 @@ fn a_gradient_holds_off_the_set_where_it_does_not_exist() {
 #[test]
 fn a_root_of_unknown_sign_is_undecided_not_guessed() {
     let text = claim("expect = \"undecided\"\nreason = \"the sign of x is not given\"\nsides = [\"sqrt(x^2)\", \"x\"]\n[[claim]]\nid = \"d\"\nprinted = 'x'\nexpect = \"holds\"\ngiven = [\"x > 0\"]\nsides = [\"sqrt(x^2)\", \"x\"]").replacen("expect = \"holds\"\n", "", 1);
-    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
-    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
-    assert_eq!(rows[0].outcome.verdict(), Verdict::Undecided);
-    let e = cosserat_check::report::evidence(&rows[0].outcome);
+    let outcomes = common::outcomes_of(&text);
+    assert_eq!(outcomes[0].verdict(), Verdict::Undecided);
+    let e = cosserat_check::report::evidence(&outcomes[0]);
     assert!(
         e.contains("the sign of x on the claim's domain is not certified"),
         "{e}"
     );
-    assert_eq!(rows[1].outcome.verdict(), Verdict::Holds);
-    assert_eq!(rows[1].outcome.strength(), Strength::Proof);
+    assert_eq!(outcomes[1].verdict(), Verdict::Holds);
+    assert_eq!(outcomes[1].strength(), Strength::Proof);
 }
 
 /// The exact route and num-dual numbers agree on a gradient at random states: a
@@ -147,9 +145,8 @@ fn exact_and_dual_gradients_agree() {
 #[test]
 fn a_counterexample_takes_unread_parameters_from_the_box() {
     let text = claim("expect = \"fails\"\nreason = \"x − 1 ≤ 0 fails for x > 1\"\nstrategy = \"sign\"\ngiven = [\"y < 0\"]\nsides = [\"x + sqrt(y^2) / y\", \"0\"]\nrelation = \"<=\"").replacen("expect = \"holds\"\n", "", 1);
-    let f = cosserat_check::derivation::load_str("f.toml", &text).expect("loads");
-    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&f), None).unwrap();
-    let o = &rows[0].outcome;
+    let outcomes = common::outcomes_of(&text);
+    let o = &outcomes[0];
     assert_eq!(
         o.verdict(),
         Verdict::Fails,

@@ -125,7 +125,7 @@ pub fn curve_values(
     let mut values = Vec::with_capacity(grid.values.len());
     for value in &grid.values {
         let point = BTreeMap::from([(x, value.clone())]);
-        match super::reverify::interpret_scalar_strict(&curve.decls, &curve.check, &env, &point, node)
+        match super::reverify::interpret_with(&curve.decls, &curve.check, &env, &point, node, f64::NAN)
         {
             Ok(y) if y.is_finite() => values.push(Some(y)),
             Ok(_) => {

@@ -127,19 +127,9 @@ pub(super) fn interpret_scalar(
     Err(last)
 }
 
-/// [`interpret_scalar`] with every variable the point leaves out set to NaN, so that a
-/// value that depends on one is NaN rather than a guess.
-pub(super) fn interpret_scalar_strict(
-    decls: &Decls,
-    check: &Check,
-    env: &ExactEnv<'_>,
-    point: &BTreeMap<Var, Rational>,
-    node: &crate::lang::Node,
-) -> Result<f64, String> {
-    interpret_with(decls, check, env, point, node, f64::NAN)
-}
-
-fn interpret_with(
+/// A scalar expression by the interpreter at `point`, the variables it leaves out set
+/// to `absent` (NaN for a value that must not depend on one: a plot).
+pub(super) fn interpret_with(
     decls: &Decls,
     check: &Check,
     env: &ExactEnv<'_>,

@@ -54,3 +54,14 @@ pub fn error_of(text: &str) -> String {
             .unwrap_or_else(|| panic!("accepted: {text}")),
     }
 }
+
+/// The outcome of every claim of the file `text` (named f.toml in diagnostics).
+#[allow(dead_code)]
+pub fn outcomes_of(text: &str) -> Vec<cosserat_check::strategy::Outcome> {
+    let f = cosserat_check::derivation::load_str("f.toml", text).expect("loads");
+    decide_all(std::slice::from_ref(&f), None)
+        .unwrap()
+        .into_iter()
+        .map(|r| r.outcome)
+        .collect()
+}
