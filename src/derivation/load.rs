@@ -3,9 +3,10 @@
 
 use super::model::{
     Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
-    Figure, Grid, ScalarClaim, Side, Strategy, Verdict,
+    Figure, Grid, ScalarClaim, Side, Strategy, Transcript, Verdict,
 };
-use super::raw::{RawClaim, RawFigure, RawFile, S};
+use super::notation::{self, Notation};
+use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, S};
 use super::spans::{content_map, sub_origin};
 use crate::derivation::ParamBox;
 use crate::kernel::Rational;
@@ -240,6 +241,7 @@ impl Loader {
             let def = self.definition(d, &decls, &defs, &raw.define[k + 1..])?;
             defs.push(def);
         }
+        let notation = self.notation(&raw.notation, &Notation::default())?;
         let mut claims = Vec::new();
         let mut ids: Vec<(String, IdDiag)> = Vec::new();
         let mut local_ids = BTreeMap::new();
@@ -276,7 +278,7 @@ impl Loader {
                 id,
                 Box::new(move |m| file.diagnostic(Span::new(span.start, span.end), m)),
             ));
-            claims.push(self.claim(c, &raw, &decls, &defs)?);
+            claims.push(self.claim(c, &raw, &decls, &defs, &notation)?);
         }
         let mut figures = Vec::new();
         for f in &raw.figure {
@@ -1089,12 +1091,72 @@ impl Loader {
         }
     }
 
+    /// A notation table: the superscript declarations first (they change how keys
+    /// read), then the symbols; `within` gives how the keys of a claim's table read.
+    fn notation(
+        &self,
+        table: &BTreeMap<String, Spanned<NotationValue>>,
+        within: &Notation,
+    ) -> Result<Notation, Diagnostic> {
+        let mut out = Notation::within(within);
+        let (sups, symbols): (Vec<_>, Vec<_>) = table.iter().partition(|(k, _)| k.starts_with('^'));
+        for (key, value) in sups.into_iter().chain(symbols) {
+            out.add(key, value.get_ref().values()).map_err(|e| {
+                self.diag(value.span(), e.message)
+                    .with_help("a notation entry maps one printed symbol to the language: '\\sigma_{ij}^{(1)}' = \"sig1_ij\"; see README.md, \"Reading the printed statement\"")
+            })?;
+        }
+        Ok(out)
+    }
+
+    /// What the transcription check needs: the printed statement read through the
+    /// claim's and the file's notation, and the chains as written.
+    #[allow(clippy::too_many_arguments)]
+    fn transcript(
+        &self,
+        printed: &S,
+        prose: bool,
+        table: &BTreeMap<String, Spanned<NotationValue>>,
+        defines: &[S],
+        declared: &Option<S>,
+        file: &Notation,
+        decls: &Decls,
+        check: &Check,
+        written: Vec<Vec<String>>,
+        conditions: Vec<String>,
+    ) -> Result<Transcript, Diagnostic> {
+        let notation = self.notation(table, file)?.then(file);
+        let defines = defines
+            .iter()
+            .map(|d| {
+                notation::defined_symbol(d.get_ref(), &notation)
+                    .map_err(|e| self.diag(d.span(), e.message))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let sigs: Vec<DefSig> = check.defs.iter().map(|d| d.sig.clone()).collect();
+        let reading = if prose {
+            Err(notation::Unread {
+                span: Span::new(0, 0),
+                message: "a sentence of prose".to_owned(),
+            })
+        } else {
+            notation::read(printed.get_ref(), &notation, &defines, decls, &sigs)
+        };
+        Ok(Transcript {
+            reading,
+            written,
+            declared: declared.as_ref().map(|d| d.get_ref().clone()),
+            conditions,
+        })
+    }
+
     fn claim(
         &self,
         c: &RawClaim,
         raw: &RawFile,
         decls: &Arc<Decls>,
         defs: &[Definition],
+        notation: &Notation,
     ) -> Result<Claim, Diagnostic> {
         let expect = self.verdict(&c.expect)?;
         if expect != Verdict::Holds && c.reason.is_none() {
@@ -1144,15 +1206,42 @@ impl Loader {
                 let mut assumptions = check.assumptions.clone();
                 assumptions.append(&mut inner.assumptions);
                 inner.assumptions = assumptions;
+                let transcript = self.transcript(
+                    &r.printed,
+                    c.prose,
+                    &r.notation,
+                    &r.defines,
+                    &r.differs_from_printed,
+                    // The correction's own entries, then the claim's, then the file's.
+                    &self.notation(&c.notation, notation)?.then(notation),
+                    decls,
+                    &inner,
+                    written(&r.sides, &r.chains),
+                    conditions(c),
+                )?;
                 Some(Correction {
                     statement: r.printed.get_ref().clone(),
                     reason: r.reason.get_ref().clone(),
                     expect,
                     check: inner,
+                    transcript,
                 })
             }
         };
+        let transcript = self.transcript(
+            &c.printed,
+            c.prose,
+            &c.notation,
+            &c.defines,
+            &c.differs_from_printed,
+            notation,
+            decls,
+            &check,
+            written(&c.sides, &c.chains),
+            conditions(c),
+        )?;
         Ok(Claim {
+            transcript,
             paper: self.paper(raw),
             id: c.id.get_ref().clone(),
             section: c.section.as_ref().unwrap_or(&raw.section).get_ref().clone(),
@@ -1165,6 +1254,25 @@ impl Loader {
             check,
             correction,
         })
+    }
+}
+
+/// A claim's hypotheses as written: its `given` and `domain`.
+fn conditions(c: &RawClaim) -> Vec<String> {
+    c.given
+        .iter()
+        .chain(&c.domain)
+        .map(|s| s.get_ref().clone())
+        .collect()
+}
+
+/// A claim's chains as written.
+fn written(sides: &Option<Vec<S>>, chains: &Option<Vec<Vec<S>>>) -> Vec<Vec<String>> {
+    let text = |c: &Vec<S>| c.iter().map(|s| s.get_ref().clone()).collect();
+    match (sides, chains) {
+        (Some(s), _) => vec![text(s)],
+        (None, Some(c)) => c.iter().map(text).collect(),
+        (None, None) => Vec::new(),
     }
 }
 
@@ -1224,7 +1332,7 @@ pub(super) fn no_matrix(origin: &Origin, node: &Node, what: &str) -> Result<(), 
 /// side read off the matrix as `(side)[i,j]`. A side that is not already a matrix
 /// definition becomes a claim-local one (named so that no file can write it), so that
 /// each side's matrix is computed once for all its entries.
-fn entrywise(
+pub(super) fn entrywise(
     chains: Vec<Vec<Side>>,
     defs: &mut Vec<Definition>,
 ) -> Result<Vec<Vec<Side>>, Diagnostic> {

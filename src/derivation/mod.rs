@@ -6,6 +6,7 @@ pub mod edit;
 mod fields;
 pub mod load;
 pub mod model;
+pub mod notation;
 mod raw;
 mod reads;
 mod scalar;
@@ -16,6 +17,7 @@ pub use load::{load_dir, load_files, load_str, load_texts, parse_grid, LoadError
 pub use model::{
     Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Curve, Definition,
     DerivationFile, Expression, Figure, GradientConvention, Grid, LimitValue, ParamBox, Relation,
-    Sampling, ScalarClaim, Side, Strategy, Verdict,
+    Sampling, ScalarClaim, Side, Strategy, Transcript, Verdict,
 };
 pub use reads::Reads;
+pub use spec::DEFAULT_SAMPLES;

@@ -1,6 +1,7 @@
 //! The checked, in-memory form of derivation files: claims whose expressions have
 //! already passed name resolution and index validation.
 
+use super::notation::{Reading, Unread};
 use crate::kernel::limit::Approach;
 use crate::kernel::sign::{Interval, Sign};
 use crate::lang::{Decls, DefSig, LangError, Node, Origin};
@@ -480,6 +481,24 @@ pub struct Correction {
     pub reason: String,
     pub expect: Verdict,
     pub check: Check,
+    pub transcript: Transcript,
+}
+
+/// What the transcription check compares: the printed statement as read through the
+/// notation table, and the claim's chains as written.
+#[derive(Clone, Debug)]
+pub struct Transcript {
+    /// The printed statement in the language, or where and why it could not be read
+    /// (a prose claim is not read).
+    pub reading: Result<Reading, Unread>,
+    /// The chains as written in the file, before matrix chains are split into entries.
+    pub written: Vec<Vec<String>>,
+    /// Why the sides intentionally read the printed statement differently
+    /// (`differs_from_printed`).
+    pub declared: Option<String>,
+    /// The claim's hypotheses as written (`given`, `domain`), which a printed condition
+    /// ("for G > 0") must be one of.
+    pub conditions: Vec<String>,
 }
 
 /// One checkable statement of a derivation file.
@@ -501,6 +520,7 @@ pub struct Claim {
     /// The file's declarations (dimension, normal, symbols).
     pub decls: Arc<Decls>,
     pub check: Check,
+    pub transcript: Transcript,
     pub correction: Option<Correction>,
 }
 

@@ -35,6 +35,10 @@ pub struct RawFile {
     pub orders: BTreeMap<String, Vec<S>>,
     #[serde(default)]
     pub define: Vec<S>,
+    /// Printed symbols → the language (`'\sigma_{ij}^{(1)}' = "sig1_ij"`), for reading
+    /// the printed statements.
+    #[serde(default)]
+    pub notation: BTreeMap<String, Spanned<NotationValue>>,
     #[serde(default)]
     pub claim: Vec<RawClaim>,
     #[serde(default)]
@@ -71,12 +75,38 @@ pub struct RawCurve {
     pub set: Vec<S>,
 }
 
+/// One reading of a printed symbol, or several (routes).
+#[derive(Deserialize, Clone)]
+#[serde(untagged)]
+pub enum NotationValue {
+    One(String),
+    Many(Vec<String>),
+}
+
+impl NotationValue {
+    pub fn values(&self) -> Vec<String> {
+        match self {
+            NotationValue::One(v) => vec![v.clone()],
+            NotationValue::Many(v) => v.clone(),
+        }
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawClaim {
     pub id: S,
     pub section: Option<S>,
     pub printed: S,
+    /// This claim's own notation entries, before the file's.
+    #[serde(default)]
+    pub notation: BTreeMap<String, Spanned<NotationValue>>,
+    /// Printed symbols that the statement defines: a chain's first member that is one
+    /// of them is a definition, not a checked equality.
+    #[serde(default)]
+    pub defines: Vec<S>,
+    /// Why the sides intentionally read the printed statement differently.
+    pub differs_from_printed: Option<S>,
     #[serde(default)]
     pub prose: bool,
     pub expect: S,
@@ -134,6 +164,15 @@ pub struct RawClaim {
 #[serde(deny_unknown_fields)]
 pub struct RawCorrection {
     pub printed: S,
+    /// This claim's own notation entries, before the file's.
+    #[serde(default)]
+    pub notation: BTreeMap<String, Spanned<NotationValue>>,
+    /// Printed symbols that the statement defines: a chain's first member that is one
+    /// of them is a definition, not a checked equality.
+    #[serde(default)]
+    pub defines: Vec<S>,
+    /// Why the sides intentionally read the printed statement differently.
+    pub differs_from_printed: Option<S>,
     pub reason: S,
     pub expect: S,
     #[serde(default)]

@@ -5,6 +5,7 @@
 
 pub mod check;
 pub mod diag;
+pub mod latex;
 pub mod matrix;
 pub mod parser;
 

@@ -9,6 +9,7 @@ pub mod json;
 pub mod latex;
 pub mod markdown;
 pub mod plot;
+pub mod transcription;
 pub mod words;
 
 use crate::strategy::{Counterexample, Decided, Outcome};

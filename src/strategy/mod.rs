@@ -21,6 +21,7 @@ mod scalar;
 pub mod search;
 pub mod tape;
 pub mod taylor;
+pub mod transcription;
 mod variation;
 pub mod walk;
 pub mod watch;
@@ -40,11 +41,26 @@ pub struct Decided<'c> {
     pub claim: &'c Claim,
     pub outcome: Outcome,
     pub correction: Option<Outcome>,
+    /// Whether the sides say what the printed statement says.
+    pub transcription: transcription::Transcription,
+    /// The same for the correction's printed statement.
+    pub correction_transcription: Option<transcription::Transcription>,
 }
 
 impl Decided<'_> {
-    /// Whether every verdict equals its declared expectation.
+    /// Whether every verdict equals its declared expectation, and every transcription
+    /// that differs from the printed statement is declared to.
     pub fn as_expected(&self) -> bool {
+        self.transcription.as_expected()
+            && self
+                .correction_transcription
+                .as_ref()
+                .is_none_or(transcription::Transcription::as_expected)
+            && self.verdict_as_expected()
+    }
+
+    /// Whether every verdict equals its declared expectation.
+    pub fn verdict_as_expected(&self) -> bool {
         self.outcome.verdict() == self.claim.expect
             && match (&self.claim.correction, &self.correction) {
                 (Some(c), Some(o)) => o.verdict() == c.expect,
@@ -133,9 +149,16 @@ fn decide_claim_keeping(claim: &Claim, keep: bool) -> Result<Decided<'_>, Diagno
         Some(c) => Some(decide_keeping(&claim.decls, &c.check, keep)?),
         None => None,
     };
+    let transcription = transcription::transcribe(&claim.decls, &claim.check, &claim.transcript);
+    let correction_transcription = claim
+        .correction
+        .as_ref()
+        .map(|c| transcription::transcribe(&claim.decls, &c.check, &c.transcript));
     Ok(Decided {
         claim,
         outcome,
         correction,
+        transcription,
+        correction_transcription,
     })
 }
