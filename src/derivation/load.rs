@@ -1091,6 +1091,76 @@ impl Loader {
         }
     }
 
+    /// The chains of a claim without `sides`: its printed statement as read, every
+    /// reading of every chain. Conditions and inequalities need explicit sides.
+    fn chains_from_reading(
+        &self,
+        c: &RawClaim,
+        decls: &Decls,
+        defs: &[Definition],
+        file: &Notation,
+    ) -> Result<Vec<Vec<S>>, Diagnostic> {
+        let probe = self.check(
+            &c.id, decls, defs, &c.define, &c.assume, &None, &None, c.verbatim, false,
+        )?;
+        let t = self.transcript(
+            &c.printed,
+            false,
+            &c.notation,
+            &c.defines,
+            &None,
+            file,
+            decls,
+            &probe,
+            Vec::new(),
+            Vec::new(),
+        )?;
+        let help = "give sides = [\"left\", \"right\"] in index notation, or make the printed statement readable (README, \"Reading the printed statement\")";
+        let reading = t.reading.map_err(|u| {
+            let col = crate::lang::latex::LatexError {
+                span: u.span,
+                message: String::new(),
+            }
+            .column(c.printed.get_ref());
+            self.diag(
+                c.printed.span(),
+                format!(
+                    "this statement has no `sides`, and its printed LaTeX cannot be read at column {col}: {}",
+                    u.message
+                ),
+            )
+            .with_help(help)
+        })?;
+        let mut chains = Vec::new();
+        for part in &reading.parts {
+            if part.condition
+                || part
+                    .relations
+                    .iter()
+                    .any(|r| *r != crate::lang::latex::Rel::Eq)
+            {
+                return Err(self
+                    .diag(
+                        c.printed.span(),
+                        format!(
+                            "this statement has no `sides`, and `{}` is a condition or an inequality, which need explicit sides and hypotheses",
+                            part.latex
+                        ),
+                    )
+                    .with_help(help));
+            }
+            for route in &part.routes {
+                chains.push(
+                    route
+                        .iter()
+                        .map(|m| Spanned::new(c.printed.span(), m.text.clone()))
+                        .collect(),
+                );
+            }
+        }
+        Ok(chains)
+    }
+
     /// A notation table: the superscript declarations first (they change how keys
     /// read), then the symbols; `within` gives how the keys of a claim's table read.
     fn notation(
@@ -1147,6 +1217,7 @@ impl Loader {
             written,
             declared: declared.as_ref().map(|d| d.get_ref().clone()),
             conditions,
+            from_reading: false,
         })
     }
 
@@ -1170,6 +1241,14 @@ impl Loader {
                 "exact" | "proportional" | "numeric" | "sign"
             )
         });
+        // Without sides, a statement whose printed LaTeX can be read is decided on the
+        // reading itself.
+        let read_chains = if needs_sides && !c.prose && c.sides.is_none() && c.chains.is_none() {
+            Some(self.chains_from_reading(c, decls, defs, notation)?)
+        } else {
+            None
+        };
+        let chains = read_chains.clone().or_else(|| c.chains.clone());
         let mut check = self.check(
             &c.id,
             decls,
@@ -1177,7 +1256,7 @@ impl Loader {
             &c.define,
             &c.assume,
             &c.sides,
-            &c.chains,
+            &chains,
             c.verbatim,
             needs_sides,
         )?;
@@ -1237,9 +1316,13 @@ impl Loader {
             notation,
             decls,
             &check,
-            written(&c.sides, &c.chains),
+            written(&c.sides, &chains),
             conditions(c),
         )?;
+        let transcript = Transcript {
+            from_reading: read_chains.is_some(),
+            ..transcript
+        };
         Ok(Claim {
             transcript,
             paper: self.paper(raw),

@@ -499,6 +499,8 @@ pub struct Transcript {
     /// The claim's hypotheses as written (`given`, `domain`), which a printed condition
     /// ("for G > 0") must be one of.
     pub conditions: Vec<String>,
+    /// The claim has no `sides`: its chains are the reading itself.
+    pub from_reading: bool,
 }
 
 /// One checkable statement of a derivation file.

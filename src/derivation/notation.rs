@@ -357,7 +357,7 @@ fn read_part(
         notation,
         choice: BTreeMap::new(),
         multi: BTreeSet::new(),
-        taken: letters,
+        taken: letters.clone(),
     };
     let first: Vec<ReadMember> = part
         .members
@@ -382,6 +382,8 @@ fn read_part(
         for k in 0..total {
             let mut rest = k;
             t.choice.clear();
+            // Each reading renames apart from the statement alone.
+            t.taken = letters.clone();
             for (&e, &n) in multi.iter().zip(&counts) {
                 t.choice.insert(e, rest % n);
                 rest /= n;

@@ -70,11 +70,13 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
         let cells = [&l[0], &l[1], &l[2], &l[3], &l[4], &l[5]].map(String::as_str);
         let _ = writeln!(out, "{}", row(cells, paint));
     }
+    let summary = Summary::of(rows);
     let _ = writeln!(
         out,
-        "\n{}\nFull evidence: `cosserat-check explain ID`, or `--format markdown|json` (this \
+        "\n{}\n{}\nFull evidence: `cosserat-check explain ID`, or `--format markdown|json` (this \
          compact view is printed only to a terminal).",
-        Summary::of(rows).sentence(rows.len())
+        summary.sentence(rows.len()),
+        summary.transcription_sentence()
     );
     out
 }

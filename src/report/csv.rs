@@ -11,7 +11,7 @@ fn field(s: &str) -> String {
 /// Renders the table: a header line, then one line per claim.
 pub fn render(rows: &[&Decided<'_>]) -> String {
     let mut out = String::from(
-        "id,section,statement,verdict,expected,method,checks,evidence,correction,correction_verdict,strength\n",
+        "id,section,statement,verdict,expected,method,checks,evidence,correction,correction_verdict,strength,transcription\n",
     );
     for r in rows {
         let c = r.claim;
@@ -34,6 +34,7 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
                 crate::strategy::Strength::Proof => "proof",
                 crate::strategy::Strength::Sampled => "sampled",
             },
+            &super::read_label(r),
         ]
         .map(field);
         out.push_str(&cells.join(","));

@@ -239,11 +239,49 @@ pub fn render(r: &Decided<'_>) -> String {
         let _ = writeln!(out, "Note: {note}");
     }
     let _ = writeln!(out, "Setting: {}\n", setting(&c.decls));
+    reading_section(&mut out, &r.transcription, &c.transcript, &c.statement);
     check_section(&mut out, &c.check, &r.outcome);
     if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
         let _ = writeln!(out, "\n## Correction\n\n{}\nWhy: {}", k.statement, k.reason);
         let _ = writeln!(out, "Declared: {}", k.expect);
+        if let Some(t) = &r.correction_transcription {
+            reading_section(&mut out, t, &k.transcript, &k.statement);
+        }
         check_section(&mut out, &k.check, o);
     }
     out
+}
+
+/// The transcription: the printed statement as the reader read it, the checked chains
+/// typeset as LaTeX, and whether they say the same.
+fn reading_section(
+    out: &mut String,
+    t: &crate::strategy::transcription::Transcription,
+    transcript: &crate::derivation::Transcript,
+    printed: &str,
+) {
+    let _ = writeln!(
+        out,
+        "Transcription: {}",
+        super::transcription::describe(t, printed)
+    );
+    if let Ok(reading) = &transcript.reading {
+        for part in &reading.parts {
+            for route in &part.routes {
+                let mut chain = route[0].text.clone();
+                for (m, rel) in route[1..].iter().zip(&part.relations) {
+                    chain.push_str(&format!(" {} {}", rel.symbol(), m.text));
+                }
+                let _ = writeln!(out, "  printed, read as: {chain}");
+            }
+        }
+    }
+    for chain in &transcript.written {
+        let _ = writeln!(
+            out,
+            "  checked, typeset: ${}$",
+            super::typeset::chain(chain)
+        );
+    }
+    let _ = writeln!(out);
 }

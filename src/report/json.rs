@@ -2,8 +2,10 @@
 //! remove or rename these: `paper`, `claims[]` (`id`, `section`, `statement`,
 //! `verdict`, `method`, `strength` (`proof` or `sampled`), `expected`, `checks`,
 //! `certificate` (the kernel's facts behind a proof: `{"facts": [{"kind": …}]}`, or
-//! null), `counterexample`, `correction`), and
-//! `summary` (`holds`, `fails`, `conditional`, `undecided`, `unexpected`).
+//! null), `counterexample`, `correction`, `transcription` (`status`: `machine-read`,
+//! `differs` or `hand`, `detail`, `declared`, `checked_latex`)), and
+//! `summary` (`holds`, `fails`, `conditional`, `undecided`, `unexpected`,
+//! `machine_read`, `differs`, `hand`, `prose`).
 
 use super::Summary;
 use crate::kernel::certificate::Certificate;
@@ -40,6 +42,41 @@ struct ClaimRow<'a> {
     finding: Option<&'a Finding>,
     reason: Option<&'a str>,
     note: Option<&'a str>,
+    transcription: TranscriptionRow,
+}
+
+/// Whether the sides say what the printed statement says (`machine-read`, `differs`,
+/// `hand`), in words, and the checked chains typeset as LaTeX.
+#[derive(Serialize)]
+struct TranscriptionRow {
+    status: &'static str,
+    detail: String,
+    declared: bool,
+    checked_latex: Vec<String>,
+}
+
+fn transcription_row(
+    t: &crate::strategy::transcription::Transcription,
+    transcript: &crate::derivation::Transcript,
+    printed: &str,
+) -> TranscriptionRow {
+    use crate::strategy::transcription::Status;
+    TranscriptionRow {
+        status: t.label(),
+        detail: super::transcription::describe(t, printed),
+        declared: matches!(
+            &t.status,
+            Status::Differs {
+                declared: Some(_),
+                ..
+            }
+        ),
+        checked_latex: transcript
+            .written
+            .iter()
+            .map(|c| super::typeset::chain(c))
+            .collect(),
+    }
 }
 
 #[derive(Serialize)]
@@ -53,6 +90,7 @@ struct CorrectionRow<'a> {
     certificate: Option<&'a Certificate>,
     counterexample: Option<&'a Counterexample>,
     reason: &'a str,
+    transcription: Option<TranscriptionRow>,
 }
 
 /// Renders the table as pretty-printed JSON (deterministic: fixed field order).
@@ -86,6 +124,10 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
                         certificate: o.certificate(),
                         counterexample: o.counterexample.as_ref(),
                         reason: &k.reason,
+                        transcription: r
+                            .correction_transcription
+                            .as_ref()
+                            .map(|t| transcription_row(t, &k.transcript, &k.statement)),
                     }),
                 as_expected: r.as_expected(),
                 used_unit_normal: r.outcome.used_unit_normal,
@@ -94,6 +136,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
                 finding: r.outcome.finding.as_ref(),
                 reason: c.reason.as_deref(),
                 note: c.note.as_deref(),
+                transcription: transcription_row(&r.transcription, &c.transcript, &c.statement),
             }
         })
         .collect();

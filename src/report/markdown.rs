@@ -24,9 +24,9 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
     let _ = writeln!(out, "{paper}.\n");
     let _ = writeln!(
         out,
-        "| claim | § | statement (as printed) | verdict | method | evidence |"
+        "| claim | § | statement (as printed) | verdict | read | method | evidence |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
     for r in rows {
         let c = r.claim;
         let verdict = match r.outcome.verdict() {
@@ -36,16 +36,19 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
         let ev = full_evidence(r, &|s| math(s));
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} |",
             cell(&c.id),
             cell(&c.section),
             statement(c),
             verdict,
+            super::read_label(r),
             r.outcome.method.as_str(),
             cell(&ev)
         );
     }
-    let _ = writeln!(out, "\n{}", Summary::of(rows).sentence(rows.len()));
+    let summary = Summary::of(rows);
+    let _ = writeln!(out, "\n{}", summary.sentence(rows.len()));
+    let _ = writeln!(out, "\n{}", summary.transcription_sentence());
     out
 }
 

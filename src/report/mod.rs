@@ -10,6 +10,7 @@ pub mod latex;
 pub mod markdown;
 pub mod plot;
 pub mod transcription;
+pub mod typeset;
 pub mod words;
 
 use crate::strategy::{Counterexample, Decided, Outcome};
@@ -43,8 +44,18 @@ pub struct Summary {
     /// Claims the checker could not decide (each says why).
     pub undecided: usize,
     /// Claims whose verdict (or whose correction's verdict) differs from the one the
-    /// derivation file declares.
+    /// derivation file declares, or whose sides differ from the printed statement
+    /// where the claim does not declare why.
     pub unexpected: usize,
+    /// Formula claims whose sides were decided to say what the printed LaTeX says.
+    pub machine_read: usize,
+    /// Formula claims whose sides differ from the printed LaTeX (declared or not).
+    pub differs: usize,
+    /// Formula claims whose printed LaTeX is read by hand (outside the subset, or a
+    /// claim kind that is not an equation chain).
+    pub hand: usize,
+    /// Claims that are sentences of prose.
+    pub prose: usize,
 }
 
 impl Summary {
@@ -77,8 +88,27 @@ impl Summary {
             if !r.as_expected() {
                 s.unexpected += 1;
             }
+            if r.claim.prose {
+                s.prose += 1;
+            } else {
+                match r.transcription.label() {
+                    "machine-read" => s.machine_read += 1,
+                    "differs" => s.differs += 1,
+                    _ => s.hand += 1,
+                }
+            }
         }
         s
+    }
+
+    /// "Printed statements: … of … formula claims machine-read, … differ (declared), …
+    /// read by hand; … prose."
+    pub fn transcription_sentence(&self) -> String {
+        let formulas = self.machine_read + self.differs + self.hand;
+        format!(
+            "Printed statements: {} of {formulas} formula claims machine-read, {} differ from their sides, {} read by hand; {} prose.",
+            self.machine_read, self.differs, self.hand, self.prose
+        )
     }
 }
 
@@ -93,6 +123,23 @@ pub fn refs<'a, 'c>(rows: &'a [Decided<'c>]) -> Vec<&'a Decided<'c>> {
 pub fn is_erratum(r: &Decided<'_>) -> bool {
     use crate::derivation::Verdict;
     matches!(r.outcome.verdict(), Verdict::Fails | Verdict::Conditional)
+}
+
+/// The transcription status for a table: "machine", "differs", "hand" or "prose",
+/// marked when a difference is not declared.
+pub fn read_label(r: &Decided<'_>) -> String {
+    if r.claim.prose {
+        return "prose".to_owned();
+    }
+    let label = match r.transcription.label() {
+        "machine-read" => "machine",
+        other => other,
+    };
+    if r.transcription.as_expected() {
+        label.to_owned()
+    } else {
+        format!("{label} ✗")
+    }
 }
 
 /// The verdict, marked when it differs from the declared one.
@@ -113,6 +160,12 @@ pub fn verdict_label(r: &Decided<'_>) -> String {
 pub fn full_evidence(r: &Decided<'_>, statement: &dyn Fn(&str) -> String) -> String {
     let c = r.claim;
     let mut ev = evidence(&r.outcome);
+    if !c.prose && r.transcription.label() != "machine-read" {
+        ev.push_str(&format!(
+            ". Read: {}",
+            transcription::describe(&r.transcription, &c.statement).trim_end_matches('.')
+        ));
+    }
     if let Some(reason) = &c.reason {
         ev.push_str(&format!(". Why: {}", reason.trim_end_matches('.')));
     }

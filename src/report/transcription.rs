@@ -15,14 +15,19 @@ pub fn describe(t: &Transcription, printed: &str) -> String {
             context,
             defines,
             stale,
+            from_reading,
         } => {
-            let mut out = format!(
-                "machine-read ({})",
-                match strength {
-                    Strength::Proof => "every member decided equal exactly",
-                    Strength::Sampled => "sampled: some members compared on seeded samples",
-                }
-            );
+            let mut out = if *from_reading {
+                "machine-read (no sides: decided on the reading itself)".to_owned()
+            } else {
+                format!(
+                    "machine-read ({})",
+                    match strength {
+                        Strength::Proof => "every member decided equal exactly",
+                        Strength::Sampled => "sampled: some members compared on seeded samples",
+                    }
+                )
+            };
             if !defines.is_empty() {
                 out.push_str(&format!("; defines {}", defines.join(", ")));
             }

@@ -10,6 +10,10 @@
 //! in the claim's context as an identity (a definition printed beside the statement,
 //! `with T^2 = ⟨…⟩`), or the claim `differs`.
 
+// The comparison's steps return the claim's final status as their error (built once per
+// claim, on the way out), so its size costs nothing.
+#![allow(clippy::result_large_err)]
+
 use super::{decide, Outcome, Strength};
 use crate::derivation::edit::Incomparable;
 use crate::derivation::notation::{ReadMember, ReadPart};
@@ -34,6 +38,8 @@ pub enum Status {
         /// Set when `differs_from_printed` is declared although the sides agree: a
         /// stale declaration.
         stale: Option<String>,
+        /// The claim has no `sides`: it is decided on the reading itself.
+        from_reading: bool,
     },
     /// The sides and the printed statement part somewhere.
     Differs {
@@ -193,6 +199,7 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
                 strength,
                 context,
                 defines,
+                from_reading,
                 ..
             },
             Some(d),
@@ -201,6 +208,7 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
             context,
             defines,
             stale: Some(d.clone()),
+            from_reading,
         },
         (s, _) => s,
     };
@@ -363,6 +371,7 @@ impl Comparer<'_> {
             context,
             defines,
             stale: None,
+            from_reading: transcript.from_reading,
         }
     }
 
