@@ -151,6 +151,14 @@ fn the_reader_refuses_what_is_outside_the_subset_where_it_stands() {
         assert!(m.contains(words), "{src}: {m}");
         assert_eq!(c, col, "{src}: {m}");
     }
+    // Deep nesting is refused, not a stack overflow; a statement with a multi-byte space
+    // before the error still gets its column.
+    let deep = format!("{}x{} = 1", "(".repeat(10_000), ")".repeat(10_000));
+    assert!(refusal(&deep).1.contains("nested more than 64 deep"));
+    assert_eq!(
+        refusal("a = b,\u{3000}"),
+        (8, "the statement ends with a separator".to_owned())
+    );
 }
 
 const FILE: &str = r#"section = "t"

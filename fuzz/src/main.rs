@@ -14,6 +14,7 @@ use cosserat_check::strategy::decide;
 use cosserat_check::strategy::probe::curve_values;
 use cosserat_check::strategy::quadrature::{Level, Quadrature};
 use cosserat_check::strategy::tape::Tape;
+use cosserat_check::strategy::transcription::transcribe;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -21,6 +22,36 @@ use std::time::{Duration, Instant};
 const SLOW: Duration = Duration::from_secs(5);
 
 const DICTIONARY: &[&str] = &[
+    "\\frac{",
+    "}{",
+    "\\langle ",
+    " \\rangle",
+    "^{(1)}",
+    "_{ij}",
+    "_{i,m}",
+    "\\sqrt{",
+    "\\partial ",
+    "\\left(",
+    "\\right)",
+    "\\text{ with }",
+    "\\text{ for }",
+    "\\quad",
+    "\\Rightarrow",
+    "\\dot",
+    "\\begin{pmatrix}",
+    " & ",
+    "\\\\",
+    "\\end{pmatrix}",
+    "|",
+    "\\le",
+    "[notation]\n",
+    "'\\sigma_{ij}^{(1)}' = \"sigma_ij\"\n",
+    "'T^2' = \"avg(n_k n_k)\"\n",
+    "'^{n}' = \"power\"\n",
+    "'\\langle \\rangle' = \"macaulay\"\n",
+    "defines = ['",
+    "differs_from_printed = \"x\"\n",
+    "notation = { ",
     "(",
     ")",
     "_",
@@ -273,6 +304,7 @@ fn exercise(data: &[u8]) {
             Strategy::Exact { .. } | Strategy::Proportional { .. } | Strategy::NotCircle { .. }
         ) {
             let _ = decide(&claim.decls, &claim.check);
+            let _ = transcribe(&claim.decls, &claim.check, &claim.transcript);
             continue;
         }
         let nodes = claim

@@ -300,9 +300,7 @@ pub fn read(
         }
         let mut part = part.clone();
         let mut defined = None;
-        if part.members.len() > 2
-            || (part.members.len() == 2 && part.relations[0] == latex::Rel::Eq)
-        {
+        if part.members.len() >= 2 && part.relations[0] == latex::Rel::Eq {
             let any_letter: BTreeSet<char> = ('a'..='z').chain('A'..='Z').collect();
             if defines
                 .iter()
@@ -736,11 +734,17 @@ impl Translator<'_> {
             );
         }
         let name = a.base.trim_start_matches('\\');
-        let name = match name {
-            "varepsilon" | "epsilon" => "eps",
-            "e" if a.sub.as_ref().is_some_and(|s| s.text.len() == 3) => "eps",
-            other => other,
-        };
+        // The permutation symbol, e_{ijk} or \varepsilon_{ijk}, unless the file declares
+        // a symbol of that name and rank.
+        let slots = a.sub.as_ref().map_or(0, |s| s.text.chars().count());
+        let permutation = slots == self.decls.dim
+            && matches!(name, "varepsilon" | "epsilon" | "e")
+            && self.decls.symbols.get(name) != Some(&slots)
+            && !self
+                .sigs
+                .iter()
+                .any(|s| s.name == name && s.formal.len() == slots);
+        let name = if permutation { "eps" } else { name };
         let Some(sub) = &a.sub else {
             if self.is_scalar(name) {
                 return Ok(Piece::atom(name.to_owned()));

@@ -138,7 +138,10 @@ pub struct LatexError {
 impl LatexError {
     /// "column N" (1-based, in characters) of the error in `src`.
     pub fn column(&self, src: &str) -> usize {
-        src[..self.span.start.min(src.len())].chars().count() + 1
+        src.char_indices()
+            .take_while(|(k, _)| *k < self.span.start)
+            .count()
+            + 1
     }
 }
 
@@ -154,6 +157,7 @@ pub fn read(src: &str, options: &ReadOptions) -> Result<Printed, LatexError> {
     let mut r = Reader {
         src,
         pos: 0,
+        nesting: 0,
         depth: 0,
         abs: 0,
         options,
@@ -233,9 +237,14 @@ const SIZES: &[&str] = &[
     "left", "right", "big", "Big", "bigl", "bigr", "Bigl", "Bigr",
 ];
 
+/// Brackets, fractions and roots nest at most this deep (the reader recurses).
+const MAX_NESTING: usize = 64;
+
 struct Reader<'a> {
     src: &'a str,
     pos: usize,
+    /// How deep the reader has recursed into nested constructs.
+    nesting: usize,
     /// Bracket depth: at depth 0, commas and `\quad` separate parts.
     depth: usize,
     /// Open `|…|` bars.
@@ -321,7 +330,6 @@ impl<'a> Reader<'a> {
                         parts,
                         trailing: Some(w),
                     }),
-                    Connective::First => unreachable!("a part was read"),
                     _ => self.err(
                         self.pos.saturating_sub(1),
                         self.pos,
@@ -617,7 +625,10 @@ impl<'a> Reader<'a> {
             if let (Some(prev), MathKind::Atom(_)) = (factors.last(), &f.kind) {
                 let prev: &Math = prev;
                 let bracketed = self.src[f.span.start..].starts_with('(');
-                if bracketed && prev.span.end == f.span.start && is_symbolish(prev) {
+                if bracketed
+                    && prev.span.end == f.span.start
+                    && matches!(prev.kind, MathKind::Atom(_))
+                {
                     return self.err(
                         prev.span.start,
                         f.span.end,
@@ -648,7 +659,17 @@ impl<'a> Reader<'a> {
     fn factor(&mut self) -> R<Math> {
         self.skip();
         let start = self.pos;
-        let mut m = self.primary()?;
+        if self.nesting >= MAX_NESTING {
+            return self.err(
+                start,
+                start + 1,
+                format!("nested more than {MAX_NESTING} deep"),
+            );
+        }
+        self.nesting += 1;
+        let m = self.primary();
+        self.nesting -= 1;
+        let mut m = m?;
         loop {
             match self.peek() {
                 Some('_') | Some('^') => {
@@ -665,7 +686,7 @@ impl<'a> Reader<'a> {
                         continue;
                     };
                     if is_sub {
-                        if atom.sub.is_some() || atom.sup.is_some() && atom.primes > 0 {
+                        if atom.sub.is_some() {
                             return self.err(at, self.pos, "a second subscript");
                         }
                         atom.sub = Some(script);
@@ -1092,9 +1113,4 @@ impl<'a> Reader<'a> {
             span: Span::new(start, self.pos),
         })
     }
-}
-
-/// A symbol that could be a function: `w_3''`, `h_2^{cr}`, `f`.
-fn is_symbolish(m: &Math) -> bool {
-    matches!(m.kind, MathKind::Atom(_))
 }

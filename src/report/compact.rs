@@ -1,5 +1,6 @@
 //! The compact table for a terminal: one line per claim with its id, section,
-//! verdict, strength, method and one short line of evidence, failures highlighted.
+//! verdict, strength, method, transcription status and one short line of evidence,
+//! failures highlighted.
 //! The full evidence stays in `explain`, `--format markdown`, JSON and HTML; this view
 //! only shortens it.
 
@@ -14,8 +15,10 @@ pub const EVIDENCE_WIDTH: usize = 80;
 /// How the table marks failures: `color` adds ANSI colours (bold red for `fails`,
 /// yellow for `conditional` and `undecided`) to the words, which say it without them.
 pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
-    let header = ["claim", "§", "verdict", "strength", "method", "evidence"];
-    let lines: Vec<[String; 6]> = rows
+    let header = [
+        "claim", "§", "verdict", "strength", "method", "read", "evidence",
+    ];
+    let lines: Vec<[String; 7]> = rows
         .iter()
         .map(|r| {
             [
@@ -28,6 +31,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
                 }
                 .to_owned(),
                 r.outcome.method.as_str().to_owned(),
+                super::read_label(r),
                 shorten(&short_evidence(r), EVIDENCE_WIDTH),
             ]
         })
@@ -40,12 +44,12 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
             .max()
             .unwrap_or(0)
     };
-    let widths: Vec<usize> = (0..5).map(width).collect();
+    let widths: Vec<usize> = (0..6).map(width).collect();
     let mut out = String::new();
     let _ = writeln!(out, "{paper}\n");
-    let row = |cells: [&str; 6], paint: Option<&str>| {
+    let row = |cells: [&str; 7], paint: Option<&str>| {
         let mut line = String::new();
-        for (k, cell) in cells.iter().enumerate().take(5) {
+        for (k, cell) in cells.iter().enumerate().take(6) {
             let pad = widths[k] - cell.chars().count();
             match (k, paint) {
                 (2, Some(code)) => {
@@ -56,7 +60,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
                 }
             }
         }
-        line.push_str(cells[5]);
+        line.push_str(cells[6]);
         line.trim_end().to_owned()
     };
     let _ = writeln!(out, "{}", row(header, None));
@@ -67,7 +71,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
             (true, Verdict::Conditional | Verdict::Undecided, _) => Some("33"),
             (true, Verdict::Holds, _) => None,
         };
-        let cells = [&l[0], &l[1], &l[2], &l[3], &l[4], &l[5]].map(String::as_str);
+        let cells = [&l[0], &l[1], &l[2], &l[3], &l[4], &l[5], &l[6]].map(String::as_str);
         let _ = writeln!(out, "{}", row(cells, paint));
     }
     let summary = Summary::of(rows);

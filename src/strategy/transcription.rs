@@ -153,7 +153,12 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
                 message: u.message.clone(),
             },
         },
-        Ok(reading) => Comparer { decls, check }.compare(&reading.parts, transcript),
+        Ok(reading) => Comparer {
+            decls,
+            check,
+            memo: Default::default(),
+        }
+        .compare(&reading.parts, transcript),
     };
     // A comparison that could not be decided, or a reading the language refuses, is no
     // evidence of a difference.
@@ -216,14 +221,21 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
 }
 
 /// The outcome of comparing one printed member with one side.
+#[derive(Clone)]
 enum Same {
     Yes(Strength),
     No(Why),
 }
 
+/// At most this many comparisons are decided for one statement; beyond, the
+/// transcription is read by hand (a statement with thousands of chains).
+const MAX_COMPARISONS: usize = 400;
+
 struct Comparer<'a> {
     decls: &'a Decls,
     check: &'a Check,
+    /// Comparisons already decided, by (printed, side).
+    memo: std::cell::RefCell<std::collections::HashMap<(String, String), Same>>,
 }
 
 /// One printed chain: a route of a part.
@@ -402,7 +414,8 @@ impl Comparer<'_> {
         }
         let mut best: Option<(usize, Status)> = None;
         for (k, p) in printed.iter().enumerate() {
-            if used[k] || p.members.len() != chain.len() {
+            // A condition is a hypothesis, not what the sides conclude.
+            if used[k] || p.part.condition || p.members.len() != chain.len() {
                 continue;
             }
             if let Err(status) = self.relations(p) {
@@ -413,11 +426,11 @@ impl Comparer<'_> {
             let equalities = p.part.relations.iter().all(|r| *r == Rel::Eq);
             let backwards = equalities
                 && p.members.len() > 1
+                && !matches!(self.same(&p.members[0].text, &chain[0]), Same::Yes(_))
                 && matches!(
                     self.same(&p.members[0].text, &chain[chain.len() - 1]),
                     Same::Yes(_)
-                )
-                && !matches!(self.same(&p.members[0].text, &chain[0]), Same::Yes(_));
+                );
             let members: Vec<&ReadMember> = if backwards {
                 p.members.iter().rev().collect()
             } else {
@@ -567,6 +580,23 @@ impl Comparer<'_> {
     /// Whether a printed member (in the language) equals a side as written, in the
     /// claim's context: exactly first, on samples where the exact route does not apply.
     fn same(&self, printed: &str, side: &str) -> Same {
+        let key = (printed.to_owned(), side.to_owned());
+        if let Some(s) = self.memo.borrow().get(&key) {
+            return s.clone();
+        }
+        // The same tree is the same expression (reflexivity): no evaluation needed.
+        let s = if identical(printed, side) {
+            Same::Yes(Strength::Proof)
+        } else if self.memo.borrow().len() >= MAX_COMPARISONS {
+            Same::No(Why::Undecided)
+        } else {
+            self.decide_same(printed, side)
+        };
+        self.memo.borrow_mut().insert(key, s.clone());
+        s
+    }
+
+    fn decide_same(&self, printed: &str, side: &str) -> Same {
         let domain = self
             .check
             .strategy
@@ -748,6 +778,78 @@ fn terms_of(text: &str) -> Vec<String> {
         go(text, &e, false, &mut out);
     }
     out
+}
+
+/// Two texts that parse to the same tree, spans aside: equal by reflexivity.
+fn identical(a: &str, b: &str) -> bool {
+    match (crate::lang::parse_expr(a), crate::lang::parse_expr(b)) {
+        (Ok(x), Ok(y)) => format!("{:?}", strip(x)) == format!("{:?}", strip(y)),
+        _ => false,
+    }
+}
+
+/// The tree with every span set to zero.
+fn strip(mut e: crate::lang::Expr) -> crate::lang::Expr {
+    use crate::lang::parser::ExprKind as K;
+    e.span = Span::default();
+    let b = |x: Box<crate::lang::Expr>| Box::new(strip(*x));
+    e.kind = match e.kind {
+        K::Name {
+            full,
+            base,
+            indices,
+        } => K::Name {
+            full,
+            base,
+            indices: indices
+                .into_iter()
+                .map(|t| crate::lang::parser::IndexTok {
+                    ch: t.ch,
+                    span: Span::default(),
+                })
+                .collect(),
+        },
+        K::Neg(a) => K::Neg(b(a)),
+        K::Add(x, y) => K::Add(b(x), b(y)),
+        K::Sub(x, y) => K::Sub(b(x), b(y)),
+        K::Mul(x, y) => K::Mul(b(x), b(y)),
+        K::Div(x, y) => K::Div(b(x), b(y)),
+        K::Pow(a, n) => K::Pow(b(a), n),
+        K::Call(f, a) => K::Call(f, b(a)),
+        K::Call2(f, x, y) => K::Call2(f, b(x), b(y)),
+        K::Deriv {
+            inner,
+            indices,
+            wrt,
+        } => K::Deriv {
+            inner: b(inner),
+            indices: indices
+                .into_iter()
+                .map(|t| crate::lang::parser::IndexTok {
+                    ch: t.ch,
+                    span: Span::default(),
+                })
+                .collect(),
+            wrt: wrt.map(|(w, _)| (w, Span::default())),
+        },
+        K::Wrt { op, body, symbol } => K::Wrt {
+            op,
+            body: b(body),
+            symbol: b(symbol),
+        },
+        K::Matrix(rows) => K::Matrix(
+            rows.into_iter()
+                .map(|r| r.into_iter().map(strip).collect())
+                .collect(),
+        ),
+        K::Entry(a, at) => K::Entry(
+            b(a),
+            at.into_iter().map(|(k, _)| (k, Span::default())).collect(),
+        ),
+        K::MatCall(f, args) => K::MatCall(f, args.into_iter().map(strip).collect()),
+        other => other,
+    };
+    e
 }
 
 /// Two texts that parse to the same expression up to the order of terms and factors
