@@ -1103,18 +1103,12 @@ impl Loader {
         let probe = self.check(
             &c.id, decls, defs, &c.define, &c.assume, &None, &None, c.verbatim, false,
         )?;
-        let t = self.transcript(
-            &c.printed,
-            false,
-            &c.notation,
-            &c.defines,
-            &None,
-            file,
-            decls,
-            &probe,
-            Vec::new(),
-            Vec::new(),
-        )?;
+        let input = Printed {
+            prose: false,
+            declared: &None,
+            ..Printed::of_claim(c)
+        };
+        let t = self.transcript(&input, file, decls, &probe, Vec::new(), Vec::new())?;
         let help = "give sides = [\"left\", \"right\"] in index notation, or make the printed statement readable (README, \"Reading the printed statement\")";
         let reading = t.reading.map_err(|u| {
             let col = crate::lang::latex::LatexError {
@@ -1181,20 +1175,22 @@ impl Loader {
 
     /// What the transcription check needs: the printed statement read through the
     /// claim's and the file's notation, and the chains as written.
-    #[allow(clippy::too_many_arguments)]
     fn transcript(
         &self,
-        printed: &S,
-        prose: bool,
-        table: &BTreeMap<String, Spanned<NotationValue>>,
-        defines: &[S],
-        declared: &Option<S>,
+        input: &Printed<'_>,
         file: &Notation,
         decls: &Decls,
         check: &Check,
         written: Vec<Vec<String>>,
         conditions: Vec<String>,
     ) -> Result<Transcript, Diagnostic> {
+        let Printed {
+            printed,
+            prose,
+            table,
+            defines,
+            declared,
+        } = *input;
         let notation = self.notation(table, file)?.then(file);
         let defines = defines
             .iter()
@@ -1207,7 +1203,7 @@ impl Loader {
         let reading = if prose {
             Err(notation::Unread {
                 span: Span::new(0, 0),
-                message: "a sentence of prose".to_owned(),
+                message: "a sentence of prose is not read".to_owned(),
             })
         } else {
             notation::read(printed.get_ref(), &notation, &defines, decls, &sigs)
@@ -1218,6 +1214,7 @@ impl Loader {
             declared: declared.as_ref().map(|d| d.get_ref().clone()),
             conditions,
             from_reading: false,
+            prose,
         })
     }
 
@@ -1285,12 +1282,15 @@ impl Loader {
                 let mut assumptions = check.assumptions.clone();
                 assumptions.append(&mut inner.assumptions);
                 inner.assumptions = assumptions;
+                let input = Printed {
+                    printed: &r.printed,
+                    prose: c.prose,
+                    table: &r.notation,
+                    defines: &r.defines,
+                    declared: &r.differs_from_printed,
+                };
                 let transcript = self.transcript(
-                    &r.printed,
-                    c.prose,
-                    &r.notation,
-                    &r.defines,
-                    &r.differs_from_printed,
+                    &input,
                     // The correction's own entries, then the claim's, then the file's.
                     &self.notation(&c.notation, notation)?.then(notation),
                     decls,
@@ -1308,11 +1308,7 @@ impl Loader {
             }
         };
         let transcript = self.transcript(
-            &c.printed,
-            c.prose,
-            &c.notation,
-            &c.defines,
-            &c.differs_from_printed,
+            &Printed::of_claim(c),
             notation,
             decls,
             &check,
@@ -1337,6 +1333,29 @@ impl Loader {
             check,
             correction,
         })
+    }
+}
+
+/// A printed statement with what the transcription check reads it with.
+#[derive(Clone, Copy)]
+struct Printed<'a> {
+    printed: &'a S,
+    prose: bool,
+    /// The statement's own notation entries.
+    table: &'a BTreeMap<String, Spanned<NotationValue>>,
+    defines: &'a [S],
+    declared: &'a Option<S>,
+}
+
+impl<'a> Printed<'a> {
+    fn of_claim(c: &'a RawClaim) -> Self {
+        Printed {
+            printed: &c.printed,
+            prose: c.prose,
+            table: &c.notation,
+            defines: &c.defines,
+            declared: &c.differs_from_printed,
+        }
     }
 }
 

@@ -501,6 +501,8 @@ pub struct Transcript {
     pub conditions: Vec<String>,
     /// The claim has no `sides`: its chains are the reading itself.
     pub from_reading: bool,
+    /// The statement is a sentence of prose, which is not read.
+    pub prose: bool,
 }
 
 /// One checkable statement of a derivation file.

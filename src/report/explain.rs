@@ -73,7 +73,16 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
     if !deps.is_empty() {
         let _ = writeln!(out, "Definitions used:");
         for k in deps {
-            let _ = writeln!(out, "    {}", check.defs[k].text.trim());
+            let text = check.defs[k].text.trim();
+            let typeset = match text.split_once('=') {
+                Some((name, body)) => format!(
+                    "{} = {}",
+                    super::typeset::latex(name.trim()),
+                    super::typeset::latex(body.trim())
+                ),
+                None => super::typeset::latex(text),
+            };
+            let _ = writeln!(out, "    {text}\n      typeset: ${typeset}$");
         }
     }
     if !check.assumptions.is_empty() {
