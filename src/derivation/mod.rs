@@ -1,6 +1,7 @@
 //! Derivation files: the claims of the paper, one file per section, in TOML with
 //! expressions in index notation. [`load`] reads and validates them into the
-//! [`model`] types.
+//! [`model`] types; [`notation`] reads the printed LaTeX of each claim through the
+//! file's notation table, for the transcription check.
 
 pub mod edit;
 mod fields;

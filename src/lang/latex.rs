@@ -822,14 +822,7 @@ impl<'a> Reader<'a> {
             '(' | '[' => return self.bracketed(start),
             '{' => {
                 self.pos += 1;
-                self.depth += 1;
-                let inner = self.expr()?;
-                self.depth -= 1;
-                self.skip();
-                if self.peek() != Some('}') {
-                    return self.err(start, self.pos + 1, "this `{` is never closed");
-                }
-                self.pos += 1;
+                let inner = self.group_rest(start)?;
                 return Ok(Math {
                     span: Span::new(start, self.pos),
                     ..inner
@@ -1017,6 +1010,11 @@ impl<'a> Reader<'a> {
                 "both parts of a \\partial fraction start with \\partial",
             );
         }
+        self.group_rest(start)
+    }
+
+    /// The rest of a `{…}` group opened at `start`: an expression and the `}`.
+    fn group_rest(&mut self, start: usize) -> R<Math> {
         self.depth += 1;
         let inner = self.expr()?;
         self.depth -= 1;

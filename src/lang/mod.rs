@@ -1,7 +1,7 @@
 //! The index-notation language of the derivation files: lexer and parser
 //! ([`parser`]), name resolution and index validation ([`check`]), and diagnostics
 //! that point at file, line and column ([`diag`]); the matrix language is typed in
-//! [`matrix`].
+//! [`matrix`]. The reader of the printed LaTeX of statements is [`latex`].
 
 pub mod check;
 pub mod diag;

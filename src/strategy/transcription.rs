@@ -780,76 +780,10 @@ fn terms_of(text: &str) -> Vec<String> {
     out
 }
 
-/// Two texts that parse to the same tree, spans aside: equal by reflexivity.
+/// The same text, up to runs of spaces: the same expression (reflexivity). Spaces are
+/// kept where they separate (`a b` is not the name `ab`).
 fn identical(a: &str, b: &str) -> bool {
-    match (crate::lang::parse_expr(a), crate::lang::parse_expr(b)) {
-        (Ok(x), Ok(y)) => format!("{:?}", strip(x)) == format!("{:?}", strip(y)),
-        _ => false,
-    }
-}
-
-/// The tree with every span set to zero.
-fn strip(mut e: crate::lang::Expr) -> crate::lang::Expr {
-    use crate::lang::parser::ExprKind as K;
-    e.span = Span::default();
-    let b = |x: Box<crate::lang::Expr>| Box::new(strip(*x));
-    e.kind = match e.kind {
-        K::Name {
-            full,
-            base,
-            indices,
-        } => K::Name {
-            full,
-            base,
-            indices: indices
-                .into_iter()
-                .map(|t| crate::lang::parser::IndexTok {
-                    ch: t.ch,
-                    span: Span::default(),
-                })
-                .collect(),
-        },
-        K::Neg(a) => K::Neg(b(a)),
-        K::Add(x, y) => K::Add(b(x), b(y)),
-        K::Sub(x, y) => K::Sub(b(x), b(y)),
-        K::Mul(x, y) => K::Mul(b(x), b(y)),
-        K::Div(x, y) => K::Div(b(x), b(y)),
-        K::Pow(a, n) => K::Pow(b(a), n),
-        K::Call(f, a) => K::Call(f, b(a)),
-        K::Call2(f, x, y) => K::Call2(f, b(x), b(y)),
-        K::Deriv {
-            inner,
-            indices,
-            wrt,
-        } => K::Deriv {
-            inner: b(inner),
-            indices: indices
-                .into_iter()
-                .map(|t| crate::lang::parser::IndexTok {
-                    ch: t.ch,
-                    span: Span::default(),
-                })
-                .collect(),
-            wrt: wrt.map(|(w, _)| (w, Span::default())),
-        },
-        K::Wrt { op, body, symbol } => K::Wrt {
-            op,
-            body: b(body),
-            symbol: b(symbol),
-        },
-        K::Matrix(rows) => K::Matrix(
-            rows.into_iter()
-                .map(|r| r.into_iter().map(strip).collect())
-                .collect(),
-        ),
-        K::Entry(a, at) => K::Entry(
-            b(a),
-            at.into_iter().map(|(k, _)| (k, Span::default())).collect(),
-        ),
-        K::MatCall(f, args) => K::MatCall(f, args.into_iter().map(strip).collect()),
-        other => other,
-    };
-    e
+    a.split_whitespace().eq(b.split_whitespace())
 }
 
 /// Two texts that parse to the same expression up to the order of terms and factors
