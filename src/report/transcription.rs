@@ -50,9 +50,16 @@ pub fn describe(t: &Transcription, printed: &str) -> String {
             reading,
             side,
             why,
+            unmatched,
             declared,
         } => {
-            let mut out = format!("differs at column {}", column(printed, *span));
+            let mut out = match unmatched {
+                Some(chain) => format!(
+                    "differs: the sides' chain `{chain}` transcribes no printed chain; the nearest differs at column {}",
+                    column(printed, *span)
+                ),
+                None => format!("differs at column {}", column(printed, *span)),
+            };
             if !piece.is_empty() {
                 out.push_str(&format!(" `{piece}`"));
             }

@@ -52,6 +52,9 @@ pub enum Status {
         /// The side as written it was compared with (empty when there is none).
         side: String,
         why: Why,
+        /// With several chains on either side: the sides' chain that no printed chain
+        /// transcribes (the rest describes the nearest printed one).
+        unmatched: Option<String>,
         /// The claim's declared reason (`differs_from_printed`), if any.
         declared: Option<String>,
     },
@@ -156,6 +159,7 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
         Ok(reading) => Comparer {
             decls,
             check,
+            chains: transcript.written.len(),
             memo: Default::default(),
         }
         .compare(&reading.parts, transcript),
@@ -188,6 +192,7 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
                 reading,
                 side,
                 why,
+                unmatched,
                 ..
             },
             Some(d),
@@ -197,6 +202,7 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
             reading,
             side,
             why,
+            unmatched,
             declared: Some(d.clone()),
         },
         (
@@ -234,6 +240,8 @@ const MAX_COMPARISONS: usize = 400;
 struct Comparer<'a> {
     decls: &'a Decls,
     check: &'a Check,
+    /// How many chains the sides have.
+    chains: usize,
     /// Comparisons already decided, by (printed, side).
     memo: std::cell::RefCell<std::collections::HashMap<(String, String), Same>>,
 }
@@ -336,6 +344,7 @@ impl Comparer<'_> {
                         reading: String::new(),
                         side: transcript.conditions.join(", "),
                         why: Why::Condition,
+                        unmatched: None,
                         declared: None,
                     }
                 }
@@ -371,6 +380,7 @@ impl Comparer<'_> {
                     reading: chain_text(p),
                     side: String::new(),
                     why: Why::Untranscribed(why),
+                    unmatched: None,
                     declared: None,
                 };
             }
@@ -463,7 +473,28 @@ impl Comparer<'_> {
                 }
             }
         }
-        Err(best.map(|(_, s)| s).unwrap_or_else(|| {
+        let several = printed.len() > 1 || self.chains > 1;
+        let best = best.map(|(_, s)| match s {
+            Status::Differs {
+                span,
+                printed,
+                reading,
+                side,
+                why,
+                declared,
+                ..
+            } if several => Status::Differs {
+                span,
+                printed,
+                reading,
+                side,
+                why,
+                unmatched: Some(chain.join(" = ")),
+                declared,
+            },
+            s => s,
+        });
+        Err(best.unwrap_or_else(|| {
             let part = printed.first().map(|p| p.part);
             Status::Differs {
                 span: part.map_or(Span::default(), |p| p.span),
@@ -471,6 +502,7 @@ impl Comparer<'_> {
                 reading: String::new(),
                 side: chain.join(" = "),
                 why: Why::Members { side: chain.len() },
+                unmatched: None,
                 declared: None,
             }
         }))
@@ -505,6 +537,7 @@ impl Comparer<'_> {
                     printed: r.symbol().to_owned(),
                     side: w.symbol().to_owned(),
                 },
+                unmatched: None,
                 declared: None,
             }),
             _ => Ok(()),
@@ -532,6 +565,7 @@ impl Comparer<'_> {
             reading: at.1,
             side: side.to_owned(),
             why,
+            unmatched: None,
             declared: None,
         }
         .located(part)
@@ -573,6 +607,7 @@ impl Comparer<'_> {
             reading: String::new(),
             side: closed.to_owned(),
             why: Why::NoDerivative(symbol.to_owned()),
+            unmatched: None,
             declared: None,
         })
     }
@@ -728,6 +763,7 @@ impl Status {
                 reading,
                 side,
                 why,
+                unmatched,
                 declared,
                 ..
             } => {
@@ -742,6 +778,7 @@ impl Status {
                     reading,
                     side,
                     why,
+                    unmatched,
                     declared,
                 }
             }
