@@ -573,3 +573,22 @@ fn sides_are_typeset_as_latex() {
     // An ill-formed side is still shown, as text.
     assert_eq!(latex("a +"), r"\texttt{a +}");
 }
+
+/// A gradient claim's closed forms are typeset as ∂F/∂x = G, with x's free indices.
+#[test]
+fn gradient_closed_forms_are_typeset() {
+    let files = paper();
+    let claim = files
+        .iter()
+        .flat_map(|f| &f.claims)
+        .find(|c| c.id == "grad-F1")
+        .unwrap();
+    let typeset = cosserat_check::report::typeset::checked(&claim.check, &claim.transcript);
+    assert!(
+        typeset.contains(
+            &r"\frac{\partial \left( \mathrm{F1} \right)}{\partial \mu_{ij}} = 0 \, \mu_{ij}"
+                .to_owned()
+        ),
+        "{typeset:?}"
+    );
+}

@@ -248,13 +248,19 @@ pub fn render(r: &Decided<'_>) -> String {
         let _ = writeln!(out, "Note: {note}");
     }
     let _ = writeln!(out, "Setting: {}\n", setting(&c.decls));
-    reading_section(&mut out, &r.transcription, &c.transcript, &c.statement);
+    reading_section(
+        &mut out,
+        &r.transcription,
+        &c.check,
+        &c.transcript,
+        &c.statement,
+    );
     check_section(&mut out, &c.check, &r.outcome);
     if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
         let _ = writeln!(out, "\n## Correction\n\n{}\nWhy: {}", k.statement, k.reason);
         let _ = writeln!(out, "Declared: {}", k.expect);
         if let Some(t) = &r.correction_transcription {
-            reading_section(&mut out, t, &k.transcript, &k.statement);
+            reading_section(&mut out, t, &k.check, &k.transcript, &k.statement);
         }
         check_section(&mut out, &k.check, o);
     }
@@ -266,6 +272,7 @@ pub fn render(r: &Decided<'_>) -> String {
 fn reading_section(
     out: &mut String,
     t: &crate::strategy::transcription::Transcription,
+    check: &Check,
     transcript: &crate::derivation::Transcript,
     printed: &str,
 ) {
@@ -285,12 +292,8 @@ fn reading_section(
             }
         }
     }
-    for chain in &transcript.written {
-        let _ = writeln!(
-            out,
-            "  checked, typeset: ${}$",
-            super::typeset::chain(chain)
-        );
+    for typeset in super::typeset::checked(check, transcript) {
+        let _ = writeln!(out, "  checked, typeset: ${typeset}$");
     }
     let _ = writeln!(out);
 }

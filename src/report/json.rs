@@ -57,6 +57,7 @@ struct TranscriptionRow {
 
 fn transcription_row(
     t: &crate::strategy::transcription::Transcription,
+    check: &crate::derivation::Check,
     transcript: &crate::derivation::Transcript,
     printed: &str,
 ) -> TranscriptionRow {
@@ -71,11 +72,7 @@ fn transcription_row(
                 ..
             }
         ),
-        checked_latex: transcript
-            .written
-            .iter()
-            .map(|c| super::typeset::chain(c))
-            .collect(),
+        checked_latex: super::typeset::checked(check, transcript),
     }
 }
 
@@ -95,51 +92,55 @@ struct CorrectionRow<'a> {
 
 /// Renders the table as pretty-printed JSON (deterministic: fixed field order).
 pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
-    let claims = rows
-        .iter()
-        .map(|r| {
-            let c = r.claim;
-            ClaimRow {
-                id: &c.id,
-                section: &c.section,
-                statement: &c.statement,
-                verdict: r.outcome.verdict().as_str(),
-                method: r.outcome.method,
-                strength: r.outcome.strength(),
-                expected: c.expect.as_str(),
-                checks: r.outcome.checks,
-                certificate: r.outcome.certificate(),
-                counterexample: r.outcome.counterexample.as_ref(),
-                correction: c
-                    .correction
-                    .as_ref()
-                    .zip(r.correction.as_ref())
-                    .map(|(k, o)| CorrectionRow {
-                        statement: &k.statement,
-                        verdict: o.verdict().as_str(),
-                        method: o.method,
-                        strength: o.strength(),
-                        expected: k.expect.as_str(),
-                        checks: o.checks,
-                        certificate: o.certificate(),
-                        counterexample: o.counterexample.as_ref(),
-                        reason: &k.reason,
-                        transcription: r
-                            .correction_transcription
-                            .as_ref()
-                            .map(|t| transcription_row(t, &k.transcript, &k.statement)),
-                    }),
-                as_expected: r.as_expected(),
-                used_unit_normal: r.outcome.used_unit_normal,
-                numeric: r.outcome.numeric.as_ref(),
-                detail: r.outcome.finding.as_ref().map(super::words::finding),
-                finding: r.outcome.finding.as_ref(),
-                reason: c.reason.as_deref(),
-                note: c.note.as_deref(),
-                transcription: transcription_row(&r.transcription, &c.transcript, &c.statement),
-            }
-        })
-        .collect();
+    let claims =
+        rows.iter()
+            .map(|r| {
+                let c = r.claim;
+                ClaimRow {
+                    id: &c.id,
+                    section: &c.section,
+                    statement: &c.statement,
+                    verdict: r.outcome.verdict().as_str(),
+                    method: r.outcome.method,
+                    strength: r.outcome.strength(),
+                    expected: c.expect.as_str(),
+                    checks: r.outcome.checks,
+                    certificate: r.outcome.certificate(),
+                    counterexample: r.outcome.counterexample.as_ref(),
+                    correction: c
+                        .correction
+                        .as_ref()
+                        .zip(r.correction.as_ref())
+                        .map(|(k, o)| CorrectionRow {
+                            statement: &k.statement,
+                            verdict: o.verdict().as_str(),
+                            method: o.method,
+                            strength: o.strength(),
+                            expected: k.expect.as_str(),
+                            checks: o.checks,
+                            certificate: o.certificate(),
+                            counterexample: o.counterexample.as_ref(),
+                            reason: &k.reason,
+                            transcription: r.correction_transcription.as_ref().map(|t| {
+                                transcription_row(t, &k.check, &k.transcript, &k.statement)
+                            }),
+                        }),
+                    as_expected: r.as_expected(),
+                    used_unit_normal: r.outcome.used_unit_normal,
+                    numeric: r.outcome.numeric.as_ref(),
+                    detail: r.outcome.finding.as_ref().map(super::words::finding),
+                    finding: r.outcome.finding.as_ref(),
+                    reason: c.reason.as_deref(),
+                    note: c.note.as_deref(),
+                    transcription: transcription_row(
+                        &r.transcription,
+                        &c.check,
+                        &c.transcript,
+                        &c.statement,
+                    ),
+                }
+            })
+            .collect();
     let report = Report {
         paper,
         claims,

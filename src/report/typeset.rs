@@ -57,6 +57,36 @@ pub fn chain(sides: &[String]) -> String {
         .join(" = ")
 }
 
+/// What a check states, typeset: its chains as written, or for a gradient claim each
+/// closed form, ∂F/∂x = G.
+pub fn checked(
+    check: &crate::derivation::Check,
+    transcript: &crate::derivation::Transcript,
+) -> Vec<String> {
+    let mut out: Vec<String> = transcript.written.iter().map(|c| chain(c)).collect();
+    if let crate::derivation::Strategy::Gradient {
+        function,
+        closed_forms,
+        ..
+    } = &check.strategy
+    {
+        let f = latex(&function.text);
+        for (symbol, closed) in closed_forms {
+            let free: String = closed.node.free_letters().into_iter().collect();
+            let by = if free.is_empty() {
+                name(symbol)
+            } else {
+                format!("{}_{{{free}}}", name(symbol))
+            };
+            out.push(format!(
+                "\\frac{{\\partial \\left( {f} \\right)}}{{\\partial {by}}} = {}",
+                latex(&closed.text)
+            ));
+        }
+    }
+    out
+}
+
 /// A name: Greek letters by their commands, one letter as is, longer names upright.
 fn name(base: &str) -> String {
     if let Some((_, g)) = GREEK.iter().find(|(n, _)| *n == base) {
