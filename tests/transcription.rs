@@ -592,3 +592,28 @@ fn gradient_closed_forms_are_typeset() {
         "{typeset:?}"
     );
 }
+
+/// A printed chain whose comparison passes a resource limit is read by hand: an
+/// undecided comparison is no evidence that the sides differ.
+#[test]
+fn an_undecided_comparison_is_hand_not_differs() {
+    let got = statuses(
+        r#"[[claim]]
+id = "beside-a-huge-power"
+printed = 'x = x \text{ with } ((x/31^{64})^{64})^{64} = 1 \cdot ((x/31^{64})^{64})^{64}'
+expect = "holds"
+sides = ["x", "x"]
+"#,
+    );
+    assert!(
+        matches!(
+            got[0].1,
+            Status::Hand {
+                reason: Hand::Undecided { .. }
+            }
+        ),
+        "{:?}",
+        got[0].1
+    );
+    assert!(got[0].2);
+}

@@ -1111,11 +1111,7 @@ impl Loader {
         let t = self.transcript(&input, file, decls, &probe, Vec::new(), Vec::new())?;
         let help = "give sides = [\"left\", \"right\"] in index notation, or make the printed statement readable (README, \"Reading the printed statement\")";
         let reading = t.reading.map_err(|u| {
-            let col = crate::lang::latex::LatexError {
-                span: u.span,
-                message: String::new(),
-            }
-            .column(c.printed.get_ref());
+            let col = crate::lang::latex::column(c.printed.get_ref(), u.span.start);
             self.diag(
                 c.printed.span(),
                 format!(

@@ -26,7 +26,6 @@ use std::collections::{BTreeMap, BTreeSet};
 /// One entry: a printed symbol and its readings in the language.
 #[derive(Clone, Debug)]
 pub struct Entry {
-    pub key: String,
     pattern: Math,
     pub values: Vec<String>,
     /// The letters of the key's subscript that are pattern variables.
@@ -134,7 +133,6 @@ impl Notation {
             }
         }
         self.entries.push(Entry {
-            key: key.to_owned(),
             pattern,
             values,
             vars: vars.unwrap_or_default(),

@@ -138,11 +138,14 @@ pub struct LatexError {
 impl LatexError {
     /// "column N" (1-based, in characters) of the error in `src`.
     pub fn column(&self, src: &str) -> usize {
-        src.char_indices()
-            .take_while(|(k, _)| *k < self.span.start)
-            .count()
-            + 1
+        column(src, self.span.start)
     }
+}
+
+/// The 1-based column, in characters, of a byte offset in `src` (an offset inside a
+/// character counts as that character).
+pub fn column(src: &str, offset: usize) -> usize {
+    src.char_indices().take_while(|(k, _)| *k < offset).count() + 1
 }
 
 /// How superscripts are told apart: numbers are powers; these too.

@@ -1,7 +1,6 @@
 //! The words for a transcription status: whether the sides say what the printed
 //! statement says, and where they part.
 
-use crate::lang::latex::LatexError;
 use crate::lang::Span;
 use crate::strategy::transcription::{Hand, Status, Transcription, Why};
 use crate::strategy::Strength;
@@ -151,9 +150,5 @@ fn letters(ls: &[char]) -> String {
 
 /// The 1-based column (in characters) of a span in the printed statement.
 fn column(printed: &str, span: Span) -> usize {
-    LatexError {
-        span,
-        message: String::new(),
-    }
-    .column(printed)
+    crate::lang::latex::column(printed, span.start)
 }

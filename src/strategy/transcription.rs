@@ -184,45 +184,14 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
         },
         s => s,
     };
-    let status = match (status, &transcript.declared) {
-        (
-            Status::Differs {
-                span,
-                printed,
-                reading,
-                side,
-                why,
-                unmatched,
-                ..
-            },
-            Some(d),
-        ) => Status::Differs {
-            span,
-            printed,
-            reading,
-            side,
-            why,
-            unmatched,
-            declared: Some(d.clone()),
-        },
-        (
-            Status::MachineRead {
-                strength,
-                context,
-                defines,
-                from_reading,
-                ..
-            },
-            Some(d),
-        ) => Status::MachineRead {
-            strength,
-            context,
-            defines,
-            stale: Some(d.clone()),
-            from_reading,
-        },
-        (s, _) => s,
-    };
+    let mut status = status;
+    if let Some(d) = &transcript.declared {
+        match &mut status {
+            Status::Differs { declared, .. } => *declared = Some(d.clone()),
+            Status::MachineRead { stale, .. } => *stale = Some(d.clone()),
+            Status::Hand { .. } => {}
+        }
+    }
     Transcription { status }
 }
 
@@ -308,6 +277,8 @@ impl Comparer<'_> {
             if used[k] || !p.part.condition || p.part.relations.iter().all(|r| *r == Rel::Eq) {
                 continue;
             }
+            // A comparison that could not be decided is no evidence of a difference.
+            let mut undecided = false;
             let found = transcript.conditions.iter().find_map(|c| {
                 let (members, relations) = split_relations(c)?;
                 let forwards = relations == p.part.relations;
@@ -327,7 +298,10 @@ impl Comparer<'_> {
                 for (m, side) in p.members.iter().zip(order) {
                     match self.same(&m.text, side) {
                         Same::Yes(s) => strength = strength.weaker(s),
-                        Same::No(_) => return None,
+                        Same::No(why) => {
+                            undecided |= inconclusive(&why);
+                            return None;
+                        }
                     }
                 }
                 Some(strength)
@@ -343,7 +317,11 @@ impl Comparer<'_> {
                         printed: p.part.latex.clone(),
                         reading: String::new(),
                         side: transcript.conditions.join(", "),
-                        why: Why::Condition,
+                        why: if undecided {
+                            Why::Undecided
+                        } else {
+                            Why::Condition
+                        },
                         unmatched: None,
                         declared: None,
                     }
@@ -362,6 +340,17 @@ impl Comparer<'_> {
                 for pair in p.members.windows(2) {
                     match self.same(&pair[0].text, &pair[1].text) {
                         Same::Yes(s) => strength = strength.weaker(s),
+                        Same::No(w) if inconclusive(&w) => {
+                            return Status::Differs {
+                                span: p.part.span,
+                                printed: p.part.latex.clone(),
+                                reading: chain_text(p),
+                                side: String::new(),
+                                why: w,
+                                unmatched: None,
+                                declared: None,
+                            }
+                        }
                         Same::No(w) => {
                             why = match w {
                                 Why::Value(s) => Some(s),
@@ -473,27 +462,12 @@ impl Comparer<'_> {
                 }
             }
         }
-        let several = printed.len() > 1 || self.chains > 1;
-        let best = best.map(|(_, s)| match s {
-            Status::Differs {
-                span,
-                printed,
-                reading,
-                side,
-                why,
-                declared,
-                ..
-            } if several => Status::Differs {
-                span,
-                printed,
-                reading,
-                side,
-                why,
-                unmatched: Some(chain.join(" = ")),
-                declared,
-            },
-            s => s,
-        });
+        if printed.len() > 1 || self.chains > 1 {
+            if let Some((_, Status::Differs { unmatched, .. })) = &mut best {
+                *unmatched = Some(chain.join(" = "));
+            }
+        }
+        let best = best.map(|(_, s)| s);
         Err(best.unwrap_or_else(|| {
             let part = printed.first().map(|p| p.part);
             Status::Differs {
@@ -746,6 +720,13 @@ fn flip(r: Rel) -> Rel {
     }
 }
 
+/// Whether a failed comparison says nothing about a difference: it could not be
+/// decided, or the reading is not an expression of the language. The status is then
+/// `hand`, never `differs`.
+fn inconclusive(why: &Why) -> bool {
+    matches!(why, Why::Undecided | Why::Untranslatable(_))
+}
+
 fn verdict_of(o: &Outcome) -> Same {
     match o.verdict() {
         Verdict::Holds => Same::Yes(o.strength()),
@@ -756,34 +737,15 @@ fn verdict_of(o: &Outcome) -> Same {
 
 impl Status {
     /// Fills in the printed piece of a `Differs` from its part.
-    fn located(self, part: &ReadPart) -> Status {
-        match self {
-            Status::Differs {
-                span,
-                reading,
-                side,
-                why,
-                unmatched,
-                declared,
-                ..
-            } => {
-                let rel = span.start.saturating_sub(part.span.start);
-                let printed = part
-                    .latex
-                    .get(rel..rel + (span.end - span.start))
-                    .map_or_else(|| part.latex.clone(), |s| s.trim().to_owned());
-                Status::Differs {
-                    span,
-                    printed,
-                    reading,
-                    side,
-                    why,
-                    unmatched,
-                    declared,
-                }
-            }
-            s => s,
+    fn located(mut self, part: &ReadPart) -> Status {
+        if let Status::Differs { span, printed, .. } = &mut self {
+            let rel = span.start.saturating_sub(part.span.start);
+            *printed = part
+                .latex
+                .get(rel..rel + (span.end - span.start))
+                .map_or_else(|| part.latex.clone(), |s| s.trim().to_owned());
         }
+        self
     }
 }
 
