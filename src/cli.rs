@@ -5,7 +5,7 @@
 use crate::derivation::{load_dir, load_files, DerivationFile, LoadError, Strategy};
 use crate::report;
 use crate::strategy::watch::{self, Watch};
-use crate::strategy::{decide_claim, decide_claim_recorded, Decided};
+use crate::strategy::{decide_claim, decide_claim_recorded, inherit, Decided};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -278,10 +278,21 @@ fn decide_with_progress<'f>(
     run: Run,
     progress: &mut Progress,
 ) -> Result<Vec<Decided<'f>>, RunError> {
+    // With `--only`, the claims it uses are decided too, so that a failure can be
+    // attributed; only the one asked for is reported.
+    let wanted: Option<std::collections::BTreeSet<&str>> = only.map(|id| {
+        let all = files.iter().flat_map(|f| &f.claims).map(|c| (c.id.as_str(), c)).collect();
+        let mut ids: std::collections::BTreeSet<&str> = inherit::ancestors(id, &all)
+            .into_iter()
+            .map(|c| c.id.as_str())
+            .collect();
+        ids.insert(id);
+        ids
+    });
     let claims: Vec<_> = files
         .iter()
         .flat_map(|f| &f.claims)
-        .filter(|c| only.is_none_or(|id| c.id == id))
+        .filter(|c| wanted.as_ref().is_none_or(|w| w.contains(c.id.as_str())))
         .collect();
     if let (Some(id), true) = (only, claims.is_empty()) {
         let known: Vec<&str> = files
@@ -351,10 +362,13 @@ fn decide_with_progress<'f>(
             progress.show(done, n, &working);
         }
     });
-    slots
+    let mut rows = slots
         .into_iter()
         .map(|r| r.unwrap_or_else(|| Err(RunError::Input("error: a worker stopped".into()))))
-        .collect()
+        .collect::<Result<Vec<_>, _>>()?;
+    inherit::attribute(&mut rows, run.limit).map_err(|d| RunError::Input(d.to_string()))?;
+    rows.retain(|r| only.is_none_or(|id| r.claim.id == id));
+    Ok(rows)
 }
 
 /// Applies `--seed` and `--samples` to every sampled claim.
@@ -499,6 +513,10 @@ fn table(
     out: &mut Output<'_>,
 ) -> Result<Status, RunError> {
     override_sampling(&mut files, args.seed, args.samples);
+    // Where `uses` and the definitions disagree: warnings, which change no verdict.
+    for w in crate::derivation::uses::warnings(&files) {
+        eprintln!("{}\n", w.warning());
+    }
     let mut progress = Progress::new();
     let run = Run {
         keep: false,

@@ -3,10 +3,10 @@
 
 use super::model::{
     Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
-    Figure, Grid, ScalarClaim, Side, Strategy, Transcript, Verdict,
+    Figure, Grid, ScalarClaim, Side, Stated, Strategy, Transcript, Use, Verdict,
 };
 use super::notation::{self, Notation};
-use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, S};
+use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
 use super::spans::{content_map, sub_origin};
 use crate::derivation::ParamBox;
 use crate::kernel::Rational;
@@ -118,6 +118,7 @@ fn unique_ids(
         }
         files.push(file);
     }
+    super::uses::link(&files)?;
     Ok(files)
 }
 
@@ -192,9 +193,9 @@ fn load_file_with_ids(path: &Path) -> Result<(DerivationFile, Vec<(String, IdDia
 
 /// Reads one derivation file given as text (`label` names it in diagnostics).
 pub fn load_str(label: &str, text: &str) -> Result<DerivationFile, LoadError> {
-    Loader::new(SourceFile::new(label, text))
-        .run()
-        .map(|(f, _)| f)
+    let (file, _) = Loader::new(SourceFile::new(label, text)).run()?;
+    super::uses::link(std::slice::from_ref(&file))?;
+    Ok(file)
 }
 
 pub(super) struct Loader {
@@ -242,6 +243,7 @@ impl Loader {
             defs.push(def);
         }
         let notation = self.notation(&raw.notation, &Notation::default())?;
+        let stated = Arc::new(self.stated(&raw.stated, &decls, &defs)?);
         let mut claims = Vec::new();
         let mut ids: Vec<(String, IdDiag)> = Vec::new();
         let mut local_ids = BTreeMap::new();
@@ -278,7 +280,9 @@ impl Loader {
                 id,
                 Box::new(move |m| file.diagnostic(Span::new(span.start, span.end), m)),
             ));
-            claims.push(self.claim(c, &raw, &decls, &defs, &notation)?);
+            let mut claim = self.claim(c, &raw, &decls, &defs, &notation)?;
+            claim.stated = stated.clone();
+            claims.push(claim);
         }
         let mut figures = Vec::new();
         for f in &raw.figure {
@@ -300,6 +304,7 @@ impl Loader {
                 section: raw.section.get_ref().clone(),
                 title: raw.title.get_ref().clone(),
                 claims,
+                stated,
                 figures,
             },
             ids,
@@ -1319,6 +1324,7 @@ impl Loader {
             transcript,
             paper: self.paper(raw),
             id: c.id.get_ref().clone(),
+            origin: self.origin(&c.id),
             section: c.section.as_ref().unwrap_or(&raw.section).get_ref().clone(),
             statement: c.printed.get_ref().clone(),
             prose: c.prose,
@@ -1328,7 +1334,59 @@ impl Loader {
             decls: decls.clone(),
             check,
             correction,
+            uses: c
+                .uses
+                .iter()
+                .map(|u| Use {
+                    id: u.get_ref().clone(),
+                    origin: self.origin(u),
+                })
+                .collect(),
+            stated: Arc::default(),
         })
+    }
+
+    /// The `[stated]` table: each entry names a definition of the file, the claim whose
+    /// statement it transcribes, and optionally its corrected form, a definition of the
+    /// same name and indices read in the scope of the definitions before it.
+    fn stated(
+        &self,
+        raw: &BTreeMap<String, Spanned<RawStated>>,
+        decls: &Decls,
+        defs: &[Definition],
+    ) -> Result<Vec<Stated>, Diagnostic> {
+        let mut out = Vec::new();
+        for (name, entry) in raw {
+            let e = entry.get_ref();
+            let Some(k) = defs.iter().position(|d| d.sig.name == *name) else {
+                return Err(self
+                    .diag(entry.span(), format!("`{name}` is not a definition of this file"))
+                    .with_help("[stated] keys are the names of the file's `define` entries, like mut for mut_ij"));
+            };
+            let corrected = match &e.corrected {
+                None => None,
+                Some(c) => {
+                    let def = self.definition(c, decls, &defs[..k], &[])?;
+                    let original = &defs[k].sig;
+                    if def.sig.name != original.name
+                        || def.sig.formal != original.formal
+                        || def.sig.shape != original.shape
+                    {
+                        return Err(self
+                            .diag(c.span(), format!("the corrected form must define `{}` as it is defined", defs[k].text.split('=').next().unwrap_or_default().trim()))
+                            .with_help("write the same left side, e.g. corrected = \"mut_ij = …\" for mut_ij"));
+                    }
+                    Some(def)
+                }
+            };
+            out.push(Stated {
+                name: name.clone(),
+                by: e.by.get_ref().clone(),
+                origin: self.origin(&e.by),
+                corrected,
+            });
+        }
+        Ok(out)
     }
 }
 

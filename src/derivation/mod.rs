@@ -13,12 +13,13 @@ mod reads;
 mod scalar;
 mod spans;
 mod spec;
+pub mod uses;
 
 pub use load::{load_dir, load_files, load_str, load_texts, parse_grid, LoadError};
 pub use model::{
     Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Curve, Definition,
     DerivationFile, Expression, Figure, GradientConvention, Grid, LimitValue, ParamBox, Relation,
-    Sampling, ScalarClaim, Side, Strategy, Transcript, Verdict,
+    Sampling, ScalarClaim, Side, Stated, Strategy, Transcript, Use, Verdict,
 };
 pub use reads::Reads;
 pub use spec::DEFAULT_SAMPLES;

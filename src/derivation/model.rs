@@ -505,12 +505,35 @@ pub struct Transcript {
     pub prose: bool,
 }
 
+/// A claim this one is derived from (`uses`), as written.
+#[derive(Clone, Debug)]
+pub struct Use {
+    pub id: String,
+    pub origin: Origin,
+}
+
+/// A definition that transcribes (part of) a claim's printed statement (`[stated]`):
+/// a claim whose check reads it uses that claim, and `corrected` is what it becomes
+/// when that claim is replaced by its correction.
+#[derive(Clone, Debug)]
+pub struct Stated {
+    /// The definition's name.
+    pub name: String,
+    /// The claim whose statement it transcribes.
+    pub by: String,
+    /// Where `by` is written.
+    pub origin: Origin,
+    pub corrected: Option<Definition>,
+}
+
 /// One checkable statement of a derivation file.
 #[derive(Clone, Debug)]
 pub struct Claim {
     /// The work the claim comes from.
     pub paper: String,
     pub id: String,
+    /// Where the id is written.
+    pub origin: Origin,
     pub section: String,
     /// The statement as printed (LaTeX, verbatim, typos included).
     pub statement: String,
@@ -526,6 +549,10 @@ pub struct Claim {
     pub check: Check,
     pub transcript: Transcript,
     pub correction: Option<Correction>,
+    /// The claims this one is derived from.
+    pub uses: Vec<Use>,
+    /// The file's definitions attributed to the claims that state them.
+    pub stated: Arc<Vec<Stated>>,
 }
 
 /// A whole derivation file, checked.
@@ -538,6 +565,8 @@ pub struct DerivationFile {
     pub section: String,
     pub title: String,
     pub claims: Vec<Claim>,
+    /// The definitions attributed to the claims that state them (`[stated]`).
+    pub stated: Arc<Vec<Stated>>,
     /// The `[[figure]]` tables, for `plot`.
     pub figures: Vec<Figure>,
 }

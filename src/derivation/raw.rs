@@ -39,6 +39,11 @@ pub struct RawFile {
     /// the printed statements.
     #[serde(default)]
     pub notation: BTreeMap<String, Spanned<NotationValue>>,
+    /// Definitions that transcribe a claim's printed statement: `mut = { by = "eq21",
+    /// corrected = "mut_ij = …" }`. A claim that reads one uses that claim; `corrected`
+    /// is what the definition becomes when that claim is replaced by its correction.
+    #[serde(default)]
+    pub stated: BTreeMap<String, Spanned<RawStated>>,
     #[serde(default)]
     pub claim: Vec<RawClaim>,
     #[serde(default)]
@@ -75,6 +80,14 @@ pub struct RawCurve {
     pub set: Vec<S>,
 }
 
+/// `[stated]`: the claim a definition transcribes, and its corrected form.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStated {
+    pub by: S,
+    pub corrected: Option<S>,
+}
+
 /// One reading of a printed symbol, or several (routes).
 #[derive(Deserialize, Clone)]
 #[serde(untagged)]
@@ -98,6 +111,9 @@ pub struct RawClaim {
     pub id: S,
     pub section: Option<S>,
     pub printed: S,
+    /// The claims this one is derived from (ids of any file checked with it).
+    #[serde(default)]
+    pub uses: Vec<S>,
     /// This claim's own notation entries, before the file's.
     #[serde(default)]
     pub notation: BTreeMap<String, Spanned<NotationValue>>,

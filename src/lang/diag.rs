@@ -142,11 +142,22 @@ impl Diagnostic {
     }
 }
 
-impl fmt::Display for Diagnostic {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl Diagnostic {
+    /// The diagnostic as a warning: the same text, headed `warning:`.
+    pub fn warning(&self) -> String {
+        struct Warning<'a>(&'a Diagnostic);
+        impl fmt::Display for Warning<'_> {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                self.0.write_headed(f, "warning")
+            }
+        }
+        Warning(self).to_string()
+    }
+
+    fn write_headed(&self, f: &mut fmt::Formatter<'_>, head: &str) -> fmt::Result {
         let num = self.line.to_string();
         let pad = " ".repeat(num.len());
-        writeln!(f, "error: {}", self.message)?;
+        writeln!(f, "{head}: {}", self.message)?;
         writeln!(f, "{pad} --> {}:{}:{}", self.path, self.line, self.col)?;
         writeln!(f, "{pad} |")?;
         // A long line is shown as a window around the caret, marked `…` where cut.
@@ -177,6 +188,12 @@ impl fmt::Display for Diagnostic {
             write!(f, "\n{pad} = help: {help}")?;
         }
         Ok(())
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write_headed(f, "error")
     }
 }
 

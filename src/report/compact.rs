@@ -75,11 +75,15 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
         let _ = writeln!(out, "{}", row(cells, paint));
     }
     let summary = Summary::of(rows);
+    let _ = writeln!(out, "\n{}", summary.sentence(rows.len()));
+    let origin = summary.origin_sentence();
+    if !origin.is_empty() {
+        let _ = writeln!(out, "{origin}");
+    }
     let _ = writeln!(
         out,
-        "\n{}\n{}\nFull evidence: `cosserat-check explain ID`, or `--format markdown|json` (this \
-         compact view is printed only to a terminal).",
-        summary.sentence(rows.len()),
+        "{}\nFull evidence: `cosserat-check explain ID`, or `--format markdown|json|html` \
+         (this compact view is printed only to a terminal).",
         summary.transcription_sentence()
     );
     out
@@ -102,7 +106,10 @@ fn verdict(r: &Decided<'_>) -> String {
 /// One short line: what decided the claim, and for a failure what its correction
 /// gives.
 fn short_evidence(r: &Decided<'_>) -> String {
-    let mut line = outcome_line(&r.outcome);
+    let mut line = super::graph::inherited_label(r)
+        .map(|from| format!("{from}; "))
+        .unwrap_or_default();
+    line.push_str(&outcome_line(&r.outcome));
     if let Some(c) = &r.correction {
         let _ = write!(line, "; correction {}", c.verdict_text());
     }

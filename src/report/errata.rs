@@ -2,48 +2,73 @@
 //! the counterexample, the correction and its verdict, and the reason — ready to paste
 //! into an erratum.
 
-use super::evidence;
+use super::{evidence, graph};
 use super::markdown::{math, statement};
 use crate::strategy::Decided;
 use std::fmt::Write as _;
 
-/// The errata in Markdown, one section per statement.
+/// The errata in Markdown: each root error, then the failures inherited from it, then
+/// the failures whose origin cannot be told; one section per statement.
 pub fn markdown(rows: &[&Decided<'_>], paper: &str) -> String {
     let mut out = format!("# Errata\n\n{paper}.\n\n");
     if rows.is_empty() {
         out.push_str("Every printed statement checked holds.\n");
         return out;
     }
-    let _ = writeln!(out, "{} statements do not hold as printed.\n", rows.len());
-    for r in rows {
-        let c = r.claim;
-        let _ = writeln!(out, "## {} (Section {})\n", c.id, c.section);
-        let _ = writeln!(out, "- As printed: {}", statement(c));
-        let _ = writeln!(
-            out,
-            "- Verdict: **{}** (method {})",
-            r.outcome.verdict_text(),
-            r.outcome.method.as_str()
-        );
-        if let Some(reason) = &c.reason {
-            let _ = writeln!(out, "- Why: {reason}");
+    let summary = super::Summary::of(rows);
+    let _ = writeln!(
+        out,
+        "{} statements do not hold as printed. {}\n",
+        rows.len(),
+        summary.origin_sentence()
+    );
+    for (root, inherited) in graph::grouped(rows) {
+        section(&mut out, root, "##");
+        for r in inherited {
+            section(&mut out, r, "###");
         }
-        let _ = writeln!(out, "- Evidence: {}", evidence(&r.outcome));
-        if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
-            let _ = writeln!(out, "- Correction: {}", math(&k.statement));
-            let _ = writeln!(out, "  - {}", k.reason);
-            let _ = writeln!(
-                out,
-                "  - Verdict: **{}** (method {}; {})",
-                o.verdict_text(),
-                o.method.as_str(),
-                evidence(o)
-            );
-        }
-        if let Some(note) = &c.note {
-            let _ = writeln!(out, "- Note: {note}");
-        }
-        out.push('\n');
     }
     out
+}
+
+fn section(out: &mut String, r: &Decided<'_>, level: &str) {
+    let c = r.claim;
+    let origin = match &r.attribution {
+        Some(a) if a.is_root() => " — root error".to_owned(),
+        Some(a) if !a.inherited_from().is_empty() => {
+            format!(" — inherited from {}", a.inherited_from().join(", "))
+        }
+        Some(_) => " — origin undetermined".to_owned(),
+        None => String::new(),
+    };
+    let _ = writeln!(out, "{level} {} (Section {}){origin}\n", c.id, c.section);
+    let _ = writeln!(out, "- As printed: {}", statement(c));
+    let _ = writeln!(
+        out,
+        "- Verdict: **{}** (method {})",
+        r.outcome.verdict_text(),
+        r.outcome.method.as_str()
+    );
+    if let Some(reason) = &c.reason {
+        let _ = writeln!(out, "- Why: {reason}");
+    }
+    if let Some(a) = &r.attribution {
+        let _ = writeln!(out, "- Origin: {}", graph::attribution(a));
+    }
+    let _ = writeln!(out, "- Evidence: {}", evidence(&r.outcome));
+    if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
+        let _ = writeln!(out, "- Correction: {}", math(&k.statement));
+        let _ = writeln!(out, "  - {}", k.reason);
+        let _ = writeln!(
+            out,
+            "  - Verdict: **{}** (method {}; {})",
+            o.verdict_text(),
+            o.method.as_str(),
+            evidence(o)
+        );
+    }
+    if let Some(note) = &c.note {
+        let _ = writeln!(out, "- Note: {note}");
+    }
+    out.push('\n');
 }

@@ -3,9 +3,11 @@
 //! `verdict`, `method`, `strength` (`proof` or `sampled`), `expected`, `checks`,
 //! `certificate` (the kernel's facts behind a proof: `{"facts": [{"kind": …}]}`, or
 //! null), `counterexample`, `correction`, `transcription` (`status`: `machine-read`,
-//! `differs` or `hand`, `detail`, `declared`, `checked_latex`)), and
-//! `summary` (`holds`, `fails`, `conditional`, `undecided`, `unexpected`,
-//! `machine_read`, `differs`, `hand`, `prose`).
+//! `differs` or `hand`, `detail`, `declared`, `checked_latex`), `uses`, `root`,
+//! `inherited_from`, `origin` (`status`: `root`, `inherited` or `undetermined`, `detail`;
+//! null unless the claim fails)), and `summary` (`holds`, `fails`, `conditional`,
+//! `undecided`, `unexpected`, `machine_read`, `differs`, `hand`, `prose`, `root_errors`,
+//! `inherited`, `undetermined_origin`).
 
 use super::Summary;
 use crate::kernel::certificate::Certificate;
@@ -43,6 +45,20 @@ struct ClaimRow<'a> {
     reason: Option<&'a str>,
     note: Option<&'a str>,
     transcription: TranscriptionRow,
+    /// The claims this one is derived from.
+    uses: Vec<&'a str>,
+    /// A failing claim whose own step is wrong (false for every other claim).
+    root: bool,
+    /// The failing claims whose correction makes this failing claim hold.
+    inherited_from: Vec<&'a str>,
+    /// For a failing claim: `root`, `inherited` or `undetermined`, in words.
+    origin: Option<OriginRow>,
+}
+
+#[derive(Serialize)]
+struct OriginRow {
+    status: &'static str,
+    detail: String,
 }
 
 /// Whether the sides say what the printed statement says (`machine-read`, `differs`,
@@ -138,6 +154,18 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
                         &c.transcript,
                         &c.statement,
                     ),
+                    uses: c.uses.iter().map(|u| u.id.as_str()).collect(),
+                    root: r.attribution.as_ref().is_some_and(|a| a.is_root()),
+                    inherited_from: r
+                        .attribution
+                        .iter()
+                        .flat_map(|a| a.inherited_from())
+                        .map(String::as_str)
+                        .collect(),
+                    origin: r.attribution.as_ref().map(|a| OriginRow {
+                        status: a.label(),
+                        detail: super::graph::attribution(a),
+                    }),
                 }
             })
             .collect();

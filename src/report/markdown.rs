@@ -48,6 +48,10 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
     }
     let summary = Summary::of(rows);
     let _ = writeln!(out, "\n{}", summary.sentence(rows.len()));
+    let origin = summary.origin_sentence();
+    if !origin.is_empty() {
+        let _ = writeln!(out, "\n{origin}");
+    }
     let _ = writeln!(out, "\n{}", summary.transcription_sentence());
     out
 }

@@ -5,6 +5,7 @@ pub mod compact;
 pub mod csv;
 pub mod errata;
 pub mod explain;
+pub mod graph;
 pub mod json;
 pub mod latex;
 pub mod markdown;
@@ -56,6 +57,12 @@ pub struct Summary {
     pub hand: usize,
     /// Claims that are sentences of prose.
     pub prose: usize,
+    /// Failing claims whose own step is wrong.
+    pub root_errors: usize,
+    /// Failing claims that hold once the failing claims they use are corrected.
+    pub inherited: usize,
+    /// Failing claims whose origin the checker cannot tell (it says why).
+    pub undetermined_origin: usize,
 }
 
 impl Summary {
@@ -88,6 +95,12 @@ impl Summary {
             if !r.as_expected() {
                 s.unexpected += 1;
             }
+            match r.attribution.as_ref().map(|a| a.label()) {
+                Some("root") => s.root_errors += 1,
+                Some("inherited") => s.inherited += 1,
+                Some(_) => s.undetermined_origin += 1,
+                None => {}
+            }
             if r.claim.prose {
                 s.prose += 1;
             } else {
@@ -99,6 +112,26 @@ impl Summary {
             }
         }
         s
+    }
+
+    /// "Failures: … root errors, … inherited[, … of undetermined origin]." (empty when
+    /// nothing fails).
+    pub fn origin_sentence(&self) -> String {
+        let failing = self.root_errors + self.inherited + self.undetermined_origin;
+        if failing == 0 {
+            return String::new();
+        }
+        let undetermined = if self.undetermined_origin > 0 {
+            format!(", {} of undetermined origin", self.undetermined_origin)
+        } else {
+            String::new()
+        };
+        format!(
+            "Failures: {} root error{}, {} inherited from a failing claim they use{undetermined}.",
+            self.root_errors,
+            if self.root_errors == 1 { "" } else { "s" },
+            self.inherited
+        )
     }
 
     /// "Printed statements: … of … formula claims machine-read, … differ (declared), …
@@ -144,14 +177,14 @@ pub fn read_label(r: &Decided<'_>) -> String {
 
 /// The verdict, marked when it differs from the declared one.
 pub fn verdict_label(r: &Decided<'_>) -> String {
+    let mut text = r.outcome.verdict_text();
+    if let Some(from) = graph::inherited_label(r) {
+        text = format!("{text} ({from})");
+    }
     if r.as_expected() {
-        r.outcome.verdict_text()
+        text
     } else {
-        format!(
-            "{} ✗ (declared: {})",
-            r.outcome.verdict_text(),
-            r.claim.expect
-        )
+        format!("{text} ✗ (declared: {})", r.claim.expect)
     }
 }
 
@@ -168,6 +201,9 @@ pub fn full_evidence(r: &Decided<'_>, statement: &dyn Fn(&str) -> String) -> Str
     }
     if let Some(reason) = &c.reason {
         ev.push_str(&format!(". Why: {}", reason.trim_end_matches('.')));
+    }
+    if let Some(a) = &r.attribution {
+        ev.push_str(&format!(". Origin: {}", graph::attribution(a)));
     }
     if let (Some(corr), Some(o)) = (&c.correction, &r.correction) {
         ev.push_str(&format!(

@@ -8,6 +8,7 @@ pub mod eval;
 pub mod exact;
 pub mod finding;
 pub mod float;
+pub mod inherit;
 mod jets;
 pub mod numeric;
 mod outcome;
@@ -45,6 +46,9 @@ pub struct Decided<'c> {
     pub transcription: transcription::Transcription,
     /// The same for the correction's printed statement.
     pub correction_transcription: Option<transcription::Transcription>,
+    /// For a claim that fails: whether it is a root error or inherits its failure from
+    /// claims it uses ([`inherit::attribute`], once every claim is decided).
+    pub attribution: Option<inherit::Attribution>,
 }
 
 impl Decided<'_> {
@@ -160,5 +164,6 @@ fn decide_claim_keeping(claim: &Claim, keep: bool) -> Result<Decided<'_>, Diagno
         correction,
         transcription,
         correction_transcription,
+        attribution: None,
     })
 }
