@@ -178,6 +178,9 @@ pub enum Format {
     Json,
     /// Comma-separated values, one row per claim.
     Csv,
+    /// One self-contained HTML page (works offline): statements as MathML, the
+    /// derivation graph as SVG (click a claim to focus it), every claim's evidence.
+    Html,
 }
 
 /// The outcome of a run, mapped to the process exit code by `main`.
@@ -278,21 +281,10 @@ fn decide_with_progress<'f>(
     run: Run,
     progress: &mut Progress,
 ) -> Result<Vec<Decided<'f>>, RunError> {
-    // With `--only`, the claims it uses are decided too, so that a failure can be
-    // attributed; only the one asked for is reported.
-    let wanted: Option<std::collections::BTreeSet<&str>> = only.map(|id| {
-        let all = files.iter().flat_map(|f| &f.claims).map(|c| (c.id.as_str(), c)).collect();
-        let mut ids: std::collections::BTreeSet<&str> = inherit::ancestors(id, &all)
-            .into_iter()
-            .map(|c| c.id.as_str())
-            .collect();
-        ids.insert(id);
-        ids
-    });
     let claims: Vec<_> = files
         .iter()
         .flat_map(|f| &f.claims)
-        .filter(|c| wanted.as_ref().is_none_or(|w| w.contains(c.id.as_str())))
+        .filter(|c| only.is_none_or(|id| c.id == id))
         .collect();
     if let (Some(id), true) = (only, claims.is_empty()) {
         let known: Vec<&str> = files
@@ -305,6 +297,26 @@ fn decide_with_progress<'f>(
             known.join(", ")
         )));
     }
+    let mut rows = decide_claims(claims, run, progress)?;
+    // With `--only`, a failure is attributed by deciding the claims it uses as well.
+    if let (Some(id), Some(r)) = (only, rows.first()) {
+        if inherit::failing(r.outcome.verdict()) {
+            let all = files.iter().flat_map(|f| &f.claims).map(|c| (c.id.as_str(), c)).collect();
+            let ancestors = inherit::ancestors(id, &all);
+            rows.extend(decide_claims(ancestors, run, progress)?);
+        }
+    }
+    inherit::attribute(&mut rows, run.limit).map_err(|d| RunError::Input(d.to_string()))?;
+    rows.retain(|r| only.is_none_or(|id| r.claim.id == id));
+    Ok(rows)
+}
+
+/// Decides `claims` on this machine's cores, each under its time limit, in their order.
+fn decide_claims<'f>(
+    claims: Vec<&'f crate::derivation::Claim>,
+    run: Run,
+    progress: &mut Progress,
+) -> Result<Vec<Decided<'f>>, RunError> {
     let n = claims.len();
     // Claims are independent: two workers (this machine's cores) take the next claim
     // as they finish one, and the results are put back in claim order, so the output
@@ -362,13 +374,10 @@ fn decide_with_progress<'f>(
             progress.show(done, n, &working);
         }
     });
-    let mut rows = slots
+    slots
         .into_iter()
         .map(|r| r.unwrap_or_else(|| Err(RunError::Input("error: a worker stopped".into()))))
-        .collect::<Result<Vec<_>, _>>()?;
-    inherit::attribute(&mut rows, run.limit).map_err(|d| RunError::Input(d.to_string()))?;
-    rows.retain(|r| only.is_none_or(|id| r.claim.id == id));
-    Ok(rows)
+        .collect()
 }
 
 /// Applies `--seed` and `--samples` to every sampled claim.
@@ -450,6 +459,7 @@ fn render(
         (Format::Latex, true) => report::latex::errata(&rows, args.standalone, &paper),
         (Format::Json, _) => report::json::render(&rows, &paper),
         (Format::Csv, _) => report::csv::render(&rows),
+        (Format::Html, _) => report::html::render(&rows, &paper),
     }
 }
 

@@ -191,11 +191,13 @@ fn load_file_with_ids(path: &Path) -> Result<(DerivationFile, Vec<(String, IdDia
     Loader::new(file).run()
 }
 
-/// Reads one derivation file given as text (`label` names it in diagnostics).
+/// Reads one derivation file given as text (`label` names it in diagnostics), as a part
+/// of a whole: its `uses` and `[stated]` may name claims of other files, so they are
+/// checked only when files are read together ([`load_texts`], [`load_files`]).
 pub fn load_str(label: &str, text: &str) -> Result<DerivationFile, LoadError> {
-    let (file, _) = Loader::new(SourceFile::new(label, text)).run()?;
-    super::uses::link(std::slice::from_ref(&file))?;
-    Ok(file)
+    Loader::new(SourceFile::new(label, text))
+        .run()
+        .map(|(f, _)| f)
 }
 
 pub(super) struct Loader {

@@ -12,48 +12,32 @@ fn at(origin: &Origin, text: &str, message: String) -> Diagnostic {
     origin.diagnostic(Span::new(0, text.len()), message)
 }
 
-/// Checks the graph of the files read together: every `uses` entry and every `[stated]`
-/// attribution names a claim among them, no claim uses itself, `uses` has no cycle, and a
-/// `corrected` form belongs to a claim that has a correction.
+/// Checks the graph of the files read together: no claim uses itself, `uses` has no
+/// cycle, and a `corrected` form belongs to a claim that has a correction. An id that
+/// names no claim of these files is only a warning ([`warnings`]): one file of a set
+/// may be read alone (`plot`, `explain`, `verify` of one file).
 pub(super) fn link(files: &[DerivationFile]) -> Result<(), Diagnostic> {
     let claims: BTreeMap<&str, &Claim> = files
         .iter()
         .flat_map(|f| &f.claims)
         .map(|c| (c.id.as_str(), c))
         .collect();
-    let known = |id: &str| {
-        let mut ids: Vec<&str> = claims.keys().copied().collect();
-        ids.retain(|k| k.starts_with(id.get(..2).unwrap_or(id)));
-        if ids.is_empty() {
-            "ids are those of the claims of the files checked together".to_owned()
-        } else {
-            format!("ids like it: {}", ids.join(", "))
-        }
-    };
     for c in claims.values() {
-        for u in &c.uses {
-            if !claims.contains_key(u.id.as_str()) {
-                return Err(at(&u.origin, &u.id, format!("`uses` names `{}`, which is no claim", u.id))
-                    .with_help(known(&u.id)));
-            }
-            if u.id == c.id {
-                return Err(at(&u.origin, &u.id, format!("`{}` uses itself", c.id))
-                    .with_help("a claim lists the claims it is derived from, not itself"));
-            }
+        if let Some(u) = c.uses.iter().find(|u| u.id == c.id) {
+            return Err(at(&u.origin, &u.id, format!("`{}` uses itself", c.id))
+                .with_help("a claim lists the claims it is derived from, not itself"));
         }
     }
     for s in files.iter().flat_map(|f| f.stated.iter()) {
-        let Some(by) = claims.get(s.by.as_str()) else {
-            return Err(at(&s.origin, &s.by, format!("`[stated]` names `{}`, which is no claim", s.by))
-                .with_help(known(&s.by)));
-        };
-        if s.corrected.is_some() && by.correction.is_none() {
-            return Err(at(
-                &s.origin,
-                &s.by,
-                format!("`{}` has no correction, so `{}` has no corrected form", s.by, s.name),
-            )
-            .with_help("give the claim a [claim.correction], or drop `corrected`"));
+        if let Some(by) = claims.get(s.by.as_str()) {
+            if s.corrected.is_some() && by.correction.is_none() {
+                return Err(at(
+                    &s.origin,
+                    &s.by,
+                    format!("`{}` has no correction, so `{}` has no corrected form", s.by, s.name),
+                )
+                .with_help("give the claim a [claim.correction], or drop `corrected`"));
+            }
         }
     }
     // A cycle in `uses` (depth-first, in file order, so the cycle reported is the same
@@ -74,6 +58,7 @@ pub(super) fn link(files: &[DerivationFile]) -> Result<(), Diagnostic> {
             *next += 1;
             match state.get(u.id.as_str()) {
                 Some(true) => {}
+                None if !claims.contains_key(u.id.as_str()) => {}
                 Some(false) => {
                     let from = path.iter().position(|(p, _)| p.id == u.id).unwrap_or(0);
                     let mut ids: Vec<&str> = path[from..].iter().map(|(p, _)| p.id.as_str()).collect();
@@ -129,6 +114,25 @@ pub fn implied(claim: &Claim) -> Vec<Implied<'_>> {
 /// taken as written.
 pub fn warnings(files: &[DerivationFile]) -> Vec<Diagnostic> {
     let mut out = Vec::new();
+    let known: BTreeSet<&str> = files
+        .iter()
+        .flat_map(|f| &f.claims)
+        .map(|c| c.id.as_str())
+        .collect();
+    let unknown = |id: &str| {
+        format!("`{id}` is no claim of the files read, so this edge is not followed")
+    };
+    let help = "check the id, or read the file that has it together with this one";
+    for c in files.iter().flat_map(|f| &f.claims) {
+        for u in c.uses.iter().filter(|u| !known.contains(u.id.as_str())) {
+            out.push(at(&u.origin, &u.id, unknown(&u.id)).with_help(help));
+        }
+    }
+    for s in files.iter().flat_map(|f| f.stated.iter()) {
+        if !known.contains(s.by.as_str()) {
+            out.push(at(&s.origin, &s.by, unknown(&s.by)).with_help(help));
+        }
+    }
     for c in files.iter().flat_map(|f| &f.claims) {
         let implied = implied(c);
         for e in &implied {

@@ -4,7 +4,7 @@
 //! text is escaped and transliterated to ASCII, so the output compiles with plain
 //! pdflatex.
 
-use super::{evidence, full_evidence, verdict_label, Summary};
+use super::{evidence, full_evidence, Summary};
 use crate::strategy::Decided;
 use std::fmt::Write as _;
 
@@ -84,12 +84,14 @@ fn transliterate(c: char) -> Option<&'static str> {
 }
 
 /// Escapes text for LaTeX text mode; `OPEN…CLOSE` spans become `$…$` unchanged and
-/// backticked spans become `\texttt{…}`. Unknown non-ASCII characters become a bold
-/// question mark (the tests assert none occur in the paper's table).
+/// backticked spans (expressions of the language) are typeset as mathematics
+/// ([`expression`]). Outside mathematics a line may break after `*`, `(`, `,`, `=` and
+/// `/`, so that no long token overfills a narrow column. Unknown non-ASCII characters
+/// become a bold question mark (the tests assert none occur in the paper's table).
 pub fn escape(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 16);
     let mut in_math = false;
-    let mut in_code = false;
+    let mut code: Option<String> = None;
     for c in s.chars() {
         if in_math {
             if c == CLOSE {
@@ -100,15 +102,31 @@ pub fn escape(s: &str) -> String {
             }
             continue;
         }
+        if let Some(text) = &mut code {
+            if c == '`' {
+                // A quotation of printed LaTeX (a backslash or a brace: the language has
+                // neither) is typeset as it was printed.
+                let command = text.strip_prefix('\\').is_some_and(|w| w.chars().all(|c| c.is_ascii_alphabetic()));
+                if command {
+                    // A command named alone (`\overline`) is quoted, not typeset.
+                    let _ = write!(out, "\\texttt{{\\textbackslash {}}}", &text[1..]);
+                } else if text.contains(['\\', '{']) {
+                    let _ = write!(out, "${text}$");
+                } else {
+                    out.push_str(&expression(text));
+                }
+                code = None;
+            } else {
+                text.push(c);
+            }
+            continue;
+        }
         match c {
             OPEN => {
                 out.push('$');
                 in_math = true;
             }
-            '`' => {
-                out.push_str(if in_code { "}" } else { "\\texttt{" });
-                in_code = !in_code;
-            }
+            '`' => code = Some(String::new()),
             '\\' => out.push_str("\\textbackslash{}"),
             '{' | '}' | '$' | '&' | '#' | '_' | '%' => {
                 out.push('\\');
@@ -120,19 +138,110 @@ pub fn escape(s: &str) -> String {
             '<' => out.push_str("\\textless{}"),
             '>' => out.push_str("\\textgreater{}"),
             '\n' => out.push(' '),
+            '*' | '(' | ',' | '=' | '/' => {
+                out.push(c);
+                out.push_str("\\allowbreak{}");
+            }
             c if c.is_ascii() => out.push(c),
             c => out.push_str(transliterate(c).unwrap_or("\\textbf{?}")),
         }
     }
-    if in_code {
-        out.push('}');
+    if let Some(text) = code {
+        out.push_str(&expression(&text));
     }
     out
 }
 
-/// A statement: math, or prose with its own inline math.
+/// An expression of the language (`-n_2*R_g*Dw_31 + sigma_ki n_k`) as inline
+/// mathematics: Greek names as letters, index digits and letters as subscripts,
+/// products as thin spaces, powers as superscripts; a name of several letters upright.
+/// A sum may break at its top-level `+` and `−`.
+pub fn expression(s: &str) -> String {
+    let chars: Vec<char> = s.chars().collect();
+    let mut out = String::from("$");
+    let mut k = 0;
+    while k < chars.len() {
+        let c = chars[k];
+        if c.is_ascii_alphabetic() {
+            let start = k;
+            while k < chars.len() && (chars[k].is_ascii_alphanumeric() || chars[k] == '_') {
+                k += 1;
+            }
+            let word: String = chars[start..k].iter().collect();
+            let (base, sub) = match word.rsplit_once('_') {
+                Some((b, i)) if !b.is_empty() && !i.is_empty() => (b.to_owned(), Some(i.to_owned())),
+                _ => (word.clone(), None),
+            };
+            out.push_str(&name(&base));
+            if let Some(i) = sub {
+                let _ = write!(out, "_{{{}}}", i.replace('_', "\\_"));
+            }
+            continue;
+        }
+        match c {
+            '*' => out.push_str("\\,"),
+            '^' => {
+                // The exponent: a signed integer or one character.
+                let mut e = String::new();
+                k += 1;
+                if k < chars.len() && chars[k] == '-' {
+                    e.push('-');
+                    k += 1;
+                }
+                while k < chars.len() && chars[k].is_ascii_digit() {
+                    e.push(chars[k]);
+                    k += 1;
+                }
+                if e.is_empty() || e == "-" {
+                    if let Some(&x) = chars.get(k) {
+                        e.push(x);
+                        k += 1;
+                    }
+                }
+                let _ = write!(out, "^{{{e}}}");
+                continue;
+            }
+            '{' | '}' | '$' | '&' | '#' | '%' | '_' => {
+                out.push('\\');
+                out.push(c);
+            }
+            '\\' => out.push_str("\\backslash "),
+            '~' | '|' => out.push_str("\\mid "),
+            '…' => out.push_str("\\dots"),
+            c if c.is_ascii() => out.push(c),
+            c => {
+                let t = transliterate(c).unwrap_or("\\textbf{?}");
+                out.push_str(t.trim_matches('$'));
+            }
+        }
+        k += 1;
+    }
+    out.push('$');
+    out
+}
+
+/// A language name in mathematics: a Greek name as its letter, one letter as itself,
+/// several letters upright.
+fn name(base: &str) -> String {
+    const GREEK: [&str; 20] = [
+        "alpha", "beta", "gamma", "delta", "epsilon", "theta", "kappa", "lambda", "mu", "nu",
+        "xi", "pi", "rho", "sigma", "tau", "phi", "psi", "omega", "Gamma", "Delta",
+    ];
+    if GREEK.contains(&base) {
+        format!("\\{base}")
+    } else if base == "eps" {
+        "\\varepsilon".to_owned()
+    } else if base.chars().count() == 1 {
+        base.to_owned()
+    } else {
+        format!("\\mathrm{{{base}}}")
+    }
+}
+
+/// A statement: math scaled down to the column when wider, or quoted prose with its own
+/// inline math.
 fn statement(c: &crate::derivation::Claim) -> String {
-    if c.prose {
+    if c.prose && !super::prose_is_formula(&c.statement) {
         // Prose is LaTeX text already (with $…$ for math); quote it.
         let mut inner = String::new();
         let mut in_math = false;
@@ -146,11 +255,84 @@ fn statement(c: &crate::derivation::Claim) -> String {
         }
         format!("``{}''", escape(&inner))
     } else {
-        escape(&math(&c.statement))
+        format!("\\ccfit{{{}}}", escape(&math(&stacked(&c.statement))))
     }
 }
 
-const PREAMBLE: &str = "\\documentclass[10pt]{article}\n\\usepackage[landscape,margin=1.5cm]{geometry}\n\\usepackage{longtable,array,amsmath,amssymb}\n\\renewcommand{\\arraystretch}{1.4}\n\\begin{document}\n";
+/// A printed formula stacked to be narrow: one line per part (parts separated by
+/// `\quad` outside any group), each chain broken before its `=` signs and aligned on
+/// them. Only where the split is at brace depth 0 and outside `\left … \right`.
+fn stacked(latex: &str) -> String {
+    let mut lines: Vec<Vec<String>> = vec![vec![String::new()]];
+    let (mut depth, mut delims) = (0i32, 0i32);
+    let bytes = latex.as_bytes();
+    let mut k = 0;
+    while k < latex.len() {
+        let rest = &latex[k..];
+        let top = depth == 0 && delims == 0;
+        if rest.starts_with("\\left") || rest.starts_with("\\begin") {
+            delims += 1;
+        } else if rest.starts_with("\\right") || rest.starts_with("\\end") {
+            delims -= 1;
+        }
+        if top && rest.starts_with("\\quad") && !rest[5..].starts_with(|c: char| c.is_ascii_alphabetic()) {
+            lines.push(vec![String::new()]);
+            k += 5;
+            continue;
+        }
+        let c = rest.chars().next().unwrap_or(' ');
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            '\\' if bytes.get(k + 1).is_some_and(|b| !b.is_ascii_alphabetic()) => {
+                // An escaped character (`\{`, `\,`) is copied whole.
+                let line = lines.last_mut().expect("one line");
+                let end = k + 1 + rest[1..].chars().next().map_or(0, char::len_utf8);
+                line.last_mut().expect("one member").push_str(&latex[k..end]);
+                k = end;
+                continue;
+            }
+            '=' if top => {
+                lines.last_mut().expect("one line").push(String::new());
+                k += 1;
+                continue;
+            }
+            _ => {}
+        }
+        lines
+            .last_mut()
+            .expect("one line")
+            .last_mut()
+            .expect("one member")
+            .push(c);
+        k += c.len_utf8();
+    }
+    let rows: Vec<String> = lines
+        .iter()
+        .filter(|l| l.iter().any(|m| !m.trim().is_empty()))
+        .flat_map(|l| {
+            let mut l = l.iter().map(|m| m.trim().trim_end_matches(',').trim());
+            let first = l.next().unwrap_or_default().to_owned();
+            let rest: Vec<String> = l.map(|m| format!("&= {m}")).collect();
+            match rest.split_first() {
+                None => vec![format!("&{first}")],
+                Some((r1, more)) => std::iter::once(format!("{first} {r1}"))
+                    .chain(more.iter().cloned())
+                    .collect(),
+            }
+        })
+        .collect();
+    if rows.len() <= 1 || depth != 0 || delims != 0 {
+        return latex.to_owned();
+    }
+    format!("\\begin{{aligned}}{}\\end{{aligned}}", rows.join(" \\\\ "))
+}
+
+/// What a fragment needs: its packages, and `\ccfit`, which scales a formula down to
+/// the column when it is wider (never up).
+const NEEDS: &str = "% Needs \\usepackage{longtable,array,amsmath,amssymb,graphicx}.\n\\providecommand{\\ccfit}[1]{\\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{#1}}\n";
+
+const PREAMBLE: &str = "\\documentclass[10pt]{article}\n\\usepackage{longtable,array,amsmath,amssymb,graphicx}\n\\begin{document}\n";
 
 fn wrap(body: String, standalone: bool, title: &str, paper: &str) -> String {
     if !standalone {
@@ -163,75 +345,171 @@ fn wrap(body: String, standalone: bool, title: &str, paper: &str) -> String {
     )
 }
 
-/// The derivation table as a longtable.
+/// The verdict cell: `fails` framed and bold, so that it stands out in print without
+/// colour; the strength; a failure's origin.
+fn verdict_cell(r: &Decided<'_>) -> String {
+    let v = r.outcome.verdict();
+    let mut cell = match v {
+        crate::derivation::Verdict::Fails => "\\fbox{\\textbf{fails}}".to_owned(),
+        crate::derivation::Verdict::Conditional => "\\textbf{conditional}".to_owned(),
+        _ => escape(v.as_str()),
+    };
+    let _ = write!(
+        cell,
+        " ({})",
+        match r.outcome.strength() {
+            crate::strategy::Strength::Proof => "proof",
+            crate::strategy::Strength::Sampled => "sampled",
+        }
+    );
+    match &r.attribution {
+        Some(a) if a.is_root() => cell.push_str("; root error"),
+        Some(a) if !a.inherited_from().is_empty() => {
+            let _ = write!(cell, "; inherited from {}", escape(&a.inherited_from().join(", ")));
+        }
+        Some(_) => cell.push_str("; origin undetermined"),
+        None => {}
+    }
+    if !r.as_expected() {
+        let _ = write!(cell, " \\textbf{{(declared {})}}", r.claim.expect);
+    }
+    cell
+}
+
+/// The table's short evidence: how the claim was decided, in a few words; the full
+/// evidence is in the table keyed by claim that follows.
+fn short_evidence(r: &Decided<'_>) -> String {
+    use crate::derivation::Verdict;
+    let o = &r.outcome;
+    let mut s = match (o.verdict(), &o.numeric) {
+        (Verdict::Holds, Some(n)) => format!("{} samples, seed {}", n.samples, n.seed),
+        (Verdict::Holds, None) => format!(
+            "{} ({} check{})",
+            o.method.as_str(),
+            o.checks,
+            if o.checks == 1 { "" } else { "s" }
+        ),
+        (Verdict::Fails, _) => "a counterexample".to_owned(),
+        (Verdict::Conditional, Some(n)) => format!(
+            "holds with {}; a counterexample outside",
+            n.domain.as_deref().unwrap_or("the stated domain")
+        ),
+        (Verdict::Conditional, None) => "holds on the stated domain; a counterexample outside".to_owned(),
+        (Verdict::Undecided, _) => "undecided: see the reason".to_owned(),
+    };
+    if let Some(c) = &r.correction {
+        let _ = write!(s, "; correction {}", c.verdict_text());
+    }
+    escape(&s)
+}
+
+/// The derivation table as a longtable that fits a portrait page (statements scaled to
+/// their column when wider), followed by the full evidence in a second table keyed by
+/// claim.
 pub fn render(rows: &[&Decided<'_>], standalone: bool, paper: &str) -> String {
     let mut out = String::new();
-    let _ = writeln!(out, "% Derivation table generated by cosserat-check; needs \\usepackage{{longtable,array,amsmath,amssymb}}.");
+    let _ = writeln!(out, "% Derivation table generated by cosserat-check.");
+    out.push_str(NEEDS);
+    out.push_str("{\\footnotesize\n");
     let _ = writeln!(
         out,
-        "\\begin{{longtable}}{{@{{}}>{{\\raggedright}}p{{0.09\\linewidth}}p{{0.03\\linewidth}}>{{\\raggedright}}p{{0.30\\linewidth}}p{{0.07\\linewidth}}p{{0.06\\linewidth}}>{{\\raggedright\\arraybackslash}}p{{0.35\\linewidth}}@{{}}}}"
+        "\\begin{{longtable}}{{@{{}}>{{\\raggedright}}p{{0.15\\linewidth}}>{{\\raggedright}}p{{0.40\\linewidth}}>{{\\raggedright}}p{{0.15\\linewidth}}>{{\\raggedright\\arraybackslash}}p{{0.18\\linewidth}}@{{}}}}"
     );
-    let _ = writeln!(out, "\\hline\nclaim & \\S & statement (as printed) & verdict & method & evidence \\\\\n\\hline\n\\endhead");
+    let _ = writeln!(out, "\\hline\nclaim (\\S) & statement (as printed) & verdict & decided by \\\\\n\\hline\n\\endhead");
     for r in rows {
         let c = r.claim;
         let _ = writeln!(
             out,
-            "{} & {} & {} & {} & {} & {} \\\\",
+            "{} (\\S{{}}{}) & {} & {} & {} \\\\",
             escape(&c.id),
             escape(&c.section),
             statement(c),
-            escape(&verdict_label(r)),
-            escape(r.outcome.method.as_str()),
-            escape(&full_evidence(r, &math))
+            verdict_cell(r),
+            short_evidence(r)
         );
     }
     let _ = writeln!(out, "\\hline\n\\end{{longtable}}");
-    let _ = writeln!(out, "{}", escape(&Summary::of(rows).sentence(rows.len())));
+    let summary = Summary::of(rows);
+    let _ = writeln!(out, "{}", escape(&summary.sentence(rows.len())));
+    let origin = summary.origin_sentence();
+    if !origin.is_empty() {
+        let _ = writeln!(out, "{}", escape(&origin));
+    }
+    let _ = writeln!(out, "\n\\medskip\\noindent The evidence in full, by claim:\n");
+    let _ = writeln!(
+        out,
+        "\\begin{{longtable}}{{@{{}}>{{\\raggedright}}p{{0.17\\linewidth}}>{{\\raggedright\\arraybackslash}}p{{0.78\\linewidth}}@{{}}}}"
+    );
+    let _ = writeln!(out, "\\hline\nclaim & evidence \\\\\n\\hline\n\\endhead");
+    for r in rows {
+        let _ = writeln!(
+            out,
+            "{} & {} \\\\",
+            escape(&r.claim.id),
+            escape(&full_evidence(r, &|s| format!("\\ccfit{{{}}}", math(s))))
+        );
+    }
+    let _ = writeln!(out, "\\hline\n\\end{{longtable}}\n}}");
     wrap(out, standalone, "Derivation table", paper)
 }
 
-/// The errata as a list.
+/// The errata as a list: each root error, then the failures inherited from it.
 pub fn errata(rows: &[&Decided<'_>], standalone: bool, paper: &str) -> String {
     let mut out = String::from("% Errata generated by cosserat-check.\n");
+    out.push_str(NEEDS);
     if rows.is_empty() {
         out.push_str("Every printed statement checked holds.\n");
         return wrap(out, standalone, "Errata", paper);
     }
-    out.push_str("\\begin{itemize}\n");
-    for r in rows {
-        let c = r.claim;
-        let _ = writeln!(
-            out,
-            "\\item \\textbf{{{}}} (Section {}): {}",
-            escape(&c.id),
-            escape(&c.section),
-            statement(c)
-        );
-        let _ = writeln!(out, "\\begin{{itemize}}");
-        let _ = writeln!(
-            out,
-            "\\item Verdict: \\textbf{{{}}} ({})",
-            escape(&r.outcome.verdict_text()),
-            escape(r.outcome.method.as_str())
-        );
-        if let Some(reason) = &c.reason {
-            let _ = writeln!(out, "\\item Why: {}", escape(reason));
-        }
-        let _ = writeln!(out, "\\item Evidence: {}", escape(&evidence(&r.outcome)));
-        if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
-            let _ = writeln!(
-                out,
-                "\\item Correction: {} --- {} ({}). {}",
-                escape(&math(&k.statement)),
-                escape(&o.verdict_text()),
-                escape(o.method.as_str()),
-                escape(&k.reason)
-            );
-        }
-        let _ = writeln!(out, "\\end{{itemize}}");
+    let origin = Summary::of(rows).origin_sentence();
+    if !origin.is_empty() {
+        let _ = writeln!(out, "{}\n", escape(&origin));
     }
-    out.push_str("\\end{itemize}\n");
+    // Long sums in the evidence break only at their top-level signs: let lines stretch.
+    out.push_str("{\\sloppy\n\\begin{itemize}\n");
+    for (root, inherited) in super::graph::grouped(rows) {
+        erratum(&mut out, root);
+        if !inherited.is_empty() {
+            out.push_str("\\begin{itemize}\n");
+            for r in inherited {
+                erratum(&mut out, r);
+            }
+            out.push_str("\\end{itemize}\n");
+        }
+    }
+    out.push_str("\\end{itemize}\n}\n");
     wrap(out, standalone, "Errata", paper)
+}
+
+fn erratum(out: &mut String, r: &Decided<'_>) {
+    let c = r.claim;
+    let _ = writeln!(
+        out,
+        "\\item \\textbf{{{}}} (Section {}): {}",
+        escape(&c.id),
+        escape(&c.section),
+        statement(c)
+    );
+    let _ = writeln!(out, "\\begin{{itemize}}");
+    let _ = writeln!(out, "\\item Verdict: {} ({})", verdict_cell(r), escape(r.outcome.method.as_str()));
+    if let Some(reason) = &c.reason {
+        let _ = writeln!(out, "\\item Why: {}", escape(reason));
+    }
+    if let Some(a) = &r.attribution {
+        let _ = writeln!(out, "\\item Origin: {}", escape(&super::graph::attribution(a)));
+    }
+    let _ = writeln!(out, "\\item Evidence: {}", escape(&evidence(&r.outcome)));
+    if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
+        let _ = writeln!(
+            out,
+            "\\item Correction:\\par\\ccfit{{{}}}\\par {} ({}). {}",
+            escape(&math(&k.statement)),
+            escape(&o.verdict_text()),
+            escape(o.method.as_str()),
+            escape(&k.reason)
+        );
+    }
+    let _ = writeln!(out, "\\end{{itemize}}");
 }
 
 #[cfg(test)]
@@ -241,8 +519,27 @@ mod tests {
     #[test]
     fn escaping_is_ascii_and_keeps_math() {
         let s = escape(&format!("a_b 50% & {}x^2{} ≤ `n_k` σ", OPEN, CLOSE));
-        assert_eq!(s, "a\\_b 50\\% \\& $x^2$ $\\le$ \\texttt{n\\_k} $\\sigma$");
+        assert_eq!(s, "a\\_b 50\\% \\& $x^2$ $\\le$ $n_{k}$ $\\sigma$");
         assert!(s.is_ascii());
         assert_eq!(escape("☃"), "\\textbf{?}");
+    }
+
+    #[test]
+    fn a_chain_is_stacked_on_its_equals_signs_and_parts_on_lines() {
+        assert_eq!(
+            stacked("a = \\frac{b}{c=d} = e, \\quad f = g"),
+            "\\begin{aligned}a &= \\frac{b}{c=d} \\\\ &= e \\\\ f &= g\\end{aligned}"
+        );
+        assert_eq!(stacked("\\left(a = b\\right) = c"), "\\left(a = b\\right) = c");
+        assert_eq!(stacked("a \\le b"), "a \\le b");
+    }
+
+    #[test]
+    fn expressions_are_typeset_as_mathematics() {
+        assert_eq!(
+            expression("-n_2*R_g*Dw_31 + sigma_ki n_k^2*V^-1"),
+            "$-n_{2}\\,R_{g}\\,\\mathrm{Dw}_{31} + \\sigma_{ki} n_{k}^{2}\\,V^{-1}$"
+        );
+        assert_eq!(expression("eps_ijk … mut_ij"), "$\\varepsilon_{ijk} \\dots \\mathrm{mut}_{ij}$");
     }
 }

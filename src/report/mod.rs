@@ -6,8 +6,10 @@ pub mod csv;
 pub mod errata;
 pub mod explain;
 pub mod graph;
+pub mod html;
 pub mod json;
 pub mod latex;
+pub mod layout;
 pub mod markdown;
 pub mod plot;
 pub mod transcription;
@@ -149,6 +151,13 @@ impl Summary {
 /// `errata` can pass a filtered view).
 pub fn refs<'a, 'c>(rows: &'a [Decided<'c>]) -> Vec<&'a Decided<'c>> {
     rows.iter().collect()
+}
+
+/// Whether a prose claim's statement is a formula rather than a sentence: it has no
+/// `$…$` but LaTeX commands or scripts (a formula the paper does not print, stated by
+/// the checker's own claims). Sentences are rendered as text with inline mathematics.
+pub fn prose_is_formula(statement: &str) -> bool {
+    !statement.contains('$') && statement.contains(['\\', '_', '^'])
 }
 
 /// Whether a row belongs in the errata: its printed statement fails, or holds only on

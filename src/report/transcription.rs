@@ -28,12 +28,17 @@ pub fn describe(t: &Transcription, printed: &str) -> String {
                 )
             };
             if !defines.is_empty() {
+                let defines: Vec<String> = defines.iter().map(|d| format!("`{d}`")).collect();
                 out.push_str(&format!("; defines {}", defines.join(", ")));
             }
             if !context.is_empty() {
                 out.push_str(&format!(
                     "; printed beside it and holding in the claim's context: {}",
-                    context.join("; ")
+                    context
+                        .iter()
+                        .map(|c| format!("`{c}`"))
+                        .collect::<Vec<_>>()
+                        .join("; ")
                 ));
             }
             if let Some(d) = stale {

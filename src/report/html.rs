@@ -1,0 +1,486 @@
+//! The derivation table as one self-contained HTML page, to read offline or attach to a
+//! review: printed statements as MathML (generated here, by `pulldown-latex`), verdict and
+//! strength as text and colour, counterexamples and corrections, the transcription
+//! status per section, and the `uses` graph as inline SVG with a legend. Clicking a node
+//! jumps to its claim and focuses the graph on the claim's ancestors and descendants.
+//! No request leaves the page: no fonts, scripts or styles are fetched.
+
+use super::layout::{layered, Layout};
+use super::{evidence, graph, read_label, Summary};
+use crate::derivation::Verdict;
+use crate::strategy::{Decided, Strength};
+use std::collections::BTreeSet;
+use std::fmt::Write as _;
+
+/// Escapes text for HTML element content and attribute values.
+pub fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// Escaped text whose `inline code` spans become `<code>`, or MathML when they quote
+/// printed LaTeX (a backslash or a brace: the expression language has neither).
+fn text(s: &str) -> String {
+    let mut out = String::new();
+    for (k, part) in s.split('`').enumerate() {
+        if k % 2 == 1 {
+            match mathml(part, false) {
+                Ok(m) if part.contains(['\\', '{']) => out.push_str(&m),
+                _ => {
+                    let _ = write!(out, "<code>{}</code>", escape(part));
+                }
+            }
+        } else {
+            out.push_str(&escape(part));
+        }
+    }
+    out
+}
+
+/// LaTeX as MathML, or why it cannot be rendered (a construct `pulldown-latex` lacks).
+pub fn mathml(latex: &str, display: bool) -> Result<String, String> {
+    use pulldown_latex::config::DisplayMode;
+    use pulldown_latex::{push_mathml, Parser, RenderConfig, Storage};
+    let storage = Storage::new();
+    let events: Vec<_> = Parser::new(latex, &storage).collect();
+    if let Some(Err(e)) = events.iter().find(|e| e.is_err()) {
+        return Err(e.to_string());
+    }
+    let config = RenderConfig {
+        display_mode: if display {
+            DisplayMode::Block
+        } else {
+            DisplayMode::Inline
+        },
+        ..RenderConfig::default()
+    };
+    let mut out = String::new();
+    push_mathml(&mut out, events.into_iter(), config).map_err(|e| e.to_string())?;
+    Ok(out)
+}
+
+/// A formula as MathML; LaTeX the renderer cannot read is shown as source, saying so.
+fn formula(latex: &str, display: bool) -> String {
+    match mathml(latex, display) {
+        Ok(m) => m,
+        Err(why) => format!(
+            "<code class=\"source\">{}</code> <span class=\"note\">(shown as LaTeX source: {})</span>",
+            escape(latex),
+            escape(&why)
+        ),
+    }
+}
+
+/// Prose with `$…$` mathematics.
+fn prose(s: &str) -> String {
+    let mut out = String::new();
+    for (k, part) in s.split('$').enumerate() {
+        if k % 2 == 1 {
+            out.push_str(&formula(part, false));
+        } else {
+            out.push_str(&escape(part));
+        }
+    }
+    out
+}
+
+/// `verdict`, its CSS class and the glyph that says it without colour.
+fn verdict_of(r: &Decided<'_>) -> (&'static str, &'static str) {
+    match (r.outcome.verdict(), r.outcome.strength()) {
+        (Verdict::Holds, Strength::Proof) => ("holds", "✓"),
+        (Verdict::Holds, Strength::Sampled) => ("holds", "≈"),
+        (Verdict::Fails, _) => ("fails", "✗"),
+        (Verdict::Conditional, _) => ("conditional", "◐"),
+        (Verdict::Undecided, _) => ("undecided", "?"),
+    }
+}
+
+/// The graph's node label: the id, the verdict glyph, and `root` or `inherited` for a
+/// failure.
+fn node_label(r: &Decided<'_>) -> String {
+    let (_, glyph) = verdict_of(r);
+    let origin = match &r.attribution {
+        Some(a) if a.is_root() => " root",
+        Some(a) if !a.inherited_from().is_empty() => " inherited",
+        Some(_) => " origin?",
+        None => "",
+    };
+    format!("{} {glyph}{origin}", r.claim.id)
+}
+
+/// Renders the page.
+pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
+    let summary = Summary::of(rows);
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <title>Derivation table: {}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n",
+        escape(paper)
+    );
+    let _ = write!(
+        out,
+        "<header>\n<h1>Derivation table</h1>\n<p class=\"paper\">{}</p>\n<p>{}</p>\n",
+        escape(paper),
+        escape(&summary.sentence(rows.len()))
+    );
+    let origin = summary.origin_sentence();
+    if !origin.is_empty() {
+        let _ = writeln!(out, "<p>{}</p>", escape(&origin));
+    }
+    let _ = writeln!(
+        out,
+        "<p>{}</p>\n</header>",
+        escape(&summary.transcription_sentence())
+    );
+    graph_section(&mut out, rows);
+    let mut sections: Vec<&str> = Vec::new();
+    for r in rows {
+        if !sections.contains(&r.claim.section.as_str()) {
+            sections.push(&r.claim.section);
+        }
+    }
+    for s in sections {
+        let here: Vec<&Decided<'_>> = rows
+            .iter()
+            .copied()
+            .filter(|r| r.claim.section == s)
+            .collect();
+        let part = Summary::of(&here);
+        let _ = writeln!(
+            out,
+            "<section id=\"section-{}\">\n<h2>Section {}</h2>\n<p class=\"section-summary\">{} {}</p>",
+            escape(s),
+            escape(s),
+            escape(&part.sentence(here.len())),
+            escape(&part.transcription_sentence())
+        );
+        for r in &here {
+            claim(&mut out, r, rows);
+        }
+        out.push_str("</section>\n");
+    }
+    let _ = write!(out, "<script>{SCRIPT}</script>\n</body>\n</html>\n");
+    out
+}
+
+/// One claim: statement, verdict, evidence, correction, origin, and its edges.
+fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
+    let c = r.claim;
+    let (class, glyph) = verdict_of(r);
+    let origin = match &r.attribution {
+        Some(a) if a.is_root() => " root".to_owned(),
+        Some(a) if !a.inherited_from().is_empty() => " inherited".to_owned(),
+        _ => String::new(),
+    };
+    let _ = write!(
+        out,
+        "<article class=\"claim {class}{origin}\" id=\"claim-{id}\">\n<h3><a href=\"#claim-{id}\">{id}</a> \
+         <span class=\"badge {class}\">{glyph} {}</span>",
+        escape(&super::verdict_label(r)),
+        id = escape(&c.id)
+    );
+    if let Some(a) = &r.attribution {
+        let _ = write!(out, " <span class=\"origin\">{}</span>", match a.label() {
+            "root" => "root error",
+            "inherited" => "inherited failure",
+            _ => "origin undetermined",
+        });
+    }
+    out.push_str("</h3>\n<div class=\"statement\">");
+    if c.prose && !super::prose_is_formula(&c.statement) {
+        let _ = write!(out, "“{}”", prose(&c.statement));
+    } else {
+        out.push_str(&formula(&c.statement, true));
+    }
+    out.push_str("</div>\n<dl>\n");
+    let mut item = |term: &str, body: String| {
+        let _ = writeln!(out, "<dt>{term}</dt><dd>{body}</dd>");
+    };
+    item(
+        "Decided",
+        format!(
+            "{} ({}), method {}",
+            escape(r.outcome.verdict().as_str()),
+            match r.outcome.strength() {
+                Strength::Proof => "proof: a kernel certificate",
+                Strength::Sampled => "sampled evidence, not a proof",
+            },
+            escape(r.outcome.method.as_str())
+        ),
+    );
+    item(
+        "Read",
+        format!(
+            "{}: {}",
+            escape(&read_label(r)),
+            text(&super::transcription::describe(&r.transcription, &c.statement))
+        ),
+    );
+    item("Evidence", text(&evidence(&r.outcome)));
+    if let Some(reason) = &c.reason {
+        item("Why", text(reason));
+    }
+    if let Some(a) = &r.attribution {
+        item("Origin", text(&graph::attribution(a)));
+    }
+    if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
+        item(
+            "Correction",
+            format!(
+                "<div class=\"statement\">{}</div>{} <span class=\"badge {}\">{}</span> ({}; {})",
+                formula(&k.statement, true),
+                text(&k.reason),
+                if o.verdict() == Verdict::Holds { "holds" } else { "fails" },
+                escape(&o.verdict_text()),
+                escape(o.method.as_str()),
+                text(&evidence(o))
+            ),
+        );
+    }
+    let link = |id: &str| format!("<a href=\"#claim-{0}\">{0}</a>", escape(id));
+    if !c.uses.is_empty() {
+        let links: Vec<String> = c.uses.iter().map(|u| link(&u.id)).collect();
+        item("Uses", links.join(", "));
+    }
+    let users: Vec<String> = rows
+        .iter()
+        .filter(|u| u.claim.uses.iter().any(|x| x.id == c.id))
+        .map(|u| link(&u.claim.id))
+        .collect();
+    if !users.is_empty() {
+        item("Used by", users.join(", "));
+    }
+    if let Some(note) = &c.note {
+        item("Note", text(note));
+    }
+    let _ = write!(
+        out,
+        "</dl>\n<button type=\"button\" class=\"focus\" data-id=\"{}\">Focus the graph on this claim</button>\n</article>\n",
+        escape(&c.id)
+    );
+}
+
+/// Every node reachable from `k` along `next`, excluding `k`.
+fn reach(k: usize, next: &[Vec<usize>]) -> BTreeSet<usize> {
+    let mut seen = BTreeSet::new();
+    let mut stack = next[k].clone();
+    while let Some(j) = stack.pop() {
+        if seen.insert(j) {
+            stack.extend(&next[j]);
+        }
+    }
+    seen
+}
+
+/// The legend and the graph of `uses` as inline SVG.
+fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
+    let index = |id: &str| rows.iter().position(|r| r.claim.id == id);
+    let uses: Vec<Vec<usize>> = rows
+        .iter()
+        .map(|r| r.claim.uses.iter().filter_map(|u| index(&u.id)).collect())
+        .collect();
+    let used_by: Vec<Vec<usize>> = (0..rows.len())
+        .map(|k| (0..rows.len()).filter(|&j| uses[j].contains(&k)).collect())
+        .collect();
+    let labels: Vec<String> = rows.iter().map(|r| node_label(r)).collect();
+    let Layout {
+        places,
+        width,
+        height,
+    } = layered(&labels, &uses);
+    out.push_str(LEGEND);
+    let _ = write!(
+        out,
+        "<div class=\"graph-box\"><svg id=\"graph\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{height:.0}\" viewBox=\"0 0 {width:.0} {height:.0}\" role=\"img\" aria-label=\"The claims and the claims each uses\">\n<defs><marker id=\"arrow\" viewBox=\"0 0 8 8\" refX=\"8\" refY=\"4\" markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L8,4 L0,8 z\" fill=\"#667\"/></marker></defs>\n"
+    );
+    for (k, r) in rows.iter().enumerate() {
+        for &u in &uses[k] {
+            let (a, b) = (places[u], places[k]);
+            let (x1, y1, x2, y2) = (a.x + a.width / 2.0, a.y, b.x - b.width / 2.0, b.y);
+            let bend = (x2 - x1) / 2.0;
+            let inherited = r
+                .attribution
+                .as_ref()
+                .is_some_and(|a| a.inherited_from().contains(&rows[u].claim.id));
+            let _ = writeln!(
+                out,
+                "<path class=\"edge{}\" data-from=\"{}\" data-to=\"{}\" d=\"M{x1:.1},{y1:.1} C{:.1},{y1:.1} {:.1},{y2:.1} {x2:.1},{y2:.1}\" marker-end=\"url(#arrow)\"/>",
+                if inherited { " inherited" } else { "" },
+                escape(&rows[u].claim.id),
+                escape(&r.claim.id),
+                x1 + bend,
+                x2 - bend,
+            );
+        }
+    }
+    for (k, r) in rows.iter().enumerate() {
+        let p = places[k];
+        let (class, _) = verdict_of(r);
+        let root = r.attribution.as_ref().is_some_and(|a| a.is_root());
+        let ids = |set: BTreeSet<usize>| {
+            set.into_iter()
+                .map(|j| escape(&rows[j].claim.id))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        let title = format!(
+            "{}: {}{}",
+            r.claim.id,
+            r.outcome.verdict_text(),
+            r.attribution
+                .as_ref()
+                .map(|a| format!("; {}", graph::attribution(a)))
+                .unwrap_or_default()
+        );
+        let _ = writeln!(
+            out,
+            "<a class=\"node {class}{}\" href=\"#claim-{id}\" data-id=\"{id}\" data-up=\"{}\" data-down=\"{}\"><title>{}</title><rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" rx=\"{}\"/><text x=\"{:.1}\" y=\"{:.1}\">{}</text></a>",
+            if root { " root" } else { "" },
+            ids(reach(k, &uses)),
+            ids(reach(k, &used_by)),
+            escape(&title),
+            p.x - p.width / 2.0,
+            p.y - p.height / 2.0,
+            p.width,
+            p.height,
+            if r.claim.prose { p.height / 2.0 } else { 2.0 },
+            p.x,
+            p.y + 4.0,
+            escape(&labels[k]),
+            id = escape(&r.claim.id),
+        );
+    }
+    out.push_str("</svg></div>\n<p id=\"focus-note\" class=\"note\">Click a claim to jump to it and to focus the graph on what it uses and what uses it.</p>\n");
+}
+
+const LEGEND: &str = r#"<section id="graph-section">
+<h2>Derivation graph</h2>
+<p>An arrow runs from a claim to each claim derived from it (<code>uses</code>).</p>
+<ul class="legend">
+<li><svg width="44" height="18"><rect x="1" y="1" width="42" height="16" rx="2" class="key"/></svg> a printed formula</li>
+<li><svg width="44" height="18"><rect x="1" y="1" width="42" height="16" rx="8" class="key"/></svg> a sentence of prose</li>
+<li><span class="swatch holds">✓</span> holds, proved by the kernel; <span class="swatch holds">≈</span> holds on sampled evidence (not a proof)</li>
+<li><span class="swatch fails">✗</span> fails: a counterexample</li>
+<li><span class="swatch conditional">◐</span> conditional: holds on a stated domain only</li>
+<li><span class="swatch undecided">?</span> undecided: the checker could not decide, and says why</li>
+<li><span class="swatch fails root-key">root</span> a root error (thick border): still fails with every failing claim it uses corrected</li>
+<li><span class="swatch fails">inherited</span> fails only because a claim it uses fails: holds once that claim is corrected (red dashed arrow)</li>
+</ul>
+<p><button type="button" id="clear-focus">Show the whole graph</button></p>
+"#;
+
+const STYLE: &str = r#"
+body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 72rem; padding: 1rem 1.5rem 100vh; line-height: 1.45; color: #1b1b1f; }
+h1 { margin-bottom: 0.2rem; } .paper { font-style: italic; margin-top: 0; }
+code { font-size: 0.9em; background: #f3f3f6; padding: 0 0.2em; border-radius: 3px; overflow-wrap: anywhere; }
+.note { color: #555; font-size: 0.9em; }
+.graph-box { overflow: auto; border: 1px solid #ccd; border-radius: 6px; max-height: 80vh; background: #fcfcfe; }
+#graph text { font: 12px ui-monospace, monospace; text-anchor: middle; fill: #1b1b1f; pointer-events: none; }
+#graph .node rect { stroke: #556; stroke-width: 1; cursor: pointer; }
+#graph .node.holds rect, .swatch.holds { fill: #d9f2dd; background: #d9f2dd; }
+#graph .node.fails rect, .swatch.fails { fill: #f9d6d9; background: #f9d6d9; }
+#graph .node.conditional rect, .swatch.conditional { fill: #fdf0c4; background: #fdf0c4; }
+#graph .node.undecided rect, .swatch.undecided { fill: #e3e3e8; background: #e3e3e8; }
+#graph .node.root rect { stroke: #a3000f; stroke-width: 3; }
+#graph .edge { fill: none; stroke: #99a; stroke-width: 1; }
+#graph .edge.inherited { stroke: #c0001a; stroke-width: 2; stroke-dasharray: 5 3; }
+#graph.focused .node:not(.kept) { opacity: 0.15; } #graph.focused .edge:not(.kept) { opacity: 0.08; }
+#graph .node.current rect { stroke: #0b57d0; stroke-width: 3; }
+.legend { list-style: none; padding: 0; display: grid; grid-template-columns: repeat(auto-fill, minmax(22rem, 1fr)); gap: 0.2rem 1rem; }
+.legend svg { vertical-align: middle; } .legend .key { fill: #fff; stroke: #556; }
+.swatch { display: inline-block; min-width: 1.4em; text-align: center; border: 1px solid #556; border-radius: 3px; padding: 0 0.25em; }
+.swatch.root-key { border: 3px solid #a3000f; }
+article.claim { border: 1px solid #ccd; border-left: 6px solid #7a7; border-radius: 6px; padding: 0.4rem 1rem; margin: 0.8rem 0; }
+article.claim.fails { border-left-color: #c0001a; } article.claim.conditional { border-left-color: #c9a300; }
+article.claim.undecided { border-left-color: #889; } article.claim.root { border-left-width: 12px; }
+article.claim:target { box-shadow: 0 0 0 3px #0b57d0; }
+h3 { margin: 0.3rem 0; font-size: 1.05rem; } h3 a { color: inherit; }
+.badge { font-size: 0.85rem; font-weight: 600; padding: 0.05rem 0.45rem; border-radius: 4px; border: 1px solid #556; }
+.badge.holds { background: #d9f2dd; } .badge.fails { background: #f9d6d9; color: #7a0010; }
+.badge.conditional { background: #fdf0c4; } .badge.undecided { background: #e3e3e8; }
+.origin { font-size: 0.85rem; font-weight: 600; color: #7a0010; }
+.statement { overflow-x: auto; margin: 0.4rem 0; } .statement math[display="block"] { margin: 0.3rem 0; }
+dl { display: grid; grid-template-columns: 7rem 1fr; gap: 0.15rem 0.8rem; margin: 0.4rem 0; }
+dt { font-weight: 600; color: #444; } dd { margin: 0; overflow-wrap: anywhere; }
+button { font: inherit; font-size: 0.85rem; cursor: pointer; }
+math { font-size: 1.1em; }
+"#;
+
+const SCRIPT: &str = r#"
+(function () {
+  const svg = document.getElementById('graph');
+  const note = document.getElementById('focus-note');
+  function ids(s) { return s ? s.split(' ') : []; }
+  function focus(id) {
+    const node = [...svg.querySelectorAll('.node')].find(n => n.dataset.id === id);
+    if (!node) return;
+    const up = ids(node.dataset.up), down = ids(node.dataset.down);
+    const keep = new Set([id, ...up, ...down]);
+    svg.classList.add('focused');
+    svg.querySelectorAll('.node').forEach(n => {
+      n.classList.toggle('kept', keep.has(n.dataset.id));
+      n.classList.toggle('current', n.dataset.id === id);
+    });
+    svg.querySelectorAll('.edge').forEach(e => e.classList.toggle('kept', keep.has(e.dataset.from) && keep.has(e.dataset.to)));
+    note.textContent = 'Focus: ' + id + ', ' + up.length + ' claim(s) it rests on and ' + down.length + ' that rest on it.';
+  }
+  function clear() {
+    svg.classList.remove('focused');
+    svg.querySelectorAll('.current').forEach(n => n.classList.remove('current'));
+    note.textContent = 'The whole graph.';
+  }
+  svg.addEventListener('click', ev => {
+    const a = ev.target.closest('.node');
+    if (a) focus(a.dataset.id);
+  });
+  document.querySelectorAll('button.focus').forEach(b => b.addEventListener('click', () => {
+    focus(b.dataset.id);
+    svg.scrollIntoView();
+  }));
+  document.getElementById('clear-focus').addEventListener('click', clear);
+  // `?selftest`: click every node and record whether its claim scrolled to the top
+  // (the browser test reads the result from the page).
+  async function selftest() {
+    const out = { nodes: 0, claims: 0, math: 0, unrendered: 0, raw_latex: [], raw_latex_outside_code: [], clicks: 0, scrolled: 0, focused: 0, failures: [] };
+    const nodes = [...svg.querySelectorAll('a.node')];
+    out.nodes = nodes.length;
+    out.claims = document.querySelectorAll('article.claim').length;
+    out.math = document.querySelectorAll('math').length;
+    out.unrendered = document.querySelectorAll('code.source').length;
+    out.raw_latex = (document.body.innerText.match(/\\[a-zA-Z]+/g) || []).slice(0, 10);
+    const plain = document.body.cloneNode(true);
+    plain.querySelectorAll('code').forEach(c => c.remove());
+    out.raw_latex_outside_code = (plain.textContent.match(/\\[a-zA-Z]+/g) || []).slice(0, 10);
+    for (const a of nodes) {
+      window.scrollTo(0, 0);
+      a.dispatchEvent(new MouseEvent('click', { bubbles: true, cancelable: true, view: window }));
+      await new Promise(r => setTimeout(r, 0));
+      const target = document.getElementById('claim-' + a.dataset.id);
+      const top = target ? target.getBoundingClientRect().top : null;
+      out.clicks++;
+      if (target && Math.abs(top) < 2 && window.scrollY > 0) out.scrolled++;
+      else out.failures.push(a.dataset.id + ' top=' + top);
+      if (svg.classList.contains('focused') && a.classList.contains('current')) out.focused++;
+    }
+    clear();
+    window.scrollTo(0, 0);
+    const pre = document.createElement('pre');
+    pre.id = 'selftest';
+    pre.textContent = JSON.stringify(out);
+    document.body.appendChild(pre);
+  }
+  if (location.search.indexOf('selftest') >= 0) selftest();
+})();
+"#;
