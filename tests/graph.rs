@@ -64,14 +64,23 @@ fn a_failure_that_holds_once_the_lemma_is_corrected_is_inherited_and_an_own_erro
     assert_eq!(
         order,
         [
-            ("lemma".to_owned(), vec!["step".to_owned(), "next".to_owned()]),
+            (
+                "lemma".to_owned(),
+                vec!["step".to_owned(), "next".to_owned()]
+            ),
             ("own-error".to_owned(), vec![]),
             ("unrelated".to_owned(), vec![]),
         ]
     );
     let errata = report::errata::markdown(&refs, "p");
-    assert!(errata.contains("Failures: 3 root errors, 2 inherited"), "{errata}");
-    assert!(errata.contains("### step (Section 1) — inherited from lemma"), "{errata}");
+    assert!(
+        errata.contains("Failures: 3 root errors, 2 inherited"),
+        "{errata}"
+    );
+    assert!(
+        errata.contains("### step (Section 1) — inherited from lemma"),
+        "{errata}"
+    );
 }
 
 #[test]
@@ -104,15 +113,16 @@ fn only_one_claim_still_decides_what_it_uses() {
 #[test]
 fn a_missing_and_a_stale_edge_are_warned_about() {
     let files = load_files(&["tests/graph/warnings.toml"]).unwrap();
-    let warnings: Vec<String> = uses::warnings(&files)
-        .iter()
-        .map(|d| d.warning())
-        .collect();
+    let warnings: Vec<String> = uses::warnings(&files).iter().map(|d| d.warning()).collect();
     assert_eq!(warnings.len(), 2, "{warnings:#?}");
     assert!(warnings[0].starts_with(
         "warning: `reads-s-lists-u` reads `s`, which transcribes lemma-s, but its `uses` does not list lemma-s"
     ));
-    assert!(warnings[0].contains("--> tests/graph/warnings.toml:25:7"), "{}", warnings[0]);
+    assert!(
+        warnings[0].contains("--> tests/graph/warnings.toml:25:7"),
+        "{}",
+        warnings[0]
+    );
     assert!(warnings[1].starts_with(
         "warning: `reads-s-lists-u` uses lemma-u, but reads none of the definitions that transcribe it (u)"
     ));
@@ -165,8 +175,7 @@ fn the_paper_has_two_failures_inherited_from_eq21() {
         attribution(&rows, "sec6-thickness-decreases"),
         Attribution::Undetermined { .. }
     ));
-    let json: serde_json::Value =
-        serde_json::from_str(&report::json::render(&refs, "p")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&report::json::render(&refs, "p")).unwrap();
     let eq23 = json["claims"]
         .as_array()
         .unwrap()
@@ -188,5 +197,9 @@ fn an_id_no_file_read_has_is_warned_about_and_its_edge_not_followed() {
         "{}",
         warnings[0]
     );
-    assert!(warnings[0].contains("--> tests/graph/unknown.toml:15:19"), "{}", warnings[0]);
+    assert!(
+        warnings[0].contains("--> tests/graph/unknown.toml:15:19"),
+        "{}",
+        warnings[0]
+    );
 }

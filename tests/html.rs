@@ -15,10 +15,7 @@ fn page() -> (String, usize, usize) {
         load_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations")).unwrap();
     let rows = decide_all(&files, None).unwrap();
     let refs: Vec<_> = rows.iter().collect();
-    let edges = rows
-        .iter()
-        .map(|r| r.claim.uses.len())
-        .sum::<usize>();
+    let edges = rows.iter().map(|r| r.claim.uses.len()).sum::<usize>();
     (
         report::html::render(&refs, &report::paper_of(&refs, &[])),
         rows.len(),
@@ -37,7 +34,10 @@ fn the_page_is_self_contained_with_a_node_per_claim_and_mathml() {
     assert!(!html.contains("class=\"source\""));
     // Nothing is fetched: the only URL is the SVG namespace.
     for needle in ["src=", "href=\"http", "url(http", "@import", "<link"] {
-        assert!(!html.contains(needle), "the page fetches something: {needle}");
+        assert!(
+            !html.contains(needle),
+            "the page fetches something: {needle}"
+        );
     }
     assert!(html.contains("eq23") && html.contains("inherited from eq21"));
 }
@@ -48,8 +48,12 @@ fn browser() -> Option<PathBuf> {
         .map(PathBuf::from)
         .into_iter()
         .chain(
-            ["/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome"]
-                .map(PathBuf::from),
+            [
+                "/usr/bin/chromium",
+                "/usr/bin/chromium-browser",
+                "/usr/bin/google-chrome",
+            ]
+            .map(PathBuf::from),
         );
     candidates.into_iter().find(|p| p.is_file())
 }
@@ -90,29 +94,50 @@ fn in_a_real_browser_the_page_renders_mathml_and_a_click_scrolls_to_the_claim() 
     let dom = chromium(
         &browser,
         &dir.join("profile"),
-        &["--virtual-time-budget=30000", "--dump-dom", &format!("{url}?selftest")],
+        &[
+            "--virtual-time-budget=30000",
+            "--dump-dom",
+            &format!("{url}?selftest"),
+        ],
     );
     let dom = String::from_utf8_lossy(&dom.stdout);
-    let start = dom
-        .find("<pre id=\"selftest\">")
-        .unwrap_or_else(|| panic!("the page's self-test did not finish:\n{}", &dom[..dom.len().min(500)]));
+    let start = dom.find("<pre id=\"selftest\">").unwrap_or_else(|| {
+        panic!(
+            "the page's self-test did not finish:\n{}",
+            &dom[..dom.len().min(500)]
+        )
+    });
     let json = &dom[start + "<pre id=\"selftest\">".len()..];
     let json = &json[..json.find("</pre>").unwrap()];
     let result: serde_json::Value = serde_json::from_str(&json.replace("&quot;", "\"")).unwrap();
     assert_eq!(result["nodes"], claims, "{result}");
     assert_eq!(result["claims"], claims, "{result}");
-    assert!(result["math"].as_u64().unwrap() >= claims as u64 / 2, "{result}");
+    assert!(
+        result["math"].as_u64().unwrap() >= claims as u64 / 2,
+        "{result}"
+    );
     assert_eq!(result["unrendered"], 0, "{result}");
-    assert_eq!(result["raw_latex_outside_code"], serde_json::json!([]), "{result}");
+    assert_eq!(
+        result["raw_latex_outside_code"],
+        serde_json::json!([]),
+        "{result}"
+    );
     assert_eq!(result["clicks"], claims, "{result}");
-    assert_eq!(result["scrolled"], claims, "clicks that did not scroll to the claim: {result}");
+    assert_eq!(
+        result["scrolled"], claims,
+        "clicks that did not scroll to the claim: {result}"
+    );
     assert_eq!(result["focused"], claims, "{result}");
     let shot = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/html-report.png");
     let _ = std::fs::remove_file(&shot);
     chromium(
         &browser,
         &dir.join("profile"),
-        &["--window-size=1280,1800", &format!("--screenshot={}", shot.display()), &url],
+        &[
+            "--window-size=1280,1800",
+            &format!("--screenshot={}", shot.display()),
+            &url,
+        ],
     );
     assert!(shot.is_file(), "no screenshot");
 }

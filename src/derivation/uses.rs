@@ -34,7 +34,10 @@ pub(super) fn link(files: &[DerivationFile]) -> Result<(), Diagnostic> {
                 return Err(at(
                     &s.origin,
                     &s.by,
-                    format!("`{}` has no correction, so `{}` has no corrected form", s.by, s.name),
+                    format!(
+                        "`{}` has no correction, so `{}` has no corrected form",
+                        s.by, s.name
+                    ),
                 )
                 .with_help("give the claim a [claim.correction], or drop `corrected`"));
             }
@@ -61,7 +64,8 @@ pub(super) fn link(files: &[DerivationFile]) -> Result<(), Diagnostic> {
                 None if !claims.contains_key(u.id.as_str()) => {}
                 Some(false) => {
                     let from = path.iter().position(|(p, _)| p.id == u.id).unwrap_or(0);
-                    let mut ids: Vec<&str> = path[from..].iter().map(|(p, _)| p.id.as_str()).collect();
+                    let mut ids: Vec<&str> =
+                        path[from..].iter().map(|(p, _)| p.id.as_str()).collect();
                     ids.push(&u.id);
                     return Err(at(&u.origin, &u.id, format!("`uses` makes a cycle: {}", ids.join(" → ")))
                         .with_help("a claim cannot be derived, even indirectly, from itself; remove one of these entries"));
@@ -119,9 +123,8 @@ pub fn warnings(files: &[DerivationFile]) -> Vec<Diagnostic> {
         .flat_map(|f| &f.claims)
         .map(|c| c.id.as_str())
         .collect();
-    let unknown = |id: &str| {
-        format!("`{id}` is no claim of the files read, so this edge is not followed")
-    };
+    let unknown =
+        |id: &str| format!("`{id}` is no claim of the files read, so this edge is not followed");
     let help = "check the id, or read the file that has it together with this one";
     for c in files.iter().flat_map(|f| &f.claims) {
         for u in c.uses.iter().filter(|u| !known.contains(u.id.as_str())) {
@@ -138,11 +141,18 @@ pub fn warnings(files: &[DerivationFile]) -> Vec<Diagnostic> {
         for e in &implied {
             if c.uses.iter().all(|u| u.id != e.by) {
                 out.push(
-                    at(&c.origin, &c.id, format!(
+                    at(
+                        &c.origin,
+                        &c.id,
+                        format!(
                         "`{}` reads `{}`, which transcribes {}, but its `uses` does not list {}",
                         c.id, e.definition, e.by, e.by
-                    ))
-                    .with_help(format!("add \"{}\" to uses (or correct the [stated] entry of `{}`)", e.by, e.definition)),
+                    ),
+                    )
+                    .with_help(format!(
+                        "add \"{}\" to uses (or correct the [stated] entry of `{}`)",
+                        e.by, e.definition
+                    )),
                 );
             }
         }
@@ -155,12 +165,16 @@ pub fn warnings(files: &[DerivationFile]) -> Vec<Diagnostic> {
                 .collect();
             if !states.is_empty() && !implied.is_empty() && implied.iter().all(|e| e.by != u.id) {
                 out.push(
-                    at(&u.origin, &u.id, format!(
+                    at(
+                        &u.origin,
+                        &u.id,
+                        format!(
                         "`{}` uses {}, but reads none of the definitions that transcribe it ({})",
                         c.id,
                         u.id,
                         states.join(", ")
-                    ))
+                    ),
+                    )
                     .with_help("remove the entry if the claim no longer depends on it"),
                 );
             }

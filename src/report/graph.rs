@@ -17,7 +17,9 @@ pub fn attribution(a: &Attribution) -> String {
         // The re-decision's evidence is in `explain` and JSON; a failure's is long.
         Attribution::Root { corrected, outcome } => format!(
             "root error: still {} with {} corrected{}",
-            outcome.as_ref().map_or("failing".to_owned(), |o| o.verdict_text()),
+            outcome
+                .as_ref()
+                .map_or("failing".to_owned(), |o| o.verdict_text()),
             list(corrected),
             outcome
                 .as_ref()
@@ -94,7 +96,11 @@ pub fn grouped<'a, 'c>(rows: &[&'a Decided<'c>]) -> Vec<(&'a Decided<'c>, Vec<&'
         for _ in 0..rows.len() {
             let mut next = Vec::new();
             for f in &frontier {
-                for id in f.attribution.as_ref().map_or(&[][..], |a| a.inherited_from()) {
+                for id in f
+                    .attribution
+                    .as_ref()
+                    .map_or(&[][..], |a| a.inherited_from())
+                {
                     match by_id(id) {
                         Some(d) if d.attribution.as_ref().is_some_and(Attribution::is_root) => {
                             return Some(d.claim.id.as_str())
@@ -119,12 +125,12 @@ pub fn grouped<'a, 'c>(rows: &[&'a Decided<'c>]) -> Vec<(&'a Decided<'c>, Vec<&'
     let mut rest = Vec::new();
     for r in rows {
         match &r.attribution {
-            Some(Attribution::Inherited { .. }) => match root_of(r)
-                .and_then(|id| groups.iter_mut().find(|(g, _)| g.claim.id == id))
-            {
-                Some((_, under)) => under.push(*r),
-                None => rest.push((*r, Vec::new())),
-            },
+            Some(Attribution::Inherited { .. }) => {
+                match root_of(r).and_then(|id| groups.iter_mut().find(|(g, _)| g.claim.id == id)) {
+                    Some((_, under)) => under.push(*r),
+                    None => rest.push((*r, Vec::new())),
+                }
+            }
             Some(Attribution::Undetermined { .. }) => rest.push((*r, Vec::new())),
             _ => {}
         }

@@ -192,11 +192,15 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
         id = escape(&c.id)
     );
     if let Some(a) = &r.attribution {
-        let _ = write!(out, " <span class=\"origin\">{}</span>", match a.label() {
-            "root" => "root error",
-            "inherited" => "inherited failure",
-            _ => "origin undetermined",
-        });
+        let _ = write!(
+            out,
+            " <span class=\"origin\">{}</span>",
+            match a.label() {
+                "root" => "root error",
+                "inherited" => "inherited failure",
+                _ => "origin undetermined",
+            }
+        );
     }
     out.push_str("</h3>\n<div class=\"statement\">");
     if c.prose && !super::prose_is_formula(&c.statement) {
@@ -225,7 +229,10 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
         format!(
             "{}: {}",
             escape(&read_label(r)),
-            text(&super::transcription::describe(&r.transcription, &c.statement))
+            text(&super::transcription::describe(
+                &r.transcription,
+                &c.statement
+            ))
         ),
     );
     item("Evidence", text(&evidence(&r.outcome)));
@@ -242,7 +249,11 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
                 "<div class=\"statement\">{}</div>{} <span class=\"badge {}\">{}</span> ({}; {})",
                 formula(&k.statement, true),
                 text(&k.reason),
-                if o.verdict() == Verdict::Holds { "holds" } else { "fails" },
+                if o.verdict() == Verdict::Holds {
+                    "holds"
+                } else {
+                    "fails"
+                },
                 escape(&o.verdict_text()),
                 escape(o.method.as_str()),
                 text(&evidence(o))

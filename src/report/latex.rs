@@ -106,7 +106,9 @@ pub fn escape(s: &str) -> String {
             if c == '`' {
                 // A quotation of printed LaTeX (a backslash or a brace: the language has
                 // neither) is typeset as it was printed.
-                let command = text.strip_prefix('\\').is_some_and(|w| w.chars().all(|c| c.is_ascii_alphabetic()));
+                let command = text
+                    .strip_prefix('\\')
+                    .is_some_and(|w| w.chars().all(|c| c.is_ascii_alphabetic()));
                 if command {
                     // A command named alone (`\overline`) is quoted, not typeset.
                     let _ = write!(out, "\\texttt{{\\textbackslash {}}}", &text[1..]);
@@ -169,7 +171,9 @@ pub fn expression(s: &str) -> String {
             }
             let word: String = chars[start..k].iter().collect();
             let (base, sub) = match word.rsplit_once('_') {
-                Some((b, i)) if !b.is_empty() && !i.is_empty() => (b.to_owned(), Some(i.to_owned())),
+                Some((b, i)) if !b.is_empty() && !i.is_empty() => {
+                    (b.to_owned(), Some(i.to_owned()))
+                }
                 _ => (word.clone(), None),
             };
             out.push_str(&name(&base));
@@ -224,8 +228,8 @@ pub fn expression(s: &str) -> String {
 /// several letters upright.
 fn name(base: &str) -> String {
     const GREEK: [&str; 20] = [
-        "alpha", "beta", "gamma", "delta", "epsilon", "theta", "kappa", "lambda", "mu", "nu",
-        "xi", "pi", "rho", "sigma", "tau", "phi", "psi", "omega", "Gamma", "Delta",
+        "alpha", "beta", "gamma", "delta", "epsilon", "theta", "kappa", "lambda", "mu", "nu", "xi",
+        "pi", "rho", "sigma", "tau", "phi", "psi", "omega", "Gamma", "Delta",
     ];
     if GREEK.contains(&base) {
         format!("\\{base}")
@@ -275,7 +279,10 @@ fn stacked(latex: &str) -> String {
         } else if rest.starts_with("\\right") || rest.starts_with("\\end") {
             delims -= 1;
         }
-        if top && rest.starts_with("\\quad") && !rest[5..].starts_with(|c: char| c.is_ascii_alphabetic()) {
+        if top
+            && rest.starts_with("\\quad")
+            && !rest[5..].starts_with(|c: char| c.is_ascii_alphabetic())
+        {
             lines.push(vec![String::new()]);
             k += 5;
             continue;
@@ -288,7 +295,9 @@ fn stacked(latex: &str) -> String {
                 // An escaped character (`\{`, `\,`) is copied whole.
                 let line = lines.last_mut().expect("one line");
                 let end = k + 1 + rest[1..].chars().next().map_or(0, char::len_utf8);
-                line.last_mut().expect("one member").push_str(&latex[k..end]);
+                line.last_mut()
+                    .expect("one member")
+                    .push_str(&latex[k..end]);
                 k = end;
                 continue;
             }
@@ -365,7 +374,11 @@ fn verdict_cell(r: &Decided<'_>) -> String {
     match &r.attribution {
         Some(a) if a.is_root() => cell.push_str("; root error"),
         Some(a) if !a.inherited_from().is_empty() => {
-            let _ = write!(cell, "; inherited from {}", escape(&a.inherited_from().join(", ")));
+            let _ = write!(
+                cell,
+                "; inherited from {}",
+                escape(&a.inherited_from().join(", "))
+            );
         }
         Some(_) => cell.push_str("; origin undetermined"),
         None => {}
@@ -394,7 +407,9 @@ fn short_evidence(r: &Decided<'_>) -> String {
             "holds with {}; a counterexample outside",
             n.domain.as_deref().unwrap_or("the stated domain")
         ),
-        (Verdict::Conditional, None) => "holds on the stated domain; a counterexample outside".to_owned(),
+        (Verdict::Conditional, None) => {
+            "holds on the stated domain; a counterexample outside".to_owned()
+        }
         (Verdict::Undecided, _) => "undecided: see the reason".to_owned(),
     };
     if let Some(c) = &r.correction {
@@ -435,7 +450,10 @@ pub fn render(rows: &[&Decided<'_>], standalone: bool, paper: &str) -> String {
     if !origin.is_empty() {
         let _ = writeln!(out, "{}", escape(&origin));
     }
-    let _ = writeln!(out, "\n\\medskip\\noindent The evidence in full, by claim:\n");
+    let _ = writeln!(
+        out,
+        "\n\\medskip\\noindent The evidence in full, by claim:\n"
+    );
     let _ = writeln!(
         out,
         "\\begin{{longtable}}{{@{{}}>{{\\raggedright}}p{{0.17\\linewidth}}>{{\\raggedright\\arraybackslash}}p{{0.78\\linewidth}}@{{}}}}"
@@ -491,12 +509,21 @@ fn erratum(out: &mut String, r: &Decided<'_>) {
         statement(c)
     );
     let _ = writeln!(out, "\\begin{{itemize}}");
-    let _ = writeln!(out, "\\item Verdict: {} ({})", verdict_cell(r), escape(r.outcome.method.as_str()));
+    let _ = writeln!(
+        out,
+        "\\item Verdict: {} ({})",
+        verdict_cell(r),
+        escape(r.outcome.method.as_str())
+    );
     if let Some(reason) = &c.reason {
         let _ = writeln!(out, "\\item Why: {}", escape(reason));
     }
     if let Some(a) = &r.attribution {
-        let _ = writeln!(out, "\\item Origin: {}", escape(&super::graph::attribution(a)));
+        let _ = writeln!(
+            out,
+            "\\item Origin: {}",
+            escape(&super::graph::attribution(a))
+        );
     }
     let _ = writeln!(out, "\\item Evidence: {}", escape(&evidence(&r.outcome)));
     if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
@@ -530,7 +557,10 @@ mod tests {
             stacked("a = \\frac{b}{c=d} = e, \\quad f = g"),
             "\\begin{aligned}a &= \\frac{b}{c=d} \\\\ &= e \\\\ f &= g\\end{aligned}"
         );
-        assert_eq!(stacked("\\left(a = b\\right) = c"), "\\left(a = b\\right) = c");
+        assert_eq!(
+            stacked("\\left(a = b\\right) = c"),
+            "\\left(a = b\\right) = c"
+        );
         assert_eq!(stacked("a \\le b"), "a \\le b");
     }
 
@@ -540,6 +570,9 @@ mod tests {
             expression("-n_2*R_g*Dw_31 + sigma_ki n_k^2*V^-1"),
             "$-n_{2}\\,R_{g}\\,\\mathrm{Dw}_{31} + \\sigma_{ki} n_{k}^{2}\\,V^{-1}$"
         );
-        assert_eq!(expression("eps_ijk … mut_ij"), "$\\varepsilon_{ijk} \\dots \\mathrm{mut}_{ij}$");
+        assert_eq!(
+            expression("eps_ijk … mut_ij"),
+            "$\\varepsilon_{ijk} \\dots \\mathrm{mut}_{ij}$"
+        );
     }
 }

@@ -148,7 +148,10 @@ mod tests {
         let l = layered(&labels, &uses);
         for (k, us) in uses.iter().enumerate() {
             for &u in us {
-                assert!(l.places[u].x + l.places[u].width / 2.0 < l.places[k].x - l.places[k].width / 2.0);
+                assert!(
+                    l.places[u].x + l.places[u].width / 2.0
+                        < l.places[k].x - l.places[k].width / 2.0
+                );
             }
         }
         let (b, c) = (l.places[1], l.places[2]);

@@ -87,12 +87,18 @@ pub fn ancestors<'c>(id: &str, claims: &BTreeMap<&str, &'c Claim>) -> Vec<&'c Cl
 /// Attributes the failure of every failing row whose failing ancestors are among the
 /// rows; each re-decision runs under the time limit `limit`.
 pub fn attribute(rows: &mut [Decided<'_>], limit: Duration) -> Result<(), Diagnostic> {
-    let claims: BTreeMap<&str, &Claim> = rows.iter().map(|r| (r.claim.id.as_str(), r.claim)).collect();
+    let claims: BTreeMap<&str, &Claim> = rows
+        .iter()
+        .map(|r| (r.claim.id.as_str(), r.claim))
+        .collect();
     // A dependency counts as corrected only when its correction holds.
     let verdicts: BTreeMap<&str, (Verdict, bool)> = rows
         .iter()
         .map(|r| {
-            let corrected = r.correction.as_ref().is_some_and(|o| o.verdict() == Verdict::Holds);
+            let corrected = r
+                .correction
+                .as_ref()
+                .is_some_and(|o| o.verdict() == Verdict::Holds);
             (r.claim.id.as_str(), (r.outcome.verdict(), corrected))
         })
         .collect();
@@ -118,7 +124,11 @@ fn attribution(
 ) -> Result<Attribution, Diagnostic> {
     let failing_ancestors: BTreeSet<&str> = ancestors(&claim.id, claims)
         .into_iter()
-        .filter(|c| verdicts.get(c.id.as_str()).is_some_and(|(v, _)| failing(*v)))
+        .filter(|c| {
+            verdicts
+                .get(c.id.as_str())
+                .is_some_and(|(v, _)| failing(*v))
+        })
         .map(|c| c.id.as_str())
         .collect();
     let reads: BTreeSet<&str> = claim
