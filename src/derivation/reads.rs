@@ -65,6 +65,12 @@ impl Check {
             .collect()
     }
 
+    /// The names of the definitions the statement depends on, directly or through
+    /// other definitions.
+    pub fn definitions_read(&self) -> BTreeSet<&str> {
+        self.reachable().1
+    }
+
     /// The symbols whose values decide the statement: those it reads, and those the
     /// assumptions compute them from (`S = 3 V / (2 R_g)` makes `V` and `R_g` read
     /// when `S` is), and whether it reads the normal.

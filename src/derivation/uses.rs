@@ -92,12 +92,7 @@ pub struct Implied<'c> {
 /// The claims this claim's check implies it uses, each once, with the first definition
 /// (in definition order) that implies it.
 pub fn implied(claim: &Claim) -> Vec<Implied<'_>> {
-    let reads: BTreeSet<&str> = claim
-        .check
-        .dependencies()
-        .into_iter()
-        .map(|k| claim.check.defs[k].sig.name.as_str())
-        .collect();
+    let reads = claim.check.definitions_read();
     let mut out: Vec<Implied<'_>> = Vec::new();
     for s in claim.stated.iter() {
         if s.by != claim.id && reads.contains(s.name.as_str()) && out.iter().all(|e| e.by != s.by) {

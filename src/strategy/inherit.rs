@@ -131,12 +131,7 @@ fn attribution(
         })
         .map(|c| c.id.as_str())
         .collect();
-    let reads: BTreeSet<&str> = claim
-        .check
-        .dependencies()
-        .into_iter()
-        .map(|k| claim.check.defs[k].sig.name.as_str())
-        .collect();
+    let reads = claim.check.definitions_read();
     let mut check = claim.check.clone();
     let (mut corrected, mut uncorrectable) = (Vec::new(), Vec::new());
     for s in claim.stated.iter() {
