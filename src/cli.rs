@@ -301,12 +301,7 @@ fn decide_with_progress<'f>(
     // With `--only`, a failure is attributed by deciding the claims it uses as well.
     if let (Some(id), Some(r)) = (only, rows.first()) {
         if inherit::failing(r.outcome.verdict()) {
-            let all = files
-                .iter()
-                .flat_map(|f| &f.claims)
-                .map(|c| (c.id.as_str(), c))
-                .collect();
-            let ancestors = inherit::ancestors(id, &all);
+            let ancestors = inherit::ancestors(id, &crate::derivation::uses::by_id(files));
             rows.extend(decide_claims(ancestors, run, progress)?);
         }
     }

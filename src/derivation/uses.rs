@@ -5,11 +5,20 @@
 
 use super::model::{Claim, DerivationFile};
 use crate::lang::{Diagnostic, Origin, Span};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 
 /// A diagnostic pointing at the whole of `text`, which `origin` locates.
 fn at(origin: &Origin, text: &str, message: String) -> Diagnostic {
     origin.diagnostic(Span::new(0, text.len()), message)
+}
+
+/// Every claim of `files` by id.
+pub fn by_id(files: &[DerivationFile]) -> BTreeMap<&str, &Claim> {
+    files
+        .iter()
+        .flat_map(|f| &f.claims)
+        .map(|c| (c.id.as_str(), c))
+        .collect()
 }
 
 /// Checks the graph of the files read together: no claim uses itself, `uses` has no
@@ -17,11 +26,7 @@ fn at(origin: &Origin, text: &str, message: String) -> Diagnostic {
 /// names no claim of these files is only a warning ([`warnings`]): one file of a set
 /// may be read alone (`plot`, `explain`, `verify` of one file).
 pub(super) fn link(files: &[DerivationFile]) -> Result<(), Diagnostic> {
-    let claims: BTreeMap<&str, &Claim> = files
-        .iter()
-        .flat_map(|f| &f.claims)
-        .map(|c| (c.id.as_str(), c))
-        .collect();
+    let claims = by_id(files);
     for c in claims.values() {
         if let Some(u) = c.uses.iter().find(|u| u.id == c.id) {
             return Err(at(&u.origin, &u.id, format!("`{}` uses itself", c.id))
@@ -47,10 +52,10 @@ pub(super) fn link(files: &[DerivationFile]) -> Result<(), Diagnostic> {
     // on every run).
     let mut state: BTreeMap<&str, bool> = BTreeMap::new(); // false: on the path; true: done
     for c in files.iter().flat_map(|f| &f.claims) {
-        let mut path: Vec<(&Claim, usize)> = vec![(c, 0)];
         if state.contains_key(c.id.as_str()) {
             continue;
         }
+        let mut path: Vec<(&Claim, usize)> = vec![(c, 0)];
         state.insert(&c.id, false);
         while let Some((claim, next)) = path.last_mut() {
             let Some(u) = claim.uses.get(*next) else {
@@ -113,21 +118,17 @@ pub fn implied(claim: &Claim) -> Vec<Implied<'_>> {
 /// taken as written.
 pub fn warnings(files: &[DerivationFile]) -> Vec<Diagnostic> {
     let mut out = Vec::new();
-    let known: BTreeSet<&str> = files
-        .iter()
-        .flat_map(|f| &f.claims)
-        .map(|c| c.id.as_str())
-        .collect();
+    let known = by_id(files);
     let unknown =
         |id: &str| format!("`{id}` is no claim of the files read, so this edge is not followed");
     let help = "check the id, or read the file that has it together with this one";
     for c in files.iter().flat_map(|f| &f.claims) {
-        for u in c.uses.iter().filter(|u| !known.contains(u.id.as_str())) {
+        for u in c.uses.iter().filter(|u| !known.contains_key(u.id.as_str())) {
             out.push(at(&u.origin, &u.id, unknown(&u.id)).with_help(help));
         }
     }
     for s in files.iter().flat_map(|f| f.stated.iter()) {
-        if !known.contains(s.by.as_str()) {
+        if !known.contains_key(s.by.as_str()) {
             out.push(at(&s.origin, &s.by, unknown(&s.by)).with_help(help));
         }
     }

@@ -26,8 +26,10 @@ pub fn attribution(a: &Attribution) -> String {
                 .map(|o| format!(" ({})", o.method.as_str()))
                 .unwrap_or_default()
         ),
+        // "holds (sampled)" when the re-decision rests on sampled evidence.
         Attribution::Inherited { from, outcome } => format!(
-            "inherited: holds once {} {} corrected ({}; {})",
+            "inherited: {} once {} {} corrected ({}; {})",
+            outcome.verdict_text(),
             list(from),
             if from.len() == 1 { "is" } else { "are" },
             outcome.method.as_str(),

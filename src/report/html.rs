@@ -6,7 +6,7 @@
 //! No request leaves the page: no fonts, scripts or styles are fetched.
 
 use super::layout::{layered, Layout};
-use super::{evidence, graph, read_label, Summary};
+use super::{evidence, graph, Summary};
 use crate::derivation::Verdict;
 use crate::strategy::{Decided, Strength};
 use std::collections::BTreeSet;
@@ -34,8 +34,9 @@ fn text(s: &str) -> String {
     let mut out = String::new();
     for (k, part) in s.split('`').enumerate() {
         if k % 2 == 1 {
-            match mathml(part, false) {
-                Ok(m) if part.contains(['\\', '{']) => out.push_str(&m),
+            let latex = part.contains(['\\', '{']);
+            match latex.then(|| mathml(part, false)) {
+                Some(Ok(m)) => out.push_str(&m),
                 _ => {
                     let _ = write!(out, "<code>{}</code>", escape(part));
                 }
@@ -227,8 +228,12 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
     item(
         "Read",
         format!(
-            "{}: {}",
-            escape(&read_label(r)),
+            "{}{}",
+            if r.transcription.as_expected() {
+                ""
+            } else {
+                "✗ not declared: "
+            },
             text(&super::transcription::describe(
                 &r.transcription,
                 &c.statement

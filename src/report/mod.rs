@@ -163,8 +163,7 @@ pub fn prose_is_formula(statement: &str) -> bool {
 /// Whether a row belongs in the errata: its printed statement fails, or holds only on
 /// a domain (an undecided claim accuses nobody).
 pub fn is_erratum(r: &Decided<'_>) -> bool {
-    use crate::derivation::Verdict;
-    matches!(r.outcome.verdict(), Verdict::Fails | Verdict::Conditional)
+    crate::strategy::inherit::failing(r.outcome.verdict())
 }
 
 /// The transcription status for a table: "machine", "differs", "hand" or "prose",
