@@ -82,6 +82,10 @@ pub struct Tape {
     avgs: Vec<Tape>,
     /// Whether the normal lies in the 1-2 plane (averages are then over the circle).
     in_plane: bool,
+    /// The ops that depend on the angle (`Angle`, and through operands; nested `maxn`
+    /// and `avg` conservatively), in order: a sub-tape evaluated over many angles
+    /// computes the others once ([`Tape::max_over_angle`]).
+    varying: Vec<usize>,
 }
 
 /// Why an expression was not compiled (the caller falls back to the interpreter).
@@ -131,6 +135,7 @@ impl Tape {
             maxn: c.maxn,
             avgs: c.avgs,
             in_plane: decls.normal_in_plane,
+            varying: Vec::new(),
         })
     }
 
@@ -199,10 +204,25 @@ impl Tape {
         angle: &[f64],
         quad: &Quadrature,
     ) -> Result<Vec<T>, RealError> {
-        let mut v: Vec<T> = Vec::with_capacity(self.ops.len());
+        let mut v: Vec<T> = vec![T::zero(); self.ops.len()];
+        self.fill(&mut v, 0..self.ops.len(), inputs, n, angle, quad)?;
+        Ok(v)
+    }
+
+    /// Evaluates the ops `which` (increasing) into `v`, whose entries for every other
+    /// op they read are already computed.
+    fn fill<T: DualNum<Primitive = f64>>(
+        &self,
+        v: &mut [T],
+        which: impl IntoIterator<Item = usize>,
+        inputs: &[T],
+        n: &[f64],
+        angle: &[f64],
+        quad: &Quadrature,
+    ) -> Result<(), RealError> {
         let mut averages: Vec<Option<Vec<T>>> = vec![None; self.avgs.len()];
-        for op in &self.ops {
-            let x = match *op {
+        for k in which {
+            let x = match self.ops[k] {
                 Op::Input(k) => inputs[k].clone(),
                 Op::Normal(k) => T::from(n[k]),
                 Op::Angle(k) => T::from(angle[k]),
@@ -245,9 +265,9 @@ impl Tape {
                     averages[k].as_ref().expect("computed above")[c].clone()
                 }
             };
-            v.push(x);
+            v[k] = x;
         }
-        Ok(v)
+        Ok(())
     }
 
     /// The dimension the normal ranges over: 2 for an in-plane normal (recorded at
@@ -268,15 +288,20 @@ impl Tape {
         theta: f64,
         quad: &Quadrature,
     ) -> Result<T, RealError> {
-        let mut angle = vec![theta.cos(), theta.sin()];
-        angle.resize(n.len(), 0.0);
-        let v = self.run(inputs, n, &angle, quad)?;
+        let v = self.run(inputs, n, &angle_normal(theta), quad)?;
         Ok(v[*self.outputs.get(&[])].clone())
     }
 
     /// max over θ, as in `RealEnv::max_over_angle`: the grid, golden-section refinement
     /// of every local maximum in `f64`, then the value (with derivatives) at the
     /// maximiser.
+    ///
+    /// The ops that do not depend on θ are evaluated once; the others over all the
+    /// grid's angles at once, and over every refined maximum at once (the golden
+    /// sections run in lockstep). Each angle sees the same operations in the same order
+    /// as a whole run, so the values are identical; where any evaluation fails, the
+    /// angles are evaluated one by one instead, so that the error reported is the one
+    /// the first failing angle gives.
     fn max_over_angle<T: DualNum<Primitive = f64>>(
         &self,
         inputs: &[T],
@@ -285,8 +310,39 @@ impl Tape {
         quad: &Quadrature,
     ) -> Result<T, RealError> {
         let re: Vec<f64> = inputs.iter().map(|x| x.re()).collect();
-        let f = |theta: f64| -> Result<f64, RealError> { self.at_angle(&re, n, theta, quad) };
-        let h = 2.0 * std::f64::consts::PI / MAXN_GRID as f64;
+        let mut fixed = vec![0.0; self.ops.len()];
+        let mut varies = vec![false; self.ops.len()];
+        for &k in &self.varying {
+            varies[k] = true;
+        }
+        let invariant = (0..self.ops.len()).filter(|&k| !varies[k]);
+        self.fill(&mut fixed, invariant, &re, n, &[], quad)?;
+        let lanes = Lanes::new(self, &fixed, n.len());
+        let best = match lanes.and_then(|l| l.maximise()) {
+            Some(best) => best,
+            None => self.maximise_one_by_one(&fixed, &re, n, span, quad)?,
+        };
+        self.at_angle(inputs, n, best.0, quad)
+    }
+
+    /// The grid and the golden sections one angle at a time (the reference order).
+    fn maximise_one_by_one(
+        &self,
+        fixed: &[f64],
+        re: &[f64],
+        n: &[f64],
+        span: Span,
+        quad: &Quadrature,
+    ) -> Result<(f64, f64), RealError> {
+        let out = *self.outputs.get(&[]);
+        let buffer = std::cell::RefCell::new(fixed.to_vec());
+        let f = |theta: f64| -> Result<f64, RealError> {
+            let mut v = buffer.borrow_mut();
+            let angle = angle_normal(theta);
+            self.fill(&mut v, self.varying.iter().copied(), re, n, &angle, quad)?;
+            Ok(v[out])
+        };
+        let h = grid_step();
         let mut grid = Vec::with_capacity(MAXN_GRID);
         for k in 0..MAXN_GRID {
             let v = f(k as f64 * h)?;
@@ -299,21 +355,264 @@ impl Tape {
             grid.push(v);
         }
         let mut best = (0.0, f64::NEG_INFINITY);
-        for k in 0..MAXN_GRID {
-            let (prev, next) = (
-                grid[(k + MAXN_GRID - 1) % MAXN_GRID],
-                grid[(k + 1) % MAXN_GRID],
-            );
-            if grid[k] < prev || grid[k] < next {
-                continue;
-            }
+        for k in local_maxima(&grid) {
             let (theta, v) = super::real::golden_max(&f, k as f64 * h, h)?;
             if v > best.1 {
                 best = (theta, v);
             }
         }
-        self.at_angle(inputs, n, best.0, quad)
+        Ok(best)
     }
+}
+
+/// The spacing of the `maxn` grid over [0, 2π).
+fn grid_step() -> f64 {
+    2.0 * std::f64::consts::PI / MAXN_GRID as f64
+}
+
+/// The normals at the `maxn` grid's angles, computed once per process.
+fn grid_normals() -> &'static [[f64; 3]] {
+    static GRID: std::sync::OnceLock<Vec<[f64; 3]>> = std::sync::OnceLock::new();
+    GRID.get_or_init(|| {
+        (0..MAXN_GRID)
+            .map(|k| angle_normal(k as f64 * grid_step()))
+            .collect()
+    })
+}
+
+/// The grid points that are not below either neighbour (the grid is periodic).
+fn local_maxima(grid: &[f64]) -> impl Iterator<Item = usize> + '_ {
+    let m = grid.len();
+    (0..m).filter(move |&k| grid[k] >= grid[(k + m - 1) % m] && grid[k] >= grid[(k + 1) % m])
+}
+
+/// A `maxn` sub-tape evaluated at many angles at once: the values of its varying ops,
+/// one row of lanes per op, so that each op is dispatched once per batch of angles
+/// rather than once per angle. Only for sub-tapes without nested `maxn` or `avg`.
+struct Lanes<'t> {
+    tape: &'t Tape,
+    /// The values of the ops that do not depend on θ.
+    fixed: &'t [f64],
+    /// The row of each varying op (`usize::MAX` for the others).
+    row: Vec<usize>,
+}
+
+impl<'t> Lanes<'t> {
+    fn new(tape: &'t Tape, fixed: &'t [f64], dim: usize) -> Option<Self> {
+        if dim > 3
+            || tape
+                .varying
+                .iter()
+                .any(|&k| matches!(tape.ops[k], Op::MaxN(..) | Op::Avg(..)))
+        {
+            return None;
+        }
+        let mut row = vec![usize::MAX; tape.ops.len()];
+        for (r, &k) in tape.varying.iter().enumerate() {
+            row[k] = r;
+        }
+        Some(Lanes { tape, fixed, row })
+    }
+
+    /// The output at each angle of `thetas`, or `None` when any evaluation fails (a
+    /// domain error, a division by zero) or gives a value that is not finite.
+    fn at(&self, thetas: &[f64]) -> Option<Vec<f64>> {
+        let angles: Vec<[f64; 3]> = thetas.iter().map(|&t| angle_normal(t)).collect();
+        self.at_normals(&angles)
+    }
+
+    /// [`Lanes::at`] with the normals given.
+    fn at_normals(&self, angles: &[[f64; 3]]) -> Option<Vec<f64>> {
+        let w = angles.len();
+        let mut vals = vec![0.0; self.tape.varying.len() * w];
+        for (r, &k) in self.tape.varying.iter().enumerate() {
+            let (done, rest) = vals.split_at_mut(r * w);
+            let out = &mut rest[..w];
+            // An operand is a row of lanes or one value for every lane.
+            let operand = |op: usize| match self.row[op] {
+                usize::MAX => Err(self.fixed[op]),
+                s => Ok(&done[s * w..(s + 1) * w]),
+            };
+            macro_rules! binary {
+                ($a:expr, $b:expr, $f:expr) => {
+                    match (operand($a), operand($b)) {
+                        (Ok(x), Ok(y)) => out
+                            .iter_mut()
+                            .zip(x.iter().zip(y))
+                            .for_each(|(o, (&x, &y))| *o = $f(x, y)),
+                        (Ok(x), Err(y)) => {
+                            out.iter_mut().zip(x).for_each(|(o, &x)| *o = $f(x, y))
+                        }
+                        (Err(x), Ok(y)) => {
+                            out.iter_mut().zip(y).for_each(|(o, &y)| *o = $f(x, y))
+                        }
+                        (Err(x), Err(y)) => out.fill($f(x, y)),
+                    }
+                };
+            }
+            let lanes = |op: usize| -> Vec<f64> {
+                match operand(op) {
+                    Ok(x) => x.to_vec(),
+                    Err(x) => vec![x; w],
+                }
+            };
+            match self.tape.ops[k] {
+                Op::Angle(c) => out
+                    .iter_mut()
+                    .zip(angles)
+                    .for_each(|(o, a)| *o = a[c]),
+                Op::Add(a, b) => binary!(a, b, |x: f64, y: f64| x + y),
+                Op::Mul(a, b) => binary!(a, b, |x: f64, y: f64| x * y),
+                Op::Neg(a) => binary!(a, a, |x: f64, _: f64| -x),
+                Op::Powi(a, e) => binary!(a, a, |x: f64, _: f64| x.powi(e)),
+                Op::Div(a, b, _) => {
+                    let (x, y) = (lanes(a), lanes(b));
+                    for l in 0..w {
+                        if y[l] == 0.0 {
+                            return None;
+                        }
+                        out[l] = x[l] / y[l];
+                    }
+                }
+                Op::Apply(f, a, _) => {
+                    for (o, x) in out.iter_mut().zip(lanes(a)) {
+                        *o = super::real::elementary(f, x).ok()?;
+                    }
+                }
+                Op::Apply2(f, a, b, _) => {
+                    for (o, (x, y)) in out.iter_mut().zip(lanes(a).into_iter().zip(lanes(b))) {
+                        *o = super::real::elementary2(f, x, y).ok()?;
+                    }
+                }
+                Op::Input(_) | Op::Normal(_) | Op::Const(_) | Op::MaxN(..) | Op::Avg(..) => {
+                    unreachable!("not varying, or refused by Lanes::new")
+                }
+            }
+        }
+        let out = *self.tape.outputs.get(&[]);
+        let values: Vec<f64> = match self.row[out] {
+            usize::MAX => vec![self.fixed[out]; w],
+            s => vals[s * w..(s + 1) * w].to_vec(),
+        };
+        values.iter().all(|v| v.is_finite()).then_some(values)
+    }
+
+    /// The grid, then every local maximum refined by golden sections in lockstep (each
+    /// lane follows exactly the steps of [`super::real::golden_max`]): the best angle
+    /// and value, or `None` when an evaluation fails.
+    fn maximise(&self) -> Option<(f64, f64)> {
+        let h = grid_step();
+        let grid = self.at_normals(grid_normals())?;
+        let centres: Vec<f64> = local_maxima(&grid).map(|k| k as f64 * h).collect();
+        let g = (5f64.sqrt() - 1.0) / 2.0;
+        struct Section {
+            lo: f64,
+            hi: f64,
+            x1: f64,
+            x2: f64,
+            f1: f64,
+            f2: f64,
+        }
+        let mut sections: Vec<Section> = centres
+            .iter()
+            .map(|&c| {
+                let (lo, hi) = (c - h, c + h);
+                Section {
+                    lo,
+                    hi,
+                    x1: hi - g * (hi - lo),
+                    x2: lo + g * (hi - lo),
+                    f1: 0.0,
+                    f2: 0.0,
+                }
+            })
+            .collect();
+        let firsts: Vec<f64> = sections.iter().flat_map(|s| [s.x1, s.x2]).collect();
+        let values = self.at(&firsts)?;
+        for (s, v) in sections.iter_mut().zip(values.chunks(2)) {
+            (s.f1, s.f2) = (v[0], v[1]);
+        }
+        loop {
+            let active: Vec<usize> = (0..sections.len())
+                .filter(|&k| sections[k].hi - sections[k].lo > 1e-12)
+                .collect();
+            if active.is_empty() {
+                break;
+            }
+            // Each active section moves one end in and asks for one new value: at x2
+            // (upper = true) or at x1.
+            let mut next = Vec::with_capacity(active.len());
+            let mut upper = Vec::with_capacity(active.len());
+            for &k in &active {
+                let s = &mut sections[k];
+                if s.f1 < s.f2 {
+                    s.lo = s.x1;
+                    s.x1 = s.x2;
+                    s.f1 = s.f2;
+                    s.x2 = s.lo + g * (s.hi - s.lo);
+                    next.push(s.x2);
+                    upper.push(true);
+                } else {
+                    s.hi = s.x2;
+                    s.x2 = s.x1;
+                    s.f2 = s.f1;
+                    s.x1 = s.hi - g * (s.hi - s.lo);
+                    next.push(s.x1);
+                    upper.push(false);
+                }
+            }
+            let values = self.at(&next)?;
+            for ((&k, v), up) in active.iter().zip(values).zip(upper) {
+                let s = &mut sections[k];
+                if up {
+                    s.f2 = v;
+                } else {
+                    s.f1 = v;
+                }
+            }
+        }
+        let ends: Vec<f64> = sections
+            .iter()
+            .zip(&centres)
+            .flat_map(|(s, &c)| [(s.lo + s.hi) / 2.0, c])
+            .collect();
+        let values = self.at(&ends)?;
+        let mut best = (0.0, f64::NEG_INFINITY);
+        for (pair, v) in ends.chunks(2).zip(values.chunks(2)) {
+            let (theta, value) = if v[0] >= v[1] {
+                (pair[0], v[0])
+            } else {
+                (pair[1], v[1])
+            };
+            if value > best.1 {
+                best = (theta, value);
+            }
+        }
+        Some(best)
+    }
+}
+
+/// The normal (cos θ, sin θ, 0) of a `maxn` (its first `dim` components are read).
+fn angle_normal(theta: f64) -> [f64; 3] {
+    let (s, c) = theta.sin_cos();
+    [c, s, 0.0]
+}
+
+/// The ops that depend on an `Angle` op (through their operands), and every `maxn` and
+/// `avg` (their sub-tapes are evaluated afresh), in increasing order.
+fn varying(ops: &[Op]) -> Vec<usize> {
+    let mut depends = vec![false; ops.len()];
+    for (k, op) in ops.iter().enumerate() {
+        depends[k] = match *op {
+            Op::Angle(_) | Op::MaxN(..) | Op::Avg(..) => true,
+            Op::Input(_) | Op::Normal(_) | Op::Const(_) => false,
+            Op::Add(a, b) | Op::Mul(a, b) | Op::Div(a, b, _) | Op::Apply2(_, a, b, _) => {
+                depends[a] || depends[b]
+            }
+            Op::Neg(a) | Op::Powi(a, _) | Op::Apply(_, a, _) => depends[a],
+        };
+    }
+    (0..ops.len()).filter(|&k| depends[k]).collect()
 }
 
 impl<'a> Compiler<'a> {
@@ -435,6 +734,7 @@ impl<'a> Compiler<'a> {
         let outputs = sub.eval(a, &angle)?;
         self.budget = sub.budget;
         Ok(Tape {
+            varying: varying(&sub.ops),
             ops: sub.ops,
             inputs: sub.inputs,
             labels: a.free_letters(),
