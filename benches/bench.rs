@@ -110,6 +110,29 @@ fn main() {
         println!("{t:.3}");
         return;
     }
+    // `-- --each`: every claim's median time (with its correction), slowest first: the
+    // profile of the whole paper by claim.
+    if args.iter().any(|a| a == "--each") {
+        let files = corpus();
+        let mut times: Vec<(f64, &str)> = files
+            .iter()
+            .flat_map(|f| &f.claims)
+            .map(|c| {
+                let t = median_ms(5, || {
+                    black_box(decide_claim(c).unwrap());
+                });
+                (t, c.id.as_str())
+            })
+            .collect();
+        times.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let total: f64 = times.iter().map(|t| t.0).sum();
+        println!("| claim | median |\n|---|---|");
+        for (t, id) in &times {
+            println!("| {id} | {t:.2} ms |");
+        }
+        println!("| all {} claims, one after another | {total:.1} ms |", times.len());
+        return;
+    }
     // `-- --derive-a2`: the median time of the A² derivation of the Appendix file
     // (used by benches/sympy_compare.py).
     if args.iter().any(|a| a == "--derive-a2") {
