@@ -2,7 +2,7 @@
 //! definition body replaced by new text, re-checked by the same validator as the
 //! original. The original claim is never modified.
 
-use super::model::{Check, Side};
+use super::model::{Check, Definition, Side};
 use crate::lang::{parse_expr, Decls, DefSig, LangError, Origin, Scope, SourceFile};
 use crate::lang::{ErrorKind, Node};
 
@@ -67,9 +67,12 @@ impl Check {
             ));
         }
         let mut out = self.clone();
-        out.defs[index].body = node;
-        out.defs[index].origin = origin;
-        out.defs[index].text = format!("{} = {body}", def.sig.name);
+        out.defs[index] = Definition::new(
+            def.sig.clone(),
+            node,
+            origin,
+            format!("{} = {body}", def.sig.name),
+        );
         Ok(out)
     }
 }

@@ -644,16 +644,16 @@ impl Loader {
                     )
                     .with_help("choose a new name; definitions cannot redefine a name"));
             }
-            return Ok(Definition {
-                sig: DefSig {
+            return Ok(Definition::new(
+                DefSig {
                     name: whole,
                     formal: Vec::new(),
                     shape: Some(shape),
                 },
                 body,
                 origin,
-                text: text.clone(),
-            });
+                text.clone(),
+            ));
         }
         let shape = None;
         let mut want = formal.clone();
@@ -675,16 +675,16 @@ impl Loader {
                 )
                 .with_help("the defined name carries exactly the free indices of its right side"));
         }
-        Ok(Definition {
-            sig: DefSig {
+        Ok(Definition::new(
+            DefSig {
                 name,
                 formal,
                 shape,
             },
             body,
             origin,
-            text: text.clone(),
-        })
+            text.clone(),
+        ))
     }
 
     /// The left side of `name_ij = …`: a name with distinct letter indices, or the
@@ -1528,16 +1528,16 @@ pub(super) fn entrywise(
                 } => node.clone(),
                 _ => {
                     let name = format!("side {}.{}", ci + 1, si + 1);
-                    defs.push(Definition {
-                        sig: DefSig {
+                    defs.push(Definition::new(
+                        DefSig {
                             name: name.clone(),
                             formal: Vec::new(),
                             shape: Some(shape),
                         },
-                        body: node.clone(),
-                        origin: side.origin.clone(),
-                        text: format!("{name} = {}", side.text.trim()),
-                    });
+                        node.clone(),
+                        side.origin.clone(),
+                        format!("{name} = {}", side.text.trim()),
+                    ));
                     Node {
                         kind: NodeKind::Matrix {
                             rows: shape.0,

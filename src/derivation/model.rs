@@ -51,13 +51,39 @@ impl fmt::Display for Verdict {
 }
 
 /// A named definition such as `t_i = sigma_ki n_k`.
+///
+/// Every check carries the definitions in its scope, so a definition is shared rather
+/// than copied: cloning one is a reference count (the fields are read through
+/// [`Deref`](std::ops::Deref)).
 #[derive(Clone, Debug)]
-pub struct Definition {
+pub struct Definition(Arc<DefinitionData>);
+
+/// What a [`Definition`] holds.
+#[derive(Debug)]
+pub struct DefinitionData {
     pub sig: DefSig,
     pub body: Node,
     pub origin: Origin,
     /// The definition as written.
     pub text: String,
+}
+
+impl Definition {
+    pub fn new(sig: DefSig, body: Node, origin: Origin, text: String) -> Self {
+        Definition(Arc::new(DefinitionData {
+            sig,
+            body,
+            origin,
+            text,
+        }))
+    }
+}
+
+impl std::ops::Deref for Definition {
+    type Target = DefinitionData;
+    fn deref(&self) -> &DefinitionData {
+        &self.0
+    }
 }
 
 /// An assumption of a claim or a file, as written, with what it says.
