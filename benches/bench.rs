@@ -130,7 +130,10 @@ fn main() {
         for (t, id) in &times {
             println!("| {id} | {t:.2} ms |");
         }
-        println!("| all {} claims, one after another | {total:.1} ms |", times.len());
+        println!(
+            "| all {} claims, one after another | {total:.1} ms |",
+            times.len()
+        );
         return;
     }
     // `-- --derive-a2`: the median time of the A² derivation of the Appendix file

@@ -324,6 +324,10 @@ fn decide_claims<'f>(
         .map_or(1, usize::from)
         .clamp(1, 2)
         .min(n.max(1));
+    // Longest first, so that a slow claim does not start last while the other worker
+    // idles; the results still go back in claim order.
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by_key(|&k| std::cmp::Reverse(expected_cost(claims[k])));
     let next = std::sync::atomic::AtomicUsize::new(0);
     let watches: Vec<Mutex<Option<Arc<Watch>>>> = (0..workers).map(|_| Mutex::new(None)).collect();
     let mut slots: Vec<Option<Result<Decided<'f>, RunError>>> = (0..n).map(|_| None).collect();
@@ -331,9 +335,11 @@ fn decide_claims<'f>(
         let (tx, rx) = std::sync::mpsc::channel();
         for slot in &watches {
             let (tx, claims, next) = (tx.clone(), &claims, &next);
+            let order = &order;
             scope.spawn(move || loop {
-                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                let Some(c) = claims.get(k) else { return };
+                let q = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&k) = order.get(q) else { return };
+                let c = claims[k];
                 let w = Watch::new(&c.id, run.limit);
                 *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(w.clone());
                 let r = watch::under(&w, || {
@@ -377,6 +383,36 @@ fn decide_claims<'f>(
         .into_iter()
         .map(|r| r.unwrap_or_else(|| Err(RunError::Input("error: a worker stopped".into()))))
         .collect()
+}
+
+/// A rough relative cost of deciding a claim and its correction, for scheduling only:
+/// sampled strategies by their samples (a `maxn` costs a grid of angles per sample, a
+/// gradient a pass per eight variables), exact ones a constant.
+fn expected_cost(claim: &crate::derivation::Claim) -> u64 {
+    let checks = std::iter::once(&claim.check).chain(claim.correction.iter().map(|c| &c.check));
+    checks
+        .map(|check| {
+            let maximises = check
+                .chains
+                .iter()
+                .flatten()
+                .map(|s| s.text.as_str())
+                .chain(check.defs.iter().map(|d| d.text.as_str()))
+                .any(|t| t.contains("maxn("));
+            let samples = |s: &crate::derivation::Sampling| s.samples as u64;
+            match &check.strategy {
+                Strategy::Numeric { sampling, .. } => {
+                    samples(sampling) * if maximises { 400 } else { 4 }
+                }
+                Strategy::Gradient { sampling, .. } => samples(sampling) * 20,
+                Strategy::Convex { sampling, .. } => samples(sampling) * 10,
+                Strategy::Scalar { .. } => 200,
+                Strategy::Exact { .. }
+                | Strategy::Proportional { .. }
+                | Strategy::NotCircle { .. } => 50,
+            }
+        })
+        .sum()
 }
 
 /// Applies `--seed` and `--samples` to every sampled claim.

@@ -490,10 +490,20 @@ mod tests {
         for (k, &a) in values.iter().enumerate() {
             let b = values[(k * 13 + 5) % values.len()];
             assert_eq!(u128::from(super::gcd_u64(a, b)), euclid(a.into(), b.into()));
-            assert_eq!(super::gcd_u128(a.into(), b.into()), euclid(a.into(), b.into()));
+            assert_eq!(
+                super::gcd_u128(a.into(), b.into()),
+                euclid(a.into(), b.into())
+            );
         }
         // The normal form: lowest terms, positive denominator, whichever path builds it.
-        for &(n, d) in &[(6i128, -4i128), (-9, 3), (0, -5), (i128::from(i64::MIN), 2), (i128::from(i64::MIN), 1), (i128::from(i64::MAX) + 1, 2)] {
+        for &(n, d) in &[
+            (6i128, -4i128),
+            (-9, 3),
+            (0, -5),
+            (i128::from(i64::MIN), 2),
+            (i128::from(i64::MIN), 1),
+            (i128::from(i64::MAX) + 1, 2),
+        ] {
             let q = super::from_i128(n, d);
             let g = euclid(n.unsigned_abs(), d.unsigned_abs()) as i128;
             let (mut en, mut ed) = (n / g, d / g);

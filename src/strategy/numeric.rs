@@ -681,7 +681,9 @@ fn chunked_gradient(
                 }
             }),
         );
-        let eps = f(&x).eps.unwrap_generic(nalgebra::Const::<CHUNK>, nalgebra::U1);
+        let eps = f(&x)
+            .eps
+            .unwrap_generic(nalgebra::Const::<CHUNK>, nalgebra::U1);
         for k in start..n.min(start + CHUNK) {
             grad[k] = eps[k - start];
         }
@@ -727,11 +729,10 @@ fn eval_at<T: DualNum<Primitive = f64>>(
         .collect();
     if let Some(tape) = sampler.tape(&function.node) {
         // The tape's inputs straight from the state, the variables overridden.
-        let mut inputs: Vec<T> = tape
-            .inputs
-            .iter()
-            .map(|(s, idx)| T::from(state.symbols.get(s).map_or(f64::NAN, |t| *t.get(idx))))
-            .collect();
+        let mut inputs: Vec<T> = tape.gather(
+            |s| state.symbols.get(s),
+            |x: Option<&f64>| T::from(x.map_or(f64::NAN, |x| *x)),
+        );
         for (var, v) in &values {
             if let Some(pos) = tape.inputs.iter().position(|input| input == *var) {
                 inputs[pos] = v.clone();
@@ -899,7 +900,11 @@ pub fn decide_gradient(
         };
         let fd_along = (along(FD_STEP) - along(-FD_STEP)) / (2.0 * FD_STEP);
         let ad_along: f64 = ad.iter().zip(direction.iter()).map(|(a, v)| a * v).sum();
-        let scale: f64 = ad.iter().zip(direction.iter()).map(|(a, v)| (a * v).abs()).sum();
+        let scale: f64 = ad
+            .iter()
+            .zip(direction.iter())
+            .map(|(a, v)| (a * v).abs())
+            .sum();
         let routes_agree = ad_along.is_finite()
             && fd_along.is_finite()
             && (ad_along - fd_along).abs() <= FD_TOL * (1.0 + scale + fd_along.abs());

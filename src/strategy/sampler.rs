@@ -155,15 +155,10 @@ impl<'a> Sampler<'a> {
         };
         match self.tape(node) {
             Some(tape) => {
-                let inputs: Vec<T> = tape
-                    .inputs
-                    .iter()
-                    .map(|(s, idx)| {
-                        symbols
-                            .get(s)
-                            .map_or_else(|| T::from(f64::NAN), |t| t.get(idx).clone())
-                    })
-                    .collect();
+                let inputs: Vec<T> = tape.gather(
+                    |s| symbols.get(s),
+                    |x: Option<&T>| x.map_or_else(|| T::from(f64::NAN), T::clone),
+                );
                 tape.eval(&inputs, n, quad)
             }
             None => {

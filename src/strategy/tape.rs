@@ -143,6 +143,31 @@ impl Tape {
         self.ops.len()
     }
 
+    /// The values of [`Tape::inputs`] from a map of symbol values: `value` of each
+    /// component (`None` when the symbol has no value). Inputs come symbol by symbol,
+    /// so each symbol is looked up once.
+    pub fn gather<'s, U: 's, T>(
+        &self,
+        symbol: impl Fn(&str) -> Option<&'s Tensor<U>>,
+        value: impl Fn(Option<&U>) -> T,
+    ) -> Vec<T> {
+        let mut last: Option<(&str, Option<&Tensor<U>>)> = None;
+        self.inputs
+            .iter()
+            .map(|(s, idx)| {
+                let t = match last {
+                    Some((name, t)) if name == s => t,
+                    _ => {
+                        let t = symbol(s);
+                        last = Some((s, t));
+                        t
+                    }
+                };
+                value(t.map(|t| t.get(idx)))
+            })
+            .collect()
+    }
+
     /// The entries of [`Tape::inputs`] the result depends on: every symbol component
     /// is an input, but folding (δ, ε, a factor 0) leaves many unread.
     pub fn inputs_read(&self) -> Vec<&(String, Vec<usize>)> {
@@ -440,12 +465,8 @@ impl<'t> Lanes<'t> {
                             .iter_mut()
                             .zip(x.iter().zip(y))
                             .for_each(|(o, (&x, &y))| *o = $f(x, y)),
-                        (Ok(x), Err(y)) => {
-                            out.iter_mut().zip(x).for_each(|(o, &x)| *o = $f(x, y))
-                        }
-                        (Err(x), Ok(y)) => {
-                            out.iter_mut().zip(y).for_each(|(o, &y)| *o = $f(x, y))
-                        }
+                        (Ok(x), Err(y)) => out.iter_mut().zip(x).for_each(|(o, &x)| *o = $f(x, y)),
+                        (Err(x), Ok(y)) => out.iter_mut().zip(y).for_each(|(o, &y)| *o = $f(x, y)),
                         (Err(x), Err(y)) => out.fill($f(x, y)),
                     }
                 };
@@ -457,10 +478,7 @@ impl<'t> Lanes<'t> {
                 }
             };
             match self.tape.ops[k] {
-                Op::Angle(c) => out
-                    .iter_mut()
-                    .zip(angles)
-                    .for_each(|(o, a)| *o = a[c]),
+                Op::Angle(c) => out.iter_mut().zip(angles).for_each(|(o, a)| *o = a[c]),
                 Op::Add(a, b) => binary!(a, b, |x: f64, y: f64| x + y),
                 Op::Mul(a, b) => binary!(a, b, |x: f64, y: f64| x * y),
                 Op::Neg(a) => binary!(a, a, |x: f64, _: f64| -x),
