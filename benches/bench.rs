@@ -35,7 +35,7 @@ fn corpus() -> Vec<DerivationFile> {
 
 /// An isotropic-moment identity of even rank `rank` in dimension `dim`, as a file.
 fn moment_identity(dim: usize, rank: usize) -> String {
-    let letters: Vec<char> = "ijklmp".chars().take(rank).collect();
+    let letters: Vec<char> = "ijklmpqr".chars().take(rank).collect();
     let ns: Vec<String> = letters.iter().map(|c| format!("n_{c}")).collect();
     // All pairings of the indices (3 for rank 4, 15 for rank 6).
     fn pairings(ls: &[char]) -> Vec<Vec<(char, char)>> {
@@ -108,6 +108,43 @@ fn main() {
             black_box(decide_claim(claim).unwrap());
         });
         println!("{t:.3}");
+        return;
+    }
+    // `-- --task NAME REPS`: each repetition's time in milliseconds, one per line, for
+    // benches/peers.py (NAME: a claim id, decided with its correction; `rank6` or
+    // `rank8`, the isotropic moment identity of that rank in 3D read and decided; `a2`,
+    // the A² derivation of the Appendix file).
+    if let Some(k) = args.iter().position(|a| a == "--task") {
+        let name = args.get(k + 1).expect("--task NAME REPS");
+        let reps: usize = args
+            .get(k + 2)
+            .and_then(|r| r.parse().ok())
+            .expect("--task NAME REPS");
+        let files = corpus();
+        let mut run: Box<dyn FnMut()> = match name.as_str() {
+            "a2" => Box::new(|| {
+                black_box(derive_a2());
+            }),
+            rank if rank.starts_with("rank") => {
+                let text = moment_identity(3, rank[4..].parse().expect("rankN"));
+                Box::new(move || decide_text(&text))
+            }
+            id => {
+                let claim = files
+                    .iter()
+                    .flat_map(|f| &f.claims)
+                    .find(|c| c.id == id)
+                    .expect("a known claim id");
+                Box::new(move || {
+                    black_box(decide_claim(claim).unwrap());
+                })
+            }
+        };
+        for _ in 0..reps {
+            let t = Instant::now();
+            run();
+            println!("{:.4}", t.elapsed().as_secs_f64() * 1e3);
+        }
         return;
     }
     // `-- --each`: every claim's median time (with its correction), slowest first: the
@@ -195,7 +232,7 @@ fn main() {
         rows.push((format!("claim {} ({strategy})", c.id), format!("{t:.1} ms")));
     }
     for dim in [2, 3] {
-        for rank in [2, 4, 6] {
+        for rank in [2, 4, 6, 8] {
             let text = moment_identity(dim, rank);
             let t = median_ms(9, || decide_text(&text));
             rows.push((
