@@ -5,6 +5,8 @@
 //! and 3D, the scaling of an exact proof with polynomial degree, the exact moments up to
 //! order 12, the num-dual gradient claim of F2, the symbolic A² derivation, and the
 //! whole paper in a fresh process (the user's view, when the release binary exists).
+//! `-- --each` times every claim of the paper, slowest first (the profile by claim);
+//! `-- --task NAME REPS` prints each repetition of one task for benches/peers.py.
 //! Targets live in issue 8; this prints what the machine does, it asserts nothing.
 //! `-- --claim ID` and `-- --derive-a2` print one median for benches/sympy_compare.py.
 
@@ -284,7 +286,7 @@ fn main() {
             black_box(decide_claim(g).unwrap());
         });
         rows.push((
-            "num-dual gradient of F2 (per sample: gradient, closed form, 12 central differences)"
+            "num-dual gradient of F2 (per sample: gradient, closed form, a central difference along a mixed direction)"
                 .into(),
             format!("{:.0} samples/s", samples as f64 / (t / 1e3)),
         ));

@@ -258,3 +258,23 @@ fn a_derivative_with_respect_to_tied_components_needs_a_convention() {
     let err = decide_claim(&file.claims[0]).unwrap_err().to_string();
     assert!(err.contains("nothing to differentiate"), "{err}");
 }
+
+#[test]
+fn num_dual_at_a_kink_is_caught_by_the_directional_difference() {
+    // At σ_11 = 0, |σ_11| has no derivative; num-dual's abs picks the branch by the sign
+    // bit and says 1, and a closed form that says the same agrees with it. The central
+    // difference along the mixed direction gives 0, so the per-component differences
+    // are taken and name the component: undecided, never holds.
+    let kink = r#"expect = "holds"
+strategy = "gradient"
+samples = 50
+ranges = { sigma = [0.0, 0.0] }
+function = "abs(sigma_11)"
+gradient = { sigma = "delta_i1 delta_j1" }"#;
+    let (v, m, ev) = decide(kink);
+    assert_eq!((v, m), (Verdict::Undecided, Method::Gradient), "{ev}");
+    assert!(ev.contains("∂/∂sigma_11") && ev.contains("do not"), "{ev}");
+    // Away from the kink the same claim holds: the directional check passes it.
+    let (v, _, ev) = decide(&kink.replace("[0.0, 0.0]", "[0.5, 1.0]"));
+    assert_eq!(v, Verdict::Holds, "{ev}");
+}

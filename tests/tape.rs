@@ -166,3 +166,67 @@ fn a_tape_reports_the_interpreters_errors() {
     );
     assert_eq!(err, env.eval(node, &[1.0, 0.0]).unwrap_err());
 }
+
+#[test]
+fn a_maxn_tape_agrees_with_the_interpreter_in_values_and_errors() {
+    // maxn evaluates its argument over all grid angles at once and refines the local
+    // maxima in lockstep; the values must be those of the interpreter's angle-by-angle
+    // search, bit for bit, and an argument that fails at some angles (a square root of
+    // a negative number, a division by zero) must report the error the first failing
+    // angle gives.
+    let sides = [
+        "maxn(abs(a_i n_i) + b_i n_i)",
+        "maxn((a_i n_i)^2 - b_1 n_2 + c)",
+        "maxn(sqrt(a_i n_i) + c)",
+        "maxn(c / (a_i n_i))",
+        "maxn(c)",
+    ];
+    let body: String = sides
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            format!(
+                "[[claim]]\nid = \"c{k}\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"numeric\"\nsides = [\"{s}\", \"1\"]\n"
+            )
+        })
+        .collect();
+    let text = format!(
+        "section = \"t\"\ntitle = \"t\"\ndimension = 2\nnormal = \"n\"\ntensors = [\"a_i\", \"b_i\"]\nscalars = [\"c\"]\n{body}"
+    );
+    let file = cosserat_check::derivation::load_str("t.toml", &text).unwrap();
+    let mut rng = Rng::new(7);
+    let mut errors = 0;
+    for claim in &file.claims {
+        let node = claim.check.chains[0][0].node.as_ref().unwrap();
+        let tape = Tape::compile(&claim.decls, &claim.check.defs, node).unwrap();
+        for point in 0..40 {
+            let a = [rng.uniform(), rng.uniform()];
+            // Some points put a on an axis, so that a_i n_i is exactly 0 at grid angles.
+            let a = if point % 5 == 0 { [a[0], 0.0] } else { a };
+            let (b, c) = ([rng.uniform(), rng.uniform()], rng.uniform());
+            let values: HashMap<String, Tensor<f64>> = HashMap::from([
+                ("a".to_owned(), Tensor::from_fn(2, 1, |i| a[i[0]])),
+                ("b".to_owned(), Tensor::from_fn(2, 1, |i| b[i[0]])),
+                ("c".to_owned(), Tensor::from_fn(2, 0, |_| c)),
+            ]);
+            let inputs = tape.gather(|s| values.get(s), |x: Option<&f64>| *x.unwrap());
+            let env = RealEnv::new(&claim.decls, &claim.check.defs, values.clone());
+            let n = [1.0, 0.0];
+            match (tape.eval(&inputs, &n, &fine()), env.eval(node, &n)) {
+                (Ok((_, t)), Ok((_, r))) => {
+                    let (t, r) = (*t.get(&[]), *r.get(&[]));
+                    assert_eq!(t.to_bits(), r.to_bits(), "{}: {t} vs {r}", claim.id);
+                }
+                (Err(t), Err(r)) => {
+                    assert_eq!(t, r, "{}", claim.id);
+                    errors += 1;
+                }
+                (t, r) => panic!("{}: tape {t:?}, interpreter {r:?}", claim.id),
+            }
+        }
+    }
+    assert!(
+        errors > 0,
+        "no argument failed: the error path was not exercised"
+    );
+}

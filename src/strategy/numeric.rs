@@ -4,9 +4,12 @@
 //!
 //! Tolerances live here, in one place:
 //! - equality: |l − r| ≤ [`TOL`]·(1 + |l| + |r|); inequality l ≤ r: l − r ≤ TOL·(1 + |l| + |r|);
-//! - num-dual gradient vs closed form: [`TOL`] relative; vs central differences with
-//!   step h = [`FD_STEP`]·(1 + |x|): [`FD_TOL`] relative (truncation O(h²) plus rounding
-//!   O(ε/h), both far below it for the smooth functions checked here);
+//! - num-dual gradient vs closed form: [`TOL`] relative, per component; vs a central
+//!   difference along a direction v with v_k = ±(½ to 1)·(1 + |x_k|) and step
+//!   [`FD_STEP`]: [`FD_TOL`] relative to 1 + Σ|∂_k F v_k| + |the difference| (truncation
+//!   O(h²) plus rounding O(ε/h), both far below it for the smooth functions checked
+//!   here); where that or a closed form disagrees, per-component differences with step
+//!   h = [`FD_STEP`]·(1 + |x_k|) decide, as before;
 //! - Hessian: the smallest eigenvalue must be ≥ −TOL·(1 + max |λ|).
 //!
 //! NaN or infinity never passes: a non-finite value is a violation unless the sample
@@ -701,7 +704,7 @@ fn difference_direction(x0: &DVector<f64>, seq: usize) -> DVector<f64> {
         x0.len(),
         x0.iter().enumerate().map(|(k, &x)| {
             let u = ((k as f64 + 1.0) * golden + seq as f64 * 0.754_877_666_246_692_7).fract();
-            let sign = if (k + seq) % 2 == 0 { 1.0 } else { -1.0 };
+            let sign = if (k + seq).is_multiple_of(2) { 1.0 } else { -1.0 };
             sign * (0.5 + 0.5 * u) * (1.0 + x.abs())
         }),
     )
