@@ -704,7 +704,11 @@ fn difference_direction(x0: &DVector<f64>, seq: usize) -> DVector<f64> {
         x0.len(),
         x0.iter().enumerate().map(|(k, &x)| {
             let u = ((k as f64 + 1.0) * golden + seq as f64 * 0.754_877_666_246_692_7).fract();
-            let sign = if (k + seq).is_multiple_of(2) { 1.0 } else { -1.0 };
+            let sign = if (k + seq).is_multiple_of(2) {
+                1.0
+            } else {
+                -1.0
+            };
             sign * (0.5 + 0.5 * u) * (1.0 + x.abs())
         }),
     )
