@@ -13,6 +13,7 @@
 //! in the strategy that asks for the facts, and the facts are listed in the evidence so
 //! that a reader can audit it.
 
+use super::indexed::{first_difference, Canonical, Label};
 use super::limit::{self, Approach, Expansion, Limit};
 use super::linear::determinant;
 use super::poly::{Poly, PolyError, Var, VarTable};
@@ -35,6 +36,18 @@ pub enum Fact {
         /// holds wherever each is nonzero (empty: polynomials, no condition).
         #[serde(skip_serializing_if = "Vec::is_empty")]
         nonzero: Vec<String>,
+    },
+    /// Both sides reduced to the same canonical form in symbolic indices (δ
+    /// contracted, ε pairs and isotropic moments as δ's, summed indices renamed):
+    /// equal for every value of the free indices `free` at once.
+    /// When the forms differ only by δ's and ε's, `evaluated` counts the index values
+    /// at which their difference was evaluated exactly and found 0 (δ products are
+    /// linearly dependent at high rank); 0 when the forms are identical.
+    IndexIdentity {
+        free: String,
+        terms: usize,
+        modulo_unit_normal: bool,
+        evaluated: usize,
     },
     /// Two reduced rational functions identical.
     RationalFunctionIdentity,
@@ -125,6 +138,31 @@ impl Certificate {
     /// structural equality).
     pub fn rational_functions_equal(a: &RatFunc, b: &RatFunc) -> Option<Self> {
         (a == b).then(|| Self::of(Fact::RationalFunctionIdentity))
+    }
+
+    /// `a = b` as canonical forms in symbolic indices ([`super::indexed`]), or forms
+    /// that differ by δ's and ε's alone with the difference 0 at every value of the
+    /// free indices `free` (their labels are `labels`).
+    pub fn index_identity(
+        a: &Canonical,
+        b: &Canonical,
+        (free, labels): (&str, &[Label]),
+        dim: usize,
+    ) -> Option<Self> {
+        let evaluated = if a == b {
+            0
+        } else {
+            match first_difference(a, b, labels, dim)? {
+                Some(_) => return None,
+                None => dim.checked_pow(labels.len() as u32)?,
+            }
+        };
+        Some(Self::of(Fact::IndexIdentity {
+            free: free.to_owned(),
+            terms: a.len(),
+            modulo_unit_normal: a.used_unit_normal() || b.used_unit_normal(),
+            evaluated,
+        }))
     }
 
     /// `a = λ b` for a nonzero rational λ, returned with the certificate.

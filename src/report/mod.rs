@@ -268,7 +268,16 @@ pub fn evidence(o: &Outcome) -> String {
             parts.push(format!("proof: {}", certificate_words(c)));
         }
     }
+    let symbolic: Vec<String> = o
+        .certificate()
+        .iter()
+        .flat_map(|c| c.facts())
+        .filter_map(index_identity_words)
+        .collect();
     match &o.counterexample {
+        None if o.numeric.is_none() && o.finding.is_none() && !symbolic.is_empty() => {
+            parts.push(symbolic.join("; "));
+        }
         None if o.numeric.is_none() && o.finding.is_none() => {
             let unit = if o.used_unit_normal {
                 ", using n·n = 1"
@@ -437,6 +446,40 @@ fn counterexample_text(cx: &Counterexample) -> String {
     parts.join("; ")
 }
 
+/// An identity proved in symbolic indices, in words (`None` for any other fact).
+fn index_identity_words(fact: &crate::kernel::certificate::Fact) -> Option<String> {
+    let crate::kernel::certificate::Fact::IndexIdentity {
+        free,
+        terms,
+        modulo_unit_normal,
+        evaluated,
+    } = fact
+    else {
+        return None;
+    };
+    let s = if *terms == 1 { "" } else { "s" };
+    let letters = free
+        .chars()
+        .map(String::from)
+        .collect::<Vec<_>>()
+        .join(", ");
+    let every = if letters.is_empty() {
+        String::new()
+    } else {
+        format!(" for every value of {letters} at once")
+    };
+    let unit = if *modulo_unit_normal {
+        ", using n·n = 1"
+    } else {
+        ""
+    };
+    Some(if *evaluated == 0 {
+        format!("canonical forms in symbolic indices identical{every} ({terms} term{s} after δ contraction, ε pairs and moments as δ pairings, summed indices renamed{unit})")
+    } else {
+        format!("canonical forms in symbolic indices ({terms} term{s} after δ contraction, ε pairs and moments as δ pairings, summed indices renamed{unit}) differ by δ's and ε's alone, and the difference is exactly 0 at all {evaluated} values of {letters}")
+    })
+}
+
 /// The kernel's facts behind a proof, in words.
 pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String {
     use crate::kernel::certificate::Fact;
@@ -464,6 +507,7 @@ pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String 
                     )
                 }
             }
+            Fact::IndexIdentity { .. } => index_identity_words(f).unwrap_or_default(),
             Fact::RationalFunctionIdentity => "reduced rational functions identical".to_owned(),
             Fact::Proportional { factor } => format!("one polynomial is {factor} times the other"),
             Fact::NoRoot { interval } => format!("no real root for {interval} (Sturm count)"),

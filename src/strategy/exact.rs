@@ -7,6 +7,7 @@
 
 use super::eval::{component_name, ExactEnv, Labeled};
 use super::finding::{Expansion, Finding, Record};
+use super::indices::{self, Symbolic};
 use super::proportional::{self, Reference};
 use super::{reverify, Counterexample, Method, Outcome, Strength};
 use crate::derivation::{Check, Strategy};
@@ -30,7 +31,7 @@ const RECORDED_COMPONENTS: usize = 27;
 pub fn decide(decls: &Decls, check: &Check, keep: bool) -> Result<Outcome, Diagnostic> {
     let mut expansions = Vec::new();
     let record = if keep { Some(&mut expansions) } else { None };
-    let mut outcome = decide_recording(decls, check, record)?;
+    let mut outcome = decide_recording(decls, check, record, true)?;
     if keep {
         outcome.record = Some(Record {
             expansions,
@@ -111,10 +112,19 @@ fn expand_rest(
     }
 }
 
+/// The component route alone, without trying symbolic indices first: the oracle the
+/// symbolic route is cross-checked against.
+#[cfg(test)]
+pub(crate) fn decide_by_components(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+    decide_recording(decls, check, None, false)
+}
+
+/// `symbolic`: try symbolic indices first on a large tensor.
 fn decide_recording(
     decls: &Decls,
     check: &Check,
     mut record: Option<&mut Vec<Expansion>>,
+    symbolic: bool,
 ) -> Result<Outcome, Diagnostic> {
     // A verbatim transcription whose indices are ill-formed fails as printed.
     for (ci, chain) in check.chains.iter().enumerate() {
@@ -139,6 +149,27 @@ fn decide_recording(
                         ..Counterexample::default()
                     }));
             }
+        }
+    }
+    // A large tensor is first tried in symbolic indices (`indices.rs`): equal
+    // canonical forms prove it without expanding a component. Below the threshold the
+    // component route is already fast, and its evidence (every component compared) is
+    // the more direct; it also decides whatever the symbolic route leaves open.
+    if symbolic
+        && matches!(check.strategy, Strategy::Exact { .. })
+        && largest_tensor(decls, check) > COMPONENT_ROUTE_UP_TO
+    {
+        match indices::decide(decls, check) {
+            Symbolic::Proved(certificate) => {
+                let equalities = check.chains.iter().map(|c| c.len() - 1).sum();
+                return Ok(Outcome::proved(Method::Exact, equalities, certificate));
+            }
+            Symbolic::Differs(d) => {
+                if let Some(outcome) = constant_counterexample(decls, check, &d)? {
+                    return Ok(outcome);
+                }
+            }
+            Symbolic::Open => {}
         }
     }
     let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
@@ -318,6 +349,59 @@ fn decide_recording(
         None => Outcome::undecided(Method::Exact, checks).with_finding(Finding::NothingCompared),
     }
     .using_unit_normal(used_unit))
+}
+
+/// The counterexample of a constant difference the symbolic route found, as the
+/// component route reports it (the same component, values and count), re-verified by
+/// the interpreter. `None` when the interpreter does not confirm it: the component
+/// route then decides.
+pub(super) fn constant_counterexample(
+    decls: &Decls,
+    check: &Check,
+    d: &indices::Difference,
+) -> Result<Option<Outcome>, Diagnostic> {
+    let env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
+    let chain = &check.chains[d.chain];
+    let point = BTreeMap::new();
+    satisfies_assumptions(&env, &point, &chain[d.equality].origin)?;
+    let difference = Difference {
+        numerator: Poly::constant(&d.lhs - &d.rhs),
+        denominator: Vec::new(),
+    };
+    let mut cx = Counterexample {
+        chain: d.chain + 1,
+        equality: d.equality + 1,
+        lhs: chain[d.equality].text.trim().to_owned(),
+        rhs: chain[d.equality + 1].text.trim().to_owned(),
+        indices: index_values(&d.at),
+        difference: difference.display(&env.vars, SHOWN_TERMS),
+        lhs_value: Some(d.lhs.to_string()),
+        rhs_value: Some(d.rhs.to_string()),
+        ..Counterexample::default()
+    };
+    match reverify::exact_counterexample(decls, check, &env, &point, (&d.lhs, &d.rhs), &cx) {
+        Ok(how) => cx.reverified = Some(how),
+        Err(_) => return Ok(None),
+    }
+    Ok(Some(
+        Outcome::fails(Method::Exact, Strength::Proof, d.components).with_counterexample(cx),
+    ))
+}
+
+/// Components beyond which an identity is first tried in symbolic indices: 81 is
+/// rank 4 in 3D (every tensor of the paper), rank 6 in 2D.
+const COMPONENT_ROUTE_UP_TO: usize = 81;
+
+/// The most components a side of `check` has: d to the number of its free indices.
+fn largest_tensor(decls: &Decls, check: &Check) -> usize {
+    check
+        .chains
+        .iter()
+        .flatten()
+        .filter_map(|side| side.node.as_ref().ok())
+        .map(|node| decls.dim.saturating_pow(node.free.len() as u32))
+        .max()
+        .unwrap_or(1)
 }
 
 /// A counterexample point must satisfy every assumption; a point that does not is a

@@ -8,6 +8,9 @@ pub mod eval;
 pub mod exact;
 pub mod finding;
 pub mod float;
+mod indices;
+#[cfg(test)]
+mod indices_tests;
 pub mod inherit;
 mod jets;
 pub mod numeric;
