@@ -1,7 +1,7 @@
 //! `cargo bench`: medians of repeated wall-clock timings, printed as a Markdown table.
 //!
 //! What is measured (release build): the whole-paper check (and its exact claims
-//! alone), exact canonical expansion of isotropic identities of rank 2, 4 and 6 in 2D
+//! alone), isotropic moment identities (each with a refuted mutant) of rank 2 to 8 in 2D
 //! and 3D, the scaling of an exact proof with polynomial degree, the exact moments up to
 //! order 12, the num-dual gradient claim of F2, the symbolic A² derivation, and the
 //! whole paper in a fresh process (the user's view, when the release binary exists).
@@ -35,7 +35,8 @@ fn corpus() -> Vec<DerivationFile> {
     load_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations")).expect("derivations load")
 }
 
-/// An isotropic-moment identity of even rank `rank` in dimension `dim`, as a file.
+/// An isotropic-moment identity of even rank `rank` in dimension `dim` and a wrong
+/// version of it, as a file.
 fn moment_identity(dim: usize, rank: usize) -> String {
     let letters: Vec<char> = "ijklmpqr".chars().take(rank).collect();
     let ns: Vec<String> = letters.iter().map(|c| format!("n_{c}")).collect();
@@ -69,10 +70,19 @@ fn moment_identity(dim: usize, rank: usize) -> String {
         })
         .collect();
     let denom: usize = (0..rank / 2).map(|m| dim + 2 * m).product();
+    let claim = |id: &str, expect: &str, terms: &[String]| {
+        format!(
+            "[[claim]]\nid = \"{id}\"\nprinted = '{id}'\nexpect = \"{expect}\"\nsides = [\"avg({})\", \"1/{denom} ({})\"]\n",
+            ns.join(" "),
+            terms.join(" + ")
+        )
+    };
+    // The identity, and the same with its last pairing dropped (refuted), as the peers
+    // in benches/peers.py do it.
     format!(
-        "section = \"b\"\ntitle = \"b\"\ndimension = {dim}\nnormal = \"n\"\n[[claim]]\nid = \"m\"\nprinted = 'm'\nexpect = \"holds\"\nsides = [\"avg({})\", \"1/{denom} ({})\"]\n",
-        ns.join(" "),
-        terms.join(" + ")
+        "section = \"b\"\ntitle = \"b\"\ndimension = {dim}\nnormal = \"n\"\n{}{}reason = \"one pairing dropped\"\n",
+        claim("m", "holds", &terms),
+        claim("wrong", "fails", &terms[..terms.len() - 1])
     )
 }
 
@@ -114,7 +124,7 @@ fn main() {
     }
     // `-- --task NAME REPS`: each repetition's time in milliseconds, one per line, for
     // benches/peers.py (NAME: a claim id, decided with its correction; `rank6` or
-    // `rank8`, the isotropic moment identity of that rank in 3D read and decided; `a2`,
+    // `rank8`, the isotropic moment identity of that rank in 3D and its mutant read and decided; `a2`,
     // the A² derivation of the Appendix file).
     if let Some(k) = args.iter().position(|a| a == "--task") {
         let name = args.get(k + 1).expect("--task NAME REPS");
@@ -243,7 +253,7 @@ fn main() {
             let text = moment_identity(dim, rank);
             let t = median_ms(9, || decide_text(&text));
             rows.push((
-                format!("exact: isotropic moment identity, rank {rank}, {dim}D"),
+                format!("exact: isotropic moment identity and a refuted mutant (one pairing dropped), rank {rank}, {dim}D, read and decided"),
                 format!("{t:.2} ms"),
             ));
         }

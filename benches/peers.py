@@ -358,13 +358,18 @@ def symbolica_main(task, reps):
 
 
 def moment_file(rank):
-    """The rank-`rank` identity as a derivation file (as benches/bench.rs writes it)."""
+    """The rank-`rank` identity and the same with its last pairing dropped (refuted), as
+    a derivation file (as benches/bench.rs writes it)."""
     letters = "ijklmpqr"[:rank]
     ns = " ".join(f"n_{c}" for c in letters)
-    terms = " + ".join(" ".join(f"delta_{a}{b}" for a, b in p) for p in pairings(list(letters)))
-    return (f'section = "b"\ntitle = "b"\ndimension = 3\nnormal = "n"\n[[claim]]\nid = "m"\n'
-            f"printed = 'm'\nexpect = \"holds\"\nsides = [\"avg({ns})\", "
-            f"\"1/{double_factorial_odd(rank // 2)} ({terms})\"]\n")
+    terms = [" ".join(f"delta_{a}{b}" for a, b in p) for p in pairings(list(letters))]
+
+    def claim(cid, expect, ts):
+        return (f'[[claim]]\nid = "{cid}"\nprinted = \'{cid}\'\nexpect = "{expect}"\n'
+                f'sides = ["avg({ns})", "1/{double_factorial_odd(rank // 2)} ({" + ".join(ts)})"]\n')
+    return ('section = "b"\ntitle = "b"\ndimension = 3\nnormal = "n"\n'
+            + claim("m", "holds", terms) + claim("wrong", "fails", terms[:-1])
+            + 'reason = "one pairing dropped"\n')
 
 
 def wall(cmd, env=None):

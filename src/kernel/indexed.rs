@@ -119,7 +119,7 @@ impl Sum {
     }
 
     /// `self + other`.
-    pub fn add(mut self, other: Sum) -> Sum {
+    pub fn plus(mut self, other: Sum) -> Sum {
         self.terms.extend(other.terms);
         self
     }
@@ -166,12 +166,21 @@ pub struct Algebra {
 /// A reduced sum in canonical form: two are equal exactly when their terms are, and
 /// then the sums they came from are equal for every value of the free indices. Only
 /// [`Algebra::canonical`] makes one.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug)]
 pub struct Canonical {
     terms: BTreeMap<Vec<Factor>, Rational>,
     /// Whether n_a n_a = 1 was used outside an average.
     unit_normal: bool,
 }
+
+/// Two forms are equal when their terms are, however they were reached.
+impl PartialEq for Canonical {
+    fn eq(&self, other: &Self) -> bool {
+        self.terms == other.terms
+    }
+}
+
+impl Eq for Canonical {}
 
 impl Canonical {
     /// How many distinct terms the form has.
@@ -499,10 +508,13 @@ impl Algebra {
                         }
                     }
                 }
-                Factor::Symbol { id, slots } if slots.len() == 2 && slots[0] == slots[1] => {
-                    if self.props.antisymmetric.contains(id) || self.props.traceless.contains(id) {
-                        return true;
-                    }
+                Factor::Symbol { id, slots }
+                    if slots.len() == 2
+                        && slots[0] == slots[1]
+                        && (self.props.antisymmetric.contains(id)
+                            || self.props.traceless.contains(id)) =>
+                {
+                    return true;
                 }
                 _ => {}
             }
@@ -724,12 +736,11 @@ fn pairing_count(m: usize) -> usize {
     (1..m).step_by(2).product()
 }
 
+/// Two labels paired by a δ.
+type Pair = (Label, Label);
+
 /// Calls `f` with every pairing of `labels` (an even number of them).
-fn for_each_pairing(
-    labels: &[Label],
-    pairs: &mut Vec<(Label, Label)>,
-    f: &mut dyn FnMut(&[(Label, Label)]),
-) {
+fn for_each_pairing(labels: &[Label], pairs: &mut Vec<Pair>, f: &mut dyn FnMut(&[Pair])) {
     let Some((&first, rest)) = labels.split_first() else {
         f(pairs);
         return;
@@ -808,4 +819,222 @@ fn next_permutation(p: &mut [usize]) -> bool {
     p.swap(i - 1, j);
     p[i..].reverse();
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const I: Label = 1;
+    const J: Label = 2;
+    const K: Label = 3;
+    const A: u32 = 10;
+    const B: u32 = 11;
+    const SIGMA: u32 = 12;
+    const N: u32 = 13;
+
+    fn sym(id: u32, slots: &[Label]) -> Factor {
+        Factor::Symbol {
+            id,
+            slots: slots.to_vec(),
+        }
+    }
+
+    fn term(c: i64, factors: Vec<Factor>) -> Sum {
+        Sum {
+            terms: vec![Term {
+                coeff: Rational::int(c),
+                factors,
+            }],
+        }
+    }
+
+    fn algebra(dim: usize) -> Algebra {
+        let mut props = Properties {
+            normal: Some(N),
+            ..Properties::default()
+        };
+        props.symmetric.insert(SIGMA);
+        Algebra::new(dim, props)
+    }
+
+    fn form(dim: usize, s: Sum) -> Canonical {
+        algebra(dim).canonical(s).expect("reduces")
+    }
+
+    #[test]
+    fn summed_indices_are_renamed_and_factors_sorted() {
+        // a_x b_x (x summed, 100) and b_y a_y (y = 200) are one term.
+        let left = term(1, vec![sym(A, &[100]), sym(B, &[100])]);
+        let right = term(1, vec![sym(B, &[200]), sym(A, &[200])]);
+        assert_eq!(form(3, left.clone()), form(3, right.clone()));
+        // Their difference cancels to the empty form.
+        let diff = left.plus(right.scale(&Rational::int(-1)));
+        assert!(form(3, diff).is_empty());
+    }
+
+    #[test]
+    fn delta_contracts_and_traces_to_the_dimension() {
+        // δ_ix δ_xj = δ_ij; δ_xx = d.
+        let chain = term(1, vec![Factor::Delta(I, 100), Factor::Delta(100, J)]);
+        assert_eq!(form(3, chain), form(3, term(1, vec![Factor::Delta(I, J)])));
+        for d in [2, 3] {
+            let trace = term(1, vec![Factor::Delta(100, 100)]);
+            assert_eq!(
+                form(d, trace),
+                form(d, Sum::constant(Rational::int(d as i64)))
+            );
+        }
+    }
+
+    #[test]
+    fn eps_pairs_become_deltas_and_symmetric_contractions_vanish() {
+        // ε_xyz ε_xyz = 6 in 3D, ε_xy ε_xy = 2 in 2D.
+        let full = term(
+            1,
+            vec![
+                Factor::Eps(vec![100, 101, 102]),
+                Factor::Eps(vec![100, 101, 102]),
+            ],
+        );
+        assert_eq!(form(3, full), form(3, Sum::constant(Rational::int(6))));
+        let plane = term(
+            1,
+            vec![Factor::Eps(vec![100, 101]), Factor::Eps(vec![100, 101])],
+        );
+        assert_eq!(form(2, plane), form(2, Sum::constant(Rational::int(2))));
+        // ε_ixy σ_xy = 0 for a symmetric σ, ε_ixy a_x a_y = 0; not for a general b_xy.
+        let s = term(
+            1,
+            vec![Factor::Eps(vec![I, 100, 101]), sym(SIGMA, &[100, 101])],
+        );
+        assert!(form(3, s).is_empty());
+        let aa = term(
+            1,
+            vec![
+                Factor::Eps(vec![I, 100, 101]),
+                sym(A, &[100]),
+                sym(A, &[101]),
+            ],
+        );
+        assert!(form(3, aa).is_empty());
+        let b = term(1, vec![Factor::Eps(vec![I, 100, 101]), sym(B, &[100, 101])]);
+        assert_eq!(form(3, b).len(), 1);
+        // ε with a repeated index is 0; swapping two slots flips the sign.
+        assert!(form(3, term(1, vec![Factor::Eps(vec![I, I, J])])).is_empty());
+        let swapped = term(1, vec![Factor::Eps(vec![J, I, K])]);
+        assert_eq!(
+            form(3, swapped),
+            form(3, term(-1, vec![Factor::Eps(vec![I, J, K])]))
+        );
+    }
+
+    #[test]
+    fn averages_are_the_pairings_over_the_moment_denominator() {
+        let mut alg = algebra(3);
+        let n = |l| sym(N, &[l]);
+        // ⟨n_i n_j n_x n_x⟩ = ⟨n_i n_j⟩ = δ_ij / 3 (and n·n = 1 outside the average).
+        let four = alg
+            .average(term(1, vec![n(I), n(J), n(100), n(100)]))
+            .expect("small");
+        let two = alg.average(term(1, vec![n(I), n(J)])).expect("small");
+        assert_eq!(
+            alg.canonical(four).unwrap(),
+            alg.canonical(two.clone()).unwrap()
+        );
+        let delta = term(1, vec![Factor::Delta(I, J)]).scale(&Rational::ratio(1, 3).unwrap());
+        assert_eq!(alg.canonical(two).unwrap(), alg.canonical(delta).unwrap());
+        // Odd order: 0.
+        let odd = alg.average(term(1, vec![n(I), n(J), n(K)])).expect("small");
+        assert!(alg.canonical(odd).unwrap().is_empty());
+        let unit = alg
+            .canonical(term(1, vec![n(100), n(100), sym(A, &[I])]))
+            .unwrap();
+        assert!(unit.used_unit_normal());
+        assert_eq!(unit, form(3, term(1, vec![sym(A, &[I])])));
+    }
+
+    #[test]
+    fn a_first_difference_is_where_the_component_route_finds_it() {
+        // δ_ij against δ_ij + δ_ij δ_kk/3 − δ_ij: equal (δ_kk = 3).
+        let labels = [I, J];
+        let a = form(3, term(1, vec![Factor::Delta(I, J)]));
+        let b = form(3, term(2, vec![Factor::Delta(I, J)]));
+        // The first index values in lexicographic order, (1, 1), with both values.
+        let Some(Some((ordinal, x, l, r))) = first_difference(&a, &b, &labels, 3) else {
+            panic!("a constant difference");
+        };
+        assert_eq!((ordinal, x), (0, vec![0, 0]));
+        assert_eq!((l, r), (Rational::int(1), Rational::int(2)));
+        // ε_ijk against 0 differs first at (1, 2, 3): ordinal 5.
+        let e = form(3, term(1, vec![Factor::Eps(vec![I, J, K])]));
+        let zero = form(3, Sum::default());
+        let Some(Some((ordinal, x, ..))) = first_difference(&e, &zero, &[I, J, K], 3) else {
+            panic!("a constant difference");
+        };
+        assert_eq!((ordinal, x), (5, vec![0, 1, 2]));
+        // A symbol makes the difference not a number.
+        let s = form(3, term(1, vec![sym(A, &[I]), sym(A, &[J])]));
+        assert!(first_difference(&s, &a, &labels, 3).is_none());
+    }
+
+    #[test]
+    fn linearly_dependent_delta_products_are_equal_by_evaluation() {
+        // With indices running over 1..1 every δ is 1, so δ_ij δ_kl = δ_ik δ_jl although
+        // the forms differ (the smallest case of δ products made dependent by the
+        // dimension); over 1..2 they differ.
+        let (l, m) = (4, 5);
+        let a = form(1, term(1, vec![Factor::Delta(I, J), Factor::Delta(l, m)]));
+        let b = form(1, term(1, vec![Factor::Delta(I, l), Factor::Delta(J, m)]));
+        assert_ne!(a, b);
+        assert_eq!(first_difference(&a, &b, &[I, J, l, m], 1), Some(None));
+        assert!(first_difference(&a, &b, &[I, J, l, m], 2)
+            .unwrap()
+            .is_some());
+    }
+
+    #[test]
+    fn malformed_terms_and_large_products_are_refused() {
+        let thrice = term(1, vec![sym(A, &[I]), sym(B, &[I]), sym(A, &[I])]);
+        assert_eq!(algebra(3).canonical(thrice), Err(Refused::Malformed));
+        let mut alg = algebra(3);
+        let wide = Sum {
+            terms: (0..700)
+                .map(|k| Term {
+                    coeff: Rational::int(1),
+                    factors: vec![sym(A + k, &[])],
+                })
+                .collect(),
+        };
+        assert_eq!(
+            alg.product(&wide, &wide).map(|_| ()),
+            Err(Refused::TooLarge)
+        );
+    }
+
+    #[test]
+    fn permutation_helpers_count_and_sign_correctly() {
+        assert_eq!(permutations(3).len(), 6);
+        assert_eq!(
+            permutations(3)
+                .iter()
+                .map(|(_, s)| i32::from(*s))
+                .sum::<i32>(),
+            0
+        );
+        let mut p = vec![0, 1, 2, 3];
+        let mut n = 1;
+        while next_permutation(&mut p) {
+            n += 1;
+        }
+        assert_eq!(n, 24);
+        let mut s = [3, 1, 2];
+        assert_eq!(sort_with_sign(&mut s), 1);
+        let mut s = [2, 1, 3];
+        assert_eq!(sort_with_sign(&mut s), -1);
+        assert_eq!(pairing_count(8), 105);
+        let mut count = 0;
+        for_each_pairing(&[1, 2, 3, 4, 5, 6], &mut Vec::new(), &mut |_| count += 1);
+        assert_eq!(count, 15);
+    }
 }

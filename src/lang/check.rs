@@ -174,6 +174,64 @@ impl Node {
         }
     }
 
+    /// The node with its free letters fixed at the 0-based values `at` (a letter `at`
+    /// leaves out stays free): one component of it, to evaluate without the others.
+    /// A letter is replaced only where it is free, so a letter summed inside a
+    /// divisor or a function is untouched. `None` for a derivative, a variation or
+    /// gradient, or a matrix, whose fixed forms are not built.
+    pub fn at_indices(&self, at: &[(char, usize)]) -> Option<Node> {
+        let here: Vec<(char, usize)> = at
+            .iter()
+            .copied()
+            .filter(|(c, _)| self.free.iter().any(|(d, _)| d == c))
+            .collect();
+        if here.is_empty() {
+            return Some(self.clone());
+        }
+        let fix = |n: &Node| n.at_indices(&here).map(Box::new);
+        let kind = match &self.kind {
+            NodeKind::Const(q) => NodeKind::Const(q.clone()),
+            NodeKind::Leaf { target, slots } => NodeKind::Leaf {
+                target: target.clone(),
+                slots: slots
+                    .iter()
+                    .map(|s| match s {
+                        Slot::Letter(c) => here
+                            .iter()
+                            .find(|(d, _)| d == c)
+                            .map_or(*s, |&(_, v)| Slot::Fixed(v)),
+                        Slot::Fixed(_) => *s,
+                    })
+                    .collect(),
+            },
+            NodeKind::Sum(xs) => NodeKind::Sum(
+                xs.iter()
+                    .map(|x| x.at_indices(&here))
+                    .collect::<Option<_>>()?,
+            ),
+            NodeKind::Product(xs) => NodeKind::Product(
+                xs.iter()
+                    .map(|x| x.at_indices(&here))
+                    .collect::<Option<_>>()?,
+            ),
+            NodeKind::Div(a, b) => NodeKind::Div(fix(a)?, b.clone()),
+            NodeKind::Neg(a) => NodeKind::Neg(fix(a)?),
+            NodeKind::Avg(a) => NodeKind::Avg(fix(a)?),
+            _ => return None,
+        };
+        Some(Node {
+            kind,
+            free: self
+                .free
+                .iter()
+                .copied()
+                .filter(|(c, _)| !here.iter().any(|(d, _)| d == c))
+                .collect(),
+            bound: self.bound.clone(),
+            span: self.span,
+        })
+    }
+
     /// The free index letters, sorted.
     pub fn free_letters(&self) -> Vec<char> {
         self.free.iter().map(|&(c, _)| c).collect()

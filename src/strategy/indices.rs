@@ -224,7 +224,7 @@ impl<'a> Reader<'a> {
             NodeKind::Sum(terms) => {
                 let mut acc = Sum::default();
                 for t in terms {
-                    acc = acc.add(self.sum(t, map, depth + 1)?);
+                    acc = acc.plus(self.sum(t, map, depth + 1)?);
                 }
                 acc
             }

@@ -100,9 +100,19 @@ fn float_values(
 ) -> Result<(f64, f64), String> {
     let (real, n) = interpreter_at(decls, check, env, point, absent)?;
     let chain = &check.chains[cx.chain - 1];
+    // Only the counterexample's component is evaluated where the side allows it.
+    let at: Vec<(char, usize)> = cx
+        .indices
+        .iter()
+        .filter_map(|(c, &v)| Some((c.chars().next()?, v.checked_sub(1)?)))
+        .collect();
     let side = |k: usize| -> Result<super::real::Labeled<f64>, String> {
         let node = chain[k].node.as_ref().map_err(|e| e.message.clone())?;
-        real.eval(node, &n).map_err(|e| e.message)
+        match node.at_indices(&at) {
+            Some(fixed) => real.eval(&fixed, &n),
+            None => real.eval(node, &n),
+        }
+        .map_err(|e| e.message)
     };
     let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
     pick(decls.dim, &l, &r, cx)
