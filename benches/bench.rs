@@ -78,11 +78,15 @@ fn moment_identity(dim: usize, rank: usize) -> String {
         )
     };
     // The identity, and the same with its last pairing dropped (refuted), as the peers
-    // in benches/peers.py do it.
+    // in benches/peers.py do it; at rank 2, its one pairing doubled.
+    let wrong = match &terms[..] {
+        [one] => vec![format!("2 {one}")],
+        all => all[..all.len() - 1].to_vec(),
+    };
     format!(
         "section = \"b\"\ntitle = \"b\"\ndimension = {dim}\nnormal = \"n\"\n{}{}reason = \"one pairing dropped\"\n",
         claim("m", "holds", &terms),
-        claim("wrong", "fails", &terms[..terms.len() - 1])
+        claim("wrong", "fails", &wrong)
     )
 }
 
