@@ -394,7 +394,10 @@ impl Algebra {
             let Some(t) = self.reduce(t, &mut work)? else {
                 continue;
             };
-            let Some((factors, sign)) = self.canonical_term(&t.factors) else {
+            // The orderings tried count against the budget like terms.
+            let (named, tried) = self.canonical_term(&t.factors);
+            self.spend(tried)?;
+            let Some((factors, sign)) = named else {
                 continue;
             };
             let c = if sign < 0 { -&t.coeff } else { t.coeff };
@@ -570,7 +573,8 @@ impl Algebra {
     /// The canonical naming of a reduced term's summed labels and the order of its
     /// factors, with the sign that sorting ε and antisymmetric slots gave. `None`: the
     /// term equals its own negative, so it is 0.
-    fn canonical_term(&self, factors: &[Factor]) -> Option<(Vec<Factor>, i8)> {
+    /// The second value is the number of orderings tried.
+    fn canonical_term(&self, factors: &[Factor]) -> (Option<(Vec<Factor>, i8)>, usize) {
         let counts = label_counts(factors).expect("reduced terms are well formed");
         let is_summed = |l: Label| counts.get(&l) == Some(&2);
         // The shape of a factor forgets the names of its summed labels.
@@ -619,7 +623,8 @@ impl Algebra {
             _ => consider(self.named(&base, &is_summed)),
         }
         let (factors, sign) = best.expect("one candidate at least");
-        (!opposite).then_some((factors, sign))
+        let tried = orderings.unwrap_or(1);
+        ((!opposite).then_some((factors, sign)), tried)
     }
 
     /// The term with its summed labels renamed in order of first appearance in
