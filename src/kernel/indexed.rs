@@ -207,39 +207,48 @@ impl Canonical {
 /// list of free labels: its value at index values is a product of 0s and ±1s.
 type ConstantTerm = (Vec<(bool, Vec<usize>)>, Rational);
 
-/// `a − b` as constant terms, or `None` when a term of either has a symbol or a summed
-/// index (its value is not a number).
+/// One term as a constant term, or `None` when it has a symbol or a summed index (its
+/// value is not a number).
+fn constant_term(factors: &[Factor], c: Rational, labels: &[Label]) -> Option<ConstantTerm> {
+    let position = |l: &Label| labels.iter().position(|m| m == l);
+    let mut slots = Vec::with_capacity(factors.len());
+    for f in factors {
+        slots.push(match f {
+            Factor::Delta(x, y) => (false, vec![position(x)?, position(y)?]),
+            Factor::Eps(s) => (true, s.iter().map(position).collect::<Option<_>>()?),
+            Factor::Symbol { .. } => return None,
+        });
+    }
+    Some((slots, c))
+}
+
+/// Every term of `form` as a constant term, or `None`.
+fn constant_terms(form: &Canonical, labels: &[Label]) -> Option<Vec<ConstantTerm>> {
+    form.terms
+        .iter()
+        .map(|(f, c)| constant_term(f, c.clone(), labels))
+        .collect()
+}
+
+/// `a − b` as constant terms, or `None` when a term of the difference is not constant.
 fn constant_difference(
     a: &Canonical,
     b: &Canonical,
     labels: &[Label],
 ) -> Option<Vec<ConstantTerm>> {
-    let position = |l: &Label| labels.iter().position(|m| m == l);
     let mut out = Vec::new();
-    let mut push = |factors: &[Factor], c: Rational| -> Option<()> {
-        let mut slots = Vec::with_capacity(factors.len());
-        for f in factors {
-            slots.push(match f {
-                Factor::Delta(x, y) => (false, vec![position(x)?, position(y)?]),
-                Factor::Eps(s) => (true, s.iter().map(position).collect::<Option<_>>()?),
-                Factor::Symbol { .. } => return None,
-            });
-        }
-        out.push((slots, c));
-        Some(())
-    };
     for (f, c) in &a.terms {
         let d = match b.terms.get(f) {
             Some(e) => c - e,
             None => c.clone(),
         };
         if !d.is_zero() {
-            push(f, d)?;
+            out.push(constant_term(f, d, labels)?);
         }
     }
     for (f, c) in &b.terms {
         if !a.terms.contains_key(f) {
-            push(f, -c)?;
+            out.push(constant_term(f, -c, labels)?);
         }
     }
     Some(out)
@@ -287,15 +296,15 @@ pub fn first_difference(
     }
     for (ordinal, x) in super::assignments(dim, labels.len()).enumerate() {
         if !constant_value(&difference, &x).is_zero() {
-            let values = |c: &Canonical| {
-                let none = Canonical {
-                    terms: BTreeMap::new(),
-                    unit_normal: false,
-                };
-                let terms = constant_difference(c, &none, labels).expect("constant above");
-                constant_value(&terms, &x)
-            };
-            return Some(Some((ordinal, x.clone(), values(a), values(b))));
+            // Terms the forms share may still have symbols: then the sides' values are
+            // not numbers, and nothing is returned.
+            let (l, r) = (constant_terms(a, labels)?, constant_terms(b, labels)?);
+            return Some(Some((
+                ordinal,
+                x.clone(),
+                constant_value(&l, &x),
+                constant_value(&r, &x),
+            )));
         }
     }
     Some(None)
@@ -981,6 +990,22 @@ mod tests {
         // A symbol makes the difference not a number.
         let s = form(3, term(1, vec![sym(A, &[I]), sym(A, &[J])]));
         assert!(first_difference(&s, &a, &labels, 3).is_none());
+        // A symbolic term both share: the difference is δ_ij, but the sides' values are
+        // not numbers, so no difference is reported (nor a panic).
+        let shared = |c| {
+            let mut t = term(1, vec![sym(A, &[I]), sym(A, &[J])]);
+            t.terms.push(Term {
+                coeff: Rational::int(c),
+                factors: vec![Factor::Delta(I, J)],
+            });
+            form(3, t)
+        };
+        assert!(first_difference(&shared(1), &shared(2), &labels, 3).is_none());
+        // Where such a difference is 0 everywhere the forms are still equal tensors.
+        assert_eq!(
+            first_difference(&shared(1), &shared(1), &labels, 3),
+            Some(None)
+        );
     }
 
     #[test]
