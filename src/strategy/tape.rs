@@ -86,6 +86,35 @@ pub struct Tape {
     /// and `avg` conservatively), in order: a sub-tape evaluated over many angles
     /// computes the others once ([`Tape::max_over_angle`]).
     varying: Vec<usize>,
+    /// The maximisers found by [`Tape::max_over_angle`], by the bits of the values the
+    /// angle does not change: a search revisits states (a step clamped to the box, a
+    /// start that is also a sample), and one maximisation costs hundreds of angles.
+    maxima: Maxima,
+}
+
+/// A memo of `maxn` maximisers: a pure function's results, so sharing it between
+/// clones and threads changes no value.
+#[derive(Clone, Debug, Default)]
+struct Maxima(std::sync::Arc<std::sync::Mutex<HashMap<Vec<u64>, (f64, f64)>>>);
+
+/// The most maximisers a tape remembers (about 1 kB each for the paper's tapes).
+const MAXIMA_MEMO: usize = 4096;
+
+impl Maxima {
+    fn get(&self, key: &[u64]) -> Option<(f64, f64)> {
+        self.0
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(key)
+            .copied()
+    }
+
+    fn insert(&self, key: Vec<u64>, best: (f64, f64)) {
+        let mut memo = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if memo.len() < MAXIMA_MEMO {
+            memo.insert(key, best);
+        }
+    }
 }
 
 /// Why an expression was not compiled (the caller falls back to the interpreter).
@@ -136,6 +165,7 @@ impl Tape {
             avgs: c.avgs,
             in_plane: decls.normal_in_plane,
             varying: Vec::new(),
+            maxima: Maxima::default(),
         })
     }
 
@@ -342,10 +372,21 @@ impl Tape {
         }
         let invariant = (0..self.ops.len()).filter(|&k| !varies[k]);
         self.fill(&mut fixed, invariant, &re, n, &[], quad)?;
-        let lanes = Lanes::new(self, &fixed, n.len());
-        let best = match lanes.and_then(|l| l.maximise()) {
+        // The maximiser depends only on the ops the angle does not change (the inputs
+        // and the normal reach the varying ops through them).
+        let key: Vec<u64> = fixed.iter().map(|v| v.to_bits()).collect();
+        let best = match self.maxima.get(&key) {
             Some(best) => best,
-            None => self.maximise_one_by_one(&fixed, &re, n, span, quad)?,
+            None => {
+                let lanes = Lanes::new(self, &fixed, n.len());
+                match lanes.and_then(|l| l.maximise()) {
+                    Some(best) => {
+                        self.maxima.insert(key, best);
+                        best
+                    }
+                    None => self.maximise_one_by_one(&fixed, &re, n, span, quad)?,
+                }
+            }
         };
         self.at_angle(inputs, n, best.0, quad)
     }
@@ -414,12 +455,38 @@ fn local_maxima(grid: &[f64]) -> impl Iterator<Item = usize> + '_ {
 /// A `maxn` sub-tape evaluated at many angles at once: the values of its varying ops,
 /// one row of lanes per op, so that each op is dispatched once per batch of angles
 /// rather than once per angle. Only for sub-tapes without nested `maxn` or `avg`.
+///
+/// The rows, the normals and the outputs live in buffers kept across batches: the
+/// golden sections ask for a few angles some fifty times per maximum, and allocating
+/// per batch cost more than the arithmetic.
 struct Lanes<'t> {
     tape: &'t Tape,
     /// The values of the ops that do not depend on θ.
     fixed: &'t [f64],
     /// The row of each varying op (`usize::MAX` for the others).
     row: Vec<usize>,
+    /// The varying ops' values, one row of `width` lanes per op.
+    vals: Vec<f64>,
+    /// The normals of the current batch.
+    angles: Vec<[f64; 3]>,
+    /// The output of the current batch.
+    out: Vec<f64>,
+}
+
+/// An operand of a lane operation: a row of lanes, or one value for every lane.
+#[derive(Clone, Copy)]
+enum Operand<'a> {
+    Row(&'a [f64]),
+    Fixed(f64),
+}
+
+impl Operand<'_> {
+    fn at(self, lane: usize) -> f64 {
+        match self {
+            Operand::Row(x) => x[lane],
+            Operand::Fixed(x) => x,
+        }
+    }
 }
 
 impl<'t> Lanes<'t> {
@@ -436,47 +503,63 @@ impl<'t> Lanes<'t> {
         for (r, &k) in tape.varying.iter().enumerate() {
             row[k] = r;
         }
-        Some(Lanes { tape, fixed, row })
+        Some(Lanes {
+            tape,
+            fixed,
+            row,
+            vals: Vec::new(),
+            angles: Vec::new(),
+            out: Vec::new(),
+        })
     }
 
     /// The output at each angle of `thetas`, or `None` when any evaluation fails (a
     /// domain error, a division by zero) or gives a value that is not finite.
-    fn at(&self, thetas: &[f64]) -> Option<Vec<f64>> {
-        let angles: Vec<[f64; 3]> = thetas.iter().map(|&t| angle_normal(t)).collect();
-        self.at_normals(&angles)
+    fn at(&mut self, thetas: &[f64]) -> Option<&[f64]> {
+        let mut angles = std::mem::take(&mut self.angles);
+        angles.clear();
+        angles.extend(thetas.iter().map(|&t| angle_normal(t)));
+        let ok = self.fill(&angles);
+        self.angles = angles;
+        ok.then_some(&self.out[..])
     }
 
-    /// [`Lanes::at`] with the normals given.
-    fn at_normals(&self, angles: &[[f64; 3]]) -> Option<Vec<f64>> {
+    /// The output at each of the grid's normals, as [`Lanes::at`].
+    fn at_grid(&mut self) -> Option<&[f64]> {
+        self.fill(grid_normals()).then_some(&self.out[..])
+    }
+
+    /// Evaluates the varying ops at `angles` into `self.out`; false when any evaluation
+    /// fails or gives a value that is not finite.
+    fn fill(&mut self, angles: &[[f64; 3]]) -> bool {
         let w = angles.len();
-        let mut vals = vec![0.0; self.tape.varying.len() * w];
+        // Every row is written in full before it is read, so stale lanes never leak.
+        self.vals.resize(self.tape.varying.len() * w, 0.0);
         for (r, &k) in self.tape.varying.iter().enumerate() {
-            let (done, rest) = vals.split_at_mut(r * w);
+            let (done, rest) = self.vals.split_at_mut(r * w);
             let out = &mut rest[..w];
-            // An operand is a row of lanes or one value for every lane.
-            let operand = |op: usize| match self.row[op] {
-                usize::MAX => Err(self.fixed[op]),
-                s => Ok(&done[s * w..(s + 1) * w]),
+            let (row, fixed) = (&self.row, self.fixed);
+            let operand = |op: usize| match row[op] {
+                usize::MAX => Operand::Fixed(fixed[op]),
+                s => Operand::Row(&done[s * w..(s + 1) * w]),
             };
             macro_rules! binary {
                 ($a:expr, $b:expr, $f:expr) => {
                     match (operand($a), operand($b)) {
-                        (Ok(x), Ok(y)) => out
+                        (Operand::Row(x), Operand::Row(y)) => out
                             .iter_mut()
                             .zip(x.iter().zip(y))
                             .for_each(|(o, (&x, &y))| *o = $f(x, y)),
-                        (Ok(x), Err(y)) => out.iter_mut().zip(x).for_each(|(o, &x)| *o = $f(x, y)),
-                        (Err(x), Ok(y)) => out.iter_mut().zip(y).for_each(|(o, &y)| *o = $f(x, y)),
-                        (Err(x), Err(y)) => out.fill($f(x, y)),
+                        (Operand::Row(x), Operand::Fixed(y)) => {
+                            out.iter_mut().zip(x).for_each(|(o, &x)| *o = $f(x, y))
+                        }
+                        (Operand::Fixed(x), Operand::Row(y)) => {
+                            out.iter_mut().zip(y).for_each(|(o, &y)| *o = $f(x, y))
+                        }
+                        (Operand::Fixed(x), Operand::Fixed(y)) => out.fill($f(x, y)),
                     }
                 };
             }
-            let lanes = |op: usize| -> Vec<f64> {
-                match operand(op) {
-                    Ok(x) => x.to_vec(),
-                    Err(x) => vec![x; w],
-                }
-            };
             match self.tape.ops[k] {
                 Op::Angle(c) => out.iter_mut().zip(angles).for_each(|(o, a)| *o = a[c]),
                 Op::Add(a, b) => binary!(a, b, |x: f64, y: f64| x + y),
@@ -484,22 +567,31 @@ impl<'t> Lanes<'t> {
                 Op::Neg(a) => binary!(a, a, |x: f64, _: f64| -x),
                 Op::Powi(a, e) => binary!(a, a, |x: f64, _: f64| x.powi(e)),
                 Op::Div(a, b, _) => {
-                    let (x, y) = (lanes(a), lanes(b));
-                    for l in 0..w {
-                        if y[l] == 0.0 {
-                            return None;
+                    let (x, y) = (operand(a), operand(b));
+                    for (l, o) in out.iter_mut().enumerate() {
+                        let d = y.at(l);
+                        if d == 0.0 {
+                            return false;
                         }
-                        out[l] = x[l] / y[l];
+                        *o = x.at(l) / d;
                     }
                 }
                 Op::Apply(f, a, _) => {
-                    for (o, x) in out.iter_mut().zip(lanes(a)) {
-                        *o = super::real::elementary(f, x).ok()?;
+                    let x = operand(a);
+                    for (l, o) in out.iter_mut().enumerate() {
+                        match super::real::elementary(f, x.at(l)) {
+                            Ok(v) => *o = v,
+                            Err(_) => return false,
+                        }
                     }
                 }
                 Op::Apply2(f, a, b, _) => {
-                    for (o, (x, y)) in out.iter_mut().zip(lanes(a).into_iter().zip(lanes(b))) {
-                        *o = super::real::elementary2(f, x, y).ok()?;
+                    let (x, y) = (operand(a), operand(b));
+                    for (l, o) in out.iter_mut().enumerate() {
+                        match super::real::elementary2(f, x.at(l), y.at(l)) {
+                            Ok(v) => *o = v,
+                            Err(_) => return false,
+                        }
                     }
                 }
                 Op::Input(_) | Op::Normal(_) | Op::Const(_) | Op::MaxN(..) | Op::Avg(..) => {
@@ -508,20 +600,21 @@ impl<'t> Lanes<'t> {
             }
         }
         let out = *self.tape.outputs.get(&[]);
-        let values: Vec<f64> = match self.row[out] {
-            usize::MAX => vec![self.fixed[out]; w],
-            s => vals[s * w..(s + 1) * w].to_vec(),
-        };
-        values.iter().all(|v| v.is_finite()).then_some(values)
+        self.out.clear();
+        match self.row[out] {
+            usize::MAX => self.out.resize(w, self.fixed[out]),
+            s => self.out.extend_from_slice(&self.vals[s * w..(s + 1) * w]),
+        }
+        self.out.iter().all(|v| v.is_finite())
     }
 
     /// The grid, then every local maximum refined by golden sections in lockstep (each
     /// lane follows exactly the steps of [`super::real::golden_max`]): the best angle
     /// and value, or `None` when an evaluation fails.
-    fn maximise(&self) -> Option<(f64, f64)> {
+    fn maximise(mut self) -> Option<(f64, f64)> {
         let h = grid_step();
-        let grid = self.at_normals(grid_normals())?;
-        let centres: Vec<f64> = local_maxima(&grid).map(|k| k as f64 * h).collect();
+        let grid = self.at_grid()?;
+        let centres: Vec<f64> = local_maxima(grid).map(|k| k as f64 * h).collect();
         let g = (5f64.sqrt() - 1.0) / 2.0;
         struct Section {
             lo: f64,
@@ -550,17 +643,19 @@ impl<'t> Lanes<'t> {
         for (s, v) in sections.iter_mut().zip(values.chunks(2)) {
             (s.f1, s.f2) = (v[0], v[1]);
         }
+        let mut active = Vec::with_capacity(sections.len());
+        let mut next = Vec::with_capacity(sections.len());
+        let mut upper = Vec::with_capacity(sections.len());
         loop {
-            let active: Vec<usize> = (0..sections.len())
-                .filter(|&k| sections[k].hi - sections[k].lo > 1e-12)
-                .collect();
+            active.clear();
+            active.extend((0..sections.len()).filter(|&k| sections[k].hi - sections[k].lo > 1e-12));
             if active.is_empty() {
                 break;
             }
             // Each active section moves one end in and asks for one new value: at x2
             // (upper = true) or at x1.
-            let mut next = Vec::with_capacity(active.len());
-            let mut upper = Vec::with_capacity(active.len());
+            next.clear();
+            upper.clear();
             for &k in &active {
                 let s = &mut sections[k];
                 if s.f1 < s.f2 {
@@ -580,7 +675,7 @@ impl<'t> Lanes<'t> {
                 }
             }
             let values = self.at(&next)?;
-            for ((&k, v), up) in active.iter().zip(values).zip(upper) {
+            for ((&k, &v), &up) in active.iter().zip(values).zip(&upper) {
                 let s = &mut sections[k];
                 if up {
                     s.f2 = v;
@@ -753,6 +848,7 @@ impl<'a> Compiler<'a> {
         self.budget = sub.budget;
         Ok(Tape {
             varying: varying(&sub.ops),
+            maxima: Maxima::default(),
             ops: sub.ops,
             inputs: sub.inputs,
             labels: a.free_letters(),
