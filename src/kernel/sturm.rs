@@ -166,7 +166,9 @@ pub enum Bound {
     PlusInfinity,
 }
 
-/// Sturm's sequence p₀ = p, p₁ = p', p_{k+1} = −rem(p_{k−1}, p_k).
+/// Sturm's sequence p₀ = p, p₁ = p', p_{k+1} = −rem(p_{k−1}, p_k), each entry a
+/// positive multiple with coprime integer coefficients (so the first is never empty
+/// for a nonzero `p`, and vanishes exactly where `p` does).
 pub fn sturm_sequence(p: &UniPoly) -> Vec<UniPoly> {
     // Positive multiples keep every sign, so each entry is scaled to coprime integers.
     let mut seq = vec![
@@ -233,14 +235,16 @@ pub fn isolate_roots(
         if n == 0 {
             continue;
         }
-        // One root, narrow enough, and no end that is an exact root found earlier.
-        let clean = |x: &Rational| !p.eval(x).is_zero();
+        // One root, narrow enough, and no end that is an exact root found earlier. The
+        // zero tests read the head of a Sturm sequence: a positive multiple of the
+        // polynomial with integer coefficients, evaluated without reducing fractions.
+        let clean = |x: &Rational| polys[0].1[0].sign_at(x) != 0;
         if n == 1 && &hi - &lo <= *width && clean(&lo) && clean(&hi) {
             out.push((lo, hi));
             continue;
         }
         let mid = &(&lo + &hi) * &half;
-        if polys[k].0.eval(&mid).is_zero() {
+        if polys[k].1[0].sign_at(&mid) == 0 {
             out.push((mid.clone(), mid.clone()));
             let q = polys[k].0.without_root_at(&mid);
             let seq = sturm_sequence(&q);
