@@ -224,14 +224,21 @@ pub fn isolate_roots(
     // Polynomials by index, each with its Sturm sequence: `p`, and `p` with exact
     // roots divided out.
     let mut polys = vec![(p.clone(), sturm_sequence(p))];
-    let count = |seq: &[UniPoly], lo: &Rational, hi: &Rational| {
-        sign_changes(seq, &Bound::At(lo.clone()))
-            .saturating_sub(sign_changes(seq, &Bound::At(hi.clone())))
+    let changes = |k: usize, polys: &[(UniPoly, Vec<UniPoly>)], x: &Rational| {
+        sign_changes(&polys[k].1, &Bound::At(x.clone()))
     };
+    // Each interval carries the sign changes of its polynomial's sequence at both
+    // ends, so that a midpoint's are computed once for both halves.
     let mut out = Vec::new();
-    let mut stack = vec![(0, a.clone(), b.clone())];
-    while let Some((k, lo, hi)) = stack.pop() {
-        let n = count(&polys[k].1, &lo, &hi);
+    let mut stack = vec![(
+        0,
+        a.clone(),
+        b.clone(),
+        changes(0, &polys, a),
+        changes(0, &polys, b),
+    )];
+    while let Some((k, lo, hi, at_lo, at_hi)) = stack.pop() {
+        let n = at_lo.saturating_sub(at_hi);
         if n == 0 {
             continue;
         }
@@ -250,11 +257,17 @@ pub fn isolate_roots(
             let seq = sturm_sequence(&q);
             polys.push((q, seq));
             let j = polys.len() - 1;
-            stack.push((j, mid.clone(), hi));
-            stack.push((j, lo, mid));
+            let (at_lo, at_mid, at_hi) = (
+                changes(j, &polys, &lo),
+                changes(j, &polys, &mid),
+                changes(j, &polys, &hi),
+            );
+            stack.push((j, mid.clone(), hi, at_mid, at_hi));
+            stack.push((j, lo, mid, at_lo, at_mid));
         } else {
-            stack.push((k, mid.clone(), hi));
-            stack.push((k, lo, mid));
+            let at_mid = changes(k, &polys, &mid);
+            stack.push((k, mid.clone(), hi, at_mid, at_hi));
+            stack.push((k, lo, mid, at_lo, at_mid));
         }
     }
     out.sort();
