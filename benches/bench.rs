@@ -19,6 +19,10 @@ use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
 
+/// The binary's allocator (see src/main.rs), so that in-process rows time what a run does.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn median_ms(reps: usize, mut f: impl FnMut()) -> f64 {
     let mut times: Vec<f64> = (0..reps)
         .map(|_| {
