@@ -95,7 +95,7 @@ pub struct Tape {
 /// A memo of `maxn` maximisers: a pure function's results, so sharing it between
 /// clones and threads changes no value.
 #[derive(Clone, Debug, Default)]
-struct Maxima(std::sync::Arc<std::sync::Mutex<HashMap<Vec<u64>, (f64, f64)>>>);
+struct Maxima(std::sync::Arc<std::sync::Mutex<rustc_hash::FxHashMap<Vec<u64>, (f64, f64)>>>);
 
 /// The most maximisers a tape remembers (about 1 kB each for the paper's tapes).
 const MAXIMA_MEMO: usize = 4096;
@@ -125,7 +125,9 @@ struct Compiler<'a> {
     decls: &'a Decls,
     defs: &'a [Definition],
     ops: Vec<Op>,
-    shared: HashMap<Key, usize>,
+    /// Common subexpressions: looked up once per op pushed, so hashed by FxHash (the
+    /// lookup order and the ops pushed do not depend on the hasher).
+    shared: rustc_hash::FxHashMap<Key, usize>,
     symbols: HashMap<String, Tensor<usize>>,
     inputs: Vec<(String, Vec<usize>)>,
     memo: HashMap<(String, Vec<usize>), Tensor<usize>>,
@@ -735,7 +737,7 @@ impl<'a> Compiler<'a> {
             decls,
             defs,
             ops: Vec::new(),
-            shared: HashMap::new(),
+            shared: rustc_hash::FxHashMap::default(),
             symbols: HashMap::new(),
             inputs: Vec::new(),
             memo: HashMap::new(),
