@@ -173,13 +173,16 @@ fn a_maxn_tape_agrees_with_the_interpreter_in_values_and_errors() {
     // maxima in lockstep; the values must be those of the interpreter's angle-by-angle
     // search, bit for bit, and an argument that fails at some angles (a square root of
     // a negative number, a division by zero) must report the error the first failing
-    // angle gives.
+    // angle gives. Each point is visited again in reverse order: the tape then answers
+    // from its memo of maximisers, which must give the same bits at every state (a
+    // memo keyed on too little would return another state's maximiser).
     let sides = [
         "maxn(abs(a_i n_i) + b_i n_i)",
         "maxn((a_i n_i)^2 - b_1 n_2 + c)",
         "maxn(sqrt(a_i n_i) + c)",
         "maxn(c / (a_i n_i))",
         "maxn(c)",
+        "maxn(c a_i n_i)",
     ];
     let body: String = sides
         .iter()
@@ -199,11 +202,18 @@ fn a_maxn_tape_agrees_with_the_interpreter_in_values_and_errors() {
     for claim in &file.claims {
         let node = claim.check.chains[0][0].node.as_ref().unwrap();
         let tape = Tape::compile(&claim.decls, &claim.check.defs, node).unwrap();
-        for point in 0..40 {
-            let a = [rng.uniform(), rng.uniform()];
-            // Some points put a on an axis, so that a_i n_i is exactly 0 at grid angles.
-            let a = if point % 5 == 0 { [a[0], 0.0] } else { a };
-            let (b, c) = ([rng.uniform(), rng.uniform()], rng.uniform());
+        // Pairs of points differ only in the sign of c, which moves the maximiser of
+        // c / (a_i n_i) and of c a_i n_i.
+        let points: Vec<([f64; 2], [f64; 2], f64)> = (0..20)
+            .flat_map(|pair| {
+                let a = [rng.uniform(), rng.uniform()];
+                // Some points put a on an axis, so that a_i n_i is exactly 0 at grid angles.
+                let a = if pair % 3 == 0 { [a[0], 0.0] } else { a };
+                let (b, c) = ([rng.uniform(), rng.uniform()], rng.uniform());
+                [(a, b, c), (a, b, -c)]
+            })
+            .collect();
+        for &(a, b, c) in points.iter().chain(points.iter().rev()) {
             let values: HashMap<String, Tensor<f64>> = HashMap::from([
                 ("a".to_owned(), Tensor::from_fn(2, 1, |i| a[i[0]])),
                 ("b".to_owned(), Tensor::from_fn(2, 1, |i| b[i[0]])),
