@@ -15,7 +15,7 @@ use super::sampler::{Sampler, State};
 use crate::derivation::{AssumptionKind, Constraint};
 use crate::kernel::assignments;
 use crate::lang::Diagnostic;
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 use std::f64::consts::PI;
 
 /// Random samples the search starts from (the worst ones).
@@ -224,16 +224,30 @@ pub(super) fn worst_case(
     }
     let per_start = budget / starts.len().max(1);
     let sampler = &*sampler;
+    // The points visited, by the bits of their coordinates: a pattern search steps back
+    // to the point it came from after every improvement. A revisit counts as an
+    // evaluation, as it did when it was computed again; its margin is the one already
+    // found (the margin is a function of the state, and what it records — quadrature
+    // accuracy — is a maximum), and it cannot raise the worst margin found so far.
+    let mut seen: HashMap<Vec<u64>, Option<f64>> = HashMap::new();
     // A state inside the hypotheses and off the singular set, with its margin; `None`
     // for a point the search may not visit.
     let mut visit = |x: &[f64], result: &mut SearchResult| -> Result<Option<f64>, Diagnostic> {
         sampler.time_left()?;
         super::watch::progress("search", result.evaluations, budget);
+        let key: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
+        if let Some(&known) = seen.get(&key) {
+            if known.is_some() {
+                result.evaluations += 1;
+            }
+            return Ok(known);
+        }
         let state = to_state(sampler, &coords, &template, x)?;
         if !sampler.satisfies(&state, &sampler.sampling.given)?
             || !sampler.satisfies(&state, extra)?
             || sampler.singular(&state)?
         {
+            seen.insert(key, None);
             return Ok(None);
         }
         result.evaluations += 1;
@@ -243,8 +257,12 @@ pub(super) fn worst_case(
             result.worst = value;
             result.worst_state = Some(state.clone());
         }
-        if m.is_none() {
-            result.violation = Some(state);
+        match m {
+            // The search stops here: never revisited.
+            None => result.violation = Some(state),
+            Some(_) => {
+                seen.insert(key, Some(value));
+            }
         }
         Ok(Some(value))
     };
