@@ -104,6 +104,116 @@ fn degree_identity(k: usize) -> String {
     )
 }
 
+/// Terms per factor and variables in the term-product comparison.
+const TIGHT_TERMS: usize = 40;
+const TIGHT_VARS: usize = 12;
+
+/// The time of one term product (multiply two terms and add the result into the sum)
+/// in the kernel's `Poly` and in a tight loop written for the purpose, in nanoseconds,
+/// on the same two polynomials: the distance of the exact kernel from the limit that
+/// issue 18 names (11–40 ns per product all-in). The tight loop packs a monomial's
+/// exponents (at most 15 each, 5 bits per variable) into one u64, so that a monomial
+/// product is one addition, and keeps integer numerators over one common denominator,
+/// so that a coefficient product is one multiplication. Both results are compared, so
+/// the estimate does the same work.
+fn term_products() -> (f64, f64) {
+    use cosserat_check::kernel::rational::Rational;
+    use cosserat_check::kernel::{Monomial, Poly};
+    use std::collections::HashMap;
+    // A deterministic pseudo-random stream (xorshift).
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = move |m: u64| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state % m
+    };
+    // Two polynomials of TIGHT_TERMS terms, exponents 0..=3, coefficients k/6 (the
+    // paper's denominators are small).
+    let mut factor = || -> Vec<([u32; TIGHT_VARS], i64)> {
+        (0..TIGHT_TERMS)
+            .map(|_| {
+                let mut e = [0u32; TIGHT_VARS];
+                for x in e.iter_mut() {
+                    *x = if next(3) == 0 { next(4) as u32 } else { 0 };
+                }
+                (e, next(19) as i64 - 9)
+            })
+            .collect()
+    };
+    let (a, b) = (factor(), factor());
+    let poly = |terms: &[([u32; TIGHT_VARS], i64)]| {
+        let mut p = Poly::default();
+        for (e, c) in terms {
+            let factors: Vec<(u32, i32)> = (0..TIGHT_VARS as u32)
+                .zip(e.iter().map(|&x| x as i32))
+                .filter(|&(_, x)| x != 0)
+                .collect();
+            p = &p
+                + &Poly::term(
+                    Monomial::from_factors(factors),
+                    Rational::ratio(*c, 6).expect("6 ≠ 0"),
+                );
+        }
+        p
+    };
+    let (pa, pb) = (poly(&a), poly(&b));
+    let pack = |e: &[u32; TIGHT_VARS]| e.iter().fold(0u64, |acc, &x| (acc << 5) | u64::from(x));
+    let packed = |terms: &[([u32; TIGHT_VARS], i64)]| -> Vec<(u64, i64)> {
+        // Equal monomials merged, as in a canonical polynomial.
+        let mut merged: HashMap<u64, i64> = HashMap::new();
+        for (e, c) in terms {
+            *merged.entry(pack(e)).or_default() += c;
+        }
+        merged.into_iter().filter(|&(_, c)| c != 0).collect()
+    };
+    let (qa, qb) = (packed(&a), packed(&b));
+    let products = (pa.num_terms() * pb.num_terms()) as f64;
+    let reps = 200;
+    let ours = median_ms(9, || {
+        for _ in 0..reps {
+            black_box(&pa * &pb);
+        }
+    });
+    let tight_product = || {
+        let mut sum: rustc_hash::FxHashMap<u64, i64> = rustc_hash::FxHashMap::default();
+        for &(ma, ca) in &qa {
+            for &(mb, cb) in &qb {
+                *sum.entry(ma + mb).or_default() += ca * cb;
+            }
+        }
+        sum.retain(|_, c| *c != 0);
+        sum
+    };
+    let tight = median_ms(9, || {
+        for _ in 0..reps {
+            black_box(tight_product());
+        }
+    });
+    // The same polynomial: as many terms, each coefficient over 36.
+    let check = tight_product();
+    let product = &pa * &pb;
+    assert_eq!(
+        check.len(),
+        product.num_terms(),
+        "the tight loop computes the same product"
+    );
+    for (m, c) in product.terms() {
+        let mut e = [0u32; TIGHT_VARS];
+        for &(v, x) in m.factors() {
+            e[v as usize] = x as u32;
+        }
+        let n = check.get(&pack(&e)).copied().unwrap_or(0);
+        assert_eq!(
+            *c,
+            Rational::ratio(n, 36).expect("36 ≠ 0"),
+            "coefficient of {m:?}"
+        );
+    }
+    let per = |ms: f64| ms * 1e6 / (reps as f64 * products);
+    (per(ours), per(tight))
+}
+
 fn decide_text(text: &str) {
     let file = load_str("bench.toml", text).expect("valid");
     for c in &file.claims {
@@ -278,6 +388,15 @@ fn main() {
             format!("{t:.2} ms"),
         ));
     }
+    let (ours, tight) = term_products();
+    rows.push((
+        format!("exact kernel: one term product, `Poly × Poly` ({TIGHT_TERMS}×{TIGHT_TERMS} terms, {TIGHT_VARS} variables, rational coefficients)"),
+        format!("{ours:.1} ns"),
+    ));
+    rows.push((
+        format!("tight-loop estimate of the same products (exponents packed in one u64, integer coefficients over a common denominator, FxHash accumulation): {:.1}× faster", ours / tight),
+        format!("{tight:.1} ns"),
+    ));
     let moments = median_ms(9, || {
         for total in 0..=12u32 {
             for a in 0..=total {

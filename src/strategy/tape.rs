@@ -95,7 +95,10 @@ pub struct Tape {
 /// A memo of `maxn` maximisers: a pure function's results, so sharing it between
 /// clones and threads changes no value.
 #[derive(Clone, Debug, Default)]
-struct Maxima(std::sync::Arc<std::sync::Mutex<rustc_hash::FxHashMap<Vec<u64>, (f64, f64)>>>);
+struct Maxima(std::sync::Arc<std::sync::Mutex<MaximaByKey>>);
+
+/// Maximisers (θ, value) by the bits of a `maxn` argument's angle-invariant values.
+type MaximaByKey = rustc_hash::FxHashMap<Vec<u64>, (f64, f64)>;
 
 /// The most maximisers a tape remembers (about 1 kB each for the paper's tapes).
 const MAXIMA_MEMO: usize = 4096;
