@@ -100,8 +100,9 @@ struct Maxima(std::sync::Arc<std::sync::Mutex<MaximaByKey>>);
 /// Maximisers (θ, value) by the bits of a `maxn` argument's angle-invariant values.
 type MaximaByKey = rustc_hash::FxHashMap<Vec<u64>, (f64, f64)>;
 
-/// The most maximisers a tape remembers (about 1 kB each for the paper's tapes).
-const MAXIMA_MEMO: usize = 4096;
+/// The most a tape's memo of maximisers holds, in key words (8 MB): each key has one
+/// word per op of the sub-tape, so a large sub-tape remembers fewer states.
+const MAXIMA_WORDS: usize = 1 << 20;
 
 impl Maxima {
     fn get(&self, key: &[u64]) -> Option<(f64, f64)> {
@@ -114,7 +115,7 @@ impl Maxima {
 
     fn insert(&self, key: Vec<u64>, best: (f64, f64)) {
         let mut memo = self.0.lock().unwrap_or_else(|e| e.into_inner());
-        if memo.len() < MAXIMA_MEMO {
+        if (memo.len() + 1) * key.len() <= MAXIMA_WORDS {
             memo.insert(key, best);
         }
     }
@@ -461,9 +462,9 @@ fn local_maxima(grid: &[f64]) -> impl Iterator<Item = usize> + '_ {
 /// one row of lanes per op, so that each op is dispatched once per batch of angles
 /// rather than once per angle. Only for sub-tapes without nested `maxn` or `avg`.
 ///
-/// The rows, the normals and the outputs live in buffers kept across batches: the
-/// golden sections ask for a few angles some fifty times per maximum, and allocating
-/// per batch cost more than the arithmetic.
+/// The rows, the normals and the outputs live in buffers kept across batches (the
+/// golden sections ask for a few angles some fifty times per maximum), so that a batch
+/// allocates nothing.
 struct Lanes<'t> {
     tape: &'t Tape,
     /// The values of the ops that do not depend on θ.
