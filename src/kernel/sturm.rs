@@ -377,4 +377,38 @@ mod tests {
             )]
         );
     }
+
+    #[test]
+    fn roots_at_midpoints_are_kept_exactly_and_their_neighbours_isolated() {
+        // x (2x − 1)² (4x + 1)(x² − 2) on (−2, 2): the bisection meets 0, 1/2 (a double
+        // root, divided out twice) and −1/4 as midpoints; ±√2 lie between midpoints.
+        let mut p = up(&[0, 1]);
+        for factor in [&[-1, 2][..], &[-1, 2], &[1, 4], &[-2, 0, 1]] {
+            p = p.mul(&up(factor));
+        }
+        let w = Rational::ratio(1, 1 << 20).unwrap();
+        let roots = isolate_roots(&p, &Rational::int(-2), &Rational::int(2), &w);
+        let exact = |n, d| {
+            let r = Rational::ratio(n, d).unwrap();
+            (r.clone(), r)
+        };
+        assert_eq!(roots.len(), 5, "{roots:?}");
+        assert!(roots.contains(&exact(0, 1)));
+        assert!(roots.contains(&exact(1, 2)));
+        assert!(roots.contains(&exact(-1, 4)));
+        let s = 2f64.sqrt();
+        for (lo, hi) in roots.iter().filter(|(lo, hi)| lo != hi) {
+            let (lo, hi) = (lo.to_f64(), hi.to_f64());
+            assert!(hi - lo <= 1.0 / f64::from(1 << 20));
+            assert!((lo < -s && -s < hi) || (lo < s && s < hi), "({lo}, {hi})");
+        }
+        // In increasing order, and every isolating interval holds exactly one root.
+        assert!(roots.windows(2).all(|w| w[0].1 < w[1].0));
+        for (lo, hi) in roots.iter().filter(|(lo, hi)| lo != hi) {
+            assert_eq!(
+                count_roots(&p, &Bound::At(lo.clone()), &Bound::At(hi.clone())),
+                1
+            );
+        }
+    }
 }
