@@ -111,8 +111,7 @@ fn in_parallel<T: Send>(n: usize, read: impl Fn(usize) -> T + Sync) -> Vec<T> {
         return (0..n).map(read).collect();
     }
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let mut slots: Vec<Option<T>> = (0..n).map(|_| None).collect();
-    let done: Vec<(usize, T)> = std::thread::scope(|scope| {
+    let mut done: Vec<(usize, T)> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..workers)
             .map(|_| {
                 scope.spawn(|| {
@@ -132,13 +131,8 @@ fn in_parallel<T: Send>(n: usize, read: impl Fn(usize) -> T + Sync) -> Vec<T> {
             .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
             .collect()
     });
-    for (k, value) in done {
-        slots[k] = Some(value);
-    }
-    slots
-        .into_iter()
-        .map(|s| s.expect("every index read once"))
-        .collect()
+    done.sort_unstable_by_key(|&(k, _)| k);
+    done.into_iter().map(|(_, value)| value).collect()
 }
 
 fn unique_ids(
