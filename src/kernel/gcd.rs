@@ -50,27 +50,26 @@ pub fn degree_in(p: &Poly, v: Var) -> i32 {
 
 /// `p` as a polynomial in `v`: exponent of `v` ↦ coefficient (free of `v`).
 fn coefficients_in(p: &Poly, v: Var) -> BTreeMap<i32, Poly> {
-    let mut out: BTreeMap<i32, Poly> = BTreeMap::new();
+    let mut terms: BTreeMap<i32, Vec<(Monomial, Rational)>> = BTreeMap::new();
     for (m, c) in p.terms() {
-        let e = m.exponent(v);
-        let rest = Monomial::from_factors(
-            m.factors()
-                .iter()
-                .copied()
-                .filter(|&(w, _)| w != v)
-                .collect(),
-        );
-        out.entry(e).or_default().add_term(rest, c.clone());
+        terms
+            .entry(m.exponent(v))
+            .or_default()
+            .push((m.without(v), c.clone()));
     }
-    out
+    terms
+        .into_iter()
+        .map(|(e, terms)| (e, Poly::from_terms(terms)))
+        .collect()
 }
 
 fn leading_coefficient_in(p: &Poly, v: Var) -> Poly {
-    coefficients_in(p, v)
-        .into_iter()
-        .next_back()
-        .map(|(_, c)| c)
-        .unwrap_or_default()
+    let top = degree_in(p, v);
+    Poly::from_terms(
+        p.terms()
+            .filter(|(m, _)| m.exponent(v) == top)
+            .map(|(m, c)| (m.without(v), c.clone())),
+    )
 }
 
 fn var_power(v: Var, e: i32) -> Poly {

@@ -8,10 +8,9 @@
 //! sign to the power `b − a`) when `a < b`. Where `D_b` (or, for an infinite limit,
 //! `N_a`) vanishes the orders change: these are the conditions of the result.
 
-use super::poly::{Monomial, Poly, Var};
+use super::poly::{Poly, Var};
 use super::rational::Rational;
 use super::RatFunc;
-use num_traits::Zero;
 
 /// Where the variable goes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -63,16 +62,11 @@ pub struct Expansion {
 /// The lowest power of `v` in `p` (nonzero) and its coefficient, a polynomial free of `v`.
 fn lowest(p: &Poly, v: Var) -> (i32, Poly) {
     let a = p.terms().map(|(m, _)| m.exponent(v)).min().unwrap_or(0);
-    let mut out = Poly::zero();
-    for (m, c) in p.terms().filter(|(m, _)| m.exponent(v) == a) {
-        let rest = m
-            .factors()
-            .iter()
-            .copied()
-            .filter(|&(w, _)| w != v)
-            .collect();
-        out.add_term(Monomial::from_factors(rest), c.clone());
-    }
+    let out = Poly::from_terms(
+        p.terms()
+            .filter(|(m, _)| m.exponent(v) == a)
+            .map(|(m, c)| (m.without(v), c.clone())),
+    );
     (a, out)
 }
 

@@ -11,39 +11,52 @@
 use super::moments::monomial_moment;
 use super::rational::Rational;
 use num_traits::{One, Zero};
-use std::collections::{BTreeMap, HashMap};
+use smallvec::SmallVec;
+use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
 /// A polynomial variable: an index into a [`VarTable`].
 pub type Var = u32;
 
-/// A product of powers of variables: sorted by variable, no zero exponent.
+/// How many factors a monomial holds without a heap allocation: the paper's monomials
+/// have at most four variables, so a product of two terms allocates nothing.
+const INLINE_FACTORS: usize = 4;
+
+type Factors = SmallVec<[(Var, i32); INLINE_FACTORS]>;
+
+/// A product of powers of variables: sorted by variable, no zero exponent. Ordered as
+/// its list of `(variable, exponent)` pairs, lexicographically: the order in which a
+/// [`Poly`] keeps its terms.
 #[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug, Default)]
-pub struct Monomial(Vec<(Var, i32)>);
+pub struct Monomial(Factors);
 
 impl Monomial {
     /// The empty product, 1.
     pub fn one() -> Self {
-        Monomial(Vec::new())
+        Monomial(Factors::new())
     }
 
     /// `v^e`.
     pub fn var(v: Var, e: i32) -> Self {
-        Monomial::from_factors(vec![(v, e)])
+        let mut factors = Factors::new();
+        if e != 0 {
+            factors.push((v, e));
+        }
+        Monomial(factors)
     }
 
     /// Builds the canonical monomial from factors in any order, merging repeats.
     pub fn from_factors(mut factors: Vec<(Var, i32)>) -> Self {
         factors.sort_unstable_by_key(|&(v, _)| v);
-        let mut out: Vec<(Var, i32)> = Vec::with_capacity(factors.len());
+        let mut out = Factors::with_capacity(factors.len());
         for (v, e) in factors {
             match out.last_mut() {
                 Some((lv, le)) if *lv == v => *le += e,
                 _ => out.push((v, e)),
             }
         }
-        out.retain(|&(_, e)| e != 0);
+        out.retain(|&mut (_, e)| e != 0);
         Monomial(out)
     }
 
@@ -69,7 +82,7 @@ impl Monomial {
     /// The product of two monomials (a linear merge of sorted lists).
     pub fn mul(&self, other: &Monomial) -> Monomial {
         let (a, b) = (&self.0, &other.0);
-        let mut out = Vec::with_capacity(a.len() + b.len());
+        let mut out = Factors::with_capacity(a.len() + b.len());
         let (mut i, mut j) = (0, 0);
         while i < a.len() && j < b.len() {
             match a[i].0.cmp(&b[j].0) {
@@ -98,7 +111,16 @@ impl Monomial {
 
     /// `self^e` for any integer `e`.
     pub fn pow(&self, e: i32) -> Monomial {
-        Monomial::from_factors(self.0.iter().map(|&(v, k)| (v, k * e)).collect())
+        if e == 0 {
+            return Monomial::one();
+        }
+        // Sorted stays sorted, and no exponent becomes zero.
+        Monomial(self.0.iter().map(|&(v, k)| (v, k * e)).collect())
+    }
+
+    /// The monomial with the factor of `v` left out (still sorted).
+    pub fn without(&self, v: Var) -> Monomial {
+        Monomial(self.0.iter().copied().filter(|&(w, _)| w != v).collect())
     }
 
     /// Splits off the exponents of `vars` (in that order), returning them and the rest.
@@ -180,7 +202,9 @@ pub enum PolyError {
 /// ```
 #[derive(Clone, PartialEq, Eq, Hash, Debug, Default)]
 pub struct Poly {
-    terms: BTreeMap<Monomial, Rational>,
+    /// Strictly increasing monomials, no zero coefficient: the canonical form, so
+    /// structural equality is equality of polynomials.
+    terms: Vec<(Monomial, Rational)>,
 }
 
 impl Poly {
@@ -200,26 +224,52 @@ impl Poly {
         p
     }
 
-    /// Adds `c * m`, keeping the canonical form (no zero coefficient stored).
+    /// The sum of terms given in any order, repeats included: sorted once and merged,
+    /// which is how every operation that produces many terms builds its result.
+    pub fn from_terms(terms: impl IntoIterator<Item = (Monomial, Rational)>) -> Self {
+        let mut terms: Vec<(Monomial, Rational)> = terms.into_iter().collect();
+        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        let mut out: Vec<(Monomial, Rational)> = Vec::with_capacity(terms.len());
+        for (m, c) in terms {
+            match out.last_mut() {
+                Some((last, sum)) if *last == m => *sum += &c,
+                _ => {
+                    if out.last().is_some_and(|(_, sum)| sum.is_zero()) {
+                        out.pop();
+                    }
+                    out.push((m, c));
+                }
+            }
+        }
+        if out.last().is_some_and(|(_, sum)| sum.is_zero()) {
+            out.pop();
+        }
+        Poly { terms: out }
+    }
+
+    /// Adds `c * m`, keeping the canonical form (no zero coefficient stored). One term
+    /// at a time: many terms go through [`Poly::from_terms`].
     pub fn add_term(&mut self, m: Monomial, c: Rational) {
         if c.is_zero() {
             return;
         }
-        match self.terms.entry(m) {
-            std::collections::btree_map::Entry::Vacant(e) => {
-                e.insert(c);
-            }
-            std::collections::btree_map::Entry::Occupied(mut e) => {
-                *e.get_mut() += &c;
-                if e.get().is_zero() {
-                    e.remove();
+        if self.terms.last().is_none_or(|(last, _)| *last < m) {
+            self.terms.push((m, c));
+            return;
+        }
+        match self.terms.binary_search_by(|(k, _)| k.cmp(&m)) {
+            Ok(k) => {
+                self.terms[k].1 += &c;
+                if self.terms[k].1.is_zero() {
+                    self.terms.remove(k);
                 }
             }
+            Err(k) => self.terms.insert(k, (m, c)),
         }
     }
 
     pub fn terms(&self) -> impl Iterator<Item = (&Monomial, &Rational)> {
-        self.terms.iter()
+        self.terms.iter().map(|(m, c)| (m, c))
     }
 
     /// Whether this is the zero polynomial (canonical form: no terms at all).
@@ -237,8 +287,7 @@ impl Poly {
             0 => Some(Rational::zero()),
             1 => self
                 .terms
-                .iter()
-                .next()
+                .first()
                 .filter(|(m, _)| m.is_one())
                 .map(|(_, c)| c.clone()),
             _ => None,
@@ -247,10 +296,9 @@ impl Poly {
 
     /// `self / d` when `d` is a single nonzero term (exact in Laurent polynomials).
     pub fn checked_div(&self, d: &Poly) -> Result<Poly, PolyError> {
-        let mut it = d.terms.iter();
-        let (m, c) = match (it.next(), it.next()) {
-            (None, _) => return Err(PolyError::DivisionByZero),
-            (Some(t), None) => t,
+        let (m, c) = match d.terms.as_slice() {
+            [] => return Err(PolyError::DivisionByZero),
+            [(m, c)] => (m, c),
             _ => return Err(PolyError::DivisionBySum),
         };
         let inv = Poly::term(
@@ -260,12 +308,22 @@ impl Poly {
         Ok(self * &inv)
     }
 
+    /// `c · self` for a nonzero `c`: the same monomials in the same order.
+    fn scaled(&self, c: &Rational) -> Poly {
+        if c.is_one() {
+            return self.clone();
+        }
+        Poly {
+            terms: self.terms.iter().map(|(m, a)| (m.clone(), a * c)).collect(),
+        }
+    }
+
     /// The variables that occur, sorted.
     pub fn variables(&self) -> Vec<Var> {
         let mut vars: Vec<Var> = self
             .terms
-            .keys()
-            .flat_map(|m| m.factors().iter().map(|&(v, _)| v))
+            .iter()
+            .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
             .collect();
         vars.sort_unstable();
         vars.dedup();
@@ -274,17 +332,11 @@ impl Poly {
 
     /// ∂/∂v, exactly (Laurent exponents included).
     pub fn derivative(&self, v: Var) -> Poly {
-        let mut out = Poly::default();
-        for (m, c) in &self.terms {
+        let down = Monomial::var(v, -1);
+        Poly::from_terms(self.terms.iter().filter_map(|(m, c)| {
             let e = m.exponent(v);
-            if e != 0 {
-                out.add_term(
-                    m.mul(&Monomial::var(v, -1)),
-                    c * &Rational::int(i64::from(e)),
-                );
-            }
-        }
-        out
+            (e != 0).then(|| (m.mul(&down), c * &Rational::int(i64::from(e))))
+        }))
     }
 
     pub fn pow(&self, e: u32) -> Poly {
@@ -309,7 +361,7 @@ impl Poly {
     /// `n^α · rest` becomes `⟨n^α⟩ · rest`, with the moments of
     /// [`monomial_moment`]. Eqs. (25)–(26) are the first two instances.
     pub fn average_over_normal(&self, vars: &[Var]) -> Result<Poly, PolyError> {
-        let mut out = Poly::default();
+        let mut out = Vec::with_capacity(self.terms.len());
         for (m, c) in &self.terms {
             let (exps, rest) = m.split(vars);
             if exps.iter().any(|&e| e < 0) {
@@ -317,9 +369,11 @@ impl Poly {
             }
             let exps: Vec<u32> = exps.iter().map(|&e| e as u32).collect();
             let moment = monomial_moment(vars.len(), &exps);
-            out.add_term(rest, c * &moment);
+            if !moment.is_zero() {
+                out.push((rest, c * &moment));
+            }
         }
-        Ok(out)
+        Ok(Poly::from_terms(out))
     }
 
     /// The canonical normal form modulo `n·n − 1` (the normal is a unit vector).
@@ -334,18 +388,14 @@ impl Poly {
         let Some((&last, others)) = vars.split_last() else {
             return Ok(self.clone());
         };
-        let mut out = Poly::default();
-        let mut stack: Vec<(Monomial, Rational)> = self
-            .terms
-            .iter()
-            .map(|(m, c)| (m.clone(), c.clone()))
-            .collect();
+        let mut out = Vec::with_capacity(self.terms.len());
+        let mut stack: Vec<(Monomial, Rational)> = self.terms.clone();
         while let Some((m, c)) = stack.pop() {
             if vars.iter().any(|&v| m.exponent(v) < 0) {
                 return Err(PolyError::NegativeNormalPower);
             }
             if m.exponent(last) < 2 {
-                out.add_term(m, c);
+                out.push((m, c));
                 continue;
             }
             let lowered = m.mul(&Monomial::var(last, -2));
@@ -354,7 +404,7 @@ impl Poly {
             }
             stack.push((lowered, c));
         }
-        Ok(out)
+        Ok(Poly::from_terms(out))
     }
 
     /// The square root of a perfect square: `r` with `r·r = self` and a positive
@@ -392,7 +442,7 @@ impl Poly {
             .variables()
             .into_iter()
             .map(|v| {
-                let exps = self.terms.keys().map(|m| m.exponent(v));
+                let exps = self.terms.iter().map(|(m, _)| m.exponent(v));
                 let (lo, hi) =
                     exps.fold((i32::MAX, i32::MIN), |(lo, hi), e| (lo.min(e), hi.max(e)));
                 (v, lo, hi)
@@ -431,7 +481,7 @@ impl Poly {
 
     /// The leading term in graded lexicographic order (the first term displayed).
     pub fn leading(&self) -> Option<(&Monomial, &Rational)> {
-        self.terms.iter().min_by(|a, b| graded_lex_desc(a.0, b.0))
+        self.terms().min_by(|a, b| graded_lex_desc(a.0, b.0))
     }
 
     /// Plain-text form with variable names, highest total degree first.
@@ -459,7 +509,7 @@ impl Poly {
         if self.terms.is_empty() {
             return "0".into();
         }
-        let mut terms: Vec<_> = self.terms.iter().collect();
+        let mut terms: Vec<_> = self.terms().collect();
         terms.sort_by(|a, b| graded_lex_desc(a.0, b.0));
         let mut s = String::new();
         for (k, (m, c)) in terms.into_iter().take(max_terms).enumerate() {
@@ -520,21 +570,42 @@ impl One for Poly {
     }
 }
 
+/// `a + sign·b` for sorted term lists: one linear merge, the result sorted.
+fn merge(a: Vec<(Monomial, Rational)>, b: &[(Monomial, Rational)], negate_b: bool) -> Poly {
+    let signed = |c: &Rational| if negate_b { -c } else { c.clone() };
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let mut b = b.iter().peekable();
+    for (m, c) in a {
+        while let Some((mb, cb)) = b.next_if(|(mb, _)| *mb < m) {
+            out.push((mb.clone(), signed(cb)));
+        }
+        match b.next_if(|(mb, _)| *mb == m) {
+            Some((_, cb)) => {
+                let sum = if negate_b { &c - cb } else { &c + cb };
+                if !sum.is_zero() {
+                    out.push((m, sum));
+                }
+            }
+            None => out.push((m, c)),
+        }
+    }
+    out.extend(b.map(|(mb, cb)| (mb.clone(), signed(cb))));
+    Poly { terms: out }
+}
+
 impl Add<&Poly> for &Poly {
     type Output = Poly;
     fn add(self, rhs: &Poly) -> Poly {
-        let mut out = self.clone();
-        for (m, c) in &rhs.terms {
-            out.add_term(m.clone(), c.clone());
-        }
-        out
+        merge(self.terms.clone(), &rhs.terms, false)
     }
 }
 
 impl AddAssign<&Poly> for Poly {
     fn add_assign(&mut self, rhs: &Poly) {
-        for (m, c) in &rhs.terms {
+        if let [(m, c)] = rhs.terms.as_slice() {
             self.add_term(m.clone(), c.clone());
+        } else if !rhs.terms.is_empty() {
+            *self = merge(std::mem::take(&mut self.terms), &rhs.terms, false);
         }
     }
 }
@@ -542,24 +613,28 @@ impl AddAssign<&Poly> for Poly {
 impl Sub<&Poly> for &Poly {
     type Output = Poly;
     fn sub(self, rhs: &Poly) -> Poly {
-        let mut out = self.clone();
-        for (m, c) in &rhs.terms {
-            out.add_term(m.clone(), -c);
-        }
-        out
+        merge(self.terms.clone(), &rhs.terms, true)
     }
 }
 
 impl Mul<&Poly> for &Poly {
     type Output = Poly;
     fn mul(self, rhs: &Poly) -> Poly {
-        let mut out = Poly::default();
+        // A constant factor (δ and ε components, the 1 a product starts from) scales
+        // every coefficient and keeps the order: no sort.
+        match (self.terms.as_slice(), rhs.terms.as_slice()) {
+            ([], _) | (_, []) => return Poly::zero(),
+            ([(m, c)], _) if m.is_one() => return rhs.scaled(c),
+            (_, [(m, c)]) if m.is_one() => return self.scaled(c),
+            _ => {}
+        }
+        let mut products = Vec::with_capacity(self.terms.len() * rhs.terms.len());
         for (m1, c1) in &self.terms {
             for (m2, c2) in &rhs.terms {
-                out.add_term(m1.mul(m2), c1 * c2);
+                products.push((m1.mul(m2), c1 * c2));
             }
         }
-        out
+        Poly::from_terms(products)
     }
 }
 
@@ -659,6 +734,106 @@ mod tests {
         // Built in a different order, still identical.
         let rhs2 = &(&(y * y) * &Poly::constant(q(-1, 1))) + &(x * x);
         assert_eq!(lhs, rhs2);
+    }
+
+    /// The sorted-vector representation against a reference model: a `BTreeMap` from
+    /// factor lists to coefficients, which is what the kernel kept before. Sums,
+    /// differences and products of random Laurent polynomials (monomials of up to 7
+    /// factors, beyond the inline capacity; many cancellations) agree term by term and
+    /// in the same order, so everything that iterates terms (printing, pivots, leading
+    /// terms) sees what it saw before. Each operation is also built a second way, one
+    /// term at a time in reverse order, and compared structurally.
+    #[test]
+    fn operations_agree_with_a_tree_map_model() {
+        use std::collections::BTreeMap;
+        type Model = BTreeMap<Vec<(Var, i32)>, Rational>;
+        let mut seed = 0x2545_F491_4F6C_DD1D_u64;
+        let mut next = move |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        let random = |next: &mut dyn FnMut(u64) -> u64| -> Vec<(Vec<(Var, i32)>, Rational)> {
+            let mut terms = Vec::new();
+            for _ in 0..next(9) {
+                let mut factors = Vec::new();
+                for v in 0..7 {
+                    if next(3) == 0 {
+                        factors.push((v as Var, next(5) as i32 - 1));
+                    }
+                }
+                terms.push((factors, q(next(7) as i64 - 3, 1 + next(3) as i64)));
+            }
+            terms
+        };
+        let model_add = |model: &mut Model, f: &[(Var, i32)], c: &Rational, sign: i64| {
+            let m = Monomial::from_factors(f.to_vec()).factors().to_vec();
+            let sum =
+                model.get(&m).cloned().unwrap_or_else(Rational::zero) + c * &Rational::int(sign);
+            if sum.is_zero() {
+                model.remove(&m);
+            } else {
+                model.insert(m, sum);
+            }
+        };
+        let same = |p: &Poly, model: &Model| {
+            let ours: Vec<(Vec<(Var, i32)>, Rational)> = p
+                .terms()
+                .map(|(m, c)| (m.factors().to_vec(), c.clone()))
+                .collect();
+            let want: Vec<(Vec<(Var, i32)>, Rational)> = model.clone().into_iter().collect();
+            assert_eq!(ours, want);
+        };
+        for _ in 0..300 {
+            let (ta, tb) = (random(&mut next), random(&mut next));
+            let build = |t: &[(Vec<(Var, i32)>, Rational)]| {
+                Poly::from_terms(
+                    t.iter()
+                        .map(|(f, c)| (Monomial::from_factors(f.clone()), c.clone())),
+                )
+            };
+            let (a, b) = (build(&ta), build(&tb));
+            let mut model_a = Model::new();
+            for (f, c) in &ta {
+                model_add(&mut model_a, f, c, 1);
+            }
+            same(&a, &model_a);
+            // Sum and difference.
+            for sign in [1, -1] {
+                let mut model = model_a.clone();
+                for (f, c) in &tb {
+                    model_add(&mut model, f, c, sign);
+                }
+                let op = if sign == 1 { &a + &b } else { &a - &b };
+                same(&op, &model);
+                let mut by_terms = a.clone();
+                for (f, c) in tb.iter().rev() {
+                    by_terms.add_term(Monomial::from_factors(f.clone()), c * &Rational::int(sign));
+                }
+                assert_eq!(by_terms, op);
+                if sign == 1 {
+                    let mut assigned = a.clone();
+                    assigned += &b;
+                    assert_eq!(assigned, op);
+                }
+            }
+            // Product, and the constant fast path against the general one.
+            let mut model = Model::new();
+            for (fa, ca) in &ta {
+                for (fb, cb) in &tb {
+                    let mut f = fa.clone();
+                    f.extend_from_slice(fb);
+                    model_add(&mut model, &f, &(ca * cb), 1);
+                }
+            }
+            same(&(&a * &b), &model);
+            let k = Poly::constant(q(-5, 3));
+            let general = Poly::from_terms(a.terms().map(|(m, c)| (m.clone(), c * &q(-5, 3))));
+            assert_eq!(&a * &k, general);
+            assert_eq!(&k * &a, general);
+            assert_eq!(&a * &Poly::one(), a);
+        }
     }
 
     #[test]

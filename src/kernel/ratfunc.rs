@@ -127,7 +127,7 @@ impl RatFunc {
     /// denominator vanishes there.
     pub fn fix(&self, value: &dyn Fn(Var) -> Option<Rational>) -> Option<Self> {
         let fix_poly = |p: &Poly| -> Option<Poly> {
-            let mut out = Poly::zero();
+            let mut out = Vec::with_capacity(p.num_terms());
             for (m, c) in p.terms() {
                 let mut coef = c.clone();
                 let mut rest = Vec::new();
@@ -137,9 +137,9 @@ impl RatFunc {
                         None => rest.push((v, e)),
                     }
                 }
-                out.add_term(crate::kernel::Monomial::from_factors(rest), coef);
+                out.push((crate::kernel::Monomial::from_factors(rest), coef));
             }
-            Some(out)
+            Some(Poly::from_terms(out))
         };
         RatFunc::new(&fix_poly(&self.num)?, &fix_poly(&self.den)?)
     }

@@ -24,7 +24,8 @@ pub const MAX_DECIMAL_EXPONENT: i64 = 300;
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
 enum Repr {
     Small(i64, i64),
-    Big(BigRational),
+    /// Boxed, so that the common small case keeps a term of a polynomial compact.
+    Big(Box<BigRational>),
 }
 
 /// An exact rational number, always in lowest terms with a positive denominator, so
@@ -96,10 +97,10 @@ fn from_i128(n: i128, d: i128) -> Rational {
     if n > i128::from(i64::MIN) && n <= i128::from(i64::MAX) && d <= i128::from(i64::MAX) {
         Rational(Repr::Small(n as i64, d as i64))
     } else {
-        Rational(Repr::Big(BigRational::new_raw(
+        Rational(Repr::Big(Box::new(BigRational::new_raw(
             BigInt::from(n),
             BigInt::from(d),
-        )))
+        ))))
     }
 }
 
@@ -107,7 +108,7 @@ fn from_i128(n: i128, d: i128) -> Rational {
 fn from_big_reduced(r: BigRational) -> Rational {
     match (r.numer().to_i64(), r.denom().to_i64()) {
         (Some(n), Some(d)) if n != i64::MIN => Rational(Repr::Small(n, d)),
-        _ => Rational(Repr::Big(r)),
+        _ => Rational(Repr::Big(Box::new(r))),
     }
 }
 
@@ -125,7 +126,7 @@ impl Rational {
     fn big(&self) -> BigRational {
         match &self.0 {
             Repr::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
-            Repr::Big(r) => r.clone(),
+            Repr::Big(r) => (**r).clone(),
         }
     }
 
@@ -462,7 +463,7 @@ impl Neg for &Rational {
         match &self.0 {
             // n ≠ i64::MIN by the invariant, so −n fits.
             Repr::Small(n, d) => Rational(Repr::Small(-*n, *d)),
-            Repr::Big(r) => from_big_reduced(-r.clone()),
+            Repr::Big(r) => from_big_reduced(-(**r).clone()),
         }
     }
 }
