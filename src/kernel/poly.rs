@@ -12,7 +12,7 @@ use super::moments::monomial_moment;
 use super::rational::Rational;
 use num_traits::{One, Zero};
 use smallvec::SmallVec;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::fmt::Write as _;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 

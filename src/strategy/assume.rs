@@ -25,7 +25,8 @@ use crate::kernel::{assignments, Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use num_traits::Zero;
 use std::cmp::Reverse;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
+use rustc_hash::FxHashMap as HashMap;
 
 /// A component of a declared symbol: its name and 0-based indices.
 pub type Component = (String, Vec<usize>);

@@ -25,7 +25,7 @@ use crate::kernel::{assignments, Poly, PolyError, Quotient, Rational, Tensor, Va
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin};
 use num_traits::{One, Zero};
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// Largest number of terms one component may reach before evaluation stops: keeps a
 /// hostile input (a product of hundreds of sums) from running for hours.
@@ -216,17 +216,17 @@ impl<'a> ExactEnv<'a> {
             decls,
             defs: &[],
             vars,
-            varying: HashMap::new(),
-            tensor_components: HashSet::new(),
+            varying: HashMap::default(),
+            tensor_components: HashSet::default(),
             normal,
-            symbols: HashMap::new(),
-            cache: HashMap::new(),
+            symbols: HashMap::default(),
+            cache: HashMap::default(),
             work_left: MAX_WORK,
-            assumed: HashSet::new(),
+            assumed: HashSet::default(),
             parametrisation: None,
             domain: Vec::new(),
             roots: Vec::new(),
-            jet_cache: HashMap::new(),
+            jet_cache: HashMap::default(),
         }
     }
 
@@ -316,7 +316,7 @@ impl<'a> ExactEnv<'a> {
 
     /// Every component of every declared symbol, by its variable.
     pub fn component_vars(&mut self) -> HashMap<Var, Component> {
-        let mut out = HashMap::new();
+        let mut out = HashMap::default();
         let symbols: Vec<(String, usize)> = self
             .decls
             .symbols

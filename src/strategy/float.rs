@@ -15,7 +15,7 @@ use crate::derivation::{Check, Strategy, Verdict};
 use crate::kernel::sign::{End, Interval};
 use crate::kernel::Tensor;
 use crate::lang::Decls;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// Relative tolerance of a float comparison: |l − r| ≤ TOL · (1 + |l| + |r|). Inputs
 /// are O(1), expressions have a few hundred operations at most, so rounding stays
@@ -166,7 +166,7 @@ pub fn decide(
     let domain = check.strategy.exact_domain();
     let mut factor: Option<f64> = None;
     for _ in 0..samples {
-        let mut symbols: HashMap<String, Tensor<f64>> = HashMap::new();
+        let mut symbols: HashMap<String, Tensor<f64>> = HashMap::default();
         for (name, &rank) in &decls.symbols {
             let mut t = Tensor::from_fn(d, rank, |_| rng.uniform());
             // A scalar the claim bounds (`given`) is drawn inside its interval.

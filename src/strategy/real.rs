@@ -24,7 +24,7 @@ use crate::lang::{Decls, Node, Span};
 use nalgebra::{Dyn, U1};
 use num_dual::{Derivative, DualDVec64, DualNum};
 use std::cell::{Cell, RefCell};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::rc::Rc;
 
 /// Grid points of `maxn` over [0, 2π) before golden-section refinement of every local
@@ -102,15 +102,15 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             decls,
             defs,
             symbols,
-            memo: RefCell::new(HashMap::new()),
-            degrees: RefCell::new(HashMap::new()),
-            rules: RefCell::new(HashMap::new()),
+            memo: RefCell::new(HashMap::default()),
+            degrees: RefCell::new(HashMap::default()),
+            rules: RefCell::new(HashMap::default()),
             quadrature: Quadrature::new(Level::Fine),
             fields: None,
             position: RefCell::new(Vec::new()),
             perturbation: RefCell::new(None),
             epoch: Cell::new(0),
-            defined_fields: HashMap::new(),
+            defined_fields: HashMap::default(),
             in_gradient: false,
         }
     }

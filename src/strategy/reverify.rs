@@ -26,7 +26,8 @@ use super::{Counterexample, Reverified};
 use crate::derivation::{Check, Constraint, Expression, Relation};
 use crate::kernel::{Quotient, Rational, Tensor, Var};
 use crate::lang::Decls;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// Relative agreement required between the exact values of a counterexample and the
 /// interpreter's `f64` values at the same point.
@@ -330,7 +331,7 @@ fn holds_exactly(relation: Relation, l: &Rational, r: &Rational) -> bool {
 /// The exact point a sampled state denotes: each component's `f64` value as the
 /// rational it is, the normal moved exactly onto the unit circle or sphere.
 fn exact_point(env: &mut ExactEnv<'_>, state: &State) -> Option<HashMap<Var, Rational>> {
-    let mut point = HashMap::new();
+    let mut point = HashMap::default();
     for (v, (symbol, idx)) in env.component_vars() {
         let x = *state.symbols.get(&symbol)?.get(&idx);
         point.insert(v, Rational::from_f64_exact(x)?);

@@ -15,7 +15,8 @@ use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic, Node};
 use num_dual::DualNum;
 use std::cell::RefCell;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::rc::Rc;
 
 /// Samples whose singular expression is below this in magnitude are excluded.
@@ -78,7 +79,7 @@ impl<'a> Sampler<'a> {
             decls,
             check,
             sampling,
-            tapes: RefCell::new(HashMap::new()),
+            tapes: RefCell::new(HashMap::default()),
             rng: Rng::new(sampling.seed),
             anchor,
             parametrisation: Parametrisation::new(decls, &check.assumptions)?,
@@ -195,7 +196,7 @@ impl<'a> Sampler<'a> {
 
     pub(super) fn draw(&mut self) -> Result<State, Diagnostic> {
         let d = self.decls.dim;
-        let mut symbols = HashMap::new();
+        let mut symbols = HashMap::default();
         for (name, &rank) in &self.decls.symbols {
             let (lo, hi) = self.range(name);
             let rng = &mut self.rng;

@@ -15,7 +15,8 @@ use super::sampler::{Sampler, State};
 use crate::derivation::{AssumptionKind, Constraint};
 use crate::kernel::assignments;
 use crate::lang::Diagnostic;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
+use rustc_hash::FxHashMap as HashMap;
 use std::f64::consts::PI;
 
 /// Random samples the search starts from (the worst ones).
@@ -229,7 +230,7 @@ pub(super) fn worst_case(
     // evaluation, as it did when it was computed again; its margin is the one already
     // found (the margin is a function of the state, and what it records — quadrature
     // accuracy — is a maximum), and it cannot raise the worst margin found so far.
-    let mut seen: HashMap<Vec<u64>, Option<f64>> = HashMap::new();
+    let mut seen: HashMap<Vec<u64>, Option<f64>> = HashMap::default();
     // A state inside the hypotheses and off the singular set, with its margin; `None`
     // for a point the search may not visit.
     let mut visit = |x: &[f64], result: &mut SearchResult| -> Result<Option<f64>, Diagnostic> {

@@ -27,7 +27,7 @@ use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node, Span};
 use num_dual::DualNum;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// One scalar operation; operands are indices of earlier operations.
 #[derive(Clone, Debug, PartialEq)]
@@ -742,10 +742,10 @@ impl<'a> Compiler<'a> {
             defs,
             ops: Vec::new(),
             shared: rustc_hash::FxHashMap::default(),
-            symbols: HashMap::new(),
+            symbols: HashMap::default(),
             inputs: Vec::new(),
-            memo: HashMap::new(),
-            degrees: HashMap::new(),
+            memo: HashMap::default(),
+            degrees: HashMap::default(),
             maxn: Vec::new(),
             avgs: Vec::new(),
             budget,

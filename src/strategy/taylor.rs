@@ -9,7 +9,8 @@ use super::eval::Varying;
 use crate::kernel::{assignments, Rational, Tensor, Var, VarTable};
 use crate::lang::Decls;
 use num_dual::DualNum;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// Step of the central differences. The five-point stencil is exact for polynomials of
 /// degree ≤ 4 in the step and has truncation error h⁴/30 · |f⁽⁵⁾| otherwise; rounding
@@ -88,7 +89,7 @@ impl TaylorFields {
     pub fn random(decls: &Decls, order: u32, uniform: &mut dyn FnMut() -> f64) -> Self {
         let dim = decls.dim;
         let centre: Vec<f64> = (0..dim).map(|_| uniform()).collect();
-        let mut terms = HashMap::new();
+        let mut terms = HashMap::default();
         for (field, deps) in &decls.fields {
             let rank = decls.symbols.get(field).copied().unwrap_or(0);
             let exponents: Vec<Vec<u32>> = (0..(order + 1).pow(dim as u32))
@@ -185,8 +186,8 @@ mod tests {
     /// u(x) with u = 2, u_,1 = 3, u_,12 = 5, u_,11 = 4 at the centre (1, 0, -1).
     fn field() -> TaylorFields {
         let mut vars = VarTable::new();
-        let mut varying = HashMap::new();
-        let mut values = HashMap::new();
+        let mut varying = HashMap::default();
+        let mut values = HashMap::default();
         for (orders, value) in [(vec![], 2), (vec![0], 3), (vec![0, 1], 5), (vec![0, 0], 4)] {
             let v = vars.intern(&format!("u{orders:?}"));
             varying.insert(

@@ -16,7 +16,7 @@ use crate::derivation::Definition;
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Node, NodeKind, Target};
 use num_dual::DualNum;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// Step of the differences in ε and along the coordinates of α. The five-point
 /// stencil is exact for polynomials of degree ≤ 4, so for the usual densities
@@ -141,8 +141,8 @@ pub fn variations<T: DualNum<Primitive = f64>>(
     let deps = &env.decls.fields[field];
     let coords: Vec<usize> = (0..d).filter(|&k| deps[k]).collect();
     let is_field = |x: &Node| matches!(&x.kind, NodeKind::Leaf { target: Target::Symbol(s), .. } if s == field);
-    let order = deepest(body, env.defs, &is_field, &mut HashMap::new()).unwrap_or(0);
-    let inside = deepest(body, env.defs, &|_| true, &mut HashMap::new()).unwrap_or(0);
+    let order = deepest(body, env.defs, &is_field, &mut HashMap::default()).unwrap_or(0);
+    let inside = deepest(body, env.defs, &|_| true, &mut HashMap::default()).unwrap_or(0);
     let depth = inside + order;
     if depth > MAX_NESTING {
         return Err(fail(&format!(

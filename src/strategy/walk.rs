@@ -20,7 +20,7 @@ use crate::kernel::{Rational, Tensor};
 use crate::lang::matrix::{MatrixOp, MatrixRead, Order};
 use crate::lang::parser::{Func, Func2, Wrt};
 use crate::lang::{Node, NodeKind, Target};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// What a route computes in. `Normal` is how the walk hands it the normal vector n:
 /// numbers, op ids, or nothing at all when n is a polynomial variable.
