@@ -93,15 +93,16 @@ pub struct RealEnv<'a, T> {
 }
 
 impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
+    /// An environment with the given symbol values (any map or list of them).
     pub fn new(
         decls: &'a Decls,
         defs: &'a [Definition],
-        symbols: HashMap<String, Tensor<T>>,
+        symbols: impl IntoIterator<Item = (String, Tensor<T>)>,
     ) -> Self {
         RealEnv {
             decls,
             defs,
-            symbols,
+            symbols: symbols.into_iter().collect(),
             memo: RefCell::new(HashMap::default()),
             degrees: RefCell::new(HashMap::default()),
             rules: RefCell::new(HashMap::default()),
