@@ -11,8 +11,8 @@
 use super::moments::monomial_moment;
 use super::rational::Rational;
 use num_traits::{One, Zero};
-use smallvec::SmallVec;
 use rustc_hash::FxHashMap as HashMap;
+use smallvec::SmallVec;
 use std::fmt::Write as _;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 

@@ -24,9 +24,9 @@ use crate::kernel::linear::{self, Affine, AffineEquation, Solution};
 use crate::kernel::{assignments, Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use num_traits::Zero;
+use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Reverse;
 use std::collections::BTreeSet;
-use rustc_hash::FxHashMap as HashMap;
 
 /// A component of a declared symbol: its name and 0-based indices.
 pub type Component = (String, Vec<usize>);

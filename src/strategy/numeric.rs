@@ -34,8 +34,8 @@ use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic};
 use nalgebra::{DVector, SymmetricEigen};
 use num_dual::{hessian, Dual2DVec64, DualNum, DualSVec64};
-use std::collections::BTreeMap;
 use rustc_hash::FxHashMap as HashMap;
+use std::collections::BTreeMap;
 
 pub use super::float::TOL;
 

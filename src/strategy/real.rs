@@ -23,8 +23,8 @@ use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node, Span};
 use nalgebra::{Dyn, U1};
 use num_dual::{Derivative, DualDVec64, DualNum};
-use std::cell::{Cell, RefCell};
 use rustc_hash::FxHashMap as HashMap;
+use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
 /// Grid points of `maxn` over [0, 2π) before golden-section refinement of every local

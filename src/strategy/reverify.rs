@@ -26,8 +26,8 @@ use super::{Counterexample, Reverified};
 use crate::derivation::{Check, Constraint, Expression, Relation};
 use crate::kernel::{Quotient, Rational, Tensor, Var};
 use crate::lang::Decls;
-use std::collections::BTreeMap;
 use rustc_hash::FxHashMap as HashMap;
+use std::collections::BTreeMap;
 
 /// Relative agreement required between the exact values of a counterexample and the
 /// interpreter's `f64` values at the same point.

@@ -14,9 +14,9 @@ use crate::digits::{self, significant};
 use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic, Node};
 use num_dual::DualNum;
+use rustc_hash::FxHashMap as HashMap;
 use std::cell::RefCell;
 use std::collections::BTreeMap;
-use rustc_hash::FxHashMap as HashMap;
 use std::rc::Rc;
 
 /// Samples whose singular expression is below this in magnitude are excluded.

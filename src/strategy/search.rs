@@ -15,8 +15,8 @@ use super::sampler::{Sampler, State};
 use crate::derivation::{AssumptionKind, Constraint};
 use crate::kernel::assignments;
 use crate::lang::Diagnostic;
-use std::collections::BTreeSet;
 use rustc_hash::FxHashMap as HashMap;
+use std::collections::BTreeSet;
 use std::f64::consts::PI;
 
 /// Random samples the search starts from (the worst ones).

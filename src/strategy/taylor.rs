@@ -9,8 +9,8 @@ use super::eval::Varying;
 use crate::kernel::{assignments, Rational, Tensor, Var, VarTable};
 use crate::lang::Decls;
 use num_dual::DualNum;
-use std::collections::BTreeMap;
 use rustc_hash::FxHashMap as HashMap;
+use std::collections::BTreeMap;
 
 /// Step of the central differences. The five-point stencil is exact for polynomials of
 /// degree ≤ 4 in the step and has truncation error h⁴/30 · |f⁽⁵⁾| otherwise; rounding
