@@ -12,7 +12,7 @@
 
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_str, DerivationFile, Strategy};
-use cosserat_check::kernel::monomial_moment;
+use cosserat_check::kernel::{monomial_moment, Poly};
 use cosserat_check::strategy::decide_claim;
 use cosserat_check::strategy::probe::Probe;
 use std::hint::black_box;
@@ -116,9 +116,12 @@ const TIGHT_VARS: usize = 12;
 /// product is one addition, and keeps integer numerators over one common denominator,
 /// so that a coefficient product is one multiplication. Both results are compared, so
 /// the estimate does the same work.
-fn term_products() -> (f64, f64) {
+/// The operands of the tight-loop comparison: two polynomials as the kernel holds
+/// them, and the same two with packed exponents and integer numerators over 6.
+type Packed = Vec<(u64, i64)>;
+fn product_operands() -> (Poly, Poly, Packed, Packed) {
     use cosserat_check::kernel::rational::Rational;
-    use cosserat_check::kernel::{Monomial, Poly};
+    use cosserat_check::kernel::Monomial;
     use std::collections::HashMap;
     // A deterministic pseudo-random stream (xorshift).
     let mut state = 0x9e37_79b9_7f4a_7c15u64;
@@ -158,7 +161,6 @@ fn term_products() -> (f64, f64) {
         p
     };
     let (pa, pb) = (poly(&a), poly(&b));
-    let pack = |e: &[u32; TIGHT_VARS]| e.iter().fold(0u64, |acc, &x| (acc << 5) | u64::from(x));
     let packed = |terms: &[([u32; TIGHT_VARS], i64)]| -> Vec<(u64, i64)> {
         // Equal monomials merged, as in a canonical polynomial.
         let mut merged: HashMap<u64, i64> = HashMap::new();
@@ -168,6 +170,17 @@ fn term_products() -> (f64, f64) {
         merged.into_iter().filter(|&(_, c)| c != 0).collect()
     };
     let (qa, qb) = (packed(&a), packed(&b));
+    (pa, pb, qa, qb)
+}
+
+/// Bits per exponent in a packed monomial.
+fn pack(e: &[u32; TIGHT_VARS]) -> u64 {
+    e.iter().fold(0u64, |acc, &x| (acc << 5) | u64::from(x))
+}
+
+fn term_products() -> (f64, f64) {
+    use cosserat_check::kernel::rational::Rational;
+    let (pa, pb, qa, qb) = product_operands();
     let products = (pa.num_terms() * pb.num_terms()) as f64;
     let reps = 200;
     let ours = median_ms(9, || {
@@ -243,7 +256,8 @@ fn main() {
     // `-- --task NAME REPS`: each repetition's time in milliseconds, one per line, for
     // benches/peers.py (NAME: a claim id, decided with its correction; `rank6` or
     // `rank8`, the isotropic moment identity of that rank in 3D and its mutant read and decided; `a2`,
-    // the A² derivation of the Appendix file).
+    // the A² derivation of the Appendix file; `products`, 200 products of the tight-loop
+    // comparison's two polynomials, for profiling the kernel).
     if let Some(k) = args.iter().position(|a| a == "--task") {
         let name = args.get(k + 1).expect("--task NAME REPS");
         let reps: usize = args
@@ -252,6 +266,14 @@ fn main() {
             .expect("--task NAME REPS");
         let files = corpus();
         let mut run: Box<dyn FnMut()> = match name.as_str() {
+            "products" => {
+                let (pa, pb, _, _) = product_operands();
+                Box::new(move || {
+                    for _ in 0..200 {
+                        black_box(&pa * &pb);
+                    }
+                })
+            }
             "a2" => {
                 let probes = a2_probes();
                 Box::new(move || {

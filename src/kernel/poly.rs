@@ -118,6 +118,22 @@ impl Monomial {
         Monomial(self.0.iter().map(|&(v, k)| (v, k * e)).collect())
     }
 
+    /// The first two factors packed into a word whose order is the monomials' order on
+    /// those factors: 16 bits of variable + 1 and 16 bits of offset exponent per
+    /// factor, 0 for a missing one. `None` when a variable or exponent does not fit.
+    fn sort_key(&self) -> Option<u64> {
+        let mut key = 0u64;
+        for slot in 0..2 {
+            key <<= 32;
+            if let Some(&(v, e)) = self.0.get(slot) {
+                let v = u16::try_from(v).ok()?.checked_add(1)?;
+                let e = i16::try_from(e).ok()?;
+                key |= (u64::from(v) << 16) | u64::from((e as u16) ^ 0x8000);
+            }
+        }
+        Some(key)
+    }
+
     /// The monomial with the factor of `v` left out (still sorted).
     pub fn without(&self, v: Var) -> Monomial {
         Monomial(self.0.iter().copied().filter(|&(w, _)| w != v).collect())
@@ -228,7 +244,7 @@ impl Poly {
     /// which is how every operation that produces many terms builds its result.
     pub fn from_terms(terms: impl IntoIterator<Item = (Monomial, Rational)>) -> Self {
         let mut terms: Vec<(Monomial, Rational)> = terms.into_iter().collect();
-        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        sort_by_monomial(&mut terms);
         let mut out: Vec<(Monomial, Rational)> = Vec::with_capacity(terms.len());
         for (m, c) in terms {
             match out.last_mut() {
@@ -570,6 +586,42 @@ impl One for Poly {
     }
 }
 
+/// Terms beyond which [`sort_by_monomial`] sorts keys instead of the terms themselves.
+const SORT_BY_KEY_FROM: usize = 32;
+
+/// Sorts terms by monomial. A long list is sorted as (key, position) pairs: the key
+/// packs a monomial's first two factors so that a smaller key is a smaller monomial
+/// (a missing factor packs as 0, below any factor, as a list that ends sorts before
+/// one that goes on), and only equal keys compare the monomials. Moving 16-byte pairs
+/// and comparing integers is what makes a product's sort cheap.
+fn sort_by_monomial(terms: &mut Vec<(Monomial, Rational)>) {
+    let keys: Option<Vec<(u64, u32)>> = (terms.len() > SORT_BY_KEY_FROM)
+        .then(|| {
+            terms
+                .iter()
+                .enumerate()
+                .map(|(k, (m, _))| Some((m.sort_key()?, u32::try_from(k).ok()?)))
+                .collect()
+        })
+        .flatten();
+    let Some(mut keys) = keys else {
+        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        return;
+    };
+    keys.sort_unstable_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then_with(|| terms[a.1 as usize].0.cmp(&terms[b.1 as usize].0))
+    });
+    let mut sorted = Vec::with_capacity(terms.len());
+    for (_, k) in keys {
+        sorted.push(std::mem::replace(
+            &mut terms[k as usize],
+            (Monomial::one(), Rational::zero()),
+        ));
+    }
+    *terms = sorted;
+}
+
 /// `a + sign·b` for sorted term lists: one linear merge, the result sorted.
 fn merge(a: Vec<(Monomial, Rational)>, b: &[(Monomial, Rational)], negate_b: bool) -> Poly {
     let signed = |c: &Rational| if negate_b { -c } else { c.clone() };
@@ -833,6 +885,57 @@ mod tests {
             assert_eq!(&a * &k, general);
             assert_eq!(&k * &a, general);
             assert_eq!(&a * &Poly::one(), a);
+        }
+    }
+
+    /// Long term lists are sorted by packed keys of the first two factors. Monomials
+    /// that tie on the key (differing from the third factor on), that are prefixes of
+    /// others, with negative exponents, and ones whose variable or exponent does not
+    /// fit a key (the plain sort then) all come out strictly increasing, as the plain
+    /// sort orders them, with every coefficient kept.
+    #[test]
+    fn key_sort_orders_long_lists_as_the_plain_sort() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut next = move |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        for wide in [false, true] {
+            let vars: &[Var] = if wide {
+                &[0, 1, 2, 70_000]
+            } else {
+                &[0, 1, 2, 3]
+            };
+            let exps: &[i32] = if wide {
+                &[-40_000, -1, 1, 2]
+            } else {
+                &[-2, -1, 1, 2]
+            };
+            let terms: Vec<(Monomial, Rational)> = (0..300)
+                .map(|k| {
+                    let mut factors = Vec::new();
+                    for &v in vars {
+                        if next(2) == 0 {
+                            factors.push((v, exps[next(4) as usize]));
+                        }
+                    }
+                    (Monomial::from_factors(factors), Rational::int(k + 1))
+                })
+                .collect();
+            let p = Poly::from_terms(terms.clone());
+            assert!(p.terms.windows(2).all(|w| w[0].0 < w[1].0));
+            let mut plain = terms;
+            plain.sort_by(|a, b| a.0.cmp(&b.0));
+            let mut expected: Vec<(Monomial, Rational)> = Vec::new();
+            for (m, c) in plain {
+                match expected.last_mut() {
+                    Some((last, sum)) if *last == m => *sum += &c,
+                    _ => expected.push((m, c)),
+                }
+            }
+            assert_eq!(p.terms, expected);
         }
     }
 
