@@ -623,7 +623,12 @@ fn sort_by_monomial(terms: &mut Vec<(Monomial, Rational)>) {
 }
 
 /// `a + sign·b` for sorted term lists: one linear merge, the result sorted.
-fn merge(a: Vec<(Monomial, Rational)>, b: &[(Monomial, Rational)], negate_b: bool) -> Poly {
+/// `a` is owned or cloned term by term, so a borrowed sum copies each term once.
+fn merge(
+    a: impl ExactSizeIterator<Item = (Monomial, Rational)>,
+    b: &[(Monomial, Rational)],
+    negate_b: bool,
+) -> Poly {
     let signed = |c: &Rational| if negate_b { -c } else { c.clone() };
     let mut out = Vec::with_capacity(a.len() + b.len());
     let mut b = b.iter().peekable();
@@ -648,7 +653,7 @@ fn merge(a: Vec<(Monomial, Rational)>, b: &[(Monomial, Rational)], negate_b: boo
 impl Add<&Poly> for &Poly {
     type Output = Poly;
     fn add(self, rhs: &Poly) -> Poly {
-        merge(self.terms.clone(), &rhs.terms, false)
+        merge(self.terms.iter().cloned(), &rhs.terms, false)
     }
 }
 
@@ -657,7 +662,7 @@ impl AddAssign<&Poly> for Poly {
         if let [(m, c)] = rhs.terms.as_slice() {
             self.add_term(m.clone(), c.clone());
         } else if !rhs.terms.is_empty() {
-            *self = merge(std::mem::take(&mut self.terms), &rhs.terms, false);
+            *self = merge(std::mem::take(&mut self.terms).into_iter(), &rhs.terms, false);
         }
     }
 }
@@ -665,7 +670,7 @@ impl AddAssign<&Poly> for Poly {
 impl Sub<&Poly> for &Poly {
     type Output = Poly;
     fn sub(self, rhs: &Poly) -> Poly {
-        merge(self.terms.clone(), &rhs.terms, true)
+        merge(self.terms.iter().cloned(), &rhs.terms, true)
     }
 }
 
@@ -699,22 +704,34 @@ impl Neg for &Poly {
     }
 }
 
-macro_rules! owned_ops {
-    ($($tr:ident $method:ident),*) => {$(
-        impl $tr for Poly {
-            type Output = Poly;
-            fn $method(self, rhs: Poly) -> Poly {
-                (&self).$method(&rhs)
-            }
-        }
-    )*};
+impl Add for Poly {
+    type Output = Poly;
+    fn add(self, rhs: Poly) -> Poly {
+        merge(self.terms.into_iter(), &rhs.terms, false)
+    }
 }
-owned_ops!(Add add, Sub sub, Mul mul);
+
+impl Sub for Poly {
+    type Output = Poly;
+    fn sub(self, rhs: Poly) -> Poly {
+        merge(self.terms.into_iter(), &rhs.terms, true)
+    }
+}
+
+impl Mul for Poly {
+    type Output = Poly;
+    fn mul(self, rhs: Poly) -> Poly {
+        &self * &rhs
+    }
+}
 
 impl Neg for Poly {
     type Output = Poly;
-    fn neg(self) -> Poly {
-        -&self
+    fn neg(mut self) -> Poly {
+        for (_, c) in &mut self.terms {
+            *c = -&*c;
+        }
+        self
     }
 }
 
