@@ -250,15 +250,17 @@ impl Certificate {
 
     /// The zeros of `num / den` (polynomials in `v` alone; common roots are undefined
     /// points, not zeros) on `interval` are exactly `roots`. `Err` carries the zeros
-    /// found (empty when `num / den` is not a function of `v` alone).
+    /// found, or `None` when there is no sign chart to read them from (`num / den` is
+    /// not a function of `v` alone, the interval is empty, or the roots could not be
+    /// isolated).
     pub fn roots_exactly(
         (num, den): (&Poly, &Poly),
         v: Var,
         interval: &Interval,
         roots: &[Rational],
         names: &VarTable,
-    ) -> Result<Self, Vec<sign::Real>> {
-        let chart = sign::chart_of((num, den), v, interval).ok_or_else(Vec::new)?;
+    ) -> Result<Self, Option<Vec<sign::Real>>> {
+        let chart = sign::chart_of((num, den), v, interval).ok_or(None)?;
         let zeros = chart.zeros();
         let mut stated: Vec<&Rational> = roots.iter().collect();
         stated.sort();
@@ -269,7 +271,7 @@ impl Certificate {
                 .zip(&stated)
                 .all(|(z, r)| *z == sign::Real::Exact((*r).clone()));
         if !exact {
-            return Err(zeros);
+            return Err(Some(zeros));
         }
         Ok(Self::of(Fact::Roots {
             interval: interval.describe(names.name(v)),

@@ -206,8 +206,9 @@ fn isolation_width() -> Rational {
 }
 
 /// The sign chart of `num / den` on `interval`. A common root of `num` and `den` is a
-/// pole: a point where the expression is undefined. `None` for a zero denominator or an
-/// empty interval.
+/// pole: a point where the expression is undefined. `None` for a zero denominator, an
+/// empty interval, or roots that the bisection could not isolate (see
+/// [`isolate_roots`]).
 pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignChart> {
     if den.is_zero() || interval.is_empty() {
         return None;
@@ -251,7 +252,7 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
     let inner = product.without_root_at(&a).without_root_at(&b);
     // A rational root is usually the simplest rational of its isolating interval:
     // kept exactly when it is.
-    let isolated = isolate_roots(&inner, &a, &b, &isolation_width())
+    let isolated = isolate_roots(&inner, &a, &b, &isolation_width())?
         .into_iter()
         .map(|(lo, hi)| {
             if lo == hi {
@@ -310,7 +311,7 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
 }
 
 /// The sign chart of `num / den`, polynomials in `v` alone; `None` when another
-/// variable occurs or the interval is empty.
+/// variable occurs, the interval is empty, or the roots could not be isolated.
 pub fn chart_of((num, den): (&Poly, &Poly), v: Var, interval: &Interval) -> Option<SignChart> {
     let num = UniPoly::from_poly(num, v)?;
     let den = UniPoly::from_poly(den, v)?;

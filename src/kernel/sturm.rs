@@ -211,15 +211,34 @@ pub fn count_roots(p: &UniPoly, a: &Bound, b: &Bound) -> usize {
 ///
 /// A midpoint that is a root is kept exactly and divided out of the polynomial that
 /// the halves go on with, so that no root next to it is lost.
+///
+/// `None` after [`MAX_BISECTIONS`] bisections: with correct Sturm counts a root needs
+/// about log₂((b − a)/width) of them plus its distance to the next root in bits, so the
+/// bound is met only by roots closer than 2⁻⁹⁰⁰⁰⁰ or by a wrong count; either way the
+/// caller cannot decide, and says so.
 pub fn isolate_roots(
     p: &UniPoly,
     a: &Rational,
     b: &Rational,
     width: &Rational,
-) -> Vec<(Rational, Rational)> {
+) -> Option<Vec<(Rational, Rational)>> {
+    isolate_roots_within(p, a, b, width, MAX_BISECTIONS)
+}
+
+/// The most bisections [`isolate_roots`] makes.
+pub const MAX_BISECTIONS: usize = 100_000;
+
+fn isolate_roots_within(
+    p: &UniPoly,
+    a: &Rational,
+    b: &Rational,
+    width: &Rational,
+    max_bisections: usize,
+) -> Option<Vec<(Rational, Rational)>> {
     if p.is_zero() {
-        return Vec::new();
+        return Some(Vec::new());
     }
+    let mut bisections = 0usize;
     let half = Rational::ratio(1, 2).expect("2 ≠ 0");
     // Polynomials by index, each with its Sturm sequence: `p`, and `p` with exact
     // roots divided out.
@@ -250,6 +269,10 @@ pub fn isolate_roots(
             out.push((lo, hi));
             continue;
         }
+        bisections += 1;
+        if bisections > max_bisections {
+            return None;
+        }
         let mid = &(&lo + &hi) * &half;
         if polys[k].1[0].sign_at(&mid) == 0 {
             out.push((mid.clone(), mid.clone()));
@@ -271,7 +294,7 @@ pub fn isolate_roots(
         }
     }
     out.sort();
-    out
+    Some(out)
 }
 
 impl UniPoly {
@@ -362,13 +385,13 @@ mod tests {
     fn isolates_irrational_roots() {
         let p = up(&[-2, 0, 1]); // ±√2
         let w = Rational::ratio(1, 1_000_000).unwrap();
-        let roots = isolate_roots(&p, &Rational::int(0), &Rational::int(10), &w);
+        let roots = isolate_roots(&p, &Rational::int(0), &Rational::int(10), &w).unwrap();
         assert_eq!(roots.len(), 1);
         let (lo, hi) = &roots[0];
         assert!(lo.to_f64() <= 2f64.sqrt() && 2f64.sqrt() <= hi.to_f64());
         // An exact rational root is found exactly.
         let q = up(&[-1, 2]); // 2x − 1
-        let r = isolate_roots(&q, &Rational::int(0), &Rational::int(1), &w);
+        let r = isolate_roots(&q, &Rational::int(0), &Rational::int(1), &w).unwrap();
         assert_eq!(
             r,
             vec![(
@@ -376,6 +399,27 @@ mod tests {
                 Rational::ratio(1, 2).unwrap()
             )]
         );
+    }
+
+    /// Two roots 2⁻⁶⁰ apart need more than 60 bisections to separate: under a budget of
+    /// 50 the isolation gives up (`None`, never a partial list), and with the full
+    /// budget it separates them.
+    #[test]
+    fn isolation_gives_up_beyond_its_bisection_budget() {
+        let gap = Rational::ratio(1, 1 << 60).unwrap();
+        let (r1, r2) = (
+            Rational::ratio(1, 3).unwrap(),
+            &Rational::ratio(1, 3).unwrap() + &gap,
+        );
+        // (x − r1)(x − r2) = x² − (r1 + r2) x + r1 r2.
+        let p = UniPoly::new(vec![&r1 * &r2, -(&r1 + &r2), Rational::int(1)]);
+        let w = Rational::ratio(1, 1 << 20).unwrap();
+        let (a, b) = (Rational::int(0), Rational::int(1));
+        assert_eq!(isolate_roots_within(&p, &a, &b, &w, 50), None);
+        let roots = isolate_roots(&p, &a, &b, &w).expect("within the budget");
+        assert_eq!(roots.len(), 2);
+        assert!(roots[0].1 <= roots[1].0);
+        assert!(roots[0].0 <= r1 && r1 <= roots[0].1 && roots[1].0 <= r2 && r2 <= roots[1].1);
     }
 
     #[test]
@@ -387,7 +431,7 @@ mod tests {
             p = p.mul(&up(factor));
         }
         let w = Rational::ratio(1, 1 << 20).unwrap();
-        let roots = isolate_roots(&p, &Rational::int(-2), &Rational::int(2), &w);
+        let roots = isolate_roots(&p, &Rational::int(-2), &Rational::int(2), &w).unwrap();
         let exact = |n, d| {
             let r = Rational::ratio(n, d).unwrap();
             (r.clone(), r)

@@ -55,7 +55,16 @@ pub(super) fn decide(
             return Ok(Outcome::proved(Method::RationalFunction, 1, c)
                 .with_finding(Finding::RationalFunction(evidence)));
         }
-        Err(zeros) => zeros,
+        Err(Some(zeros)) => zeros,
+        Err(None) => {
+            evidence.points.push(format!(
+                "the roots on {} could not be isolated within {} bisections",
+                i.describe(&cx.name(v)),
+                crate::kernel::sturm::MAX_BISECTIONS
+            ));
+            return Ok(Outcome::undecided(Method::RationalFunction, 0)
+                .with_finding(Finding::RationalFunction(evidence)));
+        }
     };
     let name = cx.name(v);
     evidence.points = zeros
