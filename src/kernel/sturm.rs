@@ -213,9 +213,10 @@ pub fn count_roots(p: &UniPoly, a: &Bound, b: &Bound) -> usize {
 /// the halves go on with, so that no root next to it is lost.
 ///
 /// `None` after [`MAX_BISECTIONS`] bisections: with correct Sturm counts a root needs
-/// about log₂((b − a)/width) of them plus its distance to the next root in bits, so the
-/// bound is met only by roots closer than 2⁻⁹⁰⁰⁰⁰ or by a wrong count; either way the
-/// caller cannot decide, and says so.
+/// about log₂((b − a)/width) of them plus the bits of its distance to the next root,
+/// so the bound is met only by a wrong count or by extreme input (roots within about
+/// 2⁻⁹⁰⁰⁰⁰ of each other, or thousands of roots); either way the caller cannot
+/// decide, and says so.
 pub fn isolate_roots(
     p: &UniPoly,
     a: &Rational,
