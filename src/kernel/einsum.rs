@@ -77,9 +77,31 @@ pub fn einsum<A: Arithmetic>(
                 .collect()
         })
         .collect();
+    // Each factor's component offset as `base + Σ stride · values[position]`: the fixed
+    // slots make the base, each letter slot a stride (row-major, as `Tensor::get`).
+    let offsets: Vec<(usize, Vec<(usize, usize)>)> = factors
+        .iter()
+        .zip(&plan)
+        .map(|((t, _), p)| {
+            assert_eq!(p.len(), t.rank(), "index count must equal the rank");
+            let mut base = 0;
+            let mut strides = Vec::new();
+            let mut stride = 1;
+            for r in p.iter().rev() {
+                match r {
+                    Ok(k) => strides.push((*k, stride)),
+                    Err(v) => {
+                        assert!(*v < dim, "index {v} out of range 0..{dim}");
+                        base += v * stride;
+                    }
+                }
+                stride *= dim;
+            }
+            (base, strides)
+        })
+        .collect();
     let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
     let mut values = vec![0usize; all.len()];
-    let mut idx: Vec<usize> = Vec::with_capacity(8);
     let mut data = Vec::with_capacity(dim.pow(out.len() as u32));
     for o in assignments(dim, out.len()) {
         values[..out.len()].copy_from_slice(&o);
@@ -87,13 +109,11 @@ pub fn einsum<A: Arithmetic>(
         for s in &inner {
             values[out.len()..].copy_from_slice(s);
             let mut prod = Some(arithmetic.one());
-            for ((t, _), p) in factors.iter().zip(&plan) {
-                idx.clear();
-                idx.extend(p.iter().map(|r| match r {
-                    Ok(k) => values[*k],
-                    Err(v) => *v,
-                }));
-                let c = t.get(&idx);
+            for ((t, _), (base, strides)) in factors.iter().zip(&offsets) {
+                let at = strides
+                    .iter()
+                    .fold(*base, |acc, &(k, stride)| acc + stride * values[k]);
+                let c = &t.components()[at];
                 if arithmetic.is_exact_zero(c) {
                     prod = None;
                     break;

@@ -13,13 +13,41 @@ use std::ops::{Add, Mul, Neg};
 pub fn assignments(dim: usize, rank: usize) -> impl Iterator<Item = Vec<usize>> {
     let count = dim.checked_pow(rank as u32).unwrap_or(0);
     (0..count).map(move |mut flat| {
-        let mut idx = vec![0; rank];
-        for slot in idx.iter_mut().rev() {
-            *slot = flat % dim;
+        // Least significant first, then reversed: no zero-filled allocation.
+        let mut idx = Vec::with_capacity(rank);
+        for _ in 0..rank {
+            idx.push(flat % dim);
             flat /= dim;
         }
+        idx.reverse();
         idx
     })
+}
+
+/// Calls `f` with every assignment of `rank` indices in `0..dim`, in row-major order
+/// (as [`assignments`] lists them), through one buffer advanced in place.
+pub fn for_each_assignment(dim: usize, rank: usize, mut f: impl FnMut(&[usize])) {
+    // No assignment when there are none (dim 0) or too many to count, as [`assignments`].
+    if dim.checked_pow(rank as u32).unwrap_or(0) == 0 {
+        return;
+    }
+    let mut idx = vec![0; rank];
+    loop {
+        f(&idx);
+        // The odometer: the last index turns fastest.
+        let mut slot = rank;
+        loop {
+            if slot == 0 {
+                return;
+            }
+            slot -= 1;
+            idx[slot] += 1;
+            if idx[slot] < dim {
+                break;
+            }
+            idx[slot] = 0;
+        }
+    }
 }
 
 /// A dense tensor of the given rank over `0..dim` in every slot, stored row-major.
@@ -41,7 +69,8 @@ pub struct Tensor<T> {
 impl<T> Tensor<T> {
     /// Builds a tensor from its components.
     pub fn from_fn(dim: usize, rank: usize, mut f: impl FnMut(&[usize]) -> T) -> Self {
-        let data = assignments(dim, rank).map(|idx| f(&idx)).collect();
+        let mut data = Vec::with_capacity(dim.checked_pow(rank as u32).unwrap_or(0));
+        for_each_assignment(dim, rank, |idx| data.push(f(idx)));
         Tensor { dim, rank, data }
     }
 
@@ -236,6 +265,16 @@ mod tests {
         assert_eq!(all.len(), 729);
         assert_eq!(all[1], vec![0, 0, 0, 0, 0, 1]);
         assert_eq!(all[728], vec![2; 6]);
+        // The in-place odometer visits the same assignments in the same order.
+        for (dim, rank) in [(3, 0), (2, 3), (3, 4), (1, 5), (0, 2), (0, 0)] {
+            let mut visited = Vec::new();
+            for_each_assignment(dim, rank, |idx| visited.push(idx.to_vec()));
+            assert_eq!(
+                visited,
+                assignments(dim, rank).collect::<Vec<_>>(),
+                "{dim} {rank}"
+            );
+        }
     }
 
     #[test]
