@@ -62,35 +62,23 @@ pub fn einsum<A: Arithmetic>(
         }
     }
     let summed = all.len() - out.len();
-    // For each factor slot: Ok(position in `all`) or Err(fixed value).
-    let plan: Vec<Vec<Result<usize, usize>>> = factors
-        .iter()
-        .map(|(_, slots)| {
-            slots
-                .iter()
-                .map(|s| match s {
-                    Slot::Letter(c) => {
-                        Ok(all.iter().position(|d| d == c).expect("collected above"))
-                    }
-                    Slot::Fixed(v) => Err(*v),
-                })
-                .collect()
-        })
-        .collect();
-    // Each factor's component offset as `base + Σ stride · values[position]`: the fixed
-    // slots make the base, each letter slot a stride (row-major, as `Tensor::get`).
+    // Each factor's component offset as `base + Σ stride · values[position in all]`:
+    // the fixed slots make the base, each letter slot a stride (row-major, as
+    // `Tensor::get`).
     let offsets: Vec<(usize, Vec<(usize, usize)>)> = factors
         .iter()
-        .zip(&plan)
-        .map(|((t, _), p)| {
-            assert_eq!(p.len(), t.rank(), "index count must equal the rank");
+        .map(|(t, slots)| {
+            assert_eq!(slots.len(), t.rank(), "index count must equal the rank");
             let mut base = 0;
             let mut strides = Vec::new();
             let mut stride = 1;
-            for r in p.iter().rev() {
-                match r {
-                    Ok(k) => strides.push((*k, stride)),
-                    Err(v) => {
+            for s in slots.iter().rev() {
+                match s {
+                    Slot::Letter(c) => {
+                        let k = all.iter().position(|d| d == c).expect("collected above");
+                        strides.push((k, stride));
+                    }
+                    Slot::Fixed(v) => {
                         assert!(*v < dim, "index {v} out of range 0..{dim}");
                         base += v * stride;
                     }
