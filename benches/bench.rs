@@ -108,17 +108,11 @@ fn degree_identity(k: usize) -> String {
 const TIGHT_TERMS: usize = 40;
 const TIGHT_VARS: usize = 12;
 
-/// The time of one term product (multiply two terms and add the result into the sum)
-/// in the kernel's `Poly` and in a tight loop written for the purpose, in nanoseconds,
-/// on the same two polynomials: the distance of the exact kernel from the limit that
-/// issue 18 names (11–40 ns per product all-in). The tight loop packs a monomial's
-/// exponents (at most 15 each, 5 bits per variable) into one u64, so that a monomial
-/// product is one addition, and keeps integer numerators over one common denominator,
-/// so that a coefficient product is one multiplication. Both results are compared, so
-/// the estimate does the same work.
-/// The operands of the tight-loop comparison: two polynomials as the kernel holds
-/// them, and the same two with packed exponents and integer numerators over 6.
+/// A polynomial of the tight loop: packed monomials and integer numerators over 6.
 type Packed = Vec<(u64, i64)>;
+
+/// The operands of the tight-loop comparison: two polynomials as the kernel holds
+/// them, and the same two packed.
 fn product_operands() -> (Poly, Poly, Packed, Packed) {
     use cosserat_check::kernel::rational::Rational;
     use cosserat_check::kernel::Monomial;
@@ -173,11 +167,19 @@ fn product_operands() -> (Poly, Poly, Packed, Packed) {
     (pa, pb, qa, qb)
 }
 
-/// Bits per exponent in a packed monomial.
+/// A monomial's exponents packed 5 bits each into one word (the tight loop's monomial).
 fn pack(e: &[u32; TIGHT_VARS]) -> u64 {
     e.iter().fold(0u64, |acc, &x| (acc << 5) | u64::from(x))
 }
 
+/// The time of one term product (multiply two terms and add the result into the sum)
+/// in the kernel's `Poly` and in a tight loop written for the purpose, in nanoseconds,
+/// on the same two polynomials: the distance of the exact kernel from the limit that
+/// issue 18 names (11–40 ns per product all-in). The tight loop packs a monomial's
+/// exponents (at most 15 each, 5 bits per variable) into one u64, so that a monomial
+/// product is one addition, and keeps integer numerators over one common denominator,
+/// so that a coefficient product is one multiplication. Both results are compared, so
+/// the estimate does the same work.
 fn term_products() -> (f64, f64) {
     use cosserat_check::kernel::rational::Rational;
     let (pa, pb, qa, qb) = product_operands();

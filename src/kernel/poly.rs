@@ -750,6 +750,16 @@ mod tests {
         Rational::ratio(n, d).unwrap()
     }
 
+    /// A deterministic stream (xorshift from `seed`) of numbers below the argument.
+    fn below(mut seed: u64) -> impl FnMut(u64) -> u64 {
+        move |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        }
+    }
+
     fn vars(names: &[&str]) -> (VarTable, Vec<Poly>) {
         let mut t = VarTable::new();
         let ps = names.iter().map(|n| Poly::var(t.intern(n))).collect();
@@ -823,13 +833,7 @@ mod tests {
     fn operations_agree_with_a_tree_map_model() {
         use std::collections::BTreeMap;
         type Model = BTreeMap<Vec<(Var, i32)>, Rational>;
-        let mut seed = 0x2545_F491_4F6C_DD1D_u64;
-        let mut next = move |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut next = below(0x2545_F491_4F6C_DD1D);
         let random = |next: &mut dyn FnMut(u64) -> u64| -> Vec<(Vec<(Var, i32)>, Rational)> {
             let mut terms = Vec::new();
             for _ in 0..next(9) {
@@ -919,13 +923,7 @@ mod tests {
     /// sort orders them, with every coefficient kept.
     #[test]
     fn key_sort_orders_long_lists_as_the_plain_sort() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut next = move |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut next = below(0x9E37_79B9_7F4A_7C15);
         for wide in [false, true] {
             let vars: &[Var] = if wide {
                 &[0, 1, 2, 70_000]

@@ -58,7 +58,7 @@ pub(super) fn decide(
         Err(Some(zeros)) => zeros,
         Err(None) => {
             evidence.points.push(format!(
-                "the roots on {} could not be isolated within {} bisections",
+                "no sign chart on {}: the interval is empty or the roots could not be isolated within {} bisections",
                 i.describe(&cx.name(v)),
                 crate::kernel::sturm::MAX_BISECTIONS
             ));
