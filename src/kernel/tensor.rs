@@ -11,8 +11,7 @@ use std::ops::{Add, Mul, Neg};
 /// Every assignment of `rank` indices in `0..dim`, in row-major order. Rank 0 yields
 /// exactly one (empty) assignment.
 pub fn assignments(dim: usize, rank: usize) -> impl Iterator<Item = Vec<usize>> {
-    let count = dim.checked_pow(rank as u32).unwrap_or(0);
-    (0..count).map(move |mut flat| {
+    (0..assignment_count(dim, rank)).map(move |mut flat| {
         // Least significant first, then reversed: no zero-filled allocation.
         let mut idx = Vec::with_capacity(rank);
         for _ in 0..rank {
@@ -24,11 +23,19 @@ pub fn assignments(dim: usize, rank: usize) -> impl Iterator<Item = Vec<usize>> 
     })
 }
 
+/// dim^rank, the number of assignments; 0 when there are too many to count (none are
+/// then listed).
+fn assignment_count(dim: usize, rank: usize) -> usize {
+    u32::try_from(rank)
+        .ok()
+        .and_then(|r| dim.checked_pow(r))
+        .unwrap_or(0)
+}
+
 /// Calls `f` with every assignment of `rank` indices in `0..dim`, in row-major order
 /// (as [`assignments`] lists them), through one buffer advanced in place.
 pub fn for_each_assignment(dim: usize, rank: usize, mut f: impl FnMut(&[usize])) {
-    // No assignment when there are none (dim 0) or too many to count, as [`assignments`].
-    if dim.checked_pow(rank as u32).unwrap_or(0) == 0 {
+    if assignment_count(dim, rank) == 0 {
         return;
     }
     let mut idx = vec![0; rank];
@@ -69,7 +76,7 @@ pub struct Tensor<T> {
 impl<T> Tensor<T> {
     /// Builds a tensor from its components.
     pub fn from_fn(dim: usize, rank: usize, mut f: impl FnMut(&[usize]) -> T) -> Self {
-        let mut data = Vec::with_capacity(dim.checked_pow(rank as u32).unwrap_or(0));
+        let mut data = Vec::with_capacity(assignment_count(dim, rank));
         for_each_assignment(dim, rank, |idx| data.push(f(idx)));
         Tensor { dim, rank, data }
     }

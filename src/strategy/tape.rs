@@ -98,7 +98,7 @@ pub struct Tape {
 struct Maxima(std::sync::Arc<std::sync::Mutex<MaximaByKey>>);
 
 /// Maximisers (θ, value) by the bits of a `maxn` argument's angle-invariant values.
-type MaximaByKey = rustc_hash::FxHashMap<Vec<u64>, (f64, f64)>;
+type MaximaByKey = HashMap<Vec<u64>, (f64, f64)>;
 
 /// The most a tape's memo of maximisers holds, in key words (8 MB): each key has one
 /// word per op of the sub-tape, so a large sub-tape remembers fewer states.
@@ -131,7 +131,7 @@ struct Compiler<'a> {
     ops: Vec<Op>,
     /// Common subexpressions: looked up once per op pushed, so hashed by FxHash (the
     /// lookup order and the ops pushed do not depend on the hasher).
-    shared: rustc_hash::FxHashMap<Key, usize>,
+    shared: HashMap<Key, usize>,
     symbols: HashMap<String, Tensor<usize>>,
     inputs: Vec<(String, Vec<usize>)>,
     memo: HashMap<(String, Vec<usize>), Tensor<usize>>,
@@ -741,7 +741,7 @@ impl<'a> Compiler<'a> {
             decls,
             defs,
             ops: Vec::new(),
-            shared: rustc_hash::FxHashMap::default(),
+            shared: HashMap::default(),
             symbols: HashMap::default(),
             inputs: Vec::new(),
             memo: HashMap::default(),
