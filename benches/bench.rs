@@ -258,7 +258,8 @@ fn main() {
     // `-- --task NAME REPS`: each repetition's time in milliseconds, one per line, for
     // benches/peers.py (NAME: a claim id, decided with its correction; `rank6` or
     // `rank8`, the isotropic moment identity of that rank in 3D and its mutant read and decided; `a2`,
-    // the A² derivation of the Appendix file; `products`, 200 products of the tight-loop
+    // Q, D^(ep) and the four A² of the Appendix file derived together, as the peers do it
+    // (`a2-apart`: each A² derived from scratch); `products`, 200 products of the tight-loop
     // comparison's two polynomials, for profiling the kernel).
     if let Some(k) = args.iter().position(|a| a == "--task") {
         let name = args.get(k + 1).expect("--task NAME REPS");
@@ -277,6 +278,12 @@ fn main() {
                 })
             }
             "a2" => {
+                let probe = a2_probe();
+                Box::new(move || {
+                    black_box(probe.exact_each().unwrap());
+                })
+            }
+            "a2-apart" => {
                 let probes = a2_probes();
                 Box::new(move || {
                     for p in &probes {
@@ -482,13 +489,26 @@ fn main() {
     }
 }
 
-/// The four A² of the Appendix file (derived, correctly signed, (61), (54)) as probes:
-/// the file read and checked, nothing evaluated yet.
-fn a2_probes() -> Vec<Probe> {
+/// The four A² of the Appendix file: derived, correctly signed, (61), (54).
+const A2_EXPRESSIONS: [&str; 4] = ["A2", "A2c", "A2eq61", "A2eq54"];
+
+/// The Appendix file's text, and the box every probe of it needs.
+fn appendix() -> (String, [String; 2]) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations/A-3-shear-band.toml");
     let text = std::fs::read_to_string(&path).expect("the Appendix file");
-    let given = ["f_r > 0".to_owned(), "sig < 0".to_owned()];
-    ["A2", "A2c", "A2eq61", "A2eq54"]
+    (text, ["f_r > 0", "sig < 0"].map(str::to_owned))
+}
+
+/// The four A² as one probe: the file read and checked, nothing evaluated yet.
+fn a2_probe() -> Probe {
+    let (text, given) = appendix();
+    Probe::of_each("A-3", &text, &A2_EXPRESSIONS, &["u = 1".to_owned()], &given).unwrap()
+}
+
+/// The four A² as four probes: the file read and checked, nothing evaluated yet.
+fn a2_probes() -> Vec<Probe> {
+    let (text, given) = appendix();
+    A2_EXPRESSIONS
         .iter()
         .map(|e| Probe::new("A-3", &text, e, &["u = 1".to_owned()], &given).unwrap())
         .collect()

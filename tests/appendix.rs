@@ -255,6 +255,78 @@ fn the_interpreter_agrees_with_the_exact_derivation() {
     }
 }
 
+/// Expressions probed together share their definitions (D^(ep) is derived once) and
+/// give, each, the rational function that probing it alone gives: equal at three
+/// rational points by exact evaluation (the variables matched by name, the two
+/// evaluations number them differently), and different from each other.
+#[test]
+fn expressions_probed_together_derive_what_each_derives_alone() {
+    let each = ["A2", "A2c", "A2eq61", "A2eq54", "Dep[3,2]"];
+    let together = Probe::of_each(FILE, &text(), &each, &strings(&["u = 1"]), &strings(&GIVEN))
+        .unwrap()
+        .exact_each()
+        .unwrap();
+    assert_eq!(together.0.len(), each.len());
+    let points: [&[(&str, (i64, i64))]; 3] = [
+        &[
+            ("f_r", (7, 10)),
+            ("K", (5, 2)),
+            ("G", (13, 10)),
+            ("hC", (2, 5)),
+            ("h2", (1, 5)),
+            ("R_g", (4, 5)),
+            ("sig", (-11, 10)),
+        ],
+        &[
+            ("f_r", (3, 2)),
+            ("K", (9, 4)),
+            ("G", (1, 3)),
+            ("hC", (-1, 7)),
+            ("h2", (5, 3)),
+            ("R_g", (2, 1)),
+            ("sig", (-1, 4)),
+        ],
+        &[
+            ("f_r", (1, 9)),
+            ("K", (11, 3)),
+            ("G", (8, 5)),
+            ("hC", (3, 11)),
+            ("h2", (1, 13)),
+            ("R_g", (1, 6)),
+            ("sig", (-7, 3)),
+        ],
+    ];
+    let value = |f: &RatFunc, names: &VarTable, point: &[(&str, (i64, i64))]| {
+        f.eval(&|v| {
+            let name = names.name(v);
+            let (_, (p, q)) = point
+                .iter()
+                .find(|(n, _)| *n == name)
+                .unwrap_or_else(|| panic!("no value for {name}"));
+            Rational::ratio(*p, *q).expect("a nonzero denominator")
+        })
+        .expect("no pole at the point")
+    };
+    for (k, e) in each.iter().enumerate() {
+        let alone = exact(e, &["u = 1"]);
+        for point in points {
+            assert_eq!(
+                value(&together.0[k], &together.1, point),
+                value(&alone.0, &alone.1, point),
+                "{e} probed with the others"
+            );
+        }
+        if k > 0 {
+            assert_ne!(
+                value(&together.0[k], &together.1, points[0]),
+                value(&together.0[k - 1], &together.1, points[0]),
+                "{e} and {} are different expressions",
+                each[k - 1]
+            );
+        }
+    }
+}
+
 /// The largest differences (file vs num-dual, num-dual vs central differences) of the
 /// yield gradient (Q_11, Q_22, Q_12, Q_21, F_13, F_23) over states of both shear senses;
 /// `mutate` changes the file's values before they are compared.

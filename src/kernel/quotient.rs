@@ -19,6 +19,7 @@ use super::poly::{Monomial, Poly, Var, VarTable};
 use super::rational::Rational;
 use super::RatFunc;
 use num_traits::One;
+use std::sync::Arc;
 
 /// `num / Π factor^multiplicity`. Every factor is an ordinary polynomial of at least
 /// two terms, with no monomial content, in canonical associate form (coprime integer
@@ -45,8 +46,9 @@ use num_traits::One;
 pub struct Quotient {
     num: Poly,
     /// `None` for a polynomial that never divided by anything: the common case stays
-    /// one pointer wider than a [`Poly`].
-    rest: Option<Box<Rest>>,
+    /// one pointer wider than a [`Poly`]. Shared between clones (a definition's
+    /// value is cloned at every use), copied only when an operation changes it.
+    rest: Option<Arc<Rest>>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -69,7 +71,7 @@ struct Open {
 impl Open {
     fn close(self) -> Quotient {
         let rest = (!(self.den.is_empty() && self.conditions.is_empty())).then(|| {
-            Box::new(Rest {
+            Arc::new(Rest {
                 den: self.den,
                 conditions: self.conditions,
             })
@@ -173,7 +175,7 @@ impl Quotient {
     }
 
     fn into_open(self) -> Open {
-        let rest = self.rest.map(|r| *r).unwrap_or_default();
+        let rest = self.rest.map(Arc::unwrap_or_clone).unwrap_or_default();
         Open {
             num: self.num,
             den: rest.den,

@@ -43,12 +43,30 @@ impl Probe {
         assume: &[String],
         given: &[String],
     ) -> Result<Self, LoadError> {
+        Probe::of_each(label, text, &[expression], assume, given)
+    }
+
+    /// Several expressions in one context, as [`Probe::new`]: [`Probe::exact_each`]
+    /// derives the definitions they share once (D^(ep) for the four A² of the
+    /// Appendix), as a derivation by hand would. [`Probe::exact`] and [`Probe::at`]
+    /// read the first.
+    pub fn of_each(
+        label: &str,
+        text: &str,
+        expressions: &[&str],
+        assume: &[String],
+        given: &[String],
+    ) -> Result<Self, LoadError> {
+        let chains: Vec<String> = expressions
+            .iter()
+            .map(|e| format!("[{}, \"0\"]", toml_string(e)))
+            .collect();
         let claim = format!(
-            "\n\n[[claim]]\nid = {}\nprinted = 'probe'\nexpect = \"holds\"\nassume = {}\ngiven = {}\nsides = [{}, \"0\"]\n",
+            "\n\n[[claim]]\nid = {}\nprinted = 'probe'\nexpect = \"holds\"\nassume = {}\ngiven = {}\nchains = [{}]\n",
             toml_string(PROBE_ID),
             toml_list(assume),
             toml_list(given),
-            toml_string(expression),
+            chains.join(", "),
         );
         let file: DerivationFile = load_str(label, &format!("{text}{claim}"))?;
         let claim = file
@@ -74,18 +92,27 @@ impl Probe {
         Ok(env)
     }
 
-    /// The expression as a reduced rational function of the parameters it still
-    /// depends on, with their names.
+    /// The (first) expression as a reduced rational function of the parameters it
+    /// still depends on, with their names.
     pub fn exact(&self) -> Result<(RatFunc, VarTable), Diagnostic> {
-        let side = self.node();
-        let node = side
-            .node
-            .as_ref()
-            .map_err(|e| side.origin.diagnostic(e.span, e.message.clone()))?;
         let mut env = self.env()?;
-        let value = env.eval(node, &side.origin).map_err(Diagnostic::from)?;
-        let q: Quotient = value.at(&[]).clone();
-        Ok((Quotient::to_ratfunc(&q), env.vars.clone()))
+        let f = exact_side(&mut env, self.node())?;
+        Ok((f, env.vars.clone()))
+    }
+
+    /// Every expression as a reduced rational function, in order, evaluated in one
+    /// environment: a definition they share is derived once. The names are those of
+    /// the whole evaluation (numbered by first use across the expressions, so a
+    /// result may print its terms in another order than [`Probe::exact`] alone).
+    pub fn exact_each(&self) -> Result<(Vec<RatFunc>, VarTable), Diagnostic> {
+        let mut env = self.env()?;
+        let each = self
+            .check
+            .chains
+            .iter()
+            .map(|chain| exact_side(&mut env, &chain[0]))
+            .collect::<Result<_, _>>()?;
+        Ok((each, env.vars.clone()))
     }
 
     /// The expression in floating point at the parameter values `at` (by name), by
@@ -104,6 +131,20 @@ impl Probe {
         }
         super::reverify::interpret_scalar(&self.decls, &self.check, &env, &point, node)
     }
+}
+
+/// A scalar side as a reduced rational function in `env`.
+fn exact_side(
+    env: &mut ExactEnv<'_>,
+    side: &crate::derivation::Side,
+) -> Result<RatFunc, Diagnostic> {
+    let node = side
+        .node
+        .as_ref()
+        .map_err(|e| side.origin.diagnostic(e.span, e.message.clone()))?;
+    let value = env.eval(node, &side.origin).map_err(Diagnostic::from)?;
+    let q: Quotient = value.at(&[]).clone();
+    Ok(Quotient::to_ratfunc(&q))
 }
 
 /// A curve's values on its grid: `None` where the curve is undefined (a square root of
