@@ -73,6 +73,10 @@ pub struct Tape {
     ops: Vec<Op>,
     /// Symbol components in input order: (symbol, component index).
     pub inputs: Vec<(String, Vec<usize>)>,
+    /// The runs of [`Tape::inputs`] that belong to one symbol, as ranges, each with
+    /// whether it lists every component in storage order: each symbol is looked up
+    /// once per sample, not compared with every input's name.
+    runs: Vec<(std::ops::Range<usize>, bool)>,
     labels: Vec<char>,
     outputs: Tensor<usize>,
     /// Sub-tapes of `maxn` arguments: their `Angle` ops stand for the normal.
@@ -164,6 +168,7 @@ impl Tape {
         let outputs = c.eval(node, &n)?;
         Ok(Tape {
             ops: c.ops,
+            runs: symbol_runs(&c.inputs, decls.dim),
             inputs: c.inputs,
             labels: node.free_letters(),
             outputs,
@@ -180,28 +185,30 @@ impl Tape {
     }
 
     /// The values of [`Tape::inputs`] from a map of symbol values: `value` of each
-    /// component (`None` when the symbol has no value). Inputs come symbol by symbol,
-    /// so each symbol is looked up once.
+    /// component (`None` when the symbol has no value). Each symbol is looked up once;
+    /// a run of inputs that lists every component in storage order reads the value's
+    /// components as they are stored.
     pub fn gather<'s, U: 's, T>(
         &self,
         symbol: impl Fn(&str) -> Option<&'s Tensor<U>>,
         value: impl Fn(Option<&U>) -> T,
     ) -> Vec<T> {
-        let mut last: Option<(&str, Option<&Tensor<U>>)> = None;
-        self.inputs
-            .iter()
-            .map(|(s, idx)| {
-                let t = match last {
-                    Some((name, t)) if name == s => t,
-                    _ => {
-                        let t = symbol(s);
-                        last = Some((s, t));
-                        t
-                    }
-                };
-                value(t.map(|t| t.get(idx)))
-            })
-            .collect()
+        let mut out = Vec::with_capacity(self.inputs.len());
+        for (run, whole) in &self.runs {
+            let inputs = &self.inputs[run.clone()];
+            let t = symbol(&inputs[0].0);
+            match t {
+                Some(t)
+                    if *whole
+                        && t.rank() == inputs[0].1.len()
+                        && t.components().len() == run.len() =>
+                {
+                    out.extend(t.components().iter().map(|x| value(Some(x))));
+                }
+                _ => out.extend(inputs.iter().map(|(_, idx)| value(t.map(|t| t.get(idx))))),
+            }
+        }
+        out
     }
 
     /// The entries of [`Tape::inputs`] the result depends on: every symbol component
@@ -856,6 +863,7 @@ impl<'a> Compiler<'a> {
             varying: varying(&sub.ops),
             maxima: Maxima::default(),
             ops: sub.ops,
+            runs: symbol_runs(&sub.inputs, d),
             inputs: sub.inputs,
             labels: a.free_letters(),
             outputs,
@@ -864,6 +872,25 @@ impl<'a> Compiler<'a> {
             in_plane: self.decls.normal_in_plane,
         })
     }
+}
+
+/// The ranges of `inputs` whose entries name the same symbol, in order, each with
+/// whether its indices are every assignment of dimension `dim` in storage order.
+fn symbol_runs(inputs: &[(String, Vec<usize>)], dim: usize) -> Vec<(std::ops::Range<usize>, bool)> {
+    let mut runs: Vec<std::ops::Range<usize>> = Vec::new();
+    for (k, (name, _)) in inputs.iter().enumerate() {
+        match runs.last_mut() {
+            Some(run) if inputs[run.start].0 == *name => run.end = k + 1,
+            _ => runs.push(k..k + 1),
+        }
+    }
+    runs.into_iter()
+        .map(|run| {
+            let listed = inputs[run.clone()].iter().map(|(_, idx)| idx.clone());
+            let whole = assignments(dim, inputs[run.start].1.len()).eq(listed);
+            (run, whole)
+        })
+        .collect()
 }
 
 /// The tape compiler as an arithmetic: the kernel's contraction emits its operations
@@ -1064,5 +1091,48 @@ impl Ring for Compiler<'_> {
 
     fn singular(&mut self, _node: &Node) -> Unsupported {
         Unsupported("a singular matrix".into())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::symbol_runs;
+
+    fn inputs(list: &[(&str, &[usize])]) -> Vec<(String, Vec<usize>)> {
+        list.iter()
+            .map(|(s, idx)| ((*s).to_owned(), idx.to_vec()))
+            .collect()
+    }
+
+    /// A run is read in storage order only when it lists every component in that
+    /// order: a partial or reordered run (as a sub-tape may list them) is looked up
+    /// component by component.
+    #[test]
+    fn runs_are_whole_only_in_storage_order() {
+        let whole = inputs(&[
+            ("a", &[]),
+            ("s", &[0, 0]),
+            ("s", &[0, 1]),
+            ("s", &[1, 0]),
+            ("s", &[1, 1]),
+            ("v", &[0]),
+            ("v", &[1]),
+        ]);
+        assert_eq!(
+            symbol_runs(&whole, 2),
+            vec![(0..1, true), (1..5, true), (5..7, true)]
+        );
+        let reordered = inputs(&[
+            ("s", &[0, 1]),
+            ("s", &[0, 0]),
+            ("s", &[1, 0]),
+            ("s", &[1, 1]),
+        ]);
+        assert_eq!(symbol_runs(&reordered, 2), vec![(0..4, false)]);
+        let partial = inputs(&[("s", &[0, 0]), ("s", &[0, 1]), ("v", &[1]), ("s", &[1, 0])]);
+        assert_eq!(
+            symbol_runs(&partial, 2),
+            vec![(0..2, false), (2..3, false), (3..4, false)]
+        );
     }
 }
