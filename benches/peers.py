@@ -11,9 +11,10 @@ wrong version, so that no verdict of "equal" is vacuous):
 - eq38      (38) with sigma, mu, the transport by R_g and the Levi-Civita symbol
 - rank6     <n_i n_j n_k n_l n_m n_p> = (sum of the 15 delta pairings)/105 (729 components)
 - rank8     the same at rank 8: 105 pairings over 945 (6,561 components)
-- a2        Q at the Appendix's state, D^(ep) and the four A^2 of the Appendix as reduced
-            rational functions in f_r, K, G, h^C, h_2, R_g (Symbolica and cosserat-check;
-            not written for FORM)
+- a2        Q at the Appendix's state, D^(ep) once and the four A^2 of the Appendix from it
+            as reduced rational functions in f_r, K, G, h^C, h_2, R_g (Symbolica and
+            cosserat-check, whose four expressions are one probe of the file; not written
+            for FORM)
 
 How each is timed:
 
@@ -49,7 +50,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "target", "peers")
 VENV = os.path.join(ROOT, "target", "peers-venv")
 PY = os.path.join(VENV, "bin", "python")
-SYMBOLICA = "symbolica==3.0.1"
+SYMBOLICA = "symbolica==3.0.2"
 TASKS = ["eq26", "eq33", "eq38", "rank6", "rank8", "a2"]
 CLAIM_OF = {"eq26": "eq26", "eq33": "eq33", "eq38": "eq38", "a2": "appA-a2"}
 
@@ -61,6 +62,10 @@ def ensure_venv():
             import venv
 
             venv.create(VENV, with_pip=True)
+        # A venv left by an install that failed (a pinned version withdrawn, no network)
+        # is completed rather than trusted.
+        if subprocess.call([PY, "-c", "import symbolica"], stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL) != 0:
             subprocess.check_call([PY, "-m", "pip", "install", "--quiet", SYMBOLICA])
         os.execv(PY, [PY] + sys.argv)
 
