@@ -267,49 +267,28 @@ fn expressions_probed_together_derive_what_each_derives_alone() {
         .exact_each()
         .unwrap();
     assert_eq!(together.0.len(), each.len());
-    let points: [&[(&str, (i64, i64))]; 3] = [
-        &[
-            ("f_r", (7, 10)),
-            ("K", (5, 2)),
-            ("G", (13, 10)),
-            ("hC", (2, 5)),
-            ("h2", (1, 5)),
-            ("R_g", (4, 5)),
-            ("sig", (-11, 10)),
-        ],
-        &[
-            ("f_r", (3, 2)),
-            ("K", (9, 4)),
-            ("G", (1, 3)),
-            ("hC", (-1, 7)),
-            ("h2", (5, 3)),
-            ("R_g", (2, 1)),
-            ("sig", (-1, 4)),
-        ],
-        &[
-            ("f_r", (1, 9)),
-            ("K", (11, 3)),
-            ("G", (8, 5)),
-            ("hC", (3, 11)),
-            ("h2", (1, 13)),
-            ("R_g", (1, 6)),
-            ("sig", (-7, 3)),
-        ],
+    // Three rational points, one row each, in the order of `names`.
+    let names = ["f_r", "K", "G", "hC", "h2", "R_g", "sig"];
+    let points: [[(i64, i64); 7]; 3] = [
+        [(7, 10), (5, 2), (13, 10), (2, 5), (1, 5), (4, 5), (-11, 10)],
+        [(3, 2), (9, 4), (1, 3), (-1, 7), (5, 3), (2, 1), (-1, 4)],
+        [(1, 9), (11, 3), (8, 5), (3, 11), (1, 13), (1, 6), (-7, 3)],
     ];
-    let value = |f: &RatFunc, names: &VarTable, point: &[(&str, (i64, i64))]| {
+    let value = |f: &RatFunc, table: &VarTable, point: &[(i64, i64); 7]| {
         f.eval(&|v| {
-            let name = names.name(v);
-            let (_, (p, q)) = point
+            let name = table.name(v);
+            let k = names
                 .iter()
-                .find(|(n, _)| *n == name)
+                .position(|n| *n == name)
                 .unwrap_or_else(|| panic!("no value for {name}"));
-            Rational::ratio(*p, *q).expect("a nonzero denominator")
+            let (p, q) = point[k];
+            Rational::ratio(p, q).expect("a nonzero denominator")
         })
         .expect("no pole at the point")
     };
     for (k, e) in each.iter().enumerate() {
         let alone = exact(e, &["u = 1"]);
-        for point in points {
+        for point in &points {
             assert_eq!(
                 value(&together.0[k], &together.1, point),
                 value(&alone.0, &alone.1, point),
@@ -318,8 +297,8 @@ fn expressions_probed_together_derive_what_each_derives_alone() {
         }
         if k > 0 {
             assert_ne!(
-                value(&together.0[k], &together.1, points[0]),
-                value(&together.0[k - 1], &together.1, points[0]),
+                value(&together.0[k], &together.1, &points[0]),
+                value(&together.0[k - 1], &together.1, &points[0]),
                 "{e} and {} are different expressions",
                 each[k - 1]
             );

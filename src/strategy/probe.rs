@@ -8,7 +8,7 @@
 
 use super::eval::ExactEnv;
 use crate::derivation::{load_str, Check, Curve, DerivationFile, Grid, LoadError};
-use crate::kernel::{Quotient, RatFunc, Rational, Var, VarTable};
+use crate::kernel::{RatFunc, Rational, Var, VarTable};
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -143,8 +143,7 @@ fn exact_side(
         .as_ref()
         .map_err(|e| side.origin.diagnostic(e.span, e.message.clone()))?;
     let value = env.eval(node, &side.origin).map_err(Diagnostic::from)?;
-    let q: Quotient = value.at(&[]).clone();
-    Ok(Quotient::to_ratfunc(&q))
+    Ok(value.at(&[]).to_ratfunc())
 }
 
 /// A curve's values on its grid: `None` where the curve is undefined (a square root of
