@@ -12,5 +12,6 @@ pub mod digits;
 pub mod kernel;
 pub mod lang;
 pub mod mutate;
+mod parallel;
 pub mod report;
 pub mod strategy;

@@ -84,55 +84,22 @@ pub fn load_dir(dir: &Path) -> Result<Vec<DerivationFile>, LoadError> {
 
 /// Reads the given files in order, checking that claim ids are unique across them.
 pub fn load_files(paths: &[impl AsRef<Path> + Sync]) -> Result<Vec<DerivationFile>, LoadError> {
-    unique_ids(in_parallel(paths.len(), |k| load_file_with_ids(paths[k].as_ref())).into_iter())
+    unique_ids(
+        crate::parallel::in_index_order(paths.len(), |k| load_file_with_ids(paths[k].as_ref()))
+            .into_iter(),
+    )
 }
 
 /// Derivation files given as (label, text) pairs — the corpus embedded in the binary —
 /// in order, with claim ids unique across them.
 pub fn load_texts(sources: &[(&str, &str)]) -> Result<Vec<DerivationFile>, LoadError> {
     unique_ids(
-        in_parallel(sources.len(), |k| {
+        crate::parallel::in_index_order(sources.len(), |k| {
             let (label, text) = sources[k];
             Loader::new(SourceFile::new(label, text)).run()
         })
         .into_iter(),
     )
-}
-
-/// `read(0), …, read(n − 1)` on up to two threads (this machine's cores), in index
-/// order: files are read independently, and the first error in file order is the one
-/// reported, as when they are read one after another.
-fn in_parallel<T: Send>(n: usize, read: impl Fn(usize) -> T + Sync) -> Vec<T> {
-    let workers = std::thread::available_parallelism()
-        .map_or(1, usize::from)
-        .clamp(1, 2)
-        .min(n);
-    if workers <= 1 {
-        return (0..n).map(read).collect();
-    }
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let mut done: Vec<(usize, T)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..workers)
-            .map(|_| {
-                scope.spawn(|| {
-                    let mut mine = Vec::new();
-                    loop {
-                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                        if k >= n {
-                            return mine;
-                        }
-                        mine.push((k, read(k)));
-                    }
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
-    });
-    done.sort_unstable_by_key(|&(k, _)| k);
-    done.into_iter().map(|(_, value)| value).collect()
 }
 
 fn unique_ids(

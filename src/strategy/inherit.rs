@@ -102,16 +102,16 @@ pub fn attribute(rows: &mut [Decided<'_>], limit: Duration) -> Result<(), Diagno
             (r.claim.id.as_str(), (r.outcome.verdict(), corrected))
         })
         .collect();
-    let mut found = Vec::with_capacity(rows.len());
-    for r in rows.iter() {
-        if !failing(r.outcome.verdict()) {
-            found.push(None);
-            continue;
-        }
-        found.push(Some(attribution(r.claim, &claims, &verdicts, limit)?));
-    }
+    // Each failing row is re-decided on its own; the first error in row order is the
+    // one reported.
+    let found = crate::parallel::in_index_order(rows.len(), |k| {
+        let r = &rows[k];
+        failing(r.outcome.verdict())
+            .then(|| attribution(r.claim, &claims, &verdicts, limit))
+            .transpose()
+    });
     for (r, a) in rows.iter_mut().zip(found) {
-        r.attribution = a;
+        r.attribution = a?;
     }
     Ok(())
 }
