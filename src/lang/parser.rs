@@ -283,6 +283,71 @@ pub struct Expr {
     pub span: Span,
 }
 
+impl Expr {
+    /// Whether two expressions are the same tree, wherever each was written (spans
+    /// aside). Brackets the parser drops (`(1 / 3) x` and `1/3 x`) leave no trace;
+    /// nothing is reordered or regrouped, so equal trees evaluate alike in any context:
+    /// the same expression, by reflexivity.
+    pub fn same_tree(&self, other: &Expr) -> bool {
+        use ExprKind as K;
+        fn letters(a: &[IndexTok], b: &[IndexTok]) -> bool {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.ch == y.ch)
+        }
+        fn all(a: &[Expr], b: &[Expr]) -> bool {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.same_tree(y))
+        }
+        match (&self.kind, &other.kind) {
+            (K::Number(a), K::Number(b)) => a == b,
+            // `base` and `indices` are read off `full`.
+            (K::Name { full: a, .. }, K::Name { full: b, .. }) => a == b,
+            (K::Neg(a), K::Neg(b)) => a.same_tree(b),
+            (K::Add(a, b), K::Add(c, d))
+            | (K::Sub(a, b), K::Sub(c, d))
+            | (K::Mul(a, b), K::Mul(c, d))
+            | (K::Div(a, b), K::Div(c, d)) => a.same_tree(c) && b.same_tree(d),
+            (K::Pow(a, n), K::Pow(b, m)) => n == m && a.same_tree(b),
+            (K::Call(f, a), K::Call(g, b)) => f == g && a.same_tree(b),
+            (K::Call2(f, a, b), K::Call2(g, c, d)) => f == g && a.same_tree(c) && b.same_tree(d),
+            (
+                K::Deriv {
+                    inner: a,
+                    indices: i,
+                    wrt: v,
+                },
+                K::Deriv {
+                    inner: b,
+                    indices: j,
+                    wrt: w,
+                },
+            ) => {
+                letters(i, j)
+                    && v.as_ref().map(|v| &v.0) == w.as_ref().map(|w| &w.0)
+                    && a.same_tree(b)
+            }
+            (
+                K::Wrt {
+                    op: p,
+                    body: a,
+                    symbol: s,
+                },
+                K::Wrt {
+                    op: q,
+                    body: b,
+                    symbol: t,
+                },
+            ) => p == q && a.same_tree(b) && s.same_tree(t),
+            (K::Matrix(r), K::Matrix(s)) => {
+                r.len() == s.len() && r.iter().zip(s).all(|(x, y)| all(x, y))
+            }
+            (K::Entry(a, i), K::Entry(b, j)) => {
+                i.len() == j.len() && i.iter().zip(j).all(|(x, y)| x.0 == y.0) && a.same_tree(b)
+            }
+            (K::MatCall(f, a), K::MatCall(g, b)) => f == g && all(a, b),
+            _ => false,
+        }
+    }
+}
+
 /// What kind of mistake a language error is: a printed statement transcribed verbatim
 /// may be ill-formed in its indices (that is a finding about the paper), but never in
 /// its syntax or names (that is a mistake in the derivation file).
@@ -1155,6 +1220,50 @@ mod tests {
                 f.name(),
                 args.iter().map(shape).collect::<Vec<_>>().join(", ")
             ),
+        }
+    }
+
+    #[test]
+    fn same_tree_ignores_where_and_dropped_brackets_but_nothing_else() {
+        let same = |a: &str, b: &str| parse_expr(a).unwrap().same_tree(&parse_expr(b).unwrap());
+        for (a, b) in [
+            ("(1 / 3) (delta_ij + n_i n_j)", "1/3 (delta_ij + n_i n_j)"),
+            ("((2 R_g S) / V) n_k", "2 R_g S / V n_k"),
+            ("(sqrt(2) / R_g) sqrt(M)", "sqrt(2) / R_g sqrt(M)"),
+            ("u_j,i + d(mu_23)/dx_2", "u_j,i  +  d(mu_23)/dx_2"),
+            (
+                "grad(F, sigma_ij) + det([[a, b], [c, d]]) A[1,2]",
+                "grad(F,sigma_ij)+det([[a,b],[c,d]]) A[1,2]",
+            ),
+        ] {
+            assert!(same(a, b), "{a} | {b}");
+        }
+        // Each pair differs in one place: an order, a grouping, a letter, a number, a
+        // function, an operation, a derivative's form, a matrix entry.
+        for (a, b) in [
+            ("a b", "b a"),
+            ("a + b", "b + a"),
+            ("a (b c)", "(a b) c"),
+            ("a - (b - c)", "a - b - c"),
+            ("sigma_ij", "sigma_ji"),
+            ("u_j,i", "u_j,k"),
+            ("d(mu_23)/dx_2", "mu_23,2"),
+            ("x^2", "x^3"),
+            ("1/3 x", "1/15 x"),
+            ("sqrt(a)", "abs(a)"),
+            ("max(a, b)", "min(a, b)"),
+            ("a / b", "a b"),
+            ("-a", "a"),
+            ("grad(F, sigma_ij)", "grad(F, mu_ij)"),
+            ("grad(F, sigma_ij)", "variation(F, sigma_ij)"),
+            ("[[a, b], [c, d]]", "[[a, b], [c, e]]"),
+            ("[[a, b], [c, d]]", "[[a, b, c, d]]"),
+            ("A[1,2]", "A[2,1]"),
+            ("det(A)", "trace(A)"),
+            ("solve(A, b)", "solve(A, c)"),
+        ] {
+            assert!(!same(a, b), "{a} | {b}");
+            assert!(!same(b, a), "{b} | {a}");
         }
     }
 

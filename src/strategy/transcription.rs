@@ -594,7 +594,7 @@ impl Comparer<'_> {
             return s.clone();
         }
         // The same tree is the same expression (reflexivity): no evaluation needed.
-        let s = if identical(printed, side) {
+        let s = if identical(printed, side) || same_tree(printed, side) {
             Same::Yes(Strength::Proof)
         } else if self.memo.borrow().len() >= MAX_COMPARISONS {
             Same::No(Why::Undecided)
@@ -623,7 +623,7 @@ impl Comparer<'_> {
             }
             Err(Incomparable::Shape(m)) => return Same::No(Why::Shape(m)),
             Err(Incomparable::Left(e)) | Err(Incomparable::Right(e)) if self.check.verbatim => {
-                return if same_tree(printed, side) {
+                return if same_up_to_order(printed, side) {
                     Same::Yes(Strength::Proof)
                 } else {
                     Same::No(Why::IllFormed(e.message))
@@ -785,11 +785,20 @@ fn identical(a: &str, b: &str) -> bool {
     a.split_whitespace().eq(b.split_whitespace())
 }
 
+/// Two texts that parse to the same tree (brackets the parser drops aside): the same
+/// expression, by reflexivity, in any context (see [`crate::lang::Expr::same_tree`]).
+fn same_tree(a: &str, b: &str) -> bool {
+    match (crate::lang::parse_expr(a), crate::lang::parse_expr(b)) {
+        (Ok(x), Ok(y)) => x.same_tree(&y),
+        _ => false,
+    }
+}
+
 /// Two texts that parse to the same expression up to the order of terms and factors
 /// and the placement of brackets: how a printed statement that is ill-formed in its
 /// indices (so that it cannot be evaluated) is compared with a side transcribed
 /// verbatim.
-fn same_tree(a: &str, b: &str) -> bool {
+fn same_up_to_order(a: &str, b: &str) -> bool {
     match (crate::lang::parse_expr(a), crate::lang::parse_expr(b)) {
         (Ok(x), Ok(y)) => matches!((canonical(&x), canonical(&y)), (Some(p), Some(q)) if p == q),
         _ => false,
