@@ -9,7 +9,7 @@
 //! copy of these lines. `tests/einsum.rs` checks this function against outer products
 //! followed by pairwise traces ([`Tensor::outer`], [`Tensor::contract`]).
 
-use super::tensor::{assignments, Tensor};
+use super::tensor::{assignments, for_each_assignment, Tensor};
 use num_traits::{One, Zero};
 
 /// One index slot of a factor: a letter (free or summed) or a fixed component.
@@ -37,6 +37,12 @@ pub trait Arithmetic {
     }
     fn mul(&mut self, a: Self::Value, b: &Self::Value) -> Result<Self::Value, Self::Error>;
     fn add(&mut self, a: Self::Value, b: Self::Value) -> Result<Self::Value, Self::Error>;
+    /// The product of one factor, `1 · x`: an arithmetic where that is `x` itself may
+    /// return a copy, charged as the product would be.
+    fn first(&mut self, x: &Self::Value) -> Result<Self::Value, Self::Error> {
+        let one = self.one();
+        self.mul(one, x)
+    }
 }
 
 /// One factor of a contraction: a tensor and the slots it is indexed with.
@@ -61,63 +67,103 @@ pub fn einsum<A: Arithmetic>(
             }
         }
     }
-    let summed = all.len() - out.len();
-    // Each factor's component offset as `base + Σ stride · values[position in all]`:
+    let (free, summed) = (out.len(), all.len() - out.len());
+    // Each factor's component offset is `base + Σ stride · values[position in all]`:
     // the fixed slots make the base, each letter slot a stride (row-major, as
-    // `Tensor::get`).
-    let offsets: Vec<(usize, Vec<(usize, usize)>)> = factors
-        .iter()
-        .map(|(t, slots)| {
-            assert_eq!(slots.len(), t.rank(), "index count must equal the rank");
-            let mut base = 0;
-            let mut strides = Vec::new();
-            let mut stride = 1;
-            for s in slots.iter().rev() {
-                match s {
-                    Slot::Letter(c) => {
-                        let k = all.iter().position(|d| d == c).expect("collected above");
-                        strides.push((k, stride));
-                    }
-                    Slot::Fixed(v) => {
-                        assert!(*v < dim, "index {v} out of range 0..{dim}");
-                        base += v * stride;
-                    }
+    // `Tensor::get`). It is split into the part of the free letters, formed once per
+    // output component, and the part of the summed letters, tabulated once per
+    // assignment of them.
+    let mut bases = Vec::with_capacity(factors.len());
+    let mut strides: Vec<Vec<(usize, usize)>> = Vec::with_capacity(factors.len());
+    for (t, slots) in factors {
+        assert_eq!(slots.len(), t.rank(), "index count must equal the rank");
+        let mut base = 0;
+        let mut of_letters = Vec::new();
+        let mut stride = 1;
+        for s in slots.iter().rev() {
+            match s {
+                Slot::Letter(c) => {
+                    let k = all.iter().position(|d| d == c).expect("collected above");
+                    of_letters.push((k, stride));
                 }
-                stride *= dim;
-            }
-            (base, strides)
-        })
-        .collect();
-    let inner: Vec<Vec<usize>> = assignments(dim, summed).collect();
-    let mut values = vec![0usize; all.len()];
-    let mut data = Vec::with_capacity(dim.pow(out.len() as u32));
-    for o in assignments(dim, out.len()) {
-        values[..out.len()].copy_from_slice(&o);
-        let mut total = arithmetic.zero();
-        for s in &inner {
-            values[out.len()..].copy_from_slice(s);
-            let mut prod = Some(arithmetic.one());
-            for ((t, _), (base, strides)) in factors.iter().zip(&offsets) {
-                let at = strides
-                    .iter()
-                    .fold(*base, |acc, &(k, stride)| acc + stride * values[k]);
-                let c = &t.components()[at];
-                if arithmetic.is_exact_zero(c) {
-                    prod = None;
-                    break;
+                Slot::Fixed(v) => {
+                    assert!(*v < dim, "index {v} out of range 0..{dim}");
+                    base += v * stride;
                 }
-                prod = Some(arithmetic.mul(prod.expect("set above"), c)?);
             }
-            if let Some(prod) = prod {
-                total = arithmetic.add(total, prod)?;
-            }
+            stride *= dim;
         }
-        data.push(total);
+        bases.push(base);
+        strides.push(of_letters);
     }
-    let mut it = data.into_iter();
-    Ok(Tensor::from_fn(dim, out.len(), |_| {
-        it.next().expect("one value per assignment")
-    }))
+    let offset = |f: usize, values: &[usize], letters: std::ops::Range<usize>| -> usize {
+        strides[f]
+            .iter()
+            .filter(|(k, _)| letters.contains(k))
+            .map(|&(k, stride)| stride * values[k])
+            .sum()
+    };
+    let n = factors.len();
+    // Row `s` holds each factor's offset from the summed letters at their `s`-th
+    // assignment (in the order of `assignments`).
+    let mut values = vec![0usize; all.len()];
+    let mut inner = Vec::new();
+    for s in assignments(dim, summed) {
+        values[free..].copy_from_slice(&s);
+        inner.extend((0..n).map(|f| offset(f, &values, free..all.len())));
+    }
+    let mut at_free = vec![0usize; n];
+    let mut data = Vec::new();
+    let mut failed = None;
+    for_each_assignment(dim, free, |o| {
+        if failed.is_some() {
+            return;
+        }
+        values[..free].copy_from_slice(o);
+        for (f, a) in at_free.iter_mut().enumerate() {
+            *a = bases[f] + offset(f, &values, 0..free);
+        }
+        match component(arithmetic, factors, &at_free, &inner) {
+            Ok(total) => data.push(total),
+            Err(e) => failed = Some(e),
+        }
+    });
+    match failed {
+        Some(e) => Err(e),
+        None => Ok(Tensor::from_components(dim, free, data)),
+    }
+}
+
+/// One output component: Σ over the rows of `inner` of the product of the factors'
+/// components at `at_free + row`, formed left to right from the first factor and summed
+/// in row order. A product through an exact zero is skipped.
+fn component<A: Arithmetic>(
+    arithmetic: &mut A,
+    factors: &[Factor<'_, A::Value>],
+    at_free: &[usize],
+    inner: &[usize],
+) -> Result<A::Value, A::Error> {
+    let mut total = arithmetic.zero();
+    if factors.is_empty() {
+        let one = arithmetic.one();
+        // No factors: the empty product, once per assignment of (no) summed letters.
+        return arithmetic.add(total, one);
+    }
+    'rows: for row in inner.chunks_exact(factors.len()) {
+        let mut prod = None;
+        for (((t, _), &a), &s) in factors.iter().zip(at_free).zip(row) {
+            let c = &t.components()[a + s];
+            if arithmetic.is_exact_zero(c) {
+                continue 'rows;
+            }
+            prod = Some(match prod {
+                None => arithmetic.first(c)?,
+                Some(p) => arithmetic.mul(p, c)?,
+            });
+        }
+        total = arithmetic.add(total, prod.expect("at least one factor"))?;
+    }
+    Ok(total)
 }
 
 /// Plain field arithmetic for any `Clone` number type with the usual operators
@@ -197,6 +243,14 @@ impl Arithmetic for Polynomials<'_> {
     fn add(&mut self, mut a: super::Poly, b: super::Poly) -> Result<super::Poly, OverBudget> {
         a += &b;
         Ok(a)
+    }
+    /// `1 · x` is `x`, charged as the product (`1 · |x|`).
+    fn first(&mut self, x: &super::Poly) -> Result<super::Poly, OverBudget> {
+        *self.work_left = self
+            .work_left
+            .checked_sub(x.num_terms())
+            .ok_or(OverBudget)?;
+        Ok(x.clone())
     }
 }
 

@@ -483,6 +483,18 @@ impl Arithmetic for Quotients<'_> {
     fn is_exact_zero(&self, x: &Quotient) -> bool {
         x.is_zero()
     }
+    /// `1 · x` is `x` when `x` is a polynomial, charged as the product (`1 · |x|`).
+    fn first(&mut self, x: &Quotient) -> Result<Quotient, OverBudget> {
+        if x.rest.is_some() {
+            let one = self.one();
+            return self.mul(one, x);
+        }
+        *self.work_left = self
+            .work_left
+            .checked_sub(x.num.num_terms())
+            .ok_or(OverBudget)?;
+        Ok(x.clone())
+    }
     fn mul(&mut self, a: Quotient, b: &Quotient) -> Result<Quotient, OverBudget> {
         let num = self.product(&a.num, &b.num)?;
         if a.rest.is_none() && b.rest.is_none() {
@@ -680,5 +692,30 @@ mod tests {
             .unwrap();
         let mut work = 1;
         assert_eq!(ring(&mut work).add(a, b).unwrap_err(), OverBudget);
+    }
+
+    #[test]
+    fn a_first_factor_is_one_times_it_in_value_and_charge() {
+        let (_, x, y) = setup();
+        let sum = Quotient::from(&(&x * &x) + &(&y + &q(3)));
+        let over = Quotient::from(x.clone())
+            .divide(&Quotient::from(&x + &y))
+            .unwrap();
+        for v in [sum, over, Quotient::default()] {
+            let (mut by_first, mut by_product) = (100, 100);
+            let first = ring(&mut by_first).first(&v).unwrap();
+            let one = ring(&mut by_product).one();
+            let product = ring(&mut by_product).mul(one, &v).unwrap();
+            assert_eq!(first.numerator(), product.numerator());
+            assert_eq!(first.factors(), product.factors());
+            assert_eq!(first.conditions(), product.conditions());
+            assert_eq!(by_first, by_product);
+            // Refused on the same budget as the product.
+            let terms = v.numerator().num_terms();
+            if terms > 0 {
+                let mut short = terms - 1;
+                assert_eq!(ring(&mut short).first(&v).unwrap_err(), OverBudget);
+            }
+        }
     }
 }

@@ -81,6 +81,17 @@ impl<T> Tensor<T> {
         Tensor { dim, rank, data }
     }
 
+    /// A tensor from its components in row-major order (as [`Tensor::components`]
+    /// lists them).
+    pub fn from_components(dim: usize, rank: usize, data: Vec<T>) -> Self {
+        assert_eq!(
+            data.len(),
+            assignment_count(dim, rank),
+            "one component per assignment"
+        );
+        Tensor { dim, rank, data }
+    }
+
     /// A rank-0 tensor.
     pub fn scalar(dim: usize, x: T) -> Self {
         Tensor {

@@ -69,7 +69,12 @@ impl Parametrisation {
     /// Solves the assumptions of one claim.
     pub fn new(decls: &Decls, assumptions: &[Assumption]) -> Result<Self, Diagnostic> {
         let mut env = ExactEnv::unconstrained(decls);
-        let components = env.component_vars();
+        // Which component each variable is: needed only to read equations.
+        let components = if assumptions.is_empty() {
+            HashMap::default()
+        } else {
+            env.component_vars()
+        };
         let mut roles = Vec::with_capacity(assumptions.len());
         for a in assumptions {
             roles.push(role(&mut env, decls, a)?);

@@ -593,6 +593,12 @@ impl Arithmetic for ExactRing<'_, '_> {
         };
         ring.add(a, b).map_err(|_| Failure::OverBudget)
     }
+    fn first(&mut self, x: &Quotient) -> Result<Quotient, Failure> {
+        let mut ring = Quotients {
+            work_left: &mut self.env.work_left,
+        };
+        ring.first(x).map_err(|_| Failure::OverBudget)
+    }
 }
 
 impl Ring for ExactRing<'_, '_> {

@@ -182,7 +182,7 @@ pub fn walk<R: Ring>(
             for x in t.components() {
                 out.push(ring.neg(x.clone()));
             }
-            rebuild(d, t.rank(), out)
+            Tensor::from_components(d, t.rank(), out)
         }
         NodeKind::Sum(terms) => {
             let mut acc: Option<Tensor<R::Value>> = None;
@@ -195,7 +195,7 @@ pub fn walk<R: Ring>(
                         for (x, y) in a.components().iter().zip(v.components()) {
                             out.push(ring.add(x.clone(), y.clone())?);
                         }
-                        rebuild(d, a.rank(), out)
+                        Tensor::from_components(d, a.rank(), out)
                     }
                 });
             }
@@ -219,7 +219,7 @@ pub fn walk<R: Ring>(
             for x in t.components() {
                 out.push(ring.divide(x.clone(), &den, b)?);
             }
-            rebuild(d, t.rank(), out)
+            Tensor::from_components(d, t.rank(), out)
         }
         NodeKind::Pow(a, k) => {
             let x = scalar(ring, a, n)?;
@@ -545,9 +545,4 @@ fn contract<R: Ring>(
         Ok(t) => Ok(t),
         Err(e) => Err(ring.at(e, node)),
     }
-}
-
-fn rebuild<T>(dim: usize, rank: usize, values: Vec<T>) -> Tensor<T> {
-    let mut it = values.into_iter();
-    Tensor::from_fn(dim, rank, |_| it.next().expect("one value per component"))
 }
