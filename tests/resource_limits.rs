@@ -10,7 +10,7 @@ use cosserat_check::strategy::finding::Finding;
 fn a_limit_makes_one_claim_undecided_and_the_rest_are_decided() {
     let files = load_files(&["tests/soundness/resource-limits.toml"]).unwrap();
     let rows = decide_all(&files, None).unwrap();
-    assert_eq!(rows.len(), 6);
+    assert_eq!(rows.len(), 7);
     for r in &rows {
         assert!(
             r.as_expected(),
@@ -29,12 +29,16 @@ fn a_limit_makes_one_claim_undecided_and_the_rest_are_decided() {
             let words = report::evidence(&r.outcome);
             assert!(words.starts_with("undecided (resource limit): "), "{words}");
             assert!(words.contains(what.as_str()));
+            if r.claim.id == "average-of-a-large-product" {
+                assert!(words.contains("this expands to 828100 terms"), "{words}");
+            }
         }
     }
     let verdicts: Vec<Verdict> = rows.iter().map(|r| r.outcome.verdict()).collect();
     assert_eq!(
         verdicts,
         [
+            Verdict::Undecided,
             Verdict::Undecided,
             Verdict::Undecided,
             Verdict::Undecided,

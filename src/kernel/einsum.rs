@@ -57,6 +57,21 @@ pub fn einsum<A: Arithmetic>(
     factors: &[Factor<'_, A::Value>],
     out: &[char],
 ) -> Result<Tensor<A::Value>, A::Error> {
+    einsum_closing(arithmetic, dim, factors, out, A::mul)
+}
+
+/// [`einsum`] with each product's last multiplication (by the last factor, when there
+/// are at least two) done by `last` instead of [`Arithmetic::mul`]: a linear map of the
+/// product applied as the product is formed, such as its average over the normal
+/// ([`super::Poly::average_of_product`]), which then never forms the terms the map
+/// sends to zero. The sum over the summed letters is of the mapped products.
+pub fn einsum_closing<A: Arithmetic>(
+    arithmetic: &mut A,
+    dim: usize,
+    factors: &[Factor<'_, A::Value>],
+    out: &[char],
+    mut last: impl FnMut(&mut A, A::Value, &A::Value) -> Result<A::Value, A::Error>,
+) -> Result<Tensor<A::Value>, A::Error> {
     let mut all: Vec<char> = out.to_vec();
     for (_, slots) in factors {
         for s in slots {
@@ -123,7 +138,7 @@ pub fn einsum<A: Arithmetic>(
         for (f, a) in at_free.iter_mut().enumerate() {
             *a = bases[f] + offset(f, &values, 0..free);
         }
-        match component(arithmetic, factors, &at_free, &inner) {
+        match component(arithmetic, factors, &at_free, &inner, &mut last) {
             Ok(total) => data.push(total),
             Err(e) => failed = Some(e),
         }
@@ -135,13 +150,15 @@ pub fn einsum<A: Arithmetic>(
 }
 
 /// One output component: Σ over the rows of `inner` of the product of the factors'
-/// components at `at_free + row`, formed left to right from the first factor and summed
-/// in row order. A product through an exact zero is skipped.
+/// components at `at_free + row`, formed left to right from the first factor (the last
+/// multiplication by `last`) and summed in row order. A product through an exact zero
+/// is skipped.
 fn component<A: Arithmetic>(
     arithmetic: &mut A,
     factors: &[Factor<'_, A::Value>],
     at_free: &[usize],
     inner: &[usize],
+    last: &mut impl FnMut(&mut A, A::Value, &A::Value) -> Result<A::Value, A::Error>,
 ) -> Result<A::Value, A::Error> {
     let mut total = arithmetic.zero();
     if factors.is_empty() {
@@ -151,13 +168,14 @@ fn component<A: Arithmetic>(
     }
     'rows: for row in inner.chunks_exact(factors.len()) {
         let mut prod = None;
-        for (((t, _), &a), &s) in factors.iter().zip(at_free).zip(row) {
+        for (f, (((t, _), &a), &s)) in factors.iter().zip(at_free).zip(row).enumerate() {
             let c = &t.components()[a + s];
             if arithmetic.is_exact_zero(c) {
                 continue 'rows;
             }
             prod = Some(match prod {
                 None => arithmetic.first(c)?,
+                Some(p) if f + 1 == factors.len() => last(arithmetic, p, c)?,
                 Some(p) => arithmetic.mul(p, c)?,
             });
         }

@@ -395,6 +395,72 @@ impl Poly {
         Ok(Poly::from_terms(out))
     }
 
+    /// `(self · other).average_over_normal(vars)`, without forming the products whose
+    /// average vanishes: a moment is zero unless every exponent of n is even, so a pair
+    /// of terms counts only when their n-exponents have the same parities. The terms
+    /// are grouped by that parity and only pairs within a group are multiplied (about
+    /// one pair in 2^d). Averages of products such as eqs. (33), (36) and (38).
+    ///
+    /// Where a term has a negative power of n, or n has more than four components, it
+    /// is the product averaged, with that route's errors.
+    pub fn average_of_product(&self, other: &Poly, vars: &[Var]) -> Result<Poly, PolyError> {
+        /// A term split into its n-exponents (with their parities as bits) and the rest.
+        struct Split<'p> {
+            parity: usize,
+            exps: [u32; 4],
+            rest: Monomial,
+            coefficient: &'p Rational,
+        }
+        fn split<'p>(p: &'p Poly, vars: &[Var]) -> Option<Vec<Split<'p>>> {
+            p.terms
+                .iter()
+                .map(|(m, c)| {
+                    let (signed, rest) = m.split(vars);
+                    let mut exps = [0u32; 4];
+                    let mut parity = 0;
+                    for (k, &e) in signed.iter().enumerate() {
+                        exps[k] = u32::try_from(e).ok()?;
+                        parity |= ((e & 1) as usize) << k;
+                    }
+                    Some(Split {
+                        parity,
+                        exps,
+                        rest,
+                        coefficient: c,
+                    })
+                })
+                .collect()
+        }
+        let (Some(a), Some(b)) = (
+            (vars.len() <= 4).then(|| split(self, vars)).flatten(),
+            (vars.len() <= 4).then(|| split(other, vars)).flatten(),
+        ) else {
+            return (self * other).average_over_normal(vars);
+        };
+        let mut by_parity: Vec<Vec<&Split>> = (0..16).map(|_| Vec::new()).collect();
+        for t in &b {
+            by_parity[t.parity].push(t);
+        }
+        let mut moments: HashMap<[u32; 4], Rational> = HashMap::default();
+        let mut out = Vec::new();
+        for s in &a {
+            for t in &by_parity[s.parity] {
+                let mut exps = [0u32; 4];
+                for k in 0..vars.len() {
+                    exps[k] = s.exps[k] + t.exps[k];
+                }
+                let moment = moments
+                    .entry(exps)
+                    .or_insert_with(|| monomial_moment(vars.len(), &exps[..vars.len()]));
+                out.push((
+                    s.rest.mul(&t.rest),
+                    &(s.coefficient * t.coefficient) * &*moment,
+                ));
+            }
+        }
+        Ok(Poly::from_terms(out))
+    }
+
     /// The canonical normal form modulo `n·n − 1` (the normal is a unit vector).
     ///
     /// `{n·n − 1}` is a Gröbner basis of its ideal for any order in which the last
@@ -1036,6 +1102,58 @@ mod tests {
         assert!(v[0].pow(3).average_over_normal(&n).unwrap().is_zero());
     }
 
+    /// The average of a product, formed pair by pair of equal parity, is the product
+    /// averaged: random polynomials in n (2 or 3 components) and two other variables,
+    /// with powers of n up to 5 and of the others from −1 to 2; and a negative power of
+    /// n gives the product's own error.
+    #[test]
+    fn average_of_a_product_is_the_product_averaged() {
+        let (_, v) = vars(&["n1", "n2", "n3", "x", "y"]);
+        let mut next = below(0x5eed_a7e5);
+        let random = |dim: usize, next: &mut dyn FnMut(u64) -> u64| -> Poly {
+            let terms = 1 + next(9) as usize;
+            let mut p = Poly::zero();
+            for _ in 0..terms {
+                let mut t = Poly::constant(q(next(19) as i64 - 9, 1 + next(6) as i64));
+                for n in &v[..dim] {
+                    t = &t * &n.pow(next(6) as u32);
+                }
+                // x and y (variables 3 and 4), possibly inverted.
+                for other in 3..5 {
+                    let e = next(4) as i32 - 1;
+                    t = &t * &Poly::from_terms([(Monomial::var(other, e), Rational::one())]);
+                }
+                p += &t;
+            }
+            p
+        };
+        let mut nonzero = 0;
+        for round in 0..400 {
+            let dim = 2 + round % 2;
+            let n: Vec<Var> = (0..dim).map(|k| k as Var).collect();
+            let (a, b) = (random(dim, &mut next), random(dim, &mut next));
+            let fused = a.average_of_product(&b, &n).unwrap();
+            assert_eq!(fused, (&a * &b).average_over_normal(&n).unwrap(), "{round}");
+            nonzero += usize::from(!fused.is_zero());
+        }
+        assert!(nonzero > 200, "the averages are mostly not zero: {nonzero}");
+        let n: Vec<Var> = (0..3).map(|k| k as Var).collect();
+        let inverse = Poly::from_terms([(Monomial::var(0, -1), Rational::one())]);
+        assert_eq!(
+            inverse.average_of_product(&v[1], &n),
+            (&inverse * &v[1]).average_over_normal(&n)
+        );
+        assert_eq!(
+            inverse.average_of_product(&v[1], &n),
+            Err(PolyError::NegativeNormalPower)
+        );
+        // n₁⁻¹ · n₁³ = n₁²: the product has no negative power, and neither has the fused
+        // route's answer.
+        assert_eq!(
+            inverse.average_of_product(&v[0].pow(3), &n).unwrap(),
+            Poly::constant(q(1, 3))
+        );
+    }
     #[test]
     fn derivatives_are_exact() {
         let (names, v) = vars(&["x", "y"]);

@@ -18,7 +18,7 @@ use super::walk::{self, Ring};
 use crate::derivation::ParamBox;
 use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::certificate::Certificate;
-use crate::kernel::einsum::{Arithmetic, Polynomials};
+use crate::kernel::einsum::{einsum, einsum_closing, Arithmetic, Polynomials};
 use crate::kernel::quotient::{DivideError, Quotients};
 use crate::kernel::sign::Interval;
 use crate::kernel::{assignments, Poly, PolyError, Quotient, Rational, Tensor, Var, VarTable};
@@ -567,6 +567,95 @@ impl ExactRing<'_, '_> {
     }
 }
 
+impl ExactRing<'_, '_> {
+    /// `avg(product)` (eqs. (33), (36), (38)): the product evaluated as the walk does it
+    /// (entered, its factors, their contraction), each product of components averaged
+    /// as it is formed ([`Poly::average_of_product`], charged as the product), so that
+    /// the terms whose average vanishes are never formed. That skips the product's own
+    /// size limit, so it is done only where the limit cannot bite (at most
+    /// [`MAX_TERMS`] term products in every component) and only for polynomials without
+    /// negative powers of n; otherwise the product is formed, limited and averaged.
+    fn average_of_product(
+        &mut self,
+        product: &Node,
+        fs: &[Node],
+        node: &Node,
+    ) -> Result<Tensor<Quotient>, Failure> {
+        self.enter(product)?;
+        let values = walk::factor_values(self, fs, &())?;
+        let factors = walk::as_factors(&values);
+        let labels = product.free_letters();
+        let d = self.env.decls.dim;
+        let normal = self.env.normal.clone();
+        let plain = |q: &Quotient| {
+            q.factors().is_empty()
+                && q.conditions().is_empty()
+                && q.numerator().terms().all(|(m, _)| {
+                    m.factors()
+                        .iter()
+                        .all(|(v, e)| *e >= 0 || !normal.contains(v))
+                })
+        };
+        let fused = values.iter().all(|(t, _)| t.components().iter().all(plain)) && {
+            let counts: Vec<Tensor<usize>> = values
+                .iter()
+                .map(|(t, _)| t.map(|q| q.numerator().num_terms()))
+                .collect();
+            let count_factors: Vec<_> = counts
+                .iter()
+                .zip(&factors)
+                .map(|(c, (_, slots))| (c, slots.clone()))
+                .collect();
+            let bound = einsum(&mut TermCounts, d, &count_factors, &labels)
+                .unwrap_or_else(|never| match never {});
+            bound.components().iter().all(|&b| b <= MAX_TERMS)
+        };
+        if !fused {
+            let v = walk::contract(self, &factors, &labels, product)?;
+            let v = self.leave(product, v)?;
+            return v.try_map(|q| self.averaged(q, node));
+        }
+        let (origin, at) = (self.origin, node);
+        let averaged = einsum_closing(self, d, &factors, &labels, |ring, p, c| {
+            let (p, c) = (p.numerator(), c.numerator());
+            let cost = p.num_terms().saturating_mul(c.num_terms());
+            ring.env.work_left = ring
+                .env
+                .work_left
+                .checked_sub(cost)
+                .ok_or(Failure::OverBudget)?;
+            p.average_of_product(c, &normal)
+                .map(Quotient::from)
+                .map_err(|e| Failure::Located(poly_error(origin, at, e)))
+        });
+        averaged.map_err(|e| self.at(e, product))
+    }
+}
+
+/// Term counts: each product of components has at most the product of their counts
+/// of terms, and a sum at most the sum (saturating: a bound, never an overflow).
+struct TermCounts;
+
+impl Arithmetic for TermCounts {
+    type Value = usize;
+    type Error = std::convert::Infallible;
+    fn zero(&mut self) -> usize {
+        0
+    }
+    fn one(&mut self) -> usize {
+        1
+    }
+    fn is_exact_zero(&self, x: &usize) -> bool {
+        *x == 0
+    }
+    fn mul(&mut self, a: usize, b: &usize) -> Result<usize, Self::Error> {
+        Ok(a.saturating_mul(*b))
+    }
+    fn add(&mut self, a: usize, b: usize) -> Result<usize, Self::Error> {
+        Ok(a.saturating_add(b))
+    }
+}
+
 /// Quotients of canonical polynomials, products charged to the environment's work
 /// budget by the kernel's [`Quotients`] arithmetic.
 impl Arithmetic for ExactRing<'_, '_> {
@@ -809,6 +898,11 @@ impl Ring for ExactRing<'_, '_> {
 
     /// The average acts on the numerator: no divisor contains the normal.
     fn average(&mut self, a: &Node, node: &Node, _n: &()) -> Result<Tensor<Quotient>, Failure> {
+        if let NodeKind::Product(fs) = &a.kind {
+            if fs.len() >= 2 {
+                return self.average_of_product(a, fs, node);
+            }
+        }
         let v = walk::walk(self, a, &())?;
         v.try_map(|q| self.averaged(q, node))
     }

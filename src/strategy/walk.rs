@@ -202,15 +202,8 @@ pub fn walk<R: Ring>(
             acc.expect("the parser gives a sum at least one term")
         }
         NodeKind::Product(fs) => {
-            let mut values = Vec::with_capacity(fs.len());
-            for f in fs {
-                values.push((walk(ring, f, n)?, f.free_letters()));
-            }
-            let factors: Vec<(&Tensor<R::Value>, Vec<Slot>)> = values
-                .iter()
-                .map(|(t, ls)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
-                .collect();
-            contract(ring, &factors, &labels, node)?
+            let values = factor_values(ring, fs, n)?;
+            contract(ring, &as_factors(&values), &labels, node)?
         }
         NodeKind::Div(a, b) => {
             let t = walk(ring, a, n)?;
@@ -534,7 +527,29 @@ pub fn in_formal_order<R: Ring>(
     Ok(t.permuted(&perm))
 }
 
-fn contract<R: Ring>(
+/// The values of a product's factors, each with its free letters (its slots).
+pub fn factor_values<R: Ring>(
+    ring: &mut R,
+    fs: &[Node],
+    n: &R::Normal,
+) -> Result<Vec<(Tensor<R::Value>, Vec<char>)>, R::Error> {
+    let mut values = Vec::with_capacity(fs.len());
+    for f in fs {
+        values.push((walk(ring, f, n)?, f.free_letters()));
+    }
+    Ok(values)
+}
+
+/// A product's factors for [`einsum`]: each value indexed by its free letters.
+pub fn as_factors<T>(values: &[(Tensor<T>, Vec<char>)]) -> Vec<(&Tensor<T>, Vec<Slot>)> {
+    values
+        .iter()
+        .map(|(t, ls)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
+        .collect()
+}
+
+/// The contraction of `factors` onto `labels`, its errors located at `node`.
+pub fn contract<R: Ring>(
     ring: &mut R,
     factors: &[(&Tensor<R::Value>, Vec<Slot>)],
     labels: &[char],
