@@ -446,8 +446,8 @@ impl Poly {
         for s in &a {
             for t in &by_parity[s.parity] {
                 let mut exps = [0u32; 4];
-                for k in 0..vars.len() {
-                    exps[k] = s.exps[k] + t.exps[k];
+                for ((e, x), y) in exps.iter_mut().zip(s.exps).zip(t.exps) {
+                    *e = x + y;
                 }
                 let moment = moments
                     .entry(exps)

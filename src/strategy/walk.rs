@@ -527,12 +527,15 @@ pub fn in_formal_order<R: Ring>(
     Ok(t.permuted(&perm))
 }
 
-/// The values of a product's factors, each with its free letters (its slots).
+/// A factor's value with its free letters (its slots).
+pub type Lettered<T> = (Tensor<T>, Vec<char>);
+
+/// The values of a product's factors, each with its free letters.
 pub fn factor_values<R: Ring>(
     ring: &mut R,
     fs: &[Node],
     n: &R::Normal,
-) -> Result<Vec<(Tensor<R::Value>, Vec<char>)>, R::Error> {
+) -> Result<Vec<Lettered<R::Value>>, R::Error> {
     let mut values = Vec::with_capacity(fs.len());
     for f in fs {
         values.push((walk(ring, f, n)?, f.free_letters()));
@@ -541,7 +544,7 @@ pub fn factor_values<R: Ring>(
 }
 
 /// A product's factors for [`einsum`]: each value indexed by its free letters.
-pub fn as_factors<T>(values: &[(Tensor<T>, Vec<char>)]) -> Vec<(&Tensor<T>, Vec<Slot>)> {
+pub fn as_factors<T>(values: &[Lettered<T>]) -> Vec<(&Tensor<T>, Vec<Slot>)> {
     values
         .iter()
         .map(|(t, ls)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
