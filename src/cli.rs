@@ -2,7 +2,7 @@
 //! verdict equals the one its derivation file declares, 1 when any differs, 2 for
 //! malformed input (with a located diagnostic on stderr; nothing is written then).
 
-use crate::derivation::{load_dir, load_files, DerivationFile, LoadError, Strategy};
+use crate::derivation::{load_files, DerivationFile, LoadError, Strategy};
 use crate::report;
 use crate::strategy::watch::{self, Watch};
 use crate::strategy::{decide_claim, decide_claim_recorded, inherit, Decided};
@@ -104,7 +104,7 @@ pub struct OutputArgs {
     /// Write to FILE instead of standard output (only after every claim is decided).
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
-    /// Decide only the claim with this id (e.g. eq33).
+    /// Decide only the claim with this id (e.g. eq33), reading only its file and the files of the claims it uses.
     #[arg(long, value_name = "ID")]
     pub only: Option<String>,
     /// Override the seed of every numeric claim.
@@ -448,17 +448,33 @@ fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: O
     }
 }
 
-fn read(dir: Option<PathBuf>, files: &[PathBuf]) -> Result<Vec<DerivationFile>, RunError> {
-    Ok(if files.is_empty() {
+/// The derivation files to check: `files`, or those of `dir`, or of ./derivations when
+/// there is one (an edited file is checked as edited), else the paper's files embedded
+/// in the binary. For one claim (`only`), only the files deciding it reads
+/// ([`crate::derivation::only`]).
+fn read(
+    dir: Option<PathBuf>,
+    files: &[PathBuf],
+    only: Option<&str>,
+) -> Result<Vec<DerivationFile>, RunError> {
+    use crate::derivation::{load::toml_files, only as one};
+    let paths = if files.is_empty() {
         match dir {
-            Some(d) => load_dir(&d)?,
-            // ./derivations when there is one (an edited file is checked as edited),
-            // else the paper's files embedded in the binary.
-            None if Path::new("derivations").is_dir() => load_dir(Path::new("derivations"))?,
-            None => crate::corpus::load()?,
+            Some(d) => toml_files(&d)?,
+            None if Path::new("derivations").is_dir() => toml_files(Path::new("derivations"))?,
+            None => {
+                return Ok(match only {
+                    Some(id) => one::load_texts_for(crate::corpus::FILES, id)?,
+                    None => crate::corpus::load()?,
+                })
+            }
         }
     } else {
-        load_files(files)?
+        files.to_vec()
+    };
+    Ok(match only {
+        Some(id) => one::load_files_for(&paths, id)?,
+        None => load_files(&paths)?,
     })
 }
 
@@ -594,12 +610,27 @@ pub struct Output<'a> {
 /// Runs the command line, writing the report to `out`.
 pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
     match cli.command.unwrap_or(Command::Check(cli.check)) {
-        Command::Check(a) => table(read(a.dir, &[])?, &a.output, false, out),
-        Command::Errata(a) => table(read(a.dir, &[])?, &a.output, true, out),
-        Command::Verify(a) => table(read(None, &a.files)?, &a.output, false, out),
+        Command::Check(a) => table(
+            read(a.dir, &[], a.output.only.as_deref())?,
+            &a.output,
+            false,
+            out,
+        ),
+        Command::Errata(a) => table(
+            read(a.dir, &[], a.output.only.as_deref())?,
+            &a.output,
+            true,
+            out,
+        ),
+        Command::Verify(a) => table(
+            read(None, &a.files, a.output.only.as_deref())?,
+            &a.output,
+            false,
+            out,
+        ),
         Command::Plot(a) => plot(&a, out),
         Command::Explain(a) => {
-            let files = read(a.dir, &a.files)?;
+            let files = read(a.dir, &a.files, Some(&a.id))?;
             let run = Run {
                 keep: true,
                 limit: watch::DEFAULT_LIMIT,

@@ -53,6 +53,60 @@ fn json_format_and_only() {
     assert_eq!(claims[0]["counterexample"]["lhs_value"], "1/5");
 }
 
+/// `--only` reads the claim's file and the files of the claims it uses (a failure is
+/// attributed through them), not the others: an unrelated file's bad expression does
+/// not stop it, while a whole run reports that file with exit 2.
+#[test]
+fn only_reads_the_files_the_claim_needs() {
+    let dir = dir_with(
+        "only",
+        &format!("{HEADER}[[claim]]\nid = \"wrong\"\nprinted = 'x'\nuses = [\"base\"]\nexpect = \"fails\"\nreason = \"r\"\nsides = [\"avg(n_i n_j)\", \"1/2 delta_ij\"]\n"),
+    );
+    std::fs::write(
+        dir.join("base.toml"),
+        format!("{HEADER}[[claim]]\nid = \"base\"\nprinted = 'x'\nexpect = \"fails\"\nreason = \"r\"\nsides = [\"1\", \"2\"]\n"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("other.toml"),
+        format!("{HEADER}[[claim]]\nid = \"other\"\nprinted = 'x'\nexpect = \"holds\"\nsides = [\"sigma_ii_\", \"0\"]\n"),
+    )
+    .unwrap();
+    let d = dir.to_str().unwrap();
+    let whole = run(&["check", "--dir", d]);
+    assert_eq!(whole.status.code(), Some(2));
+    assert!(
+        text(&whole.stderr).contains("other.toml"),
+        "{}",
+        text(&whole.stderr)
+    );
+    let out = run(&["check", "--dir", d, "--only", "wrong", "--format", "json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let claims = v["claims"].as_array().unwrap();
+    assert_eq!(claims.len(), 1);
+    assert_eq!(claims[0]["verdict"], "fails");
+    // base.toml was read: `uses = ["base"]` names a claim of the files read (without
+    // it, a warning says the edge is not followed).
+    assert!(text(&out.stderr).is_empty(), "{}", text(&out.stderr));
+    std::fs::remove_file(dir.join("base.toml")).unwrap();
+    let out = run(&["check", "--dir", d, "--only", "wrong"]);
+    assert!(
+        text(&out.stderr).contains("`base` is no claim of the files read"),
+        "{}",
+        text(&out.stderr)
+    );
+    // An id no file holds: every file is read, and the whole run's error is reported.
+    let out = run(&["check", "--dir", d, "--only", "nowhere"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("other.toml"),
+        "{}",
+        text(&out.stderr)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn unknown_id_is_an_input_error() {
     let out = run(&["check", "--only", "eq999"]);

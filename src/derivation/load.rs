@@ -20,7 +20,7 @@ use crate::lang::{Node, NodeKind};
 use std::collections::BTreeMap;
 use std::fmt;
 use std::ops::Range;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use toml::Spanned;
 
@@ -62,6 +62,11 @@ pub(super) fn distinct_letters(idx: &[char]) -> bool {
 /// Reads every `*.toml` file directly in `dir` (sorted by name), and checks that
 /// claim ids are unique across them.
 pub fn load_dir(dir: &Path) -> Result<Vec<DerivationFile>, LoadError> {
+    load_files(&toml_files(dir)?)
+}
+
+/// The `*.toml` files directly in `dir`, sorted by name; an error when there are none.
+pub fn toml_files(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
     let io = |e: std::io::Error| LoadError::Io {
         path: dir.display().to_string(),
         message: e.to_string(),
@@ -79,7 +84,7 @@ pub fn load_dir(dir: &Path) -> Result<Vec<DerivationFile>, LoadError> {
             message: "no derivation files (*.toml) in this directory".into(),
         });
     }
-    load_files(&paths)
+    Ok(paths)
 }
 
 /// Reads the given files in order, checking that claim ids are unique across them.
@@ -136,7 +141,7 @@ pub const MAX_ID_CHARS: usize = 100;
 
 /// The bytes of a derivation file: a regular file (never a device such as /dev/zero,
 /// a FIFO that could block forever, or a directory) of at most [`MAX_FILE_BYTES`].
-fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
+pub(super) fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
     use std::io::Read;
     let label = path.display().to_string();
     let io = |message: String| LoadError::Io {

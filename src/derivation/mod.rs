@@ -8,6 +8,7 @@ mod fields;
 pub mod load;
 pub mod model;
 pub mod notation;
+pub mod only;
 mod raw;
 mod reads;
 mod scalar;
