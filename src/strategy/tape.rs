@@ -472,18 +472,38 @@ fn local_maxima(grid: &[f64]) -> impl Iterator<Item = usize> + '_ {
 /// The rows, the normals and the outputs live in buffers kept across batches (the
 /// golden sections ask for a few angles some fifty times per maximum), so that a batch
 /// allocates nothing.
-struct Lanes<'t> {
-    tape: &'t Tape,
-    /// The values of the ops that do not depend on θ.
-    fixed: &'t [f64],
-    /// The row of each varying op (`usize::MAX` for the others).
-    row: Vec<usize>,
+struct Lanes {
+    /// The varying ops, in order, with their operands resolved.
+    ops: Vec<LaneOp>,
+    /// Where the output is.
+    output: Arg,
     /// The varying ops' values, one row of `width` lanes per op.
     vals: Vec<f64>,
     /// The normals of the current batch.
     angles: Vec<[f64; 3]>,
     /// The output of the current batch.
     out: Vec<f64>,
+}
+
+/// An operand of a lane operation, resolved once per maximisation: the row of a varying
+/// op, or the value of an op the angle does not change (the same for every lane).
+#[derive(Clone, Copy)]
+enum Arg {
+    Row(usize),
+    Fixed(f64),
+}
+
+/// A varying op of the sub-tape, its operands resolved ([`Arg`]).
+#[derive(Clone, Copy)]
+enum LaneOp {
+    Angle(usize),
+    Add(Arg, Arg),
+    Mul(Arg, Arg),
+    Neg(Arg),
+    Powi(Arg, i32),
+    Div(Arg, Arg),
+    Apply(Func, Arg),
+    Apply2(Func2, Arg, Arg),
 }
 
 /// An operand of a lane operation: a row of lanes, or one value for every lane.
@@ -502,8 +522,8 @@ impl Operand<'_> {
     }
 }
 
-impl<'t> Lanes<'t> {
-    fn new(tape: &'t Tape, fixed: &'t [f64], dim: usize) -> Option<Self> {
+impl Lanes {
+    fn new(tape: &Tape, fixed: &[f64], dim: usize) -> Option<Self> {
         if dim > 3
             || tape
                 .varying
@@ -516,10 +536,30 @@ impl<'t> Lanes<'t> {
         for (r, &k) in tape.varying.iter().enumerate() {
             row[k] = r;
         }
+        let arg = |op: usize| match row[op] {
+            usize::MAX => Arg::Fixed(fixed[op]),
+            r => Arg::Row(r),
+        };
+        let ops = tape
+            .varying
+            .iter()
+            .map(|&k| match tape.ops[k] {
+                Op::Angle(c) => LaneOp::Angle(c),
+                Op::Add(a, b) => LaneOp::Add(arg(a), arg(b)),
+                Op::Mul(a, b) => LaneOp::Mul(arg(a), arg(b)),
+                Op::Neg(a) => LaneOp::Neg(arg(a)),
+                Op::Powi(a, e) => LaneOp::Powi(arg(a), e),
+                Op::Div(a, b, _) => LaneOp::Div(arg(a), arg(b)),
+                Op::Apply(f, a, _) => LaneOp::Apply(f, arg(a)),
+                Op::Apply2(f, a, b, _) => LaneOp::Apply2(f, arg(a), arg(b)),
+                Op::Input(_) | Op::Normal(_) | Op::Const(_) | Op::MaxN(..) | Op::Avg(..) => {
+                    unreachable!("not varying, or refused above")
+                }
+            })
+            .collect();
         Some(Lanes {
-            tape,
-            fixed,
-            row,
+            ops,
+            output: arg(*tape.outputs.get(&[])),
             vals: Vec::new(),
             angles: Vec::new(),
             out: Vec::new(),
@@ -547,14 +587,13 @@ impl<'t> Lanes<'t> {
     fn fill(&mut self, angles: &[[f64; 3]]) -> bool {
         let w = angles.len();
         // Every row is written in full before it is read, so stale lanes never leak.
-        self.vals.resize(self.tape.varying.len() * w, 0.0);
-        for (r, &k) in self.tape.varying.iter().enumerate() {
+        self.vals.resize(self.ops.len() * w, 0.0);
+        for (r, op) in self.ops.iter().enumerate() {
             let (done, rest) = self.vals.split_at_mut(r * w);
             let out = &mut rest[..w];
-            let (row, fixed) = (&self.row, self.fixed);
-            let operand = |op: usize| match row[op] {
-                usize::MAX => Operand::Fixed(fixed[op]),
-                s => Operand::Row(&done[s * w..(s + 1) * w]),
+            let operand = |a: Arg| match a {
+                Arg::Fixed(x) => Operand::Fixed(x),
+                Arg::Row(s) => Operand::Row(&done[s * w..(s + 1) * w]),
             };
             macro_rules! binary {
                 ($a:expr, $b:expr, $f:expr) => {
@@ -573,13 +612,13 @@ impl<'t> Lanes<'t> {
                     }
                 };
             }
-            match self.tape.ops[k] {
-                Op::Angle(c) => out.iter_mut().zip(angles).for_each(|(o, a)| *o = a[c]),
-                Op::Add(a, b) => binary!(a, b, |x: f64, y: f64| x + y),
-                Op::Mul(a, b) => binary!(a, b, |x: f64, y: f64| x * y),
-                Op::Neg(a) => binary!(a, a, |x: f64, _: f64| -x),
-                Op::Powi(a, e) => binary!(a, a, |x: f64, _: f64| x.powi(e)),
-                Op::Div(a, b, _) => {
+            match *op {
+                LaneOp::Angle(c) => out.iter_mut().zip(angles).for_each(|(o, a)| *o = a[c]),
+                LaneOp::Add(a, b) => binary!(a, b, |x: f64, y: f64| x + y),
+                LaneOp::Mul(a, b) => binary!(a, b, |x: f64, y: f64| x * y),
+                LaneOp::Neg(a) => binary!(a, a, |x: f64, _: f64| -x),
+                LaneOp::Powi(a, e) => binary!(a, a, |x: f64, _: f64| x.powi(e)),
+                LaneOp::Div(a, b) => {
                     let (x, y) = (operand(a), operand(b));
                     for (l, o) in out.iter_mut().enumerate() {
                         let d = y.at(l);
@@ -589,7 +628,7 @@ impl<'t> Lanes<'t> {
                         *o = x.at(l) / d;
                     }
                 }
-                Op::Apply(f, a, _) => {
+                LaneOp::Apply(f, a) => {
                     let x = operand(a);
                     for (l, o) in out.iter_mut().enumerate() {
                         match super::real::elementary(f, x.at(l)) {
@@ -598,7 +637,7 @@ impl<'t> Lanes<'t> {
                         }
                     }
                 }
-                Op::Apply2(f, a, b, _) => {
+                LaneOp::Apply2(f, a, b) => {
                     let (x, y) = (operand(a), operand(b));
                     for (l, o) in out.iter_mut().enumerate() {
                         match super::real::elementary2(f, x.at(l), y.at(l)) {
@@ -607,16 +646,12 @@ impl<'t> Lanes<'t> {
                         }
                     }
                 }
-                Op::Input(_) | Op::Normal(_) | Op::Const(_) | Op::MaxN(..) | Op::Avg(..) => {
-                    unreachable!("not varying, or refused by Lanes::new")
-                }
             }
         }
-        let out = *self.tape.outputs.get(&[]);
         self.out.clear();
-        match self.row[out] {
-            usize::MAX => self.out.resize(w, self.fixed[out]),
-            s => self.out.extend_from_slice(&self.vals[s * w..(s + 1) * w]),
+        match self.output {
+            Arg::Fixed(x) => self.out.resize(w, x),
+            Arg::Row(s) => self.out.extend_from_slice(&self.vals[s * w..(s + 1) * w]),
         }
         self.out.iter().all(|v| v.is_finite())
     }
