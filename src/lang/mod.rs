@@ -8,6 +8,7 @@ pub mod diag;
 pub mod latex;
 pub mod matrix;
 pub mod parser;
+pub mod rename;
 
 pub use check::{Decls, DefSig, Node, NodeKind, Scope, Slot, Target};
 pub use diag::{Diagnostic, Origin, SourceFile, Span};

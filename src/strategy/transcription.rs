@@ -18,9 +18,10 @@ use super::{decide, Outcome, Strength};
 use crate::derivation::edit::Incomparable;
 use crate::derivation::notation::{ReadMember, ReadPart};
 use crate::derivation::{Check, Sampling, Strategy, Transcript, Verdict};
-use crate::derivation::{Relation, ScalarClaim};
+use crate::derivation::{Relation, ScalarClaim, Side};
 use crate::kernel::sign::Sign;
 use crate::lang::latex::Rel;
+use crate::lang::rename::same_up_to_summed_letters;
 use crate::lang::{Decls, Span};
 
 /// The transcription status of one statement.
@@ -636,6 +637,14 @@ impl Comparer<'_> {
                 return Same::No(Why::IllFormed(e.message))
             }
         };
+        // The same expression up to the letters of summed indices: no evaluation needed.
+        if let [chain] = c.chains.as_slice() {
+            if let [Side { node: Ok(l), .. }, Side { node: Ok(r), .. }] = chain.as_slice() {
+                if same_up_to_summed_letters(l, r) {
+                    return Same::Yes(Strength::Proof);
+                }
+            }
+        }
         match decide(self.decls, &c) {
             Ok(o) => verdict_of(&o),
             Err(_) => {
