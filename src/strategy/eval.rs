@@ -565,9 +565,7 @@ impl ExactRing<'_, '_> {
                 .with_help("bound the parameters with given (such as given = [\"f_r > 0\", \"sigma < 0\"]) so that the root has one sign there"),
         ))
     }
-}
 
-impl ExactRing<'_, '_> {
     /// `avg(product)` (eqs. (33), (36), (38)): the product evaluated as the walk does it
     /// (entered, its factors, their contraction), each product of components averaged
     /// as it is formed ([`Poly::average_of_product`], charged as the product), so that
