@@ -624,7 +624,7 @@ impl Comparer<'_> {
             }
             Err(Incomparable::Shape(m)) => return Same::No(Why::Shape(m)),
             Err(Incomparable::Left(e)) | Err(Incomparable::Right(e)) if self.check.verbatim => {
-                return if same_up_to_order(printed, side) {
+                return if same_up_to_grouping(printed, side) {
                     Same::Yes(Strength::Proof)
                 } else {
                     Same::No(Why::IllFormed(e.message))
@@ -803,19 +803,20 @@ fn same_tree(a: &str, b: &str) -> bool {
     }
 }
 
-/// Two texts that parse to the same expression up to the order of terms and factors
-/// and the placement of brackets: how a printed statement that is ill-formed in its
-/// indices (so that it cannot be evaluated) is compared with a side transcribed
-/// verbatim.
-fn same_up_to_order(a: &str, b: &str) -> bool {
+/// Two texts that parse to the same expression up to the order of terms and the
+/// grouping of products and quotients (`a ((b c) / d)` is `a b c / d`; the factors keep
+/// their order, as a product of matrices must): how a printed statement that is
+/// ill-formed in its indices (so that it cannot be evaluated) is compared with a side
+/// transcribed verbatim.
+fn same_up_to_grouping(a: &str, b: &str) -> bool {
     match (crate::lang::parse_expr(a), crate::lang::parse_expr(b)) {
         (Ok(x), Ok(y)) => matches!((canonical(&x), canonical(&y)), (Some(p), Some(q)) if p == q),
         _ => false,
     }
 }
 
-/// The expression as sorted sums of sorted products, as text; `None` for constructs a
-/// verbatim statement does not use (never called equal).
+/// The expression as sorted sums of flattened products (factors in order), as text;
+/// `None` for constructs a verbatim statement does not use (never called equal).
 fn canonical(e: &crate::lang::Expr) -> Option<String> {
     use crate::lang::parser::ExprKind as K;
     fn terms(e: &crate::lang::Expr, negated: bool, out: &mut Vec<String>) -> Option<()> {
@@ -883,7 +884,6 @@ fn canonical(e: &crate::lang::Expr) -> Option<String> {
         let mut fs = Vec::new();
         factors(e, &mut fs)?;
         fs.retain(|f| f != "1");
-        fs.sort();
         Some(fs.join(" "))
     }
     match &e.kind {
@@ -911,6 +911,36 @@ impl Strength {
             Strength::Proof
         } else {
             Strength::Sampled
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The verbatim comparison regroups products and reorders terms, never factors (a
+    /// product of matrices does not commute).
+    #[test]
+    fn verbatim_texts_are_the_same_up_to_grouping_only() {
+        for (a, b) in [
+            (
+                "M_ij - c ((M_ij F_k) / (F_i F_i + h))",
+                "M_ij - c M_ij F_k / (F_i F_i + h)",
+            ),
+            ("a_i a_i a_i + b", "b + a_i a_i a_i"),
+            ("1 x_i x_i x_i", "x_i x_i x_i"),
+        ] {
+            assert!(same_up_to_grouping(a, b), "{a} | {b}");
+        }
+        for (a, b) in [
+            ("A B", "B A"),
+            ("a_i b_i b_i", "b_i a_i b_i"),
+            ("a / b c", "a c / b"),
+            ("a - b", "b - a"),
+            ("a_i a_i a_i", "a_i a_i a_j"),
+        ] {
+            assert!(!same_up_to_grouping(a, b), "{a} | {b}");
         }
     }
 }
