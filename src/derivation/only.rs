@@ -46,10 +46,10 @@ fn needed(texts: &[&str], id: &str) -> Option<Vec<usize>> {
             }
         }
     }
+    holder.get(id)?;
     let mut files = BTreeSet::new();
     let mut seen = BTreeSet::from([id]);
     let mut next = vec![id];
-    holder.get(id)?;
     while let Some(c) = next.pop() {
         let Some(&(k, uses)) = holder.get(c) else {
             continue;

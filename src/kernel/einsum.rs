@@ -83,23 +83,27 @@ pub fn einsum_closing<A: Arithmetic>(
         }
     }
     let (free, summed) = (out.len(), all.len() - out.len());
-    // Each factor's component offset is `base + Σ stride · values[position in all]`:
-    // the fixed slots make the base, each letter slot a stride (row-major, as
-    // `Tensor::get`). It is split into the part of the free letters, formed once per
-    // output component, and the part of the summed letters, tabulated once per
-    // assignment of them.
+    // Each factor's component offset is `base + Σ stride · value of its letter`: the
+    // fixed slots make the base, each letter slot a stride (row-major, as
+    // `Tensor::get`). The strides of the free letters (by position in `out`) give a
+    // part formed once per output component; those of the summed letters (by position
+    // among them) a part tabulated once per assignment of them.
     let mut bases = Vec::with_capacity(factors.len());
-    let mut strides: Vec<Vec<(usize, usize)>> = Vec::with_capacity(factors.len());
+    let mut free_strides: Vec<Vec<(usize, usize)>> = Vec::with_capacity(factors.len());
+    let mut summed_strides: Vec<Vec<(usize, usize)>> = Vec::with_capacity(factors.len());
     for (t, slots) in factors {
         assert_eq!(slots.len(), t.rank(), "index count must equal the rank");
-        let mut base = 0;
-        let mut of_letters = Vec::new();
+        let (mut base, mut of_free, mut of_summed) = (0, Vec::new(), Vec::new());
         let mut stride = 1;
         for s in slots.iter().rev() {
             match s {
                 Slot::Letter(c) => {
                     let k = all.iter().position(|d| d == c).expect("collected above");
-                    of_letters.push((k, stride));
+                    if k < free {
+                        of_free.push((k, stride));
+                    } else {
+                        of_summed.push((k - free, stride));
+                    }
                 }
                 Slot::Fixed(v) => {
                     assert!(*v < dim, "index {v} out of range 0..{dim}");
@@ -109,34 +113,27 @@ pub fn einsum_closing<A: Arithmetic>(
             stride *= dim;
         }
         bases.push(base);
-        strides.push(of_letters);
+        free_strides.push(of_free);
+        summed_strides.push(of_summed);
     }
-    let offset = |f: usize, values: &[usize], letters: std::ops::Range<usize>| -> usize {
-        strides[f]
-            .iter()
-            .filter(|(k, _)| letters.contains(k))
-            .map(|&(k, stride)| stride * values[k])
-            .sum()
+    let offset = |strides: &[(usize, usize)], values: &[usize]| -> usize {
+        strides.iter().map(|&(k, stride)| stride * values[k]).sum()
     };
-    let n = factors.len();
     // Row `s` holds each factor's offset from the summed letters at their `s`-th
     // assignment (in the order of `assignments`).
-    let mut values = vec![0usize; all.len()];
     let mut inner = Vec::new();
     for s in assignments(dim, summed) {
-        values[free..].copy_from_slice(&s);
-        inner.extend((0..n).map(|f| offset(f, &values, free..all.len())));
+        inner.extend(summed_strides.iter().map(|st| offset(st, &s)));
     }
-    let mut at_free = vec![0usize; n];
+    let mut at_free = vec![0usize; factors.len()];
     let mut data = Vec::new();
     let mut failed = None;
     for_each_assignment(dim, free, |o| {
         if failed.is_some() {
             return;
         }
-        values[..free].copy_from_slice(o);
-        for (f, a) in at_free.iter_mut().enumerate() {
-            *a = bases[f] + offset(f, &values, 0..free);
+        for ((a, base), st) in at_free.iter_mut().zip(&bases).zip(&free_strides) {
+            *a = base + offset(st, o);
         }
         match component(arithmetic, factors, &at_free, &inner, &mut last) {
             Ok(total) => data.push(total),
