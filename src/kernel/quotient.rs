@@ -14,7 +14,7 @@
 //! that never divide by a sum compute exactly as with [`Poly`].
 
 use super::einsum::{Arithmetic, OverBudget};
-use super::gcd::{canonical_scale, clear_denominator_monomial, divide_exact};
+use super::gcd::{canonical_scale, clear_denominator_monomial, divide_exact, monomial_content};
 use super::poly::{Monomial, Poly, Var, VarTable};
 use super::rational::Rational;
 use super::RatFunc;
@@ -426,25 +426,6 @@ fn divide_laurent(p: &Poly, f: &Poly) -> Option<Poly> {
 /// The variables of a monomial, each as a polynomial.
 fn monomial_vars(m: &Monomial) -> Vec<Poly> {
     m.factors().iter().map(|&(v, _)| Poly::var(v)).collect()
-}
-
-/// The largest monomial dividing every term of an ordinary polynomial.
-fn monomial_content(p: &Poly) -> Monomial {
-    let mut terms = p.terms();
-    let Some((first, _)) = terms.next() else {
-        return Monomial::one();
-    };
-    let mut common: Vec<(Var, i32)> = first.factors().to_vec();
-    for (m, _) in terms {
-        common = common
-            .into_iter()
-            .filter_map(|(v, e)| {
-                let e = e.min(m.exponent(v));
-                (e > 0).then_some((v, e))
-            })
-            .collect();
-    }
-    Monomial::from_factors(common)
 }
 
 /// Quotients under a work budget: every product of polynomials is charged its term

@@ -104,6 +104,64 @@ pub fn differ(a: &Quotient, b: &Quotient, value: &dyn Fn(Var) -> u64) -> bool {
     }
 }
 
+/// `p` as a polynomial in `w` over 𝔽_P, every other variable at its residue
+/// `value(v)`: the coefficients by ascending power of `w`, without trailing zeros
+/// (empty for the image 0). `None` for a negative power or a denominator that P
+/// divides: no image.
+pub fn univariate_image(p: &Poly, w: Var, value: &dyn Fn(Var) -> u64) -> Option<Vec<u64>> {
+    let mut image: Vec<u64> = Vec::new();
+    for (m, c) in p.terms() {
+        let mut t = of_rational(c)?;
+        let mut power = 0;
+        for &(v, e) in m.factors() {
+            let e = u64::try_from(e).ok()?;
+            if v == w {
+                power = e as usize;
+            } else {
+                t = mul(t, pow(value(v), e));
+            }
+        }
+        if image.len() <= power {
+            image.resize(power + 1, 0);
+        }
+        image[power] = (image[power] + t) % P;
+    }
+    trim(&mut image);
+    Some(image)
+}
+
+fn trim(p: &mut Vec<u64>) {
+    while p.last() == Some(&0) {
+        p.pop();
+    }
+}
+
+/// The degree of the greatest common divisor of two nonzero univariate polynomials
+/// over 𝔽_P (coefficients ascending, no trailing zeros), by Euclid's algorithm.
+pub fn gcd_degree(mut a: Vec<u64>, mut b: Vec<u64>) -> usize {
+    assert!(
+        !a.is_empty() && !b.is_empty(),
+        "gcd_degree of a zero polynomial"
+    );
+    if a.len() < b.len() {
+        std::mem::swap(&mut a, &mut b);
+    }
+    while !b.is_empty() {
+        // a ← a mod b, then swap: b's leading coefficient is invertible (nonzero mod P).
+        let lead = inverse(*b.last().expect("nonzero")).expect("a nonzero residue");
+        while a.len() >= b.len() {
+            let shift = a.len() - b.len();
+            let factor = mul(*a.last().expect("nonzero"), lead);
+            for (k, &bk) in b.iter().enumerate() {
+                a[shift + k] = (a[shift + k] + P - mul(factor, bk)) % P;
+            }
+            trim(&mut a);
+        }
+        std::mem::swap(&mut a, &mut b);
+    }
+    a.len() - 1
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -131,6 +189,38 @@ mod tests {
             let by_big = mul(of_int(&q.numer()), inverse(of_int(&q.denom())).unwrap());
             assert_eq!(of_rational(&q), Some(by_big));
         }
+    }
+
+    #[test]
+    fn univariate_images_and_their_gcd_degree() {
+        let mut names = VarTable::new();
+        let (x, y) = (names.intern("x"), names.intern("y"));
+        let (px, py) = (Poly::var(x), Poly::var(y));
+        let int = |n: i64| Poly::constant(Rational::int(n));
+        // (x − y)(x + 2) and (x − y)(x − 3) at y = 5: a common root, degree 1; with
+        // x² + y instead of the second, none.
+        let a = &(&px - &py) * &(&px + &int(2));
+        let b = &(&px - &py) * &(&px - &int(3));
+        let at = |_: Var| 5;
+        let ia = univariate_image(&a, x, &at).unwrap();
+        assert_eq!(ia, vec![P - 10, P - 3, 1]); // x² − 3x − 10
+        assert_eq!(
+            gcd_degree(ia.clone(), univariate_image(&b, x, &at).unwrap()),
+            1
+        );
+        let c = &(&px * &px) + &py;
+        assert_eq!(
+            gcd_degree(ia.clone(), univariate_image(&c, x, &at).unwrap()),
+            0
+        );
+        assert_eq!(gcd_degree(ia.clone(), ia), 2);
+        // The image may lose degree (x·y at y = 0), and cancel to zero.
+        assert_eq!(
+            univariate_image(&(&px * &py), x, &|_| 0).unwrap(),
+            Vec::<u64>::new()
+        );
+        let inv = Poly::term(crate::kernel::poly::Monomial::var(y, -1), Rational::int(1));
+        assert_eq!(univariate_image(&inv, x, &at), None);
     }
 
     #[test]
