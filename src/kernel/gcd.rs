@@ -33,6 +33,10 @@ pub fn clear_denominator_monomial(p: &Poly) -> (Poly, Monomial) {
             }
         }
     }
+    if lowest.is_empty() {
+        // Already ordinary: multiplying by the monomial 1 would only copy it, sorted.
+        return (p.clone(), Monomial::one());
+    }
     let m = Monomial::from_factors(lowest.into_iter().map(|(v, e)| (v, -e)).collect());
     (p * &Poly::term(m.clone(), Rational::one()), m)
 }

@@ -415,6 +415,11 @@ struct CommonDenominator {
 
 /// `p / f` for a Laurent `p` and an ordinary `f`, when `f` divides exactly.
 fn divide_laurent(p: &Poly, f: &Poly) -> Option<Poly> {
+    if p.terms()
+        .all(|(m, _)| m.factors().iter().all(|&(_, e)| e >= 0))
+    {
+        return divide_exact(p, f);
+    }
     let (q, m) = clear_denominator_monomial(p);
     let r = divide_exact(&q, f)?;
     Some(
