@@ -369,6 +369,16 @@ mod tests {
         );
     }
 
+    /// Pseudo-random draws below `n` (a 64-bit LCG's high bits), seeded.
+    fn draws(mut state: u64) -> impl FnMut(u64) -> u64 {
+        move |n| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 33) % n
+        }
+    }
+
     /// A random polynomial in `x, y, z` of up to `terms` terms, exponents 0..=`top`,
     /// small integer coefficients (zero-free).
     fn random_poly(next: &mut impl FnMut(u64) -> u64, terms: u64, top: u64) -> Poly {
@@ -391,13 +401,7 @@ mod tests {
         // also refuse: b·x + 1 is refused by degrees alone in many of them (a test
         // that always admitted would be sound but useless), and where it divides, it
         // truly does.
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = |n: u64| {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 33) % n
-        };
+        let mut next = draws(0x9e37_79b9_7f4a_7c15_u64);
         let (mut exact, mut refused) = (0, 0);
         for _ in 0..600 {
             let q = random_poly(&mut next, 5, 3);
@@ -448,13 +452,7 @@ mod tests {
         // 150 random pairs: with a common factor of positive degree the images never
         // prove coprimality; without, whenever they do, the remainder sequence agrees,
         // and they do for nearly every coprime pair (the screen is used, not idle).
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = |n: u64| {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 33) % n
-        };
+        let mut next = draws(0x2545_f491_4f6c_dd1d_u64);
         let (mut proved, mut pairs) = (0, 0);
         for _ in 0..150 {
             // A constant term keeps monomial contents out (`gcd` splits them off first).

@@ -106,8 +106,8 @@ pub fn differ(a: &Quotient, b: &Quotient, value: &dyn Fn(Var) -> u64) -> bool {
 
 /// `p` as a polynomial in `w` over 𝔽_P, every other variable at its residue
 /// `value(v)`: the coefficients by ascending power of `w`, without trailing zeros
-/// (empty for the image 0). `None` for a negative power or a denominator that P
-/// divides: no image.
+/// (empty for the image 0). `None` for a negative power, a denominator that P
+/// divides, or a degree in `w` above [`IMAGE_DEGREE`]: no image.
 pub fn univariate_image(p: &Poly, w: Var, value: &dyn Fn(Var) -> u64) -> Option<Vec<u64>> {
     let mut image: Vec<u64> = Vec::new();
     for (m, c) in p.terms() {
@@ -116,7 +116,7 @@ pub fn univariate_image(p: &Poly, w: Var, value: &dyn Fn(Var) -> u64) -> Option<
         for &(v, e) in m.factors() {
             let e = u64::try_from(e).ok()?;
             if v == w {
-                power = e as usize;
+                power = usize::try_from(e).ok().filter(|&k| k <= IMAGE_DEGREE)?;
             } else {
                 t = mul(t, pow(value(v), e));
             }
@@ -129,6 +129,10 @@ pub fn univariate_image(p: &Poly, w: Var, value: &dyn Fn(Var) -> u64) -> Option<
     trim(&mut image);
     Some(image)
 }
+
+/// The highest degree a dense univariate image is built for (its vector has one entry
+/// per power; a higher degree is left to the exact route).
+pub const IMAGE_DEGREE: usize = 4_096;
 
 fn trim(p: &mut Vec<u64>) {
     while p.last() == Some(&0) {
@@ -221,6 +225,12 @@ mod tests {
         );
         let inv = Poly::term(crate::kernel::poly::Monomial::var(y, -1), Rational::int(1));
         assert_eq!(univariate_image(&inv, x, &at), None);
+        let high = Poly::term(
+            crate::kernel::poly::Monomial::var(x, 5_000),
+            Rational::int(1),
+        );
+        assert_eq!(univariate_image(&high, x, &at), None);
+        assert_eq!(univariate_image(&high, y, &at).map(|i| i.len()), Some(1));
     }
 
     #[test]
