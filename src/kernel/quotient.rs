@@ -133,8 +133,15 @@ impl Quotient {
 
     /// The same value, defined only where `extra` are nonzero too: a component of a
     /// definition is defined where the whole definition is.
-    pub fn with_conditions(&self, extra: &[Poly]) -> Quotient {
-        let mut open = self.open();
+    ///
+    /// Consumes the value, and leaves it as it is when it already has every condition
+    /// (each component of a definition has its own, usually most of them): the
+    /// numerator is moved, never copied.
+    pub fn with_conditions(self, extra: &[Poly]) -> Quotient {
+        if extra.iter().all(|f| self.conditions().contains(f)) {
+            return self;
+        }
+        let mut open = self.into_open();
         union(&mut open.conditions, extra);
         open.close()
     }

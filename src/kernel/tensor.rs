@@ -132,6 +132,20 @@ impl<T> Tensor<T> {
         &self.data
     }
 
+    /// Consumes the tensor into its components in row-major order.
+    pub fn into_components(self) -> Vec<T> {
+        self.data
+    }
+
+    /// Consumes the tensor into another of the same shape, component by component.
+    pub fn into_map<U>(self, f: impl FnMut(T) -> U) -> Tensor<U> {
+        Tensor {
+            dim: self.dim,
+            rank: self.rank,
+            data: self.data.into_iter().map(f).collect(),
+        }
+    }
+
     /// Consumes a rank-0 tensor into its value.
     pub fn into_scalar(mut self) -> Option<T> {
         (self.rank == 0).then(|| self.data.remove(0))

@@ -743,7 +743,7 @@ impl Ring for ExactRing<'_, '_> {
         let t = if all.is_empty() {
             t
         } else {
-            t.map(|q| q.with_conditions(&all))
+            t.into_map(|q| q.with_conditions(&all))
         };
         self.env.cache.insert(name.to_owned(), t.clone());
         Ok(t)

@@ -243,9 +243,13 @@ impl Ring for Jets<'_, '_, '_> {
         let t = if all.is_empty() {
             t
         } else {
-            t.map(|j| Jet {
+            t.into_map(|j| Jet {
                 value: j.value.with_conditions(&all),
-                partials: j.partials.iter().map(|p| p.with_conditions(&all)).collect(),
+                partials: j
+                    .partials
+                    .into_iter()
+                    .map(|p| p.with_conditions(&all))
+                    .collect(),
             })
         };
         self.base.env.jet_cache.insert(key, t.clone());

@@ -498,7 +498,7 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
             // Not a polynomial in n: adaptive quadrature with an error estimate.
             let free = if env.decls.normal_in_plane { 2 } else { d };
             let value = env.quadrature.average(free, d, &mut |point| {
-                Ok(walk::walk(&mut { env }, a, point)?.components().to_vec())
+                Ok(walk::walk(&mut { env }, a, point)?.into_components())
             })?;
             let mut it = value.into_iter();
             let rank = a.free_letters().len();

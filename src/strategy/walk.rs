@@ -323,7 +323,7 @@ pub fn matrix<R: Ring>(
             }
             values
         }
-        MatrixOp::Def(name) => ring.definition(name, node, n)?.components().to_vec(),
+        MatrixOp::Def(name) => ring.definition(name, node, n)?.into_components(),
         MatrixOp::Identity => {
             let (zero, one) = (ring.zero(), ring.one());
             (0..rows * cols)
