@@ -12,7 +12,7 @@
 
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_str, DerivationFile, Strategy};
-use cosserat_check::kernel::{monomial_moment, Poly};
+use cosserat_check::kernel::{gcd, monomial_moment, Poly};
 use cosserat_check::strategy::decide_claim;
 use cosserat_check::strategy::probe::Probe;
 use std::hint::black_box;
@@ -110,6 +110,43 @@ const TIGHT_VARS: usize = 12;
 
 /// A polynomial of the tight loop: packed monomials and integer numerators over 6.
 type Packed = Vec<(u64, i64)>;
+
+/// `GCD_PAIRS` pairs `(g·a, g·b)` with a common factor `g`: random polynomials in
+/// three variables, four terms each with exponents 0..=3 and small integer
+/// coefficients, plus a constant term (so that no monomial content hides the work).
+/// Each is returned with `g`, which must divide the gcd found.
+fn gcd_pairs() -> Vec<(Poly, Poly, Poly)> {
+    use cosserat_check::kernel::rational::Rational;
+    use cosserat_check::kernel::Monomial;
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move |m: u64| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state % m
+    };
+    let mut random = || {
+        (0..4).fold(Poly::constant(Rational::int(3)), |p, _| {
+            let factors: Vec<(u32, i32)> = (0..3)
+                .map(|v| (v, next(4) as i32))
+                .filter(|&(_, e)| e > 0)
+                .collect();
+            let c = next(9) as i64 - 4;
+            &p + &Poly::term(
+                Monomial::from_factors(factors),
+                Rational::int(if c == 0 { 5 } else { c }),
+            )
+        })
+    };
+    (0..GCD_PAIRS)
+        .map(|_| {
+            let (g, a, b) = (random(), random(), random());
+            (&g * &a, &g * &b, g)
+        })
+        .collect()
+}
+
+const GCD_PAIRS: usize = 10;
 
 /// The operands of the tight-loop comparison: two polynomials as the kernel holds
 /// them, and the same two packed.
@@ -259,7 +296,8 @@ fn main() {
     // benches/peers.py (NAME: a claim id, decided with its correction; `rank6` or
     // `rank8`, the isotropic moment identity of that rank in 3D and its mutant read and decided; `a2`,
     // Q, D^(ep) and the four A² of the Appendix file derived together, as the peers do it
-    // (`a2-apart`: each A² derived from scratch); `products`, 200 products of the tight-loop
+    // (`a2-apart`: each A² derived from scratch); `gcd`, the gcds of [`GCD_PAIRS`] pairs with a
+    // known common factor ([`gcd_pairs`]); `products`, 200 products of the tight-loop
     // comparison's two polynomials, for profiling the kernel).
     if let Some(k) = args.iter().position(|a| a == "--task") {
         let name = args.get(k + 1).expect("--task NAME REPS");
@@ -274,6 +312,18 @@ fn main() {
                 Box::new(move || {
                     for _ in 0..200 {
                         black_box(&pa * &pb);
+                    }
+                })
+            }
+            "gcd" => {
+                let pairs = gcd_pairs();
+                Box::new(move || {
+                    for (a, b, g) in &pairs {
+                        let d = gcd::gcd(a, b);
+                        assert!(
+                            gcd::divide_exact(&d, g).is_some(),
+                            "g divides gcd(g·a, g·b)"
+                        );
                     }
                 })
             }

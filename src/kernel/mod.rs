@@ -12,6 +12,7 @@ pub mod indexed;
 pub mod limit;
 pub mod linear;
 pub mod matrix;
+pub mod modular;
 pub mod moments;
 pub mod poly;
 pub mod quotient;

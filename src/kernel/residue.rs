@@ -14,7 +14,7 @@ use num_traits::{Signed, ToPrimitive};
 pub const P: u64 = (1 << 61) - 1;
 
 /// a·b mod P for a, b < P, by the Mersenne reduction 2⁶¹ ≡ 1 (no division).
-fn mul(a: u64, b: u64) -> u64 {
+pub(super) fn mul(a: u64, b: u64) -> u64 {
     let x = u128::from(a) * u128::from(b);
     let r = (x as u64 & P) + (x >> 61) as u64;
     // r < 2P: x < 2¹²², so x >> 61 < 2⁶¹.
@@ -38,7 +38,7 @@ fn pow(mut a: u64, mut e: u64) -> u64 {
 }
 
 /// a⁻¹ mod P, `None` for 0.
-fn inverse(a: u64) -> Option<u64> {
+pub(super) fn inverse(a: u64) -> Option<u64> {
     (a != 0).then(|| pow(a, P - 2))
 }
 
