@@ -333,7 +333,13 @@ impl Open {
 
     /// Cancels every factor that divides the numerator exactly, and drops the
     /// denominator of zero.
-    fn tidy(mut self) -> Open {
+    fn tidy(self) -> Open {
+        self.tidy_from(0)
+    }
+
+    /// [`Open::tidy`] for a value whose factors before `start` are known not to
+    /// divide the numerator.
+    fn tidy_from(mut self, start: usize) -> Open {
         if self.num.is_zero() {
             self.den.clear();
             return self;
@@ -341,7 +347,7 @@ impl Open {
         if self.num.num_terms() > TIDY_TERMS {
             return self;
         }
-        let mut k = 0;
+        let mut k = start;
         while k < self.den.len() {
             match divide_laurent(&self.num, &self.den[k].0) {
                 Some(q) => {
@@ -490,8 +496,13 @@ impl Arithmetic for Quotients<'_> {
     }
     fn mul(&mut self, a: Quotient, b: &Quotient) -> Result<Quotient, OverBudget> {
         let num = self.product(&a.num, &b.num)?;
-        if a.rest.is_none() && b.rest.is_none() {
-            return Ok(Quotient::from(num));
+        match (&a.rest, &b.rest) {
+            (None, None) => return Ok(Quotient::from(num)),
+            // One side a polynomial: the other's denominator and conditions, shared
+            // unless a factor cancels (the factor lists hold distinct factors, so this
+            // is the general case below without the copies).
+            (Some(r), None) | (None, Some(r)) => return Ok(keeping(num, Arc::clone(r))),
+            (Some(_), Some(_)) => {}
         }
         let a = a.into_open();
         let mut out = Open {
@@ -550,6 +561,50 @@ impl std::ops::Neg for Quotient {
     }
 }
 
+/// `num` over `rest`'s factors, tidied ([`Open::tidy`]), with `rest` itself kept when
+/// no factor divides `num` (the usual case). When factor `k` divides, the factors
+/// before it do not divide the quotient either (they would divide `num`), so tidying
+/// goes on from `k`, exactly as [`Open::tidy`] would.
+fn keeping(num: Poly, rest: Arc<Rest>) -> Quotient {
+    let divides = if num.is_zero() || num.num_terms() > TIDY_TERMS {
+        None
+    } else {
+        rest.den
+            .iter()
+            .enumerate()
+            .find_map(|(k, (f, _))| Some((k, divide_laurent(&num, f)?)))
+    };
+    match divides {
+        None if !num.is_zero() => Quotient {
+            num,
+            rest: Some(rest),
+        },
+        None => Open {
+            num,
+            den: Vec::new(),
+            conditions: rest.conditions.clone(),
+        }
+        .close(),
+        Some((k, q)) => {
+            let Rest {
+                mut den,
+                conditions,
+            } = Arc::unwrap_or_clone(rest);
+            den[k].1 -= 1;
+            if den[k].1 == 0 {
+                den.remove(k);
+            }
+            Open {
+                num: q,
+                den,
+                conditions,
+            }
+            .tidy_from(k)
+            .close()
+        }
+    }
+}
+
 /// Clears the denominators of `a − b`: the numerator of the difference over the least
 /// common multiple of both denominators, and that multiple's factors. `a = b` wherever
 /// every factor is nonzero exactly when the numerator is the zero polynomial.
@@ -594,6 +649,61 @@ mod tests {
 
     fn ring(work: &mut usize) -> Quotients<'_> {
         Quotients { work_left: work }
+    }
+
+    #[test]
+    fn a_product_with_a_polynomial_shares_or_tidies_as_the_open_route_does() {
+        // x/((x + 1)²(y − 2)) times a polynomial, for numerators that cancel nothing,
+        // one factor, both powers of one, the other, everything, or give zero: the
+        // shortcut gives what laying the parts open and tidying gives, and shares the
+        // denominator when nothing cancels.
+        let (_, x, y) = setup();
+        let (f, g) = (&x + &q(1), &y - &q(2));
+        let base = Quotient::from(x.clone())
+            .divide(&Quotient::from(f.clone()))
+            .unwrap()
+            .divide(&Quotient::from(f.clone()))
+            .unwrap()
+            .divide(&Quotient::from(g.clone()))
+            .unwrap();
+        let rest = base.rest.clone().expect("a denominator");
+        let cases = [
+            &x + &y,
+            f.clone(),
+            &f * &f,
+            &g * &(&x - &q(3)),
+            &(&f * &f) * &g,
+            Poly::default(),
+            q(5),
+        ];
+        for p in cases {
+            let num = base.numerator() * &p;
+            let open = Open {
+                num: num.clone(),
+                den: rest.den.clone(),
+                conditions: rest.conditions.clone(),
+            }
+            .tidy()
+            .close();
+            let mut work = 1_000;
+            let both = [
+                ring(&mut work).mul(base.clone(), &Quotient::from(p.clone())),
+                ring(&mut work).mul(Quotient::from(p.clone()), &base),
+            ];
+            let parts =
+                |v: &Quotient| (v.num.clone(), v.factors().to_vec(), v.conditions().to_vec());
+            for product in both {
+                let product = product.unwrap();
+                assert_eq!(parts(&product), parts(&open), "times {p:?}");
+                assert_eq!(product.conditions(), base.conditions());
+            }
+            let kept = keeping(num, Arc::clone(&rest));
+            let shared = kept.rest.as_ref().is_some_and(|r| Arc::ptr_eq(r, &rest));
+            assert_eq!(
+                shared,
+                open.factors() == rest.den.as_slice() && !open.is_zero()
+            );
+        }
     }
 
     #[test]
