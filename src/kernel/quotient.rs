@@ -51,7 +51,7 @@ pub struct Quotient {
     rest: Option<Arc<Rest>>,
 }
 
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 struct Rest {
     den: Vec<(Poly, u32)>,
     /// Every factor this value was ever divided by, cancelled or not, and every
@@ -525,6 +525,25 @@ impl Arithmetic for Quotients<'_> {
             num += &b.num;
             return Ok(Quotient::from(num));
         }
+        // One side a polynomial, or both over the same factors with the same
+        // conditions: the common denominator is the other's (or theirs), shared unless
+        // a factor cancels. This is the general case below without the copies.
+        let shared = match (&a.rest, &b.rest) {
+            (Some(r), None) | (None, Some(r)) => Some(Arc::clone(r)),
+            (Some(r), Some(s)) if Arc::ptr_eq(r, s) || r == s => Some(Arc::clone(r)),
+            (Some(_), Some(_)) | (None, None) => None,
+        };
+        if let Some(rest) = shared {
+            let none: &[(Poly, u32)] = &[];
+            let (a_lacks, b_lacks) = match (&a.rest, &b.rest) {
+                (None, _) => (rest.den.as_slice(), none),
+                (_, None) => (none, rest.den.as_slice()),
+                _ => (none, none),
+            };
+            let mut num = self.times(a.num, a_lacks)?;
+            num += &self.times(b.num, b_lacks)?;
+            return Ok(keeping(num, rest));
+        }
         let (a, b) = (a.into_open(), b.into_open());
         let mut conditions = a.conditions;
         union(&mut conditions, &b.conditions);
@@ -652,11 +671,11 @@ mod tests {
     }
 
     #[test]
-    fn a_product_with_a_polynomial_shares_or_tidies_as_the_open_route_does() {
-        // x/((x + 1)²(y − 2)) times a polynomial, for numerators that cancel nothing,
-        // one factor, both powers of one, the other, everything, or give zero: the
-        // shortcut gives what laying the parts open and tidying gives, and shares the
-        // denominator when nothing cancels.
+    fn products_and_sums_share_or_tidy_as_the_open_route_does() {
+        // x/((x + 1)²(y − 2)) times and plus a polynomial, for numerators that cancel
+        // nothing, one factor, both powers of one, the other, everything, or give
+        // zero: the shortcuts give what laying the parts open and tidying gives, and
+        // share the denominator when nothing cancels.
         let (_, x, y) = setup();
         let (f, g) = (&x + &q(1), &y - &q(2));
         let base = Quotient::from(x.clone())
@@ -696,6 +715,32 @@ mod tests {
                 let product = product.unwrap();
                 assert_eq!(parts(&product), parts(&open), "times {p:?}");
                 assert_eq!(product.conditions(), base.conditions());
+            }
+            // Sums: with a polynomial (its numerator times every factor), and with a
+            // value over the same factors and conditions (numerators added).
+            let cleared = rest
+                .den
+                .iter()
+                .fold(p.clone(), |acc, (f, k)| &acc * &f.pow(*k));
+            let same_rest = Quotient {
+                num: p.clone(),
+                rest: Some(Arc::new((*rest).clone())),
+            };
+            for (other, added) in [(Quotient::from(p.clone()), cleared), (same_rest, p.clone())] {
+                let open = Open {
+                    num: base.numerator() + &added,
+                    den: rest.den.clone(),
+                    conditions: rest.conditions.clone(),
+                }
+                .tidy()
+                .close();
+                let sums = [
+                    ring(&mut work).add(base.clone(), other.clone()),
+                    ring(&mut work).add(other, base.clone()),
+                ];
+                for sum in sums {
+                    assert_eq!(parts(&sum.unwrap()), parts(&open), "plus {p:?}");
+                }
             }
             let kept = keeping(num, Arc::clone(&rest));
             let shared = kept.rest.as_ref().is_some_and(|r| Arc::ptr_eq(r, &rest));
