@@ -2,6 +2,7 @@
 //! verdict equals the one its derivation file declares, 1 when any differs, 2 for
 //! malformed input (with a located diagnostic on stderr; nothing is written then).
 
+use crate::derivation::only::Reading;
 use crate::derivation::{load_files, DerivationFile, LoadError, Strategy};
 use crate::report;
 use crate::strategy::watch::{self, Watch};
@@ -452,11 +453,7 @@ fn override_sampling(files: &mut [DerivationFile], seed: Option<u64>, samples: O
 /// there is one (an edited file is checked as edited), else the paper's files embedded
 /// in the binary. For one claim (`only`), only the files deciding it reads
 /// ([`crate::derivation::only`]).
-fn read(
-    dir: Option<PathBuf>,
-    files: &[PathBuf],
-    only: Option<&str>,
-) -> Result<Vec<DerivationFile>, RunError> {
+fn read(dir: Option<PathBuf>, files: &[PathBuf], only: Option<&str>) -> Result<Reading, RunError> {
     use crate::derivation::{load::toml_files, only as one};
     let paths = if files.is_empty() {
         match dir {
@@ -465,7 +462,7 @@ fn read(
             None => {
                 return Ok(match only {
                     Some(id) => one::load_texts_for(crate::corpus::FILES, id)?,
-                    None => crate::corpus::load()?,
+                    None => Reading::whole(crate::corpus::load()?),
                 })
             }
         }
@@ -474,7 +471,7 @@ fn read(
     };
     Ok(match only {
         Some(id) => one::load_files_for(&paths, id)?,
-        None => load_files(&paths)?,
+        None => Reading::whole(load_files(&paths)?),
     })
 }
 
@@ -568,14 +565,15 @@ fn emit(
 }
 
 fn table(
-    mut files: Vec<DerivationFile>,
+    read: Reading,
     args: &OutputArgs,
     errata: bool,
     out: &mut Output<'_>,
 ) -> Result<Status, RunError> {
+    let mut files = read.files;
     override_sampling(&mut files, args.seed, args.samples);
     // Where `uses` and the definitions disagree: warnings, which change no verdict.
-    for w in crate::derivation::uses::warnings(&files) {
+    for w in crate::derivation::uses::warnings(&files, &read.unread_ids) {
         eprintln!("{}\n", w.warning());
     }
     let mut progress = Progress::new();
@@ -630,7 +628,7 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
         ),
         Command::Plot(a) => plot(&a, out),
         Command::Explain(a) => {
-            let files = read(a.dir, &a.files, Some(&a.id))?;
+            let files = read(a.dir, &a.files, Some(&a.id))?.files;
             let run = Run {
                 keep: true,
                 limit: watch::DEFAULT_LIMIT,

@@ -113,7 +113,10 @@ fn only_one_claim_still_decides_what_it_uses() {
 #[test]
 fn a_missing_and_a_stale_edge_are_warned_about() {
     let files = load_files(&["tests/graph/warnings.toml"]).unwrap();
-    let warnings: Vec<String> = uses::warnings(&files).iter().map(|d| d.warning()).collect();
+    let warnings: Vec<String> = uses::warnings(&files, &Default::default())
+        .iter()
+        .map(|d| d.warning())
+        .collect();
     assert_eq!(warnings.len(), 2, "{warnings:#?}");
     assert!(warnings[0].starts_with(
         "warning: `reads-s-lists-u` reads `s`, which transcribes lemma-s, but its `uses` does not list lemma-s"
@@ -135,7 +138,10 @@ fn paper() -> Vec<DerivationFile> {
 #[test]
 fn the_papers_uses_agree_with_its_definitions() {
     let files = paper();
-    let warnings: Vec<String> = uses::warnings(&files).iter().map(|d| d.warning()).collect();
+    let warnings: Vec<String> = uses::warnings(&files, &Default::default())
+        .iter()
+        .map(|d| d.warning())
+        .collect();
     assert!(warnings.is_empty(), "{}", warnings.join("\n\n"));
     // Every claim but the first steps of a section rests on something.
     let listed = files
@@ -190,7 +196,10 @@ fn the_paper_has_two_failures_inherited_from_eq21() {
 #[test]
 fn an_id_no_file_read_has_is_warned_about_and_its_edge_not_followed() {
     let files = load_files(&["tests/graph/unknown.toml"]).unwrap();
-    let warnings: Vec<String> = uses::warnings(&files).iter().map(|d| d.warning()).collect();
+    let warnings: Vec<String> = uses::warnings(&files, &Default::default())
+        .iter()
+        .map(|d| d.warning())
+        .collect();
     assert_eq!(warnings.len(), 1, "{warnings:#?}");
     assert!(
         warnings[0].starts_with("warning: `lemma-2` is no claim of the files read"),

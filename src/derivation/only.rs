@@ -30,10 +30,11 @@ struct OutlineClaim {
 }
 
 /// The indices (ascending) of the texts that deciding claim `id` reads: the one that
-/// holds it and those holding the claims it uses, transitively. `None` when the
-/// outlines cannot tell: a text that does not outline, or an id held by no text or by
-/// two (a `uses` id held by none is skipped, as it is only a warning in a whole run).
-fn needed(texts: &[&str], id: &str) -> Option<Vec<usize>> {
+/// holds it and those holding the claims it uses, transitively; and the claim ids of
+/// the other texts. `None` when the outlines cannot tell: a text that does not
+/// outline, or an id held by no text or by two (a `uses` id held by none is skipped,
+/// as it is only a warning in a whole run).
+fn needed(texts: &[&str], id: &str) -> Option<(Vec<usize>, BTreeSet<String>)> {
     let outlines: Vec<Outline> =
         crate::parallel::in_index_order(texts.len(), |k| toml::from_str::<Outline>(texts[k]).ok())
             .into_iter()
@@ -61,11 +62,35 @@ fn needed(texts: &[&str], id: &str) -> Option<Vec<usize>> {
             }
         }
     }
-    Some(files.into_iter().collect())
+    let unread = outlines
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| !files.contains(k))
+        .flat_map(|(_, o)| o.claim.iter().map(|c| c.id.clone()))
+        .collect();
+    Some((files.into_iter().collect(), unread))
+}
+
+/// The files read for one claim, and the claim ids of the files left unread: a `uses`
+/// edge to one of those is followed in a whole run, so reading fewer files must not
+/// warn about it ([`crate::derivation::uses::warnings`]).
+pub struct Reading {
+    pub files: Vec<DerivationFile>,
+    pub unread_ids: BTreeSet<String>,
+}
+
+impl Reading {
+    /// Every file was read.
+    pub fn whole(files: Vec<DerivationFile>) -> Reading {
+        Reading {
+            files,
+            unread_ids: BTreeSet::new(),
+        }
+    }
 }
 
 /// [`load_files`] of the files claim `id` needs (every file when that cannot be told).
-pub fn load_files_for(paths: &[PathBuf], id: &str) -> Result<Vec<DerivationFile>, LoadError> {
+pub fn load_files_for(paths: &[PathBuf], id: &str) -> Result<Reading, LoadError> {
     let texts: Option<Vec<String>> = crate::parallel::in_index_order(paths.len(), |k| {
         read_bounded(&paths[k])
             .ok()
@@ -74,22 +99,25 @@ pub fn load_files_for(paths: &[PathBuf], id: &str) -> Result<Vec<DerivationFile>
     .into_iter()
     .collect();
     let subset = texts.and_then(|t| needed(&t.iter().map(String::as_str).collect::<Vec<_>>(), id));
-    match subset {
-        Some(ks) => load_files(&ks.iter().map(|&k| &paths[k]).collect::<Vec<_>>()),
-        None => load_files(paths),
-    }
+    Ok(match subset {
+        Some((ks, unread_ids)) => Reading {
+            files: load_files(&ks.iter().map(|&k| &paths[k]).collect::<Vec<_>>())?,
+            unread_ids,
+        },
+        None => Reading::whole(load_files(paths)?),
+    })
 }
 
 /// [`load_texts`] of the texts claim `id` needs (every text when that cannot be told).
-pub fn load_texts_for(
-    sources: &[(&str, &str)],
-    id: &str,
-) -> Result<Vec<DerivationFile>, LoadError> {
+pub fn load_texts_for(sources: &[(&str, &str)], id: &str) -> Result<Reading, LoadError> {
     let texts: Vec<&str> = sources.iter().map(|&(_, t)| t).collect();
-    match needed(&texts, id) {
-        Some(ks) => load_texts(&ks.iter().map(|&k| sources[k]).collect::<Vec<_>>()),
-        None => load_texts(sources),
-    }
+    Ok(match needed(&texts, id) {
+        Some((ks, unread_ids)) => Reading {
+            files: load_texts(&ks.iter().map(|&k| sources[k]).collect::<Vec<_>>())?,
+            unread_ids,
+        },
+        None => Reading::whole(load_texts(sources)?),
+    })
 }
 
 #[cfg(test)]
@@ -104,11 +132,16 @@ mod tests {
     #[test]
     fn a_claim_needs_its_file_and_those_of_what_it_uses() {
         let texts = [A, B, C, D];
-        assert_eq!(needed(&texts, "a"), Some(vec![0, 1, 2]));
-        assert_eq!(needed(&texts, "a2"), Some(vec![0]));
+        let files = |id| needed(&texts, id).map(|(ks, _)| ks);
+        assert_eq!(files("a"), Some(vec![0, 1, 2]));
+        assert_eq!(files("a2"), Some(vec![0]));
         // A cycle (b → c → b) is read once; the whole run reports it.
-        assert_eq!(needed(&texts, "c"), Some(vec![1, 2]));
-        assert_eq!(needed(&texts, "d"), Some(vec![3]));
+        assert_eq!(files("c"), Some(vec![1, 2]));
+        assert_eq!(files("d"), Some(vec![3]));
+        // The ids of the files left unread are known, not missing.
+        let unread = |id| needed(&texts, id).map(|(_, ids)| ids.into_iter().collect::<Vec<_>>());
+        assert_eq!(unread("a2"), Some(vec!["b".into(), "c".into(), "d".into()]));
+        assert_eq!(unread("a"), Some(vec!["d".into()]));
     }
 
     #[test]

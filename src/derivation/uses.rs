@@ -5,7 +5,7 @@
 
 use super::model::{Claim, DerivationFile};
 use crate::lang::{Diagnostic, Origin, Span};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// A diagnostic pointing at the whole of `text`, which `origin` locates.
 fn at(origin: &Origin, text: &str, message: String) -> Diagnostic {
@@ -116,19 +116,23 @@ pub fn implied(claim: &Claim) -> Vec<Implied<'_>> {
 /// a claim that states no definition of the file, or from a check that reads no stated
 /// definition (a step checked on its own symbols), cannot be inferred either way and is
 /// taken as written.
-pub fn warnings(files: &[DerivationFile]) -> Vec<Diagnostic> {
+///
+/// `unread_ids` are the claims of files left unread (reading for one claim,
+/// [`super::only`]): an edge to one of them is no warning, as in a whole run.
+pub fn warnings(files: &[DerivationFile], unread_ids: &BTreeSet<String>) -> Vec<Diagnostic> {
     let mut out = Vec::new();
-    let known = by_id(files);
+    let mut known: BTreeSet<&str> = by_id(files).into_keys().collect();
+    known.extend(unread_ids.iter().map(String::as_str));
     let unknown =
         |id: &str| format!("`{id}` is no claim of the files read, so this edge is not followed");
     let help = "check the id, or read the file that has it together with this one";
     for c in files.iter().flat_map(|f| &f.claims) {
-        for u in c.uses.iter().filter(|u| !known.contains_key(u.id.as_str())) {
+        for u in c.uses.iter().filter(|u| !known.contains(u.id.as_str())) {
             out.push(at(&u.origin, &u.id, unknown(&u.id)).with_help(help));
         }
     }
     for s in files.iter().flat_map(|f| f.stated.iter()) {
-        if !known.contains_key(s.by.as_str()) {
+        if !known.contains(s.by.as_str()) {
             out.push(at(&s.origin, &s.by, unknown(&s.by)).with_help(help));
         }
     }
