@@ -591,6 +591,26 @@ mod tests {
     }
 
     #[test]
+    fn coefficients_beyond_reconstruction_fall_back_to_the_remainder_sequence() {
+        // g = 10¹²·x + y + 1: with leading coefficient 1, its coefficients are 10⁻¹²,
+        // beyond what one prime reconstructs. The reconstruction finds another small
+        // fraction with the same residue, a wrong candidate, which the check refuses;
+        // the remainder sequence finds g.
+        let (_, x, y, z) = setup();
+        let big =
+            Poly::constant(Rational::from_big(BigInt::from(10).pow(12), BigInt::one()).unwrap());
+        let g = &(&(&big * &x) + &y) + &c(1);
+        let (a, b) = (&g * &(&x - &z), &g * &(&y + &c(3)));
+        let wrong = modular::candidate(&a, &b).expect("a candidate");
+        assert_ne!(
+            normalize_sign_and_scale(&wrong),
+            normalize_sign_and_scale(&g)
+        );
+        assert_eq!(confirmed(&a, &b, &wrong), None);
+        assert_eq!(gcd(&a, &b), normalize_sign_and_scale(&g));
+    }
+
+    #[test]
     fn gcd_is_refuted_by_a_wrong_factor() {
         // Mutant: the second input carries g with one coefficient changed, so the
         // common factor disappears and the gcd must be 1.
