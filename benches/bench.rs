@@ -111,6 +111,16 @@ const TIGHT_VARS: usize = 12;
 /// A polynomial of the tight loop: packed monomials and integer numerators over 6.
 type Packed = Vec<(u64, i64)>;
 
+/// A deterministic pseudo-random stream (xorshift): each call gives a number below `m`.
+fn xorshift(mut state: u64) -> impl FnMut(u64) -> u64 {
+    move |m| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state % m
+    }
+}
+
 /// `GCD_PAIRS` pairs `(g·a, g·b)` with a common factor `g`: random polynomials in
 /// three variables, four terms each with exponents 0..=3 and small integer
 /// coefficients, plus a constant term (so that no monomial content hides the work).
@@ -118,13 +128,7 @@ type Packed = Vec<(u64, i64)>;
 fn gcd_pairs() -> Vec<(Poly, Poly, Poly)> {
     use cosserat_check::kernel::rational::Rational;
     use cosserat_check::kernel::Monomial;
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move |m: u64| {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state % m
-    };
+    let mut next = xorshift(0x2545_f491_4f6c_dd1d);
     let mut random = || {
         (0..4).fold(Poly::constant(Rational::int(3)), |p, _| {
             let factors: Vec<(u32, i32)> = (0..3)
@@ -154,14 +158,7 @@ fn product_operands() -> (Poly, Poly, Packed, Packed) {
     use cosserat_check::kernel::rational::Rational;
     use cosserat_check::kernel::Monomial;
     use std::collections::HashMap;
-    // A deterministic pseudo-random stream (xorshift).
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut next = move |m: u64| {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state % m
-    };
+    let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
     // Two polynomials of TIGHT_TERMS terms, exponents 0..=3, coefficients k/6 (the
     // paper's denominators are small).
     let mut factor = || -> Vec<([u32; TIGHT_VARS], i64)> {
