@@ -6,9 +6,12 @@
 //! textbook recursive one (Knuth, TAOCP vol. 2, §4.6.1; Geddes, Czapor & Labahn,
 //! ch. 7): view a polynomial as univariate in its largest variable with coefficients
 //! in the others, split off the content, run the primitive pseudo-remainder sequence,
-//! and recurse on the contents. It is not the fastest gcd (no modular or sparse
-//! interpolation), but every step is exact and small enough to audit, and the
-//! polynomials of such derivations have a handful of variables and low degree.
+//! and recurse on the contents. Every step is exact and small enough to audit, but the
+//! coefficients of the remainders swell, so it is the last resort: monomial contents
+//! are split off first, coprime pairs are proved coprime by images mod a prime, and a
+//! common factor of positive degree is first sought by the modular algorithm of
+//! [`super::modular`], whose candidate is accepted only when it divides both inputs
+//! and the cofactors are proved coprime (`confirmed`).
 //!
 //! Only ordinary polynomials (no negative exponents) are accepted: a Laurent
 //! polynomial is first cleared by [`clear_denominator_monomial`].
