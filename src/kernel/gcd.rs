@@ -238,7 +238,11 @@ pub fn gcd(a: &Poly, b: &Poly) -> Poly {
     if coprime_by_images(a, b) {
         return Poly::one();
     }
-    if let Some(g) = modular::candidate(a, b).and_then(|g| confirmed(a, b, &g)) {
+    // A constant candidate cannot be confirmed: the images just failed to prove it.
+    if let Some(g) = modular::candidate(a, b)
+        .filter(|g| g.as_constant().is_none())
+        .and_then(|g| confirmed(a, b, &g))
+    {
         return g;
     }
     gcd_by_remainders(a, b)
@@ -302,12 +306,7 @@ fn gcd_by_remainders(a: &Poly, b: &Poly) -> Poly {
 /// for every shared variable, rule every such `g` out.
 fn coprime_by_images(a: &Poly, b: &Poly) -> bool {
     // A fixed point of residues, far from 0 and 1 (splitmix64 of the variable).
-    coprime_at(a, b, &|v: Var| {
-        let mut z = u64::from(v).wrapping_add(0x9e37_79b9_7f4a_7c15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        (z ^ (z >> 31)) % residue::P
-    })
+    coprime_at(a, b, &|v: Var| residue::scramble(u64::from(v)))
 }
 
 /// [`coprime_by_images`] with the other variables at the residues `at`.

@@ -16,16 +16,14 @@
 
 use super::poly::{Monomial, Poly, Var};
 use super::rational::Rational;
-use super::residue::{self, P};
+use super::residue::{
+    self, eval, scramble, sub, uni_add, uni_divrem, uni_gcd, uni_mul, uni_scale, Uni, P,
+};
 use std::collections::BTreeMap;
 
 /// A polynomial over 𝔽_P in `n` variables: exponent vectors (variable 0 most
 /// significant, so the map's order is lexicographic) to nonzero residues.
 type Image = BTreeMap<Vec<u32>, u64>;
-
-/// A univariate polynomial over 𝔽_P, coefficients ascending, no trailing zeros (empty
-/// for 0).
-type Uni = Vec<u64>;
 
 /// The most variables, and the highest degree in any one, tried: the work grows as
 /// the product of the degrees, and beyond these the caller's exact route decides.
@@ -200,11 +198,7 @@ fn brown(a: &Image, b: &Image, n: usize, budget: &mut u64) -> Option<Image> {
 /// is as unlikely as degree/P, and the run is deterministic. Small points such as
 /// 1, 2, 3 are unlucky for inputs like `x + y` and `x + 1` at `y = 1`.
 fn point(n: usize, k: u64) -> u64 {
-    let mut z =
-        (n as u64).wrapping_mul(0x1000_0000_0000_0001) ^ k.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    (z ^ (z >> 31)) % P
+    scramble((n as u64).wrapping_mul(0x1000_0000_0000_0001) ^ k)
 }
 
 /// `p` as a polynomial in all variables but the last, over 𝔽_P[last].
@@ -304,97 +298,6 @@ fn from_uni(u: &Uni) -> Image {
         .collect()
 }
 
-fn eval(u: &[u64], x: u64) -> u64 {
-    u.iter()
-        .rev()
-        .fold(0, |acc, &c| add(residue::mul(acc, x), c))
-}
-
-fn add(a: u64, b: u64) -> u64 {
-    let s = a + b; // < 2P < 2⁶⁴
-    if s >= P {
-        s - P
-    } else {
-        s
-    }
-}
-
-fn sub(a: u64, b: u64) -> u64 {
-    if a >= b {
-        a - b
-    } else {
-        a + P - b
-    }
-}
-
-fn trim(mut u: Uni) -> Uni {
-    while u.last() == Some(&0) {
-        u.pop();
-    }
-    u
-}
-
-fn uni_add(a: &[u64], b: &[u64]) -> Uni {
-    let mut out = vec![0; a.len().max(b.len())];
-    for (k, o) in out.iter_mut().enumerate() {
-        *o = add(
-            a.get(k).copied().unwrap_or(0),
-            b.get(k).copied().unwrap_or(0),
-        );
-    }
-    trim(out)
-}
-
-fn uni_scale(a: &[u64], s: u64) -> Uni {
-    trim(a.iter().map(|&c| residue::mul(c, s)).collect())
-}
-
-fn uni_mul(a: &[u64], b: &[u64]) -> Uni {
-    if a.is_empty() || b.is_empty() {
-        return Vec::new();
-    }
-    let mut out = vec![0; a.len() + b.len() - 1];
-    for (i, &x) in a.iter().enumerate() {
-        for (j, &y) in b.iter().enumerate() {
-            out[i + j] = add(out[i + j], residue::mul(x, y));
-        }
-    }
-    trim(out)
-}
-
-/// Quotient and remainder; `None` for division by 0.
-fn uni_divrem(a: &[u64], b: &[u64]) -> Option<(Uni, Uni)> {
-    let lead = residue::inverse(*b.last()?)?;
-    let mut r = a.to_vec();
-    if r.len() < b.len() {
-        return Some((Vec::new(), r));
-    }
-    let mut q = vec![0; r.len() - b.len() + 1];
-    while r.len() >= b.len() {
-        let shift = r.len() - b.len();
-        let f = residue::mul(*r.last().expect("nonempty"), lead);
-        q[shift] = f;
-        for (k, &bk) in b.iter().enumerate() {
-            r[shift + k] = sub(r[shift + k], residue::mul(f, bk));
-        }
-        r = trim(r);
-    }
-    Some((trim(q), r))
-}
-
-/// The monic gcd (gcd(0, 0) = 0).
-fn uni_gcd(mut a: Uni, mut b: Uni) -> Uni {
-    while !b.is_empty() {
-        let (_, r) = uni_divrem(&a, &b).expect("b is nonzero");
-        a = b;
-        b = r;
-    }
-    match a.last() {
-        None => a,
-        Some(&lc) => uni_scale(&a, residue::inverse(lc).expect("nonzero")),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -410,19 +313,5 @@ mod tests {
         let big = Rational::ratio(3_000_000_007, 5).unwrap();
         let c = residue::of_rational(&big).unwrap();
         assert_ne!(reconstruct(c), Some(big));
-    }
-
-    #[test]
-    fn univariate_arithmetic_mod_p() {
-        // (y + 2)(y − 3) = y² − y − 6, divided back; gcd with (y + 2)(y + 5).
-        let m = |n: i64| residue::of_rational(&Rational::int(n)).unwrap();
-        let a = uni_mul(&[m(2), 1], &[m(-3), 1]);
-        assert_eq!(a, vec![m(-6), m(-1), 1]);
-        let (q, r) = uni_divrem(&a, &[m(2), 1]).unwrap();
-        assert_eq!((q, r), (vec![m(-3), 1], Vec::new()));
-        let b = uni_mul(&[m(2), 1], &[m(5), 1]);
-        assert_eq!(uni_gcd(a.clone(), b), vec![m(2), 1]);
-        assert_eq!(eval(&a, 3), 0);
-        assert_eq!(uni_gcd(a.clone(), vec![m(7)]), vec![1]);
     }
 }

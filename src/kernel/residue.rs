@@ -3,6 +3,10 @@
 //! homomorphism, so two values with different residues are different; equal residues
 //! decide nothing. The counterexample search uses it to skip candidate points whose
 //! exact evaluation (bigint powers of high degree) would be wasted.
+//!
+//! Univariate polynomials over 𝔽_P live here too (images of multivariate ones, their
+//! gcds by Euclid's algorithm): the gcd proves coprimality with them, and the modular
+//! gcd (`super::modular`) builds its candidates from them.
 
 use super::poly::{Poly, Var};
 use super::quotient::Quotient;
@@ -140,30 +144,115 @@ fn trim(p: &mut Vec<u64>) {
     }
 }
 
+/// A residue that looks random, from `seed` (splitmix64's finaliser, reduced mod P):
+/// evaluation points far from 0 and 1, the same in every run.
+pub(super) fn scramble(seed: u64) -> u64 {
+    let mut z = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    (z ^ (z >> 31)) % P
+}
+
 /// The degree of the greatest common divisor of two nonzero univariate polynomials
-/// over 𝔽_P (coefficients ascending, no trailing zeros), by Euclid's algorithm.
-pub fn gcd_degree(mut a: Vec<u64>, mut b: Vec<u64>) -> usize {
+/// over 𝔽_P (coefficients ascending, no trailing zeros).
+pub fn gcd_degree(a: Vec<u64>, b: Vec<u64>) -> usize {
     assert!(
         !a.is_empty() && !b.is_empty(),
         "gcd_degree of a zero polynomial"
     );
-    if a.len() < b.len() {
-        std::mem::swap(&mut a, &mut b);
+    uni_gcd(a, b).len() - 1
+}
+
+/// A univariate polynomial over 𝔽_P, coefficients ascending, no trailing zeros (empty
+/// for 0).
+pub(super) type Uni = Vec<u64>;
+
+/// The value at `x` (Horner).
+pub(super) fn eval(u: &[u64], x: u64) -> u64 {
+    u.iter().rev().fold(0, |acc, &c| add(mul(acc, x), c))
+}
+
+fn add(a: u64, b: u64) -> u64 {
+    let s = a + b; // < 2P < 2⁶⁴
+    if s >= P {
+        s - P
+    } else {
+        s
     }
-    while !b.is_empty() {
-        // a ← a mod b, then swap: b's leading coefficient is invertible (nonzero mod P).
-        let lead = inverse(*b.last().expect("nonzero")).expect("a nonzero residue");
-        while a.len() >= b.len() {
-            let shift = a.len() - b.len();
-            let factor = mul(*a.last().expect("nonzero"), lead);
-            for (k, &bk) in b.iter().enumerate() {
-                a[shift + k] = (a[shift + k] + P - mul(factor, bk)) % P;
-            }
-            trim(&mut a);
+}
+
+pub(super) fn sub(a: u64, b: u64) -> u64 {
+    if a >= b {
+        a - b
+    } else {
+        a + P - b
+    }
+}
+
+fn trimmed(mut u: Uni) -> Uni {
+    trim(&mut u);
+    u
+}
+
+pub(super) fn uni_add(a: &[u64], b: &[u64]) -> Uni {
+    let mut out = vec![0; a.len().max(b.len())];
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = add(
+            a.get(k).copied().unwrap_or(0),
+            b.get(k).copied().unwrap_or(0),
+        );
+    }
+    trimmed(out)
+}
+
+pub(super) fn uni_scale(a: &[u64], s: u64) -> Uni {
+    trimmed(a.iter().map(|&c| mul(c, s)).collect())
+}
+
+pub(super) fn uni_mul(a: &[u64], b: &[u64]) -> Uni {
+    if a.is_empty() || b.is_empty() {
+        return Vec::new();
+    }
+    let mut out = vec![0; a.len() + b.len() - 1];
+    for (i, &x) in a.iter().enumerate() {
+        for (j, &y) in b.iter().enumerate() {
+            out[i + j] = add(out[i + j], mul(x, y));
         }
-        std::mem::swap(&mut a, &mut b);
     }
-    a.len() - 1
+    trimmed(out)
+}
+
+/// Quotient and remainder; `None` for division by 0.
+pub(super) fn uni_divrem(a: &[u64], b: &[u64]) -> Option<(Uni, Uni)> {
+    let lead = inverse(*b.last()?)?;
+    let mut r = a.to_vec();
+    if r.len() < b.len() {
+        return Some((Vec::new(), r));
+    }
+    let mut q = vec![0; r.len() - b.len() + 1];
+    while r.len() >= b.len() {
+        let shift = r.len() - b.len();
+        let f = mul(*r.last().expect("nonempty"), lead);
+        q[shift] = f;
+        for (k, &bk) in b.iter().enumerate() {
+            r[shift + k] = sub(r[shift + k], mul(f, bk));
+        }
+        trim(&mut r);
+    }
+    Some((trimmed(q), r))
+}
+
+/// The monic gcd (gcd(0, 0) = 0).
+pub(super) fn uni_gcd(mut a: Uni, mut b: Uni) -> Uni {
+    while !b.is_empty() {
+        let (_, r) = uni_divrem(&a, &b).expect("b is nonzero");
+        a = b;
+        b = r;
+    }
+    match a.last() {
+        None => a,
+        Some(&lc) => uni_scale(&a, inverse(lc).expect("nonzero")),
+    }
 }
 
 #[cfg(test)]
@@ -251,5 +340,19 @@ mod tests {
         // x^-1 at 0 is undefined.
         let inv = Poly::term(crate::kernel::poly::Monomial::var(x, -1), Rational::int(1));
         assert_eq!(of_poly(&inv, &|_| 0), None);
+    }
+
+    #[test]
+    fn univariate_arithmetic_mod_p() {
+        // (y + 2)(y − 3) = y² − y − 6, divided back; gcd with (y + 2)(y + 5).
+        let m = |n: i64| of_rational(&Rational::int(n)).unwrap();
+        let a = uni_mul(&[m(2), 1], &[m(-3), 1]);
+        assert_eq!(a, vec![m(-6), m(-1), 1]);
+        let (q, r) = uni_divrem(&a, &[m(2), 1]).unwrap();
+        assert_eq!((q, r), (vec![m(-3), 1], Vec::new()));
+        let b = uni_mul(&[m(2), 1], &[m(5), 1]);
+        assert_eq!(uni_gcd(a.clone(), b), vec![m(2), 1]);
+        assert_eq!(eval(&a, 3), 0);
+        assert_eq!(uni_gcd(a.clone(), vec![m(7)]), vec![1]);
     }
 }
