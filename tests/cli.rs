@@ -758,3 +758,30 @@ fn progress_on_a_terminal_names_the_claim_and_counts_its_samples() {
     assert!(shown.contains("decided 1 claim in "), "{shown}");
     let _ = std::fs::remove_file(&out_file);
 }
+
+#[test]
+fn a_sampled_sign_claim_stops_at_the_time_limit() {
+    // A function of several parameters with coefficients of both signs is decided by
+    // exact samples; a million of them would take minutes. The sampling asks the time
+    // limit between samples, so the claim is undecided (time limit), not a hang.
+    let dir = dir_with(
+        "sampled-limit",
+        "section = \"t\"\ntitle = \"test\"\ndimension = 3\nscalars = [\"x\", \"y\", \"z\"]\n\n\
+         [[claim]]\nid = \"many-samples\"\nprinted = 'q > 0'\nexpect = \"holds\"\n\
+         strategy = \"sign\"\nsides = [\"(x^2 - x y + y^2)^5 + (z - x)^4 + 1\", \"0\"]\n\
+         relation = \">\"\nsamples = 1000000\n",
+    );
+    let file = dir.join("claims.toml");
+    let out = run(&[
+        "verify",
+        file.to_str().unwrap(),
+        "--time-limit",
+        "0.3",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["claims"][0]["verdict"], "undecided");
+    assert_eq!(v["claims"][0]["finding"]["kind"], "time-limit");
+}

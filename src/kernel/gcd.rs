@@ -10,12 +10,17 @@
 //! coefficients of the remainders swell, so it is the last resort: monomial contents
 //! are split off first, coprime pairs are proved coprime by images mod a prime, and a
 //! common factor of positive degree is first sought by the modular algorithm of
-//! [`super::modular`], whose candidate is accepted only when it divides both inputs
-//! and the cofactors are proved coprime (`confirmed`).
+//! [`super::modular`], whose candidates are accepted only when they divide both inputs
+//! and the cofactors are proved coprime (`confirmed`). The remainder sequence is left
+//! for what the modular route cannot take (more than 16 variables, a degree above 64,
+//! its budget of points or primes spent); it is the kernel's one computation without a
+//! work bound, so it stops when the claim's time limit asks it to
+//! ([`super::interrupt`]).
 //!
 //! Only ordinary polynomials (no negative exponents) are accepted: a Laurent
 //! polynomial is first cleared by [`clear_denominator_monomial`].
 
+use super::interrupt;
 use super::modular;
 use super::poly::{Monomial, Poly, Var};
 use super::rational::Rational;
@@ -238,11 +243,7 @@ pub fn gcd(a: &Poly, b: &Poly) -> Poly {
     if coprime_by_images(a, b) {
         return Poly::one();
     }
-    // A constant candidate cannot be confirmed: the images just failed to prove it.
-    if let Some(g) = modular::candidate(a, b)
-        .filter(|g| g.as_constant().is_none())
-        .and_then(|g| confirmed(a, b, &g))
-    {
+    if let Some(g) = modular::gcd(a, b, &|g| confirmed(a, b, g)) {
         return g;
     }
     gcd_by_remainders(a, b)
@@ -250,17 +251,39 @@ pub fn gcd(a: &Poly, b: &Poly) -> Poly {
 
 /// `g`, normalised, when it is gcd(a, b): it divides both exactly and the cofactors
 /// are proved coprime, so gcd(a, b) = g·gcd(a/g, b/g) = g. `None` proves nothing.
-/// This is what makes the untrusted [`modular::candidate`] safe to use.
+/// This is what makes the untrusted [`modular::gcd`] safe to use.
+///
+/// A constant `g` is the gcd when `a` and `b` are proved coprime; the images at the
+/// usual point have just failed to prove it, so other points are tried.
 fn confirmed(a: &Poly, b: &Poly, g: &Poly) -> Option<Poly> {
+    if g.as_constant().is_some() {
+        let proved = (1..=SPARE_IMAGE_POINTS).any(|k| {
+            coprime_at(a, b, &|v: Var| {
+                residue::scramble(u64::from(v) ^ k.wrapping_mul(0x5851_f42d_4c95_7f2d))
+            })
+        });
+        return proved.then(Poly::one);
+    }
     let (ca, cb) = (divide_exact(a, g)?, divide_exact(b, g)?);
     let coprime =
         ca.as_constant().is_some() || cb.as_constant().is_some() || coprime_by_images(&ca, &cb);
     coprime.then(|| normalize_sign_and_scale(g))
 }
 
+/// Further points at which [`confirmed`] tries to prove coprimality when the modular
+/// gcd is 1.
+const SPARE_IMAGE_POINTS: u64 = 4;
+
 /// The gcd of two nonzero, nonconstant, different ordinary polynomials by the
 /// primitive pseudo-remainder sequence in their largest variable.
+///
+/// Its coefficients can swell without a bound known in advance, so it asks
+/// [`interrupt::requested`] before each step; once a stop is requested it returns 1,
+/// which means nothing, and whoever requested the stop discards the result.
 fn gcd_by_remainders(a: &Poly, b: &Poly) -> Poly {
+    if interrupt::requested() {
+        return Poly::one();
+    }
     let v = match (main_var(a), main_var(b)) {
         (None, None) => return Poly::one(),
         (x, y) => x.max(y).expect("one of them has a variable"),
@@ -274,6 +297,9 @@ fn gcd_by_remainders(a: &Poly, b: &Poly) -> Poly {
         (pb, pa)
     };
     while !r1.is_zero() {
+        if interrupt::requested() {
+            return Poly::one();
+        }
         let r = pseudo_remainder(&r0, &r1, v);
         r0 = r1;
         // The primitive part, scaled to coprime integer coefficients: over ℚ the
@@ -524,10 +550,10 @@ mod tests {
     }
 
     #[test]
-    fn the_modular_candidate_is_the_gcd_the_remainder_sequence_finds() {
+    fn the_modular_gcd_is_the_gcd_the_remainder_sequence_finds() {
         // 60 random pairs g·p, g·q (exponents up to 2, where the remainder sequence is
-        // affordable as the oracle): the modular route gives a candidate, the check
-        // accepts it, and it equals the remainder sequence's gcd.
+        // affordable as the oracle): the modular route gives a candidate that the
+        // check accepts, and it equals the remainder sequence's gcd.
         let mut next = draws(0x51_7cc1_b727_220a_u64);
         let mut confirmed_count = 0;
         for _ in 0..60 {
@@ -539,8 +565,8 @@ mod tests {
                 continue;
             }
             let oracle = gcd_by_remainders(&a, &b);
-            let found = modular::candidate(&a, &b).expect("a candidate");
-            assert_eq!(confirmed(&a, &b, &found), Some(oracle.clone()));
+            let found = modular::gcd(&a, &b, &|g| confirmed(&a, &b, g));
+            assert_eq!(found, Some(oracle.clone()));
             assert_eq!(gcd(&a, &b), oracle);
             confirmed_count += 1;
         }
@@ -584,32 +610,97 @@ mod tests {
             if [&g, &p, &q].iter().any(|x| x.as_constant().is_some()) {
                 continue;
             }
-            let d = modular::candidate(&a, &b)
-                .and_then(|d| confirmed(&a, &b, &d))
-                .expect("confirmed");
+            let d = modular::gcd(&a, &b, &|d| confirmed(&a, &b, d)).expect("confirmed");
             assert!(divide_exact(&d, &g).is_some(), "g divides the gcd");
             assert_eq!(gcd(&a, &b), d);
         }
     }
 
+    /// The candidates [`modular::gcd`] offers the check, and its answer.
+    fn offered(a: &Poly, b: &Poly) -> (Vec<Poly>, Option<Poly>) {
+        let seen = std::cell::RefCell::new(Vec::new());
+        let found = modular::gcd(a, b, &|g| {
+            seen.borrow_mut().push(g.clone());
+            confirmed(a, b, g)
+        });
+        (seen.into_inner(), found)
+    }
+
     #[test]
-    fn coefficients_beyond_reconstruction_fall_back_to_the_remainder_sequence() {
+    fn coefficients_beyond_one_prime_are_reconstructed_from_several() {
         // g = 10¹²·x + y + 1: with leading coefficient 1, its coefficients are 10⁻¹²,
-        // beyond what one prime reconstructs. The reconstruction finds another small
-        // fraction with the same residue, a wrong candidate, which the check refuses;
-        // the remainder sequence finds g.
+        // beyond what one prime reconstructs. The first prime's reconstruction is
+        // another small fraction with the same residue, a wrong candidate, which the
+        // check refuses; with a second prime the reconstruction is g.
         let (_, x, y, z) = setup();
         let big =
             Poly::constant(Rational::from_big(BigInt::from(10).pow(12), BigInt::one()).unwrap());
         let g = &(&(&big * &x) + &y) + &c(1);
         let (a, b) = (&g * &(&x - &z), &g * &(&y + &c(3)));
-        let wrong = modular::candidate(&a, &b).expect("a candidate");
+        let (seen, found) = offered(&a, &b);
+        assert_eq!(seen.len(), 2, "{seen:?}");
         assert_ne!(
-            normalize_sign_and_scale(&wrong),
+            normalize_sign_and_scale(&seen[0]),
             normalize_sign_and_scale(&g)
         );
-        assert_eq!(confirmed(&a, &b, &wrong), None);
+        assert_eq!(confirmed(&a, &b, &seen[0]), None);
+        assert_eq!(found, Some(normalize_sign_and_scale(&g)));
         assert_eq!(gcd(&a, &b), normalize_sign_and_scale(&g));
+    }
+
+    #[test]
+    fn material_constants_do_not_send_the_gcd_to_the_remainder_sequence() {
+        // A user's rational function (g·a)² / ((g·b)² + g²) with coefficients like
+        // E = 2.1·10¹¹: the gcd g² has coefficients near 10²⁵ once scaled to leading
+        // coefficient 1. The remainder sequence ran for minutes on it; the modular
+        // route needs a few primes.
+        let (mut names, x, y, z) = setup();
+        let w = Poly::var(names.intern("w"));
+        let n = |s: &str| {
+            Poly::constant(Rational::from_big(s.parse().unwrap(), BigInt::one()).unwrap())
+        };
+        let g = &(&(&(&n("210000000000") * &(&x.pow(2) * &y))
+            + &(&n("7000000000013") * &(&z.pow(3) * &w)))
+            + &(&n("123456789123") * &w.pow(2)))
+            + &n("99999999977");
+        let a = &(&(&n("31000000007") * &(&x * &y.pow(2))) + &(&c(5) * &(&z * &w.pow(3)))) + &c(11);
+        let b = &(&(&c(13) * &x.pow(3)) + &(&n("45000000001") * &(&y * &z))) + &n("600000000001");
+        let (ga, gb) = (&g * &a, &g * &b);
+        let num = &ga * &ga;
+        let den = &(&gb * &gb) + &(&g * &g);
+        let (_, found) = offered(&num, &den);
+        assert_eq!(found, Some(normalize_sign_and_scale(&(&g * &g))));
+    }
+
+    #[test]
+    fn the_remainder_sequence_stops_when_asked() {
+        // The remainder sequence asks before every step whether to stop. A condition
+        // that never holds is asked more than once and changes nothing; one that
+        // holds from its second question ends the sequence there, with a
+        // meaningless value that still divides both inputs (so that no caller's
+        // division fails).
+        use crate::kernel::interrupt;
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        use std::sync::Arc;
+        let (_, x, y, z) = setup();
+        let g = &(&(&x * &z) - &y.pow(2)) + &c(2);
+        let (a, b) = (&g * &(&x.pow(3) + &z), &g * &(&y.pow(2) - &x));
+        let asking = |from: usize| {
+            let asked = Arc::new(AtomicUsize::new(0));
+            let counter = asked.clone();
+            let out = interrupt::under(
+                Arc::new(move || counter.fetch_add(1, Ordering::Relaxed) + 1 >= from),
+                || gcd_by_remainders(&a, &b),
+            );
+            (out, asked.load(Ordering::Relaxed))
+        };
+        let (found, questions) = asking(usize::MAX);
+        assert_eq!(found, normalize_sign_and_scale(&g));
+        assert!(questions >= 2, "{questions}");
+        let (stopped, asked) = asking(2);
+        assert_eq!(asked, 2);
+        assert_ne!(stopped, found);
+        assert!(divide_exact(&a, &stopped).is_some() && divide_exact(&b, &stopped).is_some());
     }
 
     #[test]

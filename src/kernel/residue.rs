@@ -14,64 +14,155 @@ use super::rational::Rational;
 use num_bigint::BigInt;
 use num_traits::{Signed, ToPrimitive};
 
-/// The Mersenne prime 2⁶¹ − 1.
-pub const P: u64 = (1 << 61) - 1;
+/// A prime field 𝔽_p with p = 2⁶¹ − c for a small c, so that a product reduces by
+/// folding 2⁶¹ ≡ c twice, with no division. The modular gcd (`super::modular`) uses
+/// several; everything else works in [`MERSENNE`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Field {
+    c: u64,
+}
 
-/// a·b mod P for a, b < P, by the Mersenne reduction 2⁶¹ ≡ 1 (no division).
-pub(super) fn mul(a: u64, b: u64) -> u64 {
-    let x = u128::from(a) * u128::from(b);
-    let r = (x as u64 & P) + (x >> 61) as u64;
-    // r < 2P: x < 2¹²², so x >> 61 < 2⁶¹.
-    if r >= P {
-        r - P
-    } else {
+/// 𝔽_P for the Mersenne prime P = 2⁶¹ − 1.
+pub(super) const MERSENNE: Field = Field { c: 1 };
+
+/// The Mersenne prime 2⁶¹ − 1.
+pub const P: u64 = MERSENNE.p();
+
+/// The c with 2⁶¹ − c prime, descending from the Mersenne prime: the moduli of the
+/// multi-prime gcd. Nothing depends on their primality for soundness (every modular
+/// result is checked over ℚ); a test checks it anyway.
+const OFFSETS: [u64; 48] = [
+    1, 31, 45, 229, 259, 283, 339, 391, 403, 465, 531, 579, 675, 759, 799, 819, 829, 843, 859, 939,
+    985, 1015, 1153, 1195, 1215, 1281, 1299, 1351, 1371, 1425, 1489, 1525, 1533, 1543, 1609, 1621,
+    1669, 1741, 1753, 1813, 1845, 1849, 1855, 1863, 1869, 1909, 1921, 1923,
+];
+
+/// The prime fields of [`OFFSETS`], the Mersenne one first.
+pub(super) fn fields() -> impl Iterator<Item = Field> {
+    OFFSETS.iter().map(|&c| Field { c })
+}
+
+impl Field {
+    /// The prime.
+    pub(super) const fn p(self) -> u64 {
+        (1 << 61) - self.c
+    }
+
+    /// a·b mod p for a, b < p.
+    #[inline]
+    pub(super) fn mul(self, a: u64, b: u64) -> u64 {
+        const LOW: u64 = (1 << 61) - 1;
+        let x = u128::from(a) * u128::from(b); // < 2¹²²
+        let (lo, hi) = (x as u64 & LOW, (x >> 61) as u64); // hi < 2⁶¹
+        let z = if self.c == 1 {
+            lo + hi // < 2⁶², and below 2P since x ≤ (P − 1)²
+        } else {
+            let y = u128::from(hi) * u128::from(self.c) + u128::from(lo); // < 2⁷³
+            (y as u64 & LOW) + (y >> 61) as u64 * self.c // < 2⁶¹ + 2²⁴ < 2p
+        };
+        if z >= self.p() {
+            z - self.p()
+        } else {
+            z
+        }
+    }
+
+    fn add(self, a: u64, b: u64) -> u64 {
+        let s = a + b; // < 2p < 2⁶²
+        if s >= self.p() {
+            s - self.p()
+        } else {
+            s
+        }
+    }
+
+    pub(super) fn sub(self, a: u64, b: u64) -> u64 {
+        if a >= b {
+            a - b
+        } else {
+            a + self.p() - b
+        }
+    }
+
+    fn pow(self, mut a: u64, mut e: u64) -> u64 {
+        let mut r = 1;
+        while e > 0 {
+            if e & 1 == 1 {
+                r = self.mul(r, a);
+            }
+            a = self.mul(a, a);
+            e >>= 1;
+        }
         r
     }
-}
 
-fn pow(mut a: u64, mut e: u64) -> u64 {
-    let mut r = 1;
-    while e > 0 {
-        if e & 1 == 1 {
-            r = mul(r, a);
+    /// a⁻¹ mod p, `None` for 0 (by Fermat: a^(p−2); monic divisors make 1 common).
+    pub(super) fn inverse(self, a: u64) -> Option<u64> {
+        match a {
+            0 => None,
+            1 => Some(1),
+            _ => Some(self.pow(a, self.p() - 2)),
         }
-        a = mul(a, a);
-        e >>= 1;
     }
-    r
-}
 
-/// a⁻¹ mod P, `None` for 0.
-pub(super) fn inverse(a: u64) -> Option<u64> {
-    (a != 0).then(|| pow(a, P - 2))
-}
+    fn of_int(self, n: &BigInt) -> u64 {
+        let m = (n.abs() % BigInt::from(self.p()))
+            .to_u64()
+            .expect("below p");
+        if n.is_negative() && m != 0 {
+            self.p() - m
+        } else {
+            m
+        }
+    }
 
-fn of_int(n: &BigInt) -> u64 {
-    let m = (n.abs() % BigInt::from(P)).to_u64().expect("below P");
-    if n.is_negative() && m != 0 {
-        P - m
-    } else {
-        m
+    /// The residue of a small integer.
+    fn of_i64(self, n: i64) -> u64 {
+        let m = n.unsigned_abs() % self.p();
+        if n < 0 && m != 0 {
+            self.p() - m
+        } else {
+            m
+        }
+    }
+
+    /// The residue of a rational, `None` when p divides its denominator.
+    pub(super) fn of_rational(self, q: &Rational) -> Option<u64> {
+        match q.small_parts() {
+            Some((n, 1)) => Some(self.of_i64(n)),
+            Some((n, d)) => Some(self.mul(self.of_i64(n), self.inverse(self.of_i64(d))?)),
+            None => Some(self.mul(
+                self.of_int(&q.numer()),
+                self.inverse(self.of_int(&q.denom()))?,
+            )),
+        }
+    }
+
+    /// A residue that looks random, from `seed` (splitmix64's finaliser, reduced mod
+    /// p): evaluation points far from 0 and 1, the same in every run.
+    pub(super) fn scramble(self, seed: u64) -> u64 {
+        let mut z = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        (z ^ (z >> 31)) % self.p()
     }
 }
 
-/// The residue of a small integer.
-fn of_i64(n: i64) -> u64 {
-    let m = n.unsigned_abs() % P;
-    if n < 0 && m != 0 {
-        P - m
-    } else {
-        m
-    }
+fn mul(a: u64, b: u64) -> u64 {
+    MERSENNE.mul(a, b)
 }
 
-/// The residue of a rational, `None` when P divides its denominator.
+fn pow(a: u64, e: u64) -> u64 {
+    MERSENNE.pow(a, e)
+}
+
+fn inverse(a: u64) -> Option<u64> {
+    MERSENNE.inverse(a)
+}
+
+/// The residue mod P of a rational, `None` when P divides its denominator.
 pub fn of_rational(q: &Rational) -> Option<u64> {
-    match q.small_parts() {
-        Some((_, 1)) => Some(of_i64(q.small_parts()?.0)),
-        Some((n, d)) => Some(mul(of_i64(n), inverse(of_i64(d))?)),
-        None => Some(mul(of_int(&q.numer()), inverse(of_int(&q.denom()))?)),
-    }
+    MERSENNE.of_rational(q)
 }
 
 /// A polynomial's residue at a point given by residues (`None` where a negative power
@@ -144,13 +235,9 @@ fn trim(p: &mut Vec<u64>) {
     }
 }
 
-/// A residue that looks random, from `seed` (splitmix64's finaliser, reduced mod P):
-/// evaluation points far from 0 and 1, the same in every run.
+/// A residue mod P that looks random, from `seed` (see [`Field::scramble`]).
 pub(super) fn scramble(seed: u64) -> u64 {
-    let mut z = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    (z ^ (z >> 31)) % P
+    MERSENNE.scramble(seed)
 }
 
 /// The degree of the greatest common divisor of two nonzero univariate polynomials
@@ -160,98 +247,87 @@ pub fn gcd_degree(a: Vec<u64>, b: Vec<u64>) -> usize {
         !a.is_empty() && !b.is_empty(),
         "gcd_degree of a zero polynomial"
     );
-    uni_gcd(a, b).len() - 1
+    MERSENNE.uni_gcd(a, b).len() - 1
 }
 
-/// A univariate polynomial over 𝔽_P, coefficients ascending, no trailing zeros (empty
+/// A univariate polynomial over 𝔽_p, coefficients ascending, no trailing zeros (empty
 /// for 0).
 pub(super) type Uni = Vec<u64>;
-
-/// The value at `x` (Horner).
-pub(super) fn eval(u: &[u64], x: u64) -> u64 {
-    u.iter().rev().fold(0, |acc, &c| add(mul(acc, x), c))
-}
-
-fn add(a: u64, b: u64) -> u64 {
-    let s = a + b; // < 2P < 2⁶⁴
-    if s >= P {
-        s - P
-    } else {
-        s
-    }
-}
-
-pub(super) fn sub(a: u64, b: u64) -> u64 {
-    if a >= b {
-        a - b
-    } else {
-        a + P - b
-    }
-}
 
 fn trimmed(mut u: Uni) -> Uni {
     trim(&mut u);
     u
 }
 
-pub(super) fn uni_add(a: &[u64], b: &[u64]) -> Uni {
-    let mut out = vec![0; a.len().max(b.len())];
-    for (k, o) in out.iter_mut().enumerate() {
-        *o = add(
-            a.get(k).copied().unwrap_or(0),
-            b.get(k).copied().unwrap_or(0),
-        );
+/// Univariate arithmetic over 𝔽_p: the images of the modular gcd and the coprimality
+/// proofs.
+impl Field {
+    /// The value at `x` (Horner).
+    pub(super) fn eval(self, u: &[u64], x: u64) -> u64 {
+        u.iter()
+            .rev()
+            .fold(0, |acc, &c| self.add(self.mul(acc, x), c))
     }
-    trimmed(out)
-}
 
-pub(super) fn uni_scale(a: &[u64], s: u64) -> Uni {
-    trimmed(a.iter().map(|&c| mul(c, s)).collect())
-}
-
-pub(super) fn uni_mul(a: &[u64], b: &[u64]) -> Uni {
-    if a.is_empty() || b.is_empty() {
-        return Vec::new();
-    }
-    let mut out = vec![0; a.len() + b.len() - 1];
-    for (i, &x) in a.iter().enumerate() {
-        for (j, &y) in b.iter().enumerate() {
-            out[i + j] = add(out[i + j], mul(x, y));
+    pub(super) fn uni_add(self, a: &[u64], b: &[u64]) -> Uni {
+        let mut out = vec![0; a.len().max(b.len())];
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = self.add(
+                a.get(k).copied().unwrap_or(0),
+                b.get(k).copied().unwrap_or(0),
+            );
         }
+        trimmed(out)
     }
-    trimmed(out)
-}
 
-/// Quotient and remainder; `None` for division by 0.
-pub(super) fn uni_divrem(a: &[u64], b: &[u64]) -> Option<(Uni, Uni)> {
-    let lead = inverse(*b.last()?)?;
-    let mut r = a.to_vec();
-    if r.len() < b.len() {
-        return Some((Vec::new(), r));
+    pub(super) fn uni_scale(self, a: &[u64], s: u64) -> Uni {
+        trimmed(a.iter().map(|&c| self.mul(c, s)).collect())
     }
-    let mut q = vec![0; r.len() - b.len() + 1];
-    while r.len() >= b.len() {
-        let shift = r.len() - b.len();
-        let f = mul(*r.last().expect("nonempty"), lead);
-        q[shift] = f;
-        for (k, &bk) in b.iter().enumerate() {
-            r[shift + k] = sub(r[shift + k], mul(f, bk));
+
+    pub(super) fn uni_mul(self, a: &[u64], b: &[u64]) -> Uni {
+        if a.is_empty() || b.is_empty() {
+            return Vec::new();
         }
-        trim(&mut r);
+        let mut out = vec![0; a.len() + b.len() - 1];
+        for (i, &x) in a.iter().enumerate() {
+            for (j, &y) in b.iter().enumerate() {
+                out[i + j] = self.add(out[i + j], self.mul(x, y));
+            }
+        }
+        trimmed(out)
     }
-    Some((trimmed(q), r))
-}
 
-/// The monic gcd (gcd(0, 0) = 0).
-pub(super) fn uni_gcd(mut a: Uni, mut b: Uni) -> Uni {
-    while !b.is_empty() {
-        let (_, r) = uni_divrem(&a, &b).expect("b is nonzero");
-        a = b;
-        b = r;
+    /// Quotient and remainder; `None` for division by 0.
+    pub(super) fn uni_divrem(self, a: &[u64], b: &[u64]) -> Option<(Uni, Uni)> {
+        let lead = self.inverse(*b.last()?)?;
+        let mut r = a.to_vec();
+        if r.len() < b.len() {
+            return Some((Vec::new(), r));
+        }
+        let mut q = vec![0; r.len() - b.len() + 1];
+        while r.len() >= b.len() {
+            let shift = r.len() - b.len();
+            let f = self.mul(*r.last().expect("nonempty"), lead);
+            q[shift] = f;
+            for (k, &bk) in b.iter().enumerate() {
+                r[shift + k] = self.sub(r[shift + k], self.mul(f, bk));
+            }
+            trim(&mut r);
+        }
+        Some((trimmed(q), r))
     }
-    match a.last() {
-        None => a,
-        Some(&lc) => uni_scale(&a, inverse(lc).expect("nonzero")),
+
+    /// The monic gcd (gcd(0, 0) = 0).
+    pub(super) fn uni_gcd(self, mut a: Uni, mut b: Uni) -> Uni {
+        while !b.is_empty() {
+            let (_, r) = self.uni_divrem(&a, &b).expect("b is nonzero");
+            a = b;
+            b = r;
+        }
+        match a.last() {
+            None => a,
+            Some(&lc) => self.uni_scale(&a, self.inverse(lc).expect("nonzero")),
+        }
     }
 }
 
@@ -260,28 +336,67 @@ mod tests {
     use super::*;
     use crate::kernel::VarTable;
 
-    /// The Mersenne reduction agrees with plain 128-bit remainders, at the extremes
-    /// and at pseudo-random operands; small and big rationals have the same residues.
+    /// The folding reduction agrees with plain 128-bit remainders in every field, at
+    /// the extremes and at pseudo-random operands; small and big rationals have the
+    /// same residues.
     #[test]
     fn reduction_agrees_with_the_remainder() {
-        let reference = |a: u64, b: u64| ((u128::from(a) * u128::from(b)) % u128::from(P)) as u64;
         let mut x = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut operands = vec![0, 1, 2, P - 1, P - 2, 1 << 60, (1 << 61) - 3];
+        let mut draws = Vec::new();
         for _ in 0..2000 {
             x ^= x << 13;
             x ^= x >> 7;
             x ^= x << 17;
-            operands.push(x % P);
+            draws.push(x);
         }
-        for (k, &a) in operands.iter().enumerate() {
-            let b = operands[(k * 7 + 3) % operands.len()];
-            assert_eq!(mul(a, b), reference(a, b), "{a} * {b}");
+        for f in fields() {
+            let p = f.p();
+            let reference =
+                |a: u64, b: u64| ((u128::from(a) * u128::from(b)) % u128::from(p)) as u64;
+            let mut operands = vec![0, 1, 2, p - 1, p - 2, 1 << 60, p / 2];
+            operands.extend(draws.iter().map(|d| d % p));
+            for (k, &a) in operands.iter().enumerate() {
+                let b = operands[(k * 7 + 3) % operands.len()];
+                assert_eq!(f.mul(a, b), reference(a, b), "{a} * {b} mod {p}");
+            }
         }
         for (n, d) in [(3, 7), (-5, 11), (i64::MAX, 3), (-1, 1), (0, 1)] {
             let q = Rational::ratio(n, d).unwrap();
-            let by_big = mul(of_int(&q.numer()), inverse(of_int(&q.denom())).unwrap());
+            let by_big = mul(
+                MERSENNE.of_int(&q.numer()),
+                inverse(MERSENNE.of_int(&q.denom())).unwrap(),
+            );
             assert_eq!(of_rational(&q), Some(by_big));
         }
+    }
+
+    /// Every modulus is prime (Miller–Rabin with the first twelve prime bases, which
+    /// is deterministic below 3.3·10²⁴), and they are distinct and descending.
+    #[test]
+    fn the_moduli_are_distinct_primes() {
+        let ps: Vec<u64> = fields().map(Field::p).collect();
+        assert!(ps.windows(2).all(|w| w[0] > w[1]));
+        for &p in &ps {
+            let f = Field { c: (1 << 61) - p };
+            let (mut d, mut s) = (p - 1, 0);
+            while d % 2 == 0 {
+                d /= 2;
+                s += 1;
+            }
+            for a in [2u64, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37] {
+                let mut y = f.pow(a, d);
+                let witness = y != 1
+                    && (0..s).all(|_| {
+                        let minus_one = y == p - 1;
+                        y = f.mul(y, y);
+                        !minus_one
+                    });
+                assert!(!witness, "{p} is composite (witness {a})");
+            }
+        }
+        // A composite modulus fails Fermat's test: 2⁶¹ − 3 = 29 · 79511827903920481.
+        let f = Field { c: 3 };
+        assert_ne!(f.pow(2, f.p() - 1), 1);
     }
 
     #[test]
@@ -346,13 +461,14 @@ mod tests {
     fn univariate_arithmetic_mod_p() {
         // (y + 2)(y − 3) = y² − y − 6, divided back; gcd with (y + 2)(y + 5).
         let m = |n: i64| of_rational(&Rational::int(n)).unwrap();
-        let a = uni_mul(&[m(2), 1], &[m(-3), 1]);
+        let f = MERSENNE;
+        let a = f.uni_mul(&[m(2), 1], &[m(-3), 1]);
         assert_eq!(a, vec![m(-6), m(-1), 1]);
-        let (q, r) = uni_divrem(&a, &[m(2), 1]).unwrap();
+        let (q, r) = f.uni_divrem(&a, &[m(2), 1]).unwrap();
         assert_eq!((q, r), (vec![m(-3), 1], Vec::new()));
-        let b = uni_mul(&[m(2), 1], &[m(5), 1]);
-        assert_eq!(uni_gcd(a.clone(), b), vec![m(2), 1]);
-        assert_eq!(eval(&a, 3), 0);
-        assert_eq!(uni_gcd(a.clone(), vec![m(7)]), vec![1]);
+        let b = f.uni_mul(&[m(2), 1], &[m(5), 1]);
+        assert_eq!(f.uni_gcd(a.clone(), b), vec![m(2), 1]);
+        assert_eq!(f.eval(&a, 3), 0);
+        assert_eq!(f.uni_gcd(a.clone(), vec![m(7)]), vec![1]);
     }
 }

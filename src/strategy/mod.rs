@@ -122,11 +122,13 @@ fn decide_keeping(
         Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
         Strategy::Scalar { .. } => scalar::decide(decls, check),
     };
-    // A decision stopped by the time limit (`watch::check`) is undecided, whatever
-    // error the stop surfaced as; one that finished in time stands.
+    // A decision that outlived the time limit is undecided: it was stopped
+    // (`watch::check`), whatever error the stop surfaced as, or the kernel gave up a
+    // step and returned a meaningless value (`kernel::interrupt`). One that finished
+    // in time stands.
     let mut outcome = match (decided, watch::expired()) {
-        (Ok(o), _) => o,
-        (Err(_), Some(limit)) => {
+        (Ok(o), None) => o,
+        (_, Some(limit)) => {
             Outcome::undecided(method, 0).with_finding(finding::Finding::TimeLimit {
                 seconds: limit.as_secs_f64(),
             })

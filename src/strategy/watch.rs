@@ -78,10 +78,16 @@ thread_local! {
     static CURRENT: RefCell<Option<Arc<Watch>>> = const { RefCell::new(None) };
 }
 
-/// Runs `f` on this thread under `watch`.
+/// Runs `f` on this thread under `watch`. The kernel's unbounded step (a gcd's
+/// remainder sequence) stops once the watch has expired (`kernel::interrupt`); the
+/// decision is then undecided, so what it computed after that is never used.
 pub fn under<T>(watch: &Arc<Watch>, f: impl FnOnce() -> T) -> T {
     let previous = CURRENT.with(|c| c.replace(Some(watch.clone())));
-    let out = f();
+    let stop = {
+        let watch = watch.clone();
+        Arc::new(move || watch.expired())
+    };
+    let out = crate::kernel::interrupt::under(stop, f);
     CURRENT.with(|c| *c.borrow_mut() = previous);
     out
 }

@@ -9,6 +9,7 @@ use crate::kernel::sign::{sign_of, End, Interval, Sign};
 use crate::kernel::{Rational, Var};
 use crate::strategy::exact::SplitMix;
 use crate::strategy::finding::SampledSign;
+use crate::strategy::watch::{self, TimeUp};
 use std::collections::BTreeMap;
 
 /// Pattern-search starts (the samples with the smallest margins) and steps per start.
@@ -79,8 +80,15 @@ fn margin(value: &Rational, want: Sign) -> Rational {
     }
 }
 
-/// Samples `g` on the box of `vars` for the sign `want`.
-pub(super) fn search(cx: &Context<'_>, g: &Exact, vars: &[Var], want: Sign) -> Sampled {
+/// Samples `g` on the box of `vars` for the sign `want`; `Err` when the claim's time
+/// limit passes between two exact evaluations (`strategy::decide` then makes the
+/// claim undecided).
+pub(super) fn search(
+    cx: &Context<'_>,
+    g: &Exact,
+    vars: &[Var],
+    want: Sign,
+) -> Result<Sampled, TimeUp> {
     let bx = cx.box_on(vars);
     let mut rng = Rng(SplitMix(cx.seed ^ 0x5CA1_AB1E));
     let mut excluded = 0;
@@ -113,9 +121,10 @@ pub(super) fn search(cx: &Context<'_>, g: &Exact, vars: &[Var], want: Sign) -> S
                     (*v, x)
                 })
                 .collect();
+            watch::check()?;
             if let Some(value) = g.eval(&point) {
                 if !want.admits(sign_of(&value)) {
-                    return Sampled::Violation { point };
+                    return Ok(Sampled::Violation { point });
                 }
             }
         }
@@ -124,24 +133,27 @@ pub(super) fn search(cx: &Context<'_>, g: &Exact, vars: &[Var], want: Sign) -> S
     // Undefined samples are redrawn, up to four times the sample count in all.
     while kept.len() < cx.samples && drawn < 4 * cx.samples {
         drawn += 1;
+        watch::check()?;
+        watch::progress("samples", kept.len(), cx.samples);
         let point: BTreeMap<Var, Rational> = bx.iter().map(|(v, i)| (*v, rng.draw(i))).collect();
         let Some(value) = g.eval(&point) else {
             excluded += 1;
             continue;
         };
         if !want.admits(sign_of(&value)) {
-            return Sampled::Violation { point };
+            return Ok(Sampled::Violation { point });
         }
         kept.push((margin(&value, want), point, value));
     }
     kept.sort_by(|a, b| a.0.cmp(&b.0));
     let mut evaluations = 0;
     for (_, start, _) in kept.iter().take(STARTS).cloned().collect::<Vec<_>>() {
+        watch::check()?;
         let (point, evals) = descend(g, &bx, start, want);
         evaluations += evals;
         if let Some(value) = g.eval(&point) {
             if !want.admits(sign_of(&value)) {
-                return Sampled::Violation { point };
+                return Ok(Sampled::Violation { point });
             }
             kept.push((margin(&value, want), point, value));
         }
@@ -151,14 +163,14 @@ pub(super) fn search(cx: &Context<'_>, g: &Exact, vars: &[Var], want: Sign) -> S
         .first()
         .map(|(_, p, v)| (super::readable(v), cx.shown(p)))
         .unwrap_or_else(|| ("none (every sample undefined)".to_owned(), BTreeMap::new()));
-    Sampled::Holds(SampledSign {
+    Ok(Sampled::Holds(SampledSign {
         samples: kept.len(),
         seed: cx.seed,
         excluded,
         search_evaluations: evaluations,
         smallest_margin: smallest,
         at,
-    })
+    }))
 }
 
 /// A compass search in `f64` that lowers the margin from `start`, staying in the box;

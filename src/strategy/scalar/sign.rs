@@ -137,7 +137,11 @@ pub(super) fn decide_function(
             {
                 return Ok(proved(c, evidence));
             }
-            Ok(match sample::search(cx, g, &vars, want) {
+            // Stopped by the time limit: undecided, with the limit as the finding
+            // (`strategy::decide` gives it to every decision that outlived it).
+            let stopped =
+                |_| Stop::Outcome(Box::new(Outcome::undecided(Method::RationalFunction, 0)));
+            Ok(match sample::search(cx, g, &vars, want).map_err(stopped)? {
                 Sampled::Violation { point } => Decided::At(point),
                 Sampled::Holds(s) => {
                     let checks = s.samples;
