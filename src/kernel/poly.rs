@@ -18,6 +18,12 @@ use smallvec::SmallVec;
 use std::fmt::Write as _;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
+/// From this many terms on, [`Poly::eval`] works over one common denominator.
+const COMMON_DENOMINATOR_TERMS: usize = 8;
+
+/// The highest exponent [`Poly::eval`] evaluates over a common denominator.
+const LADDER_TOP: u32 = 64;
+
 /// A polynomial variable: an index into a [`VarTable`].
 pub type Var = u32;
 
@@ -364,6 +370,17 @@ impl Poly {
 
     /// Evaluates at a point; `None` when a negative power meets a zero value.
     pub fn eval(&self, value: &dyn Fn(Var) -> Rational) -> Option<Rational> {
+        if self.terms.len() >= COMMON_DENOMINATOR_TERMS {
+            if let Some(total) = self.eval_over_common_denominator(value) {
+                return Some(total);
+            }
+        }
+        self.eval_term_by_term(value)
+    }
+
+    /// [`Poly::eval`] one term at a time, each reduced: the cheapest way for a few
+    /// terms, and the only one for negative exponents.
+    fn eval_term_by_term(&self, value: &dyn Fn(Var) -> Rational) -> Option<Rational> {
         let mut total = Rational::zero();
         for (m, c) in &self.terms {
             let mut t = c.clone();
@@ -373,6 +390,70 @@ impl Poly {
             total += &t;
         }
         Some(total)
+    }
+
+    /// [`Poly::eval`] over one denominator, `None` for a negative exponent or one
+    /// above [`LADDER_TOP`] (every power up to it is kept): with
+    /// xᵥ = nᵥ/dᵥ, Eᵥ the highest power of xᵥ and L the lcm of the coefficients'
+    /// denominators, the value is Σ (L·c)·Π nᵥ^e·dᵥ^(Eᵥ−e) / (L·Π dᵥ^Eᵥ), every term an
+    /// integer. One gcd at the end instead of several per term: a polynomial of a few
+    /// hundred terms at 20-bit rationals evaluates several times faster.
+    fn eval_over_common_denominator(&self, value: &dyn Fn(Var) -> Rational) -> Option<Rational> {
+        use num_bigint::BigInt;
+        use num_integer::Integer;
+        // The variables (sorted) and their highest exponents.
+        let mut highest: Vec<(Var, u32)> = Vec::new();
+        for (m, _) in &self.terms {
+            for &(v, e) in m.factors() {
+                let e = u32::try_from(e).ok().filter(|&e| e <= LADDER_TOP)?;
+                match highest.binary_search_by_key(&v, |&(w, _)| w) {
+                    Ok(k) => highest[k].1 = highest[k].1.max(e),
+                    Err(k) => highest.insert(k, (v, e)),
+                }
+            }
+        }
+        // nᵥ^k and dᵥ^k for k = 0 … Eᵥ.
+        let powers: Vec<(Vec<BigInt>, Vec<BigInt>)> = highest
+            .iter()
+            .map(|&(v, top)| {
+                let x = value(v);
+                let ladder = |base: BigInt| {
+                    let mut out = vec![BigInt::one()];
+                    for k in 1..=top as usize {
+                        let next = &out[k - 1] * &base;
+                        out.push(next);
+                    }
+                    out
+                };
+                (ladder(x.numer()), ladder(x.denom()))
+            })
+            .collect();
+        let lcm = self
+            .terms
+            .iter()
+            .fold(BigInt::one(), |l, (_, c)| l.lcm(&c.denom()));
+        let mut total = BigInt::zero();
+        for (m, c) in &self.terms {
+            let mut t = c.numer() * (&lcm / c.denom());
+            let mut factors = m.factors().iter().peekable();
+            for (&(v, top), (nums, dens)) in highest.iter().zip(&powers) {
+                let e = match factors.peek() {
+                    Some(&&(w, e)) if w == v => {
+                        factors.next();
+                        e as usize
+                    }
+                    _ => 0,
+                };
+                t *= &nums[e];
+                t *= &dens[top as usize - e];
+            }
+            total += t;
+        }
+        let denominator = highest
+            .iter()
+            .zip(&powers)
+            .fold(lcm, |d, (&(_, top), (_, dens))| d * &dens[top as usize]);
+        Rational::from_big(total, denominator)
     }
 
     /// The exact average over a unit vector `n = (vars[0], …, vars[d-1])` uniformly
@@ -830,6 +911,52 @@ mod tests {
         let mut t = VarTable::new();
         let ps = names.iter().map(|n| Poly::var(t.intern(n))).collect();
         (t, ps)
+    }
+
+    /// Evaluation over one denominator agrees with term-by-term evaluation: random
+    /// polynomials of 8–40 terms (small and 30-digit coefficients, in some rounds a
+    /// negative exponent, exponents up to 70 so that the ladder's limit
+    /// is crossed) at random rational points, zero included. A wrong power or a lost
+    /// lcm factor changes values, so this refutes them.
+    #[test]
+    fn evaluation_over_one_denominator_agrees_term_by_term() {
+        let mut next = below(0x2545_F491_4F6C_DD1D);
+        let big = Rational::from_big(
+            "123456789012345678901234567890".parse().unwrap(),
+            "7".parse().unwrap(),
+        )
+        .unwrap();
+        let mut over_one = 0;
+        for round in 0..300 {
+            let mut p = Poly::zero();
+            for _ in 0..(8 + next(33)) {
+                let top = if round % 10 == 0 { 71 } else { 7 };
+                let m = Monomial::from_factors(
+                    (0..4)
+                        .map(|k| {
+                            let e = next(top) as i32;
+                            let negative = round % 5 == 1 && next(40) == 0;
+                            (k as Var, if negative { -e } else { e })
+                        })
+                        .collect(),
+                );
+                let c = match next(6) {
+                    0 => &big * &q(next(5) as i64 + 1, 1),
+                    _ => q(next(19) as i64 - 9, 1 + next(12) as i64),
+                };
+                p.add_term(m, c);
+            }
+            let point: Vec<Rational> = (0..4)
+                .map(|_| match next(8) {
+                    0 => Rational::zero(),
+                    _ => q(next(2001) as i64 - 1000, 1 + next(1 << 20) as i64),
+                })
+                .collect();
+            let value = |v: Var| point[v as usize].clone();
+            over_one += usize::from(p.eval_over_common_denominator(&value).is_some());
+            assert_eq!(p.eval(&value), p.eval_term_by_term(&value), "{round}");
+        }
+        assert!(over_one > 150, "{over_one}");
     }
 
     /// Square roots of random squares are found (up to the sign the root's leading
