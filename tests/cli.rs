@@ -694,10 +694,7 @@ fn a_runaway_claim_is_undecided_at_the_time_limit() {
         "--format",
         "json",
     ]);
-    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["claims"][0]["verdict"], "undecided");
-    assert_eq!(v["claims"][0]["finding"]["kind"], "time-limit");
+    let v = stopped_by_the_time_limit(&out);
     assert!(v["claims"][0]["detail"]
         .as_str()
         .unwrap()
@@ -780,8 +777,15 @@ fn a_sampled_sign_claim_stops_at_the_time_limit() {
         "--format",
         "json",
     ]);
+    stopped_by_the_time_limit(&out);
+}
+
+/// The JSON table of a run whose one claim the time limit stopped (exit 1, undecided,
+/// the time-limit finding), after checking that it is one.
+fn stopped_by_the_time_limit(out: &Output) -> serde_json::Value {
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["claims"][0]["verdict"], "undecided");
     assert_eq!(v["claims"][0]["finding"]["kind"], "time-limit");
+    v
 }

@@ -74,11 +74,7 @@ pub(super) fn gcd(a: &Poly, b: &Poly, check: &dyn Fn(&Poly) -> Option<Poly>) -> 
             }
             continue;
         };
-        let lm = g
-            .keys()
-            .next_back()
-            .expect("a gcd of nonzero images")
-            .clone();
+        let lm = leading_monomial(&g);
         if lm.iter().all(|&k| k == 0) {
             return check(&Poly::one());
         }
@@ -241,11 +237,7 @@ fn brown(f: Field, a: &Image, b: &Image, n: usize, budget: &mut u64) -> Option<I
         }
         *budget = budget.checked_sub(1)?;
         let image = brown(f, &at(f, &pa, alpha), &at(f, &pb, alpha), n - 1, budget)?;
-        let lm = image
-            .keys()
-            .next_back()
-            .expect("a gcd of nonzero images")
-            .clone();
+        let lm = leading_monomial(&image);
         if lm.iter().all(|&k| k == 0) {
             // The images of the primitive parts are coprime, and degrees never drop
             // at a point that keeps both leading coefficients: the gcd is the content's.
@@ -297,6 +289,15 @@ fn brown(f: Field, a: &Image, b: &Image, n: usize, budget: &mut u64) -> Option<I
 /// 1, 2, 3 are unlucky for inputs like `x + y` and `x + 1` at `y = 1`.
 fn point(f: Field, n: usize, k: u64) -> u64 {
     f.scramble((n as u64).wrapping_mul(0x1000_0000_0000_0001) ^ k)
+}
+
+/// The exponents of the lexicographically largest monomial of an image gcd (an
+/// unlucky prime or point shows as a larger one than the gcd's).
+fn leading_monomial(g: &Image) -> Vec<u32> {
+    g.keys()
+        .next_back()
+        .expect("a gcd of nonzero images")
+        .clone()
 }
 
 /// `p` as a polynomial in all variables but the last, over 𝔽_P[last].
