@@ -4,9 +4,10 @@
 //! decide nothing. The counterexample search uses it to skip candidate points whose
 //! exact evaluation (bigint powers of high degree) would be wasted.
 //!
-//! Univariate polynomials over 𝔽_P live here too (images of multivariate ones, their
-//! gcds by Euclid's algorithm): the gcd proves coprimality with them, and the modular
-//! gcd (`super::modular`) builds its candidates from them.
+//! Prime fields 𝔽_p with p = 2⁶¹ − c and univariate polynomials over them live here
+//! too (images of multivariate ones, their gcds by Euclid's algorithm): the gcd proves
+//! coprimality with them mod P, and the modular gcd (`super::modular`) builds its
+//! candidates from them mod several primes.
 
 use super::poly::{Poly, Var};
 use super::quotient::Quotient;
