@@ -17,7 +17,7 @@ pub fn finding(f: &Finding) -> String {
         }
         Finding::TimeLimit { seconds } => format!(
             "undecided (time limit): the decision did not finish within {} s (raise it with \
-             `--time-limit SECONDS`, or lower `samples`)",
+             `--time-limit SECONDS`; a sampled claim can also lower `samples`)",
             digits::significant(*seconds, 6)
         ),
         Finding::Unconfirmed { difference, why } => format!(
