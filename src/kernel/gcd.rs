@@ -257,11 +257,7 @@ pub fn gcd(a: &Poly, b: &Poly) -> Poly {
 /// usual point have just failed to prove it, so other points are tried.
 fn confirmed(a: &Poly, b: &Poly, g: &Poly) -> Option<Poly> {
     if g.as_constant().is_some() {
-        let proved = (1..=SPARE_IMAGE_POINTS).any(|k| {
-            coprime_at(a, b, &|v: Var| {
-                residue::scramble(u64::from(v) ^ k.wrapping_mul(0x5851_f42d_4c95_7f2d))
-            })
-        });
+        let proved = (1..=SPARE_IMAGE_POINTS).any(|k| coprime_at(a, b, &image_point(k)));
         return proved.then(Poly::one);
     }
     let (ca, cb) = (divide_exact(a, g)?, divide_exact(b, g)?);
@@ -331,8 +327,13 @@ fn gcd_by_remainders(a: &Poly, b: &Poly) -> Poly {
 /// `φ(g)` has positive degree and divides both images. Images with a gcd of degree 0,
 /// for every shared variable, rule every such `g` out.
 fn coprime_by_images(a: &Poly, b: &Poly) -> bool {
-    // A fixed point of residues, far from 0 and 1 (splitmix64 of the variable).
-    coprime_at(a, b, &|v: Var| residue::scramble(u64::from(v)))
+    coprime_at(a, b, &image_point(0))
+}
+
+/// The `k`-th fixed point of residues, far from 0 and 1 (splitmix64 of the variable
+/// and `k`); the 0-th is where [`coprime_by_images`] looks.
+fn image_point(k: u64) -> impl Fn(Var) -> u64 {
+    move |v: Var| residue::scramble(u64::from(v) ^ k.wrapping_mul(0x5851_f42d_4c95_7f2d))
 }
 
 /// [`coprime_by_images`] with the other variables at the residues `at`.
@@ -571,6 +572,18 @@ mod tests {
             confirmed_count += 1;
         }
         assert!(confirmed_count > 50, "{confirmed_count}");
+    }
+
+    #[test]
+    fn the_candidate_one_is_confirmed_only_for_coprime_pairs() {
+        // A constant candidate is the gcd exactly when the pair is proved coprime (at
+        // points other than the usual one); a common factor refuses it.
+        let (_, x, y, z) = setup();
+        let (p, q) = (&(&x * &y) + &c(1), &(&y - &z) + &c(3));
+        assert_eq!(confirmed(&p, &q, &Poly::one()), Some(Poly::one()));
+        assert_eq!(confirmed(&p, &q, &c(5)), Some(Poly::one()));
+        let (a, b) = (&p * &q, &p * &(&x + &c(2)));
+        assert_eq!(confirmed(&a, &b, &Poly::one()), None);
     }
 
     #[test]
