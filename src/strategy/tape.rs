@@ -628,6 +628,8 @@ impl Lanes {
                         *o = x.at(l) / d;
                     }
                 }
+                // `abs` is defined everywhere: one pass without the per-lane dispatch.
+                LaneOp::Apply(Func::Abs, a) => binary!(a, a, |x: f64, _: f64| x.abs()),
                 LaneOp::Apply(f, a) => {
                     let x = operand(a);
                     for (l, o) in out.iter_mut().enumerate() {
@@ -691,41 +693,43 @@ impl Lanes {
         for (s, v) in sections.iter_mut().zip(values.chunks(2)) {
             (s.f1, s.f2) = (v[0], v[1]);
         }
-        let mut active = Vec::with_capacity(sections.len());
+        // The sections still wider than the tolerance, each with the end it asks for: at
+        // x2 (the low bit set) or at x1.
+        let mut asking: Vec<usize> = Vec::with_capacity(sections.len());
         let mut next = Vec::with_capacity(sections.len());
-        let mut upper = Vec::with_capacity(sections.len());
         loop {
-            active.clear();
-            active.extend((0..sections.len()).filter(|&k| sections[k].hi - sections[k].lo > 1e-12));
-            if active.is_empty() {
-                break;
-            }
-            // Each active section moves one end in and asks for one new value: at x2
-            // (upper = true) or at x1.
+            asking.clear();
             next.clear();
-            upper.clear();
-            for &k in &active {
-                let s = &mut sections[k];
-                if s.f1 < s.f2 {
+            // Each active section moves one end in and asks for one new value.
+            for (k, s) in sections.iter_mut().enumerate() {
+                // (`!(… > …)`, not `<=`, so that the test matches golden_max's loop exactly.)
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
+                if !(s.hi - s.lo > 1e-12) {
+                    continue;
+                }
+                let upper = s.f1 < s.f2;
+                if upper {
                     s.lo = s.x1;
                     s.x1 = s.x2;
                     s.f1 = s.f2;
                     s.x2 = s.lo + g * (s.hi - s.lo);
                     next.push(s.x2);
-                    upper.push(true);
                 } else {
                     s.hi = s.x2;
                     s.x2 = s.x1;
                     s.f2 = s.f1;
                     s.x1 = s.hi - g * (s.hi - s.lo);
                     next.push(s.x1);
-                    upper.push(false);
                 }
+                asking.push(k << 1 | usize::from(upper));
+            }
+            if asking.is_empty() {
+                break;
             }
             let values = self.at(&next)?;
-            for ((&k, &v), &up) in active.iter().zip(values).zip(&upper) {
-                let s = &mut sections[k];
-                if up {
+            for (&a, &v) in asking.iter().zip(values) {
+                let s = &mut sections[a >> 1];
+                if a & 1 == 1 {
                     s.f2 = v;
                 } else {
                     s.f1 = v;
