@@ -240,3 +240,49 @@ fn a_maxn_tape_agrees_with_the_interpreter_in_values_and_errors() {
         "no argument failed: the error path was not exercised"
     );
 }
+
+#[test]
+fn an_average_reports_the_error_its_first_point_gives() {
+    // The ops of an average that do not depend on the normal are evaluated once, before
+    // the others; the error reported must still be the one a whole run of the first
+    // point gives: here the square root (which depends on the normal) fails before the
+    // division by c − c (which does not) is reached; without the square root, the
+    // division's error. A value that does not fail is the interpreter's.
+    let text = "section = \"t\"\ntitle = \"t\"\ndimension = 3\nnormal = \"n\"\nscalars = [\"c\"]\n\
+                [[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"numeric\"\n\
+                sides = [\"avg(sqrt(n_1 - 2) + 1 / (c - c))\", \"avg(sqrt(c n_1^2 + 1) + c^2)\"]\n\
+                [[claim]]\nid = \"d\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"numeric\"\n\
+                sides = [\"avg(sqrt(n_1^2 + 1) + 1 / (c - c))\", \"1\"]\n";
+    let file = cosserat_check::derivation::load_str("t.toml", text).unwrap();
+    let claim = &file.claims[0];
+    let env = RealEnv::new(
+        &claim.decls,
+        &claim.check.defs,
+        HashMap::from([("c".to_owned(), Tensor::from_fn(3, 0, |_| 0.5))]),
+    );
+    let n = [0.0, 0.0, 1.0];
+    let [failing, fine_side] = [0, 1].map(|k| {
+        let node = claim.check.chains[0][k].node.as_ref().unwrap();
+        (
+            Tape::compile(&claim.decls, &claim.check.defs, node).unwrap(),
+            node,
+        )
+    });
+    let err = failing.0.eval(&[0.5], &n, &fine()).unwrap_err();
+    assert!(
+        err.message.contains("sqrt(…) of a negative number"),
+        "{}",
+        err.message
+    );
+    assert_eq!(err, env.eval(failing.1, &n).unwrap_err());
+    let claim = &file.claims[1];
+    let node = claim.check.chains[0][0].node.as_ref().unwrap();
+    let tape = Tape::compile(&claim.decls, &claim.check.defs, node).unwrap();
+    let err = tape.eval(&[0.5], &n, &fine()).unwrap_err();
+    assert!(err.message.contains("division by zero"), "{}", err.message);
+    assert_eq!(err, env.eval(node, &n).unwrap_err());
+    let (_, by_tape) = fine_side.0.eval(&[0.5], &n, &fine()).unwrap();
+    let (_, by_tree) = env.eval(fine_side.1, &n).unwrap();
+    let (x, y) = (*by_tape.get(&[]), *by_tree.get(&[]));
+    assert!(close(x, y), "tape {x}, interpreter {y}");
+}

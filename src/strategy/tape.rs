@@ -295,8 +295,8 @@ impl Tape {
                 Op::Normal(k) => T::from(n[k]),
                 Op::Angle(k) => T::from(angle[k]),
                 Op::Const(c) => T::from(c),
-                Op::Add(a, b) => v[a].clone() + v[b].clone(),
-                Op::Mul(a, b) => v[a].clone() * v[b].clone(),
+                Op::Add(a, b) => v[a].clone() + &v[b],
+                Op::Mul(a, b) => v[a].clone() * &v[b],
                 Op::Neg(a) => -v[a].clone(),
                 Op::Div(a, b, span) => {
                     if v[b].re() == 0.0 {
@@ -305,7 +305,7 @@ impl Tape {
                             message: "division by zero".into(),
                         });
                     }
-                    v[a].clone() / v[b].clone()
+                    v[a].clone() / &v[b]
                 }
                 Op::Powi(a, k) => v[a].powi(k),
                 Op::Apply(f, a, span) => super::real::elementary(f, v[a].clone())
@@ -317,18 +317,7 @@ impl Tape {
                 Op::MaxN(k, span) => self.maxn[k].max_over_angle(inputs, n, span, quad)?,
                 Op::Avg(k, c) => {
                     if averages[k].is_none() {
-                        let sub = &self.avgs[k];
-                        let free = self.free_normal_dim(n.len());
-                        let value = quad.average(free, n.len(), &mut |point| {
-                            let vals = sub.run(inputs, n, point, quad)?;
-                            Ok(sub
-                                .outputs
-                                .components()
-                                .iter()
-                                .map(|&k| vals[k].clone())
-                                .collect())
-                        })?;
-                        averages[k] = Some(value);
+                        averages[k] = Some(self.avgs[k].average(inputs, n, quad)?);
                     }
                     averages[k].as_ref().expect("computed above")[c].clone()
                 }
@@ -336,6 +325,53 @@ impl Tape {
             v[k] = x;
         }
         Ok(())
+    }
+
+    /// The adaptive average over the normal of this `avg` sub-tape's outputs, in
+    /// [`assignments`] order.
+    ///
+    /// The ops that do not depend on the normal (the inputs, and what is formed from
+    /// them alone) are evaluated once, and only the others at each point of the rule,
+    /// into one buffer: the same operations on the same values as a whole run per
+    /// point. Where one of them fails, every point runs the whole tape instead, so that
+    /// the error reported is the one the first point's run gives (a varying op before
+    /// the failing one may fail first).
+    fn average<T: DualNum<Primitive = f64>>(
+        &self,
+        inputs: &[T],
+        n: &[f64],
+        quad: &Quadrature,
+    ) -> Result<Vec<T>, RealError> {
+        let free = self.free_normal_dim(n.len());
+        let outputs = |vals: &[T]| -> Vec<T> {
+            let components = self.outputs.components();
+            components.iter().map(|&k| vals[k].clone()).collect()
+        };
+        let mut varies = vec![false; self.ops.len()];
+        for &k in &self.varying {
+            varies[k] = true;
+        }
+        let mut vals = vec![T::zero(); self.ops.len()];
+        let invariant = (0..self.ops.len()).filter(|&k| !varies[k]);
+        if self
+            .fill(&mut vals, invariant, inputs, n, &[], quad)
+            .is_err()
+        {
+            return quad.average(free, n.len(), &mut |point| {
+                Ok(outputs(&self.run(inputs, n, point, quad)?))
+            });
+        }
+        quad.average(free, n.len(), &mut |point| {
+            self.fill(
+                &mut vals,
+                self.varying.iter().copied(),
+                inputs,
+                n,
+                point,
+                quad,
+            )?;
+            Ok(outputs(&vals))
+        })
     }
 
     /// The dimension the normal ranges over: 2 for an in-plane normal (recorded at
