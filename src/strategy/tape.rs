@@ -87,8 +87,9 @@ pub struct Tape {
     /// Whether the normal lies in the 1-2 plane (averages are then over the circle).
     in_plane: bool,
     /// The ops that depend on the angle (`Angle`, and through operands; nested `maxn`
-    /// and `avg` conservatively), in order: a sub-tape evaluated over many angles
-    /// computes the others once ([`Tape::max_over_angle`]).
+    /// and `avg` conservatively), in order: a sub-tape evaluated over many angles or
+    /// points of a rule computes the others once ([`Tape::max_over_angle`],
+    /// [`Tape::average`]).
     varying: Vec<usize>,
     /// The maximisers found by [`Tape::max_over_angle`], by the bits of the values the
     /// angle does not change: a search revisits states (a step clamped to the box, a
@@ -347,14 +348,9 @@ impl Tape {
             let components = self.outputs.components();
             components.iter().map(|&k| vals[k].clone()).collect()
         };
-        let mut varies = vec![false; self.ops.len()];
-        for &k in &self.varying {
-            varies[k] = true;
-        }
         let mut vals = vec![T::zero(); self.ops.len()];
-        let invariant = (0..self.ops.len()).filter(|&k| !varies[k]);
         if self
-            .fill(&mut vals, invariant, inputs, n, &[], quad)
+            .fill(&mut vals, self.invariant(), inputs, n, &[], quad)
             .is_err()
         {
             return quad.average(free, n.len(), &mut |point| {
@@ -372,6 +368,16 @@ impl Tape {
             )?;
             Ok(outputs(&vals))
         })
+    }
+
+    /// The ops that are not [`Tape::varying`]: those of a `maxn` or `avg` sub-tape that
+    /// the angle or the point of the rule does not change, in increasing order.
+    fn invariant(&self) -> Vec<usize> {
+        let mut varies = vec![false; self.ops.len()];
+        for &k in &self.varying {
+            varies[k] = true;
+        }
+        (0..self.ops.len()).filter(|&k| !varies[k]).collect()
     }
 
     /// The dimension the normal ranges over: 2 for an in-plane normal (recorded at
@@ -415,12 +421,7 @@ impl Tape {
     ) -> Result<T, RealError> {
         let re: Vec<f64> = inputs.iter().map(|x| x.re()).collect();
         let mut fixed = vec![0.0; self.ops.len()];
-        let mut varies = vec![false; self.ops.len()];
-        for &k in &self.varying {
-            varies[k] = true;
-        }
-        let invariant = (0..self.ops.len()).filter(|&k| !varies[k]);
-        self.fill(&mut fixed, invariant, &re, n, &[], quad)?;
+        self.fill(&mut fixed, self.invariant(), &re, n, &[], quad)?;
         // The maximiser depends only on the ops the angle does not change (the inputs
         // and the normal reach the varying ops through them).
         let key: Vec<u64> = fixed.iter().map(|v| v.to_bits()).collect();
@@ -738,7 +739,7 @@ impl Lanes {
             next.clear();
             // Each active section moves one end in and asks for one new value.
             for (k, s) in sections.iter_mut().enumerate() {
-                // (`!(… > …)`, not `<=`, so that the test matches golden_max's loop exactly.)
+                // `!(… > …)` rather than `<=`: golden_max's loop test, for every width.
                 #[allow(clippy::neg_cmp_op_on_partial_ord)]
                 if !(s.hi - s.lo > 1e-12) {
                     continue;
