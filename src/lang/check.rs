@@ -532,14 +532,11 @@ impl Scope<'_> {
                 )
                 .help(format!("rename the summed `{}` inside", t.ch)));
             }
-            let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
-            for &(c, s) in &node.free {
-                counts.entry(c).or_default().push(s);
-            }
+            let mut occurrences = node.free.clone();
             if let Slot::Letter(c) = slot {
-                counts.entry(c).or_default().push(t.span);
+                occurrences.push((c, t.span));
             }
-            let (free, mut bound) = tally(counts)?;
+            let (free, mut bound) = tally(occurrences)?;
             bound.extend(&node.bound);
             node = Node {
                 kind: NodeKind::Deriv(Box::new(node), slot),
@@ -635,12 +632,9 @@ impl Scope<'_> {
             )
             .help("write grad(F, sigma_ij) and pick a component of the result, e.g. with a definition Q_ij = grad(F, sigma_ij), then Q_12"));
         }
-        let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
-        for &(c, s) in &body.free {
-            counts.entry(c).or_default().push(s);
-        }
+        let mut occurrences = body.free.clone();
         for &(c, s) in &symbol_node.free {
-            if body.bound.contains(&c) || counts.contains_key(&c) {
+            if body.bound.contains(&c) || occurrences.iter().any(|&(d, _)| d == c) {
                 let what = match op {
                     Wrt::Variation => "of the varied field is also an index of the density",
                     Wrt::Grad => {
@@ -652,9 +646,9 @@ impl Scope<'_> {
                         .help("give the symbol index letters the first argument does not use"),
                 );
             }
-            counts.insert(c, vec![s]);
+            occurrences.push((c, s));
         }
-        let (free, mut bound) = tally(counts)?;
+        let (free, mut bound) = tally(occurrences)?;
         bound.extend(&body.bound);
         bound.extend(&symbol_node.bound);
         Ok(Node {
@@ -747,7 +741,7 @@ impl Scope<'_> {
             )));
         }
         let mut slots = Vec::with_capacity(rank);
-        let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
+        let mut occurrences = Vec::with_capacity(rank);
         for t in indices {
             if let Some(d) = t.ch.to_digit(10) {
                 let d = d as usize;
@@ -762,10 +756,10 @@ impl Scope<'_> {
                 slots.push(Slot::Fixed(d - 1));
             } else {
                 slots.push(Slot::Letter(t.ch));
-                counts.entry(t.ch).or_default().push(t.span);
+                occurrences.push((t.ch, t.span));
             }
         }
-        let (free, bound) = tally(counts)?;
+        let (free, bound) = tally(occurrences)?;
         Ok(leaf(target, slots, free, span).with_bound(bound))
     }
 
@@ -862,14 +856,9 @@ impl Scope<'_> {
         if nodes.iter().any(|n| n.shape().is_some()) {
             return self.matrix_product(nodes, e.span);
         }
-        let mut counts: BTreeMap<char, Vec<Span>> = BTreeMap::new();
-        for n in &nodes {
-            for &(c, s) in &n.free {
-                counts.entry(c).or_default().push(s);
-            }
-        }
+        let occurrences = nodes.iter().flat_map(|n| n.free.iter().copied()).collect();
         reject_reuse(&nodes.iter().collect::<Vec<_>>())?;
-        let (free, mut bound) = tally(counts)?;
+        let (free, mut bound) = tally(occurrences)?;
         bound.extend(nodes.iter().flat_map(|n| n.bound.iter().copied()));
         Ok(Node {
             kind: NodeKind::Product(nodes),
@@ -880,22 +869,28 @@ impl Scope<'_> {
     }
 }
 
-/// Splits index occurrences into free (once) and summed (twice); a third occurrence is
-/// an error pointing at it.
 /// Free indices with where they occur, and summed letters.
 type Tally = (Vec<(char, Span)>, Vec<char>);
 
-fn tally(counts: BTreeMap<char, Vec<Span>>) -> Result<Tally, LangError> {
+/// Splits index occurrences into free (once) and summed (twice); a third occurrence is
+/// an error pointing at it.
+///
+/// `occurrences` are the index letters with where they occur, in reading order; the
+/// result lists letters in alphabetical order (a stable sort keeps each letter's
+/// occurrences in reading order, so the third one is the one reported).
+fn tally(mut occurrences: Vec<(char, Span)>) -> Result<Tally, LangError> {
+    occurrences.sort_by_key(|&(c, _)| c);
     let mut free = Vec::new();
     let mut bound = Vec::new();
-    for (c, spans) in counts {
-        match spans.len() {
-            1 => free.push((c, spans[0])),
+    for group in occurrences.chunk_by(|a, b| a.0 == b.0) {
+        let c = group[0].0;
+        match group.len() {
+            1 => free.push((c, group[0].1)),
             2 => bound.push(c),
             n => {
                 return Err(LangError::new(
                     ErrorKind::Index,
-                    spans[2],
+                    group[2].1,
                     format!("index `{c}` occurs {n} times in one product"),
                 )
                 .help("an index may occur once (free) or twice (summed); rename one summed pair"))
