@@ -428,7 +428,7 @@ impl Algebra {
                 return Ok(None);
             }
             let counts = label_counts(&t.factors)?;
-            let summed = |a: &Label| counts.get(a) == Some(&2);
+            let summed = |a: &Label| counts.summed(*a);
             // δ_aa = d; δ_ab with a summed: the other occurrence of a becomes b.
             if let Some(k) = t
                 .factors
@@ -503,7 +503,7 @@ impl Algebra {
     /// Whether a reduced term is 0 by a symmetry: ε or an antisymmetric tensor with a
     /// repeated index, a traceless tensor traced, or ε contracted on a pair of summed
     /// indices that the rest of the term is symmetric in.
-    fn vanishes(&self, factors: &[Factor], counts: &BTreeMap<Label, u8>) -> bool {
+    fn vanishes(&self, factors: &[Factor], counts: &LabelCounts) -> bool {
         for (k, f) in factors.iter().enumerate() {
             match f {
                 Factor::Eps(s) => {
@@ -512,8 +512,7 @@ impl Algebra {
                             if s[a] == s[b] {
                                 return true;
                             }
-                            let both_summed =
-                                counts.get(&s[a]) == Some(&2) && counts.get(&s[b]) == Some(&2);
+                            let both_summed = counts.summed(s[a]) && counts.summed(s[b]);
                             if both_summed && self.symmetric_in(factors, k, s[a], s[b]) {
                                 return true;
                             }
@@ -585,7 +584,7 @@ impl Algebra {
     /// The second value is the number of orderings tried.
     fn canonical_term(&self, factors: &[Factor]) -> (Option<(Vec<Factor>, i8)>, usize) {
         let counts = label_counts(factors).expect("reduced terms are well formed");
-        let is_summed = |l: Label| counts.get(&l) == Some(&2);
+        let is_summed = |l: Label| counts.summed(l);
         // The shape of a factor forgets the names of its summed labels.
         let shape = |f: &Factor| {
             let mut g = f.clone();
@@ -681,18 +680,33 @@ impl Algebra {
     }
 }
 
+/// How often each label occurs in a term, by label (sorted, for a binary search).
+struct LabelCounts(Vec<(Label, u8)>);
+
+impl LabelCounts {
+    /// Whether `l` occurs twice: a summed label.
+    fn summed(&self, l: Label) -> bool {
+        self.0
+            .binary_search_by_key(&l, |&(k, _)| k)
+            .is_ok_and(|at| self.0[at].1 == 2)
+    }
+}
+
 /// How often each label occurs in a term; more than twice is malformed.
-fn label_counts(factors: &[Factor]) -> Result<BTreeMap<Label, u8>, Refused> {
-    let mut counts: BTreeMap<Label, u8> = BTreeMap::new();
+fn label_counts(factors: &[Factor]) -> Result<LabelCounts, Refused> {
+    let mut labels: Vec<Label> = Vec::with_capacity(2 * factors.len());
     for f in factors {
-        for_each_label(f, |l| {
-            *counts.entry(l).or_insert(0) += 1;
-        });
+        for_each_label(f, |l| labels.push(l));
     }
-    if counts.values().any(|&c| c > 2) {
-        return Err(Refused::Malformed);
+    labels.sort_unstable();
+    let mut counts: Vec<(Label, u8)> = Vec::with_capacity(labels.len());
+    for run in labels.chunk_by(|a, b| a == b) {
+        if run.len() > 2 {
+            return Err(Refused::Malformed);
+        }
+        counts.push((run[0], run.len() as u8));
     }
-    Ok(counts)
+    Ok(LabelCounts(counts))
 }
 
 fn for_each_label(f: &Factor, mut g: impl FnMut(Label)) {
