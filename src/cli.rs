@@ -19,7 +19,7 @@ use std::time::{Duration, Instant};
 #[derive(Debug, Parser)]
 #[command(name = "cosserat-check", version, about, long_about = None)]
 #[command(
-    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then).\nSee README.md for the derivation-file format."
+    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then), 3 when the checker itself failed on some claim (that claim is `undecided (internal error)`; the others are decided and written).\nSee README.md for the derivation-file format."
 )]
 #[command(args_conflicts_with_subcommands = true)]
 pub struct Cli {
@@ -189,6 +189,27 @@ pub enum Format {
 pub enum Status {
     AsExpected,
     Unexpected,
+    /// The checker failed on some claim (a panic caught as that claim's internal
+    /// error): a defect of the checker, whatever the other verdicts.
+    InternalError,
+}
+
+impl Status {
+    /// The status of a run that decided `rows`.
+    fn of(rows: &[Decided<'_>]) -> Status {
+        let internal = rows.iter().any(|r| {
+            std::iter::once(&r.outcome)
+                .chain(&r.correction)
+                .any(crate::strategy::isolate::is_internal_error)
+        });
+        if internal {
+            Status::InternalError
+        } else if rows.iter().all(Decided::as_expected) {
+            Status::AsExpected
+        } else {
+            Status::Unexpected
+        }
+    }
 }
 
 /// An error that ends a run with exit code 2.
@@ -590,11 +611,7 @@ fn table(
         &inputs,
         out.stream,
     )?;
-    Ok(if rows.iter().all(Decided::as_expected) {
-        Status::AsExpected
-    } else {
-        Status::Unexpected
-    })
+    Ok(Status::of(&rows))
 }
 
 /// Where a run writes its report.
@@ -635,11 +652,7 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             };
             let rows = decide_with_progress(&files, Some(&a.id), run, &mut Progress::new())?;
             emit(&report::explain::render(&rows[0]), &None, &[], out.stream)?;
-            Ok(if rows[0].as_expected() {
-                Status::AsExpected
-            } else {
-                Status::Unexpected
-            })
+            Ok(Status::of(&rows[..1]))
         }
     }
 }
@@ -771,5 +784,65 @@ mod tests {
     #[test]
     fn cli_definition_is_consistent() {
         Cli::command().debug_assert();
+    }
+
+    /// A panic in one claim (provoked by the test-only hook) is that claim's internal
+    /// error: the other claims are decided, the report is written, the status is 3.
+    #[test]
+    fn a_panic_in_one_claim_is_its_internal_error_and_the_run_goes_on() {
+        use crate::strategy::isolate::PROVOKE_PANIC;
+        use clap::Parser;
+        let dir = std::env::temp_dir().join(format!("cc-panic-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("panics.toml");
+        let claim = |id: &str| {
+            format!(
+                "[[claim]]\nid = \"{id}\"\nprinted = 'x = x'\nexpect = \"holds\"\nsides = [\"x\", \"x\"]\n\n"
+            )
+        };
+        let text = format!(
+            "paper = \"t\"\nsection = \"1\"\ntitle = \"t\"\ndimension = 3\nscalars = [\"x\"]\n\n{}{}{}",
+            claim("before"),
+            claim(PROVOKE_PANIC),
+            claim("after")
+        );
+        std::fs::write(&file, text).unwrap();
+        let cli = Cli::try_parse_from([
+            "cosserat-check",
+            "verify",
+            file.to_str().unwrap(),
+            "--format",
+            "json",
+        ])
+        .unwrap();
+        let mut bytes = Vec::new();
+        let status = run(
+            cli,
+            &mut Output {
+                stream: &mut bytes,
+                terminal: false,
+            },
+        )
+        .unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(status, Status::InternalError);
+        let json: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+        let verdicts: Vec<(&str, &str)> = json["claims"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| (c["id"].as_str().unwrap(), c["verdict"].as_str().unwrap()))
+            .collect();
+        assert_eq!(
+            verdicts,
+            [
+                ("before", "holds"),
+                (PROVOKE_PANIC, "undecided"),
+                ("after", "holds")
+            ]
+        );
+        let text = String::from_utf8(bytes).unwrap();
+        assert!(text.contains("internal error"), "{text}");
+        assert!(text.contains("provoked by the test hook"), "{text}");
     }
 }

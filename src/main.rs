@@ -27,6 +27,7 @@ fn main() -> ExitCode {
     match run(cli, &mut out) {
         Ok(Status::AsExpected) => ExitCode::SUCCESS,
         Ok(Status::Unexpected) => ExitCode::from(1),
+        Ok(Status::InternalError) => ExitCode::from(3),
         Err(e) => {
             eprintln!("{e}");
             ExitCode::from(2)

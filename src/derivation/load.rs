@@ -9,6 +9,7 @@ use super::notation::{self, Notation};
 use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
 use super::spans::{content_map, sub_origin};
 use crate::derivation::ParamBox;
+use crate::kernel::tensor::{assignment_count_saturating, MAX_COMPONENTS};
 use crate::kernel::Rational;
 use crate::lang::check::{letters, RESERVED};
 use crate::lang::matrix::{shape_words, MatrixOp, MatrixRead};
@@ -514,6 +515,18 @@ impl Loader {
                         "built-in names: {}; choose another name",
                         RESERVED.join(", ")
                     )));
+            }
+            let components = assignment_count_saturating(decls.dim, rank);
+            if components > MAX_COMPONENTS {
+                return Err(self
+                    .diag(
+                        s.span(),
+                        format!(
+                            "`{name}` has rank {rank}: {components} components in {}D, more than the {MAX_COMPONENTS} supported",
+                            decls.dim
+                        ),
+                    )
+                    .with_help("declare tensors of lower rank"));
             }
             let known = decls.symbols.iter().map(|(k, &r)| (k.as_str(), r));
             if let Some(clash) = read_two_ways(&name, rank, known) {

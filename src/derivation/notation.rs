@@ -368,13 +368,21 @@ fn read_part(
             .iter()
             .map(|&e| notation.entries[e].values.len())
             .collect();
-        let total: usize = counts.iter().product();
-        if total > MAX_ROUTES {
-            return Err(Unread {
+        // Checked: a wrapped product once let a crafted table past the cap.
+        let total = counts
+            .iter()
+            .try_fold(1usize, |acc, &n| acc.checked_mul(n))
+            .filter(|&t| t <= MAX_ROUTES)
+            .ok_or_else(|| Unread {
                 span: part.span,
-                message: format!("{total} combinations of readings; at most {MAX_ROUTES}"),
-            });
-        }
+                message: format!(
+                    "{} combinations of readings; at most {MAX_ROUTES}",
+                    counts
+                        .iter()
+                        .try_fold(1usize, |acc, &n| acc.checked_mul(n))
+                        .map_or_else(|| "more than 2^64".to_owned(), |t| t.to_string())
+                ),
+            })?;
         for k in 0..total {
             let mut rest = k;
             t.choice.clear();

@@ -253,7 +253,8 @@ impl Arithmetic for Polynomials<'_> {
     fn mul(&mut self, a: super::Poly, b: &super::Poly) -> Result<super::Poly, OverBudget> {
         let cost = a.num_terms().saturating_mul(b.num_terms());
         *self.work_left = self.work_left.checked_sub(cost).ok_or(OverBudget)?;
-        Ok(&a * b)
+        // An exponent beyond the kernel's bound is a resource limit like the budget.
+        a.checked_mul(b).map_err(|_| OverBudget)
     }
     fn add(&mut self, mut a: super::Poly, b: super::Poly) -> Result<super::Poly, OverBudget> {
         a += &b;

@@ -151,9 +151,9 @@ pub fn divide_exact(a: &Poly, b: &Poly) -> Option<Poly> {
 /// proof that `b` does not divide `a`; most trial divisions in a derivation fail this
 /// way, on their first scan.
 fn degrees_admit(a: &Poly, b: &Poly) -> bool {
-    let admits = |degree: &dyn Fn(&Monomial) -> i32| {
+    let admits = |degree: &dyn Fn(&Monomial) -> i64| {
         let range = |p: &Poly| {
-            p.terms().fold((i32::MAX, i32::MIN), |(lo, hi), (m, _)| {
+            p.terms().fold((i64::MAX, i64::MIN), |(lo, hi), (m, _)| {
                 let d = degree(m);
                 (lo.min(d), hi.max(d))
             })
@@ -165,7 +165,7 @@ fn degrees_admit(a: &Poly, b: &Poly) -> bool {
     admits(&Monomial::total_degree)
         && b.variables()
             .into_iter()
-            .all(|v| admits(&|m| m.exponent(v)))
+            .all(|v| admits(&|m| i64::from(m.exponent(v))))
 }
 
 /// Pseudo-remainder of `a` by `b` in `v`: `lc(b)^k a = q b + r` with `deg_v r < deg_v b`.

@@ -759,9 +759,13 @@ fn factorial(n: usize) -> Option<usize> {
     (1..=n).try_fold(1usize, |acc, k| acc.checked_mul(k))
 }
 
-/// (m − 1)!!, the number of pairings of m labels (m even).
+/// (m − 1)!!, the number of pairings of m labels (m even), saturating: a charge
+/// against the budget, which a saturated count exceeds.
 fn pairing_count(m: usize) -> usize {
-    (1..m).step_by(2).product()
+    (1..m)
+        .step_by(2)
+        .try_fold(1usize, |acc, k| acc.checked_mul(k))
+        .unwrap_or(usize::MAX)
 }
 
 /// Two labels paired by a δ.

@@ -27,6 +27,18 @@ const LADDER_TOP: u32 = 64;
 /// A polynomial variable: an index into a [`VarTable`].
 pub type Var = u32;
 
+/// The largest absolute value of an exponent in any monomial. Every operation that
+/// builds a monomial checks it, so that the sum of two exponents never leaves `i32`
+/// and no exponent wraps: a wrapped exponent once made x^(2^32) equal to 1.
+pub const MAX_EXPONENT: i32 = 1 << 24;
+
+/// `e` as an exponent within [`MAX_EXPONENT`].
+fn bounded(e: i64) -> Option<i32> {
+    i32::try_from(e)
+        .ok()
+        .filter(|e| e.unsigned_abs() <= MAX_EXPONENT.unsigned_abs())
+}
+
 /// How many factors a monomial holds without a heap allocation; longer monomials spill
 /// to the heap. Measured on the bench's exact tasks: eight inline made the Appendix's
 /// A² 8% slower (larger terms to move) and eq. (38) 6% faster.
@@ -46,8 +58,12 @@ impl Monomial {
         Monomial(Factors::new())
     }
 
-    /// `v^e`.
+    /// `v^e`; `e` must be within [`MAX_EXPONENT`] (a constant of the caller's).
     pub fn var(v: Var, e: i32) -> Self {
+        assert!(
+            bounded(i64::from(e)).is_some(),
+            "exponent {e} beyond the bound"
+        );
         let mut factors = Factors::new();
         if e != 0 {
             factors.push((v, e));
@@ -56,17 +72,25 @@ impl Monomial {
     }
 
     /// Builds the canonical monomial from factors in any order, merging repeats.
-    pub fn from_factors(mut factors: Vec<(Var, i32)>) -> Self {
+    /// Panics (never wraps) when a merged exponent leaves [`MAX_EXPONENT`].
+    pub fn from_factors(factors: Vec<(Var, i32)>) -> Self {
+        Self::checked_from_factors(factors).expect("exponent within MAX_EXPONENT")
+    }
+
+    /// [`Monomial::from_factors`], or `None` when a merged exponent leaves
+    /// [`MAX_EXPONENT`].
+    pub fn checked_from_factors(mut factors: Vec<(Var, i32)>) -> Option<Self> {
         factors.sort_unstable_by_key(|&(v, _)| v);
         let mut out = Factors::with_capacity(factors.len());
         for (v, e) in factors {
+            let e = bounded(i64::from(e))?;
             match out.last_mut() {
-                Some((lv, le)) if *lv == v => *le += e,
+                Some((lv, le)) if *lv == v => *le = bounded(i64::from(*le) + i64::from(e))?,
                 _ => out.push((v, e)),
             }
         }
         out.retain(|&mut (_, e)| e != 0);
-        Monomial(out)
+        Some(Monomial(out))
     }
 
     pub fn factors(&self) -> &[(Var, i32)] {
@@ -84,12 +108,20 @@ impl Monomial {
             .map_or(0, |k| self.0[k].1)
     }
 
-    pub fn total_degree(&self) -> i32 {
-        self.0.iter().map(|&(_, e)| e).sum()
+    pub fn total_degree(&self) -> i64 {
+        self.0.iter().map(|&(_, e)| i64::from(e)).sum()
     }
 
-    /// The product of two monomials (a linear merge of sorted lists).
+    /// The product of two monomials. Panics (never wraps) when an exponent leaves
+    /// [`MAX_EXPONENT`]; [`Monomial::checked_mul`] says `None` instead.
     pub fn mul(&self, other: &Monomial) -> Monomial {
+        self.checked_mul(other)
+            .expect("exponent within MAX_EXPONENT")
+    }
+
+    /// The product of two monomials (a linear merge of sorted lists), or `None` when an
+    /// exponent leaves [`MAX_EXPONENT`].
+    pub fn checked_mul(&self, other: &Monomial) -> Option<Monomial> {
         let (a, b) = (&self.0, &other.0);
         let mut out = Factors::with_capacity(a.len() + b.len());
         let (mut i, mut j) = (0, 0);
@@ -104,7 +136,7 @@ impl Monomial {
                     j += 1;
                 }
                 std::cmp::Ordering::Equal => {
-                    let e = a[i].1 + b[j].1;
+                    let e = bounded(i64::from(a[i].1) + i64::from(b[j].1))?;
                     if e != 0 {
                         out.push((a[i].0, e));
                     }
@@ -115,16 +147,21 @@ impl Monomial {
         }
         out.extend_from_slice(&a[i..]);
         out.extend_from_slice(&b[j..]);
-        Monomial(out)
+        Some(Monomial(out))
     }
 
-    /// `self^e` for any integer `e`.
-    pub fn pow(&self, e: i32) -> Monomial {
+    /// `self^e` for any integer `e`, or `None` when an exponent leaves
+    /// [`MAX_EXPONENT`].
+    pub fn pow(&self, e: i32) -> Option<Monomial> {
         if e == 0 {
-            return Monomial::one();
+            return Some(Monomial::one());
         }
         // Sorted stays sorted, and no exponent becomes zero.
-        Monomial(self.0.iter().map(|&(v, k)| (v, k * e)).collect())
+        let factors = self
+            .0
+            .iter()
+            .map(|&(v, k)| Some((v, bounded(i64::from(k) * i64::from(e))?)));
+        Some(Monomial(factors.collect::<Option<_>>()?))
     }
 
     /// The first two factors packed into a word whose order is the monomials' order on
@@ -212,6 +249,8 @@ pub enum PolyError {
     NegativeNormalPower,
     #[error("clearing the denominators takes more than 1000000 term products")]
     TooLarge,
+    #[error("an exponent would exceed 2^24")]
+    ExponentTooLarge,
 }
 
 /// A sparse Laurent polynomial with exact rational coefficients, in canonical form.
@@ -327,7 +366,7 @@ impl Poly {
             _ => return Err(PolyError::DivisionBySum),
         };
         let inv = Poly::term(
-            m.pow(-1),
+            m.pow(-1).expect("a bounded exponent negated is bounded"),
             c.recip().expect("stored coefficients are nonzero"),
         );
         Ok(self * &inv)
@@ -365,7 +404,32 @@ impl Poly {
     }
 
     pub fn pow(&self, e: u32) -> Poly {
-        (0..e).fold(Poly::one(), |acc, _| &acc * self)
+        self.checked_pow(e).expect("exponent within MAX_EXPONENT")
+    }
+
+    /// `self^e`, or an error when an exponent would leave [`MAX_EXPONENT`].
+    pub fn checked_pow(&self, e: u32) -> Result<Poly, PolyError> {
+        (0..e).try_fold(Poly::one(), |acc, _| acc.checked_mul(self))
+    }
+
+    /// The product, or an error when an exponent would leave [`MAX_EXPONENT`].
+    pub fn checked_mul(&self, rhs: &Poly) -> Result<Poly, PolyError> {
+        // A constant factor (δ and ε components, the 1 a product starts from) scales
+        // every coefficient and keeps the order: no sort.
+        match (self.terms.as_slice(), rhs.terms.as_slice()) {
+            ([], _) | (_, []) => return Ok(Poly::zero()),
+            ([(m, c)], _) if m.is_one() => return Ok(rhs.scaled(c)),
+            (_, [(m, c)]) if m.is_one() => return Ok(self.scaled(c)),
+            _ => {}
+        }
+        let mut products = Vec::with_capacity(self.terms.len().saturating_mul(rhs.terms.len()));
+        for (m1, c1) in &self.terms {
+            for (m2, c2) in &rhs.terms {
+                let m = m1.checked_mul(m2).ok_or(PolyError::ExponentTooLarge)?;
+                products.push((m, c1 * c2));
+            }
+        }
+        Ok(Poly::from_terms(products))
     }
 
     /// Evaluates at a point; `None` when a negative power meets a zero value.
@@ -626,7 +690,7 @@ impl Poly {
         let over_twice_lead = (&lead_c + &lead_c)
             .recip()
             .expect("a leading coefficient is nonzero");
-        let lead_inverse = lead_m.pow(-1);
+        let lead_inverse = lead_m.pow(-1)?;
         let lead = Poly::term(lead_m, lead_c);
         let mut root = lead.clone();
         let mut rem = self - &(&lead * &lead);
@@ -828,24 +892,12 @@ impl Sub<&Poly> for &Poly {
     }
 }
 
+/// Panics (never wraps) when an exponent leaves [`MAX_EXPONENT`]: evaluation of input
+/// multiplies with [`Poly::checked_mul`].
 impl Mul<&Poly> for &Poly {
     type Output = Poly;
     fn mul(self, rhs: &Poly) -> Poly {
-        // A constant factor (δ and ε components, the 1 a product starts from) scales
-        // every coefficient and keeps the order: no sort.
-        match (self.terms.as_slice(), rhs.terms.as_slice()) {
-            ([], _) | (_, []) => return Poly::zero(),
-            ([(m, c)], _) if m.is_one() => return rhs.scaled(c),
-            (_, [(m, c)]) if m.is_one() => return self.scaled(c),
-            _ => {}
-        }
-        let mut products = Vec::with_capacity(self.terms.len() * rhs.terms.len());
-        for (m1, c1) in &self.terms {
-            for (m2, c2) in &rhs.terms {
-                products.push((m1.mul(m2), c1 * c2));
-            }
-        }
-        Poly::from_terms(products)
+        self.checked_mul(rhs).expect("exponent within MAX_EXPONENT")
     }
 }
 

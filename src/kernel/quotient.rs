@@ -456,7 +456,8 @@ impl Quotients<'_> {
     fn product(&mut self, a: &Poly, b: &Poly) -> Result<Poly, OverBudget> {
         let cost = a.num_terms().saturating_mul(b.num_terms());
         *self.work_left = self.work_left.checked_sub(cost).ok_or(OverBudget)?;
-        Ok(a * b)
+        // An exponent beyond the kernel's bound is a resource limit like the budget.
+        a.checked_mul(b).map_err(|_| OverBudget)
     }
 
     /// `p · Π factors`, charged.

@@ -388,7 +388,9 @@ pub fn orthant_cases(
         };
         per_var.push((v, alternatives));
     }
-    let count: usize = per_var.iter().map(|(_, a)| a.len()).product();
+    let count = per_var
+        .iter()
+        .try_fold(1usize, |acc, (_, a)| acc.checked_mul(a.len()))?;
     if count > MAX_CASES {
         return None;
     }

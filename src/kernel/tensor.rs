@@ -23,6 +23,22 @@ pub fn assignments(dim: usize, rank: usize) -> impl Iterator<Item = Vec<usize>> 
     })
 }
 
+/// The most components a declared tensor or any intermediate value may have (3^10):
+/// every rank is checked against it before anything is allocated.
+pub const MAX_COMPONENTS: usize = 59_049;
+
+/// The most index values one product's contraction may visit, free and summed letters
+/// together (3^12).
+pub const MAX_ASSIGNMENTS: usize = 531_441;
+
+/// dim^rank, saturating: a count to compare with [`MAX_COMPONENTS`].
+pub fn assignment_count_saturating(dim: usize, rank: usize) -> usize {
+    u32::try_from(rank)
+        .ok()
+        .and_then(|r| dim.checked_pow(r))
+        .unwrap_or(usize::MAX)
+}
+
 /// dim^rank, the number of assignments; 0 when there are too many to count (none are
 /// then listed).
 fn assignment_count(dim: usize, rank: usize) -> usize {

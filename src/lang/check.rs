@@ -13,6 +13,9 @@
 use super::diag::Span;
 use super::matrix::{MatrixOp, MatrixRead};
 use super::parser::{ErrorKind, Expr, ExprKind, Func, Func2, IndexTok, LangError, Wrt};
+use crate::kernel::tensor::{
+    assignment_count_saturating as assignment_count, MAX_ASSIGNMENTS, MAX_COMPONENTS,
+};
 use crate::kernel::Rational;
 use std::collections::BTreeMap;
 
@@ -338,7 +341,28 @@ pub struct Scope<'a> {
 }
 
 impl Scope<'_> {
+    /// The checked node of `e`, whose components and whose products' index values stay
+    /// within the kernel's bounds ([`MAX_COMPONENTS`], [`MAX_ASSIGNMENTS`]), checked
+    /// before anything is evaluated or allocated.
     pub fn check(&self, e: &Expr) -> Result<Node, LangError> {
+        let node = self.check_node(e)?;
+        let components = assignment_count(self.decls.dim, node.free.len());
+        if components > MAX_COMPONENTS {
+            return Err(LangError::new(
+                ErrorKind::Index,
+                e.span,
+                format!(
+                    "this expression has {} free indices, {components} components in {}D; at most {MAX_COMPONENTS} are supported",
+                    node.free.len(),
+                    self.decls.dim
+                ),
+            )
+            .help("split the statement into smaller tensors"));
+        }
+        Ok(node)
+    }
+
+    fn check_node(&self, e: &Expr) -> Result<Node, LangError> {
         match &e.kind {
             ExprKind::Number(q) => Ok(leafless(NodeKind::Const(q.clone()), e.span)),
             ExprKind::Name {
@@ -859,6 +883,20 @@ impl Scope<'_> {
         let occurrences = nodes.iter().flat_map(|n| n.free.iter().copied()).collect();
         reject_reuse(&nodes.iter().collect::<Vec<_>>())?;
         let (free, mut bound) = tally(occurrences)?;
+        // The contraction visits every value of every letter of the product.
+        let values = assignment_count(self.decls.dim, free.len() + bound.len());
+        if values > MAX_ASSIGNMENTS {
+            return Err(LangError::new(
+                ErrorKind::Index,
+                e.span,
+                format!(
+                    "this product has {} index letters, {values} index values to visit in {}D; at most {MAX_ASSIGNMENTS} are supported",
+                    free.len() + bound.len(),
+                    self.decls.dim
+                ),
+            )
+            .help("contract in steps, through definitions of smaller tensors"));
+        }
         bound.extend(nodes.iter().flat_map(|n| n.bound.iter().copied()));
         Ok(Node {
             kind: NodeKind::Product(nodes),

@@ -15,6 +15,10 @@ pub fn finding(f: &Finding) -> String {
         Finding::Uncertified { what, at, help } => {
             format!("undecided: {what} (at {at}); {help}")
         }
+        Finding::InternalError { message, at } => format!(
+            "undecided (internal error): the checker failed while deciding this claim ({message}, \
+             at {at}); this is a defect of the checker, not of the derivation: please report it"
+        ),
         Finding::TimeLimit { seconds } => format!(
             "undecided (time limit): the decision did not finish within {} s (raise it with \
              `--time-limit SECONDS`; a sampled claim can also lower `samples`)",

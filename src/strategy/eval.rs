@@ -146,6 +146,7 @@ fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
         }
         PolyError::NegativeNormalPower => "keep components of the normal out of divisors",
         PolyError::TooLarge => "split the statement with definitions, or decide it numerically",
+        PolyError::ExponentTooLarge => "exponents up to 2^24 are supported exactly",
     };
     origin.diagnostic(node.span, e.to_string()).with_help(help)
 }
@@ -335,10 +336,16 @@ impl<'a> ExactEnv<'a> {
     /// Whether `q` is affine in the components with rational coefficients: no products,
     /// powers or divisions of variables, and no normal.
     pub fn is_affine(&self, q: &Quotient) -> bool {
+        // A derivative of a field (`phi_,i` in a potential `u_i = phi_,i`) is not a
+        // component: such an assumption substitutes the whole symbol.
+        let component = |v: &Var| {
+            !self.normal.contains(v)
+                && !matches!(self.varying.get(v), Some(Varying::Jet { orders, .. }) if !orders.is_empty())
+        };
         q.factors().is_empty()
             && q.numerator().terms().all(|(m, _)| match m.factors() {
                 [] => true,
-                [(v, 1)] => !self.normal.contains(v),
+                [(v, 1)] => component(v),
                 _ => false,
             })
     }

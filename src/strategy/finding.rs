@@ -20,6 +20,9 @@ pub enum Finding {
     NothingCompared,
     /// The decision did not finish within the per-claim time limit (`--time-limit`).
     TimeLimit { seconds: f64 },
+    /// The checker itself failed while deciding (a panic): a defect of the checker,
+    /// not of the input, and never a verdict. `at` is where in the checker's source.
+    InternalError { message: String, at: String },
     /// Expanding the statement exactly passes a resource limit (work, terms, the size
     /// of a power) at `at` (file:line:col).
     ResourceLimit {

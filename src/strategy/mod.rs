@@ -12,6 +12,7 @@ mod indices;
 #[cfg(test)]
 mod indices_tests;
 pub mod inherit;
+pub mod isolate;
 mod jets;
 pub mod numeric;
 mod outcome;
@@ -98,17 +99,32 @@ fn decide_keeping(
     check: &crate::derivation::Check,
     keep: bool,
 ) -> Result<Outcome, Diagnostic> {
+    isolate::isolated(method_of(check), || decide_unisolated(decls, check, keep))
+}
+
+/// The method a check's strategy decides with.
+fn method_of(check: &crate::derivation::Check) -> Method {
     use crate::derivation::Strategy;
-    let sink = sampler::Sink::default();
-    let states = keep.then_some(&sink);
-    let method = match &check.strategy {
+    match &check.strategy {
         Strategy::Numeric { .. } => Method::Numeric,
         Strategy::Gradient { .. } => Method::Gradient,
         Strategy::Convex { .. } => Method::Convex,
         Strategy::Exact { .. } | Strategy::Proportional { .. } => Method::Exact,
         Strategy::NotCircle { .. } => Method::Witness,
         Strategy::Scalar { .. } => Method::RationalFunction,
-    };
+    }
+}
+
+/// [`decide_keeping`] without the panic isolation.
+fn decide_unisolated(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+    keep: bool,
+) -> Result<Outcome, Diagnostic> {
+    use crate::derivation::Strategy;
+    let sink = sampler::Sink::default();
+    let states = keep.then_some(&sink);
+    let method = method_of(check);
     if method != Method::Exact && check.reads().differentiates {
         return Ok(
             Outcome::undecided(method, 0).with_finding(finding::Finding::DerivativesNotSampled)
@@ -153,7 +169,10 @@ pub fn decide_claim(claim: &Claim) -> Result<Decided<'_>, Diagnostic> {
 }
 
 fn decide_claim_keeping(claim: &Claim, keep: bool) -> Result<Decided<'_>, Diagnostic> {
-    let outcome = decide_keeping(&claim.decls, &claim.check, keep)?;
+    let outcome = isolate::isolated(method_of(&claim.check), || {
+        isolate::test_hook(&claim.id);
+        decide_unisolated(&claim.decls, &claim.check, keep)
+    })?;
     let correction = match &claim.correction {
         Some(c) => Some(decide_keeping(&claim.decls, &c.check, keep)?),
         None => None,

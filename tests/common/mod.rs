@@ -6,6 +6,7 @@ use cosserat_check::strategy::Decided;
 
 /// Decides every claim of `path`, asserts that there are `count` and that each verdict
 /// (and each correction's) is the declared one, and hands the rows to `inspect`.
+#[allow(dead_code)]
 pub fn assert_as_declared(path: &str, count: usize, inspect: impl FnOnce(&[Decided<'_>])) {
     let files = load_files(&[path]).unwrap();
     let rows = decide_all(&files, None).unwrap();

@@ -108,7 +108,10 @@ pub(super) fn search(
             c
         })
         .collect();
-    let combos: usize = simple.iter().map(Vec::len).product();
+    let combos = simple
+        .iter()
+        .try_fold(1usize, |acc, c| acc.checked_mul(c.len()))
+        .unwrap_or(usize::MAX);
     if combos <= 64 {
         for k in 0..combos {
             let mut rest = k;

@@ -1,0 +1,146 @@
+//! Small files a hostile author could write against the kernel's promises: no integer
+//! wraps into a proof, no rank allocates before it is bounded, no count wraps past a
+//! cap, and a displacement potential is read, not a crash.
+
+mod common;
+
+use common::{error_of, outcomes_of};
+use cosserat_check::derivation::{load_str, Verdict};
+use cosserat_check::strategy::Strength;
+
+const HEAD: &str = "paper = \"hostile\"\nsection = \"h\"\ntitle = \"h\"\ndimension = 3\n";
+
+fn claim(id: &str, expect: &str, sides: &str) -> String {
+    let reason = if expect == "holds" {
+        String::new()
+    } else {
+        "reason = \"false\"\n".to_owned()
+    };
+    format!("[[claim]]\nid = \"{id}\"\nprinted = 'x'\nexpect = \"{expect}\"\n{reason}sides = {sides}\n\n")
+}
+
+/// a0 = x^64, a1 = a0^64, then twenty squarings: a21 = x^(2^32), whose exponent wrapped
+/// to 0 in an unchecked `i32` and made `a21 = 1` a proved identity.
+fn powers() -> String {
+    let mut defs = vec!["\"a0 = x^64\"".to_owned(), "\"a1 = a0^64\"".to_owned()];
+    for k in 1..21 {
+        defs.push(format!("\"a{} = a{k} a{k}\"", k + 1));
+    }
+    format!(
+        "{HEAD}scalars = [\"x\"]\ndefine = [{}]\n\n",
+        defs.join(", ")
+    )
+}
+
+#[test]
+fn a_power_whose_exponent_would_wrap_is_never_proved() {
+    let text = powers()
+        + &claim("wrap", "fails", "[\"a21\", \"1\"]")
+        + &claim("wrap-inverse", "fails", "[\"a20\", \"1/a20\"]")
+        + &claim("true-but-huge", "holds", "[\"a21\", \"a20 a20\"]");
+    for (o, id) in outcomes_of(&text)
+        .iter()
+        .zip(["wrap", "wrap-inverse", "true-but-huge"])
+    {
+        assert!(
+            !(o.verdict() == Verdict::Holds && o.strength() == Strength::Proof)
+                || id == "true-but-huge",
+            "{id}: {}",
+            o.verdict_text()
+        );
+        assert_ne!(
+            o.verdict(),
+            Verdict::Holds,
+            "{id}: no wrapped exponent becomes a proof"
+        );
+    }
+}
+
+#[test]
+fn a_declared_rank_beyond_the_bound_is_a_located_error() {
+    let text = format!(
+        "{HEAD}tensors = [\"T_abcdefghijklmnopqrst\"]\n\n{}",
+        claim(
+            "r",
+            "holds",
+            "[\"T_abcdefghijklmnopqrst\", \"T_abcdefghijklmnopqrst\"]"
+        )
+    );
+    let e = load_str("f.toml", &text).unwrap_err().to_string();
+    assert!(e.contains("f.toml:5:12"), "{e}");
+    assert!(e.contains("`T` has rank 20"), "{e}");
+    // Rank 10 is the largest in 3D, and is accepted.
+    let ok = format!(
+        "{HEAD}tensors = [\"T_abcdefghij\"]\n\n{}",
+        claim("r", "holds", "[\"T_abcdefghij\", \"T_abcdefghij\"]")
+    );
+    assert!(load_str("f.toml", &ok).is_ok());
+}
+
+#[test]
+fn intermediates_beyond_the_bound_are_located_errors() {
+    // Eleven free indices in 3D: 177,147 components.
+    let free = format!(
+        "{HEAD}tensors = [\"a_i\"]\n\n{}",
+        claim(
+            "free",
+            "holds",
+            "[\"a_i a_j a_k a_l a_m a_n a_p a_q a_r a_s a_t\", \"a_i a_j a_k a_l a_m a_n a_p a_q a_r a_s a_t\"]"
+        )
+    );
+    let e = error_of(&free);
+    assert!(e.contains("11 free indices"), "{e}");
+    assert!(e.contains("f.toml:"), "{e}");
+    // Thirteen letters in one product (a scalar in the end): 3^13 index values.
+    let letters = "a_i a_i b_j b_j c_k c_k d_l d_l e_m e_m f_n f_n g_p g_p h_q h_q A_rs A_rs B_tu B_tu C_vw C_vw D_x D_x";
+    let wide = format!(
+        "{HEAD}tensors = [\"a_i\", \"b_i\", \"c_i\", \"d_i\", \"e_i\", \"f_i\", \"g_i\", \"h_i\", \"A_ij\", \"B_ij\", \"C_ij\", \"D_i\"]\n\n{}",
+        claim("wide", "holds", &format!("[\"{letters}\", \"{letters}\"]"))
+    );
+    let e = error_of(&wide);
+    assert!(e.contains("index letters"), "{e}");
+}
+
+#[test]
+fn a_displacement_potential_is_substituted() {
+    let head = format!(
+        "{HEAD}position = \"x\"\nfields = [\"u_i\", \"phi\"]\nassume = [\"u_i = phi_,i\"]\n\n"
+    );
+    let text = head.clone()
+        + &claim("curl-free", "holds", "[\"u_i,j - u_j,i\", \"0\"]")
+        + &claim("divergence", "holds", "[\"u_k,k\", \"phi_,kk\"]")
+        + &claim("not-symmetric-zero", "fails", "[\"u_i,j + u_j,i\", \"0\"]");
+    let verdicts: Vec<Verdict> = outcomes_of(&text).iter().map(|o| o.verdict()).collect();
+    assert_eq!(verdicts, [Verdict::Holds, Verdict::Holds, Verdict::Fails]);
+    // One component set to a derivative is not an affine relation between components:
+    // a located error, not a crash.
+    let component = format!(
+        "{HEAD}position = \"x\"\nfields = [\"u_i\", \"phi\"]\nassume = [\"u_1 = phi_,1\"]\n\n{}",
+        claim("c", "holds", "[\"u_1\", \"phi_,1\"]")
+    );
+    let e = error_of(&component);
+    assert!(e.contains("f.toml:"), "{e}");
+    assert!(e.contains("affine"), "{e}");
+}
+
+#[test]
+fn a_count_of_readings_that_would_wrap_is_refused_like_any_over_the_cap() {
+    // 64 symbols with two readings each: 2^64 combinations, which wrapped to 0 (and
+    // other products to 1) in an unchecked product.
+    let mut notation = String::from("[notation]\n");
+    let mut printed = Vec::new();
+    for k in 0..64 {
+        notation.push_str(&format!("'Q^{{({k})}}' = [\"x\", \"y\"]\n"));
+        printed.push(format!("Q^{{({k})}}"));
+    }
+    let text = format!(
+        "{HEAD}scalars = [\"x\", \"y\"]\n\n[[claim]]\nid = \"many\"\nprinted = '{} = 0'\nexpect = \"fails\"\nreason = \"false\"\nsides = [\"x\", \"0\"]\n\n{notation}",
+        printed.join(" + ")
+    );
+    let file = load_str("f.toml", &text).unwrap();
+    let rows = cosserat_check::cli::decide_all(std::slice::from_ref(&file), None).unwrap();
+    let t = &rows[0].transcription;
+    assert_eq!(t.label(), "hand", "{t:?}");
+    let shown = format!("{t:?}");
+    assert!(shown.contains("more than 2^64 combinations"), "{shown}");
+}
