@@ -10,9 +10,10 @@
 //! Targets live in issue 8; this prints what the machine does, it asserts nothing.
 //! `-- --claim ID` and `-- --derive-a2` print one median for benches/sympy_compare.py.
 
+use cosserat_check::algebra::gcd;
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_str, DerivationFile, Strategy};
-use cosserat_check::kernel::{gcd, monomial_moment, Poly};
+use cosserat_check::kernel::{monomial_moment, Poly};
 use cosserat_check::strategy::decide_claim;
 use cosserat_check::strategy::probe::Probe;
 use std::hint::black_box;

@@ -5,6 +5,7 @@
 //! file under `derivations/`; the checker decides each claim and reports a verdict
 //! with its evidence. Data flows one way: file → parse/validate → decide → report.
 
+pub mod algebra;
 pub mod cli;
 pub mod corpus;
 pub mod derivation;

@@ -6,8 +6,9 @@
 #[path = "appendix/route.rs"]
 mod route;
 
+use cosserat_check::algebra::{gcd, RatFunc};
 use cosserat_check::derivation::load_files;
-use cosserat_check::kernel::{gcd, Poly, RatFunc, Rational, VarTable};
+use cosserat_check::kernel::{Poly, Rational, VarTable};
 use cosserat_check::strategy::probe::{curve_values, Probe};
 use route::{Point, ShearSign};
 

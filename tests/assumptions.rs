@@ -88,7 +88,7 @@ fn elasticity_tensor_symmetries_leave_21_and_6_independent_components() {
         let file = load_str("t.toml", &text).unwrap();
         let claim = &file.claims[0];
         let p = Parametrisation::new(&claim.decls, &claim.check.assumptions).unwrap();
-        let components = cosserat_check::kernel::assignments(dim, 4)
+        let components = cosserat_check::algebra::assignments(dim, 4)
             .filter(|idx| p.constrained("C", idx) == Constrained::Free)
             .count();
         assert_eq!(components, free, "dimension {dim}");

@@ -3,8 +3,8 @@
 //! than reported as a counterexample, and the averages of the shear traction magnitude
 //! |t^(t)| agree with an independent high-accuracy reference.
 
+use cosserat_check::algebra::Tensor;
 use cosserat_check::derivation::{load_files, load_str, Strategy, Verdict};
-use cosserat_check::kernel::Tensor;
 use cosserat_check::strategy::decide_claim;
 use cosserat_check::strategy::finding::{Finding, Unresolved};
 use cosserat_check::strategy::quadrature::{Level, Quadrature};

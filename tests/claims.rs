@@ -272,7 +272,7 @@ fn the_readme_excerpt_matches_the_table() {
 /// closed form's expansion in every component (an independent route to num-dual).
 #[test]
 fn polynomial_gradients_agree_with_exact_derivatives() {
-    use cosserat_check::kernel::assignments;
+    use cosserat_check::algebra::assignments;
     use cosserat_check::strategy::eval::ExactEnv;
     let mut proved = Vec::new();
     for r in decided() {

@@ -5,8 +5,9 @@
 //! of total rank up to 6, in 2D and 3D, in exact rationals and in polynomials under
 //! the work budget.
 
-use cosserat_check::kernel::einsum::{einsum, Plain, Polynomials, Slot};
-use cosserat_check::kernel::{Poly, Rational, Tensor, VarTable};
+use cosserat_check::algebra::einsum::{einsum, Plain, Polynomials, Slot};
+use cosserat_check::algebra::Tensor;
+use cosserat_check::kernel::{Poly, Rational, VarTable};
 use cosserat_check::strategy::float::Rng;
 use num_traits::Zero;
 

@@ -3,10 +3,10 @@
 //! with a confirmed counterexample off every pole, and divisors that are not
 //! polynomials in scalar parameters are refused where they stand.
 
+use cosserat_check::algebra::certificate::Fact;
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::load_str;
 use cosserat_check::derivation::Verdict;
-use cosserat_check::kernel::certificate::Fact;
 
 mod common;
 

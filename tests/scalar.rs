@@ -4,8 +4,8 @@
 //! `fails` with a confirmed counterexample; proofs come from the kernel, and the one
 //! claim without a certificate is labelled sampled.
 
+use cosserat_check::algebra::certificate::Fact;
 use cosserat_check::derivation::Verdict;
-use cosserat_check::kernel::certificate::Fact;
 use cosserat_check::strategy::Strength;
 
 mod common;

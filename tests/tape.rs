@@ -5,8 +5,8 @@
 //! num-dual must agree at random states; a tape that folded a constant wrongly, shared
 //! two different subexpressions or contracted the wrong slot would show here.
 
+use cosserat_check::algebra::Tensor;
 use cosserat_check::derivation::{load_dir, Claim, Strategy};
-use cosserat_check::kernel::Tensor;
 use cosserat_check::lang::Node;
 use cosserat_check::strategy::assume::Parametrisation;
 use cosserat_check::strategy::float::Rng;

@@ -8,8 +8,8 @@ use super::model::{
 use super::notation::{self, Notation};
 use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
 use super::spans::{content_map, sub_origin};
+use crate::algebra::tensor::{assignment_count_saturating, MAX_COMPONENTS};
 use crate::derivation::ParamBox;
-use crate::kernel::tensor::{assignment_count_saturating, MAX_COMPONENTS};
 use crate::kernel::Rational;
 use crate::lang::check::{letters, RESERVED};
 use crate::lang::matrix::{shape_words, MatrixOp, MatrixRead};

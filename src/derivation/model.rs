@@ -2,8 +2,8 @@
 //! already passed name resolution and index validation.
 
 use super::notation::{Reading, Unread};
-use crate::kernel::limit::Approach;
-use crate::kernel::sign::{Interval, Sign};
+use crate::algebra::limit::Approach;
+use crate::algebra::sign::{Interval, Sign};
 use crate::lang::{Decls, DefSig, LangError, Node, Origin};
 use serde::Serialize;
 use std::fmt;

@@ -6,8 +6,8 @@ use super::load::Loader;
 use super::model::{Definition, Expression, LimitValue, ParamBox, ScalarClaim, Strategy};
 use super::raw::{RawClaim, S};
 use super::spec::DEFAULT_SAMPLES;
-use crate::kernel::limit::{Approach, Side};
-use crate::kernel::sign::{End, Interval, Sign};
+use crate::algebra::limit::{Approach, Side};
+use crate::algebra::sign::{End, Interval, Sign};
 use crate::kernel::Rational;
 use crate::lang::{Decls, DefSig, Diagnostic};
 

@@ -13,7 +13,7 @@
 use super::diag::Span;
 use super::matrix::{MatrixOp, MatrixRead};
 use super::parser::{ErrorKind, Expr, ExprKind, Func, Func2, IndexTok, LangError, Wrt};
-use crate::kernel::tensor::{
+use crate::algebra::tensor::{
     assignment_count_saturating as assignment_count, MAX_ASSIGNMENTS, MAX_COMPONENTS,
 };
 use crate::kernel::Rational;
@@ -71,7 +71,7 @@ pub enum Target {
 }
 
 /// One index slot of a leaf (the kernel's contraction reads the same slots).
-pub use crate::kernel::einsum::Slot;
+pub use crate::algebra::einsum::Slot;
 
 /// A checked expression node. `free` is sorted by letter and gives, for each free
 /// index, where it occurs; `bound` lists letters summed anywhere inside the node.

@@ -20,7 +20,7 @@
 use super::check::{letters, Node, NodeKind, Scope, Slot};
 use super::diag::Span;
 use super::parser::{ErrorKind, Expr, ExprKind, LangError, MatFunc};
-use crate::kernel::matrix::MAX_SIDE;
+use crate::algebra::matrix::MAX_SIDE;
 use crate::kernel::Rational;
 
 /// A declared position order bound to index slots: `voigt_ij` is the order `voigt`

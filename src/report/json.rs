@@ -10,7 +10,7 @@
 //! `inherited`, `undetermined_origin`).
 
 use super::Summary;
-use crate::kernel::certificate::Certificate;
+use crate::algebra::certificate::Certificate;
 use crate::strategy::finding::Finding;
 use crate::strategy::{Counterexample, Decided, Method, NumericEvidence, Strength};
 use serde::Serialize;

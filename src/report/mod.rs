@@ -301,7 +301,7 @@ pub fn evidence(o: &Outcome) -> String {
 
 /// The square roots an exact proof took, with where their signs were certified.
 fn roots(o: &Outcome) -> String {
-    use crate::kernel::certificate::Fact;
+    use crate::algebra::certificate::Fact;
     let facts: Vec<&Fact> = o.certificate().iter().flat_map(|c| c.facts()).collect();
     let mut out = String::new();
     for (k, f) in facts.iter().enumerate() {
@@ -320,7 +320,7 @@ fn roots(o: &Outcome) -> String {
 
 /// For a proportionality, the factor the components were compared with.
 fn factor(o: &Outcome) -> String {
-    use crate::kernel::certificate::Fact;
+    use crate::algebra::certificate::Fact;
     o.certificate()
         .iter()
         .flat_map(|c| c.facts())
@@ -334,7 +334,7 @@ fn factor(o: &Outcome) -> String {
 /// Where an identity of quotients holds: every divisor nonzero (empty for
 /// polynomials).
 fn domain(o: &Outcome) -> String {
-    use crate::kernel::certificate::Fact;
+    use crate::algebra::certificate::Fact;
     let nonzero = o
         .certificate()
         .iter()
@@ -447,8 +447,8 @@ fn counterexample_text(cx: &Counterexample) -> String {
 }
 
 /// An identity proved in symbolic indices, in words (`None` for any other fact).
-fn index_identity_words(fact: &crate::kernel::certificate::Fact) -> Option<String> {
-    let crate::kernel::certificate::Fact::IndexIdentity {
+fn index_identity_words(fact: &crate::algebra::certificate::Fact) -> Option<String> {
+    let crate::algebra::certificate::Fact::IndexIdentity {
         free,
         terms,
         modulo_unit_normal,
@@ -481,8 +481,8 @@ fn index_identity_words(fact: &crate::kernel::certificate::Fact) -> Option<Strin
 }
 
 /// The kernel's facts behind a proof, in words.
-pub fn certificate_words(c: &crate::kernel::certificate::Certificate) -> String {
-    use crate::kernel::certificate::Fact;
+pub fn certificate_words(c: &crate::algebra::certificate::Certificate) -> String {
+    use crate::algebra::certificate::Fact;
     let facts: Vec<String> = c
         .facts()
         .iter()

@@ -4,7 +4,7 @@
 //! `symmetric(X)`, `antisymmetric(X)`, `traceless(X)`, a fixed component `sigma_13 = 0`,
 //! and any `X_ij… = expression` whose right side is affine in components, such as the
 //! minor and major symmetries `C_ijkl = C_jikl`, `C_ijkl = C_klij`. They are collected
-//! into one system and solved exactly over ℚ by the kernel ([`crate::kernel::linear`]),
+//! into one system and solved exactly over ℚ by the kernel ([`crate::algebra::linear`]),
 //! so the result does not depend on the order in which they are written, and a
 //! contradiction is an input error that names the assumptions that clash.
 //!
@@ -19,9 +19,10 @@
 //! of their dependencies, and a cycle is an input error.
 
 use super::eval::ExactEnv;
+use crate::algebra::assignments;
+use crate::algebra::linear::{self, Affine, AffineEquation, Solution};
 use crate::derivation::{Assumption, AssumptionKind};
-use crate::kernel::linear::{self, Affine, AffineEquation, Solution};
-use crate::kernel::{assignments, Poly, Rational, Var};
+use crate::kernel::{Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use num_traits::Zero;
 use rustc_hash::FxHashMap as HashMap;

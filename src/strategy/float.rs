@@ -11,9 +11,9 @@
 use super::assume::Parametrisation;
 use super::real::{component_pairs, RealEnv};
 use super::taylor::{self, TaylorFields};
+use crate::algebra::sign::{End, Interval};
+use crate::algebra::Tensor;
 use crate::derivation::{Check, Strategy, Verdict};
-use crate::kernel::sign::{End, Interval};
-use crate::kernel::Tensor;
 use crate::lang::Decls;
 use rustc_hash::FxHashMap as HashMap;
 

@@ -1,5 +1,5 @@
 //! The exact strategy's route through symbolic indices: both sides of each equality are
-//! read into the kernel's index algebra ([`crate::kernel::indexed`]) and reduced to
+//! read into the kernel's index algebra ([`crate::algebra::indexed`]) and reduced to
 //! canonical forms. Equal forms prove the equality for every value of the free indices
 //! without expanding a component; anything else (a construct outside the algebra,
 //! the term budget, forms that differ) proves nothing, and the component route decides.
@@ -10,12 +10,12 @@
 //! apart). A fixed component (`sigma_13`), a function, a derivative, `maxn`, a matrix
 //! or a normal confined to a plane is outside it.
 
-use crate::derivation::{AssumptionKind, Check, Definition, Side};
-use crate::kernel::certificate::Certificate;
-use crate::kernel::einsum::Slot;
-use crate::kernel::indexed::{
+use crate::algebra::certificate::Certificate;
+use crate::algebra::einsum::Slot;
+use crate::algebra::indexed::{
     first_difference, Algebra, Canonical, Factor, Label, Properties, Sum,
 };
+use crate::derivation::{AssumptionKind, Check, Definition, Side};
 use crate::kernel::Rational;
 use crate::lang::check::{Decls, Target};
 use crate::lang::{Node, NodeKind};

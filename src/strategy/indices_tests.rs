@@ -5,8 +5,8 @@
 
 use super::exact::{constant_counterexample, decide_by_components};
 use super::indices::{decide, Symbolic};
+use crate::algebra::certificate::Fact;
 use crate::derivation::{load_dir, load_str, Check, Strategy, Verdict};
-use crate::kernel::certificate::Fact;
 use crate::lang::Decls;
 use crate::mutate::{mutants, MutantKind};
 use std::path::Path;

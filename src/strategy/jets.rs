@@ -17,8 +17,9 @@
 
 use super::eval::{conditions_of, ExactRing, Failure};
 use super::walk::{self, Ring};
-use crate::kernel::einsum::Arithmetic;
-use crate::kernel::{Poly, Quotient, Rational, Tensor};
+use crate::algebra::einsum::Arithmetic;
+use crate::algebra::{Quotient, Tensor};
+use crate::kernel::{Poly, Rational};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::Node;
 use num_traits::One;

@@ -26,11 +26,11 @@ use super::{
     reverify, search, Counterexample, Measure, Method, NumericEvidence, Outcome, Reverified,
     SearchEvidence, Strength,
 };
+use crate::algebra::{assignments, Tensor};
 use crate::derivation::{
     AssumptionKind, Check, Expression, GradientConvention, Relation, Sampling, Strategy,
 };
 use crate::digits::{self, significant};
-use crate::kernel::{assignments, Tensor};
 use crate::lang::{Decls, Diagnostic};
 use nalgebra::{DVector, SymmetricEigen};
 use num_dual::{hessian, Dual2DVec64, DualNum, DualSVec64};

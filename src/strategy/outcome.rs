@@ -13,8 +13,8 @@
 //! ```
 
 use super::finding::{Finding, Record};
+use crate::algebra::certificate::Certificate;
 use crate::derivation::Verdict;
-use crate::kernel::certificate::Certificate;
 use serde::Serialize;
 use std::collections::BTreeMap;
 

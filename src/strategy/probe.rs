@@ -7,8 +7,9 @@
 //! on the same box (`given`), the same arithmetic.
 
 use super::eval::ExactEnv;
+use crate::algebra::RatFunc;
 use crate::derivation::{load_str, Check, Curve, DerivationFile, Grid, LoadError};
-use crate::kernel::{RatFunc, Rational, Var, VarTable};
+use crate::kernel::{Rational, Var, VarTable};
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
 use std::sync::Arc;

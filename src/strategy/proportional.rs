@@ -13,8 +13,9 @@
 use super::eval::{ExactEnv, Labeled};
 use super::exact::{point_where_differ, shown_point};
 use super::FactorWitness;
-use crate::kernel::certificate::Identities;
-use crate::kernel::{assignments, PolyError, Quotient, Rational, Var};
+use crate::algebra::certificate::Identities;
+use crate::algebra::{assignments, Quotient};
+use crate::kernel::{PolyError, Rational, Var};
 use std::collections::BTreeMap;
 
 /// Where the factor was fixed: the component (index values), the point, and both

@@ -12,8 +12,8 @@
 //! stays inside the ranges, and never leaves the hypotheses or enters the singular set.
 
 use super::sampler::{Sampler, State};
+use crate::algebra::assignments;
 use crate::derivation::{AssumptionKind, Constraint};
-use crate::kernel::assignments;
 use crate::lang::Diagnostic;
 use rustc_hash::FxHashMap as HashMap;
 use std::collections::BTreeSet;

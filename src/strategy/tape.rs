@@ -20,10 +20,10 @@
 use super::quadrature::Quadrature;
 use super::real::{RealError, MAXN_GRID};
 use super::walk::{self, Ring};
+use crate::algebra::einsum::Arithmetic;
+use crate::algebra::{assignments, Tensor};
 use crate::derivation::Definition;
-use crate::kernel::einsum::Arithmetic;
 use crate::kernel::Rational;
-use crate::kernel::{assignments, Tensor};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node, Span};
 use num_dual::DualNum;

@@ -6,7 +6,8 @@
 //! values at nearby positions. The two share no differentiation code.
 
 use super::eval::Varying;
-use crate::kernel::{assignments, Rational, Tensor, Var, VarTable};
+use crate::algebra::{assignments, Tensor};
+use crate::kernel::{Rational, Var, VarTable};
 use crate::lang::Decls;
 use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;

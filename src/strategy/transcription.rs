@@ -15,11 +15,11 @@
 #![allow(clippy::result_large_err)]
 
 use super::{decide, Outcome, Strength};
+use crate::algebra::sign::Sign;
 use crate::derivation::edit::Incomparable;
 use crate::derivation::notation::{ReadMember, ReadPart};
 use crate::derivation::{Check, Sampling, Strategy, Transcript, Verdict};
 use crate::derivation::{Relation, ScalarClaim, Side};
-use crate::kernel::sign::Sign;
 use crate::lang::latex::Rel;
 use crate::lang::rename::same_up_to_summed_letters;
 use crate::lang::{Decls, Span};

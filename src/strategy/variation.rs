@@ -12,8 +12,8 @@
 use super::real::{RealEnv, RealError};
 use super::taylor;
 use super::walk;
+use crate::algebra::{assignments, Tensor};
 use crate::derivation::Definition;
-use crate::kernel::{assignments, Tensor};
 use crate::lang::{Node, NodeKind, Target};
 use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;

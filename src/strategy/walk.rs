@@ -13,10 +13,11 @@
 //! Every value is a tensor whose slots are the node's free letters in sorted order
 //! ([`Node::free_letters`]).
 
+use crate::algebra::einsum::{einsum, Arithmetic, Slot};
+use crate::algebra::matrix::{self as linear, Matrix, Signed};
+use crate::algebra::Tensor;
 use crate::derivation::Definition;
-use crate::kernel::einsum::{einsum, Arithmetic, Slot};
-use crate::kernel::matrix::{self as linear, Matrix, Signed};
-use crate::kernel::{Rational, Tensor};
+use crate::kernel::Rational;
 use crate::lang::matrix::{MatrixOp, MatrixRead, Order};
 use crate::lang::parser::{Func, Func2, Wrt};
 use crate::lang::{Node, NodeKind, Target};

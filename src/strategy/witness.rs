@@ -9,9 +9,10 @@
 use super::eval::ExactEnv;
 use super::finding::Finding;
 use super::{Method, Outcome};
+use crate::algebra::certificate::{Certificate, Fact};
+use crate::algebra::Quotient;
 use crate::derivation::{Check, Strategy};
-use crate::kernel::certificate::{Certificate, Fact};
-use crate::kernel::{Quotient, Rational, Var};
+use crate::kernel::{Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use std::collections::BTreeMap;
 

@@ -8,10 +8,10 @@
 
 use super::sign::{decide_function, Decided};
 use super::{Context, Exact, Stop};
+use crate::algebra::certificate::Certificate;
+use crate::algebra::limit::{self as klimit, Approach, Limit, Side};
+use crate::algebra::sign::{inner_point, Sign};
 use crate::derivation::{Expression, LimitValue};
-use crate::kernel::certificate::Certificate;
-use crate::kernel::limit::{self as klimit, Approach, Limit, Side};
-use crate::kernel::sign::{inner_point, Sign};
 use crate::kernel::{Rational, Var};
 use crate::strategy::finding::Finding;
 use crate::strategy::{Counterexample, Method, Outcome, Reverified, Strength};

@@ -20,10 +20,11 @@ mod sign;
 use super::eval::ExactEnv;
 use super::finding::RationalEvidence;
 use super::{Method, Outcome};
+use crate::algebra::certificate::Certificate;
+use crate::algebra::sign::{Interval, Sign};
+use crate::algebra::{Quotient, RatFunc};
 use crate::derivation::{Check, Expression, ParamBox, ScalarClaim, Strategy};
-use crate::kernel::certificate::Certificate;
-use crate::kernel::sign::{Interval, Sign};
-use crate::kernel::{Poly, Quotient, RatFunc, Rational, Var};
+use crate::kernel::{Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use num_traits::One;
 use std::collections::BTreeMap;
@@ -251,7 +252,7 @@ impl Context<'_> {
             if let Some(v) = self.env.vars.lookup(name) {
                 point
                     .entry(v)
-                    .or_insert_with(|| crate::kernel::sign::inner_point(i));
+                    .or_insert_with(|| crate::algebra::sign::inner_point(i));
             }
         }
         point

@@ -6,9 +6,9 @@
 
 use super::sign::{decide_function, Decided};
 use super::{Context, Exact, Stop};
+use crate::algebra::certificate::Certificate;
+use crate::algebra::sign::{chart_of, End, Interval, Real, Sign, SignChart};
 use crate::derivation::Expression;
-use crate::kernel::certificate::Certificate;
-use crate::kernel::sign::{chart_of, End, Interval, Real, Sign, SignChart};
 use crate::kernel::{Rational, Var};
 use crate::strategy::finding::{Finding, RationalEvidence};
 use crate::strategy::{Counterexample, Method, Outcome, Reverified, Strength};
@@ -49,7 +49,7 @@ pub(super) fn decide(
         // Several parameters: the sign of the derivative on the box, and a
         // denominator of one strict sign (no pole), each by the kernel if it can.
         let den = Exact {
-            f: crate::kernel::RatFunc::from_poly(f.f.denominator()),
+            f: crate::algebra::RatFunc::from_poly(f.f.denominator()),
             conditions: Vec::new(),
         };
         let bx = cx.box_on(&den.variables());
@@ -184,7 +184,7 @@ fn runs(chart: &SignChart, of_f: &SignChart, want: Sign) -> Vec<Run> {
 /// at a pole, closed at an exact turning point, and at an isolated one the end of its
 /// isolating interval inside the run: its low end when the run ends there
 /// (`run_is_below`), its high end when the run starts there.
-fn run_end(cut: Option<&crate::kernel::sign::Cut>, outer: &End, run_is_below: bool) -> End {
+fn run_end(cut: Option<&crate::algebra::sign::Cut>, outer: &End, run_is_below: bool) -> End {
     match cut {
         None => outer.clone(),
         Some(c) => match &c.at {
@@ -216,7 +216,7 @@ impl Run {
 
     /// The run in words, turning points exact or to ten digits; strict at a pole.
     fn describe(&self, chart: &SignChart, i: &Interval, name: &str) -> String {
-        let relation = |c: &crate::kernel::sign::Cut| if c.pole { "<" } else { "≤" };
+        let relation = |c: &crate::algebra::sign::Cut| if c.pole { "<" } else { "≤" };
         let lo = match self.first.checked_sub(1).map(|j| &chart.cuts[j]) {
             None => match &i.lo {
                 End::Unbounded => String::new(),
@@ -249,7 +249,7 @@ fn constant(
     if i.is_empty() {
         return Outcome::undecided(Method::RationalFunction, 0);
     }
-    let s = crate::kernel::sign::inner_point(&i);
+    let s = crate::algebra::sign::inner_point(&i);
     let mut point = BTreeMap::from([(v, s)]);
     for w in f.variables() {
         point.entry(w).or_insert_with(|| Rational::int(1));

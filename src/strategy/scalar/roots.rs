@@ -4,9 +4,9 @@
 //! not a root.
 
 use super::{Context, Stop};
+use crate::algebra::certificate::Certificate;
+use crate::algebra::sign::Real;
 use crate::derivation::Expression;
-use crate::kernel::certificate::Certificate;
-use crate::kernel::sign::Real;
 use crate::kernel::Rational;
 use crate::strategy::finding::Finding;
 use crate::strategy::{Counterexample, Method, Outcome, Reverified, Strength};
@@ -60,7 +60,7 @@ pub(super) fn decide(
             evidence.points.push(format!(
                 "no sign chart on {}: the interval is empty or the roots could not be isolated within {} bisections",
                 i.describe(&cx.name(v)),
-                crate::kernel::sturm::MAX_BISECTIONS
+                crate::algebra::sturm::MAX_BISECTIONS
             ));
             return Ok(Outcome::undecided(Method::RationalFunction, 0)
                 .with_finding(Finding::RationalFunction(evidence)));

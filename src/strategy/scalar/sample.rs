@@ -5,7 +5,7 @@
 //! is sampled evidence, never a proof.
 
 use super::{Context, Exact};
-use crate::kernel::sign::{sign_of, End, Interval, Sign};
+use crate::algebra::sign::{sign_of, End, Interval, Sign};
 use crate::kernel::{Rational, Var};
 use crate::strategy::exact::SplitMix;
 use crate::strategy::finding::SampledSign;
@@ -103,7 +103,7 @@ pub(super) fn search(
                 .map(|&(n, d)| Rational::ratio(n, d).expect("nonzero"))
                 .filter(|x| i.contains(x))
                 .collect();
-            c.insert(0, crate::kernel::sign::inner_point(i));
+            c.insert(0, crate::algebra::sign::inner_point(i));
             c.dedup();
             c
         })

@@ -3,10 +3,11 @@
 
 use super::sample::{self, Sampled};
 use super::{Context, Exact, Stop};
+use crate::algebra::certificate::Certificate;
+use crate::algebra::sign::{Sign, Violation};
+use crate::algebra::RatFunc;
 use crate::derivation::Expression;
-use crate::kernel::certificate::Certificate;
-use crate::kernel::sign::{Sign, Violation};
-use crate::kernel::{RatFunc, Rational, Var};
+use crate::kernel::{Rational, Var};
 use crate::strategy::finding::{Finding, RationalEvidence};
 use crate::strategy::{reverify, Counterexample, Method, Outcome, Strength};
 use std::collections::BTreeMap;
@@ -101,7 +102,7 @@ pub(super) fn decide_function(
         [v] => {
             let i = cx.interval(*v);
             let (num, den) = g.cleared();
-            if let Some(chart) = crate::kernel::sign::chart_of((&num, &den), *v, &i) {
+            if let Some(chart) = crate::algebra::sign::chart_of((&num, &den), *v, &i) {
                 evidence.points = chart
                     .cuts
                     .iter()
@@ -167,7 +168,7 @@ fn first_defined(cx: &Context<'_>, g: &Exact, vars: &[Var]) -> BTreeMap<Var, Rat
                 let x = if i.contains(c) {
                     c.clone()
                 } else {
-                    crate::kernel::sign::inner_point(&i)
+                    crate::algebra::sign::inner_point(&i)
                 };
                 (v, x)
             })
@@ -248,7 +249,7 @@ fn at_root(
                 .with_finding(Finding::RationalFunction(evidence))
         }
     };
-    let root = crate::kernel::sign::Real::Isolated {
+    let root = crate::algebra::sign::Real::Isolated {
         lo: lo.clone(),
         hi: hi.clone(),
     };

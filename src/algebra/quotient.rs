@@ -15,9 +15,9 @@
 
 use super::einsum::{Arithmetic, OverBudget};
 use super::gcd::{canonical_scale, clear_denominator_monomial, divide_exact, monomial_content};
-use super::poly::{Monomial, Poly, Var, VarTable};
-use super::rational::Rational;
 use super::RatFunc;
+use crate::kernel::poly::{Monomial, Poly, Var, VarTable};
+use crate::kernel::rational::Rational;
 use num_traits::One;
 use std::sync::Arc;
 
@@ -27,9 +27,10 @@ use std::sync::Arc;
 /// structurally.
 ///
 /// ```
-/// use cosserat_check::kernel::quotient::Quotients;
-/// use cosserat_check::kernel::{Poly, Quotient, Rational, VarTable};
-/// use cosserat_check::kernel::einsum::Arithmetic;
+/// use cosserat_check::algebra::quotient::Quotients;
+/// use cosserat_check::kernel::{Poly, Rational, VarTable};
+/// use cosserat_check::algebra::Quotient;
+/// use cosserat_check::algebra::einsum::Arithmetic;
 /// let mut names = VarTable::new();
 /// let (l, g) = (Poly::var(names.intern("lambda")), Poly::var(names.intern("G")));
 /// let three = Poly::constant(Rational::int(3));

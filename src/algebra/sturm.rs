@@ -2,8 +2,8 @@
 //! theorem). Used to decide sign claims exactly: "A² increases with f_r" is the sign
 //! of a polynomial on an interval, which is constant between consecutive real roots.
 
-use super::poly::{Poly, Var};
-use super::rational::Rational;
+use crate::kernel::poly::{Poly, Var};
+use crate::kernel::rational::Rational;
 use num_traits::Zero;
 
 /// A dense univariate polynomial, coefficients from the constant term up, no

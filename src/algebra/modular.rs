@@ -15,9 +15,9 @@
 //! evaluation point, coefficients too large for every prime together, or an input out
 //! of range gives `None`, and the caller falls back to the remainder sequence.
 
-use super::poly::{Monomial, Poly, Var};
-use super::rational::Rational;
 use super::residue::{self, Field, Uni};
+use crate::kernel::poly::{Monomial, Poly, Var};
+use crate::kernel::rational::Rational;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};

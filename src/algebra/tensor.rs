@@ -1,6 +1,6 @@
 //! Dense tensors over the index range 1..=d (d = 2 or 3), of any rank, generic over
-//! the scalar: `f64`, num-dual numbers, [`Rational`](super::Rational) and
-//! [`Poly`](super::Poly) all work. Each operation asks only for the arithmetic it
+//! the scalar: `f64`, num-dual numbers, [`Rational`](crate::kernel::Rational) and
+//! [`Poly`](crate::kernel::Poly) all work. Each operation asks only for the arithmetic it
 //! needs (nalgebra's style): storage needs nothing, δ needs `Zero + One`, ε also `Neg`.
 //!
 //! Indices are 0-based in code and 1-based in everything shown to a user.
@@ -76,7 +76,7 @@ pub fn for_each_assignment(dim: usize, rank: usize, mut f: impl FnMut(&[usize]))
 /// A dense tensor of the given rank over `0..dim` in every slot, stored row-major.
 ///
 /// ```
-/// use cosserat_check::kernel::Tensor;
+/// use cosserat_check::algebra::Tensor;
 /// // ε_ijk ε_ijk = 6 in 3D.
 /// let e = Tensor::<i64>::levi_civita(3);
 /// let full = e.outer(&e).contract(0, 3).contract(0, 2).contract(0, 1);

@@ -22,9 +22,9 @@
 
 use super::interrupt;
 use super::modular;
-use super::poly::{Monomial, Poly, Var};
-use super::rational::Rational;
 use super::residue;
+use crate::kernel::poly::{Monomial, Poly, Var};
+use crate::kernel::rational::Rational;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, Signed, Zero};
@@ -196,7 +196,8 @@ fn content_and_primitive(p: &Poly, v: Var) -> (Poly, Poly) {
 /// leading coefficient); `gcd(0, 0) = 0`.
 ///
 /// ```
-/// use cosserat_check::kernel::{gcd, Poly, VarTable};
+/// use cosserat_check::kernel::{Poly, VarTable};
+/// use cosserat_check::algebra::gcd;
 /// let mut names = VarTable::new();
 /// let x = Poly::var(names.intern("x"));
 /// let y = Poly::var(names.intern("y"));
@@ -692,7 +693,7 @@ mod tests {
         // holds from its second question ends the sequence there, with a
         // meaningless value that still divides both inputs (so that no caller's
         // division fails).
-        use crate::kernel::interrupt;
+        use crate::algebra::interrupt;
         use std::sync::atomic::{AtomicUsize, Ordering};
         use std::sync::Arc;
         let (_, x, y, z) = setup();

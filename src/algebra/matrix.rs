@@ -190,7 +190,8 @@ pub fn adjugate<A: Signed>(ar: &mut A, a: &Matrix<A::Value>) -> Result<Matrix<A:
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::{permutation_sign, Rational};
+    use crate::algebra::permutation_sign;
+    use crate::kernel::Rational;
     use itertools::Itertools;
     use std::convert::Infallible;
 

@@ -9,9 +9,9 @@
 //! coprimality with them mod P, and the modular gcd (`super::modular`) builds its
 //! candidates from them mod several primes.
 
-use super::poly::{Poly, Var};
 use super::quotient::Quotient;
-use super::rational::Rational;
+use crate::kernel::poly::{Poly, Var};
+use crate::kernel::rational::Rational;
 use num_bigint::BigInt;
 use num_traits::{Signed, ToPrimitive};
 

@@ -63,7 +63,7 @@ pub fn einsum<A: Arithmetic>(
 /// [`einsum`] with each product's last multiplication (by the last factor, when there
 /// are at least two) done by `last` instead of [`Arithmetic::mul`]: a linear map of the
 /// product applied as the product is formed, such as its average over the normal
-/// ([`super::Poly::average_of_product`]), which then never forms the terms the map
+/// ([`crate::kernel::Poly::average_of_product`]), which then never forms the terms the map
 /// sends to zero. The sum over the summed letters is of the mapped products.
 pub fn einsum_closing<A: Arithmetic>(
     arithmetic: &mut A,
@@ -182,7 +182,7 @@ fn component<A: Arithmetic>(
 }
 
 /// Plain field arithmetic for any `Clone` number type with the usual operators
-/// (`f64`, num-dual numbers, [`Rational`](super::Rational)); it never refuses.
+/// (`f64`, num-dual numbers, [`Rational`](crate::kernel::Rational)); it never refuses.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Plain;
 
@@ -239,29 +239,37 @@ pub struct Polynomials<'b> {
 }
 
 impl Arithmetic for Polynomials<'_> {
-    type Value = super::Poly;
+    type Value = crate::kernel::Poly;
     type Error = OverBudget;
-    fn zero(&mut self) -> super::Poly {
-        super::Poly::zero()
+    fn zero(&mut self) -> crate::kernel::Poly {
+        crate::kernel::Poly::zero()
     }
-    fn one(&mut self) -> super::Poly {
-        super::Poly::one()
+    fn one(&mut self) -> crate::kernel::Poly {
+        crate::kernel::Poly::one()
     }
-    fn is_exact_zero(&self, x: &super::Poly) -> bool {
+    fn is_exact_zero(&self, x: &crate::kernel::Poly) -> bool {
         x.is_zero()
     }
-    fn mul(&mut self, a: super::Poly, b: &super::Poly) -> Result<super::Poly, OverBudget> {
+    fn mul(
+        &mut self,
+        a: crate::kernel::Poly,
+        b: &crate::kernel::Poly,
+    ) -> Result<crate::kernel::Poly, OverBudget> {
         let cost = a.num_terms().saturating_mul(b.num_terms());
         *self.work_left = self.work_left.checked_sub(cost).ok_or(OverBudget)?;
         // An exponent beyond the kernel's bound is a resource limit like the budget.
         a.checked_mul(b).map_err(|_| OverBudget)
     }
-    fn add(&mut self, mut a: super::Poly, b: super::Poly) -> Result<super::Poly, OverBudget> {
+    fn add(
+        &mut self,
+        mut a: crate::kernel::Poly,
+        b: crate::kernel::Poly,
+    ) -> Result<crate::kernel::Poly, OverBudget> {
         a += &b;
         Ok(a)
     }
     /// `1 · x` is `x`, charged as the product (`1 · |x|`).
-    fn first(&mut self, x: &super::Poly) -> Result<super::Poly, OverBudget> {
+    fn first(&mut self, x: &crate::kernel::Poly) -> Result<crate::kernel::Poly, OverBudget> {
         *self.work_left = self
             .work_left
             .checked_sub(x.num_terms())

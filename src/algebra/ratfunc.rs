@@ -9,15 +9,16 @@
 //! definitions such as an elastoplastic tangent or a shear band's A².
 
 use super::gcd::{self, clear_denominator_monomial};
-use super::poly::{Poly, Var, VarTable};
-use super::rational::Rational;
+use crate::kernel::poly::{Poly, Var, VarTable};
+use crate::kernel::rational::Rational;
 use num_traits::{One, Zero};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A reduced rational function `num / den`.
 ///
 /// ```
-/// use cosserat_check::kernel::{RatFunc, VarTable};
+/// use cosserat_check::kernel::VarTable;
+/// use cosserat_check::algebra::RatFunc;
 /// use num_traits::One;
 /// let mut names = VarTable::new();
 /// let x = RatFunc::var(names.intern("x"));

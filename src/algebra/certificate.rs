@@ -16,11 +16,12 @@
 use super::indexed::{first_difference, Canonical, Label};
 use super::limit::{self, Approach, Expansion, Limit};
 use super::linear::determinant;
-use super::poly::{Poly, PolyError, Var, VarTable};
 use super::quotient::{cleared_difference, over, Quotient};
 use super::sign::{self, Interval, Sign, Violation};
 use super::sturm::{count_roots, Bound, UniPoly};
-use super::{RatFunc, Rational};
+use super::RatFunc;
+use crate::kernel::poly::{Poly, PolyError, Var, VarTable};
+use crate::kernel::Rational;
 use serde::Serialize;
 
 /// One fact the kernel verified.
@@ -110,7 +111,7 @@ pub enum Fact {
 /// functions that verify it:
 ///
 /// ```compile_fail
-/// use cosserat_check::kernel::certificate::{Certificate, Fact};
+/// use cosserat_check::algebra::certificate::{Certificate, Fact};
 /// let forged = Certificate { facts: vec![Fact::RationalFunctionIdentity] };
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -454,8 +455,9 @@ impl Difference {
 /// certificate lists the factors that must not vanish.
 ///
 /// ```
-/// use cosserat_check::kernel::certificate::Identities;
-/// use cosserat_check::kernel::{Poly, Quotient, Rational, VarTable};
+/// use cosserat_check::algebra::certificate::Identities;
+/// use cosserat_check::kernel::{Poly, Rational, VarTable};
+/// use cosserat_check::algebra::Quotient;
 /// let mut names = VarTable::new();
 /// let x = Quotient::from(Poly::var(names.intern("x")));
 /// let two_x = Quotient::from(&Poly::constant(Rational::int(2)) * x.numerator());
@@ -650,10 +652,10 @@ mod tests {
             .divide(&Quotient::from(&c(2) * &(&l + &g)))
             .unwrap();
         let mut work = 10_000;
-        let mut ring = crate::kernel::quotient::Quotients {
+        let mut ring = crate::algebra::quotient::Quotients {
             work_left: &mut work,
         };
-        use crate::kernel::einsum::Arithmetic;
+        use crate::algebra::einsum::Arithmetic;
         let one_plus_nu = ring.add(Quotient::from(c(1)), nu).unwrap();
         let two = Quotient::from(c(2));
         let g_again = e.divide(&ring.mul(two, &one_plus_nu).unwrap()).unwrap();

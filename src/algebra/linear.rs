@@ -12,7 +12,7 @@
 //! Every row remembers which equations it was combined from, so an inconsistency names
 //! the equations that clash.
 
-use super::Rational;
+use crate::kernel::Rational;
 use num_traits::Zero;
 use std::collections::{BTreeMap, BTreeSet};
 

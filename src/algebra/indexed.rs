@@ -26,7 +26,7 @@
 //! summed indices is canonical only among at most [`MAX_ORDERINGS`] orderings of equal
 //! factors. The caller then compares components.
 
-use super::Rational;
+use crate::kernel::Rational;
 use num_traits::{One, Zero};
 use std::collections::{BTreeMap, BTreeSet};
 

@@ -8,9 +8,9 @@
 //! sign to the power `b − a`) when `a < b`. Where `D_b` (or, for an infinite limit,
 //! `N_a`) vanishes the orders change: these are the conditions of the result.
 
-use super::poly::{Poly, Var};
-use super::rational::Rational;
 use super::RatFunc;
+use crate::kernel::poly::{Poly, Var};
+use crate::kernel::rational::Rational;
 
 /// Where the variable goes.
 #[derive(Clone, Debug, PartialEq, Eq)]

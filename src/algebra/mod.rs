@@ -1,0 +1,26 @@
+//! Untrusted algebra: the searches and fast computations that find proofs and
+//! counterexamples. Gcds and their modular machinery, rational functions and quotients,
+//! the canonicaliser of index expressions, root isolation and sign charts, limit
+//! expansions, linear algebra, dense tensors and their contraction. A bug here may make
+//! a claim `undecided`; it cannot make one wrong, because every proof is re-checked by
+//! the kernel.
+
+pub mod certificate;
+pub mod einsum;
+pub mod gcd;
+pub mod indexed;
+pub mod interrupt;
+pub mod limit;
+pub mod linear;
+pub mod matrix;
+pub mod modular;
+pub mod quotient;
+pub mod ratfunc;
+pub mod residue;
+pub mod sign;
+pub mod sturm;
+pub mod tensor;
+
+pub use quotient::Quotient;
+pub use ratfunc::RatFunc;
+pub use tensor::{assignments, permutation_sign, Tensor};
