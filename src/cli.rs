@@ -44,6 +44,17 @@ pub enum Command {
     /// Plot scalar expressions of a derivation file against one parameter: a figure
     /// table of the file (--figure), or curves given here (--y, --x, --set).
     Plot(PlotArgs),
+    /// Check every proof of a JSON report (`--format json`) again with the kernel
+    /// alone, from the statements it records; exit 0 when every proof is accepted, 1
+    /// when one is refused, 2 when the file is not a report.
+    Recheck(RecheckArgs),
+}
+
+#[derive(Debug, Clone, clap::Args)]
+pub struct RecheckArgs {
+    /// The JSON report (as `check --format json` or `verify --format json` writes it).
+    #[arg(value_name = "REPORT")]
+    pub report: PathBuf,
 }
 
 #[derive(Debug, Clone, clap::Args)]
@@ -644,6 +655,27 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             out,
         ),
         Command::Plot(a) => plot(&a, out),
+        Command::Recheck(a) => {
+            let path = a.report.display().to_string();
+            let text = read_bounded(&a.report, crate::recheck::MAX_REPORT_BYTES)
+                .map_err(|e| RunError::Input(format!("error: cannot read {path}: {e}")))?;
+            let r = crate::recheck::recheck(&text)
+                .map_err(|e| RunError::Input(format!("error: {path}: {e}")))?;
+            let mut text = r.lines.join("\n");
+            text.push_str(&format!(
+                "\n\n{} proved verdict{} checked again by the kernel: {} accepted, {} refused.\n",
+                r.accepted + r.refused,
+                if r.accepted + r.refused == 1 { "" } else { "s" },
+                r.accepted,
+                r.refused
+            ));
+            emit(&text, &None, &[], out.stream)?;
+            Ok(if r.refused == 0 {
+                Status::AsExpected
+            } else {
+                Status::Unexpected
+            })
+        }
         Command::Explain(a) => {
             let files = read(a.dir, &a.files, Some(&a.id))?.files;
             let run = Run {
@@ -655,6 +687,22 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             Ok(Status::of(&rows[..1]))
         }
     }
+}
+
+/// A file's text, refused past `limit` bytes before it is read whole.
+fn read_bounded(path: &Path, limit: usize) -> std::io::Result<String> {
+    use std::io::Read;
+    let mut text = String::new();
+    std::fs::File::open(path)?
+        .take(limit as u64 + 1)
+        .read_to_string(&mut text)?;
+    if text.len() > limit {
+        return Err(std::io::Error::other(format!(
+            "larger than {} MiB",
+            limit >> 20
+        )));
+    }
+    Ok(text)
 }
 
 /// The one-line description of `--help`: what the tool is, and the works whose

@@ -14,5 +14,6 @@ pub mod kernel;
 pub mod lang;
 pub mod mutate;
 mod parallel;
+pub mod recheck;
 pub mod report;
 pub mod strategy;

@@ -3,10 +3,10 @@
 //! with a confirmed counterexample off every pole, and divisors that are not
 //! polynomials in scalar parameters are refused where they stand.
 
-use cosserat_check::algebra::certificate::Fact;
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::load_str;
 use cosserat_check::derivation::Verdict;
+use cosserat_check::kernel::check::Checked;
 
 mod common;
 
@@ -17,8 +17,8 @@ fn identities_hold_where_their_divisors_do_not_vanish_and_twins_fail() {
             let o = &r.outcome;
             match o.verdict() {
                 Verdict::Holds => {
-                    let facts = o.certificate().expect("a proof").facts();
-                    let Some(Fact::PolynomialIdentity { nonzero, .. }) = facts.first() else {
+                    let facts = o.proofs().first().expect("a kernel proof").summary();
+                    let Some(Checked::PolynomialIdentity { nonzero, .. }) = facts.first() else {
                         panic!("{}: {facts:?}", r.claim.id);
                     };
                     assert!(
@@ -90,8 +90,8 @@ fn a_divisor_that_is_a_single_term_works_as_before() {
     let files = load_str("one.toml", text).unwrap();
     let rows = decide_all(std::slice::from_ref(&files), None).unwrap();
     assert!(rows[0].as_expected());
-    let Some(Fact::PolynomialIdentity { nonzero, .. }) =
-        rows[0].outcome.certificate().unwrap().facts().first()
+    let Some(Checked::PolynomialIdentity { nonzero, .. }) =
+        rows[0].outcome.proofs()[0].summary().first()
     else {
         panic!()
     };

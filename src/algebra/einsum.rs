@@ -12,13 +12,7 @@
 use super::tensor::{assignments, for_each_assignment, Tensor};
 use num_traits::{One, Zero};
 
-/// One index slot of a factor: a letter (free or summed) or a fixed component.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Slot {
-    Letter(char),
-    /// A fixed component, 0-based.
-    Fixed(usize),
-}
+pub use crate::kernel::term::Slot;
 
 /// The ring operations a contraction needs, with a context: a work budget, or the
 /// tape under construction. Products are formed left to right and summed in the

@@ -25,9 +25,7 @@ use super::modular;
 use super::residue;
 use crate::kernel::poly::{Monomial, Poly, Var};
 use crate::kernel::rational::Rational;
-use num_bigint::BigInt;
-use num_integer::Integer;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Zero};
 use std::collections::BTreeMap;
 
 /// Splits a Laurent polynomial `p` into `(q, m)` with `p = q / m`, `q` an ordinary
@@ -363,27 +361,13 @@ pub fn normalize_sign_and_scale(p: &Poly) -> Poly {
     }
 }
 
-/// The rational `s` with `s·p` in canonical associate form (see
-/// [`normalize_sign_and_scale`]); `None` for the zero polynomial.
-pub fn canonical_scale(p: &Poly) -> Option<Rational> {
-    let (_, lead) = p.leading()?;
-    let mut den_lcm = BigInt::one();
-    let mut num_gcd = BigInt::zero();
-    for (_, c) in p.terms() {
-        den_lcm = den_lcm.lcm(&c.denom());
-        num_gcd = num_gcd.gcd(&c.numer());
-    }
-    let mut scale = Rational::from_big(den_lcm, num_gcd.abs())?;
-    if lead.is_negative() {
-        scale = -scale;
-    }
-    Some(scale)
-}
+pub use crate::kernel::poly::canonical_scale;
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::kernel::VarTable;
+    use num_bigint::BigInt;
 
     fn setup() -> (VarTable, Poly, Poly, Poly) {
         let mut names = VarTable::new();

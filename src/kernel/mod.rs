@@ -5,9 +5,16 @@
 //! verdict only through these types, so they are kept small and are tested hardest
 //! (unit tests here, cross-checks in `tests/`).
 
+pub mod check;
+pub mod differentiate;
+pub mod eval;
+pub mod frac;
 pub mod moments;
 pub mod poly;
 pub mod rational;
+pub mod sign;
+pub mod statement;
+pub mod term;
 
 pub use moments::{monomial_moment, tensor_moment};
 pub use poly::{Monomial, Poly, PolyError, Var, VarTable};

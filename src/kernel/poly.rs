@@ -407,9 +407,20 @@ impl Poly {
         self.checked_pow(e).expect("exponent within MAX_EXPONENT")
     }
 
-    /// `self^e`, or an error when an exponent would leave [`MAX_EXPONENT`].
-    pub fn checked_pow(&self, e: u32) -> Result<Poly, PolyError> {
-        (0..e).try_fold(Poly::one(), |acc, _| acc.checked_mul(self))
+    /// `self^e` by repeated squaring, or an error when an exponent would leave
+    /// [`MAX_EXPONENT`].
+    pub fn checked_pow(&self, mut e: u32) -> Result<Poly, PolyError> {
+        let (mut base, mut acc) = (self.clone(), Poly::one());
+        while e > 0 {
+            if e & 1 == 1 {
+                acc = acc.checked_mul(&base)?;
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base.checked_mul(&base)?;
+            }
+        }
+        Ok(acc)
     }
 
     /// The product, or an error when an exponent would leave [`MAX_EXPONENT`].
@@ -710,6 +721,38 @@ impl Poly {
     }
 
     /// The leading term in graded lexicographic order (the first term displayed).
+    /// `self / d` when `d` divides `self` exactly, both ordinary polynomials (no
+    /// negative exponent); `None` when it does not, or after `steps` steps. Division
+    /// by the leading term in the graded order: with one divisor, a leading term it
+    /// does not divide stays in the remainder, so the first such term decides.
+    pub fn divide_exact(&self, d: &Poly, steps: usize) -> Option<Poly> {
+        let ordinary = |p: &Poly| {
+            p.terms
+                .iter()
+                .all(|(m, _)| m.0.iter().all(|&(_, e)| e >= 0))
+        };
+        if !ordinary(self) || !ordinary(d) {
+            return None;
+        }
+        let (dm, dc) = d.leading()?;
+        let (inverse, dc) = (dm.pow(-1)?, dc.clone());
+        let mut rem = self.clone();
+        let mut quot = Poly::zero();
+        for _ in 0..steps {
+            let Some((rm, rc)) = rem.leading() else {
+                return Some(quot);
+            };
+            let m = rm.checked_mul(&inverse)?;
+            if m.0.iter().any(|&(_, e)| e < 0) {
+                return None;
+            }
+            let t = Poly::term(m, rc.checked_div(&dc)?);
+            rem = &rem - &t.checked_mul(d).ok()?;
+            quot += &t;
+        }
+        None
+    }
+
     pub fn leading(&self) -> Option<(&Monomial, &Rational)> {
         self.terms().min_by(|a, b| graded_lex_desc(a.0, b.0))
     }
@@ -773,6 +816,27 @@ impl Poly {
 
 /// Graded lexicographic order, largest first: higher total degree first, then the
 /// larger exponent of the earliest variable (`x^3 + 3*x^2*y + …`).
+/// The rational `s` with `s·p` in canonical associate form: coprime integer
+/// coefficients, the leading term (graded lexicographic) positive; `None` for the
+/// zero polynomial.
+pub fn canonical_scale(p: &Poly) -> Option<Rational> {
+    use num_bigint::BigInt;
+    use num_integer::Integer;
+    use num_traits::Signed;
+    let (_, lead) = p.leading()?;
+    let mut den_lcm = BigInt::one();
+    let mut num_gcd = BigInt::zero();
+    for (_, c) in p.terms() {
+        den_lcm = den_lcm.lcm(&c.denom());
+        num_gcd = num_gcd.gcd(&c.numer());
+    }
+    let mut scale = Rational::from_big(den_lcm, num_gcd.abs())?;
+    if lead.is_negative() {
+        scale = -scale;
+    }
+    Some(scale)
+}
+
 fn graded_lex_desc(a: &Monomial, b: &Monomial) -> std::cmp::Ordering {
     b.total_degree().cmp(&a.total_degree()).then_with(|| {
         let mut vars: Vec<Var> = a.0.iter().chain(&b.0).map(|&(v, _)| v).collect();

@@ -373,6 +373,43 @@ impl fmt::Display for Rational {
     }
 }
 
+/// Written as its text, `-3/4`: the form a report keeps and `recheck` reads back.
+impl serde::Serialize for Rational {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Rational {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let text = <std::borrow::Cow<'de, str>>::deserialize(d)?;
+        Rational::parse_fraction(&text)
+            .ok_or_else(|| serde::de::Error::custom(format!("not a rational number: {text:.40}")))
+    }
+}
+
+/// The most digits [`Rational::parse_fraction`] reads in a numerator or denominator.
+const MAX_FRACTION_DIGITS: usize = 100_000;
+
+impl Rational {
+    /// `n` or `n/d` in decimal integers, as [`Display`](fmt::Display) writes them;
+    /// `None` for anything else, a zero denominator, or more than 100,000 digits.
+    pub fn parse_fraction(text: &str) -> Option<Self> {
+        let integer = |t: &str| -> Option<BigInt> {
+            let digits = t.strip_prefix('-').unwrap_or(t);
+            let plain = !digits.is_empty()
+                && digits.len() <= MAX_FRACTION_DIGITS
+                && digits.bytes().all(|b| b.is_ascii_digit());
+            plain.then(|| t.parse().ok()).flatten()
+        };
+        let (n, d) = match text.split_once('/') {
+            Some((n, d)) => (integer(n)?, integer(d)?),
+            None => (integer(text)?, BigInt::one()),
+        };
+        Rational::from_big(n, d)
+    }
+}
+
 impl From<i64> for Rational {
     fn from(n: i64) -> Self {
         Rational::int(n)

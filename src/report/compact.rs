@@ -4,7 +4,7 @@
 //! The full evidence stays in `explain`, `--format markdown`, JSON and HTML; this view
 //! only shortens it.
 
-use super::{certificate_words, words, Summary};
+use super::{words, Summary};
 use crate::derivation::Verdict;
 use crate::strategy::{Counterexample, Decided, Outcome, Strength};
 use std::fmt::Write as _;
@@ -131,8 +131,8 @@ fn outcome_line(o: &Outcome) -> String {
     if let (Verdict::Undecided, Some(f)) = (o.verdict(), &o.finding) {
         return words::finding(f);
     }
-    if let Some(c) = o.certificate() {
-        return certificate_words(c);
+    if let Some(w) = super::proof_words(o) {
+        return w;
     }
     if let Some(n) = &o.numeric {
         return format!(

@@ -154,12 +154,8 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
         outcome.verdict_text(),
         outcome.method.as_str()
     );
-    if let Some(c) = outcome.certificate() {
-        let _ = writeln!(
-            out,
-            "Certificate (verified by the kernel): {}",
-            super::certificate_words(c)
-        );
+    if let Some(w) = super::proof_words(outcome) {
+        let _ = writeln!(out, "Proof (checked by the kernel): {w}");
     }
     let _ = writeln!(out, "Evidence: {}", evidence(outcome));
     if let Some(cx) = &outcome.counterexample {

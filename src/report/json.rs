@@ -1,8 +1,10 @@
 //! The JSON contract of `check --format json`. Later versions may add fields but never
 //! remove or rename these: `paper`, `claims[]` (`id`, `section`, `statement`,
 //! `verdict`, `method`, `strength` (`proof` or `sampled`), `expected`, `checks`,
-//! `certificate` (the kernel's facts behind a proof: `{"facts": [{"kind": …}]}`, or
-//! null), `counterexample`, `correction`, `transcription` (`status`: `machine-read`,
+//! `certificate` (what the kernel checked behind a proof: `{"facts": [{"kind": …}]}`,
+//! or null), `proofs` (each kernel proof whole: its `conclusion`, the `statement` it
+//! is about, the `fact` checked and its `summary`, which `recheck` checks again),
+//! `counterexample`, `correction`, `transcription` (`status`: `machine-read`,
 //! `differs` or `hand`, `detail`, `declared`, `checked_latex`), `uses`, `root`,
 //! `inherited_from`, `origin` (`status`: `root`, `inherited` or `undetermined`, `detail`;
 //! null unless the claim fails)), and `summary` (`holds`, `fails`, `conditional`,
@@ -10,10 +12,12 @@
 //! `inherited`, `undetermined_origin`).
 
 use super::Summary;
-use crate::algebra::certificate::Certificate;
+use crate::kernel::check::Proof;
 use crate::strategy::finding::Finding;
+use crate::strategy::Outcome;
 use crate::strategy::{Counterexample, Decided, Method, NumericEvidence, Strength};
 use serde::Serialize;
+use serde_json::value::RawValue;
 
 #[derive(Serialize)]
 struct Report<'a> {
@@ -32,7 +36,8 @@ struct ClaimRow<'a> {
     strength: Strength,
     expected: &'static str,
     checks: usize,
-    certificate: Option<&'a Certificate>,
+    certificate: Option<serde_json::Value>,
+    proofs: Vec<Box<RawValue>>,
     counterexample: Option<&'a Counterexample>,
     correction: Option<CorrectionRow<'a>>,
     as_expected: bool,
@@ -100,10 +105,35 @@ struct CorrectionRow<'a> {
     strength: Strength,
     expected: &'static str,
     checks: usize,
-    certificate: Option<&'a Certificate>,
+    certificate: Option<serde_json::Value>,
+    proofs: Vec<Box<RawValue>>,
     counterexample: Option<&'a Counterexample>,
     reason: &'a str,
     transcription: Option<TranscriptionRow>,
+}
+
+/// What the kernel checked, as `{"facts": [...]}`: the items of its proofs (or the
+/// algebra's certificate, for the claim kinds the kernel does not check yet).
+fn certificate(o: &Outcome) -> Option<serde_json::Value> {
+    if o.proofs().is_empty() {
+        return o
+            .certificate()
+            .map(|c| serde_json::to_value(c).expect("plain data serialises"));
+    }
+    let facts: Vec<_> = o.proofs().iter().flat_map(|p| p.summary()).collect();
+    Some(serde_json::json!({ "facts": facts }))
+}
+
+/// Each proof whole, on one line (a statement is a deep tree: written out one token
+/// per line, it would be most of the report).
+fn proofs(o: &Outcome) -> Vec<Box<RawValue>> {
+    o.proofs()
+        .iter()
+        .map(|p| {
+            let p: &Proof = p;
+            serde_json::value::to_raw_value(p).expect("plain data serialises")
+        })
+        .collect()
 }
 
 /// Renders the table as pretty-printed JSON (deterministic: fixed field order).
@@ -121,7 +151,8 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
                     strength: r.outcome.strength(),
                     expected: c.expect.as_str(),
                     checks: r.outcome.checks,
-                    certificate: r.outcome.certificate(),
+                    certificate: certificate(&r.outcome),
+                    proofs: proofs(&r.outcome),
                     counterexample: r.outcome.counterexample.as_ref(),
                     correction: c
                         .correction
@@ -134,7 +165,8 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
                             strength: o.strength(),
                             expected: k.expect.as_str(),
                             checks: o.checks,
-                            certificate: o.certificate(),
+                            certificate: certificate(o),
+                            proofs: proofs(o),
                             counterexample: o.counterexample.as_ref(),
                             reason: &k.reason,
                             transcription: r.correction_transcription.as_ref().map(|t| {

@@ -16,6 +16,7 @@ pub mod transcription;
 pub mod typeset;
 pub mod words;
 
+use crate::kernel::check::Checked;
 use crate::strategy::{Counterexample, Decided, Outcome};
 use serde::Serialize;
 
@@ -262,10 +263,10 @@ pub fn evidence(o: &Outcome) -> String {
     if let Some(f) = &o.finding {
         parts.push(words::finding(f));
         // A rational-function claim's proof: the kernel's facts, in words.
-        if let (crate::strategy::finding::Finding::RationalFunction(_), Some(c)) =
-            (f, o.certificate())
+        if let (crate::strategy::finding::Finding::RationalFunction(_), Some(w)) =
+            (f, proof_words(o))
         {
-            parts.push(format!("proof: {}", certificate_words(c)));
+            parts.push(format!("proof: {w}"));
         }
     }
     let symbolic: Vec<String> = o
@@ -299,9 +300,35 @@ pub fn evidence(o: &Outcome) -> String {
     parts.join("; ")
 }
 
+/// What the kernel checked behind an outcome's proofs, item by item.
+fn checked(o: &Outcome) -> impl Iterator<Item = &Checked> {
+    o.proofs().iter().flat_map(|p| p.summary())
+}
+
 /// The square roots an exact proof took, with where their signs were certified.
 fn roots(o: &Outcome) -> String {
     use crate::algebra::certificate::Fact;
+    if !o.proofs().is_empty() {
+        return checked(o)
+            .filter_map(|c| match c {
+                Checked::SquareRoot {
+                    radicand,
+                    root,
+                    on,
+                    substitution,
+                    ..
+                } => {
+                    let sign = if substitution.is_empty() {
+                        String::new()
+                    } else {
+                        format!(", ≥ 0 there by coefficient signs after {substitution}")
+                    };
+                    Some(format!("; sqrt({radicand}) = {root} on {on}{sign}"))
+                }
+                _ => None,
+            })
+            .collect();
+    }
     let facts: Vec<&Fact> = o.certificate().iter().flat_map(|c| c.facts()).collect();
     let mut out = String::new();
     for (k, f) in facts.iter().enumerate() {
@@ -321,6 +348,12 @@ fn roots(o: &Outcome) -> String {
 /// For a proportionality, the factor the components were compared with.
 fn factor(o: &Outcome) -> String {
     use crate::algebra::certificate::Fact;
+    if let Some(f) = checked(o).find_map(|c| match c {
+        Checked::Proportional { factor } => Some(factor),
+        _ => None,
+    }) {
+        return format!(" of left = {f} · right");
+    }
     o.certificate()
         .iter()
         .flat_map(|c| c.facts())
@@ -335,14 +368,19 @@ fn factor(o: &Outcome) -> String {
 /// polynomials).
 fn domain(o: &Outcome) -> String {
     use crate::algebra::certificate::Fact;
-    let nonzero = o
-        .certificate()
-        .iter()
-        .flat_map(|c| c.facts())
-        .find_map(|f| match f {
-            Fact::PolynomialIdentity { nonzero, .. } if !nonzero.is_empty() => Some(nonzero),
-            _ => None,
-        });
+    let proved = checked(o).find_map(|c| match c {
+        Checked::PolynomialIdentity { nonzero, .. } if !nonzero.is_empty() => Some(nonzero),
+        _ => None,
+    });
+    let nonzero = proved.or_else(|| {
+        o.certificate()
+            .iter()
+            .flat_map(|c| c.facts())
+            .find_map(|f| match f {
+                Fact::PolynomialIdentity { nonzero, .. } if !nonzero.is_empty() => Some(nonzero),
+                _ => None,
+            })
+    });
     match nonzero {
         None => String::new(),
         Some(fs) => format!(" after clearing denominators; {}", holds_where(fs)),
@@ -478,6 +516,51 @@ fn index_identity_words(fact: &crate::algebra::certificate::Fact) -> Option<Stri
     } else {
         format!("canonical forms in symbolic indices ({terms} term{s} after δ contraction, ε pairs and moments as δ pairings, summed indices renamed{unit}) differ by δ's and ε's alone, and the difference is exactly 0 at all {evaluated} values of {letters}")
     })
+}
+
+/// What the kernel checked behind an outcome's proofs (or, for the claim kinds it
+/// does not check yet, the algebra's certificate), in words; `None` without either.
+pub fn proof_words(o: &Outcome) -> Option<String> {
+    if o.proofs().is_empty() {
+        return o.certificate().map(certificate_words);
+    }
+    let words: Vec<String> = checked(o)
+        .map(|c| match c {
+            Checked::PolynomialIdentity {
+                components,
+                modulo_unit_normal,
+                nonzero,
+            } => {
+                let s = if *components == 1 { "" } else { "s" };
+                let modulo = if *modulo_unit_normal > 0 {
+                    format!(" ({modulo_unit_normal} of them modulo n·n = 1)")
+                } else {
+                    String::new()
+                };
+                if nonzero.is_empty() {
+                    format!("canonical polynomials identical in {components} component{s}{modulo}")
+                } else {
+                    format!(
+                        "numerators identical over a common denominator in {components} component{s}{modulo}; {}",
+                        holds_where(nonzero)
+                    )
+                }
+            }
+            Checked::Proportional { factor } => format!("one polynomial is {factor} times the other"),
+            Checked::SquareRoot { radicand, root, on, substitution, cases } => {
+                let s = if *cases == 1 { "" } else { "s" };
+                let sign = if substitution.is_empty() {
+                    String::new()
+                } else {
+                    format!("; numerator and denominator have coefficients of one sign after {substitution} ({cases} case{s})")
+                };
+                format!("sqrt({radicand}) = {root} on {on} (its square exactly, its sign as follows){sign}")
+            }
+            Checked::Values { left, right } => format!("left {left}, right {right} there, exactly"),
+            Checked::IllFormed { why } => format!("ill-formed in its indices: {why}"),
+        })
+        .collect();
+    Some(words.join("; "))
 }
 
 /// The kernel's facts behind a proof, in words.

@@ -15,6 +15,9 @@ pub fn finding(f: &Finding) -> String {
         Finding::Uncertified { what, at, help } => {
             format!("undecided: {what} (at {at}); {help}")
         }
+        Finding::KernelRefused { why } => format!(
+            "undecided: the search's result was not accepted by the kernel's check ({why})"
+        ),
         Finding::InternalError { message, at } => format!(
             "undecided (internal error): the checker failed while deciding this claim ({message}, \
              at {at}); this is a defect of the checker, not of the derivation: please report it"

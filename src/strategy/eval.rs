@@ -125,6 +125,8 @@ pub struct ExactEnv<'a> {
     domain: Vec<(Var, Interval)>,
     /// The square roots taken exactly, each with the kernel's certificate.
     roots: Vec<Certificate>,
+    /// Their values, offered to the kernel when it re-checks a proof.
+    root_values: Vec<Quotient>,
     /// Definitions with their derivatives by a symbol (`grad`), by (symbol, name).
     pub(super) jet_cache: HashMap<(String, String), Tensor<Jet>>,
 }
@@ -228,6 +230,7 @@ impl<'a> ExactEnv<'a> {
             parametrisation: None,
             domain: Vec::new(),
             roots: Vec::new(),
+            root_values: Vec::new(),
             jet_cache: HashMap::default(),
         }
     }
@@ -250,6 +253,14 @@ impl<'a> ExactEnv<'a> {
     /// The box of [`ExactEnv::set_domain`], by variable.
     pub fn domain(&self) -> &[(Var, Interval)] {
         &self.domain
+    }
+
+    /// The square roots taken so far, by variable names, for the kernel.
+    pub fn root_data(&self) -> Vec<crate::kernel::statement::FracData> {
+        self.root_values
+            .iter()
+            .map(|q| super::statement::frac_data(q, &self.vars))
+            .collect()
     }
 
     /// The certificates of the square roots taken so far.
@@ -558,6 +569,11 @@ impl ExactRing<'_, '_> {
             if let Some(c) = Certificate::square_root(p, &candidate, &env.domain, &env.vars) {
                 if !env.roots.contains(&c) {
                     env.roots.push(c);
+                }
+                if !env.root_values.iter().any(|r| {
+                    r.numerator() == candidate.numerator() && r.factors() == candidate.factors()
+                }) {
+                    env.root_values.push(candidate.clone());
                 }
                 return Ok(candidate);
             }

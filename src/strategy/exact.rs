@@ -9,11 +9,13 @@ use super::eval::{component_name, ExactEnv, Labeled};
 use super::finding::{Expansion, Finding, Record};
 use super::indices::{self, Symbolic};
 use super::proportional::{self, Reference};
-use super::{reverify, Counterexample, Method, Outcome, Strength};
+use super::statement;
+use super::{reverify, Counterexample, Method, Outcome};
 use crate::algebra::certificate::{Difference, Identities};
 use crate::algebra::sign::{inner_point, End, Interval};
 use crate::algebra::{assignments, residue, Quotient};
 use crate::derivation::{Check, Strategy};
+use crate::kernel::check::{check as kernel_check, Evaluation, Fact};
 use crate::kernel::{Poly, PolyError, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
@@ -140,15 +142,21 @@ fn decide_recording(
                         expand_rest(&mut env, decls, check, 0, record);
                     }
                 }
-                return Ok(Outcome::fails(Method::IndexCheck, Strength::Proof, 1)
-                    .with_counterexample(Counterexample {
-                        chain: ci + 1,
-                        equality: si.max(1),
-                        lhs: side.text.clone(),
-                        rhs: String::new(),
-                        ill_formed: Some(format!("{}: {}", location(&d), e.message)),
-                        ..Counterexample::default()
-                    }));
+                let cx = Counterexample {
+                    chain: ci + 1,
+                    equality: si.max(1),
+                    lhs: side.text.clone(),
+                    rhs: String::new(),
+                    ill_formed: Some(format!("{}: {}", location(&d), e.message)),
+                    ..Counterexample::default()
+                };
+                let fact = Fact::IllFormed {
+                    chain: ci,
+                    side: si,
+                };
+                return by_kernel(decls, check, fact, (Method::IndexCheck, 1), |o| {
+                    o.with_counterexample(cx)
+                });
             }
         }
     }
@@ -161,9 +169,12 @@ fn decide_recording(
         && largest_tensor(decls, check) > COMPONENT_ROUTE_UP_TO
     {
         match indices::decide(decls, check) {
-            Symbolic::Proved(certificate) => {
+            // The kernel checks the identity component by component: the symbolic
+            // route found it, it does not prove it.
+            Symbolic::Proved(_) => {
                 let equalities = check.chains.iter().map(|c| c.len() - 1).sum();
-                return Ok(Outcome::proved(Method::Exact, equalities, certificate));
+                let fact = Fact::Identity { roots: Vec::new() };
+                return by_kernel(decls, check, fact, (Method::Exact, equalities), |o| o);
             }
             Symbolic::Differs(d) => {
                 if let Some(outcome) = constant_counterexample(decls, check, &d)? {
@@ -179,6 +190,10 @@ fn decide_recording(
     }
     let normal = env.normal_vars().to_vec();
     let mut identities = Identities::new(&normal);
+    // A proportionality's factor (1 when the right side is zero everywhere: the left
+    // must then be zero, and any nonzero factor states it).
+    let mut factor: Option<Rational> =
+        matches!(check.strategy, Strategy::Proportional { .. }).then(|| Rational::int(1));
     for (ci, chain) in check.chains.iter().enumerate() {
         let mut values = Vec::with_capacity(chain.len());
         for (si, side) in chain.iter().enumerate() {
@@ -220,6 +235,7 @@ fn decide_recording(
                     // left side is zero too, a plain identity.
                     Ok(None) => {}
                     Ok(Some(found)) => {
+                        factor = Some(found.factor());
                         match Identities::proportional(&normal, found.factor()) {
                             Some(ids) => identities = ids,
                             None => return zero_factor(&env, decls, check, &found, (l, r)),
@@ -333,23 +349,107 @@ fn decide_recording(
                 if let Some(record) = record.as_deref_mut() {
                     expand_rest(&mut env, decls, check, ci + 1, record);
                 }
-                return Ok(
-                    Outcome::fails(Method::Exact, Strength::Proof, identities.components())
-                        .using_unit_normal(identities.used_unit_normal())
-                        .with_counterexample(cx),
-                );
+                let here = Evaluation {
+                    chain: ci,
+                    equality: k,
+                    at: assignment.iter().map(|&(_, v)| v).collect(),
+                    point: full_point(&env, &point),
+                };
+                let proportional = matches!(check.strategy, Strategy::Proportional { .. });
+                let fact = match &reference {
+                    // A right side zero everywhere: the left is not, here, so no
+                    // nonzero factor works.
+                    None if proportional => Fact::NotProportional {
+                        first: here,
+                        second: None,
+                        roots: env.root_data(),
+                    },
+                    None => Fact::Refutation {
+                        at: here,
+                        roots: env.root_data(),
+                    },
+                    Some(found) => Fact::NotProportional {
+                        first: Evaluation {
+                            chain: ci,
+                            equality: k,
+                            at: found.assignment.iter().map(|&(_, v)| v).collect(),
+                            point: full_point(&env, &found.point),
+                        },
+                        second: Some(here),
+                        roots: env.root_data(),
+                    },
+                };
+                let (checks, unit) = (identities.components(), identities.used_unit_normal());
+                return by_kernel(decls, check, fact, (Method::Exact, checks), |o| {
+                    o.using_unit_normal(unit).with_counterexample(cx)
+                });
             }
         }
     }
     let (checks, used_unit) = (identities.components(), identities.used_unit_normal());
-    Ok(match identities.certify(&env.vars) {
-        // The square roots the sides took are part of the proof.
-        Some(certificate) => {
-            Outcome::proved(Method::Exact, checks, certificate).resting_on(env.root_certificates())
-        }
-        None => Outcome::undecided(Method::Exact, checks).with_finding(Finding::NothingCompared),
+    if checks == 0 {
+        return Ok(Outcome::undecided(Method::Exact, checks).with_finding(Finding::NothingCompared));
     }
-    .using_unit_normal(used_unit))
+    // The search compared every component and found no difference: the kernel checks
+    // the identity again from the statement, with the square roots the search took.
+    let roots = env.root_data();
+    let fact = match factor {
+        Some(f) => Fact::Proportional {
+            factors: vec![f],
+            roots,
+        },
+        None => Fact::Identity { roots },
+    };
+    by_kernel(decls, check, fact, (Method::Exact, checks), |o| {
+        o.using_unit_normal(used_unit)
+    })
+}
+
+/// The outcome of the kernel's check of `fact` against the statement of `check`: the
+/// proof's verdict (`finish` adds its evidence), or `undecided` with the kernel's
+/// reason for refusing it.
+fn by_kernel(
+    decls: &Decls,
+    check: &Check,
+    fact: Fact,
+    (method, checks): (Method, usize),
+    finish: impl FnOnce(Outcome) -> Outcome,
+) -> Result<Outcome, Diagnostic> {
+    let statement = statement::equalities(decls, check)?;
+    Ok(match kernel_check(statement, fact) {
+        Ok(proof) => finish(Outcome::proved(method, checks, proof)),
+        Err(why) => Outcome::undecided(method, checks).with_finding(Finding::KernelRefused {
+            why: why.to_string(),
+        }),
+    })
+}
+
+/// Every variable the search's environment knows, with its value at `point` (0 where
+/// the point leaves it out, as in the search's evaluation), each component the
+/// assumptions determine at its value in the free ones; the normal only where the
+/// point gives it.
+fn full_point(env: &ExactEnv<'_>, point: &BTreeMap<Var, Rational>) -> Vec<(String, Rational)> {
+    let normal = env.normal_vars();
+    let mut values: BTreeMap<String, Rational> = (0..env.vars.len() as Var)
+        .filter(|v| point.contains_key(v) || !normal.contains(v))
+        .map(|v| {
+            let x = point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+            (env.vars.name(v).to_owned(), x)
+        })
+        .collect();
+    if let Some(p) = env.parametrisation() {
+        for ((symbol, idx), terms, constant) in p.dependents() {
+            let value = terms.iter().fold(constant.clone(), |acc, ((s, i), q)| {
+                let x = values
+                    .get(&component_name(s, i))
+                    .cloned()
+                    .unwrap_or_else(|| Rational::int(0));
+                &acc + &(*q * &x)
+            });
+            values.insert(component_name(symbol, idx), value);
+        }
+    }
+    values.into_iter().collect()
 }
 
 /// The counterexample of a constant difference the symbolic route found, as the
@@ -384,9 +484,23 @@ pub(super) fn constant_counterexample(
         Ok(how) => cx.reverified = Some(how),
         Err(_) => return Ok(None),
     }
-    Ok(Some(
-        Outcome::fails(Method::Exact, Strength::Proof, d.components).with_counterexample(cx),
-    ))
+    let fact = Fact::Refutation {
+        at: Evaluation {
+            chain: d.chain,
+            equality: d.equality,
+            at: {
+                let mut at = d.at.clone();
+                at.sort_unstable();
+                at.iter().map(|&(_, v)| v).collect()
+            },
+            point: Vec::new(),
+        },
+        roots: Vec::new(),
+    };
+    by_kernel(decls, check, fact, (Method::Exact, d.components), |o| {
+        o.with_counterexample(cx)
+    })
+    .map(Some)
 }
 
 /// Components beyond which an identity is first tried in symbolic indices: 243 is
@@ -492,7 +606,19 @@ fn zero_factor(
             )
         }
     }
-    Ok(Outcome::fails(Method::Exact, Strength::Proof, 0).with_counterexample(cx))
+    let fact = Fact::NotProportional {
+        first: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: found.assignment.iter().map(|&(_, v)| v).collect(),
+            point: full_point(env, &found.point),
+        },
+        second: None,
+        roots: env.root_data(),
+    };
+    by_kernel(decls, check, fact, (Method::Exact, 0), |o| {
+        o.with_counterexample(cx)
+    })
 }
 
 pub(super) fn location(d: &Diagnostic) -> String {

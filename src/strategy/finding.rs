@@ -20,6 +20,9 @@ pub enum Finding {
     NothingCompared,
     /// The decision did not finish within the per-claim time limit (`--time-limit`).
     TimeLimit { seconds: f64 },
+    /// The search found a proof or a counterexample, but the kernel's check of it
+    /// refused it: a defect of the search, which decides nothing.
+    KernelRefused { why: String },
     /// The checker itself failed while deciding (a panic): a defect of the checker,
     /// not of the input, and never a verdict. `at` is where in the checker's source.
     InternalError { message: String, at: String },

@@ -24,6 +24,7 @@ mod reverify;
 pub mod sampler;
 mod scalar;
 pub mod search;
+pub mod statement;
 pub mod tape;
 pub mod taylor;
 pub mod transcription;

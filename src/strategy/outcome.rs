@@ -1,8 +1,9 @@
 //! What deciding a statement produces: the verdict, its strength, and the evidence.
 //!
 //! The verdict and strength of an [`Outcome`] are private to this module, which no
-//! strategy is inside of: the only way to a proved `holds` is [`Outcome::proved`], which
-//! takes a kernel [`Certificate`] (whose constructors verify what they certify).
+//! strategy is inside of: the only way to strength `proof` (`holds`, `fails` or
+//! `conditional`) is a kernel [`Proof`], which only the kernel's checker makes
+//! ([`crate::kernel::check`]), and whose conclusion gives the verdict.
 //!
 //! ```compile_fail
 //! use cosserat_check::strategy::Outcome;
@@ -15,8 +16,10 @@
 use super::finding::{Finding, Record};
 use crate::algebra::certificate::Certificate;
 use crate::derivation::Verdict;
+use crate::kernel::check::{Conclusion, Proof};
 use serde::Serialize;
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// How a verdict was reached.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -125,14 +128,17 @@ pub enum Reverified {
 
 /// The result of deciding one statement.
 ///
-/// Its verdict and strength are private: a proved `holds` is made only by
-/// [`Outcome::proved`] from a kernel [`Certificate`], a sampled one only by
-/// [`Outcome::holds_sampled`]; the other verdicts have their own constructors.
+/// Its verdict and strength are private: strength `proof` is made only from kernel
+/// proofs ([`Outcome::proved`], [`Outcome::conditional`]); the sampled verdicts have
+/// their own constructors.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome {
     verdict: Verdict,
     strength: Strength,
     certificate: Option<Certificate>,
+    /// The kernel's proofs behind a verdict of strength `proof`: one, or for a
+    /// conditional its domain's and its counterexample's.
+    proofs: Vec<Arc<Proof>>,
     pub method: Method,
     /// Number of component comparisons made.
     pub checks: usize,
@@ -154,6 +160,7 @@ impl Outcome {
             verdict,
             strength,
             certificate: None,
+            proofs: Vec::new(),
             method,
             checks,
             used_unit_normal: false,
@@ -164,11 +171,29 @@ impl Outcome {
         }
     }
 
-    /// `holds`, proved: the kernel's certificate is the only way to this outcome.
-    pub fn proved(method: Method, checks: usize, certificate: Certificate) -> Self {
+    /// The verdict a kernel proof concludes (`holds` or `fails`), strength `proof`.
+    pub fn proved(method: Method, checks: usize, proof: Proof) -> Self {
+        let verdict = match proof.conclusion() {
+            Conclusion::Holds => Verdict::Holds,
+            Conclusion::Fails => Verdict::Fails,
+        };
+        let mut o = Outcome::new(verdict, Strength::Proof, method, checks);
+        o.proofs = vec![Arc::new(proof)];
+        o
+    }
+
+    /// `holds` on a certificate of the untrusted algebra, for the claim kinds whose
+    /// facts the kernel does not check yet.
+    pub fn certified(method: Method, checks: usize, certificate: Certificate) -> Self {
         let mut o = Outcome::new(Verdict::Holds, Strength::Proof, method, checks);
         o.certificate = Some(certificate);
         o
+    }
+
+    /// `fails` on sampled evidence: a counterexample found and confirmed in floating
+    /// point.
+    pub fn fails_sampled(method: Method, checks: usize) -> Self {
+        Outcome::new(Verdict::Fails, Strength::Sampled, method, checks)
     }
 
     /// A proof that also rests on `premises` (the certified square roots the
@@ -185,8 +210,8 @@ impl Outcome {
         Outcome::new(Verdict::Holds, Strength::Sampled, method, checks)
     }
 
-    /// `fails`; `strength` says how the counterexample was found and verified (exactly:
-    /// proof; in floating point: sampled).
+    /// `fails`; `strength` says how the counterexample was found and verified, for the
+    /// claim kinds whose refutations the kernel does not check yet.
     pub fn fails(method: Method, strength: Strength, checks: usize) -> Self {
         Outcome::new(Verdict::Fails, strength, method, checks)
     }
@@ -220,6 +245,11 @@ impl Outcome {
     /// The kernel's certificate behind a proved verdict.
     pub fn certificate(&self) -> Option<&Certificate> {
         self.certificate.as_ref()
+    }
+
+    /// The kernel's proofs behind a verdict of strength `proof`.
+    pub fn proofs(&self) -> &[Arc<Proof>] {
+        &self.proofs
     }
 
     /// The verdict as the tables show it: `holds` and `conditional` say `(sampled)`

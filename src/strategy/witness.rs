@@ -110,11 +110,13 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
                 .map(|(a, b)| (a.to_string(), b.to_string()))
                 .collect();
             return Ok(
-                Outcome::proved(Method::Witness, 1, certificate).with_finding(Finding::Witness {
-                    state,
-                    points,
-                    determinant: det,
-                }),
+                Outcome::certified(Method::Witness, 1, certificate).with_finding(
+                    Finding::Witness {
+                        state,
+                        points,
+                        determinant: det,
+                    },
+                ),
             );
         }
     }

@@ -53,7 +53,7 @@ pub(super) fn decide(
             }
             let names = &cx.env.vars;
             Ok(match Certificate::limit(&f.f, v, to, &claimed.f, names) {
-                Ok(c) => Outcome::proved(Method::RationalFunction, 1, c)
+                Ok(c) => Outcome::certified(Method::RationalFunction, 1, c)
                     .with_finding(Finding::RationalFunction(evidence)),
                 Err(_) => {
                     refuted(cx, Some(&claimed)).with_finding(Finding::RationalFunction(evidence))
@@ -65,7 +65,7 @@ pub(super) fn decide(
                 return Ok(refuted(cx, None).with_finding(Finding::RationalFunction(evidence)));
             };
             let Some(plus) = plus else {
-                return Ok(Outcome::proved(Method::RationalFunction, 1, c)
+                return Ok(Outcome::certified(Method::RationalFunction, 1, c)
                     .with_finding(Finding::RationalFunction(evidence)));
             };
             let Some(sign_of) = sign_of else {
@@ -79,7 +79,7 @@ pub(super) fn decide(
             };
             Ok(match decide_function(cx, &g, want, evidence.clone())? {
                 Decided::Holds(o) => match o.certificate() {
-                    Some(s) => Outcome::proved(Method::RationalFunction, 1, c.and(s.clone()))
+                    Some(s) => Outcome::certified(Method::RationalFunction, 1, c.and(s.clone()))
                         .with_finding(Finding::RationalFunction(evidence)),
                     None => *o,
                 },

@@ -67,7 +67,7 @@ pub(super) fn decide(
                     .with_finding(Finding::RationalFunction(evidence))
             }
             Decided::Holds(o) => match (o.certificate().cloned(), pole_free) {
-                (Some(c), Some(p)) => Outcome::proved(Method::RationalFunction, 1, c.and(p))
+                (Some(c), Some(p)) => Outcome::certified(Method::RationalFunction, 1, c.and(p))
                     .with_finding(Finding::RationalFunction(evidence)),
                 _ => *o,
             },
@@ -105,7 +105,7 @@ pub(super) fn decide(
     if whole && of_f.poles() == 0 {
         return Ok(
             match Certificate::sign_on_interval((&num, &den), v, &i, want, names) {
-                Ok(c) => Outcome::proved(Method::RationalFunction, 1, c)
+                Ok(c) => Outcome::certified(Method::RationalFunction, 1, c)
                     .with_finding(Finding::RationalFunction(evidence)),
                 Err(_) => Outcome::undecided(Method::RationalFunction, 0)
                     .with_finding(Finding::RationalFunction(evidence)),

@@ -52,7 +52,7 @@ pub(super) fn decide(
     let zeros = match Certificate::roots_exactly((&num, &den), v, &i, &stated, names) {
         Ok(c) => {
             evidence.points = stated.iter().map(|r| format!("root {r}")).collect();
-            return Ok(Outcome::proved(Method::RationalFunction, 1, c)
+            return Ok(Outcome::certified(Method::RationalFunction, 1, c)
                 .with_finding(Finding::RationalFunction(evidence)));
         }
         Err(Some(zeros)) => zeros,

@@ -76,7 +76,7 @@ pub(super) fn decide_function(
     let vars = g.variables();
     let proved = |c: Certificate, e: RationalEvidence| {
         Decided::Holds(Box::new(
-            Outcome::proved(Method::RationalFunction, 1, c)
+            Outcome::certified(Method::RationalFunction, 1, c)
                 .with_finding(Finding::RationalFunction(e)),
         ))
     };

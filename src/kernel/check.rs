@@ -1,0 +1,457 @@
+//! The checker of facts: the only way to a [`Proof`].
+//!
+//! A strategy hands the kernel a [`Statement`] (what the claim says, in its context)
+//! and a [`Fact`] (what it found: that the sides are identical, a point where they
+//! differ, a sign certificate, …). [`check`] re-runs the fact against the statement
+//! with the kernel's own evaluator and arithmetic and returns a `Proof` only when it
+//! holds. A fact carries hints the search produced (a square root, a proportionality
+//! factor, a point, the cuts between roots); a hint is never believed, only verified.
+//! A `Proof` cannot be built, cloned or edited outside this module; a report keeps its
+//! statement and fact, and `recheck` runs `check` on them again.
+//!
+//! ```compile_fail
+//! use cosserat_check::kernel::check::{Proof, Conclusion};
+//! let forged = Proof { conclusion: Conclusion::Holds };
+//! ```
+
+use super::eval::{Env, EvalError, Value};
+use super::frac::Frac;
+use super::poly::{Poly, Var};
+use super::rational::Rational;
+use super::statement::{Claim, FracData, Statement};
+use super::term::Term;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// One component of one equality of a chain, at a state.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Evaluation {
+    /// 0-based chain and equality (between sides `equality` and `equality + 1`).
+    pub chain: usize,
+    pub equality: usize,
+    /// The values (0-based) of the sides' free letters, in sorted letter order.
+    pub at: Vec<usize>,
+    /// Every variable the sides read, by name, with its value.
+    pub point: Vec<(String, Rational)>,
+}
+
+/// What a strategy found, to be checked against the statement.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Fact {
+    /// Every equality holds for every value of the free indices, wherever its
+    /// divisors are nonzero (modulo n·n = 1 when a normal is declared).
+    Identity { roots: Vec<FracData> },
+    /// Each equality's left side is its factor (nonzero) times the right.
+    Proportional {
+        factors: Vec<Rational>,
+        roots: Vec<FracData>,
+    },
+    /// The sides of one equality differ at a state that satisfies the assumptions,
+    /// lies in the box and, for the normal, on the unit sphere.
+    Refutation {
+        at: Evaluation,
+        roots: Vec<FracData>,
+    },
+    /// No nonzero factor relates one equality's sides: at `first` exactly one side is
+    /// zero, or `first` and `second` give different ratios.
+    NotProportional {
+        first: Evaluation,
+        second: Option<Evaluation>,
+        roots: Vec<FracData>,
+    },
+    /// A side of a chain is ill-formed in its indices.
+    IllFormed { chain: usize, side: usize },
+}
+
+/// What a proof establishes about its statement.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Conclusion {
+    Holds,
+    Fails,
+}
+
+/// What the kernel verified, item by item: the evidence a proof states.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Checked {
+    /// Both sides identical, component by component, `modulo_unit_normal` of them
+    /// only after reduction by n·n = 1; where each polynomial of `nonzero` is nonzero.
+    PolynomialIdentity {
+        components: usize,
+        modulo_unit_normal: usize,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        nonzero: Vec<String>,
+    },
+    /// The left side is `factor` (nonzero) times the right.
+    Proportional { factor: String },
+    /// √radicand = root: its square exactly, its sign on the box `on` by coefficients
+    /// after `substitution` (empty: a nonnegative constant).
+    SquareRoot {
+        radicand: String,
+        root: String,
+        on: String,
+        substitution: String,
+        cases: usize,
+    },
+    /// The sides take these exact values at the state of a refutation.
+    Values { left: String, right: String },
+    /// A side is ill-formed in its indices.
+    IllFormed { why: String },
+}
+
+/// Everything a proof verified.
+pub type Summary = Vec<Checked>;
+
+/// A fact the kernel checked against its statement.
+#[derive(Debug, PartialEq, Serialize)]
+pub struct Proof {
+    conclusion: Conclusion,
+    statement: Statement,
+    fact: Fact,
+    summary: Summary,
+}
+
+impl Proof {
+    pub fn conclusion(&self) -> Conclusion {
+        self.conclusion
+    }
+    pub fn statement(&self) -> &Statement {
+        &self.statement
+    }
+    pub fn fact(&self) -> &Fact {
+        &self.fact
+    }
+    pub fn summary(&self) -> &[Checked] {
+        &self.summary
+    }
+}
+
+/// Why the kernel did not accept a fact.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Rejection {
+    #[error("the kernel could not evaluate the statement: {0}")]
+    Eval(#[from] EvalError),
+    #[error("the fact does not hold: {0}")]
+    False(String),
+    #[error("the fact does not fit the statement: {0}")]
+    Mismatch(String),
+}
+
+type R<T> = Result<T, Rejection>;
+
+/// Checks `fact` against `statement`; the proof on success.
+pub fn check(statement: Statement, fact: Fact) -> R<Proof> {
+    let (conclusion, summary) = run(&statement, &fact)?;
+    Ok(Proof {
+        conclusion,
+        statement,
+        fact,
+        summary,
+    })
+}
+
+fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
+    let chains = match &st.claim {
+        Claim::Equal { chains } | Claim::Proportional { chains } => Some(chains),
+        _ => None,
+    };
+    let proportional = matches!(st.claim, Claim::Proportional { .. });
+    let mismatch = || Rejection::Mismatch("this fact is about another kind of claim".into());
+    match fact {
+        Fact::Identity { roots } if !proportional => Ok((
+            Conclusion::Holds,
+            identities(st, chains.ok_or_else(mismatch)?, roots, None)?,
+        )),
+        Fact::Proportional { factors, roots } if proportional => Ok((
+            Conclusion::Holds,
+            identities(st, chains.ok_or_else(mismatch)?, roots, Some(factors))?,
+        )),
+        Fact::Refutation { at, roots } if !proportional => {
+            let mut env = Env::new(&st.context, roots)?;
+            let (l, r) = values_at(&mut env, chains.ok_or_else(mismatch)?, at)?;
+            if l == r {
+                return Err(Rejection::False("the sides are equal there".into()));
+            }
+            Ok((Conclusion::Fails, refuted(&[(l, r)], &env)))
+        }
+        Fact::NotProportional {
+            first,
+            second,
+            roots,
+        } if proportional => {
+            let chains = chains.ok_or_else(mismatch)?;
+            let mut env = Env::new(&st.context, roots)?;
+            let (l1, r1) = values_at(&mut env, chains, first)?;
+            let one_zero = l1.is_zero() != r1.is_zero();
+            let shown = match second {
+                _ if one_zero => vec![(l1, r1)],
+                // A factor λ would be l1/r1 (r1 ≠ 0); then l2 = λ r2 means l2 r1 = l1 r2.
+                Some(s) if (s.chain, s.equality) == (first.chain, first.equality) => {
+                    let (l2, r2) = values_at(&mut env, chains, s)?;
+                    if r1.is_zero() || &l1 * &r2 == &l2 * &r1 {
+                        return Err(Rejection::False("the first evaluation does not fix a factor, or the second agrees with it".into()));
+                    }
+                    vec![(l1, r1), (l2, r2)]
+                }
+                _ => {
+                    return Err(Rejection::False(
+                        "one evaluation with both sides zero or nonzero proves nothing".into(),
+                    ))
+                }
+            };
+            Ok((Conclusion::Fails, refuted(&shown, &env)))
+        }
+        Fact::IllFormed { chain, side } => {
+            let t = chains
+                .and_then(|c| c.get(*chain))
+                .and_then(|c| c.get(*side))
+                .ok_or_else(|| Rejection::Mismatch("no such side".into()))?;
+            let env = Env::new(&st.context, &[])?;
+            match t.letters(&env) {
+                Err(why) => Ok((Conclusion::Fails, vec![Checked::IllFormed { why }])),
+                Ok(_) => Err(Rejection::False("the side is well-formed".into())),
+            }
+        }
+        _ => Err(mismatch()),
+    }
+}
+
+fn refuted(values: &[(Rational, Rational)], env: &Env<'_>) -> Summary {
+    let mut out = roots_taken(env);
+    out.extend(values.iter().map(|(l, r)| Checked::Values {
+        left: l.to_string(),
+        right: r.to_string(),
+    }));
+    out
+}
+
+/// The square roots the evaluation accepted.
+fn roots_taken(env: &Env<'_>) -> Summary {
+    env.roots_taken
+        .iter()
+        .map(|r| Checked::SquareRoot {
+            radicand: r.radicand.clone(),
+            root: r.root.clone(),
+            on: r.on.clone(),
+            substitution: r.sign.substitution.clone(),
+            cases: r.sign.cases,
+        })
+        .collect()
+}
+
+/// Every equality of the chains, component by component: identical fractions (after
+/// the unit-normal reduction), or `factor ·` the right side.
+fn identities(
+    st: &Statement,
+    chains: &[Vec<Term>],
+    roots: &[FracData],
+    factors: Option<&[Rational]>,
+) -> R<Summary> {
+    let mut env = Env::new(&st.context, roots)?;
+    let normal = env.normal_vars().to_vec();
+    let (mut components, mut modulo_unit_normal) = (0, 0);
+    let mut nonzero: Vec<Poly> = Vec::new();
+    let mut k = 0;
+    for chain in chains {
+        if chain.len() < 2 {
+            return Err(Rejection::Mismatch("a chain of one side".into()));
+        }
+        for pair in chain.windows(2) {
+            let factor = match factors {
+                None => None,
+                Some(f) => {
+                    let f = f
+                        .get(k)
+                        .ok_or_else(|| Rejection::Mismatch("a factor per equality".into()))?;
+                    if f.is_zero() {
+                        return Err(Rejection::False("a zero factor".into()));
+                    }
+                    Some(Frac::constant(f.clone()))
+                }
+            };
+            k += 1;
+            let (a, b) = (env.eval(&pair[0])?, env.eval(&pair[1])?);
+            for (x, y) in pairs_of(&a, &b, env.ctx_dim())? {
+                let y = match &factor {
+                    Some(f) => y.mul(f).map_err(EvalError::from)?,
+                    None => y.clone(),
+                };
+                let raw = x.cleared_difference(&y).map_err(EvalError::from)?;
+                let reduced = raw
+                    .reduce_on_sphere(&normal)
+                    .map_err(|e| Rejection::Eval(EvalError::Unsupported(e.to_string())))?;
+                if !reduced.is_zero() {
+                    return Err(Rejection::False(format!(
+                        "the sides differ in component {}",
+                        components + 1
+                    )));
+                }
+                components += 1;
+                modulo_unit_normal += usize::from(!raw.is_zero());
+                for c in x.conditions().iter().chain(y.conditions()) {
+                    if c.num_terms() > 1 && !nonzero.contains(c) {
+                        nonzero.push(c.clone());
+                    }
+                }
+            }
+        }
+    }
+    if components == 0 {
+        return Err(Rejection::False("no component was compared".into()));
+    }
+    let mut nonzero: Vec<String> = nonzero.iter().map(|p| p.display(&env.vars)).collect();
+    nonzero.sort();
+    let mut out = vec![Checked::PolynomialIdentity {
+        components,
+        modulo_unit_normal,
+        nonzero,
+    }];
+    if let Some([f]) = factors {
+        out.push(Checked::Proportional {
+            factor: f.to_string(),
+        });
+    }
+    out.extend(roots_taken(&env));
+    Ok(out)
+}
+
+/// The pairs of components an equality compares: for tensors, at every value of the
+/// free letters of either side (a side without a letter does not depend on it), for
+/// matrices of one shape, entry by entry.
+fn pairs_of(a: &Value, b: &Value, dim: usize) -> R<Vec<(Frac, Frac)>> {
+    match (a, b) {
+        (
+            Value::Matrix {
+                rows,
+                cols,
+                entries: x,
+            },
+            Value::Matrix {
+                rows: r2,
+                cols: c2,
+                entries: y,
+            },
+        ) if (rows, cols) == (r2, c2) => Ok(x.iter().cloned().zip(y.iter().cloned()).collect()),
+        (
+            Value::Tensor {
+                letters: la,
+                comps: x,
+            },
+            Value::Tensor {
+                letters: lb,
+                comps: y,
+            },
+        ) => {
+            let mut all: Vec<char> = la.iter().chain(lb).copied().collect();
+            all.sort_unstable();
+            all.dedup();
+            let at = |letters: &[char], idx: &[usize]| {
+                letters.iter().fold(0, |acc, c| {
+                    acc * dim + idx[all.iter().position(|x| x == c).unwrap_or(0)]
+                })
+            };
+            Ok(super::eval::assignments(dim, all.len())
+                .iter()
+                .map(|idx| (x[at(la, idx)].clone(), y[at(lb, idx)].clone()))
+                .collect())
+        }
+        _ => Err(Rejection::False(
+            "a matrix is compared with something of another shape".into(),
+        )),
+    }
+}
+
+/// Both sides' exact values at one evaluation: the point must assign every
+/// variable they read, satisfy the assumptions, lie in the box and put the normal on
+/// the unit sphere; both sides must be defined there.
+fn values_at(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Rational, Rational)> {
+    let chain = chains
+        .get(e.chain)
+        .ok_or_else(|| Rejection::Mismatch("no such chain".into()))?;
+    let (Some(left), Some(right)) = (chain.get(e.equality), chain.get(e.equality + 1)) else {
+        return Err(Rejection::Mismatch("no such equality".into()));
+    };
+    let (a, b) = (env.eval(left)?, env.eval(right)?);
+    let dim = env.ctx_dim();
+    let pairs = pairs_of(&a, &b, dim)?;
+    let at =
+        e.at.iter()
+            .try_fold(0usize, |acc, &v| (v < dim).then(|| acc * dim + v))
+            .ok_or_else(|| Rejection::Mismatch("index values out of range".into()))?;
+    let count_ok = match (&a, &b) {
+        (Value::Matrix { .. }, _) => e.at.len() == 1 && e.at[0] < pairs.len(),
+        _ => dim.checked_pow(e.at.len() as u32) == Some(pairs.len()),
+    };
+    let at = if matches!(a, Value::Matrix { .. }) {
+        e.at.first().copied().unwrap_or(0)
+    } else {
+        at
+    };
+    let (x, y) = match pairs.get(at) {
+        Some(p) if count_ok => p.clone(),
+        _ => {
+            return Err(Rejection::Mismatch(
+                "index values that do not fit the sides".into(),
+            ))
+        }
+    };
+    let point = env.point(&e.point)?;
+    let value = |v: Var| point.get(&v).cloned();
+    match (x.eval(&value), y.eval(&value)) {
+        (Some(l), Some(r)) => Ok((l, r)),
+        _ => Err(Rejection::False(
+            "a side is undefined at the point, or the point leaves a variable out".into(),
+        )),
+    }
+}
+
+impl Env<'_> {
+    /// A point by variable names, checked: it satisfies the solved assumptions (every
+    /// eliminated component equals its value in the free ones), lies in the box, and
+    /// puts the normal on the unit sphere.
+    pub fn point(&mut self, named: &[(String, Rational)]) -> R<BTreeMap<Var, Rational>> {
+        let mut point = BTreeMap::new();
+        for (name, value) in named {
+            if point
+                .insert(self.vars.intern(name), value.clone())
+                .is_some()
+            {
+                return Err(Rejection::Mismatch(format!("`{name}` is given twice")));
+            }
+        }
+        let at = |v: Var| point.get(&v).cloned();
+        for (v, value) in self.eliminated() {
+            if let Some(x) = point.get(&v) {
+                let should = Frac::from(value).eval(&at);
+                if should.as_ref() != Some(x) {
+                    return Err(Rejection::False(
+                        "the point does not satisfy the assumptions".into(),
+                    ));
+                }
+            }
+        }
+        for (v, i) in self.given_box() {
+            if let Some(x) = point.get(&v) {
+                if !i.contains(x) {
+                    return Err(Rejection::False("the point lies outside the box".into()));
+                }
+            }
+        }
+        let normal = self.normal_vars().to_vec();
+        if !normal.is_empty() && normal.iter().any(|v| point.contains_key(v)) {
+            let mut norm = Rational::int(0);
+            for v in &normal {
+                let x = point.get(v).cloned().unwrap_or_else(|| Rational::int(0));
+                norm += &(&x * &x);
+            }
+            if !norm.is_one() {
+                return Err(Rejection::False(
+                    "the normal is not a unit vector at the point".into(),
+                ));
+            }
+        }
+        Ok(point)
+    }
+}

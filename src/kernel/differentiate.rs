@@ -1,0 +1,220 @@
+//! `grad(F, sigma_ij)` as a term: ∂F/∂σ_c for one component c of σ, with every
+//! component of σ independent and every other symbol held fixed, by the rules of
+//! differentiation applied to the term. The kernel then evaluates the derivative at
+//! the state like any term, so that the assumptions apply after differentiating.
+//!
+//! ∂σ_ab/∂σ_c = δ_{a c_1} δ_{b c_2}; sums, products, quotients, powers, square roots
+//! (d√x = dx / (2√x)), averages, derivatives along the position and the matrix
+//! operations follow their rules; a definition's derivative is a new definition,
+//! named `∂name/∂σ_c`, made once. A term that does not read σ has derivative 0.
+
+use super::eval::{component_name, Env, EvalError};
+use super::rational::Rational;
+use super::statement::Definition;
+use super::term::{Leaf, MatOp, MatRead, Slot, Term};
+use std::collections::BTreeSet;
+
+type R<T> = Result<T, EvalError>;
+
+/// ∂t/∂(symbol at component c).
+pub fn differentiate(t: &Term, symbol: &str, c: &[usize], env: &mut Env<'_>) -> R<Term> {
+    let mut reads = BTreeSet::new();
+    env.mentions(t, &mut reads)?;
+    if !reads.contains(symbol) {
+        return zero_like(t, env);
+    }
+    let d = |t: &Term, env: &mut Env<'_>| differentiate(t, symbol, c, env);
+    let b = Box::new;
+    Ok(match t {
+        Term::Const { .. } => zero_like(t, env)?,
+        Term::Opaque { what, .. } => return Err(EvalError::Unsupported(what.clone())),
+        Term::Leaf {
+            of: Leaf::Symbol(_),
+            slots,
+        } => Term::Product(
+            slots
+                .iter()
+                .zip(c)
+                .map(|(s, &k)| Term::Leaf {
+                    of: Leaf::Delta,
+                    slots: vec![*s, Slot::Fixed(k)],
+                })
+                .collect(),
+        ),
+        Term::Leaf {
+            of: Leaf::Def(name),
+            slots,
+        } => Term::Leaf {
+            of: Leaf::Def(derived(name, symbol, c, env)?),
+            slots: slots.clone(),
+        },
+        Term::Leaf { .. } => zero_like(t, env)?,
+        Term::Sum(ts) => Term::Sum(ts.iter().map(|x| d(x, env)).collect::<R<_>>()?),
+        Term::Product(fs) => {
+            let mut terms = Vec::new();
+            for k in 0..fs.len() {
+                let mut factors = fs.clone();
+                factors[k] = d(&fs[k], env)?;
+                terms.push(Term::Product(factors));
+            }
+            Term::Sum(terms)
+        }
+        Term::Neg(a) => Term::Neg(b(d(a, env)?)),
+        Term::Div(num, den) => {
+            let top = Term::Sum(vec![
+                Term::Product(vec![d(num, env)?, (**den).clone()]),
+                Term::Neg(b(Term::Product(vec![(**num).clone(), d(den, env)?]))),
+            ]);
+            Term::Div(b(top), b(Term::Pow(den.clone(), 2)))
+        }
+        Term::Pow(a, 0) => zero_like(a, env)?,
+        Term::Pow(a, k) => Term::Product(vec![
+            Term::Const {
+                value: Rational::int(i64::from(*k)),
+                free: Vec::new(),
+            },
+            Term::Pow(a.clone(), k - 1),
+            d(a, env)?,
+        ]),
+        Term::Sqrt(a) => Term::Div(
+            b(d(a, env)?),
+            b(Term::Product(vec![Term::int(2), Term::Sqrt(a.clone())])),
+        ),
+        Term::Avg(a) => Term::Avg(b(d(a, env)?)),
+        Term::Deriv(a, s) => Term::Deriv(b(d(a, env)?), *s),
+        Term::Grad { .. } | Term::Variation { .. } => {
+            return Err(EvalError::Unsupported(
+                "a derivative by a symbol inside grad(…)".into(),
+            ))
+        }
+        Term::Mat { rows, cols, op } => {
+            let mat = |op: MatOp| Term::Mat {
+                rows: *rows,
+                cols: *cols,
+                op,
+            };
+            let op = match op {
+                MatOp::Literal(es) => {
+                    MatOp::Literal(es.iter().map(|x| d(x, env)).collect::<R<_>>()?)
+                }
+                MatOp::Def(name) => MatOp::Def(derived(name, symbol, c, env)?),
+                MatOp::Identity => MatOp::Literal(vec![Term::int(0); rows * cols]),
+                MatOp::Sum(ms) => MatOp::Sum(ms.iter().map(|x| d(x, env)).collect::<R<_>>()?),
+                MatOp::Scale(s, m) => MatOp::Sum(vec![
+                    mat(MatOp::Scale(b(d(s, env)?), m.clone())),
+                    mat(MatOp::Scale(s.clone(), b(d(m, env)?))),
+                ]),
+                MatOp::Product(x, y) => MatOp::Sum(vec![
+                    mat(MatOp::Product(b(d(x, env)?), y.clone())),
+                    mat(MatOp::Product(x.clone(), b(d(y, env)?))),
+                ]),
+                MatOp::Transpose(x) => MatOp::Transpose(b(d(x, env)?)),
+                // d(A⁻¹) = −A⁻¹ dA A⁻¹.
+                MatOp::Inverse(x) => {
+                    let inv = mat(MatOp::Inverse(x.clone()));
+                    let left = mat(MatOp::Product(b(inv.clone()), b(d(x, env)?)));
+                    MatOp::Scale(b(Term::int(-1)), b(mat(MatOp::Product(b(left), b(inv)))))
+                }
+                // x = A⁻¹ y: dx = A⁻¹ (dy − dA x).
+                MatOp::Solve(x, y) => {
+                    let solved = mat(MatOp::Solve(x.clone(), y.clone()));
+                    let dx = x.shape(env).map_or(Ok(Term::int(0)), |_| d(x, env))?;
+                    let dy_cols = y.shape(env).map_or(1, |(_, c)| c);
+                    let correction = Term::Mat {
+                        rows: *rows,
+                        cols: dy_cols,
+                        op: MatOp::Product(b(dx), b(solved)),
+                    };
+                    let rhs = Term::Mat {
+                        rows: *rows,
+                        cols: dy_cols,
+                        op: MatOp::Sum(vec![
+                            d(y, env)?,
+                            Term::Mat {
+                                rows: *rows,
+                                cols: dy_cols,
+                                op: MatOp::Scale(b(Term::int(-1)), b(correction)),
+                            },
+                        ]),
+                    };
+                    MatOp::Solve(x.clone(), b(rhs))
+                }
+                MatOp::Adjugate(_) => {
+                    return Err(EvalError::Unsupported("a derivative of an adjugate".into()))
+                }
+                MatOp::View {
+                    tensor,
+                    rows: ro,
+                    cols: co,
+                } => MatOp::View {
+                    tensor: b(d(tensor, env)?),
+                    rows: ro.clone(),
+                    cols: co.clone(),
+                },
+            };
+            mat(op)
+        }
+        // d det M = trace(adj(M) dM).
+        Term::Read(MatRead::Det, m) => {
+            let (n, _) = m
+                .shape(env)
+                .ok_or_else(|| EvalError::IllFormed("not a matrix".into()))?;
+            let product = Term::Mat {
+                rows: n,
+                cols: n,
+                op: MatOp::Product(
+                    b(Term::Mat {
+                        rows: n,
+                        cols: n,
+                        op: MatOp::Adjugate(m.clone()),
+                    }),
+                    b(d(m, env)?),
+                ),
+            };
+            Term::Read(MatRead::Trace, b(product))
+        }
+        Term::Read(read, m) => Term::Read(read.clone(), b(d(m, env)?)),
+    })
+}
+
+/// 0 with the free letters of `t` (or a zero matrix of its shape).
+fn zero_like(t: &Term, env: &Env<'_>) -> R<Term> {
+    if let Some((rows, cols)) = t.shape(env) {
+        return Ok(Term::Mat {
+            rows,
+            cols,
+            op: MatOp::Literal(vec![Term::int(0); rows * cols]),
+        });
+    }
+    let free = t.letters(env).map_err(EvalError::IllFormed)?.free;
+    Ok(Term::Const {
+        value: Rational::int(0),
+        free,
+    })
+}
+
+/// The name of the derivative of definition `name`, made (once) if it is new.
+fn derived(name: &str, symbol: &str, c: &[usize], env: &mut Env<'_>) -> R<String> {
+    let dname = format!("∂{name}/∂{}", component_name(symbol, c));
+    if !env.has_definition(&dname) {
+        let def = env
+            .definition_of(name)
+            .ok_or_else(|| EvalError::IllFormed(format!("`{name}` is not defined")))?;
+        // Registered before its body is made, so that a definition read twice is
+        // differentiated once.
+        env.derive(Definition {
+            name: dname.clone(),
+            formal: def.formal.clone(),
+            shape: def.shape,
+            body: Term::int(0),
+        });
+        let body = differentiate(&def.body, symbol, c, env)?;
+        env.derive(Definition {
+            name: dname.clone(),
+            formal: def.formal,
+            shape: def.shape,
+            body,
+        });
+    }
+    Ok(dname)
+}

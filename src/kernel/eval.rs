@@ -1,0 +1,1448 @@
+//! The kernel's evaluator: a [`Term`] in its [`Context`] to a tensor of fractions,
+//! one per value of its free letters.
+//!
+//! It is written for being read, not for speed: dense tensors, contraction by visiting
+//! every value of every letter of a product, determinants by expansion over column
+//! sets, no cancellation. Every component of a symbol is a polynomial variable
+//! (`sigma_12`, `n_3`, `R_g`); the linear assumptions are solved once by Gaussian
+//! elimination and the substitutions applied in order; a definition is evaluated once;
+//! `avg` applies the exact moments of the normal; a derivative along the position is
+//! the chain rule on jet variables (`u_2,13` is ∂²u_2/∂x_1∂x_3); `grad` differentiates
+//! the term ([`super::differentiate`]) and evaluates the derivative at the state; a
+//! square root is a root the caller offers, accepted only when its square is the
+//! radicand and its sign is certified on the box. A hostile term stops at the work
+//! budget, never runs without bound.
+
+use super::differentiate::differentiate;
+use super::frac::{Frac, FracError};
+use super::poly::{Poly, Var, VarTable};
+use super::rational::Rational;
+use super::statement::{Context, Definition, Equation, FracData, PolyData};
+use super::term::{Leaf, Letters, MatOp, MatRead, Order, Ranks, Slot, Term};
+use num_traits::{One, Zero};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+
+/// Term products one statement may spend in all.
+pub const WORK: usize = 50_000_000;
+
+/// The most components a symbol, definition or intermediate value may have (3^10).
+pub const MAX_COMPONENTS: usize = 59_049;
+
+/// Why the kernel has no value for a term.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum EvalError {
+    #[error("ill-formed: {0}")]
+    IllFormed(String),
+    #[error("not evaluable exactly: {0}")]
+    Unsupported(String),
+    #[error("division by zero")]
+    DivisionByZero,
+    #[error("the kernel's work or size bound")]
+    Limit,
+}
+
+impl From<FracError> for EvalError {
+    fn from(e: FracError) -> Self {
+        match e {
+            FracError::DivisionByZero => EvalError::DivisionByZero,
+            FracError::TooLarge => EvalError::Limit,
+        }
+    }
+}
+
+type R<T> = Result<T, EvalError>;
+
+/// A value: a tensor over its sorted free letters (row-major), or a matrix.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Tensor {
+        letters: Vec<char>,
+        comps: Vec<Frac>,
+    },
+    Matrix {
+        rows: usize,
+        cols: usize,
+        entries: Vec<Frac>,
+    },
+}
+
+impl Value {
+    fn scalar(f: Frac) -> Value {
+        Value::Tensor {
+            letters: Vec::new(),
+            comps: vec![f],
+        }
+    }
+
+    /// The components of a tensor value (a matrix's entries otherwise).
+    pub fn comps(&self) -> &[Frac] {
+        match self {
+            Value::Tensor { comps, .. } => comps,
+            Value::Matrix { entries, .. } => entries,
+        }
+    }
+
+    pub fn letters(&self) -> &[char] {
+        match self {
+            Value::Tensor { letters, .. } => letters,
+            Value::Matrix { .. } => &[],
+        }
+    }
+}
+
+/// The variable name of a component: `sigma_12`, or the symbol's own name for a scalar.
+pub fn component_name(symbol: &str, idx: &[usize]) -> String {
+    if idx.is_empty() {
+        return symbol.to_owned();
+    }
+    let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
+    format!("{symbol}_{digits}")
+}
+
+/// The variable name of a field component's derivative: `u_2,13` is ∂²u_2/∂x_1∂x_3,
+/// `theta_,2` is ∂θ/∂x_2 (the component's own name when `orders` is empty).
+pub fn jet_name(field: &str, idx: &[usize], orders: &[usize]) -> String {
+    let mut name = component_name(field, idx);
+    if !orders.is_empty() {
+        name.push_str(if idx.is_empty() { "_," } else { "," });
+        name.extend(orders.iter().map(|k| char::from(b'1' + *k as u8)));
+    }
+    name
+}
+
+/// Every assignment of `rank` indices in `0..dim`, row-major.
+pub fn assignments(dim: usize, rank: usize) -> Vec<Vec<usize>> {
+    let mut out = vec![Vec::new()];
+    for _ in 0..rank {
+        out = out
+            .into_iter()
+            .flat_map(|p| {
+                (0..dim).map(move |k| {
+                    let mut q = p.clone();
+                    q.push(k);
+                    q
+                })
+            })
+            .collect();
+    }
+    out
+}
+
+fn count(dim: usize, rank: usize) -> R<usize> {
+    u32::try_from(rank)
+        .ok()
+        .and_then(|r| dim.checked_pow(r))
+        .filter(|&n| n <= MAX_COMPONENTS)
+        .ok_or(EvalError::Limit)
+}
+
+/// The sign of a permutation of distinct values (0 when two repeat).
+fn permutation_sign(p: &[usize]) -> i64 {
+    let mut sign = 1;
+    for a in 0..p.len() {
+        for b in a + 1..p.len() {
+            if p[a] == p[b] {
+                return 0;
+            }
+            if p[a] > p[b] {
+                sign = -sign;
+            }
+        }
+    }
+    sign
+}
+
+/// What a variable a derivative acts on stands for.
+#[derive(Clone, Debug)]
+enum Varying {
+    Coordinate(usize),
+    Jet {
+        field: String,
+        idx: Vec<usize>,
+        orders: Vec<usize>,
+    },
+}
+
+/// A square root the kernel accepted: √radicand = root on the box `on`, the root's
+/// sign certified by coefficients.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RootTaken {
+    pub radicand: String,
+    pub root: String,
+    pub on: String,
+    pub sign: super::sign::ByCoefficients,
+}
+
+/// A fraction in words, at most eight terms of its numerator.
+pub fn show(f: &Frac, names: &VarTable) -> String {
+    let num = f.numerator().display_truncated(names, 8);
+    if f.denominator().is_empty() {
+        return num;
+    }
+    let den: Vec<String> = f
+        .denominator()
+        .iter()
+        .map(|(g, k)| {
+            let g = g.display_truncated(names, 8);
+            if *k == 1 {
+                format!("({g})")
+            } else {
+                format!("({g})^{k}")
+            }
+        })
+        .collect();
+    format!("({num}) / {}", den.join(" "))
+}
+
+/// One statement's evaluation environment.
+pub struct Env<'c> {
+    ctx: &'c Context,
+    pub vars: VarTable,
+    normal: Vec<Var>,
+    varying: HashMap<Var, Varying>,
+    symbols: HashMap<String, Vec<Frac>>,
+    cache: HashMap<String, Value>,
+    /// Definitions made by `grad`: the derivatives of definitions.
+    derived: Vec<Definition>,
+    active: Vec<String>,
+    /// Symbols some assumption mentions: a field among them cannot be varied.
+    assumed: BTreeSet<String>,
+    /// Square roots offered: accepted only after the kernel checks them.
+    roots: Vec<Frac>,
+    /// The eliminated components, each with its value in the free ones.
+    pivots: BTreeMap<Var, Poly>,
+    /// The square roots accepted, as the evidence states them.
+    pub roots_taken: Vec<RootTaken>,
+    /// Square roots accepted so far, by radicand.
+    certified: Vec<(Frac, Frac)>,
+    work: usize,
+}
+
+impl Ranks for Env<'_> {
+    fn dim(&self) -> usize {
+        self.ctx.dim
+    }
+    fn symbol_rank(&self, name: &str) -> Option<usize> {
+        self.ctx.symbols.get(name).copied()
+    }
+    fn def_rank(&self, name: &str) -> Option<usize> {
+        self.definition(name)
+            .filter(|d| d.shape.is_none())
+            .map(|d| d.formal.len())
+    }
+    fn def_shape(&self, name: &str) -> Option<(usize, usize)> {
+        self.definition(name).and_then(|d| d.shape)
+    }
+}
+
+impl<'c> Env<'c> {
+    /// The environment of `ctx` with the offered square roots: the assumptions solved
+    /// and substituted.
+    pub fn new(ctx: &'c Context, roots: &[FracData]) -> R<Self> {
+        if !(ctx.dim == 2 || ctx.dim == 3)
+            || (ctx.in_plane && (ctx.dim != 3 || ctx.normal.is_none()))
+        {
+            return Err(EvalError::IllFormed(
+                "the dimension is 2 or 3; a normal in a plane needs 3".into(),
+            ));
+        }
+        for &rank in ctx.symbols.values() {
+            count(ctx.dim, rank)?;
+        }
+        let mut env = Env {
+            ctx,
+            vars: VarTable::new(),
+            normal: Vec::new(),
+            varying: HashMap::new(),
+            symbols: HashMap::new(),
+            cache: HashMap::new(),
+            derived: Vec::new(),
+            active: Vec::new(),
+            assumed: BTreeSet::new(),
+            roots: Vec::new(),
+            pivots: BTreeMap::new(),
+            certified: Vec::new(),
+            roots_taken: Vec::new(),
+            work: WORK,
+        };
+        for r in roots {
+            let mut f = Frac::from(env.poly_of(&r.num)?);
+            for (d, k) in &r.den {
+                let d = Frac::from(env.poly_of(d)?).pow(*k)?;
+                f = f.div(&d)?;
+            }
+            env.roots.push(f);
+        }
+        if let Some(n) = &ctx.normal {
+            let free = if ctx.in_plane { 2 } else { ctx.dim };
+            env.normal = (0..free)
+                .map(|k| env.vars.intern(&component_name(n, &[k])))
+                .collect();
+        }
+        env.solve_equations()?;
+        for s in &ctx.substitutions {
+            let value = env.eval(&s.value)?;
+            let mut mentioned = BTreeSet::new();
+            env.mentions(&s.value, &mut mentioned)?;
+            let later = ctx
+                .substitutions
+                .iter()
+                .skip_while(|t| !std::ptr::eq(*t, s));
+            if later.clone().any(|t| mentioned.contains(&t.symbol)) {
+                return Err(EvalError::IllFormed(format!(
+                    "the substitution of `{}` refers to itself or to a later one",
+                    s.symbol
+                )));
+            }
+            env.assumed.extend(mentioned);
+            env.assumed.insert(s.symbol.clone());
+            let t = env.in_order(value, &s.formal)?;
+            if t.len() != count(ctx.dim, env.rank(&s.symbol)?)? {
+                return Err(EvalError::IllFormed(format!(
+                    "`{}` is substituted with the wrong rank",
+                    s.symbol
+                )));
+            }
+            env.symbols.insert(s.symbol.clone(), t);
+            // Definitions read so far may have read the symbol before it was replaced.
+            env.cache.clear();
+            env.certified.clear();
+        }
+        Ok(env)
+    }
+
+    fn definition(&self, name: &str) -> Option<&Definition> {
+        self.derived
+            .iter()
+            .rev()
+            .chain(self.ctx.definitions.iter().rev())
+            .find(|d| d.name == name)
+    }
+
+    fn rank(&self, symbol: &str) -> R<usize> {
+        self.ctx
+            .symbols
+            .get(symbol)
+            .copied()
+            .ok_or_else(|| EvalError::IllFormed(format!("`{symbol}` is not a declared symbol")))
+    }
+
+    /// The variable of one component, registered as varying for a field or the position.
+    pub fn component_var(&mut self, symbol: &str, idx: &[usize]) -> Var {
+        let v = self.vars.intern(&component_name(symbol, idx));
+        if self.ctx.fields.contains_key(symbol) {
+            self.varying.entry(v).or_insert_with(|| Varying::Jet {
+                field: symbol.to_owned(),
+                idx: idx.to_vec(),
+                orders: Vec::new(),
+            });
+        } else if self.ctx.position.as_deref() == Some(symbol) {
+            self.varying.insert(v, Varying::Coordinate(idx[0]));
+        }
+        v
+    }
+
+    /// A symbol's components, after the assumptions: each eliminated component is its
+    /// value in the free ones.
+    fn symbol(&mut self, name: &str) -> R<Vec<Frac>> {
+        if let Some(t) = self.symbols.get(name) {
+            return Ok(t.clone());
+        }
+        let rank = self.rank(name)?;
+        let mut t = Vec::new();
+        for idx in assignments(self.ctx.dim, rank) {
+            let v = self.component_var(name, &idx);
+            let p = self.pivots.get(&v).cloned().unwrap_or_else(|| Poly::var(v));
+            t.push(Frac::from(p));
+        }
+        self.symbols.insert(name.to_owned(), t.clone());
+        Ok(t)
+    }
+
+    /// Every symbol `t` reads, through the definitions it reads.
+    pub(super) fn mentions<'t>(&'t self, t: &'t Term, out: &mut BTreeSet<String>) -> R<()> {
+        let mut stack: Vec<&Term> = vec![t];
+        let mut seen: BTreeSet<&str> = BTreeSet::new();
+        while let Some(t) = stack.pop() {
+            match t {
+                Term::Leaf {
+                    of: Leaf::Symbol(s),
+                    ..
+                } => {
+                    out.insert(s.clone());
+                }
+                Term::Leaf {
+                    of: Leaf::Def(d), ..
+                }
+                | Term::Mat {
+                    op: MatOp::Def(d), ..
+                } if seen.insert(d) => {
+                    if let Some(def) = self.definition(d) {
+                        stack.push(&def.body);
+                    }
+                }
+                Term::Grad { symbol, .. } | Term::Variation { field: symbol, .. } => {
+                    out.insert(symbol.clone());
+                }
+                _ => {}
+            }
+            stack.extend(children(t));
+        }
+        Ok(())
+    }
+
+    /// The linear assumptions as one system over the components, solved by Gauss–Jordan
+    /// elimination over ℚ (constant terms may be polynomials in the other variables);
+    /// each pivot component is replaced by its value in the free ones.
+    fn solve_equations(&mut self) -> R<()> {
+        let d = self.ctx.dim;
+        let mut rows: Vec<Poly> = Vec::new();
+        let equations = self.ctx.equations.clone();
+        // The components an equation sets explicitly (its left side) are eliminated
+        // first: then a parameter such as Y in `sigma_11 = Y` stays free, with the box
+        // it is given on.
+        let mut explicit: BTreeSet<Var> = BTreeSet::new();
+        for e in &equations {
+            let symbol = match e {
+                Equation::Symmetric(s) | Equation::Antisymmetric(s) | Equation::Traceless(s) => s,
+                Equation::Component { symbol, .. } | Equation::Equals { symbol, .. } => symbol,
+            };
+            self.assumed.insert(symbol.clone());
+            let rank = self.rank(symbol)?;
+            let var = |env: &mut Self, idx: &[usize]| Poly::var(env.component_var(symbol, idx));
+            match e {
+                Equation::Symmetric(_) | Equation::Antisymmetric(_) | Equation::Traceless(_)
+                    if rank != 2 =>
+                {
+                    return Err(EvalError::IllFormed(format!("`{symbol}` is not of rank 2")))
+                }
+                Equation::Traceless(_) => {
+                    let trace = (0..d).fold(Poly::zero(), |acc, k| &acc + &var(self, &[k, k]));
+                    rows.push(trace);
+                }
+                Equation::Symmetric(_) | Equation::Antisymmetric(_) => {
+                    let anti = matches!(e, Equation::Antisymmetric(_));
+                    for i in 0..d {
+                        for j in i..d {
+                            if i == j && !anti {
+                                continue;
+                            }
+                            let (x, y) = (var(self, &[i, j]), var(self, &[j, i]));
+                            rows.push(if anti { &x + &y } else { &x - &y });
+                        }
+                    }
+                }
+                Equation::Component { index, value, .. } => {
+                    if index.len() != rank || index.iter().any(|&k| k >= d) {
+                        return Err(EvalError::IllFormed(format!(
+                            "a component of `{symbol}` out of range"
+                        )));
+                    }
+                    let v = self.affine(value)?;
+                    explicit.insert(self.component_var(symbol, index));
+                    rows.push(&var(self, index) - &v[0]);
+                }
+                Equation::Equals { formal, value, .. } => {
+                    let values = self.affine(value)?;
+                    let letters = Term::letters(value, self)
+                        .map_err(EvalError::IllFormed)?
+                        .free;
+                    let mut sorted = formal.clone();
+                    sorted.sort_unstable();
+                    if sorted != letters || formal.len() != rank {
+                        return Err(EvalError::IllFormed(format!(
+                            "the indices of `{symbol}` and its value differ"
+                        )));
+                    }
+                    for idx in assignments(d, rank) {
+                        let at = position_of(&letters, formal, &idx, d);
+                        explicit.insert(self.component_var(symbol, &idx));
+                        rows.push(&var(self, &idx) - &values[at]);
+                    }
+                }
+            }
+        }
+        self.mentions_of_equations(&equations)?;
+        // Components are the variables that are components of declared symbols.
+        let is_component = |env: &Self, v: Var| {
+            !env.normal.contains(&v)
+                && !matches!(env.varying.get(&v), Some(Varying::Jet { orders, .. }) if !orders.is_empty())
+        };
+        let mut values: BTreeMap<Var, Poly> = BTreeMap::new();
+        for row in rows {
+            // Reduce by the pivots found so far.
+            let row = substitute(&row, &values)?;
+            // The pivot: an explicit component first, then by name, the highest
+            // index first (a symmetric tensor keeps its upper triangle).
+            let pivot = row
+                .terms()
+                .filter_map(|(m, c)| match m.factors() {
+                    [(v, 1)] if is_component(self, *v) => Some((*v, c.clone())),
+                    _ => None,
+                })
+                .min_by_key(|(v, _)| {
+                    let name = self.vars.name(*v).to_owned();
+                    (!explicit.contains(v), std::cmp::Reverse(name))
+                });
+            let Some((v, c)) = pivot else {
+                if row.is_zero() {
+                    continue;
+                }
+                return Err(EvalError::IllFormed(
+                    "the assumptions contradict each other, or are not linear in the components"
+                        .into(),
+                ));
+            };
+            // Every other term must be free of components of degree one or more
+            // times a component: the row is affine in the components.
+            for (m, _) in row.terms() {
+                let components = m
+                    .factors()
+                    .iter()
+                    .filter(|(w, _)| is_component(self, *w))
+                    .count();
+                let single = matches!(m.factors(), [(_, 1)]);
+                if components > 1 || (components == 1 && !single) {
+                    return Err(EvalError::IllFormed(
+                        "an assumption is not affine in the components".into(),
+                    ));
+                }
+            }
+            let scale = Poly::constant(-&c.recip().ok_or(EvalError::DivisionByZero)?);
+            let rest = &row - &Poly::term(super::poly::Monomial::var(v, 1), c.clone());
+            let value = rest.checked_mul(&scale).map_err(|_| EvalError::Limit)?;
+            for w in values.values_mut() {
+                *w = substitute(w, &BTreeMap::from([(v, value.clone())]))?;
+            }
+            values.insert(v, value);
+        }
+        self.pivots = values;
+        // Symbols read while the equations were formed are read again with the pivots.
+        self.symbols.clear();
+        self.cache.clear();
+        Ok(())
+    }
+
+    fn mentions_of_equations(&mut self, equations: &[Equation]) -> R<()> {
+        let mut mentioned = BTreeSet::new();
+        for e in equations {
+            if let Equation::Component { value, .. } | Equation::Equals { value, .. } = e {
+                self.mentions(value, &mut mentioned)?;
+            }
+        }
+        self.assumed.extend(mentioned);
+        Ok(())
+    }
+
+    /// The components of `value` with every symbol unconstrained: polynomials, for an
+    /// equation (the elimination checks that they are affine).
+    fn affine(&mut self, value: &Term) -> R<Vec<Poly>> {
+        let v = self.eval(value)?;
+        self.cache.clear();
+        v.comps()
+            .iter()
+            .map(|f| {
+                if f.denominator().is_empty() && f.conditions().is_empty() {
+                    Ok(f.numerator().clone())
+                } else {
+                    Err(EvalError::IllFormed(
+                        "an assumption divides by a sum".into(),
+                    ))
+                }
+            })
+            .collect()
+    }
+
+    fn charge(&mut self, cost: usize) -> R<()> {
+        self.work = self.work.checked_sub(cost).ok_or(EvalError::Limit)?;
+        Ok(())
+    }
+
+    fn mul(&mut self, a: &Frac, b: &Frac) -> R<Frac> {
+        self.charge(
+            a.numerator()
+                .num_terms()
+                .saturating_mul(b.numerator().num_terms())
+                .max(1),
+        )?;
+        Ok(a.mul(b)?)
+    }
+
+    fn add(&mut self, a: &Frac, b: &Frac) -> R<Frac> {
+        if !a.denominator().is_empty() || !b.denominator().is_empty() {
+            self.charge(a.numerator().num_terms() + b.numerator().num_terms())?;
+        }
+        Ok(a.add(b)?)
+    }
+
+    fn div(&mut self, a: &Frac, b: &Frac) -> R<Frac> {
+        self.charge(a.numerator().num_terms().max(1))?;
+        Ok(a.div(b)?)
+    }
+
+    /// The value of `t`.
+    pub fn eval(&mut self, t: &Term) -> R<Value> {
+        let letters = t.letters(self).map_err(EvalError::IllFormed)?;
+        let value = self.eval_checked(t, &letters)?;
+        if value.comps().len() > MAX_COMPONENTS {
+            return Err(EvalError::Limit);
+        }
+        Ok(value)
+    }
+
+    fn scalar_of(&mut self, t: &Term) -> R<Frac> {
+        match self.eval(t)? {
+            Value::Tensor { letters, mut comps } if letters.is_empty() => Ok(comps.remove(0)),
+            _ => Err(EvalError::IllFormed("a scalar was expected".into())),
+        }
+    }
+
+    fn eval_checked(&mut self, t: &Term, l: &Letters) -> R<Value> {
+        let d = self.ctx.dim;
+        let tensor = |letters: Vec<char>, comps: Vec<Frac>| Value::Tensor { letters, comps };
+        Ok(match t {
+            Term::Const { value, .. } => tensor(
+                l.free.clone(),
+                vec![Frac::constant(value.clone()); count(d, l.free.len())?],
+            ),
+            Term::Leaf { of, slots } => {
+                let base = self.leaf(of)?;
+                let rank = slots.len();
+                self.contract(&[(&base, slots.clone())], &l.free, rank)?
+            }
+            Term::Sum(terms) => {
+                let mut acc = self.eval(&terms[0])?;
+                for term in &terms[1..] {
+                    let v = self.eval(term)?;
+                    let (Value::Tensor { comps: a, .. }, Value::Tensor { comps: b, .. }) =
+                        (&mut acc, &v)
+                    else {
+                        return Err(EvalError::IllFormed(
+                            "a sum of matrices outside a matrix".into(),
+                        ));
+                    };
+                    for (x, y) in a.iter_mut().zip(b) {
+                        *x = self.add(x, y)?;
+                    }
+                }
+                acc
+            }
+            Term::Product(fs) => {
+                let mut factors = Vec::with_capacity(fs.len());
+                for f in fs {
+                    let v = self.eval(f)?;
+                    let slots: Vec<Slot> = v.letters().iter().map(|&c| Slot::Letter(c)).collect();
+                    factors.push((v.comps().to_vec(), slots));
+                }
+                let refs: Vec<(&[Frac], Vec<Slot>)> = factors
+                    .iter()
+                    .map(|(c, s)| (c.as_slice(), s.clone()))
+                    .collect();
+                self.contract(&refs, &l.free, 0)?
+            }
+            Term::Neg(a) => self.map(a, |_, f| Ok(f.neg()))?,
+            // A divisor written as a product of scalars or a power is divided by one
+            // factor at a time, so that the factors stay apart (and are named apart
+            // where the statement is claimed to hold).
+            Term::Div(a, b) => {
+                // The numerator first: variables are numbered in the order they are
+                // met, and the evidence writes polynomials in that order.
+                let numerator = self.eval(a)?;
+                let parts: Vec<(&Term, u32)> = match &**b {
+                    Term::Product(fs) => fs.iter().map(|f| (f, 1)).collect(),
+                    Term::Pow(base, k) => vec![(&**base, *k)],
+                    other => vec![(other, 1)],
+                };
+                let mut dens = Vec::with_capacity(parts.len());
+                for (part, k) in parts {
+                    let den = self.scalar_of(part)?;
+                    for _ in 0..k.min(64) {
+                        dens.push(den.clone());
+                    }
+                    if k > 64 {
+                        dens.push(den.pow(k - 64)?);
+                    }
+                }
+                self.map_value(numerator, |env, f| {
+                    let mut out = f.clone();
+                    for den in &dens {
+                        out = env.div(&out, den)?;
+                    }
+                    Ok(out)
+                })?
+            }
+            Term::Pow(a, k) => {
+                let x = self.scalar_of(a)?;
+                let cost = x.numerator().num_terms().saturating_pow((*k).min(64));
+                self.charge(cost)?;
+                Value::scalar(x.pow(*k)?)
+            }
+            Term::Sqrt(a) => {
+                let x = self.scalar_of(a)?;
+                Value::scalar(self.square_root(&x)?)
+            }
+            Term::Avg(a) => {
+                let normal = self.normal.clone();
+                if normal.is_empty() {
+                    return Err(EvalError::IllFormed("an average without a normal".into()));
+                }
+                self.map(a, |env, f| {
+                    if normal.iter().any(|&v| f.divides_by(v)) {
+                        return Err(EvalError::Unsupported(
+                            "a divisor with the normal in an average".into(),
+                        ));
+                    }
+                    env.charge(f.numerator().num_terms())?;
+                    Ok(f.map_numerator(|p| Ok(p.average_over_normal(&normal)?))?)
+                })?
+            }
+            Term::Deriv(a, slot) => {
+                let v = self.eval(a)?;
+                let mut comps = Vec::with_capacity(v.comps().len() * d);
+                for f in v.comps() {
+                    for k in 0..d {
+                        comps.push(self.total_derivative(f, k)?);
+                    }
+                }
+                let mut slots: Vec<Slot> = v.letters().iter().map(|&c| Slot::Letter(c)).collect();
+                slots.push(*slot);
+                self.contract(&[(&comps, slots)], &l.free, 0)?
+            }
+            Term::Grad {
+                body,
+                symbol,
+                slots,
+            } => {
+                let rank = self.rank(symbol)?;
+                let mut parts = Vec::new();
+                let mut letters = Vec::new();
+                for c in assignments(d, rank) {
+                    let derivative = differentiate(body, symbol, &c, self)?;
+                    let v = self.eval(&derivative)?;
+                    letters = v.letters().to_vec();
+                    parts.push(v.comps().to_vec());
+                }
+                // Body components first, then the symbol's.
+                let n = parts.first().map_or(0, Vec::len);
+                let comps: Vec<Frac> = (0..n)
+                    .flat_map(|i| parts.iter().map(move |p| p[i].clone()))
+                    .collect();
+                let mut all: Vec<Slot> = letters.iter().map(|&c| Slot::Letter(c)).collect();
+                all.extend(slots);
+                self.contract(&[(&comps, all)], &l.free, 0)?
+            }
+            Term::Variation { body, field, slots } => {
+                self.variation(body, field, slots, &l.free)?
+            }
+            Term::Opaque { what, .. } => return Err(EvalError::Unsupported(what.clone())),
+            Term::Mat { rows, cols, op } => {
+                let entries = self.matrix(*rows, *cols, op)?;
+                Value::Matrix {
+                    rows: *rows,
+                    cols: *cols,
+                    entries,
+                }
+            }
+            Term::Read(read, m) => {
+                let Value::Matrix {
+                    rows,
+                    cols,
+                    entries,
+                } = self.eval(m)?
+                else {
+                    return Err(EvalError::IllFormed("not a matrix".into()));
+                };
+                match read {
+                    MatRead::Det => Value::scalar(self.det(&entries, rows)?),
+                    MatRead::Trace => {
+                        let mut acc = Frac::default();
+                        for k in 0..rows {
+                            acc = self.add(&acc, &entries[k * cols + k])?;
+                        }
+                        Value::scalar(acc)
+                    }
+                    MatRead::Entry(i, j) => Value::scalar(entries[i * cols + j].clone()),
+                    MatRead::Tensor { rows: ro, cols: co } => {
+                        let free = l.free.clone();
+                        let mut comps = Vec::new();
+                        for idx in assignments(d, free.len()) {
+                            let at = |o: &Order| {
+                                let values: Vec<usize> = o
+                                    .slots
+                                    .iter()
+                                    .map(|s| match s {
+                                        Slot::Letter(c) => {
+                                            idx[free.iter().position(|x| x == c).unwrap_or(0)]
+                                        }
+                                        Slot::Fixed(k) => *k,
+                                    })
+                                    .collect();
+                                o.positions.iter().position(|p| *p == values)
+                            };
+                            let col = co.as_ref().map_or(Some(0), at);
+                            comps.push(match (at(ro), col) {
+                                (Some(a), Some(b)) => entries[a * cols + b].clone(),
+                                _ => Frac::default(),
+                            });
+                        }
+                        tensor(free, comps)
+                    }
+                }
+            }
+        })
+    }
+
+    /// `f` applied to every component of `a`'s value.
+    fn map(&mut self, a: &Term, f: impl FnMut(&mut Self, &Frac) -> R<Frac>) -> R<Value> {
+        let v = self.eval(a)?;
+        self.map_value(v, f)
+    }
+
+    /// `f` applied to every component of a value.
+    fn map_value(&mut self, v: Value, mut f: impl FnMut(&mut Self, &Frac) -> R<Frac>) -> R<Value> {
+        Ok(match v {
+            Value::Tensor { letters, comps } => {
+                let comps = comps.iter().map(|x| f(self, x)).collect::<R<_>>()?;
+                Value::Tensor { letters, comps }
+            }
+            Value::Matrix {
+                rows,
+                cols,
+                entries,
+            } => {
+                let entries = entries.iter().map(|x| f(self, x)).collect::<R<_>>()?;
+                Value::Matrix {
+                    rows,
+                    cols,
+                    entries,
+                }
+            }
+        })
+    }
+
+    /// A leaf's components in slot order.
+    fn leaf(&mut self, of: &Leaf) -> R<Vec<Frac>> {
+        let d = self.ctx.dim;
+        Ok(match of {
+            Leaf::Delta => assignments(d, 2)
+                .iter()
+                .map(|i| Frac::constant(Rational::int(i64::from(i[0] == i[1]))))
+                .collect(),
+            Leaf::Eps => assignments(d, d)
+                .iter()
+                .map(|i| Frac::constant(Rational::int(permutation_sign(i))))
+                .collect(),
+            Leaf::Normal => {
+                if self.ctx.normal.is_none() {
+                    return Err(EvalError::IllFormed("no normal is declared".into()));
+                }
+                (0..d)
+                    .map(|k| {
+                        Frac::from(
+                            self.normal
+                                .get(k)
+                                .map_or_else(Poly::zero, |&v| Poly::var(v)),
+                        )
+                    })
+                    .collect()
+            }
+            Leaf::Symbol(s) => self.symbol(s)?,
+            Leaf::Def(name) => match self.def_value(name)? {
+                Value::Tensor { comps, .. } => comps,
+                Value::Matrix { .. } => {
+                    return Err(EvalError::IllFormed(format!("`{name}` is a matrix")))
+                }
+            },
+        })
+    }
+
+    /// A definition's value: a tensor in its formal order, or a matrix.
+    fn def_value(&mut self, name: &str) -> R<Value> {
+        if let Some(v) = self.cache.get(name) {
+            return Ok(v.clone());
+        }
+        let def = self
+            .definition(name)
+            .cloned()
+            .ok_or_else(|| EvalError::IllFormed(format!("`{name}` is not defined")))?;
+        if self.active.iter().any(|a| a == name) {
+            return Err(EvalError::IllFormed(format!(
+                "`{name}` is defined through itself"
+            )));
+        }
+        self.active.push(name.to_owned());
+        let v = self.eval(&def.body);
+        self.active.pop();
+        let v = v?;
+        let v = match (v, def.shape) {
+            (m @ Value::Matrix { .. }, Some(_)) => m,
+            (Value::Tensor { letters, comps }, None) => {
+                let mut sorted = def.formal.clone();
+                sorted.sort_unstable();
+                if sorted != letters {
+                    return Err(EvalError::IllFormed(format!(
+                        "the indices of `{name}` and its body differ"
+                    )));
+                }
+                Value::Tensor {
+                    letters: def.formal.clone(),
+                    comps: self.in_order(Value::Tensor { letters, comps }, &def.formal)?,
+                }
+            }
+            _ => {
+                return Err(EvalError::IllFormed(format!(
+                    "`{name}` has the wrong shape"
+                )))
+            }
+        };
+        // A definition is undefined wherever one of its components is.
+        let v = match v {
+            Value::Tensor { letters, comps } => Value::Tensor {
+                letters,
+                comps: with_all_conditions(comps),
+            },
+            Value::Matrix {
+                rows,
+                cols,
+                entries,
+            } => Value::Matrix {
+                rows,
+                cols,
+                entries: with_all_conditions(entries),
+            },
+        };
+        self.cache.insert(name.to_owned(), v.clone());
+        Ok(v)
+    }
+
+    /// A tensor value's components reordered from sorted letters into `formal` order.
+    fn in_order(&self, v: Value, formal: &[char]) -> R<Vec<Frac>> {
+        let Value::Tensor { letters, comps } = v else {
+            return Err(EvalError::IllFormed(
+                "a matrix where a tensor belongs".into(),
+            ));
+        };
+        let d = self.ctx.dim;
+        let mut sorted = formal.to_vec();
+        sorted.sort_unstable();
+        if sorted != letters {
+            return Err(EvalError::IllFormed("indices differ".into()));
+        }
+        Ok(assignments(d, formal.len())
+            .iter()
+            .map(|idx| comps[position_of(&letters, formal, idx, d)].clone())
+            .collect())
+    }
+
+    /// Σ over the summed letters of Π factors (each a tensor with its axes' slots), for
+    /// every value of `out`; the first `_rank` is unused (a leaf's own rank).
+    fn contract(
+        &mut self,
+        factors: &[(&[Frac], Vec<Slot>)],
+        out: &[char],
+        _rank: usize,
+    ) -> R<Value> {
+        let d = self.ctx.dim;
+        let mut all: Vec<char> = out.to_vec();
+        for (_, slots) in factors {
+            for s in slots {
+                if let Slot::Letter(c) = s {
+                    if !all.contains(c) {
+                        all.push(*c);
+                    }
+                }
+            }
+        }
+        let total = count(d, all.len()).map_err(|_| EvalError::Limit)?;
+        let outs = count(d, out.len())?;
+        let mut comps = vec![Frac::default(); outs];
+        let mut values = vec![0usize; all.len()];
+        for _ in 0..total {
+            let mut product = Frac::one();
+            let mut zero = false;
+            for (t, slots) in factors {
+                let mut offset = 0;
+                for s in slots {
+                    let v = match s {
+                        Slot::Letter(c) => values[all.iter().position(|x| x == c).unwrap_or(0)],
+                        Slot::Fixed(k) => *k,
+                    };
+                    offset = offset * d + v;
+                }
+                let x = t.get(offset).ok_or_else(|| {
+                    EvalError::IllFormed("a slot count that is not the rank".into())
+                })?;
+                if x.is_zero() && x.conditions().is_empty() {
+                    zero = true;
+                    break;
+                }
+                product = self.mul(&product, x)?;
+            }
+            if !zero {
+                let at = values[..out.len()].iter().fold(0, |acc, &v| acc * d + v);
+                comps[at] = self.add(&comps[at], &product)?;
+            }
+            // The odometer, last letter fastest.
+            for k in (0..values.len()).rev() {
+                values[k] += 1;
+                if values[k] < d {
+                    break;
+                }
+                values[k] = 0;
+            }
+        }
+        Ok(Value::Tensor {
+            letters: out.to_vec(),
+            comps,
+        })
+    }
+
+    /// D_k f = Σ_v ∂f/∂v · ∂v/∂x_k over the variables of the numerator; no divisor may
+    /// vary with the position.
+    fn total_derivative(&mut self, f: &Frac, k: usize) -> R<Frac> {
+        let varying: Vec<Var> = self.varying.keys().copied().collect();
+        if varying.iter().any(|&v| f.divides_by(v)) {
+            return Err(EvalError::Unsupported(
+                "a divisor that varies with the position".into(),
+            ));
+        }
+        let p = f.numerator();
+        let mut acc = Poly::zero();
+        for x in p.variables() {
+            let dx = match self.varying.get(&x).cloned() {
+                Some(Varying::Coordinate(j)) if j == k => Poly::one(),
+                Some(Varying::Jet {
+                    field,
+                    idx,
+                    mut orders,
+                }) if self
+                    .ctx
+                    .fields
+                    .get(&field)
+                    .is_some_and(|deps| deps.get(k) == Some(&true)) =>
+                {
+                    orders.push(k);
+                    orders.sort_unstable();
+                    let w = self.vars.intern(&jet_name(&field, &idx, &orders));
+                    self.varying.insert(w, Varying::Jet { field, idx, orders });
+                    Poly::var(w)
+                }
+                _ => continue,
+            };
+            let term = p.derivative(x);
+            self.charge(term.num_terms().saturating_mul(dx.num_terms()))?;
+            acc += &term.checked_mul(&dx).map_err(|_| EvalError::Limit)?;
+        }
+        Ok(f.map_numerator(|_| Ok(acc))?)
+    }
+
+    /// The Euler operator: Σ_α (−1)^|α| D_α (∂P/∂v_j,α) over the jet variables of the
+    /// field that P reads, for every component of P and of the field.
+    fn variation(&mut self, body: &Term, field: &str, slots: &[Slot], out: &[char]) -> R<Value> {
+        if self.assumed.contains(field) || !self.ctx.fields.contains_key(field) {
+            return Err(EvalError::Unsupported(format!(
+                "`{field}` is not a free field to vary"
+            )));
+        }
+        let d = self.ctx.dim;
+        let v = self.eval(body)?;
+        let field_comps = assignments(d, self.rank(field)?);
+        let mut comps = Vec::new();
+        for f in v.comps() {
+            if !f.denominator().is_empty() {
+                return Err(EvalError::Unsupported("a density with a divisor".into()));
+            }
+            let p = f.numerator();
+            for idx in &field_comps {
+                let mut acc = Frac::default();
+                for x in p.variables() {
+                    let Some(Varying::Jet {
+                        field: g,
+                        idx: i,
+                        orders,
+                    }) = self.varying.get(&x).cloned()
+                    else {
+                        continue;
+                    };
+                    if g != field || i != *idx {
+                        continue;
+                    }
+                    let mut term = Frac::from(p.derivative(x));
+                    for &k in &orders {
+                        term = self.total_derivative(&term, k)?;
+                    }
+                    if orders.len() % 2 == 1 {
+                        term = term.neg();
+                    }
+                    acc = self.add(&acc, &term)?;
+                }
+                comps.push(acc);
+            }
+        }
+        let mut all: Vec<Slot> = v.letters().iter().map(|&c| Slot::Letter(c)).collect();
+        all.extend(slots);
+        self.contract(&[(&comps, all)], out, 0)
+    }
+
+    /// √x: a nonnegative rational, or an offered root r with r² = x exactly (cleared)
+    /// and r ≥ 0 on the box by coefficient signs.
+    fn square_root(&mut self, x: &Frac) -> R<Frac> {
+        if x.denominator().is_empty() {
+            if let Some(q) = x.numerator().as_constant() {
+                let r = q
+                    .sqrt_exact()
+                    .ok_or_else(|| EvalError::Unsupported(format!("sqrt({q}) is irrational")))?;
+                return Ok(Frac::constant(r).with_conditions_of(x));
+            }
+        }
+        if let Some((_, r)) = self.certified.iter().find(|(y, _)| y == x) {
+            return Ok(r.clone());
+        }
+        let box_ = self.given_box();
+        for r in self.roots.clone() {
+            let square = self.mul(&r, &r)?;
+            if !square.cleared_difference(x)?.is_zero() {
+                continue;
+            }
+            let sign = match r
+                .denominator()
+                .is_empty()
+                .then(|| r.numerator().as_constant())
+                .flatten()
+            {
+                Some(c) if !c.is_negative() => Some(super::sign::ByCoefficients {
+                    substitution: String::new(),
+                    cases: 0,
+                }),
+                Some(_) => None,
+                None => super::sign::by_coefficients(
+                    &r,
+                    &box_,
+                    super::statement::Sign::NonNegative,
+                    &self.vars,
+                ),
+            };
+            if let Some(how) = sign {
+                let on: Vec<String> = box_
+                    .iter()
+                    .map(|(v, i)| i.describe(self.vars.name(*v)))
+                    .collect();
+                self.roots_taken.push(RootTaken {
+                    radicand: show(&x.tidied(), &self.vars),
+                    root: show(&r, &self.vars),
+                    on: if on.is_empty() {
+                        "every real value".to_owned()
+                    } else {
+                        on.join(", ")
+                    },
+                    sign: how,
+                });
+                let r = r.with_conditions_of(x);
+                self.certified.push((x.clone(), r.clone()));
+                return Ok(r);
+            }
+        }
+        Err(EvalError::Unsupported(
+            "a square root whose value and sign on the box are not certified".into(),
+        ))
+    }
+
+    /// The box `given` over the variables it names.
+    pub fn given_box(&mut self) -> Vec<(Var, super::statement::Interval)> {
+        let given = self.ctx.given.clone();
+        given
+            .into_iter()
+            .map(|(name, i)| (self.vars.intern(&name), i))
+            .collect()
+    }
+
+    /// The normal's variables.
+    pub fn normal_vars(&self) -> &[Var] {
+        &self.normal
+    }
+
+    /// A matrix term's entries, row by row.
+    fn matrix(&mut self, rows: usize, cols: usize, op: &MatOp) -> R<Vec<Frac>> {
+        let d = self.ctx.dim;
+        let of = |env: &mut Self, t: &Term| -> R<(usize, usize, Vec<Frac>)> {
+            match env.eval(t)? {
+                Value::Matrix {
+                    rows,
+                    cols,
+                    entries,
+                } => Ok((rows, cols, entries)),
+                Value::Tensor { letters, comps } if letters.is_empty() => Ok((1, 1, comps)),
+                _ => Err(EvalError::IllFormed("a matrix was expected".into())),
+            }
+        };
+        Ok(match op {
+            MatOp::Literal(entries) => entries
+                .iter()
+                .map(|e| self.scalar_of(e))
+                .collect::<R<_>>()?,
+            MatOp::Def(name) => match self.def_value(name)? {
+                Value::Matrix { entries, .. } => entries,
+                Value::Tensor { .. } => {
+                    return Err(EvalError::IllFormed(format!("`{name}` is not a matrix")))
+                }
+            },
+            MatOp::Identity => (0..rows * cols)
+                .map(|k| Frac::constant(Rational::int(i64::from(k / cols == k % cols))))
+                .collect(),
+            MatOp::Sum(ms) => {
+                let mut acc = of(self, &ms[0])?.2;
+                for m in &ms[1..] {
+                    let b = of(self, m)?.2;
+                    for (x, y) in acc.iter_mut().zip(&b) {
+                        *x = self.add(x, y)?;
+                    }
+                }
+                acc
+            }
+            MatOp::Scale(s, m) => {
+                let s = self.scalar_of(s)?;
+                let m = of(self, m)?.2;
+                m.iter().map(|x| self.mul(x, &s)).collect::<R<_>>()?
+            }
+            MatOp::Product(a, b) => {
+                let (_, inner, a) = of(self, a)?;
+                let b = of(self, b)?.2;
+                self.product(&a, &b, rows, inner, cols)?
+            }
+            MatOp::Transpose(a) => {
+                let a = of(self, a)?.2;
+                (0..rows * cols)
+                    .map(|k| a[(k % cols) * rows + k / cols].clone())
+                    .collect()
+            }
+            MatOp::Adjugate(a) => {
+                let a = of(self, a)?.2;
+                self.adjugate(&a, rows)?
+            }
+            MatOp::Inverse(a) | MatOp::Solve(a, _) => {
+                let (n, _, am) = of(self, a)?;
+                let det = self.det(&am, n)?;
+                if det.is_zero() {
+                    return Err(EvalError::DivisionByZero);
+                }
+                let mut adj = self.adjugate(&am, n)?;
+                if let MatOp::Solve(_, b) = op {
+                    let b = of(self, b)?.2;
+                    adj = self.product(&adj, &b, n, n, cols)?;
+                }
+                adj.iter().map(|x| self.div(x, &det)).collect::<R<_>>()?
+            }
+            MatOp::View {
+                tensor,
+                rows: ro,
+                cols: co,
+            } => {
+                let v = self.eval(tensor)?;
+                let letters = v.letters().to_vec();
+                let mut out = Vec::with_capacity(rows * cols);
+                for a in 0..rows {
+                    for b in 0..cols {
+                        let mut bound: Vec<(char, usize)> = Vec::new();
+                        let mut bind = |o: &Order, p: usize| {
+                            for (s, &v) in o.slots.iter().zip(&o.positions[p]) {
+                                if let Slot::Letter(c) = s {
+                                    bound.push((*c, v));
+                                }
+                            }
+                        };
+                        bind(ro, a);
+                        if let Some(co) = co {
+                            bind(co, b);
+                        }
+                        let at = letters.iter().fold(0, |acc, c| {
+                            acc * d + bound.iter().find(|(l, _)| l == c).map_or(0, |&(_, v)| v)
+                        });
+                        out.push(v.comps()[at].clone());
+                    }
+                }
+                out
+            }
+        })
+    }
+
+    fn product(
+        &mut self,
+        a: &[Frac],
+        b: &[Frac],
+        rows: usize,
+        inner: usize,
+        cols: usize,
+    ) -> R<Vec<Frac>> {
+        let mut out = Vec::with_capacity(rows * cols);
+        for i in 0..rows {
+            for j in 0..cols {
+                let mut acc = Frac::default();
+                for k in 0..inner {
+                    let p = self.mul(&a[i * inner + k], &b[k * cols + j])?;
+                    acc = self.add(&acc, &p)?;
+                }
+                out.push(acc);
+            }
+        }
+        Ok(out)
+    }
+
+    /// det by expansion along rows over the sets of columns used so far (no division):
+    /// minor(S) for the first |S| rows and the columns in S.
+    fn det(&mut self, m: &[Frac], n: usize) -> R<Frac> {
+        if n > 16 {
+            return Err(EvalError::Limit);
+        }
+        let mut minors: Vec<Frac> = vec![Frac::default(); 1 << n];
+        minors[0] = Frac::one();
+        for set in 1usize..(1 << n) {
+            let row = set.count_ones() as usize - 1;
+            let mut acc = Frac::default();
+            // The sign of a column is the parity of the columns of the set after it.
+            for col in (0..n).filter(|c| set & (1 << c) != 0) {
+                let rest = set & !(1 << col);
+                let after = (rest >> col).count_ones();
+                let p = self.mul(&minors[rest], &m[row * n + col])?;
+                acc = if after % 2 == 0 {
+                    self.add(&acc, &p)?
+                } else {
+                    self.add(&acc, &p.neg())?
+                };
+            }
+            minors[set] = acc;
+        }
+        Ok(minors[(1 << n) - 1].clone())
+    }
+
+    /// The adjugate: entry (i, j) is (−1)^(i+j) times the minor without row j, column i.
+    fn adjugate(&mut self, m: &[Frac], n: usize) -> R<Vec<Frac>> {
+        if n == 1 {
+            return Ok(vec![Frac::one()]);
+        }
+        let mut out = Vec::with_capacity(n * n);
+        for i in 0..n {
+            for j in 0..n {
+                let minor: Vec<Frac> = (0..n)
+                    .filter(|&r| r != j)
+                    .flat_map(|r| (0..n).filter(|&c| c != i).map(move |c| (r, c)))
+                    .map(|(r, c)| m[r * n + c].clone())
+                    .collect();
+                let det = self.det(&minor, n - 1)?;
+                out.push(if (i + j) % 2 == 0 { det } else { det.neg() });
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The position of component `idx` (values in `formal` order) among the components
+/// of a tensor over the sorted `letters`.
+fn position_of(letters: &[char], formal: &[char], idx: &[usize], d: usize) -> usize {
+    letters.iter().fold(0, |acc, c| {
+        acc * d + formal.iter().position(|f| f == c).map_or(0, |k| idx[k])
+    })
+}
+
+/// Every component carries every component's conditions.
+fn with_all_conditions(comps: Vec<Frac>) -> Vec<Frac> {
+    let mut all = Frac::one();
+    for c in &comps {
+        all = all.with_conditions_of(c);
+    }
+    comps
+        .into_iter()
+        .map(|c| c.with_conditions_of(&all))
+        .collect()
+}
+
+/// `p` with the variables of `values` replaced by their polynomials.
+pub fn substitute(p: &Poly, values: &BTreeMap<Var, Poly>) -> R<Poly> {
+    if values.is_empty() || !p.variables().iter().any(|v| values.contains_key(v)) {
+        return Ok(p.clone());
+    }
+    let mut out = Poly::zero();
+    for (m, c) in p.terms() {
+        let mut t = Poly::constant(c.clone());
+        for &(v, e) in m.factors() {
+            let factor = match values.get(&v) {
+                Some(x) if e >= 0 => x
+                    .checked_pow(e.unsigned_abs())
+                    .map_err(|_| EvalError::Limit)?,
+                Some(_) => {
+                    return Err(EvalError::Unsupported(
+                        "a negative power of a constrained component".into(),
+                    ))
+                }
+                None => Poly::term(super::poly::Monomial::var(v, e), Rational::one()),
+            };
+            t = t.checked_mul(&factor).map_err(|_| EvalError::Limit)?;
+        }
+        out += &t;
+    }
+    Ok(out)
+}
+
+/// The direct subterms of a term.
+pub fn children(t: &Term) -> Vec<&Term> {
+    match t {
+        Term::Const { .. } | Term::Leaf { .. } | Term::Opaque { .. } => Vec::new(),
+        Term::Sum(ts) | Term::Product(ts) => ts.iter().collect(),
+        Term::Neg(a)
+        | Term::Pow(a, _)
+        | Term::Sqrt(a)
+        | Term::Avg(a)
+        | Term::Deriv(a, _)
+        | Term::Read(_, a) => vec![a],
+        Term::Div(a, b) => vec![a, b],
+        Term::Grad { body, .. } | Term::Variation { body, .. } => vec![body],
+        Term::Mat { op, .. } => match op {
+            MatOp::Literal(ts) | MatOp::Sum(ts) => ts.iter().collect(),
+            MatOp::Def(_) | MatOp::Identity => Vec::new(),
+            MatOp::Scale(a, b) | MatOp::Product(a, b) | MatOp::Solve(a, b) => vec![a, b],
+            MatOp::Transpose(a) | MatOp::Inverse(a) | MatOp::Adjugate(a) => vec![a],
+            MatOp::View { tensor, .. } => vec![tensor],
+        },
+    }
+}
+
+impl Env<'_> {
+    /// The kernel's polynomial of a hint, its variables interned by name.
+    fn poly_of(&mut self, p: &PolyData) -> R<Poly> {
+        let mut terms = Vec::with_capacity(p.len());
+        for (factors, c) in p {
+            let factors: Vec<(Var, i32)> = factors
+                .iter()
+                .map(|(n, e)| (self.vars.intern(n), *e))
+                .collect();
+            let m = super::poly::Monomial::checked_from_factors(factors).ok_or(EvalError::Limit)?;
+            terms.push((m, c.clone()));
+        }
+        Ok(Poly::from_terms(terms))
+    }
+
+    /// The dimension.
+    pub fn ctx_dim(&self) -> usize {
+        self.ctx.dim
+    }
+
+    /// The components the linear assumptions eliminated, with their values.
+    pub fn eliminated(&self) -> Vec<(Var, Poly)> {
+        self.pivots.iter().map(|(v, p)| (*v, p.clone())).collect()
+    }
+
+    /// Registers a definition made by differentiating another (see
+    /// [`super::differentiate`]); its name is new.
+    pub(super) fn derive(&mut self, def: Definition) {
+        self.derived.push(def);
+    }
+
+    /// Whether a definition of that name exists (a derived one included).
+    pub(super) fn has_definition(&self, name: &str) -> bool {
+        self.definition(name).is_some()
+    }
+
+    /// The definition of that name (a derived one included).
+    pub(super) fn definition_of(&self, name: &str) -> Option<Definition> {
+        self.definition(name).cloned()
+    }
+}

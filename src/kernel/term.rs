@@ -1,0 +1,479 @@
+//! The statements the kernel checks: expressions in index notation and the context
+//! that gives their symbols meaning, as plain data that a report keeps and `recheck`
+//! reads back.
+//!
+//! A [`Term`] mirrors the expression language after names are resolved: constants,
+//! declared symbols, definitions, δ, ε and the normal with their index slots, sums,
+//! products (a letter twice in a product is summed), quotients, powers, square roots,
+//! averages over the normal, derivatives along the position, `grad`, `variation` and
+//! the matrix operations. The kernel computes which letters are free itself
+//! ([`Term::letters`]) and refuses an ill-formed term; nothing the reader of the file
+//! computed about indices is believed.
+
+use super::rational::Rational;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// One index slot: a letter (free or summed) or a fixed component, 0-based (written
+/// `"i"` or `0` in a report).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Slot {
+    Letter(char),
+    Fixed(usize),
+}
+
+/// What a leaf names.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Leaf {
+    /// A declared symbol (tensor, scalar, field or the position).
+    Symbol(String),
+    /// A definition of the statement.
+    Def(String),
+    Delta,
+    Eps,
+    /// The unit normal.
+    Normal,
+}
+
+/// A position order bound to slots (`voigt_ij`): the positions, one component per
+/// slot (0-based).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Order {
+    pub positions: Vec<Vec<usize>>,
+    pub slots: Vec<Slot>,
+}
+
+/// A matrix-valued term's operation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MatOp {
+    /// Entries row by row.
+    Literal(Vec<Term>),
+    Def(String),
+    Identity,
+    Sum(Vec<Term>),
+    Scale(Box<Term>, Box<Term>),
+    Product(Box<Term>, Box<Term>),
+    Transpose(Box<Term>),
+    Inverse(Box<Term>),
+    Adjugate(Box<Term>),
+    Solve(Box<Term>, Box<Term>),
+    /// Entry (a, b) is the tensor's component at the rows' position a and the
+    /// columns' position b (a column without `cols`).
+    View {
+        tensor: Box<Term>,
+        rows: Order,
+        cols: Option<Order>,
+    },
+}
+
+/// What is read off a matrix.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MatRead {
+    Det,
+    Trace,
+    Entry(usize, usize),
+    /// The tensor whose component at the rows' position a (and columns' b) is entry
+    /// (a, b), zero elsewhere.
+    Tensor {
+        rows: Order,
+        cols: Option<Order>,
+    },
+}
+
+/// An expression.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Term {
+    /// A constant in every component of the free letters `free` (the literal 0 of a
+    /// tensor equation has some; every other constant none).
+    Const {
+        value: Rational,
+        free: Vec<char>,
+    },
+    Leaf {
+        of: Leaf,
+        slots: Vec<Slot>,
+    },
+    Sum(Vec<Term>),
+    Product(Vec<Term>),
+    Neg(Box<Term>),
+    Div(Box<Term>, Box<Term>),
+    Pow(Box<Term>, u32),
+    Sqrt(Box<Term>),
+    Avg(Box<Term>),
+    /// ∂/∂x along the slot's coordinate.
+    Deriv(Box<Term>, Slot),
+    /// ∂body/∂symbol for every component of the symbol, at the state.
+    Grad {
+        body: Box<Term>,
+        symbol: String,
+        slots: Vec<Slot>,
+    },
+    /// The variational derivative of a density with respect to every component of a
+    /// field.
+    Variation {
+        body: Box<Term>,
+        field: String,
+        slots: Vec<Slot>,
+    },
+    Mat {
+        rows: usize,
+        cols: usize,
+        op: MatOp,
+    },
+    Read(MatRead, Box<Term>),
+    /// A construct the kernel does not evaluate (a transcendental function, π, a
+    /// maximum over orientations), with its free letters: a statement that reads it
+    /// cannot be proved.
+    Opaque {
+        what: String,
+        free: Vec<char>,
+    },
+}
+
+/// The free letters of a term (sorted) and the letters summed inside it.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Letters {
+    pub free: Vec<char>,
+    pub summed: Vec<char>,
+}
+
+/// The most letters one term may carry, free and summed (a hostile term cannot make
+/// the kernel visit more index values than a product of 12 letters in 3D).
+pub const MAX_LETTERS: usize = 12;
+
+/// What the kernel knows of the symbols: their ranks, and the dimension.
+pub trait Ranks {
+    fn dim(&self) -> usize;
+    /// The rank of a declared symbol, `None` if undeclared.
+    fn symbol_rank(&self, name: &str) -> Option<usize>;
+    /// The formal letters' count of a definition (`None` for an unknown or a matrix
+    /// definition) and its shape when it is a matrix.
+    fn def_rank(&self, name: &str) -> Option<usize>;
+    fn def_shape(&self, name: &str) -> Option<(usize, usize)>;
+}
+
+/// Letters once free, twice summed; a third occurrence, or a letter summed inside one
+/// part and used again in another, is ill-formed.
+fn tally(parts: &[Letters], extra: &[char]) -> Result<Letters, String> {
+    let mut seen: BTreeMap<char, usize> = BTreeMap::new();
+    for c in parts.iter().flat_map(|p| &p.free).chain(extra) {
+        *seen.entry(*c).or_default() += 1;
+    }
+    let mut out = Letters::default();
+    for (&c, &n) in &seen {
+        match n {
+            1 => out.free.push(c),
+            2 => out.summed.push(c),
+            n => return Err(format!("index `{c}` occurs {n} times in one product")),
+        }
+    }
+    // The contraction here visits every value of these letters (those summed inside
+    // a factor are that factor's own).
+    if out.free.len() + out.summed.len() > MAX_LETTERS {
+        return Err(format!(
+            "more than {MAX_LETTERS} index letters in one product"
+        ));
+    }
+    for (k, p) in parts.iter().enumerate() {
+        for c in &p.summed {
+            // Summed inside two factors is two separate sums; free in another factor
+            // is ambiguous, and refused as the language refuses it.
+            let again = parts
+                .iter()
+                .enumerate()
+                .any(|(j, q)| j != k && q.free.contains(c))
+                || extra.contains(c);
+            if again {
+                return Err(format!(
+                    "index `{c}` is summed inside one factor and used again in another"
+                ));
+            }
+        }
+        out.summed.extend(&p.summed);
+    }
+    Ok(out)
+}
+
+fn slot_letters(slots: &[Slot], dim: usize) -> Result<Vec<char>, String> {
+    let mut out = Vec::new();
+    for s in slots {
+        match s {
+            Slot::Letter(c) => out.push(*c),
+            Slot::Fixed(k) if *k >= dim => {
+                return Err(format!("fixed index {} is out of range 1..{dim}", k + 1))
+            }
+            Slot::Fixed(_) => {}
+        }
+    }
+    Ok(out)
+}
+
+fn scalar(t: &Term, r: &dyn Ranks, what: &str) -> Result<Letters, String> {
+    let l = t.letters(r)?;
+    if !l.free.is_empty() || t.shape(r).is_some() {
+        return Err(format!("{what} must be a scalar"));
+    }
+    Ok(l)
+}
+
+impl Term {
+    pub fn int(n: i64) -> Term {
+        Term::Const {
+            value: Rational::int(n),
+            free: Vec::new(),
+        }
+    }
+
+    /// The shape of a matrix-valued term.
+    pub fn shape(&self, r: &dyn Ranks) -> Option<(usize, usize)> {
+        match self {
+            Term::Mat { rows, cols, .. } => Some((*rows, *cols)),
+            _ => None,
+        }
+        .or_else(|| match self {
+            Term::Mat {
+                op: MatOp::Def(name),
+                ..
+            } => r.def_shape(name),
+            _ => None,
+        })
+    }
+
+    /// The term's free letters (sorted) and summed ones, or why it is ill-formed: an
+    /// index three times in a product, terms of a sum with different free indices, a
+    /// slot count that is not the rank, a fixed index out of range, a non-scalar where
+    /// a scalar belongs.
+    pub fn letters(&self, r: &dyn Ranks) -> Result<Letters, String> {
+        let dim = r.dim();
+        Ok(match self {
+            Term::Const { free, .. } | Term::Opaque { free, .. } => {
+                let mut f = free.clone();
+                f.sort_unstable();
+                f.dedup();
+                Letters {
+                    free: f,
+                    summed: Vec::new(),
+                }
+            }
+            Term::Leaf { of, slots } => {
+                let rank = match of {
+                    Leaf::Symbol(s) => r
+                        .symbol_rank(s)
+                        .ok_or_else(|| format!("`{s}` is not a declared symbol"))?,
+                    Leaf::Def(d) => r
+                        .def_rank(d)
+                        .ok_or_else(|| format!("`{d}` is not a definition of the statement"))?,
+                    Leaf::Delta => 2,
+                    Leaf::Eps => dim,
+                    Leaf::Normal => 1,
+                };
+                if slots.len() != rank {
+                    return Err(format!("{} indices where the rank is {rank}", slots.len()));
+                }
+                let own = Letters {
+                    free: slot_letters(slots, dim)?,
+                    summed: Vec::new(),
+                };
+                tally(&[own], &[])?
+            }
+            Term::Sum(terms) => {
+                let first = terms.first().ok_or("an empty sum")?.letters(r)?;
+                let mut summed = first.summed.clone();
+                for t in &terms[1..] {
+                    let l = t.letters(r)?;
+                    if l.free != first.free {
+                        return Err(format!(
+                            "terms of a sum have different free indices: {:?} and {:?}",
+                            first.free, l.free
+                        ));
+                    }
+                    summed.extend(l.summed);
+                }
+                Letters {
+                    free: first.free,
+                    summed,
+                }
+            }
+            Term::Product(fs) => {
+                let parts = fs
+                    .iter()
+                    .map(|f| {
+                        if f.shape(r).is_some() {
+                            return Err("a matrix in a product of tensors".to_owned());
+                        }
+                        f.letters(r)
+                    })
+                    .collect::<Result<Vec<_>, _>>()?;
+                tally(&parts, &[])?
+            }
+            Term::Neg(a) | Term::Avg(a) => a.letters(r)?,
+            Term::Div(a, b) => {
+                let mut l = a.letters(r)?;
+                l.summed.extend(scalar(b, r, "a divisor")?.summed);
+                l
+            }
+            Term::Pow(a, _) => scalar(a, r, "the base of a power")?,
+            Term::Sqrt(a) => scalar(a, r, "the argument of sqrt")?,
+            Term::Deriv(a, s) => {
+                let inner = a.letters(r)?;
+                tally(&[inner], &slot_letters(std::slice::from_ref(s), dim)?)?
+            }
+            Term::Grad {
+                body,
+                symbol: name,
+                slots,
+            }
+            | Term::Variation {
+                body,
+                field: name,
+                slots,
+            } => {
+                let rank = r
+                    .symbol_rank(name)
+                    .ok_or_else(|| format!("`{name}` is not a declared symbol"))?;
+                if slots.len() != rank {
+                    return Err(format!("{} indices where the rank is {rank}", slots.len()));
+                }
+                if body.shape(r).is_some() {
+                    return Err("a matrix cannot be differentiated".to_owned());
+                }
+                let inner = body.letters(r)?;
+                tally(&[inner], &slot_letters(slots, dim)?)?
+            }
+            Term::Mat { rows, cols, op } => {
+                self.check_matrix(*rows, *cols, op, r)?;
+                Letters::default()
+            }
+            Term::Read(read, m) => {
+                let (rows, cols) = m
+                    .shape(r)
+                    .ok_or("a matrix read off something that is not a matrix")?;
+                m.letters(r)?;
+                match read {
+                    MatRead::Det | MatRead::Trace if rows != cols => {
+                        return Err("det and trace need a square matrix".to_owned())
+                    }
+                    MatRead::Entry(i, j) if *i >= rows || *j >= cols => {
+                        return Err("an entry outside the matrix".to_owned())
+                    }
+                    MatRead::Tensor { rows: ro, cols: co } => {
+                        check_order(ro, rows, dim)?;
+                        if let Some(co) = co {
+                            check_order(co, cols, dim)?;
+                        } else if cols != 1 {
+                            return Err("a tensor view of a matrix needs two orders".to_owned());
+                        }
+                        let mut letters = slot_letters(&ro.slots, dim)?;
+                        if let Some(co) = co {
+                            letters.extend(slot_letters(&co.slots, dim)?);
+                        }
+                        tally(
+                            &[Letters {
+                                free: letters,
+                                summed: Vec::new(),
+                            }],
+                            &[],
+                        )?
+                    }
+                    _ => Letters::default(),
+                }
+            }
+        })
+    }
+
+    fn check_matrix(
+        &self,
+        rows: usize,
+        cols: usize,
+        op: &MatOp,
+        r: &dyn Ranks,
+    ) -> Result<(), String> {
+        let same = |t: &Term, shape: (usize, usize)| -> Result<(), String> {
+            t.letters(r)?;
+            match t.shape(r) {
+                Some(s) if s == shape => Ok(()),
+                _ => Err(format!("a matrix of shape {shape:?} was expected")),
+            }
+        };
+        let square = rows == cols;
+        match op {
+            MatOp::Literal(entries) => {
+                if entries.len() != rows * cols {
+                    return Err("a matrix literal with the wrong number of entries".to_owned());
+                }
+                for e in entries {
+                    scalar(e, r, "a matrix entry")?;
+                }
+            }
+            MatOp::Def(name) => {
+                if r.def_shape(name) != Some((rows, cols)) {
+                    return Err(format!("`{name}` is not a matrix definition of this shape"));
+                }
+            }
+            MatOp::Identity if square => {}
+            MatOp::Sum(ms) => {
+                for m in ms {
+                    same(m, (rows, cols))?;
+                }
+            }
+            MatOp::Scale(s, m) => {
+                scalar(s, r, "a scale")?;
+                same(m, (rows, cols))?;
+            }
+            MatOp::Product(a, b) => {
+                let (ra, ca) = a.shape(r).ok_or("a product of matrices needs matrices")?;
+                same(a, (rows, ca))?;
+                same(b, (ca, cols))?;
+                if ra != rows {
+                    return Err("mismatched shapes in a matrix product".to_owned());
+                }
+            }
+            MatOp::Transpose(a) => same(a, (cols, rows))?,
+            MatOp::Inverse(a) | MatOp::Adjugate(a) if square => same(a, (rows, cols))?,
+            MatOp::Solve(a, b) => {
+                same(a, (rows, rows))?;
+                same(b, (rows, cols))?;
+            }
+            MatOp::View {
+                tensor,
+                rows: ro,
+                cols: co,
+            } => {
+                check_order(ro, rows, r.dim())?;
+                match co {
+                    Some(co) => check_order(co, cols, r.dim())?,
+                    None if cols == 1 => {}
+                    None => return Err("a matrix view needs two orders".to_owned()),
+                }
+                let mut letters = slot_letters(&ro.slots, r.dim())?;
+                if let Some(co) = co {
+                    letters.extend(slot_letters(&co.slots, r.dim())?);
+                }
+                letters.sort_unstable();
+                let inner = tensor.letters(r)?;
+                if inner.free != letters {
+                    return Err("a view's orders do not name the tensor's free indices".to_owned());
+                }
+            }
+            _ => return Err("this matrix operation needs a square matrix".to_owned()),
+        }
+        Ok(())
+    }
+}
+
+fn check_order(o: &Order, len: usize, dim: usize) -> Result<(), String> {
+    let fits = o.positions.len() == len
+        && o.positions
+            .iter()
+            .all(|p| p.len() == o.slots.len() && p.iter().all(|&k| k < dim));
+    if fits {
+        Ok(())
+    } else {
+        Err("an order's positions do not fit its slots or the matrix".to_owned())
+    }
+}

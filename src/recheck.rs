@@ -1,0 +1,165 @@
+//! `recheck REPORT.json`: every proof of a JSON report checked again by the kernel
+//! alone, from the statement the report records. No search runs: each proof's
+//! statement and fact go to [`crate::kernel::check::check`] as they are written, and
+//! the result must conclude what the report says (the verdict, and the same items
+//! checked). An edited statement or fact that no longer holds, a verdict of strength
+//! `proof` without its proof, or a proof whose conclusion is not the verdict, is refused.
+//! What this cannot see is a statement edited into another true one: that is why each
+//! line names what was proved, for the reader to compare with the paper.
+
+use crate::kernel::check::{check, Checked, Conclusion, Fact};
+use crate::kernel::statement::Statement;
+use serde::Deserialize;
+
+/// The most bytes of a report `recheck` reads.
+pub const MAX_REPORT_BYTES: usize = 256 << 20;
+
+/// One proof as a report writes it.
+#[derive(Deserialize)]
+struct Written {
+    conclusion: String,
+    statement: Statement,
+    fact: Fact,
+    summary: serde_json::Value,
+}
+
+/// What `recheck` found.
+pub struct Rechecked {
+    /// One line per claim (and correction) with a verdict of strength `proof`.
+    pub lines: Vec<String>,
+    /// Proofs checked again and accepted.
+    pub accepted: usize,
+    /// Proofs, or verdicts, refused.
+    pub refused: usize,
+}
+
+/// Text from the report, safe to print: control characters (terminal escapes) shown
+/// as `\u{…}`, at most 200 characters.
+fn shown(s: &str) -> String {
+    let mut out: String = s
+        .chars()
+        .take(200)
+        .map(|c| {
+            if c.is_control() {
+                format!("\\u{{{:x}}}", c as u32)
+            } else {
+                c.to_string()
+            }
+        })
+        .collect();
+    if s.chars().count() > 200 {
+        out.push('…');
+    }
+    out
+}
+
+/// Re-checks every proof of the report `text`; `Err` when it is not a report.
+pub fn recheck(text: &str) -> Result<Rechecked, String> {
+    if text.len() > MAX_REPORT_BYTES {
+        return Err(format!(
+            "the report is larger than {} MiB",
+            MAX_REPORT_BYTES >> 20
+        ));
+    }
+    let report: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| format!("not a JSON report: {e}"))?;
+    let claims = report
+        .get("claims")
+        .and_then(|c| c.as_array())
+        .ok_or("not a cosserat-check report: no `claims` array")?;
+    let mut out = Rechecked {
+        lines: Vec::new(),
+        accepted: 0,
+        refused: 0,
+    };
+    for claim in claims {
+        let id = claim.get("id").and_then(|v| v.as_str()).unwrap_or("?");
+        let mut rows = vec![(shown(id), claim)];
+        if let Some(c) = claim.get("correction").filter(|c| !c.is_null()) {
+            rows.push((format!("{} (correction)", shown(id)), c));
+        }
+        for (name, row) in rows {
+            match one(row) {
+                Ok(None) => {}
+                Ok(Some(line)) => {
+                    out.accepted += 1;
+                    out.lines.push(format!("{name}: {line}"));
+                }
+                Err(why) => {
+                    out.refused += 1;
+                    out.lines.push(format!("{name}: REFUSED: {why}"));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// One claim's (or correction's) proofs: `None` when its verdict is not of strength
+/// `proof`.
+fn one(row: &serde_json::Value) -> Result<Option<String>, String> {
+    let text = |k: &str| row.get(k).and_then(|v| v.as_str()).unwrap_or("");
+    let (verdict, strength) = (text("verdict"), text("strength"));
+    let written = row
+        .get("proofs")
+        .and_then(|p| p.as_array())
+        .cloned()
+        .unwrap_or_default();
+    if strength != "proof" {
+        return if written.is_empty() {
+            Ok(None)
+        } else {
+            Err(format!(
+                "proofs recorded for a verdict of strength `{}`",
+                shown(strength)
+            ))
+        };
+    }
+    if written.is_empty() {
+        return Err(format!(
+            "a `{}` of strength proof without a kernel proof",
+            shown(verdict)
+        ));
+    }
+    let mut conclusions = Vec::new();
+    let mut items = 0;
+    for w in written {
+        let w: Written = serde_json::from_value(w)
+            .map_err(|e| format!("a proof that is not well written: {e}"))?;
+        let proof = check(w.statement, w.fact).map_err(|e| e.to_string())?;
+        let said = match proof.conclusion() {
+            Conclusion::Holds => "holds",
+            Conclusion::Fails => "fails",
+        };
+        if w.conclusion != said {
+            return Err(format!(
+                "the proof concludes `{said}`, the report says `{}`",
+                shown(&w.conclusion)
+            ));
+        }
+        let summary: Vec<Checked> = proof.summary().to_vec();
+        if serde_json::to_value(&summary).ok().as_ref() != Some(&w.summary) {
+            return Err("the recorded summary is not what the kernel checked".to_owned());
+        }
+        items += summary.len();
+        conclusions.push(proof.conclusion());
+    }
+    let agrees = match verdict {
+        "holds" => conclusions == [Conclusion::Holds],
+        "fails" => conclusions == [Conclusion::Fails],
+        "conditional" => conclusions == [Conclusion::Holds, Conclusion::Fails],
+        _ => false,
+    };
+    if !agrees {
+        return Err(format!(
+            "the proofs do not conclude the verdict `{}`",
+            shown(verdict)
+        ));
+    }
+    let s = if conclusions.len() == 1 { "" } else { "s" };
+    Ok(Some(format!(
+        "{verdict}: {} proof{s} checked again, {items} item{} verified",
+        conclusions.len(),
+        if items == 1 { "" } else { "s" }
+    )))
+}
