@@ -4,8 +4,8 @@
 //! `fails` with a confirmed counterexample; proofs come from the kernel, and the one
 //! claim without a certificate is labelled sampled.
 
-use cosserat_check::algebra::certificate::Fact;
 use cosserat_check::derivation::Verdict;
+use cosserat_check::kernel::check::Checked as Fact;
 use cosserat_check::strategy::Strength;
 
 mod common;
@@ -23,7 +23,7 @@ fn scalar_claims_and_their_twins_are_decided_as_declared() {
                 }
                 Verdict::Holds => {
                     assert_eq!(o.strength(), Strength::Proof, "{id}");
-                    assert!(!o.certificate().expect(id).facts().is_empty());
+                    assert!(!o.proofs().first().expect(id).summary().is_empty());
                     assert!(
                         cosserat_check::report::evidence(o).contains("proof: "),
                         "{id}: the kernel's facts are shown"
@@ -40,10 +40,10 @@ fn scalar_claims_and_their_twins_are_decided_as_declared() {
             let r = rows.iter().find(|r| r.claim.id == id).unwrap();
             cosserat_check::report::evidence(&r.outcome)
         };
-        // The kinds of certificate behind each proof.
+        // What the kernel checked behind each proof.
         let facts = |id: &str| {
             let r = rows.iter().find(|r| r.claim.id == id).unwrap();
-            r.outcome.certificate().unwrap().facts().to_vec()
+            r.outcome.proofs()[0].summary().to_vec()
         };
         assert!(matches!(
             facts("sign-pole-excluded")[0],
@@ -54,7 +54,9 @@ fn scalar_claims_and_their_twins_are_decided_as_declared() {
             Fact::CoefficientSigns { .. }
         ));
         assert!(matches!(facts("limit-removable")[0], Fact::Limit { .. }));
-        assert!(matches!(&facts("roots-cubic")[0], Fact::Roots { roots, .. } if roots.len() == 3));
+        assert!(
+            matches!(&facts("roots-cubic")[0], Fact::Roots { roots, exactly: true, .. } if roots.len() == 3)
+        );
         // Exact turning points and where the claim holds.
         assert!(evidence("hump-turning-point").contains("d/dx = 0 at x = 1; holds on 0 < x ≤ 1"));
         assert!(evidence("cubic-turning-points")

@@ -10,35 +10,8 @@
 
 use super::RatFunc;
 use crate::kernel::poly::{Poly, Var};
-use crate::kernel::rational::Rational;
 
-/// Where the variable goes.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Approach {
-    /// To `c`, from both sides, from above (`c+`) or from below (`c−`).
-    At(Rational, Side),
-    PlusInfinity,
-    MinusInfinity,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Side {
-    Both,
-    Above,
-    Below,
-}
-
-impl std::fmt::Display for Approach {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Approach::At(c, Side::Both) => write!(f, "{c}"),
-            Approach::At(c, Side::Above) => write!(f, "{c}+"),
-            Approach::At(c, Side::Below) => write!(f, "{c}−"),
-            Approach::PlusInfinity => write!(f, "+∞"),
-            Approach::MinusInfinity => write!(f, "−∞"),
-        }
-    }
-}
+pub use crate::kernel::statement::{Approach, Side};
 
 /// The limit of a rational function.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -118,6 +91,7 @@ pub fn expand(f: &RatFunc, v: Var, to: &Approach) -> Option<Expansion> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::Rational;
     use crate::kernel::VarTable;
 
     fn setup() -> (VarTable, Var, Var) {

@@ -18,7 +18,7 @@ use super::eval::{Env, EvalError, Value};
 use super::frac::Frac;
 use super::poly::{Poly, Var};
 use super::rational::Rational;
-use super::statement::{Claim, FracData, Statement};
+use super::statement::{Claim, FracData, PolyData, Statement};
 use super::term::Term;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -34,6 +34,9 @@ pub struct Evaluation {
     /// Every variable the sides read, by name, with its value.
     pub point: Vec<(String, Rational)>,
 }
+
+/// A rational function in lowest terms, numerator and denominator by names.
+pub type Reduced = (PolyData, PolyData);
 
 /// What a strategy found, to be checked against the statement.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -62,6 +65,89 @@ pub enum Fact {
     },
     /// A side of a chain is ill-formed in its indices.
     IllFormed { chain: usize, side: usize },
+    /// A sign claim's `left − right` (or a monotonicity's derivative, with its
+    /// denominator of one strict sign) has the sign on the box, by coefficients.
+    SignByCoefficients {
+        /// The function (and a monotonicity's function itself) in lowest terms, as
+        /// the search reduced it: accepted when its denominator divides the kernel's
+        /// and the numerators agree.
+        reduced: Option<Reduced>,
+        function: Option<Reduced>,
+        roots: Vec<FracData>,
+    },
+    /// The same for a function of one variable, with cuts between its roots.
+    SignOnInterval {
+        variable: String,
+        cuts: Vec<Rational>,
+        reduced: Option<Reduced>,
+        function: Option<Reduced>,
+        roots: Vec<FracData>,
+    },
+    /// A sign claim broken at a point of the box.
+    SignAt {
+        point: Vec<(String, Rational)>,
+        roots: Vec<FracData>,
+    },
+    /// A strict sign broken at a zero of `left − right` in (lo, hi) of one variable.
+    ZeroBetween {
+        variable: String,
+        lo: Rational,
+        hi: Rational,
+        roots: Vec<FracData>,
+    },
+    /// A monotonicity broken between two values of the variable (the other
+    /// parameters at `point`).
+    TwoPoints {
+        a: Rational,
+        b: Rational,
+        point: Vec<(String, Rational)>,
+        roots: Vec<FracData>,
+    },
+    /// A monotonicity of a function constant in the variable.
+    Constant { roots: Vec<FracData> },
+    /// A monotonicity broken by a pole in (lo, hi).
+    Pole {
+        lo: Rational,
+        hi: Rational,
+        roots: Vec<FracData>,
+    },
+    /// A limit, read off the lowest orders by the kernel; a refutation names a point
+    /// where the limit found and the one stated differ.
+    Limit {
+        point: Option<Vec<(String, Rational)>>,
+        roots: Vec<FracData>,
+    },
+    /// The zeros of a function of one variable, counted by the kernel.
+    Roots { roots: Vec<FracData> },
+    /// The not-a-circle witness: a state and four parameters u of rational normals.
+    NotConcyclic {
+        point: Vec<(String, Rational)>,
+        us: Vec<Rational>,
+        roots: Vec<FracData>,
+    },
+}
+
+impl Fact {
+    /// The square roots a fact offers.
+    fn roots(&self) -> &[FracData] {
+        match self {
+            Fact::IllFormed { .. } => &[],
+            Fact::Identity { roots }
+            | Fact::Proportional { roots, .. }
+            | Fact::Refutation { roots, .. }
+            | Fact::NotProportional { roots, .. }
+            | Fact::SignByCoefficients { roots, .. }
+            | Fact::SignOnInterval { roots, .. }
+            | Fact::SignAt { roots, .. }
+            | Fact::ZeroBetween { roots, .. }
+            | Fact::TwoPoints { roots, .. }
+            | Fact::Constant { roots }
+            | Fact::Pole { roots, .. }
+            | Fact::Limit { roots, .. }
+            | Fact::Roots { roots }
+            | Fact::NotConcyclic { roots, .. } => roots,
+        }
+    }
 }
 
 /// What a proof establishes about its statement.
@@ -99,6 +185,46 @@ pub enum Checked {
     Values { left: String, right: String },
     /// A side is ill-formed in its indices.
     IllFormed { why: String },
+    /// A rational function of several variables has its sign on the box: after every
+    /// variable is moved onto t ≥ 0, numerator and denominator have coefficients of
+    /// one sign (`cases`: one per sign of each unbounded variable).
+    CoefficientSigns { substitution: String, cases: usize },
+    /// A function of one variable has the sign on the interval wherever defined:
+    /// its roots counted between cuts (Sturm), the sign exact on each piece.
+    SignOnInterval {
+        interval: String,
+        relation: String,
+        pieces: usize,
+        /// Poles inside the interval, where the function is undefined.
+        poles: usize,
+    },
+    /// A zero (or a pole) of a function of one variable lies in (lo, hi).
+    ZeroBetween {
+        variable: String,
+        lo: String,
+        hi: String,
+    },
+    /// The function does not change with the variable.
+    Constant,
+    /// A limit read off the lowest orders, where each of `nonzero` is nonzero.
+    Limit {
+        variable: String,
+        to: String,
+        value: String,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        nonzero: Vec<String>,
+    },
+    /// The zeros of a function of one variable on an interval (Sturm counts), against
+    /// the roots stated.
+    Roots {
+        interval: String,
+        roots: Vec<String>,
+        zeros: usize,
+        /// Whether the zeros are exactly the roots stated.
+        exactly: bool,
+    },
+    /// Four points on no common circle or line.
+    NotConcyclic { determinant: String },
 }
 
 /// Everything a proof verified.
@@ -213,6 +339,23 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
                 Err(why) => Ok((Conclusion::Fails, vec![Checked::IllFormed { why }])),
                 Ok(_) => Err(Rejection::False("the side is well-formed".into())),
             }
+        }
+        Fact::SignByCoefficients { .. }
+        | Fact::SignOnInterval { .. }
+        | Fact::SignAt { .. }
+        | Fact::ZeroBetween { .. }
+        | Fact::TwoPoints { .. }
+        | Fact::Constant { .. }
+        | Fact::Pole { .. }
+        | Fact::Limit { .. }
+        | Fact::Roots { .. }
+        | Fact::NotConcyclic { .. }
+            if chains.is_none() =>
+        {
+            let mut env = Env::new(&st.context, fact.roots())?;
+            let (conclusion, mut out) = super::scalar::run(&mut env, &st.claim, fact)?;
+            out.extend(roots_taken(&env));
+            Ok((conclusion, out))
         }
         _ => Err(mismatch()),
     }

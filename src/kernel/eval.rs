@@ -1407,7 +1407,7 @@ pub fn children(t: &Term) -> Vec<&Term> {
 
 impl Env<'_> {
     /// The kernel's polynomial of a hint, its variables interned by name.
-    fn poly_of(&mut self, p: &PolyData) -> R<Poly> {
+    pub(super) fn poly_of(&mut self, p: &PolyData) -> R<Poly> {
         let mut terms = Vec::with_capacity(p.len());
         for (factors, c) in p {
             let factors: Vec<(Var, i32)> = factors

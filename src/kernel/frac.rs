@@ -258,6 +258,32 @@ impl Frac {
         Ok(&times(self.num.clone(), &a)? - &times(other.num.clone(), &b)?)
     }
 
+    /// ∂/∂v by the quotient rule: (N' Π f − N Σ k_i f_i' Π_{j≠i} f_j) / Π f^(k+1).
+    pub fn derivative(&self, v: Var) -> Result<Frac, FracError> {
+        let once: Vec<(Poly, u32)> = self.den.iter().map(|(f, _)| (f.clone(), 1)).collect();
+        let mut num = times(self.num.derivative(v), &once)?;
+        for (i, (f, k)) in self.den.iter().enumerate() {
+            let others: Vec<(Poly, u32)> = once
+                .iter()
+                .enumerate()
+                .filter(|(j, _)| *j != i)
+                .map(|(_, x)| x.clone())
+                .collect();
+            let term = times(self.num.checked_mul(&f.derivative(v))?, &others)?;
+            num = &num - &term.checked_mul(&Poly::constant(Rational::int(i64::from(*k))))?;
+        }
+        let den = self
+            .den
+            .iter()
+            .map(|(f, k)| Ok((f.clone(), k.checked_add(1).ok_or(FracError::TooLarge)?)))
+            .collect::<Result<_, FracError>>()?;
+        Ok(Frac {
+            num,
+            den,
+            conds: self.conds.clone(),
+        })
+    }
+
     /// The value at a point, or `None` where a condition vanishes (undefined) or a
     /// variable is missing.
     pub fn eval(&self, at: &dyn Fn(Var) -> Option<Rational>) -> Option<Rational> {

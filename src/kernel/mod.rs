@@ -12,9 +12,11 @@ pub mod frac;
 pub mod moments;
 pub mod poly;
 pub mod rational;
+pub mod scalar;
 pub mod sign;
 pub mod statement;
 pub mod term;
+pub mod univariate;
 
 pub use moments::{monomial_moment, tensor_moment};
 pub use poly::{Monomial, Poly, PolyError, Var, VarTable};

@@ -179,18 +179,34 @@ pub struct Context {
     pub given: Vec<(String, Interval)>,
 }
 
-/// Where a limit is taken.
+/// Where a limit's variable goes.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Approach {
-    /// To `at` from above (`above`) or from both sides.
-    At {
-        at: Rational,
-        above: bool,
-        below: bool,
-    },
+    /// To `c`, from both sides, from above (`c+`) or from below (`c−`).
+    At(Rational, Side),
     PlusInfinity,
     MinusInfinity,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Side {
+    Both,
+    Above,
+    Below,
+}
+
+impl std::fmt::Display for Approach {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Approach::At(c, Side::Both) => write!(f, "{c}"),
+            Approach::At(c, Side::Above) => write!(f, "{c}+"),
+            Approach::At(c, Side::Below) => write!(f, "{c}−"),
+            Approach::PlusInfinity => write!(f, "+∞"),
+            Approach::MinusInfinity => write!(f, "−∞"),
+        }
+    }
 }
 
 /// The value a limit claim states.
@@ -198,8 +214,10 @@ pub enum Approach {
 #[serde(rename_all = "kebab-case")]
 pub enum LimitValue {
     Finite(Term),
-    PlusInfinity,
-    MinusInfinity,
+    /// +∞ (`true`) or −∞.
+    Signed(bool),
+    /// |f| → ∞, whatever the sign.
+    Unsigned,
 }
 
 /// What is claimed.
@@ -229,7 +247,7 @@ pub enum Claim {
     Roots {
         function: Term,
         variable: String,
-        roots: Vec<Rational>,
+        roots: Vec<Term>,
     },
     /// The points (x, y) over the unit normal in a plane lie on no common circle or
     /// line.

@@ -262,10 +262,13 @@ pub fn evidence(o: &Outcome) -> String {
     }
     if let Some(f) = &o.finding {
         parts.push(words::finding(f));
-        // A rational-function claim's proof: the kernel's facts, in words.
-        if let (crate::strategy::finding::Finding::RationalFunction(_), Some(w)) =
-            (f, proof_words(o))
-        {
+        // A rational-function claim's proof that it holds: the kernel's facts, in
+        // words (a refutation's evidence is its counterexample).
+        if let (crate::strategy::finding::Finding::RationalFunction(_), Some(w), false) = (
+            f,
+            proof_words(o),
+            o.verdict() == crate::derivation::Verdict::Fails,
+        ) {
             parts.push(format!("proof: {w}"));
         }
     }
@@ -300,9 +303,11 @@ pub fn evidence(o: &Outcome) -> String {
     parts.join("; ")
 }
 
-/// What the kernel checked behind an outcome's proofs, item by item.
+/// What the kernel checked behind an outcome's proof, item by item: for a
+/// conditional, the proof that it holds on its domain (its counterexample outside is
+/// stated as a counterexample).
 fn checked(o: &Outcome) -> impl Iterator<Item = &Checked> {
-    o.proofs().iter().flat_map(|p| p.summary())
+    o.proofs().iter().take(1).flat_map(|p| p.summary())
 }
 
 /// The square roots an exact proof took, with where their signs were certified.
@@ -558,6 +563,53 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
             }
             Checked::Values { left, right } => format!("left {left}, right {right} there, exactly"),
             Checked::IllFormed { why } => format!("ill-formed in its indices: {why}"),
+            Checked::CoefficientSigns { substitution, .. } if substitution.is_empty() => {
+                "numerator and denominator are constants of one sign".to_owned()
+            }
+            Checked::CoefficientSigns { substitution, cases } => {
+                let s = if *cases == 1 { "" } else { "s" };
+                format!("numerator and denominator have coefficients of one sign after {substitution} ({cases} case{s})")
+            }
+            Checked::SignOnInterval { interval, relation, pieces, poles } => {
+                let s = if *pieces == 1 { "" } else { "s" };
+                let undefined = match poles {
+                    0 => String::new(),
+                    1 => " except at 1 pole".to_owned(),
+                    n => format!(" except at {n} poles"),
+                };
+                format!(
+                    "{relation} for {interval}{undefined} (Sturm: real roots isolated, the sign exact on each of {pieces} piece{s})"
+                )
+            }
+            Checked::ZeroBetween { variable, lo, hi } => {
+                format!("a zero or pole in {lo} < {variable} < {hi} (Sturm count)")
+            }
+            Checked::Constant => "the function does not change with the variable".to_owned(),
+            Checked::Limit { variable, to, value, nonzero } => {
+                let limit = format!("the limit as {variable} → {to} is {value} (lowest orders)");
+                if nonzero.is_empty() {
+                    limit
+                } else {
+                    format!("{limit}; {}", holds_where(nonzero))
+                }
+            }
+            Checked::Roots { interval, roots, zeros, exactly: false } => {
+                let s = if *zeros == 1 { "" } else { "s" };
+                format!(
+                    "the real roots for {interval} are not exactly [{}]: {zeros} zero{s} in all (Sturm counts)",
+                    roots.join(", ")
+                )
+            }
+            Checked::Roots { interval, roots, .. } => {
+                if roots.is_empty() {
+                    format!("no real root for {interval} (Sturm isolation)")
+                } else {
+                    format!("the real roots for {interval} are exactly {} (Sturm isolation)", roots.join(", "))
+                }
+            }
+            Checked::NotConcyclic { determinant } => {
+                format!("four points on no common circle or line (det = {determinant})")
+            }
         })
         .collect();
     Some(words.join("; "))

@@ -428,7 +428,10 @@ fn by_kernel(
 /// the point leaves it out, as in the search's evaluation), each component the
 /// assumptions determine at its value in the free ones; the normal only where the
 /// point gives it.
-fn full_point(env: &ExactEnv<'_>, point: &BTreeMap<Var, Rational>) -> Vec<(String, Rational)> {
+pub(super) fn full_point(
+    env: &ExactEnv<'_>,
+    point: &BTreeMap<Var, Rational>,
+) -> Vec<(String, Rational)> {
     let normal = env.normal_vars();
     let mut values: BTreeMap<String, Rational> = (0..env.vars.len() as Var)
         .filter(|v| point.contains_key(v) || !normal.contains(v))

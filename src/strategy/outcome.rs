@@ -218,14 +218,24 @@ impl Outcome {
 
     /// `conditional`: proved on its domain when a certificate covers the domain,
     /// otherwise sampled there.
-    pub fn conditional(method: Method, checks: usize, domain: Option<Certificate>) -> Self {
-        let strength = if domain.is_some() {
+    /// `conditional`: proved when the kernel proved both parts, that it holds on its
+    /// domain and fails outside it (`proofs`: the two, concluding `holds` and `fails`
+    /// in that order); otherwise sampled.
+    pub fn conditional(
+        method: Method,
+        checks: usize,
+        proofs: Option<(Arc<Proof>, Arc<Proof>)>,
+    ) -> Self {
+        let proofs = proofs.filter(|(holds, fails)| {
+            holds.conclusion() == Conclusion::Holds && fails.conclusion() == Conclusion::Fails
+        });
+        let strength = if proofs.is_some() {
             Strength::Proof
         } else {
             Strength::Sampled
         };
         let mut o = Outcome::new(Verdict::Conditional, strength, method, checks);
-        o.certificate = domain;
+        o.proofs = proofs.map(|(h, f)| vec![h, f]).unwrap_or_default();
         o
     }
 

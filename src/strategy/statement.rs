@@ -379,6 +379,96 @@ fn keep_read<'t>(context: &mut Context, terms: impl Iterator<Item = &'t Term>) {
     context.definitions.retain(|d| read.contains(&d.name));
 }
 
+/// The statement of a claim about a scalar function of parameters, on the box
+/// `domain`.
+pub fn scalar(decls: &Decls, check: &Check, domain: &ParamBox) -> Result<Statement, Diagnostic> {
+    use crate::derivation::{LimitValue as Value, ScalarClaim, Strategy};
+    use crate::kernel::statement::LimitValue;
+    let Strategy::Scalar { claim, .. } = &check.strategy else {
+        unreachable!("a scalar strategy")
+    };
+    let claim = match &**claim {
+        ScalarClaim::Sign(sign) => {
+            let sides = chain_terms(&check.chains[0], decls, &check.defs);
+            Claim::Sign {
+                left: sides[0].clone(),
+                right: sides[1].clone(),
+                sign: *sign,
+            }
+        }
+        ScalarClaim::Monotone {
+            function,
+            variable,
+            increasing,
+        } => Claim::Monotone {
+            function: term(&function.node),
+            variable: variable.clone(),
+            increasing: *increasing,
+        },
+        ScalarClaim::Limit {
+            function,
+            variable,
+            to,
+            value,
+        } => Claim::Limit {
+            function: term(&function.node),
+            variable: variable.clone(),
+            to: to.clone(),
+            value: match value {
+                Value::Finite(e) => LimitValue::Finite(term(&e.node)),
+                Value::Signed(plus) => LimitValue::Signed(*plus),
+                Value::Unsigned => LimitValue::Unsigned,
+            },
+        },
+        ScalarClaim::Roots {
+            function,
+            variable,
+            roots,
+        } => Claim::Roots {
+            function: term(&function.node),
+            variable: variable.clone(),
+            roots: roots.iter().map(|r| term(&r.node)).collect(),
+        },
+    };
+    let mut context = context(decls, check, Some(domain))?;
+    let mut read: Vec<&Term> = Vec::new();
+    match &claim {
+        Claim::Sign { left, right, .. } => read.extend([left, right]),
+        Claim::Monotone { function, .. } | Claim::Roots { function, .. } => read.push(function),
+        Claim::Limit {
+            function, value, ..
+        } => {
+            read.push(function);
+            if let LimitValue::Finite(v) = value {
+                read.push(v);
+            }
+        }
+        _ => {}
+    }
+    let extra: Vec<Term> = match &claim {
+        Claim::Roots { roots, .. } => roots.clone(),
+        _ => Vec::new(),
+    };
+    keep_read(&mut context, read.into_iter().chain(&extra));
+    Ok(Statement { context, claim })
+}
+
+/// The statement that the locus (x, y) over the normal is not a circle.
+pub fn not_circle(
+    decls: &Decls,
+    check: &Check,
+    x: &Node,
+    y: &Node,
+) -> Result<Statement, Diagnostic> {
+    let (x, y) = (term(x), term(y));
+    let mut context = context(decls, check, None)?;
+    keep_read(&mut context, [&x, &y].into_iter());
+    Ok(Statement {
+        context,
+        claim: Claim::NotCircle { x, y },
+    })
+}
+
 /// A polynomial by variable names.
 pub fn poly_data(p: &Poly, names: &VarTable) -> PolyData {
     p.terms()

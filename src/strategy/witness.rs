@@ -98,7 +98,24 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
         if let Some(certificate) = Certificate::not_concyclic(&points) {
             let det = match certificate.facts() {
                 [Fact::NotConcyclic { determinant }] => determinant.clone(),
-                _ => unreachable!("the kernel issues one fact"),
+                _ => unreachable!("one fact"),
+            };
+            // The kernel evaluates the locus at the state and the four normals itself.
+            let statement = super::statement::not_circle(decls, check, &x.node, &y.node)?;
+            let fact = crate::kernel::check::Fact::NotConcyclic {
+                point: super::exact::full_point(&env, &state),
+                us: us.clone(),
+                roots: env.root_data(),
+            };
+            let proof = match crate::kernel::check::check(statement, fact) {
+                Ok(p) => p,
+                Err(why) => {
+                    return Ok(Outcome::undecided(Method::Witness, 1).with_finding(
+                        Finding::KernelRefused {
+                            why: why.to_string(),
+                        },
+                    ))
+                }
             };
             let state = state
                 .iter()
@@ -110,13 +127,11 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
                 .map(|(a, b)| (a.to_string(), b.to_string()))
                 .collect();
             return Ok(
-                Outcome::certified(Method::Witness, 1, certificate).with_finding(
-                    Finding::Witness {
-                        state,
-                        points,
-                        determinant: det,
-                    },
-                ),
+                Outcome::proved(Method::Witness, 1, proof).with_finding(Finding::Witness {
+                    state,
+                    points,
+                    determinant: det,
+                }),
             );
         }
     }

@@ -6,15 +6,16 @@
 //! interpreter: near the point, the function must be closer to the limit found than
 //! to the one stated.
 
-use super::sign::{decide_function, Decided};
+use super::sign::{decide_function, with_evidence, Decided};
 use super::{Context, Exact, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::limit::{self as klimit, Approach, Limit, Side};
 use crate::algebra::sign::{inner_point, Sign};
 use crate::derivation::{Expression, LimitValue};
+use crate::kernel::check::Fact;
 use crate::kernel::{Rational, Var};
 use crate::strategy::finding::Finding;
-use crate::strategy::{Counterexample, Method, Outcome, Reverified, Strength};
+use crate::strategy::{Counterexample, Method, Outcome, Reverified};
 use std::collections::BTreeMap;
 
 pub(super) fn decide(
@@ -53,45 +54,60 @@ pub(super) fn decide(
             }
             let names = &cx.env.vars;
             Ok(match Certificate::limit(&f.f, v, to, &claimed.f, names) {
-                Ok(c) => Outcome::certified(Method::RationalFunction, 1, c)
-                    .with_finding(Finding::RationalFunction(evidence)),
-                Err(_) => {
-                    refuted(cx, Some(&claimed)).with_finding(Finding::RationalFunction(evidence))
-                }
+                Ok(_) => with_evidence(cx.by_kernel(kernel_limit(cx, None), None), evidence),
+                Err(_) => with_evidence(refuted(cx, Some(&claimed)), evidence),
             })
         }
         LimitValue::Unsigned | LimitValue::Signed(_) => {
-            let Ok((c, sign_of)) = Certificate::diverges(&f.f, v, to, names) else {
-                return Ok(refuted(cx, None).with_finding(Finding::RationalFunction(evidence)));
+            let Ok((_, sign_of)) = Certificate::diverges(&f.f, v, to, names) else {
+                return Ok(with_evidence(refuted(cx, None), evidence));
             };
             let Some(plus) = plus else {
-                return Ok(Outcome::certified(Method::RationalFunction, 1, c)
-                    .with_finding(Finding::RationalFunction(evidence)));
+                return Ok(with_evidence(
+                    cx.by_kernel(kernel_limit(cx, None), None),
+                    evidence,
+                ));
             };
             let Some(sign_of) = sign_of else {
                 // Opposite infinities on the two sides: no signed limit.
-                return Ok(refuted(cx, None).with_finding(Finding::RationalFunction(evidence)));
+                return Ok(with_evidence(refuted(cx, None), evidence));
             };
+            // The kernel reads the limit and certifies its sign; when it cannot, the
+            // search looks for a point where the sign is wrong.
+            let o = cx.by_kernel(kernel_limit(cx, None), None);
+            if o.verdict() == crate::derivation::Verdict::Holds {
+                return Ok(with_evidence(o, evidence));
+            }
             let want = if plus { Sign::Positive } else { Sign::Negative };
             let g = Exact {
                 f: sign_of,
                 conditions: Vec::new(),
             };
-            Ok(match decide_function(cx, &g, want, evidence.clone())? {
-                Decided::Holds(o) => match o.certificate() {
-                    Some(s) => Outcome::certified(Method::RationalFunction, 1, c.and(s.clone()))
+            Ok(
+                match decide_function(cx, (&g, None), want, evidence.clone())? {
+                    // The search found the sign, the kernel did not accept the limit: its
+                    // reason stands.
+                    Decided::Holds(_) => o,
+                    Decided::At(point) => {
+                        let mut out =
+                            refuted_at(cx, function, v, to, &point, (None, None, Some(plus)));
+                        out.finding = Some(Finding::RationalFunction(evidence));
+                        out
+                    }
+                    Decided::AtRoot { .. } => Outcome::undecided(Method::RationalFunction, 0)
                         .with_finding(Finding::RationalFunction(evidence)),
-                    None => *o,
                 },
-                Decided::At(point) => {
-                    let mut out = refuted_at(cx, function, v, to, &point, (None, None, Some(plus)));
-                    out.finding = Some(Finding::RationalFunction(evidence));
-                    out
-                }
-                Decided::AtRoot { .. } => Outcome::undecided(Method::RationalFunction, 0)
-                    .with_finding(Finding::RationalFunction(evidence)),
-            })
+            )
         }
+    }
+}
+
+/// The limit fact for the kernel: without a point for a limit that holds, with the
+/// other parameters' point for one refuted there.
+fn kernel_limit(cx: &Context<'_>, point: Option<&BTreeMap<Var, Rational>>) -> Fact {
+    Fact::Limit {
+        point: point.map(|p| cx.full_point(p)),
+        roots: cx.roots(),
     }
 }
 
@@ -221,17 +237,19 @@ fn refuted_at(
         q.as_ref()
             .map_or_else(|| inf.to_owned(), Rational::to_string)
     };
-    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(
-        Counterexample {
-            chain: 1,
-            equality: 1,
-            lhs: format!("lim {} as {name} → {to}", function.text),
-            rhs: "the stated limit".to_owned(),
-            point: shown,
-            lhs_value: Some(text(&found, infinite)),
-            rhs_value: Some(text(&stated, stated_text)),
-            reverified: Some(Reverified::FloatingPoint),
-            ..Counterexample::default()
-        },
-    )
+    let o = cx.by_kernel(kernel_limit(cx, Some(point)), None);
+    if o.verdict() != crate::derivation::Verdict::Fails {
+        return o;
+    }
+    o.with_counterexample(Counterexample {
+        chain: 1,
+        equality: 1,
+        lhs: format!("lim {} as {name} → {to}", function.text),
+        rhs: "the stated limit".to_owned(),
+        point: shown,
+        lhs_value: Some(text(&found, infinite)),
+        rhs_value: Some(text(&stated, stated_text)),
+        reverified: Some(Reverified::FloatingPoint),
+        ..Counterexample::default()
+    })
 }

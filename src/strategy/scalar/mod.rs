@@ -18,12 +18,13 @@ mod sample;
 mod sign;
 
 use super::eval::ExactEnv;
-use super::finding::RationalEvidence;
+use super::finding::{Finding, RationalEvidence};
 use super::{Method, Outcome};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::{Interval, Sign};
 use crate::algebra::{Quotient, RatFunc};
 use crate::derivation::{Check, Expression, ParamBox, ScalarClaim, Strategy};
+use crate::kernel::check::Fact;
 use crate::kernel::{Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
 use num_traits::One;
@@ -150,6 +151,49 @@ impl Exact {
 }
 
 impl Context<'_> {
+    /// The outcome of the kernel's check of `fact` about this claim on the box `domain`
+    /// (the claim's own when `None`): the proof's verdict, or `undecided` with the
+    /// kernel's reason for refusing what the search found.
+    fn by_kernel(&self, fact: Fact, domain: Option<&ParamBox>) -> Outcome {
+        let statement =
+            match super::statement::scalar(self.decls, self.check, domain.unwrap_or(self.domain)) {
+                Ok(s) => s,
+                Err(d) => {
+                    return Outcome::undecided(Method::RationalFunction, 0)
+                        .with_finding(Finding::KernelRefused { why: d.message })
+                }
+            };
+        match crate::kernel::check::check(statement, fact) {
+            Ok(proof) => Outcome::proved(Method::RationalFunction, 1, proof),
+            Err(why) => Outcome::undecided(Method::RationalFunction, 0).with_finding(
+                Finding::KernelRefused {
+                    why: why.to_string(),
+                },
+            ),
+        }
+    }
+
+    /// A point for the kernel: every variable of the environment by name, the box's
+    /// parameters inside it (see [`Context::complete`]), the others 0.
+    fn full_point(&self, point: &BTreeMap<Var, Rational>) -> Vec<(String, Rational)> {
+        super::exact::full_point(&self.env, &self.complete(point))
+    }
+
+    /// A rational function in lowest terms by names, for the kernel to check against
+    /// its own value.
+    fn reduced(&self, e: &Exact) -> crate::kernel::check::Reduced {
+        use super::statement::poly_data;
+        (
+            poly_data(e.f.numerator(), &self.env.vars),
+            poly_data(e.f.denominator(), &self.env.vars),
+        )
+    }
+
+    /// The square roots the evaluation took, for the kernel.
+    fn roots(&self) -> Vec<crate::kernel::statement::FracData> {
+        self.env.root_data()
+    }
+
     /// `e` evaluated exactly (a scalar, checked by the loader).
     fn exact(&mut self, e: &Expression) -> Result<Exact, Stop> {
         let labeled = match self.env.eval(&e.node, &e.origin) {

@@ -4,14 +4,15 @@
 //! gives the exact turning points; a claim that holds between them and fails beyond is
 //! `conditional`, with the interval where it holds.
 
-use super::sign::{decide_function, Decided};
+use super::sign::{cuts, decide_function, with_evidence, Decided};
 use super::{Context, Exact, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::{chart_of, End, Interval, Real, Sign, SignChart};
 use crate::derivation::Expression;
+use crate::kernel::check::Fact;
 use crate::kernel::{Rational, Var};
 use crate::strategy::finding::{Finding, RationalEvidence};
-use crate::strategy::{Counterexample, Method, Outcome, Reverified, Strength};
+use crate::strategy::{Counterexample, Method, Outcome, Reverified};
 use std::collections::BTreeMap;
 
 pub(super) fn decide(
@@ -56,25 +57,24 @@ pub(super) fn decide(
         let pole_free = [Sign::Positive, Sign::Negative]
             .into_iter()
             .find_map(|s| Certificate::sign_by_coefficients(&den.f, &bx, s, names));
-        return Ok(match decide_function(cx, &slope, want, evidence.clone())? {
-            // Without a denominator certified free of zeros, a pole may break the
-            // monotonicity whatever the derivative's sign: nothing is decided.
-            Decided::Holds(_) if pole_free.is_none() => {
-                evidence
-                    .points
-                    .push("the denominator was not certified free of zeros on the box".to_owned());
-                Outcome::undecided(Method::RationalFunction, 0)
-                    .with_finding(Finding::RationalFunction(evidence))
-            }
-            Decided::Holds(o) => match (o.certificate().cloned(), pole_free) {
-                (Some(c), Some(p)) => Outcome::certified(Method::RationalFunction, 1, c.and(p))
-                    .with_finding(Finding::RationalFunction(evidence)),
-                _ => *o,
+        return Ok(
+            match decide_function(cx, (&slope, Some(&f)), want, evidence.clone())? {
+                // Without a denominator certified free of zeros, a pole may break the
+                // monotonicity whatever the derivative's sign: nothing is decided.
+                Decided::Holds(_) if pole_free.is_none() => {
+                    evidence.points.push(
+                        "the denominator was not certified free of zeros on the box".to_owned(),
+                    );
+                    Outcome::undecided(Method::RationalFunction, 0)
+                        .with_finding(Finding::RationalFunction(evidence))
+                }
+                // The kernel checked the derivative's sign and the denominator's.
+                Decided::Holds(o) => *o,
+                Decided::At(point) => two_points(cx, function, &f, v, &point, increasing, evidence),
+                Decided::AtRoot { evidence, .. } => Outcome::undecided(Method::RationalFunction, 0)
+                    .with_finding(Finding::RationalFunction(*evidence)),
             },
-            Decided::At(point) => two_points(cx, function, &f, v, &point, increasing, evidence),
-            Decided::AtRoot { evidence, .. } => Outcome::undecided(Method::RationalFunction, 0)
-                .with_finding(Finding::RationalFunction(*evidence)),
-        });
+        );
     }
     let i = cx.interval(v);
     let (num, den) = slope.cleared();
@@ -105,8 +105,16 @@ pub(super) fn decide(
     if whole && of_f.poles() == 0 {
         return Ok(
             match Certificate::sign_on_interval((&num, &den), v, &i, want, names) {
-                Ok(c) => Outcome::certified(Method::RationalFunction, 1, c)
-                    .with_finding(Finding::RationalFunction(evidence)),
+                Ok(_) => {
+                    let fact = Fact::SignOnInterval {
+                        variable: name.clone(),
+                        cuts: cuts(&chart, &i),
+                        reduced: Some(cx.reduced(&slope)),
+                        function: Some(cx.reduced(&f)),
+                        roots: cx.roots(),
+                    };
+                    with_evidence(cx.by_kernel(fact, None), evidence)
+                }
                 Err(_) => Outcome::undecided(Method::RationalFunction, 0)
                     .with_finding(Finding::RationalFunction(evidence)),
             },
@@ -137,8 +145,25 @@ pub(super) fn decide(
     let described: Vec<String> = runs.iter().map(|r| r.describe(&chart, &i, &name)).collect();
     evidence.holds_on = Some(described.join(" and "));
     let inner = runs[0].inner(&chart, &i);
-    let certificate = Certificate::sign_on_interval((&num, &den), v, &inner, want, names).ok();
-    let mut out = Outcome::conditional(Method::RationalFunction, 1, certificate)
+    // Both parts go to the kernel: the sign on the run, with the run as the box, and
+    // the counterexample outside it.
+    let on_run = Certificate::sign_on_interval((&num, &den), v, &inner, want, names)
+        .ok()
+        .and_then(|_| {
+            let mut domain = cx.domain.clone();
+            domain.bounds.retain(|(n, _)| *n != name);
+            domain.bounds.push((name.clone(), inner.clone()));
+            let fact = Fact::SignOnInterval {
+                variable: name.clone(),
+                cuts: cuts(&chart, &inner),
+                reduced: Some(cx.reduced(&slope)),
+                function: Some(cx.reduced(&f)),
+                roots: cx.roots(),
+            };
+            cx.by_kernel(fact, Some(&domain)).proofs().first().cloned()
+        });
+    let proofs = on_run.zip(witness.proofs().first().cloned());
+    let mut out = Outcome::conditional(Method::RationalFunction, 1, proofs)
         .with_finding(Finding::RationalFunction(evidence));
     out.counterexample = witness.counterexample;
     Ok(out)
@@ -255,12 +280,18 @@ fn constant(
         point.entry(w).or_insert_with(|| Rational::int(1));
     }
     let b = &point[&v] + &Rational::ratio(1, 1024).expect("nonzero");
-    let out = if i.contains(&b) {
-        pair(cx, function, f, v, &point, &b)
-    } else {
-        Outcome::undecided(Method::RationalFunction, 0)
+    if !i.contains(&b) {
+        return Outcome::undecided(Method::RationalFunction, 0)
+            .with_finding(Finding::RationalFunction(evidence));
+    }
+    // The two equal values illustrate it; the kernel checks that the derivative is 0.
+    let shown = pair(cx, function, f, v, &point, &b, None);
+    let o = cx.by_kernel(Fact::Constant { roots: cx.roots() }, None);
+    let o = match shown.counterexample {
+        Some(c) if o.verdict() == crate::derivation::Verdict::Fails => o.with_counterexample(c),
+        _ => o,
     };
-    out.with_finding(Finding::RationalFunction(evidence))
+    with_evidence(o, evidence)
 }
 
 /// Two points a < b near `point` in the variable where the function moves the wrong
@@ -280,8 +311,10 @@ fn two_points(
     for _ in 0..60 {
         let b = &a + &step;
         if i.contains(&b) && wrong_way(f, point, v, &b, increasing) {
-            return pair(cx, function, f, v, point, &b)
-                .with_finding(Finding::RationalFunction(evidence));
+            return with_evidence(
+                pair(cx, function, f, v, point, &b, Some(increasing)),
+                evidence,
+            );
         }
         step = &step * &Rational::ratio(1, 2).expect("nonzero");
     }
@@ -303,8 +336,10 @@ fn across_pole(
         let (a, b) = (&of_f.pieces[k].sample, &of_f.pieces[k + 1].sample);
         let at_a = BTreeMap::from([(v, a.clone())]);
         if wrong_way(f, &at_a, v, b, increasing) {
-            return pair(cx, function, f, v, &at_a, b)
-                .with_finding(Finding::RationalFunction(evidence));
+            return with_evidence(
+                pair(cx, function, f, v, &at_a, b, Some(increasing)),
+                evidence,
+            );
         }
     }
     Outcome::undecided(Method::RationalFunction, 0)
@@ -329,7 +364,8 @@ fn wrong_way(
 }
 
 /// `fails`: the function at `point` and at `point` with the variable moved to `b`,
-/// both values exact and confirmed by the interpreter.
+/// both values exact and confirmed by the interpreter, checked by the kernel as two
+/// points where it moves against the claim (`None`: only the counterexample to show).
 fn pair(
     cx: &Context<'_>,
     function: &Expression,
@@ -337,6 +373,7 @@ fn pair(
     v: Var,
     point: &BTreeMap<Var, Rational>,
     b: &Rational,
+    checked: Option<bool>,
 ) -> Outcome {
     let mut at_b = point.clone();
     at_b.insert(v, b.clone());
@@ -353,17 +390,31 @@ fn pair(
     let name = cx.name(v);
     let mut shown = cx.shown(point);
     shown.insert(name.clone(), format!("{} → {b}", point[&v]));
-    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(
-        Counterexample {
-            chain: 1,
-            equality: 1,
-            lhs: format!("{} at {name} = {}", function.text, point[&v]),
-            rhs: format!("{} at {name} = {b}", function.text),
-            point: shown,
-            lhs_value: Some(fa.to_string()),
-            rhs_value: Some(fb.to_string()),
-            reverified: Some(Reverified::FloatingPoint),
-            ..Counterexample::default()
-        },
-    )
+    let o = match checked {
+        None => Outcome::fails_sampled(Method::RationalFunction, 1),
+        Some(_) => {
+            let fact = Fact::TwoPoints {
+                a: point[&v].clone(),
+                b: b.clone(),
+                point: cx.full_point(point),
+                roots: cx.roots(),
+            };
+            let o = cx.by_kernel(fact, None);
+            if o.verdict() != crate::derivation::Verdict::Fails {
+                return o;
+            }
+            o
+        }
+    };
+    o.with_counterexample(Counterexample {
+        chain: 1,
+        equality: 1,
+        lhs: format!("{} at {name} = {}", function.text, point[&v]),
+        rhs: format!("{} at {name} = {b}", function.text),
+        point: shown,
+        lhs_value: Some(fa.to_string()),
+        rhs_value: Some(fb.to_string()),
+        reverified: Some(Reverified::FloatingPoint),
+        ..Counterexample::default()
+    })
 }

@@ -7,9 +7,10 @@ use super::{Context, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::Real;
 use crate::derivation::Expression;
+use crate::kernel::check::Fact;
 use crate::kernel::Rational;
 use crate::strategy::finding::Finding;
-use crate::strategy::{Counterexample, Method, Outcome, Reverified, Strength};
+use crate::strategy::{Counterexample, Method, Outcome, Reverified};
 use std::collections::BTreeMap;
 
 pub(super) fn decide(
@@ -50,10 +51,10 @@ pub(super) fn decide(
     let (num, den) = f.cleared();
     let names = &cx.env.vars;
     let zeros = match Certificate::roots_exactly((&num, &den), v, &i, &stated, names) {
-        Ok(c) => {
+        Ok(_) => {
             evidence.points = stated.iter().map(|r| format!("root {r}")).collect();
-            return Ok(Outcome::certified(Method::RationalFunction, 1, c)
-                .with_finding(Finding::RationalFunction(evidence)));
+            let o = cx.by_kernel(Fact::Roots { roots: cx.roots() }, None);
+            return Ok(super::sign::with_evidence(o, evidence));
         }
         Err(Some(zeros)) => zeros,
         Err(None) => {
@@ -100,10 +101,10 @@ pub(super) fn decide(
             " (outside the domain)"
         };
         let how = Reverified::FloatingPoint;
-        return Ok(
-            fails(function, &name, format!("{r}{outside}"), lhs_value, how)
-                .with_finding(Finding::RationalFunction(evidence)),
-        );
+        return Ok(super::sign::with_evidence(
+            fails(cx, function, &name, format!("{r}{outside}"), lhs_value, how),
+            evidence,
+        ));
     }
     // A root that is not stated.
     let missing = zeros
@@ -111,31 +112,45 @@ pub(super) fn decide(
         .find(|z| !matches!(z, Real::Exact(x) if stated.contains(x)));
     Ok(match missing {
         // Found by Sturm isolation in the kernel: exact, whatever its value's digits.
-        Some(z) => fails(
-            function,
-            &name,
-            format!("{z} (a root not stated)"),
-            "0".to_owned(),
-            Reverified::Exact,
-        )
-        .with_finding(Finding::RationalFunction(evidence)),
+        Some(z) => super::sign::with_evidence(
+            fails(
+                cx,
+                function,
+                &name,
+                format!("{z} (a root not stated)"),
+                "0".to_owned(),
+                Reverified::Exact,
+            ),
+            evidence,
+        ),
         None => Outcome::undecided(Method::RationalFunction, 0)
             .with_finding(Finding::RationalFunction(evidence)),
     })
 }
 
-fn fails(function: &Expression, name: &str, at: String, value: String, how: Reverified) -> Outcome {
-    Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(
-        Counterexample {
-            chain: 1,
-            equality: 1,
-            lhs: function.text.clone(),
-            rhs: "0".to_owned(),
-            point: BTreeMap::from([(name.to_owned(), at)]),
-            lhs_value: Some(value),
-            rhs_value: Some(Rational::int(0).to_string()),
-            reverified: Some(how),
-            ..Counterexample::default()
-        },
-    )
+/// `fails`, as the kernel concludes it from its own count of the zeros; the
+/// counterexample shows the value the search found.
+fn fails(
+    cx: &Context<'_>,
+    function: &Expression,
+    name: &str,
+    at: String,
+    value: String,
+    how: Reverified,
+) -> Outcome {
+    let o = cx.by_kernel(Fact::Roots { roots: cx.roots() }, None);
+    if o.verdict() != crate::derivation::Verdict::Fails {
+        return o;
+    }
+    o.with_counterexample(Counterexample {
+        chain: 1,
+        equality: 1,
+        lhs: function.text.clone(),
+        rhs: "0".to_owned(),
+        point: BTreeMap::from([(name.to_owned(), at)]),
+        lhs_value: Some(value),
+        rhs_value: Some(Rational::int(0).to_string()),
+        reverified: Some(how),
+        ..Counterexample::default()
+    })
 }

@@ -5,11 +5,11 @@ use super::sample::{self, Sampled};
 use super::{Context, Exact, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::{Sign, Violation};
-use crate::algebra::RatFunc;
 use crate::derivation::Expression;
+use crate::kernel::check::Fact;
 use crate::kernel::{Rational, Var};
 use crate::strategy::finding::{Finding, RationalEvidence};
-use crate::strategy::{reverify, Counterexample, Method, Outcome, Strength};
+use crate::strategy::{reverify, Counterexample, Method, Outcome};
 use std::collections::BTreeMap;
 
 pub(super) fn decide(cx: &mut Context<'_>, want: Sign) -> Result<Outcome, Stop> {
@@ -18,7 +18,7 @@ pub(super) fn decide(cx: &mut Context<'_>, want: Sign) -> Result<Outcome, Stop> 
     let h = l.minus(&r);
     let mut evidence = cx.evidence(&h.f);
     evidence.decided = format!("left − right = {}", evidence.decided);
-    let decided = decide_function(cx, &h, want, evidence)?;
+    let decided = decide_function(cx, (&h, None), want, evidence)?;
     Ok(match decided {
         Decided::Holds(o) => *o,
         Decided::At(point) => counterexample(cx, (&left, &right), (&l, &r), &point),
@@ -65,36 +65,40 @@ pub(super) enum Decided {
     },
 }
 
-/// Decides that `g` has the sign `want` on the box, with the kernel where it can.
+/// Decides that `g` has the sign `want` on the box: the algebra searches for a
+/// certificate (coefficient signs, a Sturm sign chart), and the kernel checks what
+/// it found against the claim's statement.
 pub(super) fn decide_function(
     cx: &Context<'_>,
-    g: &Exact,
+    (g, function): (&Exact, Option<&Exact>),
     want: Sign,
     mut evidence: RationalEvidence,
 ) -> Result<Decided, Stop> {
     let names = &cx.env.vars;
     let vars = g.variables();
-    let proved = |c: Certificate, e: RationalEvidence| {
-        Decided::Holds(Box::new(
-            Outcome::certified(Method::RationalFunction, 1, c)
-                .with_finding(Finding::RationalFunction(e)),
-        ))
+    let proved = |fact: Fact, e: RationalEvidence| {
+        Decided::Holds(Box::new(with_evidence(cx.by_kernel(fact, None), e)))
+    };
+    let (reduced, function) = (Some(cx.reduced(g)), function.map(|f| cx.reduced(f)));
+    let by_coefficients = || Fact::SignByCoefficients {
+        reduced: reduced.clone(),
+        function: function.clone(),
+        roots: cx.roots(),
     };
     // Identically zero: a non-strict sign holds everywhere, a strict one nowhere.
     if g.f.is_zero() {
-        return Ok(
-            match Certificate::rational_functions_equal(&g.f, &RatFunc::int(0)) {
-                Some(c) if want.admits(0) => proved(c, evidence),
-                _ => Decided::At(first_defined(cx, g, &vars)),
-            },
-        );
+        return Ok(if want.admits(0) {
+            proved(by_coefficients(), evidence)
+        } else {
+            Decided::At(first_defined(cx, g, &vars))
+        });
     }
     match vars.as_slice() {
         [] => {
             let box_ = cx.box_on(&vars);
             Ok(
                 match Certificate::sign_by_coefficients(&g.f, &box_, want, names) {
-                    Some(c) => proved(c, evidence),
+                    Some(_) => proved(by_coefficients(), evidence),
                     None => Decided::At(BTreeMap::new()),
                 },
             )
@@ -102,7 +106,8 @@ pub(super) fn decide_function(
         [v] => {
             let i = cx.interval(*v);
             let (num, den) = g.cleared();
-            if let Some(chart) = crate::algebra::sign::chart_of((&num, &den), *v, &i) {
+            let chart = crate::algebra::sign::chart_of((&num, &den), *v, &i);
+            if let Some(chart) = &chart {
                 evidence.points = chart
                     .cuts
                     .iter()
@@ -114,7 +119,16 @@ pub(super) fn decide_function(
             }
             Ok(
                 match Certificate::sign_on_interval((&num, &den), *v, &i, want, names) {
-                    Ok(c) => proved(c, evidence),
+                    Ok(_) => {
+                        let fact = Fact::SignOnInterval {
+                            variable: names.name(*v).to_owned(),
+                            cuts: chart.as_ref().map(|c| cuts(c, &i)).unwrap_or_default(),
+                            reduced: reduced.clone(),
+                            function: function.clone(),
+                            roots: cx.roots(),
+                        };
+                        proved(fact, evidence)
+                    }
                     Err(Some(violation)) => match *violation {
                         Violation::At { x, .. } => Decided::At(BTreeMap::from([(*v, x)])),
                         Violation::Zero { lo, hi } => Decided::AtRoot {
@@ -134,9 +148,8 @@ pub(super) fn decide_function(
             )
         }
         _ => {
-            if let Some(c) = Certificate::sign_by_coefficients(&g.f, &cx.box_on(&vars), want, names)
-            {
-                return Ok(proved(c, evidence));
+            if Certificate::sign_by_coefficients(&g.f, &cx.box_on(&vars), want, names).is_some() {
+                return Ok(proved(by_coefficients(), evidence));
             }
             // Stopped by the time limit: undecided, with the limit as the finding
             // (`strategy::decide` gives it to every decision that outlived it).
@@ -155,6 +168,37 @@ pub(super) fn decide_function(
             })
         }
     }
+}
+
+/// An outcome of the kernel with the search's evidence, unless the kernel refused it
+/// (its reason is then the finding).
+pub(super) fn with_evidence(o: Outcome, e: RationalEvidence) -> Outcome {
+    if matches!(o.finding, Some(Finding::KernelRefused { .. })) {
+        return o;
+    }
+    o.with_finding(Finding::RationalFunction(e))
+}
+
+/// Rational points that separate the roots of a sign chart, strictly inside `i`: every
+/// rational root and a point inside every piece, so that each gap between two of them
+/// holds at most one (irrational) root, between two points that are not roots.
+pub(super) fn cuts(
+    chart: &crate::algebra::sign::SignChart,
+    i: &crate::algebra::sign::Interval,
+) -> Vec<Rational> {
+    let mut out: Vec<Rational> = chart
+        .cuts
+        .iter()
+        .filter_map(|c| match &c.at {
+            crate::algebra::sign::Real::Exact(x) => Some(x.clone()),
+            _ => None,
+        })
+        .chain(chart.pieces.iter().map(|p| p.sample.clone()))
+        .filter(|x| i.contains(x) && Some(x) != i.lo.value() && Some(x) != i.hi.value())
+        .collect();
+    out.sort();
+    out.dedup();
+    out
 }
 
 /// A point of the box where `g` is defined (for a function that is zero everywhere).
@@ -216,7 +260,16 @@ fn counterexample(
     ) {
         Ok(how) => {
             found.reverified = Some(how);
-            Outcome::fails(Method::RationalFunction, Strength::Proof, 1).with_counterexample(found)
+            let fact = Fact::SignAt {
+                point: cx.full_point(point),
+                roots: cx.roots(),
+            };
+            let o = cx.by_kernel(fact, None);
+            if o.verdict() == crate::derivation::Verdict::Fails {
+                o.with_counterexample(found)
+            } else {
+                o
+            }
         }
         Err(why) => {
             Outcome::undecided(Method::RationalFunction, 0).with_finding(Finding::Unconfirmed {
@@ -268,7 +321,16 @@ fn at_root(
         reverified: Some(crate::strategy::Reverified::FloatingPoint),
         ..Counterexample::default()
     };
-    Outcome::fails(Method::RationalFunction, Strength::Proof, 1)
-        .with_counterexample(found)
+    let fact = Fact::ZeroBetween {
+        variable: cx.name(var),
+        lo: lo.clone(),
+        hi: hi.clone(),
+        roots: cx.roots(),
+    };
+    let o = cx.by_kernel(fact, None);
+    if o.verdict() != crate::derivation::Verdict::Fails {
+        return o;
+    }
+    o.with_counterexample(found)
         .with_finding(Finding::RationalFunction(evidence))
 }

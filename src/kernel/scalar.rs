@@ -1,0 +1,863 @@
+//! Facts about scalar functions of parameters on a box: signs, monotonicity, limits,
+//! roots, and the not-a-circle witness. The function is the kernel's own value of the
+//! claim's terms; a fact's cuts and points are hints, checked exactly: Sturm counts of
+//! roots between rational points (`univariate`), signs by coefficients (`sign`), exact
+//! values.
+
+use super::check::{Checked, Conclusion, Reduced, Rejection};
+use super::eval::{Env, EvalError};
+use super::frac::Frac;
+use super::poly::{Poly, Var};
+use super::rational::Rational;
+use super::sign::by_coefficients;
+use super::statement::{Approach, Claim, End, Interval, LimitValue, Side, Sign};
+use super::univariate::Uni;
+use num_traits::Zero;
+use std::collections::BTreeMap;
+
+type R<T> = Result<T, Rejection>;
+
+fn no(why: &str) -> Rejection {
+    Rejection::False(why.to_owned())
+}
+
+fn frac(r: Result<Frac, super::frac::FracError>) -> R<Frac> {
+    r.map_err(|e| Rejection::Eval(EvalError::from(e)))
+}
+
+/// The scalar value of a term.
+fn scalar(env: &mut Env<'_>, t: &super::term::Term) -> R<Frac> {
+    match env.eval(t)? {
+        super::eval::Value::Tensor { letters, mut comps } if letters.is_empty() => {
+            Ok(comps.remove(0))
+        }
+        _ => Err(Rejection::Mismatch(
+            "a scalar claim about something that is not a scalar".into(),
+        )),
+    }
+}
+
+/// The sign `f` must have, and what to say of it: a sign claim's `left − right`, a
+/// monotonicity's derivative.
+struct Target {
+    f: Frac,
+    want: Sign,
+    /// For a monotonicity: the function itself, whose poles break it.
+    function: Option<Frac>,
+    v: Option<Var>,
+}
+
+/// `f` in the lowest terms a fact offers: `num_r / den_r` with `den_r` dividing the
+/// kernel's denominator D (D = den_r·q) and its numerator N = num_r·q (both times
+/// the same power of each variable, to clear negative ones). Where f is defined,
+/// D ≠ 0, so den_r ≠ 0 and the two agree; f's conditions stay.
+fn reduce(env: &mut Env<'_>, f: Frac, hint: Option<&Reduced>) -> R<Frac> {
+    let Some((n, d)) = hint else { return Ok(f) };
+    let (nr, dr) = (env.poly_of(n)?, env.poly_of(d)?);
+    let mut den = <Poly as num_traits::One>::one();
+    for (g, k) in f.denominator() {
+        den = den
+            .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
+            .map_err(|_| EvalError::Limit)?;
+    }
+    let mut vars = f.numerator().variables();
+    vars.extend(den.variables());
+    let lowest: Vec<(Var, i32)> = vars
+        .iter()
+        .map(|&v| {
+            let low = f
+                .numerator()
+                .terms()
+                .chain(den.terms())
+                .map(|(m, _)| m.exponent(v))
+                .min()
+                .unwrap_or(0);
+            (v, (-low).max(0))
+        })
+        .collect();
+    let lift = Poly::term(
+        super::poly::Monomial::checked_from_factors(lowest).ok_or(EvalError::Limit)?,
+        Rational::int(1),
+    );
+    let (num, den) = (
+        f.numerator()
+            .checked_mul(&lift)
+            .map_err(|_| EvalError::Limit)?,
+        den.checked_mul(&lift).map_err(|_| EvalError::Limit)?,
+    );
+    let q = den
+        .divide_exact(&dr, 100_000)
+        .ok_or_else(|| no("the reduced denominator does not divide the function's"))?;
+    if num != nr.checked_mul(&q).map_err(|_| EvalError::Limit)? {
+        return Err(no("the reduced form is not the function"));
+    }
+    let mut conds = f.conditions().to_vec();
+    if dr.num_terms() > 1 && !conds.contains(&dr) {
+        conds.push(dr.clone());
+    }
+    let den_r = if dr.num_terms() == 1 && dr.as_constant().is_some() {
+        Vec::new()
+    } else {
+        vec![(dr, 1)]
+    };
+    Ok(Frac {
+        num: nr,
+        den: den_r,
+        conds,
+    })
+}
+
+fn target(env: &mut Env<'_>, claim: &Claim) -> R<Target> {
+    Ok(match claim {
+        Claim::Sign { left, right, sign } => {
+            let (l, r) = (scalar(env, left)?, scalar(env, right)?);
+            Target {
+                f: frac(l.sub(&r))?,
+                want: *sign,
+                function: None,
+                v: None,
+            }
+        }
+        Claim::Monotone {
+            function,
+            variable,
+            increasing,
+        } => {
+            let f = scalar(env, function)?;
+            let v = env.vars.intern(variable);
+            Target {
+                f: frac(f.derivative(v))?,
+                want: if *increasing {
+                    Sign::NonNegative
+                } else {
+                    Sign::NonPositive
+                },
+                function: Some(f),
+                v: Some(v),
+            }
+        }
+        _ => return Err(Rejection::Mismatch("not a sign or a monotonicity".into())),
+    })
+}
+
+/// A fraction's numerator, denominator and conditions in one variable, its divisors
+/// that divide the numerator cancelled. A condition without `v` only leaves points
+/// out, and one of strict sign on the box none: both are dropped (the sign is then
+/// shown on more points, never fewer).
+fn univariate(f: &Frac, v: Var, box_: &[(Var, Interval)], env: &Env<'_>) -> R<(Uni, Uni, Uni)> {
+    let one = |p: &Poly| {
+        Uni::of(p, v).ok_or_else(|| {
+            Rejection::False(format!(
+                "the function is not of `{}` alone: {}",
+                env.vars.name(v),
+                p.display_truncated(&env.vars, 4)
+            ))
+        })
+    };
+    let f = f.tidied();
+    let mut den = <Poly as num_traits::One>::one();
+    for (g, k) in f.denominator() {
+        den = den
+            .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
+            .map_err(|_| EvalError::Limit)?;
+    }
+    let mut conds = <Poly as num_traits::One>::one();
+    for c in f.conditions() {
+        let of_v = c.variables().contains(&v);
+        let strict = [Sign::Positive, Sign::Negative]
+            .into_iter()
+            .any(|s| by_coefficients(&Frac::from(c.clone()), box_, s, &env.vars).is_some());
+        if of_v && !strict {
+            conds = conds.checked_mul(c).map_err(|_| EvalError::Limit)?;
+        }
+    }
+    // Both times v^m, so that no negative power of v is left (v = 0 is then a root of
+    // the denominator: the function is undefined there, as it was).
+    let low = f
+        .numerator()
+        .terms()
+        .chain(den.terms())
+        .map(|(m, _)| m.exponent(v))
+        .min()
+        .unwrap_or(0);
+    let lift = Poly::term(
+        super::poly::Monomial::var(v, (-low).max(0)),
+        Rational::int(1),
+    );
+    let num = f
+        .numerator()
+        .checked_mul(&lift)
+        .map_err(|_| EvalError::Limit)?;
+    let den = den.checked_mul(&lift).map_err(|_| EvalError::Limit)?;
+    Ok((one(&num)?, one(&den)?, one(&conds)?))
+}
+
+fn sign_of(x: &Rational) -> i32 {
+    if x.is_zero() {
+        0
+    } else if x.is_negative() {
+        -1
+    } else {
+        1
+    }
+}
+
+/// `f` (of `v` alone) has the sign `want` on `i` wherever defined: between the cuts
+/// (strictly increasing, inside `i`) each piece holds no root of N·D·C (sign at one
+/// point) or one, between two cuts that are not roots (signs at both cuts, and for a
+/// strict sign the root a pole, not a zero); at each cut and closed end, exactly.
+fn on_interval(
+    f: &Frac,
+    v: Var,
+    i: &Interval,
+    want: Sign,
+    cuts: &[Rational],
+    b: (&[(Var, Interval)], &Env<'_>),
+) -> R<(usize, usize)> {
+    let (n, d, c) = univariate(f, v, b.0, b.1)?;
+    if n.is_zero() {
+        return if want.admits(0) {
+            Ok((1, 0))
+        } else {
+            Err(no("the function is 0"))
+        };
+    }
+    let undefined = d.mul(&c);
+    let all = n.mul(&undefined);
+    let value = |x: &Rational| -> Option<i32> {
+        (!undefined.eval(x).is_zero()).then(|| sign_of(&n.eval(x)) * sign_of(&d.eval(x)))
+    };
+    let inside = |x: &Rational| i.contains(x) && Some(x) != i.lo.value() && Some(x) != i.hi.value();
+    if cuts.windows(2).any(|w| w[0] >= w[1]) || !cuts.iter().all(inside) {
+        return Err(Rejection::Mismatch(
+            "cuts not increasing inside the interval".into(),
+        ));
+    }
+    let mut points: Vec<&Rational> = cuts.iter().collect();
+    for e in [&i.lo, &i.hi] {
+        if let End::Closed(x) = e {
+            points.push(x);
+        }
+    }
+    for x in points {
+        if let Some(s) = value(x) {
+            if !want.admits(s) {
+                return Err(no("the sign is wrong at a cut"));
+            }
+        }
+    }
+    let mut ends: Vec<Option<&Rational>> = vec![i.lo.value()];
+    ends.extend(cuts.iter().map(Some));
+    ends.push(i.hi.value());
+    for w in ends.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        match all.roots_between(a, b) {
+            Some(0) => {
+                let s = match (a, b) {
+                    (Some(a), Some(b)) => &(a + b) * &Rational::ratio(1, 2).expect("2 ≠ 0"),
+                    (Some(a), None) => a + &Rational::int(1),
+                    (None, Some(b)) => b - &Rational::int(1),
+                    (None, None) => Rational::zero(),
+                };
+                if !value(&s).is_some_and(|s| want.admits(s)) {
+                    return Err(no("the sign is wrong on a piece"));
+                }
+            }
+            Some(1) => {
+                let (Some(a), Some(b)) = (a, b) else {
+                    return Err(Rejection::Mismatch(
+                        "a root next to an end that is not a cut".into(),
+                    ));
+                };
+                if !cuts.contains(a)
+                    || !cuts.contains(b)
+                    || all.eval(a).is_zero()
+                    || all.eval(b).is_zero()
+                {
+                    return Err(Rejection::Mismatch("a root not between two cuts".into()));
+                }
+                let pole = undefined.roots_between(Some(a), Some(b)) == Some(1);
+                if !want.admits(0) && !pole {
+                    return Err(no("the function is 0 at a root"));
+                }
+            }
+            _ => {
+                return Err(Rejection::Mismatch(
+                    "the cuts do not separate the roots".into(),
+                ))
+            }
+        }
+    }
+    let poles = undefined
+        .roots_between(i.lo.value(), i.hi.value())
+        .unwrap_or(0);
+    Ok((ends.len() - 1, poles))
+}
+
+/// The reduced denominator of `f` (of `v` alone): its roots are the poles.
+fn reduced_denominator(f: &Frac, v: Var, b: (&[(Var, Interval)], &Env<'_>)) -> R<Uni> {
+    let (n, d, _) = univariate(f, v, b.0, b.1)?;
+    let g = n.gcd(&d);
+    let mut out = d;
+    // d / g by Sturm-free means: roots of d that are not roots of g.
+    if !g.is_zero() {
+        out = Uni::quotient(&out, &g);
+    }
+    Ok(out)
+}
+
+/// The interval of `v` on the box (the real line when the box does not bound it).
+fn interval(box_: &[(Var, Interval)], v: Var) -> Interval {
+    box_.iter()
+        .find(|(w, _)| *w == v)
+        .map_or_else(Interval::real_line, |(_, i)| i.clone())
+}
+
+/// The value of `f` at a point (checked by the environment), `None` where undefined.
+fn at(env: &mut Env<'_>, f: &Frac, point: &[(String, Rational)]) -> R<Option<Rational>> {
+    let p = env.point(point)?;
+    Ok(f.eval(&|v| p.get(&v).cloned()))
+}
+
+/// The scalar facts (see [`super::check::Fact`]).
+pub(super) fn run(
+    env: &mut Env<'_>,
+    claim: &Claim,
+    fact: &super::check::Fact,
+) -> R<(Conclusion, Vec<Checked>)> {
+    use super::check::Fact as F;
+    let box_ = env.given_box();
+    Ok(match fact {
+        F::SignByCoefficients {
+            reduced, function, ..
+        } => {
+            let mut t = target(env, claim)?;
+            // The coefficients are those of the function in lowest terms: the
+            // search's reduction, checked, or the divisors that divide the numerator.
+            t.f = reduce(env, t.f, reduced.as_ref())?.tidied();
+            t.function = t
+                .function
+                .map(|f| reduce(env, f, function.as_ref()))
+                .transpose()?;
+            if t.function.is_some() && t.f.is_zero() {
+                return Err(no("the derivative is 0: the function does not change"));
+            }
+            let how = by_coefficients(&t.f, &box_, t.want, &env.vars)
+                .ok_or_else(|| no("coefficients of mixed signs"))?;
+            let mut out = vec![Checked::CoefficientSigns {
+                substitution: how.substitution,
+                cases: how.cases,
+            }];
+            if let Some(f) = &t.function {
+                // No pole: the denominator has one strict sign on the box.
+                let den = Frac::from(f.denominator().iter().try_fold(
+                    <Poly as num_traits::One>::one(),
+                    |acc, (g, k)| {
+                        acc.checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
+                            .map_err(|_| EvalError::Limit)
+                    },
+                )?);
+                let how = [Sign::Positive, Sign::Negative]
+                    .into_iter()
+                    .find_map(|s| by_coefficients(&den, &box_, s, &env.vars))
+                    .ok_or_else(|| no("the denominator is not certified free of zeros"))?;
+                out.push(Checked::CoefficientSigns {
+                    substitution: how.substitution,
+                    cases: how.cases,
+                });
+            }
+            (Conclusion::Holds, out)
+        }
+        F::SignOnInterval {
+            variable,
+            cuts,
+            reduced,
+            function,
+            ..
+        } => {
+            let mut t = target(env, claim)?;
+            t.f = reduce(env, t.f, reduced.as_ref())?;
+            t.function = t
+                .function
+                .map(|f| reduce(env, f, function.as_ref()))
+                .transpose()?;
+            let v = env.vars.intern(variable);
+            if t.v.is_some_and(|w| w != v) {
+                return Err(Rejection::Mismatch("another variable".into()));
+            }
+            let i = interval(&box_, v);
+            if t.function.is_some() && t.f.is_zero() {
+                return Err(no("the derivative is 0: the function does not change"));
+            }
+            let (pieces, poles) = on_interval(&t.f, v, &i, t.want, cuts, (&box_, env))?;
+            if let Some(f) = &t.function {
+                let p = reduced_denominator(f, v, (&box_, env))?;
+                let closed_pole = [&i.lo, &i.hi]
+                    .iter()
+                    .any(|e| matches!(e, End::Closed(x) if p.eval(x).is_zero()));
+                if p.roots_between(i.lo.value(), i.hi.value()) != Some(0) || closed_pole {
+                    return Err(no("the function has a pole on the interval"));
+                }
+            }
+            (
+                Conclusion::Holds,
+                vec![Checked::SignOnInterval {
+                    interval: i.describe(variable),
+                    relation: t.want.relation().to_owned(),
+                    pieces,
+                    poles,
+                }],
+            )
+        }
+        F::SignAt { point, .. } => {
+            let Claim::Sign { left, right, sign } = claim else {
+                return Err(Rejection::Mismatch("not a sign claim".into()));
+            };
+            let (l, r) = (scalar(env, left)?, scalar(env, right)?);
+            let (Some(lv), Some(rv)) = (at(env, &l, point)?, at(env, &r, point)?) else {
+                return Err(no("a side is undefined at the point"));
+            };
+            if sign.admits(sign_of(&(&lv - &rv))) {
+                return Err(no("the sign holds at the point"));
+            }
+            (
+                Conclusion::Fails,
+                vec![Checked::Values {
+                    left: lv.to_string(),
+                    right: rv.to_string(),
+                }],
+            )
+        }
+        F::ZeroBetween {
+            variable, lo, hi, ..
+        } => {
+            let Claim::Sign { left, right, sign } = claim else {
+                return Err(Rejection::Mismatch("not a sign claim".into()));
+            };
+            if sign.admits(0) {
+                return Err(no("a zero does not break a sign that admits 0"));
+            }
+            let (l, r) = (scalar(env, left)?, scalar(env, right)?);
+            let v = env.vars.intern(variable);
+            let (n, d, c) = univariate(&frac(l.sub(&r))?, v, &box_, env)?;
+            let i = interval(&box_, v);
+            let undefined = d.mul(&c);
+            let clear = lo < hi
+                && i.contains(lo)
+                && i.contains(hi)
+                && !undefined.eval(lo).is_zero()
+                && !undefined.eval(hi).is_zero();
+            if !clear
+                || undefined.roots_between(Some(lo), Some(hi)) != Some(0)
+                || n.roots_between(Some(lo), Some(hi)).unwrap_or(0) == 0
+            {
+                return Err(no(
+                    "no zero of the difference where it is defined in the interval",
+                ));
+            }
+            (
+                Conclusion::Fails,
+                vec![Checked::ZeroBetween {
+                    variable: variable.clone(),
+                    lo: lo.to_string(),
+                    hi: hi.to_string(),
+                }],
+            )
+        }
+        F::TwoPoints { a, b, point, .. } => {
+            let Claim::Monotone {
+                function,
+                variable,
+                increasing,
+            } = claim
+            else {
+                return Err(Rejection::Mismatch("not a monotonicity".into()));
+            };
+            let f = scalar(env, function)?;
+            let mut values = Vec::new();
+            for x in [a, b] {
+                let mut p = point.clone();
+                p.retain(|(n, _)| n != variable);
+                p.push((variable.clone(), x.clone()));
+                values.push(
+                    at(env, &f, &p)?.ok_or_else(|| no("the function is undefined at a point"))?,
+                );
+            }
+            let wrong = if *increasing {
+                values[0] > values[1]
+            } else {
+                values[0] < values[1]
+            };
+            if a >= b || !wrong {
+                return Err(no("the two values agree with the claim"));
+            }
+            (
+                Conclusion::Fails,
+                vec![Checked::Values {
+                    left: values[0].to_string(),
+                    right: values[1].to_string(),
+                }],
+            )
+        }
+        F::Constant { .. } => {
+            let t = target(env, claim)?;
+            if t.function.is_none() || !t.f.is_zero() {
+                return Err(no("the function is not constant in the variable"));
+            }
+            (Conclusion::Fails, vec![Checked::Constant])
+        }
+        F::Pole { lo, hi, .. } => {
+            let Claim::Monotone {
+                function, variable, ..
+            } = claim
+            else {
+                return Err(Rejection::Mismatch("not a monotonicity".into()));
+            };
+            let f = scalar(env, function)?;
+            let v = env.vars.intern(variable);
+            let i = interval(&box_, v);
+            let p = reduced_denominator(&f, v, (&box_, env))?;
+            if !(lo < hi && i.contains(lo) && i.contains(hi))
+                || p.roots_between(Some(lo), Some(hi)).unwrap_or(0) == 0
+            {
+                return Err(no("no pole there"));
+            }
+            (
+                Conclusion::Fails,
+                vec![Checked::ZeroBetween {
+                    variable: variable.clone(),
+                    lo: lo.to_string(),
+                    hi: hi.to_string(),
+                }],
+            )
+        }
+        F::Limit { point, .. } => limit(env, claim, &box_, point.as_deref())?,
+        F::Roots { .. } => roots(env, claim, &box_)?,
+        F::NotConcyclic { point, us, .. } => not_concyclic(env, claim, point, us)?,
+        _ => {
+            return Err(Rejection::Mismatch(
+                "this fact is about another kind of claim".into(),
+            ))
+        }
+    })
+}
+
+/// `p` with `v` moved so that it tends to 0 from above (`v = c ± s`, `v = ±1/s`, times
+/// `s^m` to clear the negative powers), as (order, coefficient) of its lowest term.
+fn lowest(p: &Poly, v: Var, to: &Approach) -> R<(i64, Poly)> {
+    let limit = |_: super::poly::PolyError| Rejection::Eval(EvalError::Limit);
+    let s = Poly::var(v);
+    let moved = match to {
+        Approach::At(c, side) => {
+            let sign = if *side == Side::Below { -1 } else { 1 };
+            let x = &Poly::constant(c.clone()) + &(&s * &Poly::constant(Rational::int(sign)));
+            super::eval::substitute(p, &BTreeMap::from([(v, x)]))?
+        }
+        Approach::PlusInfinity | Approach::MinusInfinity => {
+            // p(±1/s) = Σ c_k (±1)^k s^(−k): the lowest order is minus the degree.
+            let minus = matches!(to, Approach::MinusInfinity);
+            let mut out = Poly::zero();
+            for (m, c) in p.terms() {
+                let e = m.exponent(v);
+                let c = if minus && e % 2 != 0 { -c } else { c.clone() };
+                let rest = Poly::term(m.without(v), c);
+                let power = Poly::term(
+                    super::poly::Monomial::var(v, 1)
+                        .pow(-e)
+                        .ok_or(EvalError::Limit)?,
+                    Rational::int(1),
+                );
+                out += &rest.checked_mul(&power).map_err(limit)?;
+            }
+            out
+        }
+    };
+    let k = moved
+        .terms()
+        .map(|(m, _)| m.exponent(v))
+        .min()
+        .ok_or_else(|| no("the function is 0"))?;
+    let coefficient = Poly::from_terms(
+        moved
+            .terms()
+            .filter(|(m, _)| m.exponent(v) == k)
+            .map(|(m, c)| (m.without(v), c.clone())),
+    );
+    Ok((i64::from(k), coefficient))
+}
+
+fn limit(
+    env: &mut Env<'_>,
+    claim: &Claim,
+    box_: &[(Var, Interval)],
+    point: Option<&[(String, Rational)]>,
+) -> R<(Conclusion, Vec<Checked>)> {
+    let Claim::Limit {
+        function,
+        variable,
+        to,
+        value,
+    } = claim
+    else {
+        return Err(Rejection::Mismatch("not a limit".into()));
+    };
+    let f = scalar(env, function)?;
+    let v = env.vars.intern(variable);
+    let mut den = <Poly as num_traits::One>::one();
+    for (g, k) in f.denominator() {
+        den = den
+            .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
+            .map_err(|_| EvalError::Limit)?;
+    }
+    // Both times v^m, so that neither has a negative power of v: the quotient is the
+    // same, and the moves of v apply to polynomials.
+    let low = f
+        .numerator()
+        .terms()
+        .chain(den.terms())
+        .map(|(m, _)| m.exponent(v))
+        .min()
+        .unwrap_or(0);
+    let lift = Poly::term(
+        super::poly::Monomial::var(v, (-low).max(0)),
+        Rational::int(1),
+    );
+    let num = f
+        .numerator()
+        .checked_mul(&lift)
+        .map_err(|_| EvalError::Limit)?;
+    let den = den.checked_mul(&lift).map_err(|_| EvalError::Limit)?;
+    // The zero function tends to 0 (read as the order 1 above the denominator's).
+    let (kd, d) = lowest(&den, v, to)?;
+    let (kn, n) = if num.is_zero() {
+        (kd + 1, Poly::zero())
+    } else {
+        lowest(&num, v, to)?
+    };
+    let ratio = frac(Frac::from(n.clone()).div(&Frac::from(d.clone())))?;
+    let side = match to {
+        Approach::At(_, s) => *s,
+        _ => Side::Above,
+    };
+    // The limit: finite (0 or n/d), or infinite with the sign of n/d (the moved
+    // variable tends to 0 from above), or with both signs from both sides for an odd
+    // order.
+    let (found, sign_of): (Option<Frac>, Option<Frac>) = match kn.cmp(&kd) {
+        std::cmp::Ordering::Greater => (Some(Frac::default()), None),
+        std::cmp::Ordering::Equal => (Some(ratio.clone()), None),
+        std::cmp::Ordering::Less if (kd - kn) % 2 != 0 && side == Side::Both => (None, None),
+        std::cmp::Ordering::Less => (None, Some(ratio.clone())),
+    };
+    let claimed = match value {
+        LimitValue::Finite(t) => Some(scalar(env, t)?),
+        _ => None,
+    };
+    let p = match point {
+        Some(pt) => Some(env.point(pt)?),
+        None => None,
+    };
+    let names = &env.vars;
+    let shown = |x: &Frac| super::eval::show(&x.tidied(), names);
+    let mut nonzero: Vec<String> = [&d, &n][..if found.is_some() { 1 } else { 2 }]
+        .iter()
+        .filter(|p| p.num_terms() > 1)
+        .map(|p| p.display(names))
+        .collect();
+    nonzero.sort();
+    let value_words = match (&found, &sign_of) {
+        (Some(l), _) => shown(l),
+        (None, Some(s)) => format!("∞ with the sign of {}", shown(s)),
+        (None, None) => "∞ in absolute value, with opposite signs on the two sides".to_owned(),
+    };
+    let mut said = vec![Checked::Limit {
+        variable: variable.clone(),
+        to: to.to_string(),
+        value: value_words,
+        nonzero,
+    }];
+    let holds = match (value, &found, &sign_of) {
+        (LimitValue::Finite(_), Some(l), _) => claimed
+            .as_ref()
+            .map(|c| c.cleared_difference(l))
+            .transpose()
+            .map_err(EvalError::from)?
+            .is_some_and(|d| d.is_zero()),
+        (LimitValue::Unsigned, None, _) => true,
+        (LimitValue::Signed(plus), None, Some(s)) => {
+            let want = if *plus {
+                Sign::Positive
+            } else {
+                Sign::Negative
+            };
+            match by_coefficients(s, box_, want, names) {
+                Some(how) => {
+                    said.push(Checked::CoefficientSigns {
+                        substitution: how.substitution,
+                        cases: how.cases,
+                    });
+                    true
+                }
+                None => false,
+            }
+        }
+        _ => false,
+    };
+    if holds {
+        return Ok((Conclusion::Holds, said));
+    }
+    // A refutation: at a point of the box where the expansion's coefficients are
+    // nonzero, the limit found and the one stated differ.
+    let p = p.ok_or_else(|| no("the limit is not the one stated, but no point shows it"))?;
+    let at = |x: &Frac| x.eval(&|w| p.get(&w).cloned());
+    let nonzero_at = |x: &Poly| at(&Frac::from(x.clone())).is_some_and(|x| !x.is_zero());
+    if !nonzero_at(&d) || (found.is_none() && !nonzero_at(&n)) {
+        return Err(no("an expansion's coefficient vanishes at the point"));
+    }
+    let differs = match (value, &found) {
+        (LimitValue::Finite(_), Some(l)) => {
+            matches!((claimed.as_ref().and_then(&at), at(l)), (Some(c), Some(l)) if c != l)
+        }
+        (LimitValue::Finite(_), None) | (_, Some(_)) => true,
+        (LimitValue::Signed(plus), None) => match &sign_of {
+            None => true,
+            Some(s) => at(s).is_some_and(|x| (sign_of_rational(&x) > 0) != *plus),
+        },
+        (LimitValue::Unsigned, None) => false,
+    };
+    if !differs {
+        return Err(no("the limit found and the one stated agree at the point"));
+    }
+    Ok((Conclusion::Fails, said))
+}
+
+fn sign_of_rational(x: &Rational) -> i32 {
+    sign_of(x)
+}
+
+/// The zeros of the function on the interval of its variable, against the list.
+fn roots(
+    env: &mut Env<'_>,
+    claim: &Claim,
+    box_: &[(Var, Interval)],
+) -> R<(Conclusion, Vec<Checked>)> {
+    let Claim::Roots {
+        function,
+        variable,
+        roots,
+    } = claim
+    else {
+        return Err(Rejection::Mismatch("not a roots claim".into()));
+    };
+    let f = scalar(env, function)?;
+    let v = env.vars.intern(variable);
+    let i = interval(box_, v);
+    let (n, d, c) = univariate(&f, v, box_, env)?;
+    let undefined = d.mul(&c);
+    let (a, b) = (i.lo.value(), i.hi.value());
+    // Zeros: roots of N that are not roots of D·C, open interval, then closed ends.
+    let common = n.gcd(&undefined);
+    let count = |p: &Uni| p.roots_between(a, b).ok_or_else(|| no("the function is 0"));
+    let mut zeros = count(&n)? - if common.is_zero() { 0 } else { count(&common)? };
+    for e in [&i.lo, &i.hi] {
+        if let End::Closed(x) = e {
+            if n.eval(x).is_zero() && !undefined.eval(x).is_zero() {
+                zeros += 1;
+            }
+        }
+    }
+    let mut values = Vec::with_capacity(roots.len());
+    for r in roots {
+        let x = scalar(env, r)?;
+        let x = x
+            .numerator()
+            .as_constant()
+            .filter(|_| x.denominator().is_empty());
+        values.push(x.ok_or_else(|| Rejection::Mismatch("a root that is not a number".into()))?);
+    }
+    let mut listed: Vec<&Rational> = values.iter().collect();
+    listed.sort();
+    listed.dedup();
+    let all_zeros = listed
+        .iter()
+        .all(|x| i.contains(x) && n.eval(x).is_zero() && !undefined.eval(x).is_zero());
+    let exactly = all_zeros && zeros == listed.len();
+    let said = Checked::Roots {
+        interval: i.describe(variable),
+        roots: listed.iter().map(|x| x.to_string()).collect(),
+        zeros,
+        exactly,
+    };
+    Ok(if exactly {
+        (Conclusion::Holds, vec![said])
+    } else {
+        (Conclusion::Fails, vec![said])
+    })
+}
+
+/// Four rational normals ((1 − u²), 2u)/(1 + u²) at a state: the points (x, y) lie on
+/// no common circle or line, det[x² + y², x, y, 1] ≠ 0.
+fn not_concyclic(
+    env: &mut Env<'_>,
+    claim: &Claim,
+    point: &[(String, Rational)],
+    us: &[Rational],
+) -> R<(Conclusion, Vec<Checked>)> {
+    let Claim::NotCircle { x, y } = claim else {
+        return Err(Rejection::Mismatch("not a not-circle claim".into()));
+    };
+    let normal = env.normal_vars().to_vec();
+    if normal.len() != 2 || us.len() != 4 {
+        return Err(Rejection::Mismatch("four normals in a plane".into()));
+    }
+    let (fx, fy) = (scalar(env, x)?, scalar(env, y)?);
+    let mut rows = Vec::new();
+    for u in us {
+        let one = Rational::int(1);
+        let s = &(u * u) + &one;
+        let n1 = (&one - &(u * u))
+            .checked_div(&s)
+            .ok_or_else(|| no("1 + u² = 0"))?;
+        let n2 = (&Rational::int(2) * u)
+            .checked_div(&s)
+            .ok_or_else(|| no("1 + u² = 0"))?;
+        let mut p: Vec<(String, Rational)> = point.to_vec();
+        p.retain(|(name, _)| !normal.iter().any(|&w| env.vars.name(w) == name));
+        p.push((env.vars.name(normal[0]).to_owned(), n1));
+        p.push((env.vars.name(normal[1]).to_owned(), n2));
+        let (Some(a), Some(b)) = (at(env, &fx, &p)?, at(env, &fy, &p)?) else {
+            return Err(no("the locus is undefined at a normal"));
+        };
+        rows.push([&(&a * &a) + &(&b * &b), a, b, Rational::int(1)]);
+    }
+    // det by expansion over the first row's minors of 3×3.
+    let det3 = |m: [[&Rational; 3]; 3]| {
+        &(&(m[0][0] * &(&(m[1][1] * m[2][2]) - &(m[1][2] * m[2][1])))
+            - &(m[0][1] * &(&(m[1][0] * m[2][2]) - &(m[1][2] * m[2][0]))))
+            + &(m[0][2] * &(&(m[1][0] * m[2][1]) - &(m[1][1] * m[2][0])))
+    };
+    let mut det = Rational::zero();
+    for col in 0..4 {
+        let minor: Vec<[&Rational; 3]> = rows[1..]
+            .iter()
+            .map(|r| {
+                let rest: Vec<&Rational> = (0..4).filter(|&c| c != col).map(|c| &r[c]).collect();
+                [rest[0], rest[1], rest[2]]
+            })
+            .collect();
+        let term = &rows[0][col] * &det3([minor[0], minor[1], minor[2]]);
+        det = if col % 2 == 0 {
+            &det + &term
+        } else {
+            &det - &term
+        };
+    }
+    if det.is_zero() {
+        return Err(no("the four points lie on a common circle or line"));
+    }
+    Ok((
+        Conclusion::Holds,
+        vec![Checked::NotConcyclic {
+            determinant: det.to_string(),
+        }],
+    ))
+}
