@@ -1,43 +1,23 @@
-//! Certificates: the only way to a proved `holds` (the de Bruijn criterion).
-//!
-//! A [`Certificate`] records facts that the kernel itself verified, in exact
-//! arithmetic: canonical polynomials identical, reduced rational functions identical,
-//! a Sturm count of zero roots, an exact value, a nonzero exact determinant. Its field
-//! is private and every constructor here does the verification it names, so a strategy
-//! can hold a certificate only by handing the kernel the objects to compare. An
-//! `Outcome` with verdict `holds` and strength `proof` can only be built from one
-//! (`strategy::Outcome::proved`); every other `holds` is sampled evidence.
-//!
-//! What a certificate does not cover is the reduction of a claim to its facts ("A² > 0
-//! because its numerator and denominator have no positive root"): that reasoning lives
-//! in the strategy that asks for the facts, and the facts are listed in the evidence so
-//! that a reader can audit it.
+//! The algebra's own certificates: what the search checks, in its own fast
+//! arithmetic, before it asks the kernel for a proof. A certificate here decides
+//! which fact to hand the kernel (`kernel::check`), never a verdict: the kernel
+//! re-runs every fact against the claim's statement, and only its proof makes a
+//! verdict of strength `proof`.
 
 use super::indexed::{first_difference, Canonical, Label};
 use super::limit::{self, Approach, Expansion, Limit};
 use super::linear::determinant;
 use super::quotient::{cleared_difference, over, Quotient};
 use super::sign::{self, Interval, Sign, Violation};
-use super::sturm::{count_roots, Bound, UniPoly};
 use super::RatFunc;
 use crate::kernel::poly::{Poly, PolyError, Var, VarTable};
 use crate::kernel::Rational;
 use serde::Serialize;
 
-/// One fact the kernel verified.
+/// One fact the algebra verified.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum Fact {
-    /// Both sides expanded to canonical polynomials, identical in every compared
-    /// component; `modulo_unit_normal` of them only after reduction by n·n = 1.
-    PolynomialIdentity {
-        components: usize,
-        modulo_unit_normal: usize,
-        /// The factors of the denominators cleared before comparing: the identity
-        /// holds wherever each is nonzero (empty: polynomials, no condition).
-        #[serde(skip_serializing_if = "Vec::is_empty")]
-        nonzero: Vec<String>,
-    },
     /// Both sides reduced to the same canonical form in symbolic indices (δ
     /// contracted, ε pairs and isotropic moments as δ's, summed indices renamed):
     /// equal for every value of the free indices `free` at once.
@@ -50,21 +30,9 @@ pub enum Fact {
         modulo_unit_normal: bool,
         evaluated: usize,
     },
-    /// Two reduced rational functions identical.
-    RationalFunctionIdentity,
-    /// One polynomial is `factor` (nonzero) times another.
-    Proportional { factor: String },
-    /// A univariate polynomial has no real root in an interval (Sturm count 0).
-    NoRoot { interval: String },
-    /// A univariate polynomial is positive at a rational point (exact evaluation).
-    Positive { at: String },
-    /// A rational function takes an exact value at a rational point.
-    Value { value: String },
     /// Four rational points lie on no common circle or line:
     /// det[x²+y², x, y, 1] ≠ 0.
     NotConcyclic { determinant: String },
-    /// A rational matrix times a nonzero rational vector is exactly zero.
-    NullVector { vector: Vec<String> },
     /// A rational function of one variable has the stated sign on an interval wherever
     /// it is defined: the real roots of numerator · denominator isolated (Sturm), the
     /// sign exact at a rational point of each piece between them and at closed ends.
@@ -135,12 +103,6 @@ impl Certificate {
         Certificate { facts: vec![fact] }
     }
 
-    /// `a = b` as reduced rational functions (their canonical form makes this
-    /// structural equality).
-    pub fn rational_functions_equal(a: &RatFunc, b: &RatFunc) -> Option<Self> {
-        (a == b).then(|| Self::of(Fact::RationalFunctionIdentity))
-    }
-
     /// `a = b` as canonical forms in symbolic indices ([`super::indexed`]), or forms
     /// that differ by δ's and ε's alone with the difference 0 at every value of the
     /// free indices `free` (their labels are `labels`).
@@ -164,52 +126,6 @@ impl Certificate {
             modulo_unit_normal: a.used_unit_normal() || b.used_unit_normal(),
             evaluated,
         }))
-    }
-
-    /// `a = λ b` for a nonzero rational λ, returned with the certificate.
-    pub fn proportional(a: &Poly, b: &Poly) -> Option<(Self, Rational)> {
-        let (m, cb) = b.terms().next()?;
-        let ca = a.terms().find(|(ma, _)| *ma == m).map(|(_, c)| c.clone())?;
-        let lambda = ca.checked_div(cb)?;
-        let certified = !lambda.is_zero() && a == &(b * &Poly::constant(lambda.clone()));
-        certified.then(|| {
-            (
-                Self::of(Fact::Proportional {
-                    factor: lambda.to_string(),
-                }),
-                lambda,
-            )
-        })
-    }
-
-    /// `p` has no real root in (lo, hi] (Sturm's theorem). A root at a finite `lo` is
-    /// divided out first, since the Sturm count needs `lo` not to be a root.
-    pub fn no_root(p: &UniPoly, lo: &Bound, hi: &Bound, interval: &str) -> Option<Self> {
-        let p = match lo {
-            Bound::At(a) => p.without_root_at(a),
-            _ => p.clone(),
-        };
-        (!p.is_zero() && count_roots(&p, lo, hi) == 0).then(|| {
-            Self::of(Fact::NoRoot {
-                interval: interval.to_owned(),
-            })
-        })
-    }
-
-    /// `p(x) > 0`, evaluated exactly.
-    pub fn positive_at(p: &UniPoly, x: &Rational) -> Option<Self> {
-        let v = p.eval(x);
-        (!v.is_zero() && !v.is_negative()).then(|| Self::of(Fact::Positive { at: x.to_string() }))
-    }
-
-    /// `f(at) = expected`, evaluated exactly (no pole).
-    pub fn value(f: &RatFunc, at: &dyn Fn(Var) -> Rational, expected: &Rational) -> Option<Self> {
-        let v = f.eval(at)?;
-        (&v == expected).then(|| {
-            Self::of(Fact::Value {
-                value: v.to_string(),
-            })
-        })
     }
 
     /// Four rational points on no common circle or line.
@@ -411,26 +327,6 @@ impl Certificate {
             sign_of,
         ))
     }
-
-    /// `matrix · vector = 0` exactly, with `vector ≠ 0`.
-    pub fn null_vector(matrix: &[Vec<Rational>], vector: &[Rational]) -> Option<Self> {
-        if vector.iter().all(Rational::is_zero) {
-            return None;
-        }
-        let zero = matrix.iter().all(|row| {
-            row.len() == vector.len()
-                && row
-                    .iter()
-                    .zip(vector)
-                    .fold(Rational::int(0), |acc, (a, x)| &acc + &(a * x))
-                    .is_zero()
-        });
-        zero.then(|| {
-            Self::of(Fact::NullVector {
-                vector: vector.iter().map(Rational::to_string).collect(),
-            })
-        })
-    }
 }
 
 /// The difference of two sides that are not identical: `numerator / Π factor^k`, the
@@ -463,19 +359,15 @@ impl Difference {
 /// let two_x = Quotient::from(&Poly::constant(Rational::int(2)) * x.numerator());
 /// let mut check = Identities::new(&[]);
 /// assert_eq!(check.compare(&two_x, &two_x.clone()), Ok(None));
-/// assert!(check.certify(&names).is_some());
-/// let mut check = Identities::new(&[]);
 /// let one = Quotient::from(Poly::constant(Rational::int(1)));
-/// assert!(check.compare(&x, &one).unwrap().is_some());
-/// assert!(check.certify(&names).is_none(), "one difference, no certificate");
+/// assert!(check.compare(&x, &one).unwrap().is_some(), "a difference");
+/// assert_eq!(check.components(), 2);
 /// ```
 #[derive(Debug)]
 pub struct Identities<'n> {
     normal: &'n [Var],
     components: usize,
     modulo_unit_normal: usize,
-    nonzero: Vec<Poly>,
-    refuted: bool,
     /// Compare `lhs` with `factor · rhs` (a proportionality with this nonzero factor).
     factor: Option<Rational>,
 }
@@ -488,8 +380,6 @@ impl<'n> Identities<'n> {
             normal,
             components: 0,
             modulo_unit_normal: 0,
-            nonzero: Vec::new(),
-            refuted: false,
             factor: None,
         }
     }
@@ -532,18 +422,8 @@ impl<'n> Identities<'n> {
         self.components += 1;
         if diff.is_zero() {
             self.modulo_unit_normal += usize::from(!raw.is_zero());
-            // The conditions hold every factor of the denominators, cancelled or not.
-            // Single-term divisors (3, V, 2*R_g) are read as nonzero, as always; the
-            // sums are the conditions worth stating.
-            let conditions = lhs.conditions().iter().chain(rhs.conditions());
-            for f in conditions.filter(|f| f.num_terms() > 1) {
-                if !self.nonzero.contains(f) {
-                    self.nonzero.push(f.clone());
-                }
-            }
             Ok(None)
         } else {
-            self.refuted = true;
             Ok(Some(Difference {
                 numerator: diff,
                 denominator: factors,
@@ -560,39 +440,12 @@ impl<'n> Identities<'n> {
     pub fn components(&self) -> usize {
         self.components
     }
-
-    /// The certificate: only when at least one component was compared and none
-    /// differed. `names` writes the denominators' factors.
-    pub fn certify(self, names: &VarTable) -> Option<Certificate> {
-        (!self.refuted && self.components > 0).then(|| {
-            let factor = self.factor.as_ref().map(|f| {
-                Certificate::of(Fact::Proportional {
-                    factor: f.to_string(),
-                })
-            });
-            let identity = Certificate::of(Fact::PolynomialIdentity {
-                components: self.components,
-                modulo_unit_normal: self.modulo_unit_normal,
-                nonzero: {
-                    let mut shown: Vec<String> =
-                        self.nonzero.iter().map(|f| f.display(names)).collect();
-                    shown.sort();
-                    shown
-                },
-            });
-            match factor {
-                Some(f) => identity.and(f),
-                None => identity,
-            }
-        })
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::kernel::VarTable;
-    use num_traits::Zero;
 
     fn q(n: i64, d: i64) -> Rational {
         Rational::ratio(n, d).unwrap()
@@ -608,24 +461,11 @@ mod tests {
         let square = Quotient::from(&(&a * &a) + &(&b * &b));
         let mut plain = Identities::new(&[]);
         assert!(plain.compare(&square, &one).unwrap().is_some());
-        assert!(plain.certify(&names).is_none());
         let normal = [n1, n2];
         let mut on_sphere = Identities::new(&normal);
         assert_eq!(on_sphere.compare(&square, &one), Ok(None));
         assert!(on_sphere.used_unit_normal());
-        let cert = on_sphere.certify(&names).unwrap();
-        assert_eq!(
-            cert.facts(),
-            &[Fact::PolynomialIdentity {
-                components: 1,
-                modulo_unit_normal: 1,
-                nonzero: Vec::new(),
-            }]
-        );
-        assert!(
-            Identities::new(&[]).certify(&names).is_none(),
-            "nothing compared"
-        );
+        assert_eq!(on_sphere.components(), 1);
         // A denominator with the normal in it is refused: the reduction on the sphere
         // would not be canonical for the quotient.
         let over = one
@@ -664,20 +504,20 @@ mod tests {
             check.compare(&g_again, &Quotient::from(g.clone())),
             Ok(None)
         );
-        let cert = check.certify(&names).unwrap();
-        // G again, with every divisor on the way listed: both cancelled.
+        // G again, with every divisor on the way kept as a condition: both cancelled.
         assert_eq!(g_again.as_poly(), Some(&g));
-        assert!(
-            matches!(&cert.facts()[0], Fact::PolynomialIdentity { nonzero, .. }
-            if nonzero == &["3*lambda + 2*G".to_owned(), "lambda + G".to_owned()])
-        );
+        let shown: Vec<String> = g_again
+            .conditions()
+            .iter()
+            .map(|c| c.display(&names))
+            .collect();
+        assert_eq!(shown.len(), 2, "{shown:?}");
         // A wrong Poisson ratio: λ/(λ + G) makes the difference nonzero.
         let wrong = Quotient::from(l.clone()).divide(&lg).unwrap();
         let mut check = Identities::new(&[]);
         let diff = check.compare(&wrong, &nu_of(&l, &g)).unwrap().unwrap();
         assert!(!diff.numerator.is_zero());
         assert_eq!(diff.denominator.len(), 1, "over lambda + G alone");
-        assert!(check.certify(&names).is_none());
     }
 
     fn nu_of(l: &Poly, g: &Poly) -> Quotient {
@@ -689,40 +529,7 @@ mod tests {
     }
 
     #[test]
-    fn proportional_needs_a_nonzero_exact_factor() {
-        let mut names = VarTable::new();
-        let a = Poly::var(names.intern("a"));
-        let b = Poly::var(names.intern("b"));
-        let s = &a + &b;
-        let (_, l) = Certificate::proportional(&(&s * &Poly::constant(q(-3, 2))), &s).unwrap();
-        assert_eq!(l, q(-3, 2));
-        assert!(Certificate::proportional(&(&a - &b), &s).is_none());
-        assert!(Certificate::proportional(&Poly::zero(), &s).is_none());
-        assert!(Certificate::proportional(&s, &Poly::zero()).is_none());
-    }
-
-    #[test]
-    fn sturm_values_determinants_and_null_vectors() {
-        // t² + 1 has no real root; t² − 2 has one in (0, 2].
-        let p = UniPoly::new(vec![q(1, 1), q(0, 1), q(1, 1)]);
-        let r = UniPoly::new(vec![q(-2, 1), q(0, 1), q(1, 1)]);
-        let all = (Bound::MinusInfinity, Bound::PlusInfinity);
-        assert!(Certificate::no_root(&p, &all.0, &all.1, "ℝ").is_some());
-        assert!(
-            Certificate::no_root(&r, &Bound::At(q(0, 1)), &Bound::At(q(2, 1)), "(0, 2]").is_none()
-        );
-        assert!(Certificate::no_root(&UniPoly::new(vec![]), &all.0, &all.1, "ℝ").is_none());
-        // t³ − t = t(t − 1)(t + 1): a root at 0 itself is not in (0, ∞), the one at 1 is.
-        let c = UniPoly::new(vec![q(0, 1), q(-1, 1), q(0, 1), q(1, 1)]);
-        let zero = Bound::At(q(0, 1));
-        assert!(Certificate::no_root(&c, &zero, &Bound::At(q(1, 2)), "(0, 1/2]").is_some());
-        assert!(Certificate::no_root(&c, &zero, &Bound::PlusInfinity, "(0, ∞)").is_none());
-        // t²(t + 1) at 0: a double root divided out, no root in (0, ∞).
-        let d = UniPoly::new(vec![q(0, 1), q(0, 1), q(1, 1), q(1, 1)]);
-        assert!(Certificate::no_root(&d, &zero, &Bound::PlusInfinity, "(0, ∞)").is_some());
-        assert!(Certificate::positive_at(&d, &q(1, 3)).is_some());
-        assert!(Certificate::positive_at(&d, &q(0, 1)).is_none());
-        assert!(Certificate::positive_at(&d, &q(-2, 1)).is_none());
+    fn four_points_on_a_circle_are_not_a_witness() {
         // Four points of the unit circle are concyclic; move one off it.
         let on = |n: i64, d: i64| {
             let u = q(n, d);
@@ -736,21 +543,5 @@ mod tests {
         assert!(Certificate::not_concyclic(&pts).is_none());
         pts[3] = (q(2, 1), q(0, 1));
         assert!(Certificate::not_concyclic(&pts).is_some());
-        let m = vec![vec![q(0, 1), q(1, 1)], vec![q(0, 1), q(-1, 1)]];
-        assert!(Certificate::null_vector(&m, &[q(1, 1), q(0, 1)]).is_some());
-        assert!(Certificate::null_vector(&m, &[q(0, 1), q(1, 1)]).is_none());
-        assert!(Certificate::null_vector(&m, &[q(0, 1), q(0, 1)]).is_none());
-    }
-
-    #[test]
-    fn values_are_exact() {
-        let mut names = VarTable::new();
-        let x = names.intern("x");
-        let f = RatFunc::new(&Poly::var(x), &(&Poly::var(x) + &Poly::constant(q(1, 1)))).unwrap();
-        let at = |_| q(1, 1);
-        assert!(Certificate::value(&f, &at, &q(1, 2)).is_some());
-        assert!(Certificate::value(&f, &at, &q(1, 3)).is_none());
-        let pole = |_| q(-1, 1);
-        assert!(Certificate::value(&f, &pole, &q(0, 1)).is_none());
     }
 }

@@ -272,16 +272,7 @@ pub fn evidence(o: &Outcome) -> String {
             parts.push(format!("proof: {w}"));
         }
     }
-    let symbolic: Vec<String> = o
-        .certificate()
-        .iter()
-        .flat_map(|c| c.facts())
-        .filter_map(index_identity_words)
-        .collect();
     match &o.counterexample {
-        None if o.numeric.is_none() && o.finding.is_none() && !symbolic.is_empty() => {
-            parts.push(symbolic.join("; "));
-        }
         None if o.numeric.is_none() && o.finding.is_none() => {
             let unit = if o.used_unit_normal {
                 ", using n·n = 1"
@@ -312,58 +303,32 @@ fn checked(o: &Outcome) -> impl Iterator<Item = &Checked> {
 
 /// The square roots an exact proof took, with where their signs were certified.
 fn roots(o: &Outcome) -> String {
-    use crate::algebra::certificate::Fact;
-    if !o.proofs().is_empty() {
-        return checked(o)
-            .filter_map(|c| match c {
-                Checked::SquareRoot {
-                    radicand,
-                    root,
-                    on,
-                    substitution,
-                    ..
-                } => {
-                    let sign = if substitution.is_empty() {
-                        String::new()
-                    } else {
-                        format!(", ≥ 0 there by coefficient signs after {substitution}")
-                    };
-                    Some(format!("; sqrt({radicand}) = {root} on {on}{sign}"))
-                }
-                _ => None,
-            })
-            .collect();
-    }
-    let facts: Vec<&Fact> = o.certificate().iter().flat_map(|c| c.facts()).collect();
-    let mut out = String::new();
-    for (k, f) in facts.iter().enumerate() {
-        if let Fact::SquareRoot { radicand, root, on } = f {
-            let sign = match facts.get(k + 1) {
-                Some(Fact::CoefficientSigns { substitution, .. }) => {
+    checked(o)
+        .filter_map(|c| match c {
+            Checked::SquareRoot {
+                radicand,
+                root,
+                on,
+                substitution,
+                ..
+            } => {
+                let sign = if substitution.is_empty() {
+                    String::new()
+                } else {
                     format!(", ≥ 0 there by coefficient signs after {substitution}")
-                }
-                _ => String::new(),
-            };
-            out.push_str(&format!("; sqrt({radicand}) = {root} on {on}{sign}"));
-        }
-    }
-    out
+                };
+                Some(format!("; sqrt({radicand}) = {root} on {on}{sign}"))
+            }
+            _ => None,
+        })
+        .collect()
 }
 
 /// For a proportionality, the factor the components were compared with.
 fn factor(o: &Outcome) -> String {
-    use crate::algebra::certificate::Fact;
-    if let Some(f) = checked(o).find_map(|c| match c {
-        Checked::Proportional { factor } => Some(factor),
-        _ => None,
-    }) {
-        return format!(" of left = {f} · right");
-    }
-    o.certificate()
-        .iter()
-        .flat_map(|c| c.facts())
-        .find_map(|f| match f {
-            Fact::Proportional { factor } => Some(format!(" of left = {factor} · right")),
+    checked(o)
+        .find_map(|c| match c {
+            Checked::Proportional { factor } => Some(format!(" of left = {factor} · right")),
             _ => None,
         })
         .unwrap_or_default()
@@ -372,19 +337,9 @@ fn factor(o: &Outcome) -> String {
 /// Where an identity of quotients holds: every divisor nonzero (empty for
 /// polynomials).
 fn domain(o: &Outcome) -> String {
-    use crate::algebra::certificate::Fact;
-    let proved = checked(o).find_map(|c| match c {
+    let nonzero = checked(o).find_map(|c| match c {
         Checked::PolynomialIdentity { nonzero, .. } if !nonzero.is_empty() => Some(nonzero),
         _ => None,
-    });
-    let nonzero = proved.or_else(|| {
-        o.certificate()
-            .iter()
-            .flat_map(|c| c.facts())
-            .find_map(|f| match f {
-                Fact::PolynomialIdentity { nonzero, .. } if !nonzero.is_empty() => Some(nonzero),
-                _ => None,
-            })
     });
     match nonzero {
         None => String::new(),
@@ -489,45 +444,10 @@ fn counterexample_text(cx: &Counterexample) -> String {
     parts.join("; ")
 }
 
-/// An identity proved in symbolic indices, in words (`None` for any other fact).
-fn index_identity_words(fact: &crate::algebra::certificate::Fact) -> Option<String> {
-    let crate::algebra::certificate::Fact::IndexIdentity {
-        free,
-        terms,
-        modulo_unit_normal,
-        evaluated,
-    } = fact
-    else {
-        return None;
-    };
-    let s = if *terms == 1 { "" } else { "s" };
-    let letters = free
-        .chars()
-        .map(String::from)
-        .collect::<Vec<_>>()
-        .join(", ");
-    let every = if letters.is_empty() {
-        String::new()
-    } else {
-        format!(" for every value of {letters} at once")
-    };
-    let unit = if *modulo_unit_normal {
-        ", using n·n = 1"
-    } else {
-        ""
-    };
-    Some(if *evaluated == 0 {
-        format!("canonical forms in symbolic indices identical{every} ({terms} term{s} after δ contraction, ε pairs and moments as δ pairings, summed indices renamed{unit})")
-    } else {
-        format!("canonical forms in symbolic indices ({terms} term{s} after δ contraction, ε pairs and moments as δ pairings, summed indices renamed{unit}) differ by δ's and ε's alone, and the difference is exactly 0 at all {evaluated} values of {letters}")
-    })
-}
-
-/// What the kernel checked behind an outcome's proofs (or, for the claim kinds it
-/// does not check yet, the algebra's certificate), in words; `None` without either.
+/// What the kernel checked behind an outcome's proof, in words; `None` without one.
 pub fn proof_words(o: &Outcome) -> Option<String> {
     if o.proofs().is_empty() {
-        return o.certificate().map(certificate_words);
+        return None;
     }
     let words: Vec<String> = checked(o)
         .map(|c| match c {
@@ -613,97 +533,4 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
         })
         .collect();
     Some(words.join("; "))
-}
-
-/// The kernel's facts behind a proof, in words.
-pub fn certificate_words(c: &crate::algebra::certificate::Certificate) -> String {
-    use crate::algebra::certificate::Fact;
-    let facts: Vec<String> = c
-        .facts()
-        .iter()
-        .map(|f| match f {
-            Fact::PolynomialIdentity {
-                components,
-                modulo_unit_normal,
-                nonzero,
-            } => {
-                let s = if *components == 1 { "" } else { "s" };
-                let modulo = if *modulo_unit_normal > 0 {
-                    format!(" ({modulo_unit_normal} of them modulo n·n = 1)")
-                } else {
-                    String::new()
-                };
-                if nonzero.is_empty() {
-                    format!("canonical polynomials identical in {components} component{s}{modulo}")
-                } else {
-                    format!(
-                        "numerators identical over a common denominator in {components} component{s}{modulo}; {}",
-                        holds_where(nonzero)
-                    )
-                }
-            }
-            Fact::IndexIdentity { .. } => index_identity_words(f).unwrap_or_default(),
-            Fact::RationalFunctionIdentity => "reduced rational functions identical".to_owned(),
-            Fact::Proportional { factor } => format!("one polynomial is {factor} times the other"),
-            Fact::NoRoot { interval } => format!("no real root for {interval} (Sturm count)"),
-            Fact::Positive { at } => format!("positive at {at} (exact)"),
-            Fact::Value { value } => format!("the exact value is {value}"),
-            Fact::NotConcyclic { determinant } => {
-                format!("four points on no common circle or line (det = {determinant})")
-            }
-            Fact::NullVector { vector } => {
-                format!("an exact null vector ({})", vector.join(", "))
-            }
-            Fact::SignOnInterval {
-                interval,
-                relation,
-                pieces,
-                poles,
-            } => {
-                let s = if *pieces == 1 { "" } else { "s" };
-                let undefined = match poles {
-                    0 => String::new(),
-                    1 => " except at 1 pole".to_owned(),
-                    n => format!(" except at {n} poles"),
-                };
-                format!(
-                    "{relation} for {interval}{undefined} (Sturm: real roots isolated, the sign exact on each of {pieces} piece{s})"
-                )
-            }
-            Fact::Roots { interval, roots } => {
-                if roots.is_empty() {
-                    format!("no real root for {interval} (Sturm isolation)")
-                } else {
-                    format!(
-                        "the real roots for {interval} are exactly {} (Sturm isolation)",
-                        roots.join(", ")
-                    )
-                }
-            }
-            Fact::CoefficientSigns { substitution, .. } if substitution.is_empty() => {
-                "numerator and denominator are constants of one sign".to_owned()
-            }
-            Fact::CoefficientSigns { substitution, cases } => {
-                let s = if *cases == 1 { "" } else { "s" };
-                format!("numerator and denominator have coefficients of one sign after {substitution} ({cases} case{s})")
-            }
-            Fact::SquareRoot { radicand, root, on } => {
-                format!("sqrt({radicand}) = {root} on {on} (its square exactly, its sign as follows)")
-            }
-            Fact::Limit {
-                variable,
-                to,
-                value,
-                nonzero,
-            } => {
-                let limit = format!("the limit as {variable} → {to} is {value} (lowest orders)");
-                if nonzero.is_empty() {
-                    limit
-                } else {
-                    format!("{limit}; {}", holds_where(nonzero))
-                }
-            }
-        })
-        .collect();
-    facts.join("; ")
 }

@@ -2,7 +2,7 @@
 //! statement says, and where they part.
 
 use crate::lang::Span;
-use crate::strategy::transcription::{Hand, Status, Transcription, Why};
+use crate::strategy::transcription::{Agreement, Hand, Status, Transcription, Why};
 use crate::strategy::Strength;
 
 /// The status with its detail, in one sentence or two: "machine-read (proof)",
@@ -22,8 +22,10 @@ pub fn describe(t: &Transcription, printed: &str) -> String {
                 format!(
                     "machine-read ({})",
                     match strength {
-                        Strength::Proof => "every member decided equal exactly",
-                        Strength::Sampled => "sampled: some members compared on seeded samples",
+                        Agreement::Textual =>
+                            "every member the same expression as its side, as written",
+                        Agreement::Exact => "every member decided equal exactly",
+                        Agreement::Sampled => "sampled: some members compared on seeded samples",
                     }
                 )
             };

@@ -15,7 +15,7 @@ use crate::algebra::certificate::{Difference, Identities};
 use crate::algebra::sign::{inner_point, End, Interval};
 use crate::algebra::{assignments, residue, Quotient};
 use crate::derivation::{Check, Strategy};
-use crate::kernel::check::{check as kernel_check, Evaluation, Fact};
+use crate::kernel::check::{check as kernel_check, Checked, Evaluation, Fact};
 use crate::kernel::{Poly, PolyError, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
@@ -172,9 +172,20 @@ fn decide_recording(
             // The kernel checks the identity component by component: the symbolic
             // route found it, it does not prove it.
             Symbolic::Proved(_) => {
-                let equalities = check.chains.iter().map(|c| c.len() - 1).sum();
                 let fact = Fact::Identity { roots: Vec::new() };
-                return by_kernel(decls, check, fact, (Method::Exact, equalities), |o| o);
+                return by_kernel(decls, check, fact, (Method::Exact, 0), |mut o| {
+                    // The components the kernel compared.
+                    o.checks = o
+                        .proofs()
+                        .iter()
+                        .flat_map(|p| p.summary())
+                        .find_map(|c| match c {
+                            Checked::PolynomialIdentity { components, .. } => Some(*components),
+                            _ => None,
+                        })
+                        .unwrap_or(0);
+                    o
+                });
             }
             Symbolic::Differs(d) => {
                 if let Some(outcome) = constant_counterexample(decls, check, &d)? {

@@ -24,7 +24,7 @@ pub use super::sampler::SINGULAR_EPS;
 use super::sampler::{relation_holds, Sampler, Sink, State};
 use super::{
     reverify, search, Counterexample, Measure, Method, NumericEvidence, Outcome, Reverified,
-    SearchEvidence, Strength,
+    SearchEvidence,
 };
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::{
@@ -382,15 +382,6 @@ fn confirmed(
     }
 }
 
-/// The strength of a `fails`: proved when its counterexample was confirmed exactly.
-fn fails_strength(cx: &Counterexample) -> Strength {
-    if cx.reverified == Some(Reverified::Exact) {
-        Strength::Proof
-    } else {
-        Strength::Sampled
-    }
-}
-
 /// Running totals of a sampled decision.
 struct Tally {
     largest: f64,
@@ -471,7 +462,10 @@ pub fn decide_numeric(
         Found::Violation(state, cx) => (state, cx),
     };
     let fails = |cx: Counterexample, finding: Option<Finding>| {
-        let mut o = Outcome::fails(Method::Numeric, fails_strength(&cx), sampling.samples)
+        // Sampled, even when the point was confirmed in exact arithmetic: a proof of
+        // strength `proof` comes only from the kernel, which does not evaluate the
+        // functions the sampled strategies allow.
+        let mut o = Outcome::fails_sampled(Method::Numeric, sampling.samples)
             .with_counterexample(cx)
             .with_numeric(evidence(&tally, search.clone(), None));
         o.finding = finding;
@@ -882,7 +876,7 @@ pub fn decide_gradient(
                         },
                     ));
                 }
-                return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
+                return Ok(Outcome::fails_sampled(Method::Gradient, checks)
                     .with_counterexample(Counterexample {
                         chain: 1,
                         equality: 1,
@@ -961,7 +955,7 @@ pub fn decide_gradient(
             }
             // num-dual and central differences agree, and the closed form differs.
             let point = sampler.describe(&state);
-            return Ok(Outcome::fails(Method::Gradient, Strength::Sampled, checks)
+            return Ok(Outcome::fails_sampled(Method::Gradient, checks)
                 .with_counterexample(Counterexample {
                     chain: 1,
                     equality: 1,
@@ -1095,23 +1089,21 @@ pub fn decide_convex(
                     ),
                 );
             }
-            return Ok(
-                Outcome::fails(Method::Convex, Strength::Sampled, sampling.samples)
-                    .with_counterexample(Counterexample {
-                        chain: 1,
-                        equality: 1,
-                        lhs: format!("Hessian of {}", function.text.trim()),
-                        rhs: "positive semidefinite".into(),
-                        point,
-                        aux: BTreeMap::from([(
-                            "smallest eigenvalue".to_owned(),
-                            significant(min, digits::VALUE),
-                        )]),
-                        reverified: Some(Reverified::SecondDifferences),
-                        ..Counterexample::default()
-                    })
-                    .with_finding(Finding::NegativeEigenvalue { curvature }),
-            );
+            return Ok(Outcome::fails_sampled(Method::Convex, sampling.samples)
+                .with_counterexample(Counterexample {
+                    chain: 1,
+                    equality: 1,
+                    lhs: format!("Hessian of {}", function.text.trim()),
+                    rhs: "positive semidefinite".into(),
+                    point,
+                    aux: BTreeMap::from([(
+                        "smallest eigenvalue".to_owned(),
+                        significant(min, digits::VALUE),
+                    )]),
+                    reverified: Some(Reverified::SecondDifferences),
+                    ..Counterexample::default()
+                })
+                .with_finding(Finding::NegativeEigenvalue { curvature }));
         }
     }
     Ok(Outcome::holds_sampled(Method::Convex, sampling.samples)

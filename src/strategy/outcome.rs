@@ -14,7 +14,6 @@
 //! ```
 
 use super::finding::{Finding, Record};
-use crate::algebra::certificate::Certificate;
 use crate::derivation::Verdict;
 use crate::kernel::check::{Conclusion, Proof};
 use serde::Serialize;
@@ -135,7 +134,6 @@ pub enum Reverified {
 pub struct Outcome {
     verdict: Verdict,
     strength: Strength,
-    certificate: Option<Certificate>,
     /// The kernel's proofs behind a verdict of strength `proof`: one, or for a
     /// conditional its domain's and its counterexample's.
     proofs: Vec<Arc<Proof>>,
@@ -159,7 +157,6 @@ impl Outcome {
         Outcome {
             verdict,
             strength,
-            certificate: None,
             proofs: Vec::new(),
             method,
             checks,
@@ -182,38 +179,15 @@ impl Outcome {
         o
     }
 
-    /// `holds` on a certificate of the untrusted algebra, for the claim kinds whose
-    /// facts the kernel does not check yet.
-    pub fn certified(method: Method, checks: usize, certificate: Certificate) -> Self {
-        let mut o = Outcome::new(Verdict::Holds, Strength::Proof, method, checks);
-        o.certificate = Some(certificate);
-        o
-    }
-
     /// `fails` on sampled evidence: a counterexample found and confirmed in floating
     /// point.
     pub fn fails_sampled(method: Method, checks: usize) -> Self {
         Outcome::new(Verdict::Fails, Strength::Sampled, method, checks)
     }
 
-    /// A proof that also rests on `premises` (the certified square roots the
-    /// expressions took): they join its certificate. Without a certificate, unchanged.
-    pub fn resting_on(mut self, premises: &[Certificate]) -> Self {
-        if let Some(c) = self.certificate.take() {
-            self.certificate = Some(premises.iter().cloned().fold(c, Certificate::and));
-        }
-        self
-    }
-
     /// `holds` on sampled evidence: no violation among the samples and the search.
     pub fn holds_sampled(method: Method, checks: usize) -> Self {
         Outcome::new(Verdict::Holds, Strength::Sampled, method, checks)
-    }
-
-    /// `fails`; `strength` says how the counterexample was found and verified, for the
-    /// claim kinds whose refutations the kernel does not check yet.
-    pub fn fails(method: Method, strength: Strength, checks: usize) -> Self {
-        Outcome::new(Verdict::Fails, strength, method, checks)
     }
 
     /// `conditional`: proved on its domain when a certificate covers the domain,
@@ -250,11 +224,6 @@ impl Outcome {
 
     pub fn strength(&self) -> Strength {
         self.strength
-    }
-
-    /// The kernel's certificate behind a proved verdict.
-    pub fn certificate(&self) -> Option<&Certificate> {
-        self.certificate.as_ref()
     }
 
     /// The kernel's proofs behind a verdict of strength `proof`.

@@ -30,7 +30,7 @@ pub enum Status {
     /// The sides say what the printed statement says: every member pair decided equal.
     MachineRead {
         /// `proof` when every pair was decided exactly, `sampled` otherwise.
-        strength: Strength,
+        strength: Agreement,
         /// Printed chains that the sides do not transcribe but that hold in the claim's
         /// context (definitions printed beside the statement).
         context: Vec<String>,
@@ -199,8 +199,25 @@ pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Tran
 /// The outcome of comparing one printed member with one side.
 #[derive(Clone)]
 enum Same {
-    Yes(Strength),
+    Yes(Agreement),
     No(Why),
+}
+
+/// How a printed member was found to say what its side says: the same expression as
+/// written (reflexivity: textual, not a proof of anything), equal by the exact route
+/// (a kernel proof), or on seeded samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Agreement {
+    Textual,
+    Exact,
+    Sampled,
+}
+
+impl Agreement {
+    /// The weaker of two agreements.
+    fn weaker(self, other: Agreement) -> Agreement {
+        self.max(other)
+    }
 }
 
 /// At most this many comparisons are decided for one statement; beyond, the
@@ -235,7 +252,7 @@ impl Comparer<'_> {
             .collect();
         let defines: Vec<String> = parts.iter().filter_map(|p| p.defines.clone()).collect();
         let mut used = vec![false; printed.len()];
-        let mut strength = Strength::Proof;
+        let mut strength = Agreement::Textual;
         let kind = match &self.check.strategy {
             Strategy::Gradient {
                 function,
@@ -295,7 +312,7 @@ impl Comparer<'_> {
                 if order.len() != p.members.len() {
                     return None;
                 }
-                let mut strength = Strength::Proof;
+                let mut strength = Agreement::Textual;
                 for (m, side) in p.members.iter().zip(order) {
                     match self.same(&m.text, side) {
                         Same::Yes(s) => strength = strength.weaker(s),
@@ -393,7 +410,7 @@ impl Comparer<'_> {
         printed: &[Printed],
         used: &mut [bool],
         chain: &[String],
-    ) -> Result<Strength, Status> {
+    ) -> Result<Agreement, Status> {
         // A proportionality [X, L] states that X = 0 is the printed law `L = 0` (a
         // balance law and the variation it comes from): the printed L is the right side.
         if let (Strategy::Proportional { .. }, [_, law]) = (&self.check.strategy, chain) {
@@ -436,7 +453,7 @@ impl Comparer<'_> {
             } else {
                 p.members.iter().collect()
             };
-            let mut strength = Strength::Proof;
+            let mut strength = Agreement::Textual;
             let mut agreed = 0;
             let mut failure = None;
             for (m, side) in members.into_iter().zip(chain) {
@@ -554,7 +571,7 @@ impl Comparer<'_> {
         function: &str,
         symbol: &str,
         closed: &str,
-    ) -> Result<Strength, Status> {
+    ) -> Result<Agreement, Status> {
         for (k, p) in printed.iter().enumerate() {
             let Some((f, x)) = p.members.first().and_then(|m| m.partial.as_ref()) else {
                 continue;
@@ -596,7 +613,7 @@ impl Comparer<'_> {
         }
         // The same tree is the same expression (reflexivity): no evaluation needed.
         let s = if identical(printed, side) || same_tree(printed, side) {
-            Same::Yes(Strength::Proof)
+            Same::Yes(Agreement::Textual)
         } else if self.memo.borrow().len() >= MAX_COMPARISONS {
             Same::No(Why::Undecided)
         } else {
@@ -625,7 +642,7 @@ impl Comparer<'_> {
             Err(Incomparable::Shape(m)) => return Same::No(Why::Shape(m)),
             Err(Incomparable::Left(e)) | Err(Incomparable::Right(e)) if self.check.verbatim => {
                 return if same_up_to_grouping(printed, side) {
-                    Same::Yes(Strength::Proof)
+                    Same::Yes(Agreement::Textual)
                 } else {
                     Same::No(Why::IllFormed(e.message))
                 };
@@ -641,7 +658,7 @@ impl Comparer<'_> {
         if let [chain] = c.chains.as_slice() {
             if let [Side { node: Ok(l), .. }, Side { node: Ok(r), .. }] = chain.as_slice() {
                 if same_up_to_summed_letters(l, r) {
-                    return Same::Yes(Strength::Proof);
+                    return Same::Yes(Agreement::Textual);
                 }
             }
         }
@@ -738,7 +755,10 @@ fn inconclusive(why: &Why) -> bool {
 
 fn verdict_of(o: &Outcome) -> Same {
     match o.verdict() {
-        Verdict::Holds => Same::Yes(o.strength()),
+        Verdict::Holds => Same::Yes(match o.strength() {
+            Strength::Proof => Agreement::Exact,
+            Strength::Sampled => Agreement::Sampled,
+        }),
         Verdict::Fails => Same::No(Why::Value(o.strength())),
         Verdict::Conditional | Verdict::Undecided => Same::No(Why::Undecided),
     }
@@ -901,17 +921,6 @@ fn canonical(e: &crate::lang::Expr) -> Option<String> {
         | K::Call(..)
         | K::Call2(..) => product(e),
         _ => None,
-    }
-}
-
-impl Strength {
-    /// The weaker of two strengths.
-    fn weaker(self, other: Strength) -> Strength {
-        if self == Strength::Proof && other == Strength::Proof {
-            Strength::Proof
-        } else {
-            Strength::Sampled
-        }
     }
 }
 

@@ -85,7 +85,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
         } => roots::decide(&mut cx, function, variable, roots),
     };
     match decided {
-        Ok(o) => Ok(o.resting_on(cx.env.root_certificates())),
+        Ok(o) => Ok(o),
         Err(Stop::Outcome(o)) => Ok(*o),
         Err(Stop::Input(d)) => Err(d),
     }
