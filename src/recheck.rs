@@ -24,6 +24,7 @@ struct Written {
 }
 
 /// What `recheck` found.
+#[derive(Debug)]
 pub struct Rechecked {
     /// One line per claim (and correction) with a verdict of strength `proof`.
     pub lines: Vec<String>,

@@ -11,6 +11,7 @@
 
 use cosserat_check::derivation::{load_str, Strategy};
 use cosserat_check::strategy::decide;
+use cosserat_check::strategy::finding::Finding;
 use cosserat_check::strategy::probe::curve_values;
 use cosserat_check::strategy::quadrature::{Level, Quadrature};
 use cosserat_check::strategy::tape::Tape;
@@ -303,7 +304,18 @@ fn exercise(data: &[u8]) {
             claim.check.strategy,
             Strategy::Exact { .. } | Strategy::Proportional { .. } | Strategy::NotCircle { .. }
         ) {
-            let _ = decide(&claim.decls, &claim.check);
+            // A decision isolates its own panics as an internal error: the fuzzer
+            // turns that back into a crash, so that none is hidden.
+            if let Ok(o) = decide(&claim.decls, &claim.check) {
+                if let Some(Finding::InternalError { message, at }) = &o.finding {
+                    panic!("internal error: {message} at {at}");
+                }
+                // Every proof the decision made is checked again from its statement.
+                for p in o.proofs() {
+                    let again = cosserat_check::kernel::check::check(p.statement().clone(), p.fact().clone());
+                    assert!(again.is_ok(), "a proof the kernel does not accept again");
+                }
+            }
             let _ = transcribe(&claim.decls, &claim.check, &claim.transcript);
             continue;
         }

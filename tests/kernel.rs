@@ -1,0 +1,365 @@
+//! The kernel's checker on statements written by hand, true and false side by side:
+//! every fact it accepts must hold and every false one must be refused. These are
+//! the tests a broken kernel fails (a flipped sign in the coefficient test, an
+//! off-by-one in a Sturm count, a wrapped exponent).
+
+use cosserat_check::kernel::check::{check, Conclusion, Evaluation, Fact};
+use cosserat_check::kernel::statement::{Claim, Context, End, Equation, Interval, Sign, Statement};
+use cosserat_check::kernel::term::{Leaf, Slot, Term};
+use cosserat_check::kernel::Rational;
+
+fn q(n: i64, d: i64) -> Rational {
+    Rational::ratio(n, d).unwrap()
+}
+
+fn num(n: i64) -> Term {
+    Term::int(n)
+}
+
+fn frac(n: i64, d: i64) -> Term {
+    Term::Const {
+        value: q(n, d),
+        free: Vec::new(),
+    }
+}
+
+fn leaf(of: Leaf, slots: &str) -> Term {
+    Term::Leaf {
+        of,
+        slots: slots
+            .chars()
+            .map(|c| match c.to_digit(10) {
+                Some(d) => Slot::Fixed(d as usize - 1),
+                None => Slot::Letter(c),
+            })
+            .collect(),
+    }
+}
+
+fn sym(name: &str, slots: &str) -> Term {
+    leaf(Leaf::Symbol(name.to_owned()), slots)
+}
+
+fn prod(fs: Vec<Term>) -> Term {
+    Term::Product(fs)
+}
+
+fn sum(ts: Vec<Term>) -> Term {
+    Term::Sum(ts)
+}
+
+fn neg(t: Term) -> Term {
+    Term::Neg(Box::new(t))
+}
+
+fn context(symbols: &[(&str, usize)]) -> Context {
+    Context {
+        dim: 3,
+        normal: Some("n".to_owned()),
+        symbols: symbols.iter().map(|&(s, r)| (s.to_owned(), r)).collect(),
+        ..Context::default()
+    }
+}
+
+fn equal(ctx: &Context, left: Term, right: Term) -> Statement {
+    Statement {
+        context: ctx.clone(),
+        claim: Claim::Equal {
+            chains: vec![vec![left, right]],
+        },
+    }
+}
+
+fn holds(st: Statement, fact: Fact) -> bool {
+    check(st, fact).is_ok_and(|p| p.conclusion() == Conclusion::Holds)
+}
+
+fn fails(st: Statement, fact: Fact) -> bool {
+    check(st, fact).is_ok_and(|p| p.conclusion() == Conclusion::Fails)
+}
+
+fn identity() -> Fact {
+    Fact::Identity { roots: Vec::new() }
+}
+
+#[test]
+fn identities_hold_and_their_twins_are_refused() {
+    let ctx = context(&[("a", 1), ("b", 1)]);
+    let ab = prod(vec![sym("a", "i"), sym("b", "i")]);
+    let ba = prod(vec![sym("b", "j"), sym("a", "j")]);
+    assert!(holds(equal(&ctx, ab.clone(), ba), identity()));
+    let aa = prod(vec![sym("a", "j"), sym("a", "j")]);
+    assert!(!holds(equal(&ctx, ab.clone(), aa), identity()));
+    // ε_ijk ε_imn = δ_jm δ_kn − δ_jn δ_km, and with the sign of one term flipped.
+    let ee = prod(vec![leaf(Leaf::Eps, "ijk"), leaf(Leaf::Eps, "imn")]);
+    let dd = |a: &str, b: &str| prod(vec![leaf(Leaf::Delta, a), leaf(Leaf::Delta, b)]);
+    let right = sum(vec![dd("jm", "kn"), neg(dd("jn", "km"))]);
+    let flipped = sum(vec![dd("jm", "kn"), dd("jn", "km")]);
+    assert!(holds(equal(&ctx, ee.clone(), right), identity()));
+    assert!(!holds(equal(&ctx, ee, flipped), identity()));
+    // ⟨n_i n_j⟩ = δ_ij / 3, not δ_ij / 2; n·n = 1 only modulo the sphere.
+    let avg = Term::Avg(Box::new(prod(vec![
+        leaf(Leaf::Normal, "i"),
+        leaf(Leaf::Normal, "j"),
+    ])));
+    let third = prod(vec![frac(1, 3), leaf(Leaf::Delta, "ij")]);
+    let half = prod(vec![frac(1, 2), leaf(Leaf::Delta, "ij")]);
+    assert!(holds(equal(&ctx, avg.clone(), third), identity()));
+    assert!(!holds(equal(&ctx, avg, half), identity()));
+    let nn = prod(vec![leaf(Leaf::Normal, "k"), leaf(Leaf::Normal, "k")]);
+    assert!(holds(equal(&ctx, nn.clone(), num(1)), identity()));
+    assert!(!holds(equal(&ctx, nn, num(2)), identity()));
+    // A quotient: (x² − y²)/(x − y) = x + y wherever x ≠ y, not x − y.
+    let xy = context(&[("x", 0), ("y", 0)]);
+    let (x, y) = (sym("x", ""), sym("y", ""));
+    let ratio = Term::Div(
+        Box::new(sum(vec![
+            Term::Pow(Box::new(x.clone()), 2),
+            neg(Term::Pow(Box::new(y.clone()), 2)),
+        ])),
+        Box::new(sum(vec![x.clone(), neg(y.clone())])),
+    );
+    assert!(holds(
+        equal(&xy, ratio.clone(), sum(vec![x.clone(), y.clone()])),
+        identity()
+    ));
+    assert!(!holds(equal(&xy, ratio, sum(vec![x, neg(y)])), identity()));
+}
+
+#[test]
+fn a_refutation_needs_an_exact_point_that_satisfies_everything() {
+    let mut ctx = context(&[("a", 1), ("t", 0)]);
+    let st = |ctx: &Context| equal(ctx, sym("a", "1"), sym("a", "2"));
+    let at = |point: &[(&str, Rational)], index: Vec<usize>| Fact::Refutation {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: index,
+            point: point
+                .iter()
+                .map(|(n, v)| ((*n).to_owned(), v.clone()))
+                .collect(),
+        },
+        roots: Vec::new(),
+    };
+    let full = |a1: i64, a2: i64| [("a_1", q(a1, 1)), ("a_2", q(a2, 1)), ("a_3", q(0, 1))];
+    assert!(fails(st(&ctx), at(&full(1, 0), vec![])));
+    assert!(!fails(st(&ctx), at(&full(1, 1), vec![])), "equal there");
+    assert!(
+        !fails(st(&ctx), at(&[("a_1", q(1, 1))], vec![])),
+        "a variable left out"
+    );
+    // An assumption a_1 = a_2 makes every point where they differ inadmissible.
+    ctx.equations.push(Equation::Component {
+        symbol: "a".to_owned(),
+        index: vec![0],
+        value: sym("a", "2"),
+    });
+    assert!(
+        !fails(st(&ctx), at(&full(1, 0), vec![])),
+        "the point breaks an assumption"
+    );
+    // A box: t > 0 refuses a point at t = −1.
+    let mut boxed = context(&[("t", 0)]);
+    boxed.given = vec![(
+        "t".to_owned(),
+        Interval {
+            lo: End::Open(q(0, 1)),
+            hi: End::Unbounded,
+        },
+    )];
+    let st = equal(&boxed, sym("t", ""), num(2));
+    assert!(fails(st.clone(), at(&[("t", q(1, 1))], vec![])));
+    assert!(
+        !fails(st, at(&[("t", q(-1, 1))], vec![])),
+        "outside the box"
+    );
+    // The normal must be a unit vector at the point.
+    let ctx = context(&[]);
+    let st = equal(&ctx, leaf(Leaf::Normal, "1"), num(0));
+    let n = |a: Rational, b: Rational, c: Rational| [("n_1", a), ("n_2", b), ("n_3", c)];
+    assert!(fails(st.clone(), at(&n(q(3, 5), q(4, 5), q(0, 1)), vec![])));
+    assert!(
+        !fails(st, at(&n(q(1, 1), q(1, 1), q(0, 1)), vec![])),
+        "off the sphere"
+    );
+}
+
+fn sign(ctx: &Context, f: Term, s: Sign) -> Statement {
+    Statement {
+        context: ctx.clone(),
+        claim: Claim::Sign {
+            left: f,
+            right: num(0),
+            sign: s,
+        },
+    }
+}
+
+fn coefficients() -> Fact {
+    Fact::SignByCoefficients {
+        reduced: None,
+        function: None,
+        roots: Vec::new(),
+    }
+}
+
+#[test]
+fn coefficient_signs_certify_only_true_signs() {
+    let mut ctx = context(&[("x", 0), ("y", 0)]);
+    let (x, y) = (sym("x", ""), sym("y", ""));
+    let sq = |t: &Term| Term::Pow(Box::new(t.clone()), 2);
+    assert!(holds(
+        sign(&ctx, sum(vec![sq(&x), sq(&y)]), Sign::NonNegative),
+        coefficients()
+    ));
+    assert!(
+        !holds(
+            sign(&ctx, sum(vec![sq(&x), sq(&y)]), Sign::Positive),
+            coefficients()
+        ),
+        "0 at the origin"
+    );
+    assert!(!holds(
+        sign(
+            &ctx,
+            sum(vec![x.clone(), neg(y.clone())]),
+            Sign::NonNegative
+        ),
+        coefficients()
+    ));
+    assert!(!holds(
+        sign(&ctx, neg(sq(&x)), Sign::NonNegative),
+        coefficients()
+    ));
+    let positive = Interval {
+        lo: End::Open(q(0, 1)),
+        hi: End::Unbounded,
+    };
+    ctx.given = vec![
+        ("x".to_owned(), positive.clone()),
+        ("y".to_owned(), positive),
+    ];
+    assert!(holds(
+        sign(&ctx, prod(vec![x.clone(), y.clone()]), Sign::Positive),
+        coefficients()
+    ));
+    assert!(!holds(
+        sign(&ctx, prod(vec![x, neg(y)]), Sign::Positive),
+        coefficients()
+    ));
+}
+
+fn on_interval(cuts: &[Rational]) -> Fact {
+    Fact::SignOnInterval {
+        variable: "x".to_owned(),
+        cuts: cuts.to_vec(),
+        reduced: None,
+        function: None,
+        roots: Vec::new(),
+    }
+}
+
+#[test]
+fn sturm_counts_certify_only_true_signs_and_root_lists() {
+    let mut ctx = context(&[("x", 0)]);
+    let x = sym("x", "");
+    // x² − 2 > 0 on (2, ∞), not on (1, ∞) where √2 lies, whatever cuts are offered.
+    let f = sum(vec![Term::Pow(Box::new(x.clone()), 2), num(-2)]);
+    ctx.given = vec![(
+        "x".to_owned(),
+        Interval {
+            lo: End::Open(q(2, 1)),
+            hi: End::Unbounded,
+        },
+    )];
+    assert!(holds(
+        sign(&ctx, f.clone(), Sign::Positive),
+        on_interval(&[])
+    ));
+    ctx.given = vec![(
+        "x".to_owned(),
+        Interval {
+            lo: End::Open(q(1, 1)),
+            hi: End::Unbounded,
+        },
+    )];
+    for cuts in [
+        vec![],
+        vec![q(3, 2)],
+        vec![q(5, 4), q(3, 2)],
+        vec![q(7, 5), q(3, 2)],
+    ] {
+        assert!(
+            !holds(sign(&ctx, f.clone(), Sign::Positive), on_interval(&cuts)),
+            "{cuts:?}"
+        );
+        assert!(
+            !holds(sign(&ctx, f.clone(), Sign::NonNegative), on_interval(&cuts)),
+            "{cuts:?}"
+        );
+    }
+    // (x − 1)² ≥ 0 everywhere, with the double root as a cut; not > 0.
+    ctx.given = Vec::new();
+    let g = Term::Pow(Box::new(sum(vec![x.clone(), num(-1)])), 2);
+    assert!(holds(
+        sign(&ctx, g.clone(), Sign::NonNegative),
+        on_interval(&[q(1, 1)])
+    ));
+    assert!(!holds(
+        sign(&ctx, g, Sign::Positive),
+        on_interval(&[q(1, 1)])
+    ));
+    // Roots: x² − x has exactly 0 and 1; x² − 2 has two (irrational) zeros, not none.
+    let roots = |f: Term, listed: Vec<Term>| Statement {
+        context: ctx.clone(),
+        claim: Claim::Roots {
+            function: f,
+            variable: "x".to_owned(),
+            roots: listed,
+        },
+    };
+    let h = sum(vec![Term::Pow(Box::new(x.clone()), 2), neg(x.clone())]);
+    let none = Fact::Roots { roots: Vec::new() };
+    assert!(holds(roots(h.clone(), vec![num(0), num(1)]), none.clone()));
+    assert!(fails(roots(h.clone(), vec![num(0)]), none.clone()));
+    assert!(fails(roots(h, vec![num(0), num(1), num(2)]), none.clone()));
+    assert!(fails(roots(f, vec![]), none));
+}
+
+#[test]
+fn an_exponent_beyond_the_bound_is_a_limit_never_a_wrap() {
+    // x^(2^13), squared eleven times: x^(2^24) is the largest exponent, one more square
+    // would be 2^25. `a = 1` must never hold, and x^(2^24) = x^(2^24) still does.
+    let ctx = context(&[("x", 0)]);
+    let mut t = Term::Pow(Box::new(sym("x", "")), 1 << 13);
+    for _ in 0..11 {
+        t = Term::Pow(Box::new(t), 2);
+    }
+    assert!(holds(equal(&ctx, t.clone(), t.clone()), identity()));
+    let beyond = Term::Pow(Box::new(t), 2);
+    assert!(!holds(equal(&ctx, beyond.clone(), num(1)), identity()));
+    let e = check(equal(&ctx, beyond, num(1)), identity())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("bound"), "{e}");
+}
+
+#[test]
+fn a_fact_for_another_claim_or_another_kind_is_refused() {
+    let ctx = context(&[("x", 0)]);
+    let st = equal(&ctx, sym("x", ""), sym("x", ""));
+    assert!(check(st.clone(), coefficients()).is_err());
+    assert!(
+        check(st, Fact::IllFormed { chain: 0, side: 0 }).is_err(),
+        "well-formed"
+    );
+    // An index three times in one product is ill-formed, and the kernel says so.
+    let bad = prod(vec![
+        sym("x", ""),
+        leaf(Leaf::Delta, "ii"),
+        leaf(Leaf::Normal, "i"),
+    ]);
+    let st = equal(&context(&[("x", 0)]), bad, num(0));
+    assert!(fails(st, Fact::IllFormed { chain: 0, side: 0 }));
+}
