@@ -327,22 +327,93 @@ fn sturm_counts_certify_only_true_signs_and_root_lists() {
     assert!(fails(roots(f, vec![]), none));
 }
 
+fn differs() -> Fact {
+    Fact::Differs {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: Vec::new(),
+            point: Vec::new(),
+        },
+        roots: Vec::new(),
+    }
+}
+
 #[test]
 fn an_exponent_beyond_the_bound_is_a_limit_never_a_wrap() {
-    // x^(2^13), squared eleven times: x^(2^24) is the largest exponent, one more square
-    // would be 2^25. `a = 1` must never hold, and x^(2^24) = x^(2^24) still does.
+    // x^(2^13), squared 27 times: x^(2^40) is the largest exponent, one more square
+    // would be 2^41. `a = 1` must never hold, x^(2^40) = x^(2^40) still does, and
+    // x^(2^40) = 1 fails as functions (no value of it can be computed at x = 2).
     let ctx = context(&[("x", 0)]);
     let mut t = Term::Pow(Box::new(sym("x", "")), 1 << 13);
-    for _ in 0..11 {
+    for _ in 0..27 {
         t = Term::Pow(Box::new(t), 2);
     }
     assert!(holds(equal(&ctx, t.clone(), t.clone()), identity()));
+    assert!(fails(equal(&ctx, t.clone(), num(1)), differs()));
     let beyond = Term::Pow(Box::new(t), 2);
     assert!(!holds(equal(&ctx, beyond.clone(), num(1)), identity()));
+    assert!(!fails(equal(&ctx, beyond.clone(), num(1)), differs()));
     let e = check(equal(&ctx, beyond, num(1)), identity())
         .unwrap_err()
         .to_string();
     assert!(e.contains("bound"), "{e}");
+}
+
+#[test]
+fn sides_differ_as_functions_only_on_an_open_box_of_free_variables() {
+    let x = || sym("x", "");
+    let ctx = context(&[("x", 0), ("a", 1)]);
+    assert!(fails(equal(&ctx, x(), num(1)), differs()));
+    assert!(
+        !fails(equal(&ctx, x(), x()), differs()),
+        "the same function"
+    );
+    // n·n − 1 is zero wherever the normal is a unit vector.
+    let nn = prod(vec![leaf(Leaf::Normal, "i"), leaf(Leaf::Normal, "i")]);
+    assert!(!fails(equal(&ctx, nn.clone(), num(1)), differs()));
+    // A divisor that vanishes on the whole sphere leaves nothing to compare.
+    let over = |d: Term| Term::Div(Box::new(num(1)), Box::new(d));
+    let empty = sum(vec![nn, num(-1)]);
+    assert!(!fails(equal(&ctx, over(empty), x()), differs()));
+    assert!(fails(equal(&ctx, over(x()), x()), differs()));
+    // A box of one point, or bounds on an eliminated variable, may hold the sides
+    // equal: the kernel refuses to reason as functions there.
+    let mut point = ctx.clone();
+    point.given = vec![(
+        "x".to_owned(),
+        Interval {
+            lo: End::Closed(q(1, 1)),
+            hi: End::Closed(q(1, 1)),
+        },
+    )];
+    assert!(!fails(equal(&point, x(), num(1)), differs()));
+    let mut eliminated = ctx.clone();
+    eliminated.equations.push(Equation::Component {
+        symbol: "a".to_owned(),
+        index: vec![0],
+        value: num(5),
+    });
+    // a_1 = 5 and 0 < a_1 < 2: no state at all, so nothing fails.
+    eliminated.given = vec![(
+        "a_1".to_owned(),
+        Interval {
+            lo: End::Open(q(0, 1)),
+            hi: End::Open(q(2, 1)),
+        },
+    )];
+    assert!(!fails(equal(&eliminated, sym("a", "2"), num(1)), differs()));
+    // A point must not be named: that is a refutation's business.
+    let named = Fact::Differs {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: Vec::new(),
+            point: vec![("x".to_owned(), q(2, 1))],
+        },
+        roots: Vec::new(),
+    };
+    assert!(!fails(equal(&ctx, x(), num(1)), named));
 }
 
 #[test]

@@ -23,7 +23,7 @@
 use super::interrupt;
 use super::modular;
 use super::residue;
-use crate::kernel::poly::{Monomial, Poly, Var};
+use crate::kernel::poly::{Exp, Monomial, Poly, Var};
 use crate::kernel::rational::Rational;
 use num_traits::{One, Zero};
 use std::collections::BTreeMap;
@@ -31,7 +31,7 @@ use std::collections::BTreeMap;
 /// Splits a Laurent polynomial `p` into `(q, m)` with `p = q / m`, `q` an ordinary
 /// polynomial and `m` the smallest monomial that clears every negative exponent.
 pub fn clear_denominator_monomial(p: &Poly) -> (Poly, Monomial) {
-    let mut lowest: BTreeMap<Var, i32> = BTreeMap::new();
+    let mut lowest: BTreeMap<Var, Exp> = BTreeMap::new();
     for (m, _) in p.terms() {
         for &(v, e) in m.factors() {
             if e < 0 {
@@ -54,7 +54,7 @@ pub(super) fn monomial_content(p: &Poly) -> Monomial {
     let Some((first, _)) = terms.next() else {
         return Monomial::one();
     };
-    let mut common: Vec<(Var, i32)> = first.factors().to_vec();
+    let mut common: Vec<(Var, Exp)> = first.factors().to_vec();
     for (m, _) in terms {
         common = common
             .into_iter()
@@ -75,13 +75,13 @@ fn main_var(p: &Poly) -> Option<Var> {
 }
 
 /// Degree of `p` in `v` (0 for the zero polynomial).
-pub fn degree_in(p: &Poly, v: Var) -> i32 {
+pub fn degree_in(p: &Poly, v: Var) -> Exp {
     p.terms().map(|(m, _)| m.exponent(v)).max().unwrap_or(0)
 }
 
 /// `p` as a polynomial in `v`: exponent of `v` ↦ coefficient (free of `v`).
-fn coefficients_in(p: &Poly, v: Var) -> BTreeMap<i32, Poly> {
-    let mut terms: BTreeMap<i32, Vec<(Monomial, Rational)>> = BTreeMap::new();
+fn coefficients_in(p: &Poly, v: Var) -> BTreeMap<Exp, Poly> {
+    let mut terms: BTreeMap<Exp, Vec<(Monomial, Rational)>> = BTreeMap::new();
     for (m, c) in p.terms() {
         terms
             .entry(m.exponent(v))
@@ -103,7 +103,7 @@ fn leading_coefficient_in(p: &Poly, v: Var) -> Poly {
     )
 }
 
-fn var_power(v: Var, e: i32) -> Poly {
+fn var_power(v: Var, e: Exp) -> Poly {
     Poly::term(Monomial::var(v, e), Rational::one())
 }
 
@@ -149,9 +149,9 @@ pub fn divide_exact(a: &Poly, b: &Poly) -> Option<Poly> {
 /// proof that `b` does not divide `a`; most trial divisions in a derivation fail this
 /// way, on their first scan.
 fn degrees_admit(a: &Poly, b: &Poly) -> bool {
-    let admits = |degree: &dyn Fn(&Monomial) -> i64| {
+    let admits = |degree: &dyn Fn(&Monomial) -> i128| {
         let range = |p: &Poly| {
-            p.terms().fold((i64::MAX, i64::MIN), |(lo, hi), (m, _)| {
+            p.terms().fold((i128::MAX, i128::MIN), |(lo, hi), (m, _)| {
                 let d = degree(m);
                 (lo.min(d), hi.max(d))
             })
@@ -163,7 +163,7 @@ fn degrees_admit(a: &Poly, b: &Poly) -> bool {
     admits(&Monomial::total_degree)
         && b.variables()
             .into_iter()
-            .all(|v| admits(&|m| i64::from(m.exponent(v))))
+            .all(|v| admits(&|m| i128::from(m.exponent(v))))
 }
 
 /// Pseudo-remainder of `a` by `b` in `v`: `lc(b)^k a = q b + r` with `deg_v r < deg_v b`.
@@ -413,7 +413,7 @@ mod tests {
         (0..1 + next(terms)).fold(Poly::zero(), |p, _| {
             let m = Monomial::from_factors(
                 (0..3)
-                    .map(|v| (v, next(top + 1) as i32))
+                    .map(|v| (v, next(top + 1) as Exp))
                     .filter(|&(_, e)| e > 0)
                     .collect(),
             );

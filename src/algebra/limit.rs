@@ -33,7 +33,7 @@ pub struct Expansion {
 }
 
 /// The lowest power of `v` in `p` (nonzero) and its coefficient, a polynomial free of `v`.
-fn lowest(p: &Poly, v: Var) -> (i32, Poly) {
+fn lowest(p: &Poly, v: Var) -> (crate::kernel::poly::Exp, Poly) {
     let a = p.terms().map(|(m, _)| m.exponent(v)).min().unwrap_or(0);
     let out = Poly::from_terms(
         p.terms()

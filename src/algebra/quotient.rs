@@ -224,7 +224,7 @@ impl Quotient {
         }
         let mut den = Rational::one();
         for (f, k) in self.factors() {
-            den = &den * &f.eval(value)?.pow(*k as i32)?;
+            den = &den * &f.eval(value)?.pow(i64::from(*k))?;
         }
         self.num.eval(value)?.checked_div(&den)
     }

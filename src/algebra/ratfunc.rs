@@ -158,7 +158,7 @@ impl RatFunc {
                 .map(|(m, c)| {
                     m.factors()
                         .iter()
-                        .fold(c.to_f64(), |t, &(v, e)| t * value(v).powi(e))
+                        .fold(c.to_f64(), |t, &(v, e)| t * value(v).powf(e as f64))
                 })
                 .sum()
         };
@@ -209,10 +209,11 @@ fn substitute_poly(p: &Poly, v: Var, value: &RatFunc) -> Option<RatFunc> {
             ),
             c.clone(),
         );
+        let k = u32::try_from(e.unsigned_abs()).ok()?;
         let power = if e >= 0 {
-            value.pow(e.unsigned_abs())
+            value.pow(k)
         } else {
-            value.recip()?.pow(e.unsigned_abs())
+            value.recip()?.pow(k)
         };
         out = &out + &(&RatFunc::from_poly(&rest) * &power);
     }

@@ -56,6 +56,15 @@ pub enum Fact {
         at: Evaluation,
         roots: Vec<FracData>,
     },
+    /// The sides of one component differ as functions (`at.point` is empty): their
+    /// cleared difference is a nonzero polynomial modulo n·n = 1, and so are the
+    /// divisors. Such a polynomial vanishes on no open piece of the unit sphere times
+    /// the box, when every interval of the box has interior and bounds a free
+    /// variable. For sides whose values at a point are too large to compute.
+    Differs {
+        at: Evaluation,
+        roots: Vec<FracData>,
+    },
     /// No nonzero factor relates one equality's sides: at `first` exactly one side is
     /// zero, or `first` and `second` give different ratios.
     NotProportional {
@@ -135,6 +144,7 @@ impl Fact {
             Fact::Identity { roots }
             | Fact::Proportional { roots, .. }
             | Fact::Refutation { roots, .. }
+            | Fact::Differs { roots, .. }
             | Fact::NotProportional { roots, .. }
             | Fact::SignByCoefficients { roots, .. }
             | Fact::SignOnInterval { roots, .. }
@@ -181,6 +191,9 @@ pub enum Checked {
         substitution: String,
         cases: usize,
     },
+    /// The sides differ as functions of the free variables: their difference, with
+    /// denominators cleared and reduced by n·n = 1, has `terms` terms.
+    DifferentFunctions { terms: usize },
     /// The sides take these exact values at the state of a refutation.
     Values { left: String, right: String },
     /// A side is ill-formed in its indices.
@@ -301,6 +314,37 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
                 return Err(Rejection::False("the sides are equal there".into()));
             }
             Ok((Conclusion::Fails, refuted(&[(l, r)], &env)))
+        }
+        Fact::Differs { at, roots } if !proportional => {
+            let mut env = Env::new(&st.context, roots)?;
+            if !at.point.is_empty() {
+                return Err(Rejection::Mismatch(
+                    "a difference as functions names no point".into(),
+                ));
+            }
+            open_box(&mut env, &st.context)?;
+            let (x, y) = component(&mut env, chains.ok_or_else(mismatch)?, at)?;
+            let normal = env.normal_vars().to_vec();
+            let reduced = |p: Poly| {
+                p.reduce_on_sphere(&normal)
+                    .map_err(|e| Rejection::Eval(EvalError::Unsupported(e.to_string())))
+            };
+            let difference = reduced(x.cleared_difference(&y).map_err(EvalError::from)?)?;
+            if difference.is_zero() {
+                return Err(Rejection::False("the sides agree as functions".into()));
+            }
+            for c in x.conditions().iter().chain(y.conditions()) {
+                if reduced(c.clone())?.is_zero() {
+                    return Err(Rejection::False(
+                        "a divisor vanishes wherever the normal is a unit vector".into(),
+                    ));
+                }
+            }
+            let mut out = roots_taken(&env);
+            out.push(Checked::DifferentFunctions {
+                terms: difference.num_terms(),
+            });
+            Ok((Conclusion::Fails, out))
         }
         Fact::NotProportional {
             first,
@@ -506,10 +550,8 @@ fn pairs_of(a: &Value, b: &Value, dim: usize) -> R<Vec<(Frac, Frac)>> {
     }
 }
 
-/// Both sides' exact values at one evaluation: the point must assign every
-/// variable they read, satisfy the assumptions, lie in the box and put the normal on
-/// the unit sphere; both sides must be defined there.
-fn values_at(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Rational, Rational)> {
+/// One component of one equality: the pair of fractions its sides have there.
+fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac, Frac)> {
     let chain = chains
         .get(e.chain)
         .ok_or_else(|| Rejection::Mismatch("no such chain".into()))?;
@@ -521,7 +563,10 @@ fn values_at(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Rati
     let pairs = pairs_of(&a, &b, dim)?;
     let at =
         e.at.iter()
-            .try_fold(0usize, |acc, &v| (v < dim).then(|| acc * dim + v))
+            .try_fold(0usize, |acc, &v| {
+                (v < dim).then_some(())?;
+                acc.checked_mul(dim)?.checked_add(v)
+            })
             .ok_or_else(|| Rejection::Mismatch("index values out of range".into()))?;
     let count_ok = match (&a, &b) {
         (Value::Matrix { .. }, _) => e.at.len() == 1 && e.at[0] < pairs.len(),
@@ -532,14 +577,19 @@ fn values_at(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Rati
     } else {
         at
     };
-    let (x, y) = match pairs.get(at) {
-        Some(p) if count_ok => p.clone(),
-        _ => {
-            return Err(Rejection::Mismatch(
-                "index values that do not fit the sides".into(),
-            ))
-        }
-    };
+    match pairs.get(at) {
+        Some(p) if count_ok => Ok(p.clone()),
+        _ => Err(Rejection::Mismatch(
+            "index values that do not fit the sides".into(),
+        )),
+    }
+}
+
+/// Both sides' exact values at one evaluation: the point must assign every
+/// variable they read, satisfy the assumptions, lie in the box and put the normal on
+/// the unit sphere; both sides must be defined there.
+fn values_at(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Rational, Rational)> {
+    let (x, y) = component(env, chains, e)?;
     let point = env.point(&e.point)?;
     let value = |v: Var| point.get(&v).cloned();
     match (x.eval(&value), y.eval(&value)) {
@@ -597,4 +647,31 @@ impl Env<'_> {
         }
         Ok(point)
     }
+}
+
+/// The box must be open somewhere for a difference as functions to refute: every
+/// interval has interior, and bounds a variable that is free (not the normal's, not
+/// eliminated by an assumption, not substituted).
+fn open_box(env: &mut Env<'_>, ctx: &super::statement::Context) -> R<()> {
+    let eliminated: Vec<Var> = env.eliminated().into_iter().map(|(v, _)| v).collect();
+    let normal = env.normal_vars().to_vec();
+    for (name, i) in &ctx.given {
+        let v = env.vars.intern(name);
+        let substituted = ctx.substitutions.iter().any(|s| {
+            name == &s.symbol
+                || name
+                    .strip_prefix(s.symbol.as_str())
+                    .is_some_and(|rest| rest.starts_with('_'))
+        });
+        let interior = match (i.lo.value(), i.hi.value()) {
+            (Some(a), Some(b)) => a < b,
+            _ => true,
+        };
+        if !interior || substituted || eliminated.contains(&v) || normal.contains(&v) {
+            return Err(Rejection::Mismatch(format!(
+                "the box bounds `{name}` to no open interval of a free variable"
+            )));
+        }
+    }
+    Ok(())
 }

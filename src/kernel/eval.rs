@@ -1366,7 +1366,7 @@ pub fn substitute(p: &Poly, values: &BTreeMap<Var, Poly>) -> R<Poly> {
         for &(v, e) in m.factors() {
             let factor = match values.get(&v) {
                 Some(x) if e >= 0 => x
-                    .checked_pow(e.unsigned_abs())
+                    .checked_pow_wide(e.unsigned_abs())
                     .map_err(|_| EvalError::Limit)?,
                 Some(_) => {
                     return Err(EvalError::Unsupported(
@@ -1410,7 +1410,7 @@ impl Env<'_> {
     pub(super) fn poly_of(&mut self, p: &PolyData) -> R<Poly> {
         let mut terms = Vec::with_capacity(p.len());
         for (factors, c) in p {
-            let factors: Vec<(Var, i32)> = factors
+            let factors: Vec<(Var, super::poly::Exp)> = factors
                 .iter()
                 .map(|(n, e)| (self.vars.intern(n), *e))
                 .collect();

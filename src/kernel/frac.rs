@@ -51,7 +51,7 @@ fn normalise(f: &Poly) -> Option<(Rational, Monomial, Poly)> {
     if f.num_terms() < 2 {
         return None;
     }
-    let mut lowest: Vec<(Var, i32)> = Vec::new();
+    let mut lowest: Vec<(Var, super::poly::Exp)> = Vec::new();
     let vars = f.variables();
     for v in vars {
         let low = f.terms().map(|(m, _)| m.exponent(v)).min().unwrap_or(0);
@@ -305,7 +305,7 @@ impl Frac {
         }
         let mut den = Rational::one();
         for (f, k) in &self.den {
-            den = &den * &value(f)?.pow(i32::try_from(*k).ok()?)?;
+            den = &den * &value(f)?.pow(i64::from(*k))?;
         }
         value(&self.num)?.checked_div(&den)
     }

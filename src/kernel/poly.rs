@@ -28,13 +28,16 @@ const LADDER_TOP: u32 = 64;
 pub type Var = u32;
 
 /// The largest absolute value of an exponent in any monomial. Every operation that
-/// builds a monomial checks it, so that the sum of two exponents never leaves `i32`
+/// builds a monomial checks it, so that the sum of two exponents never leaves `i64`
 /// and no exponent wraps: a wrapped exponent once made x^(2^32) equal to 1.
-pub const MAX_EXPONENT: i32 = 1 << 24;
+pub const MAX_EXPONENT: Exp = 1 << 40;
+
+/// An exponent of a monomial.
+pub type Exp = i64;
 
 /// `e` as an exponent within [`MAX_EXPONENT`].
-fn bounded(e: i64) -> Option<i32> {
-    i32::try_from(e)
+fn bounded(e: i128) -> Option<Exp> {
+    Exp::try_from(e)
         .ok()
         .filter(|e| e.unsigned_abs() <= MAX_EXPONENT.unsigned_abs())
 }
@@ -44,7 +47,7 @@ fn bounded(e: i64) -> Option<i32> {
 /// A² 8% slower (larger terms to move) and eq. (38) 6% faster.
 const INLINE_FACTORS: usize = 4;
 
-type Factors = SmallVec<[(Var, i32); INLINE_FACTORS]>;
+type Factors = SmallVec<[(Var, Exp); INLINE_FACTORS]>;
 
 /// A product of powers of variables: sorted by variable, no zero exponent. Ordered as
 /// its list of `(variable, exponent)` pairs, lexicographically: the order in which a
@@ -59,9 +62,9 @@ impl Monomial {
     }
 
     /// `v^e`; `e` must be within [`MAX_EXPONENT`] (a constant of the caller's).
-    pub fn var(v: Var, e: i32) -> Self {
+    pub fn var(v: Var, e: Exp) -> Self {
         assert!(
-            bounded(i64::from(e)).is_some(),
+            bounded(i128::from(e)).is_some(),
             "exponent {e} beyond the bound"
         );
         let mut factors = Factors::new();
@@ -73,19 +76,19 @@ impl Monomial {
 
     /// Builds the canonical monomial from factors in any order, merging repeats.
     /// Panics (never wraps) when a merged exponent leaves [`MAX_EXPONENT`].
-    pub fn from_factors(factors: Vec<(Var, i32)>) -> Self {
+    pub fn from_factors(factors: Vec<(Var, Exp)>) -> Self {
         Self::checked_from_factors(factors).expect("exponent within MAX_EXPONENT")
     }
 
     /// [`Monomial::from_factors`], or `None` when a merged exponent leaves
     /// [`MAX_EXPONENT`].
-    pub fn checked_from_factors(mut factors: Vec<(Var, i32)>) -> Option<Self> {
+    pub fn checked_from_factors(mut factors: Vec<(Var, Exp)>) -> Option<Self> {
         factors.sort_unstable_by_key(|&(v, _)| v);
         let mut out = Factors::with_capacity(factors.len());
         for (v, e) in factors {
-            let e = bounded(i64::from(e))?;
+            let e = bounded(i128::from(e))?;
             match out.last_mut() {
-                Some((lv, le)) if *lv == v => *le = bounded(i64::from(*le) + i64::from(e))?,
+                Some((lv, le)) if *lv == v => *le = bounded(i128::from(*le) + i128::from(e))?,
                 _ => out.push((v, e)),
             }
         }
@@ -93,7 +96,7 @@ impl Monomial {
         Some(Monomial(out))
     }
 
-    pub fn factors(&self) -> &[(Var, i32)] {
+    pub fn factors(&self) -> &[(Var, Exp)] {
         &self.0
     }
 
@@ -102,14 +105,14 @@ impl Monomial {
     }
 
     /// Exponent of `v` (0 when absent).
-    pub fn exponent(&self, v: Var) -> i32 {
+    pub fn exponent(&self, v: Var) -> Exp {
         self.0
             .binary_search_by_key(&v, |&(w, _)| w)
             .map_or(0, |k| self.0[k].1)
     }
 
-    pub fn total_degree(&self) -> i64 {
-        self.0.iter().map(|&(_, e)| i64::from(e)).sum()
+    pub fn total_degree(&self) -> i128 {
+        self.0.iter().map(|&(_, e)| i128::from(e)).sum()
     }
 
     /// The product of two monomials. Panics (never wraps) when an exponent leaves
@@ -136,7 +139,7 @@ impl Monomial {
                     j += 1;
                 }
                 std::cmp::Ordering::Equal => {
-                    let e = bounded(i64::from(a[i].1) + i64::from(b[j].1))?;
+                    let e = bounded(i128::from(a[i].1) + i128::from(b[j].1))?;
                     if e != 0 {
                         out.push((a[i].0, e));
                     }
@@ -152,7 +155,7 @@ impl Monomial {
 
     /// `self^e` for any integer `e`, or `None` when an exponent leaves
     /// [`MAX_EXPONENT`].
-    pub fn pow(&self, e: i32) -> Option<Monomial> {
+    pub fn pow(&self, e: Exp) -> Option<Monomial> {
         if e == 0 {
             return Some(Monomial::one());
         }
@@ -160,7 +163,7 @@ impl Monomial {
         let factors = self
             .0
             .iter()
-            .map(|&(v, k)| Some((v, bounded(i64::from(k) * i64::from(e))?)));
+            .map(|&(v, k)| Some((v, bounded(i128::from(k) * i128::from(e))?)));
         Some(Monomial(factors.collect::<Option<_>>()?))
     }
 
@@ -186,7 +189,7 @@ impl Monomial {
     }
 
     /// Splits off the exponents of `vars` (in that order), returning them and the rest.
-    fn split(&self, vars: &[Var]) -> (Vec<i32>, Monomial) {
+    fn split(&self, vars: &[Var]) -> (Vec<Exp>, Monomial) {
         let exps = vars.iter().map(|&v| self.exponent(v)).collect();
         let rest = self
             .0
@@ -399,7 +402,7 @@ impl Poly {
         let down = Monomial::var(v, -1);
         Poly::from_terms(self.terms.iter().filter_map(|(m, c)| {
             let e = m.exponent(v);
-            (e != 0).then(|| (m.mul(&down), c * &Rational::int(i64::from(e))))
+            (e != 0).then(|| (m.mul(&down), c * &Rational::int(e)))
         }))
     }
 
@@ -409,7 +412,12 @@ impl Poly {
 
     /// `self^e` by repeated squaring, or an error when an exponent would leave
     /// [`MAX_EXPONENT`].
-    pub fn checked_pow(&self, mut e: u32) -> Result<Poly, PolyError> {
+    pub fn checked_pow(&self, e: u32) -> Result<Poly, PolyError> {
+        self.checked_pow_wide(u64::from(e))
+    }
+
+    /// [`Poly::checked_pow`] for any exponent that fits in 64 bits.
+    pub fn checked_pow_wide(&self, mut e: u64) -> Result<Poly, PolyError> {
         let (mut base, mut acc) = (self.clone(), Poly::one());
         while e > 0 {
             if e & 1 == 1 {
@@ -672,20 +680,20 @@ impl Poly {
         let Some((m0, c0)) = self.leading() else {
             return Some(Poly::zero());
         };
-        let halved: Vec<(Var, i32)> = m0
+        let halved: Vec<(Var, Exp)> = m0
             .factors()
             .iter()
             .map(|&(v, e)| (e % 2 == 0).then_some((v, e / 2)))
             .collect::<Option<_>>()?;
         let lead_m = Monomial::from_factors(halved);
         let lead_c = c0.sqrt_exact()?;
-        let bounds: Vec<(Var, i32, i32)> = self
+        let bounds: Vec<(Var, Exp, Exp)> = self
             .variables()
             .into_iter()
             .map(|v| {
                 let exps = self.terms.iter().map(|(m, _)| m.exponent(v));
                 let (lo, hi) =
-                    exps.fold((i32::MAX, i32::MIN), |(lo, hi), e| (lo.min(e), hi.max(e)));
+                    exps.fold((Exp::MAX, Exp::MIN), |(lo, hi), e| (lo.min(e), hi.max(e)));
                 (v, lo, hi)
             })
             .collect();
@@ -1050,7 +1058,7 @@ mod tests {
                 let m = Monomial::from_factors(
                     (0..4)
                         .map(|k| {
-                            let e = next(top) as i32;
+                            let e = next(top) as Exp;
                             let negative = round % 5 == 1 && next(40) == 0;
                             (k as Var, if negative { -e } else { e })
                         })
@@ -1092,7 +1100,7 @@ mod tests {
             for _ in 0..(1 + next() % 5) {
                 let m = Monomial::from_factors(
                     (0..3)
-                        .map(|k| (k as Var, (next() % 4) as i32 - 1))
+                        .map(|k| (k as Var, (next() % 4) as Exp - 1))
                         .collect(),
                 );
                 let c = q((next() % 13) as i64 - 6, 1 + (next() % 4) as i64);
@@ -1141,22 +1149,22 @@ mod tests {
     #[test]
     fn operations_agree_with_a_tree_map_model() {
         use std::collections::BTreeMap;
-        type Model = BTreeMap<Vec<(Var, i32)>, Rational>;
+        type Model = BTreeMap<Vec<(Var, Exp)>, Rational>;
         let mut next = below(0x2545_F491_4F6C_DD1D);
-        let random = |next: &mut dyn FnMut(u64) -> u64| -> Vec<(Vec<(Var, i32)>, Rational)> {
+        let random = |next: &mut dyn FnMut(u64) -> u64| -> Vec<(Vec<(Var, Exp)>, Rational)> {
             let mut terms = Vec::new();
             for _ in 0..next(9) {
                 let mut factors = Vec::new();
                 for v in 0..7 {
                     if next(3) == 0 {
-                        factors.push((v as Var, next(5) as i32 - 1));
+                        factors.push((v as Var, next(5) as Exp - 1));
                     }
                 }
                 terms.push((factors, q(next(7) as i64 - 3, 1 + next(3) as i64)));
             }
             terms
         };
-        let model_add = |model: &mut Model, f: &[(Var, i32)], c: &Rational, sign: i64| {
+        let model_add = |model: &mut Model, f: &[(Var, Exp)], c: &Rational, sign: i64| {
             let m = Monomial::from_factors(f.to_vec()).factors().to_vec();
             let sum =
                 model.get(&m).cloned().unwrap_or_else(Rational::zero) + c * &Rational::int(sign);
@@ -1167,16 +1175,16 @@ mod tests {
             }
         };
         let same = |p: &Poly, model: &Model| {
-            let ours: Vec<(Vec<(Var, i32)>, Rational)> = p
+            let ours: Vec<(Vec<(Var, Exp)>, Rational)> = p
                 .terms()
                 .map(|(m, c)| (m.factors().to_vec(), c.clone()))
                 .collect();
-            let want: Vec<(Vec<(Var, i32)>, Rational)> = model.clone().into_iter().collect();
+            let want: Vec<(Vec<(Var, Exp)>, Rational)> = model.clone().into_iter().collect();
             assert_eq!(ours, want);
         };
         for _ in 0..300 {
             let (ta, tb) = (random(&mut next), random(&mut next));
-            let build = |t: &[(Vec<(Var, i32)>, Rational)]| {
+            let build = |t: &[(Vec<(Var, Exp)>, Rational)]| {
                 Poly::from_terms(
                     t.iter()
                         .map(|(f, c)| (Monomial::from_factors(f.clone()), c.clone())),
@@ -1239,7 +1247,7 @@ mod tests {
             } else {
                 &[0, 1, 2, 3]
             };
-            let exps: &[i32] = if wide {
+            let exps: &[Exp] = if wide {
                 &[-40_000, -1, 1, 2]
             } else {
                 &[-2, -1, 1, 2]
@@ -1363,7 +1371,7 @@ mod tests {
                 }
                 // x and y (variables 3 and 4), possibly inverted.
                 for other in 3..5 {
-                    let e = next(4) as i32 - 1;
+                    let e = next(4) as Exp - 1;
                     t = &t * &Poly::from_terms([(Monomial::var(other, e), Rational::one())]);
                 }
                 p += &t;

@@ -15,6 +15,9 @@ use std::cmp::Ordering;
 use std::fmt;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
+/// The most bits an exact power may have ([`Rational::pow`]).
+const MAX_POWER_BITS: u64 = 1 << 24;
+
 /// The largest power of ten a decimal literal may carry (`1e300`): enough for any
 /// physical constant, small enough that no literal makes a huge integer.
 pub const MAX_DECIMAL_EXPONENT: i64 = 300;
@@ -214,12 +217,17 @@ impl Rational {
         other.recip().map(|r| self * &r)
     }
 
-    /// `self^e` for any integer exponent; `None` for a negative power of zero.
-    pub fn pow(&self, e: i32) -> Option<Self> {
+    /// `self^e` for any integer exponent; `None` for a negative power of zero, or a
+    /// power of more than 2^24 bits (past that, an exact value is no use to a check).
+    pub fn pow(&self, e: i64) -> Option<Self> {
         if e < 0 {
-            return self.recip().map(|r| r.pow(-e).expect("nonzero base"));
+            return self.recip()?.pow(e.checked_neg()?);
         }
-        let (mut base, mut e, mut acc) = (self.clone(), e as u32, Rational::one());
+        let trivial = self.is_zero() || self.is_one() || *self == Rational::int(-1);
+        if !trivial && self.bits().saturating_mul(e.unsigned_abs()) > MAX_POWER_BITS {
+            return None;
+        }
+        let (mut base, mut e, mut acc) = (self.clone(), e.unsigned_abs(), Rational::one());
         while e > 0 {
             if e & 1 == 1 {
                 acc = &acc * &base;

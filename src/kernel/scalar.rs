@@ -62,7 +62,7 @@ fn reduce(env: &mut Env<'_>, f: Frac, hint: Option<&Reduced>) -> R<Frac> {
     }
     let mut vars = f.numerator().variables();
     vars.extend(den.variables());
-    let lowest: Vec<(Var, i32)> = vars
+    let lowest: Vec<(Var, super::poly::Exp)> = vars
         .iter()
         .map(|&v| {
             let low = f

@@ -15,7 +15,7 @@ use num_traits::{One, Zero};
 const MAX_CASES: usize = 64;
 
 /// The highest degree in one variable that is moved (a bound on the work).
-const MAX_DEGREE: i32 = 1_000;
+const MAX_DEGREE: super::poly::Exp = 1_000;
 
 /// One variable's ways onto t ≥ 0: its value as `(a + b t) / (1 + c t)` with c = 0
 /// or 1, and whether t = 0 lies in the box.
@@ -152,7 +152,7 @@ pub fn by_coefficients(
     vars.extend(den.variables());
     vars.sort_unstable();
     vars.dedup();
-    let lowest: Vec<(Var, i32)> = vars
+    let lowest: Vec<(Var, super::poly::Exp)> = vars
         .iter()
         .map(|&v| {
             let low = num

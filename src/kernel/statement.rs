@@ -256,7 +256,7 @@ pub enum Claim {
 
 /// A polynomial by variable names: terms of (variable, exponent) factors and a
 /// coefficient. The form in which a fact carries a polynomial hint.
-pub type PolyData = Vec<(Vec<(String, i32)>, Rational)>;
+pub type PolyData = Vec<(Vec<(String, super::poly::Exp)>, Rational)>;
 
 /// A fraction hint (a square root a fact offers): numerator over divisors with
 /// multiplicities.

@@ -12,7 +12,7 @@ use num_traits::Zero;
 pub struct Uni(Vec<Rational>);
 
 /// The highest degree the kernel works with in one variable.
-const MAX_DEGREE: i32 = 2_000;
+const MAX_DEGREE: super::poly::Exp = 2_000;
 
 impl Uni {
     fn trimmed(mut c: Vec<Rational>) -> Uni {

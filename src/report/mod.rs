@@ -482,6 +482,10 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
                 format!("sqrt({radicand}) = {root} on {on} (its square exactly, its sign as follows){sign}")
             }
             Checked::Values { left, right } => format!("left {left}, right {right} there, exactly"),
+            Checked::DifferentFunctions { terms } => format!(
+                "the sides differ as functions: their difference over a common denominator is a nonzero polynomial of {terms} term{}, and the box is open",
+                if *terms == 1 { "" } else { "s" }
+            ),
             Checked::IllFormed { why } => format!("ill-formed in its indices: {why}"),
             Checked::CoefficientSigns { substitution, .. } if substitution.is_empty() => {
                 "numerator and denominator are constants of one sign".to_owned()

@@ -375,6 +375,15 @@ fn decide_recording(
                         second: None,
                         roots: env.root_data(),
                     },
+                    // No value could be computed (a power too large to evaluate):
+                    // the kernel checks that the sides differ as functions.
+                    None if values.is_none() => Fact::Differs {
+                        at: Evaluation {
+                            point: Vec::new(),
+                            ..here
+                        },
+                        roots: env.root_data(),
+                    },
                     None => Fact::Refutation {
                         at: here,
                         roots: env.root_data(),

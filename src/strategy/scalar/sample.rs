@@ -41,7 +41,7 @@ impl Rng {
     /// A positive dyadic spread over scales 2⁻⁶ … 2⁶.
     fn spread(&mut self) -> Rational {
         let scale = (self.next() % 13) as i32 - 6;
-        &self.unit() * &Rational::int(2).pow(scale).expect("nonzero")
+        &self.unit() * &Rational::int(2).pow(i64::from(scale)).expect("nonzero")
     }
 
     /// A rational point of `i`; one time in sixteen a closed end itself.
