@@ -132,8 +132,8 @@ fn gcd_pairs() -> Vec<(Poly, Poly, Poly)> {
     let mut next = xorshift(0x2545_f491_4f6c_dd1d);
     let mut random = || {
         (0..4).fold(Poly::constant(Rational::int(3)), |p, _| {
-            let factors: Vec<(u32, i32)> = (0..3)
-                .map(|v| (v, next(4) as i32))
+            let factors: Vec<(u32, i64)> = (0..3)
+                .map(|v| (v, next(4) as i64))
                 .filter(|&(_, e)| e > 0)
                 .collect();
             let c = next(9) as i64 - 4;
@@ -177,8 +177,8 @@ fn product_operands() -> (Poly, Poly, Packed, Packed) {
     let poly = |terms: &[([u32; TIGHT_VARS], i64)]| {
         let mut p = Poly::default();
         for (e, c) in terms {
-            let factors: Vec<(u32, i32)> = (0..TIGHT_VARS as u32)
-                .zip(e.iter().map(|&x| x as i32))
+            let factors: Vec<(u32, i64)> = (0..TIGHT_VARS as u32)
+                .zip(e.iter().map(|&x| x as i64))
                 .filter(|&(_, x)| x != 0)
                 .collect();
             p = &p

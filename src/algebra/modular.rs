@@ -154,7 +154,7 @@ impl Combined {
                 .iter()
                 .zip(e)
                 .filter(|&(_, &k)| k > 0)
-                .map(|(&v, &k)| Some((v, crate::kernel::poly::Exp::try_from(k).ok()?)))
+                .map(|(&v, &k)| Some((v, crate::kernel::poly::Exp::from(k))))
                 .collect::<Option<Vec<_>>>()?;
             terms.push((
                 Monomial::from_factors(factors),

@@ -175,7 +175,7 @@ pub fn of_poly(p: &Poly, value: &dyn Fn(Var) -> u64) -> Option<u64> {
         for &(v, e) in m.factors() {
             let x = value(v);
             let x = if e < 0 { inverse(x)? } else { x };
-            t = mul(t, pow(x, u64::from(e.unsigned_abs())));
+            t = mul(t, pow(x, e.unsigned_abs()));
         }
         total = (total + t) % P;
     }

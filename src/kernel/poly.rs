@@ -702,8 +702,8 @@ impl Poly {
                 .iter()
                 .all(|(v, _)| bounds.iter().any(|(w, _, _)| w == v))
                 && bounds.iter().all(|&(v, lo, hi)| {
-                    let e = 2 * i64::from(m.exponent(v));
-                    i64::from(lo) <= e && e <= i64::from(hi)
+                    let e = 2 * m.exponent(v);
+                    lo <= e && e <= hi
                 })
         };
         let over_twice_lead = (&lead_c + &lead_c)

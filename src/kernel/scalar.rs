@@ -583,7 +583,7 @@ fn lowest(p: &Poly, v: Var, to: &Approach) -> R<(i64, Poly)> {
             .filter(|(m, _)| m.exponent(v) == k)
             .map(|(m, c)| (m.without(v), c.clone())),
     );
-    Ok((i64::from(k), coefficient))
+    Ok((k, coefficient))
 }
 
 fn limit(

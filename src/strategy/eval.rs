@@ -835,7 +835,7 @@ impl Ring for ExactRing<'_, '_> {
         let p = q.numerator();
         let max_exp = p
             .terms()
-            .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| i64::from(e).abs()))
+            .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| e.abs()))
             .max()
             .unwrap_or(0);
         // Terms of p^k: at most the number of multisets of k of p's t terms,
