@@ -212,6 +212,9 @@ impl Status {
             std::iter::once(&r.outcome)
                 .chain(&r.correction)
                 .any(crate::strategy::isolate::is_internal_error)
+                || std::iter::once(&r.transcription)
+                    .chain(&r.correction_transcription)
+                    .any(|t| t.is_internal_error())
         });
         if internal {
             Status::InternalError
@@ -838,7 +841,7 @@ mod tests {
     /// error: the other claims are decided, the report is written, the status is 3.
     #[test]
     fn a_panic_in_one_claim_is_its_internal_error_and_the_run_goes_on() {
-        use crate::strategy::isolate::PROVOKE_PANIC;
+        use crate::strategy::isolate::{PROVOKE_PANIC, PROVOKE_TRANSCRIPTION_PANIC};
         use clap::Parser;
         let dir = std::env::temp_dir().join(format!("cc-panic-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
@@ -849,9 +852,10 @@ mod tests {
             )
         };
         let text = format!(
-            "paper = \"t\"\nsection = \"1\"\ntitle = \"t\"\ndimension = 3\nscalars = [\"x\"]\n\n{}{}{}",
+            "paper = \"t\"\nsection = \"1\"\ntitle = \"t\"\ndimension = 3\nscalars = [\"x\"]\n\n{}{}{}{}",
             claim("before"),
             claim(PROVOKE_PANIC),
+            claim(PROVOKE_TRANSCRIPTION_PANIC),
             claim("after")
         );
         std::fs::write(&file, text).unwrap();
@@ -886,11 +890,17 @@ mod tests {
             [
                 ("before", "holds"),
                 (PROVOKE_PANIC, "undecided"),
+                // A panic in the transcription check leaves the verdict standing.
+                (PROVOKE_TRANSCRIPTION_PANIC, "holds"),
                 ("after", "holds")
             ]
         );
         let text = String::from_utf8(bytes).unwrap();
         assert!(text.contains("internal error"), "{text}");
         assert!(text.contains("provoked by the test hook"), "{text}");
+        assert!(
+            text.contains("provoked by the transcription test hook"),
+            "{text}"
+        );
     }
 }

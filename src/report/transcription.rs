@@ -102,6 +102,9 @@ pub fn hand_words(reason: &Hand, printed: &str) -> String {
             "the reading at column {} is not an expression of the language: {message}",
             column(printed, *span)
         ),
+        Hand::InternalError { message, at } => format!(
+            "internal error of the checker while comparing ({message}, at {at}); please report it"
+        ),
     }
 }
 

@@ -45,20 +45,27 @@ fn install_hook() {
     });
 }
 
+/// Runs `f`; a panic in it comes back as its message and where in the checker it
+/// happened.
+pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, (String, String)> {
+    install_hook();
+    DEPTH.with(|d| d.set(d.get() + 1));
+    let result = catch_unwind(AssertUnwindSafe(f));
+    DEPTH.with(|d| d.set(d.get() - 1));
+    result.map_err(|_| {
+        CAUGHT
+            .with(|c| c.borrow_mut().take())
+            .unwrap_or_else(|| ("a panic".to_owned(), "an unknown place".to_owned()))
+    })
+}
+
 /// Runs one decision; a panic in it becomes `undecided (internal error)` with
 /// `method`, its message and where in the checker it happened.
 pub fn isolated<E>(
     method: Method,
     decide: impl FnOnce() -> Result<Outcome, E>,
 ) -> Result<Outcome, E> {
-    install_hook();
-    DEPTH.with(|d| d.set(d.get() + 1));
-    let result = catch_unwind(AssertUnwindSafe(decide));
-    DEPTH.with(|d| d.set(d.get() - 1));
-    result.unwrap_or_else(|_| {
-        let (message, at) = CAUGHT
-            .with(|c| c.borrow_mut().take())
-            .unwrap_or_else(|| ("a panic".to_owned(), "an unknown place".to_owned()));
+    caught(decide).unwrap_or_else(|(message, at)| {
         Ok(Outcome::undecided(method, 0).with_finding(Finding::InternalError { message, at }))
     })
 }
@@ -73,11 +80,23 @@ pub fn is_internal_error(o: &Outcome) -> bool {
 #[cfg(test)]
 pub(crate) const PROVOKE_PANIC: &str = "provoke-an-internal-error";
 
+/// The same for the transcription check of a claim with this id.
+#[cfg(test)]
+pub(crate) const PROVOKE_TRANSCRIPTION_PANIC: &str = "provoke-a-transcription-internal-error";
+
 /// Panics for the claim [`PROVOKE_PANIC`] (a no-op outside the library's unit tests).
 pub(crate) fn test_hook(_id: &str) {
     #[cfg(test)]
     if _id == PROVOKE_PANIC {
         panic!("provoked by the test hook");
+    }
+}
+
+/// Panics for the claim [`PROVOKE_TRANSCRIPTION_PANIC`] (likewise test-only).
+pub(crate) fn transcription_test_hook(_id: &str) {
+    #[cfg(test)]
+    if _id == PROVOKE_TRANSCRIPTION_PANIC {
+        panic!("provoked by the transcription test hook");
     }
 }
 

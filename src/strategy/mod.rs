@@ -178,11 +178,15 @@ fn decide_claim_keeping(claim: &Claim, keep: bool) -> Result<Decided<'_>, Diagno
         Some(c) => Some(decide_keeping(&claim.decls, &c.check, keep)?),
         None => None,
     };
-    let transcription = transcription::transcribe(&claim.decls, &claim.check, &claim.transcript);
-    let correction_transcription = claim
-        .correction
-        .as_ref()
-        .map(|c| transcription::transcribe(&claim.decls, &c.check, &c.transcript));
+    let transcription = transcription::transcribe_isolated(
+        &claim.id,
+        &claim.decls,
+        &claim.check,
+        &claim.transcript,
+    );
+    let correction_transcription = claim.correction.as_ref().map(|c| {
+        transcription::transcribe_isolated(&claim.id, &claim.decls, &c.check, &c.transcript)
+    });
     Ok(Decided {
         claim,
         outcome,

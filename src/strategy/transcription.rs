@@ -78,6 +78,8 @@ pub enum Hand {
     Undecided { span: Span, side: String },
     /// The reading is not an expression the language accepts (at this span).
     Untranslatable { span: Span, message: String },
+    /// The checker panicked while comparing: its defect, with the message and where.
+    InternalError { message: String, at: String },
 }
 
 /// Why a printed piece and a side differ.
@@ -146,6 +148,37 @@ impl Transcription {
 }
 
 /// Compares a statement's printed LaTeX with its check.
+/// [`transcribe`], with a panic caught as the transcription's internal error (the
+/// claim's verdict stands; the run ends with exit status 3).
+pub fn transcribe_isolated(
+    id: &str,
+    decls: &Decls,
+    check: &Check,
+    transcript: &Transcript,
+) -> Transcription {
+    let compare = || {
+        super::isolate::transcription_test_hook(id);
+        transcribe(decls, check, transcript)
+    };
+    super::isolate::caught(compare).unwrap_or_else(|(message, at)| Transcription {
+        status: Status::Hand {
+            reason: Hand::InternalError { message, at },
+        },
+    })
+}
+
+impl Transcription {
+    /// Whether the checker failed on this transcription (a caught panic).
+    pub fn is_internal_error(&self) -> bool {
+        matches!(
+            self.status,
+            Status::Hand {
+                reason: Hand::InternalError { .. }
+            }
+        )
+    }
+}
+
 pub fn transcribe(decls: &Decls, check: &Check, transcript: &Transcript) -> Transcription {
     let status = match &transcript.reading {
         _ if transcript.prose => Status::Hand {
