@@ -372,7 +372,7 @@ fn decide_claims<'f>(
         for slot in &watches {
             let (tx, claims, next) = (tx.clone(), &claims, &next);
             let order = &order;
-            scope.spawn(move || loop {
+            crate::parallel::spawn_scoped(scope, move || loop {
                 let q = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 let Some(&k) = order.get(q) else { return };
                 let c = claims[k];

@@ -13,7 +13,7 @@ pub mod digits;
 pub mod kernel;
 pub mod lang;
 pub mod mutate;
-mod parallel;
+pub mod parallel;
 pub mod recheck;
 pub mod report;
 pub mod strategy;

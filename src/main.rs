@@ -17,6 +17,20 @@ fn main() -> ExitCode {
     // The about text names the works of the embedded corpus, read from its files.
     let matches = Cli::command().about(about()).get_matches();
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    // The run gets the deep stack that chained definitions need (see `parallel::STACK`).
+    match std::thread::Builder::new()
+        .stack_size(cosserat_check::parallel::STACK)
+        .spawn(move || checked(cli))
+    {
+        Ok(run) => run.join().unwrap_or_else(|e| std::panic::resume_unwind(e)),
+        Err(e) => {
+            eprintln!("internal error: the checking thread could not start: {e}");
+            ExitCode::from(3)
+        }
+    }
+}
+
+fn checked(cli: Cli) -> ExitCode {
     let stdout = std::io::stdout();
     let terminal = stdout.is_terminal();
     let mut stream = stdout.lock();

@@ -56,6 +56,16 @@ fn shown(s: &str) -> String {
 
 /// Re-checks every proof of the report `text`; `Err` when it is not a report.
 pub fn recheck(text: &str) -> Result<Rechecked, String> {
+    // On a thread of its own: a statement may nest definitions as deep as the kernel's
+    // bound, deeper than the caller's stack allows.
+    std::thread::scope(|scope| {
+        crate::parallel::spawn_scoped(scope, || recheck_here(text))
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e))
+    })
+}
+
+fn recheck_here(text: &str) -> Result<Rechecked, String> {
     if text.len() > MAX_REPORT_BYTES {
         return Err(format!(
             "the report is larger than {} MiB",

@@ -789,3 +789,37 @@ fn stopped_by_the_time_limit(out: &Output) -> serde_json::Value {
     assert_eq!(v["claims"][0]["finding"]["kind"], "time-limit");
     v
 }
+
+/// Definitions chained 4,900 deep (nesting 9,800, within the loader's bound of 10,000)
+/// are decided on the run's deep stack, and one more level is a located error: neither
+/// overflows the stack, which would abort the process.
+#[test]
+fn a_deep_chain_of_definitions_is_decided_or_refused_never_a_crash() {
+    let chain = |n: usize| {
+        let defs: Vec<String> = std::iter::once("\"d0 = x\"".to_owned())
+            .chain((1..=n).map(|k| format!("\"d{k} = -d{}\"", k - 1)))
+            .collect();
+        format!(
+            "section = \"t\"\ntitle = \"t\"\ndimension = 2\nscalars = [\"x\"]\ndefine = [{}]\n\n\
+             [[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nsides = [\"d{n}\", \"x\"]\n",
+            defs.join(", ")
+        )
+    };
+    let dir = dir_with("deep-chain", &chain(4_900));
+    let out = run(&[
+        "verify",
+        dir.join("claims.toml").to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("\"strength\": \"proof\""));
+    let dir = dir_with("deeper-chain", &chain(5_100));
+    let out = run(&["verify", dir.join("claims.toml").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("levels deep"),
+        "{}",
+        text(&out.stderr)
+    );
+}

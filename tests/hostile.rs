@@ -142,3 +142,67 @@ fn a_count_of_readings_that_would_wrap_is_refused_like_any_over_the_cap() {
     let shown = format!("{t:?}");
     assert!(shown.contains("more than 2^64 combinations"), "{shown}");
 }
+
+fn limit(id: &str, function: &str, to: &str, value: &str, given: &str) -> String {
+    format!(
+        "[[claim]]\nid = \"{id}\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"limit\"\n\
+         function = \"{function}\"\nin = \"x\"\ntends_to = \"{to}\"\nlimit = \"{value}\"\n{given}\n"
+    )
+}
+
+/// A limit read off the lowest orders holds only where their coefficients do not
+/// vanish: with a parameter `a` that can be 0 in the box, each of these statements is
+/// false at a = 0 (or about no point at all), so none may be proved.
+#[test]
+fn a_limit_whose_leading_coefficient_can_vanish_is_never_proved() {
+    let text = format!("{HEAD}scalars = [\"x\", \"a\"]\n\n")
+        // At a = 0 the function is 1: not infinite.
+        + &limit("infinite", "(a x + x^2)/x^2", "0", "infinity", "given = [\"-1 <= a <= 1\"]")
+        // At a = 0 it is 1/x: not 0.
+        + &limit("zero", "x^2/(a x + x^3)", "0", "0", "given = [\"0 <= a <= 1\"]")
+        + &limit("zero-at-a-point", "x^2/(a x + x^3)", "0", "0", "given = [\"0 <= a <= 0\"]")
+        // Undefined for every x when a = 0.
+        + &limit("nowhere", "(a x + x^2)/(a x)", "0", "1", "given = [\"0 <= a <= 0\"]")
+        // Controls: a coefficient of one sign on the box, and a divisor a that only
+        // removes the points a = 0, where the function is undefined for every x.
+        + &limit("one-sign", "(a x + x^2)/x^2", "0", "infinity", "given = [\"1 <= a <= 2\"]")
+        + &limit("divisor-free-of-x", "(a x + x^2)/(a x)", "0", "1", "given = [\"-1 <= a <= 1\"]");
+    let got: Vec<(Verdict, Strength)> = outcomes_of(&text)
+        .iter()
+        .map(|o| (o.verdict(), o.strength()))
+        .collect();
+    for (k, id) in ["infinite", "zero", "zero-at-a-point", "nowhere"]
+        .iter()
+        .enumerate()
+    {
+        assert_ne!(got[k].0, Verdict::Holds, "{id}: {got:?}");
+    }
+    let proved = (Verdict::Holds, Strength::Proof);
+    assert_eq!(&got[4..], &[proved, proved], "{got:?}");
+}
+
+/// A variable fixed by an assumption (x = y) is not free: a limit or a monotonicity
+/// in it is not refuted as if it were.
+#[test]
+fn a_claim_in_a_variable_an_assumption_fixes_is_not_refuted() {
+    let text = format!("{HEAD}scalars = [\"x\", \"y\"]\n\n")
+        + &limit("limit", "x", "0", "0", "assume = [\"x = y\"]");
+    let got = outcomes_of(&text);
+    assert_ne!(got[0].verdict(), Verdict::Fails, "{:?}", got[0]);
+}
+
+/// x²/x is undefined at 0: 0 is not one of its roots, and "no real root" holds.
+#[test]
+fn a_root_where_the_function_is_undefined_is_not_a_root() {
+    let roots = |id: &str, list: &str, expect: &str| {
+        format!(
+            "[[claim]]\nid = \"{id}\"\nprinted = 'x'\nexpect = \"{expect}\"\nreason = \"r\"\n\
+             strategy = \"roots\"\nfunction = \"x^2/x\"\nin = \"x\"\nroots = {list}\n\n"
+        )
+    };
+    let text = format!("{HEAD}scalars = [\"x\"]\n\n")
+        + &roots("zero", "[\"0\"]", "fails")
+        + &roots("none", "[]", "holds");
+    let got: Vec<Verdict> = outcomes_of(&text).iter().map(|o| o.verdict()).collect();
+    assert_eq!(got, [Verdict::Fails, Verdict::Holds]);
+}

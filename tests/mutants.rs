@@ -272,11 +272,11 @@ fn every_mutant_of_every_gradient_at_a_state_is_refuted() {
 /// the snapshot says: a floor is lowered only by editing this table, with a reason.
 const FLOORS: &[(&str, &str, usize, f64)] = &[
     ("mutation_report", "convex", 20, 0.99),
-    ("mutation_report", "exact", 3226, 0.99),
+    ("mutation_report", "exact", 3231, 0.99),
     ("mutation_report", "gradient", 387, 0.95),
     ("mutation_report", "numeric", 316, 0.99),
     ("mutation_report", "proportional", 43, 0.99),
-    ("mutation_report", "rational-function", 209, 0.9),
+    ("mutation_report", "rational-function", 210, 0.9),
     ("mutation_report_balance", "exact", 151, 0.99),
     ("mutation_report_balance", "proportional", 40, 0.99),
     ("mutation_report_fields", "exact", 156, 0.99),

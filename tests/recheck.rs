@@ -132,3 +132,133 @@ fn a_file_that_is_not_a_report_is_refused_with_its_reason() {
     let out = recheck(&r.to_string()).unwrap();
     assert!(!out.lines[0].contains('\u{1b}'), "{:?}", out.lines);
 }
+
+/// Reports forged by hand, each with one false proof that an earlier kernel accepted
+/// (or crashed or hung on): `(file under tests/forged/, the forged claim, why false)`.
+/// The other claims of a file are genuine proofs the checker wrote, accepted again.
+const FORGED: &[(&str, &str, &str)] = &[
+    (
+        "negative-constant-denominator",
+        "s2",
+        "(x^2+1)(a^2+1)/(-2) > 0: a negative constant denominator was dropped",
+    ),
+    (
+        "point-omits-eliminated-variable",
+        "f1",
+        "y <= 1 refuted at y = 5 under x = y, 0 <= x <= 1: x = 5 is outside the box",
+    ),
+    (
+        "eliminated-value-outside-box",
+        "f1",
+        "x = 2 fixed by an assumption, outside the box 0 <= x <= 1: a point of no claim",
+    ),
+    (
+        "planted-derivative-definition",
+        "g1",
+        "grad(s^2, s) = 42 through a definition named like the derivative",
+    ),
+    (
+        "scalar-named-like-normal-component",
+        "unit",
+        "a_1^2 + a_2^2 + a_3^2 = 1 with scalars a_k read as the unit normal a",
+    ),
+    (
+        "scalar-named-like-tensor-component",
+        "unit",
+        "a scalar sigma_12 read as the component of the tensor sigma",
+    ),
+    (
+        "letter-limit-read-as-ill-formed",
+        "l13",
+        "a true identity with 13 summed letters refuted as ill-formed",
+    ),
+    (
+        "divisor-vanishing-on-sphere",
+        "unit",
+        "x + (n.n - 1)/(n.n - 1) = x: the divisor vanishes wherever n is a unit vector",
+    ),
+    (
+        "power-past-degree-limit",
+        "s2",
+        "a sign by coefficients with a denominator power past the degree bound (a panic)",
+    ),
+    (
+        "power-of-four-billion",
+        "unit",
+        "a root hint raised to the power 4·10^9 (a hang)",
+    ),
+    (
+        "divided-by-huge-power",
+        "d",
+        "a division by a power past 64 expanded without a bound (a hang)",
+    ),
+];
+
+#[test]
+fn forged_proofs_are_refused_and_genuine_ones_beside_them_accepted() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/forged");
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    let mut listed: Vec<String> = FORGED.iter().map(|f| format!("{}.json", f.0)).collect();
+    listed.sort();
+    assert_eq!(
+        files, listed,
+        "every forged report is listed with its reason"
+    );
+    for (file, forged, why) in FORGED {
+        let text = std::fs::read_to_string(dir.join(format!("{file}.json"))).unwrap();
+        let report: Value = serde_json::from_str(&text).unwrap();
+        let proved = report["claims"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| c["strength"] == "proof")
+            .count();
+        let out = recheck(&text).unwrap();
+        assert_eq!(
+            (out.accepted, out.refused),
+            (proved - 1, 1),
+            "{file} ({why}): {:?}",
+            out.lines
+        );
+        let line = out
+            .lines
+            .iter()
+            .find(|l| l.starts_with(&format!("{forged}: ")))
+            .unwrap_or_else(|| panic!("{file}: no line for {forged}: {:?}", out.lines));
+        assert!(line.contains("REFUSED"), "{file} ({why}): {line}");
+    }
+}
+
+/// A definition chain deeper than any stack: the kernel stops at its depth bound and
+/// refuses the proof, instead of overflowing the stack (which aborts the process).
+#[test]
+fn a_definition_chain_twenty_thousand_deep_is_refused_not_a_crash() {
+    let leaf = |of: Value| serde_json::json!({"leaf": {"of": of, "slots": []}});
+    let mut definitions = vec![
+        serde_json::json!({"name": "d0", "formal": [], "shape": null,
+        "body": leaf(serde_json::json!({"symbol": "x"}))}),
+    ];
+    for k in 1..20_000 {
+        definitions.push(
+            serde_json::json!({"name": format!("d{k}"), "formal": [], "shape": null,
+            "body": {"neg": leaf(serde_json::json!({"def": format!("d{}", k - 1)}))}}),
+        );
+    }
+    let report = serde_json::json!({"claims": [{
+        "id": "chain", "verdict": "holds", "strength": "proof",
+        "proofs": [{"conclusion": "holds", "statement": {
+            "context": {"dim": 2, "normal": null, "in_plane": false, "symbols": {"x": 0},
+                "fields": {}, "position": null, "definitions": definitions,
+                "equations": [], "substitutions": [], "given": []},
+            "claim": {"equal": {"chains": [[leaf(serde_json::json!({"def": "d19999"})),
+                {"neg": leaf(serde_json::json!({"symbol": "x"}))}]]}}},
+            "fact": {"kind": "identity", "roots": []},
+            "summary": [{"kind": "polynomial-identity", "components": 1, "modulo_unit_normal": 0}]}]}]});
+    let out = recheck(&report.to_string()).unwrap();
+    assert_eq!((out.accepted, out.refused), (0, 1), "{:?}", out.lines);
+    assert!(out.lines[0].contains("bound"), "{:?}", out.lines);
+}

@@ -197,6 +197,13 @@ impl Quotient {
         self.num.is_zero()
     }
 
+    /// Whether the quotient is zero wherever anything is defined: zero with no
+    /// condition. A zero with conditions (0/R_g² at M = 0) is undefined where they
+    /// vanish, so a sum or product must not drop it.
+    pub fn is_exact_zero(&self) -> bool {
+        self.num.is_zero() && self.conditions().is_empty()
+    }
+
     /// The value when it is a constant polynomial.
     pub fn as_constant(&self) -> Option<Rational> {
         self.as_poly()?.as_constant()
@@ -482,7 +489,7 @@ impl Arithmetic for Quotients<'_> {
         Quotient::from(Poly::one())
     }
     fn is_exact_zero(&self, x: &Quotient) -> bool {
-        x.is_zero()
+        x.is_exact_zero()
     }
     /// `1 · x` is `x` when `x` is a polynomial, charged as the product (`1 · |x|`).
     fn first(&mut self, x: &Quotient) -> Result<Quotient, OverBudget> {

@@ -72,6 +72,7 @@ impl Check {
             node,
             origin,
             format!("{} = {body}", def.sig.name),
+            &self.defs[..index],
         );
         Ok(out)
     }

@@ -3,7 +3,7 @@
 
 use super::model::{
     Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
-    Figure, Grid, ScalarClaim, Side, Stated, Strategy, Transcript, Use, Verdict,
+    Figure, Grid, ScalarClaim, Side, Stated, Strategy, Transcript, Use, Verdict, MAX_NESTING,
 };
 use super::notation::{self, Notation};
 use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
@@ -106,6 +106,23 @@ pub fn load_texts(sources: &[(&str, &str)]) -> Result<Vec<DerivationFile>, LoadE
         })
         .into_iter(),
     )
+}
+
+/// A definition within [`MAX_NESTING`], or a located error.
+fn bounded(def: Definition) -> Result<Definition, Diagnostic> {
+    if def.depth <= MAX_NESTING {
+        return Ok(def);
+    }
+    Err(def
+        .origin
+        .diagnostic(
+            Span::new(0, def.text.len()),
+            format!(
+                "this definition nests {} levels deep through the definitions it reads, more than {MAX_NESTING}",
+                def.depth
+            ),
+        )
+        .with_help("shorten the chain of definitions, or write the expression out"))
 }
 
 fn unique_ids(
@@ -667,7 +684,7 @@ impl Loader {
                     )
                     .with_help("choose a new name; definitions cannot redefine a name"));
             }
-            return Ok(Definition::new(
+            return bounded(Definition::new(
                 DefSig {
                     name: whole,
                     formal: Vec::new(),
@@ -676,6 +693,7 @@ impl Loader {
                 body,
                 origin,
                 text.clone(),
+                visible,
             ));
         }
         let shape = None;
@@ -698,7 +716,7 @@ impl Loader {
                 )
                 .with_help("the defined name carries exactly the free indices of its right side"));
         }
-        Ok(Definition::new(
+        bounded(Definition::new(
             DefSig {
                 name,
                 formal,
@@ -707,6 +725,7 @@ impl Loader {
             body,
             origin,
             text.clone(),
+            visible,
         ))
     }
 
@@ -1560,6 +1579,7 @@ pub(super) fn entrywise(
                         node.clone(),
                         side.origin.clone(),
                         format!("{name} = {}", side.text.trim()),
+                        defs,
                     ));
                     Node {
                         kind: NodeKind::Matrix {

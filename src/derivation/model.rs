@@ -66,17 +66,48 @@ pub struct DefinitionData {
     pub origin: Origin,
     /// The definition as written.
     pub text: String,
+    /// How deeply its body nests, the bodies of the definitions it reads included.
+    pub depth: usize,
 }
 
+/// The deepest nesting of a definition (its body within the bodies of those it reads,
+/// one level per operation): every evaluator recurses that deep, so a chain of
+/// thousands of definitions would overflow a stack. The paper's deepest is about 30.
+pub const MAX_NESTING: usize = 10_000;
+
 impl Definition {
-    pub fn new(sig: DefSig, body: Node, origin: Origin, text: String) -> Self {
+    /// A definition whose body may read the `visible` ones (the last of a name).
+    pub fn new(
+        sig: DefSig,
+        body: Node,
+        origin: Origin,
+        text: String,
+        visible: &[Definition],
+    ) -> Self {
+        let depth = nesting(&body, visible);
         Definition(Arc::new(DefinitionData {
             sig,
             body,
             origin,
             text,
+            depth,
         }))
     }
+}
+
+/// How deeply `node` nests, counting the bodies of the `visible` definitions it reads.
+pub fn nesting(node: &Node, visible: &[Definition]) -> usize {
+    let read = node
+        .definition()
+        .and_then(|name| visible.iter().rev().find(|d| d.sig.name == name))
+        .map_or(0, |d| d.depth);
+    let inner = node
+        .children()
+        .into_iter()
+        .map(|c| nesting(c, visible))
+        .max()
+        .unwrap_or(0);
+    1 + read.max(inner)
 }
 
 impl std::ops::Deref for Definition {

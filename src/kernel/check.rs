@@ -333,13 +333,8 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
             if difference.is_zero() {
                 return Err(Rejection::False("the sides agree as functions".into()));
             }
-            for c in x.conditions().iter().chain(y.conditions()) {
-                if reduced(c.clone())?.is_zero() {
-                    return Err(Rejection::False(
-                        "a divisor vanishes wherever the normal is a unit vector".into(),
-                    ));
-                }
-            }
+            defined_on_sphere(&x, &normal)?;
+            defined_on_sphere(&y, &normal)?;
             let mut out = roots_taken(&env);
             out.push(Checked::DifferentFunctions {
                 terms: difference.num_terms(),
@@ -380,6 +375,9 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
                 .ok_or_else(|| Rejection::Mismatch("no such side".into()))?;
             let env = Env::new(&st.context, &[])?;
             match t.letters(&env) {
+                Err(why) if why == super::term::TOO_MANY_LETTERS => {
+                    Err(Rejection::Eval(EvalError::Limit))
+                }
                 Err(why) => Ok((Conclusion::Fails, vec![Checked::IllFormed { why }])),
                 Ok(_) => Err(Rejection::False("the side is well-formed".into())),
             }
@@ -477,6 +475,8 @@ fn identities(
                 }
                 components += 1;
                 modulo_unit_normal += usize::from(!raw.is_zero());
+                defined_on_sphere(&x, &normal)?;
+                defined_on_sphere(&y, &normal)?;
                 for c in x.conditions().iter().chain(y.conditions()) {
                     if c.num_terms() > 1 && !nonzero.contains(c) {
                         nonzero.push(c.clone());
@@ -625,11 +625,24 @@ impl Env<'_> {
                 }
             }
         }
+        // Every interval of the box holds at the point: a variable the point names, or
+        // an eliminated one by its value there; one the sides do not read still needs
+        // an interval with a point in it (else there is no state at all).
+        let eliminated = self.eliminated();
         for (v, i) in self.given_box() {
-            if let Some(x) = point.get(&v) {
-                if !i.contains(x) {
-                    return Err(Rejection::False("the point lies outside the box".into()));
-                }
+            let value = match (point.get(&v), eliminated.iter().find(|(w, _)| *w == v)) {
+                (Some(x), _) => Some(x.clone()),
+                (None, Some((_, p))) => Some(Frac::from(p.clone()).eval(&at).ok_or_else(|| {
+                    Rejection::False("the point leaves out a variable of the box".into())
+                })?),
+                (None, None) => None,
+            };
+            let inside = match &value {
+                Some(x) => i.contains(x),
+                None => !i.is_empty(),
+            };
+            if !inside {
+                return Err(Rejection::False("the point lies outside the box".into()));
             }
         }
         let normal = self.normal_vars().to_vec();
@@ -649,25 +662,34 @@ impl Env<'_> {
     }
 }
 
+/// No divisor of `f` vanishes wherever the normal is a unit vector: else `f` is
+/// defined nowhere, and an equality with it says nothing.
+fn defined_on_sphere(f: &Frac, normal: &[Var]) -> R<()> {
+    for c in f.conditions() {
+        let on_sphere = c
+            .reduce_on_sphere(normal)
+            .map_err(|e| Rejection::Eval(EvalError::Unsupported(e.to_string())))?;
+        if on_sphere.is_zero() {
+            return Err(Rejection::False(
+                "a divisor vanishes wherever the normal is a unit vector".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The box must be open somewhere for a difference as functions to refute: every
-/// interval has interior, and bounds a variable that is free (not the normal's, not
-/// eliminated by an assumption, not substituted).
+/// interval has interior and bounds a variable other than the normal's (the
+/// environment has refused a bounded variable fixed by an assumption).
 fn open_box(env: &mut Env<'_>, ctx: &super::statement::Context) -> R<()> {
-    let eliminated: Vec<Var> = env.eliminated().into_iter().map(|(v, _)| v).collect();
     let normal = env.normal_vars().to_vec();
     for (name, i) in &ctx.given {
         let v = env.vars.intern(name);
-        let substituted = ctx.substitutions.iter().any(|s| {
-            name == &s.symbol
-                || name
-                    .strip_prefix(s.symbol.as_str())
-                    .is_some_and(|rest| rest.starts_with('_'))
-        });
         let interior = match (i.lo.value(), i.hi.value()) {
             (Some(a), Some(b)) => a < b,
             _ => true,
         };
-        if !interior || substituted || eliminated.contains(&v) || normal.contains(&v) {
+        if !interior || normal.contains(&v) {
             return Err(Rejection::Mismatch(format!(
                 "the box bounds `{name}` to no open interval of a free variable"
             )));

@@ -186,7 +186,7 @@ fn zero_like(t: &Term, env: &Env<'_>) -> R<Term> {
             op: MatOp::Literal(vec![Term::int(0); rows * cols]),
         });
     }
-    let free = t.letters(env).map_err(EvalError::IllFormed)?.free;
+    let free = t.letters(env).map_err(super::eval::index_error)?.free;
     Ok(Term::Const {
         value: Rational::int(0),
         free,
@@ -196,7 +196,7 @@ fn zero_like(t: &Term, env: &Env<'_>) -> R<Term> {
 /// The name of the derivative of definition `name`, made (once) if it is new.
 fn derived(name: &str, symbol: &str, c: &[usize], env: &mut Env<'_>) -> R<String> {
     let dname = format!("∂{name}/∂{}", component_name(symbol, c));
-    if !env.has_definition(&dname) {
+    if !env.has_derived(&dname) {
         let def = env
             .definition_of(name)
             .ok_or_else(|| EvalError::IllFormed(format!("`{name}` is not defined")))?;

@@ -25,6 +25,11 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 /// Term products one statement may spend in all.
 pub const WORK: usize = 50_000_000;
 
+/// The deepest [`Env::eval`] may recurse, through terms and the definitions they read:
+/// more than any file the loader accepts, few enough for the evaluating thread's stack
+/// (`crate::parallel::STACK`, about 13 KB a level).
+pub const MAX_DEPTH: usize = 20_000;
+
 /// The most components a symbol, definition or intermediate value may have (3^10).
 pub const MAX_COMPONENTS: usize = 59_049;
 
@@ -97,6 +102,49 @@ pub fn component_name(symbol: &str, idx: &[usize]) -> String {
     }
     let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
     format!("{symbol}_{digits}")
+}
+
+/// An error of [`Term::letters`]: ill-formed, or past the kernel's bound.
+pub(super) fn index_error(why: String) -> EvalError {
+    if why == super::term::TOO_MANY_LETTERS {
+        EvalError::Limit
+    } else {
+        EvalError::IllFormed(why)
+    }
+}
+
+/// No two names of a context give one variable: a declared scalar `a_1` and the
+/// first component of a vector `a` (or of the normal, the position, a field's
+/// derivative `theta_,2`) would be read as one unknown.
+fn distinct_names(ctx: &Context) -> R<()> {
+    let indexed: Vec<&str> = ctx
+        .symbols
+        .iter()
+        .filter(|(name, &rank)| rank > 0 || ctx.fields.contains_key(*name))
+        .map(|(name, _)| name.as_str())
+        .chain(ctx.normal.as_deref())
+        .collect();
+    let names = ctx
+        .symbols
+        .keys()
+        .map(String::as_str)
+        .chain(ctx.normal.as_deref());
+    for name in names {
+        for prefix in &indexed {
+            let generated = name
+                .strip_prefix(prefix)
+                .and_then(|rest| rest.strip_prefix('_'))
+                .is_some_and(|rest| {
+                    !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit() || c == ',')
+                });
+            if generated {
+                return Err(EvalError::IllFormed(format!(
+                    "`{name}` is also the name of a component of `{prefix}`"
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The variable name of a field component's derivative: `u_2,13` is ∂²u_2/∂x_1∂x_3,
@@ -216,6 +264,8 @@ pub struct Env<'c> {
     /// Square roots accepted so far, by radicand.
     certified: Vec<(Frac, Frac)>,
     work: usize,
+    /// How deeply [`Env::eval`] is recursing now.
+    depth: usize,
 }
 
 impl Ranks for Env<'_> {
@@ -264,11 +314,13 @@ impl<'c> Env<'c> {
             certified: Vec::new(),
             roots_taken: Vec::new(),
             work: WORK,
+            depth: 0,
         };
         for r in roots {
             let mut f = Frac::from(env.poly_of(&r.num)?);
             for (d, k) in &r.den {
-                let d = Frac::from(env.poly_of(d)?).pow(*k)?;
+                let d = Frac::from(env.poly_of(d)?);
+                let d = env.pow(&d, *k)?;
                 f = f.div(&d)?;
             }
             env.roots.push(f);
@@ -279,7 +331,23 @@ impl<'c> Env<'c> {
                 .map(|k| env.vars.intern(&component_name(n, &[k])))
                 .collect();
         }
+        distinct_names(ctx)?;
+        if let Some(d) = ctx.definitions.iter().find(|d| d.name.contains('∂')) {
+            return Err(EvalError::IllFormed(format!(
+                "`{}`: a definition's name with ∂ is reserved for derivatives",
+                d.name
+            )));
+        }
         env.solve_equations()?;
+        // A bounded variable stays free: its interval would otherwise bound a
+        // combination of the others, which no check below reads.
+        for (name, _) in &ctx.given {
+            if env.substituted_or_eliminated(name) {
+                return Err(EvalError::Unsupported(format!(
+                    "`{name}` is bounded by the box and fixed by an assumption"
+                )));
+            }
+        }
         for s in &ctx.substitutions {
             let value = env.eval(&s.value)?;
             let mut mentioned = BTreeSet::new();
@@ -558,14 +626,39 @@ impl<'c> Env<'c> {
         Ok(())
     }
 
+    /// A product, charged in products of 64-bit limbs: the terms of one numerator
+    /// times the other's, times the limbs of their largest coefficients.
     fn mul(&mut self, a: &Frac, b: &Frac) -> R<Frac> {
-        self.charge(
-            a.numerator()
-                .num_terms()
-                .saturating_mul(b.numerator().num_terms())
-                .max(1),
-        )?;
+        let size = |f: &Frac| {
+            let limbs = f
+                .numerator()
+                .terms()
+                .map(|(_, c)| c.bits())
+                .max()
+                .unwrap_or(0)
+                / 64
+                + 1;
+            usize::try_from(limbs)
+                .unwrap_or(usize::MAX)
+                .saturating_mul(f.numerator().num_terms())
+        };
+        self.charge(size(a).saturating_mul(size(b)).max(1))?;
         Ok(a.mul(b)?)
+    }
+
+    /// `x^k` by squaring, each product charged as it is formed.
+    fn pow(&mut self, x: &Frac, k: u32) -> R<Frac> {
+        let (mut base, mut k, mut acc) = (x.clone(), k, Frac::one());
+        while k > 0 {
+            if k & 1 == 1 {
+                acc = self.mul(&acc, &base)?;
+            }
+            k >>= 1;
+            if k > 0 {
+                base = self.mul(&base, &base)?;
+            }
+        }
+        Ok(acc)
     }
 
     fn add(&mut self, a: &Frac, b: &Frac) -> R<Frac> {
@@ -582,8 +675,14 @@ impl<'c> Env<'c> {
 
     /// The value of `t`.
     pub fn eval(&mut self, t: &Term) -> R<Value> {
-        let letters = t.letters(self).map_err(EvalError::IllFormed)?;
-        let value = self.eval_checked(t, &letters)?;
+        if self.depth >= MAX_DEPTH {
+            return Err(EvalError::Limit);
+        }
+        let letters = t.letters(self).map_err(index_error)?;
+        self.depth += 1;
+        let value = self.eval_checked(t, &letters);
+        self.depth -= 1;
+        let value = value?;
         if value.comps().len() > MAX_COMPONENTS {
             return Err(EvalError::Limit);
         }
@@ -660,7 +759,7 @@ impl<'c> Env<'c> {
                         dens.push(den.clone());
                     }
                     if k > 64 {
-                        dens.push(den.pow(k - 64)?);
+                        dens.push(self.pow(&den, k - 64)?);
                     }
                 }
                 self.map_value(numerator, |env, f| {
@@ -673,9 +772,7 @@ impl<'c> Env<'c> {
             }
             Term::Pow(a, k) => {
                 let x = self.scalar_of(a)?;
-                let cost = x.numerator().num_terms().saturating_pow((*k).min(64));
-                self.charge(cost)?;
-                Value::scalar(x.pow(*k)?)
+                Value::scalar(self.pow(&x, *k)?)
             }
             Term::Sqrt(a) => {
                 let x = self.scalar_of(a)?;
@@ -1087,6 +1184,10 @@ impl<'c> Env<'c> {
     /// √x: a nonnegative rational, or an offered root r with r² = x exactly (cleared)
     /// and r ≥ 0 on the box by coefficient signs.
     fn square_root(&mut self, x: &Frac) -> R<Frac> {
+        // √0 = 0 wherever x is defined (its divisors are among its conditions).
+        if x.numerator().is_zero() {
+            return Ok(Frac::default().with_conditions_of(x));
+        }
         if x.denominator().is_empty() {
             if let Some(q) = x.numerator().as_constant() {
                 let r = q
@@ -1421,6 +1522,34 @@ impl Env<'_> {
     }
 
     /// The dimension.
+    /// Whether the variable of that name is fixed by an assumption: eliminated by an
+    /// equation, or a component of a substituted symbol.
+    fn substituted_or_eliminated(&self, name: &str) -> bool {
+        let substituted = self.ctx.substitutions.iter().any(|s| {
+            name == s.symbol
+                || name
+                    .strip_prefix(s.symbol.as_str())
+                    .is_some_and(|rest| rest.starts_with('_'))
+        });
+        let eliminated = self
+            .vars
+            .lookup(name)
+            .is_some_and(|v| self.pivots.contains_key(&v));
+        substituted || eliminated
+    }
+
+    /// The variable a scalar claim is about: free, not the normal's, not fixed by an
+    /// assumption.
+    pub fn free_variable(&mut self, name: &str) -> R<Var> {
+        let v = self.vars.intern(name);
+        if self.substituted_or_eliminated(name) || self.normal.contains(&v) {
+            return Err(EvalError::Unsupported(format!(
+                "the claim's variable `{name}` is not a free variable"
+            )));
+        }
+        Ok(v)
+    }
+
     pub fn ctx_dim(&self) -> usize {
         self.ctx.dim
     }
@@ -1436,9 +1565,10 @@ impl Env<'_> {
         self.derived.push(def);
     }
 
-    /// Whether a definition of that name exists (a derived one included).
-    pub(super) fn has_definition(&self, name: &str) -> bool {
-        self.definition(name).is_some()
+    /// Whether a derived definition of that name exists (statement definitions
+    /// cannot carry a derived name: see [`Env::new`]).
+    pub(super) fn has_derived(&self, name: &str) -> bool {
+        self.derived.iter().any(|d| d.name == name)
     }
 
     /// The definition of that name (a derived one included).

@@ -44,6 +44,12 @@ impl From<PolyError> for FracError {
 /// The most steps one trial division of a divisor by a known one takes.
 const DIVISION_STEPS: usize = 2_000;
 
+/// The largest multiplicity of a divisor (the strategy's largest exponent).
+const MAX_MULTIPLICITY: u32 = 10_000;
+
+/// The most term products one clearing of denominators takes.
+const CLEARING_WORK: usize = 5_000_000;
+
 /// `f = c · m · g` with `g` in canonical associate form (coprime integer
 /// coefficients, positive leading term) and no monomial content: `None` for a single
 /// term (g would be 1).
@@ -67,11 +73,31 @@ fn normalise(f: &Poly) -> Option<(Rational, Monomial, Poly)> {
 }
 
 fn add_factor(list: &mut Vec<(Poly, u32)>, f: &Poly, k: u32) -> Result<(), FracError> {
-    match list.iter_mut().find(|(g, _)| g == f) {
-        Some((_, m)) => *m = m.checked_add(k).ok_or(FracError::TooLarge)?,
-        None => list.push((f.clone(), k)),
+    let m = match list.iter_mut().find(|(g, _)| g == f) {
+        Some((_, m)) => {
+            *m = m.checked_add(k).ok_or(FracError::TooLarge)?;
+            *m
+        }
+        None => {
+            list.push((f.clone(), k));
+            k
+        }
+    };
+    if m > MAX_MULTIPLICITY {
+        return Err(FracError::TooLarge);
     }
     Ok(())
+}
+
+/// Records each variable of a monomial divided by as a condition (`v ≠ 0`): the
+/// value is undefined where it vanishes, though the division cancels it.
+fn divided_by_monomial(conds: &mut Vec<Poly>, m: &Monomial) {
+    for &(v, e) in m.factors() {
+        let var = Poly::var(v);
+        if e > 0 && !conds.contains(&var) {
+            conds.push(var);
+        }
+    }
 }
 
 fn union(into: &mut Vec<Poly>, from: &[Poly]) {
@@ -82,10 +108,15 @@ fn union(into: &mut Vec<Poly>, from: &[Poly]) {
     }
 }
 
-/// `p · Π f^k`.
+/// `p · Π f^k`, within [`CLEARING_WORK`] term products.
 fn times(mut p: Poly, factors: &[(Poly, u32)]) -> Result<Poly, FracError> {
+    let mut work = 0usize;
     for (f, k) in factors {
         for _ in 0..*k {
+            work = work.saturating_add(p.num_terms().saturating_mul(f.num_terms()));
+            if work > CLEARING_WORK {
+                return Err(FracError::TooLarge);
+            }
             p = p.checked_mul(f)?;
         }
     }
@@ -225,8 +256,14 @@ impl Frac {
             }
         }
         match normalise(&rest) {
-            None => out.num = out.num.checked_div(&rest)?,
+            None => {
+                if let Some((m, _)) = rest.leading() {
+                    divided_by_monomial(&mut out.conds, m);
+                }
+                out.num = out.num.checked_div(&rest)?
+            }
             Some((c, m, g)) => {
+                divided_by_monomial(&mut out.conds, &m);
                 let scale = Poly::term(
                     m.pow(-1).ok_or(FracError::TooLarge)?,
                     c.recip().ok_or(FracError::DivisionByZero)?,
@@ -242,7 +279,8 @@ impl Frac {
     pub fn pow(&self, k: u32) -> Result<Frac, FracError> {
         let mut den = Vec::with_capacity(self.den.len());
         for (f, m) in &self.den {
-            den.push((f.clone(), m.checked_mul(k).ok_or(FracError::TooLarge)?));
+            let m = m.checked_mul(k).filter(|&m| m <= MAX_MULTIPLICITY);
+            den.push((f.clone(), m.ok_or(FracError::TooLarge)?));
         }
         Ok(Frac {
             num: self.num.checked_pow(k)?,
@@ -402,10 +440,11 @@ mod tests {
     fn a_divisor_leaving_the_denominator_stays_a_condition() {
         let (x, y) = setup();
         let f = Frac::from(x.clone()).div(&Frac::from(&x + &y)).unwrap();
-        // 1 / (x/(x+y)) = (x+y)/x: defined only where x + y ≠ 0 too.
+        // 1 / (x/(x+y)) = (x+y)/x: defined only where x + y ≠ 0 too, and x ≠ 0
+        // (the monomial divisor, kept as a negative power).
         let g = Frac::constant(Rational::int(1)).div(&f).unwrap();
         assert!(g.denominator().is_empty());
-        assert_eq!(g.conditions(), &[&x + &y]);
+        assert_eq!(g.conditions(), &[&x + &y, x.clone()]);
         let at = |v: Var| {
             Some(if v == 0 {
                 Rational::int(1)

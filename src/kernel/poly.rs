@@ -252,7 +252,7 @@ pub enum PolyError {
     NegativeNormalPower,
     #[error("clearing the denominators takes more than 1000000 term products")]
     TooLarge,
-    #[error("an exponent would exceed 2^24")]
+    #[error("an exponent would exceed 2^40")]
     ExponentTooLarge,
 }
 

@@ -95,16 +95,19 @@ fn reduce(env: &mut Env<'_>, f: Frac, hint: Option<&Reduced>) -> R<Frac> {
     if dr.num_terms() > 1 && !conds.contains(&dr) {
         conds.push(dr.clone());
     }
-    let den_r = if dr.num_terms() == 1 && dr.as_constant().is_some() {
-        Vec::new()
-    } else {
-        vec![(dr, 1)]
+    // A constant denominator (of either sign) divides into the numerator.
+    let (num, den) = match dr.as_constant() {
+        Some(c) => {
+            let inverse = c.recip().ok_or_else(|| no("a zero denominator"))?;
+            (
+                nr.checked_mul(&Poly::constant(inverse))
+                    .map_err(|_| EvalError::Limit)?,
+                Vec::new(),
+            )
+        }
+        None => (nr, vec![(dr, 1)]),
     };
-    Ok(Frac {
-        num: nr,
-        den: den_r,
-        conds,
-    })
+    Ok(Frac { num, den, conds })
 }
 
 fn target(env: &mut Env<'_>, claim: &Claim) -> R<Target> {
@@ -124,7 +127,7 @@ fn target(env: &mut Env<'_>, claim: &Claim) -> R<Target> {
             increasing,
         } => {
             let f = scalar(env, function)?;
-            let v = env.vars.intern(variable);
+            let v = env.free_variable(variable)?;
             Target {
                 f: frac(f.derivative(v))?,
                 want: if *increasing {
@@ -381,7 +384,7 @@ pub(super) fn run(
                 .function
                 .map(|f| reduce(env, f, function.as_ref()))
                 .transpose()?;
-            let v = env.vars.intern(variable);
+            let v = env.free_variable(variable)?;
             if t.v.is_some_and(|w| w != v) {
                 return Err(Rejection::Mismatch("another variable".into()));
             }
@@ -438,7 +441,7 @@ pub(super) fn run(
                 return Err(no("a zero does not break a sign that admits 0"));
             }
             let (l, r) = (scalar(env, left)?, scalar(env, right)?);
-            let v = env.vars.intern(variable);
+            let v = env.free_variable(variable)?;
             let (n, d, c) = univariate(&frac(l.sub(&r))?, v, &box_, env)?;
             let i = interval(&box_, v);
             let undefined = d.mul(&c);
@@ -514,7 +517,7 @@ pub(super) fn run(
                 return Err(Rejection::Mismatch("not a monotonicity".into()));
             };
             let f = scalar(env, function)?;
-            let v = env.vars.intern(variable);
+            let v = env.free_variable(variable)?;
             let i = interval(&box_, v);
             let p = reduced_denominator(&f, v, (&box_, env))?;
             if !(lo < hi && i.contains(lo) && i.contains(hi))
@@ -602,7 +605,7 @@ fn limit(
         return Err(Rejection::Mismatch("not a limit".into()));
     };
     let f = scalar(env, function)?;
-    let v = env.vars.intern(variable);
+    let v = env.free_variable(variable)?;
     let mut den = <Poly as num_traits::One>::one();
     for (g, k) in f.denominator() {
         den = den
@@ -703,6 +706,61 @@ fn limit(
         _ => false,
     };
     if holds {
+        // The expansion describes the limit only where its leading coefficients do
+        // not vanish: the denominator's, and the numerator's for an infinite limit.
+        // Each must keep one sign on the whole box (a nonzero constant, or one sign
+        // of every coefficient after the orthant substitution).
+        // Where a factor of the denominator free of the variable vanishes, the
+        // function is undefined for every value of the variable: such points are not
+        // the claim's, so only the other factors' leading coefficient must not vanish.
+        // That needs a box with interior, on which such a factor cannot vanish
+        // everywhere (else the claim would be about no point at all).
+        let interior = box_
+            .iter()
+            .all(|(_, i)| match (i.lo.value(), i.hi.value()) {
+                (Some(a), Some(b)) => a < b,
+                _ => true,
+            });
+        let mut moving = <Poly as num_traits::One>::one();
+        for (g, k) in f.denominator() {
+            if !interior || g.variables().contains(&v) {
+                moving = moving
+                    .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
+                    .map_err(|_| EvalError::Limit)?;
+            }
+        }
+        // Negative powers of the other variables are divisors free of the variable too.
+        let laurent = f
+            .numerator()
+            .terms()
+            .any(|(m, _)| m.factors().iter().any(|&(w, e)| w != v && e < 0));
+        if !interior && laurent {
+            return Err(no(
+                "a divisor free of the variable may vanish on the whole box, which has no interior",
+            ));
+        }
+        let moving = moving.checked_mul(&lift).map_err(|_| EvalError::Limit)?;
+        let (_, d_moving) = lowest(&moving, v, to)?;
+        let leading = [&d_moving, &n];
+        for q in &leading[..if found.is_some() { 1 } else { 2 }] {
+            if q.as_constant().is_some_and(|c| !c.is_zero()) {
+                continue;
+            }
+            let q = Frac::from((*q).clone());
+            let how = [Sign::Positive, Sign::Negative]
+                .into_iter()
+                .find_map(|want| by_coefficients(&q, box_, want, names))
+                .ok_or_else(|| {
+                    no(&format!(
+                        "the expansion's leading coefficient {} is not shown nonzero on the box",
+                        shown(&q)
+                    ))
+                })?;
+            said.push(Checked::CoefficientSigns {
+                substitution: how.substitution,
+                cases: how.cases,
+            });
+        }
         return Ok((Conclusion::Holds, said));
     }
     // A refutation: at a point of the box where the expansion's coefficients are
@@ -749,7 +807,7 @@ fn roots(
         return Err(Rejection::Mismatch("not a roots claim".into()));
     };
     let f = scalar(env, function)?;
-    let v = env.vars.intern(variable);
+    let v = env.free_variable(variable)?;
     let i = interval(box_, v);
     let (n, d, c) = univariate(&f, v, box_, env)?;
     let undefined = d.mul(&c);

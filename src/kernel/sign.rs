@@ -27,8 +27,8 @@ struct Move {
     at_zero: bool,
 }
 
-/// The moves of `v` on interval `i`; `None` for an interval closed at both finite
-/// ends or empty, which no single map from t ≥ 0 covers.
+/// The moves of `v` on interval `i`; two for an interval closed at both finite ends,
+/// which no single map from t ≥ 0 covers; `None` for an empty one.
 fn moves(v: Var, i: &Interval) -> Option<Vec<Move>> {
     let closed = |e: &End| matches!(e, End::Closed(_));
     let one = Rational::one;
@@ -51,7 +51,11 @@ fn moves(v: Var, i: &Interval) -> Option<Vec<Move>> {
         (None, Some(b)) => vec![mv(b.clone(), -&one(), false, closed(&i.hi))],
         (Some(a), Some(b)) if !closed(&i.hi) => vec![mv(a.clone(), b.clone(), true, closed(&i.lo))],
         (Some(a), Some(b)) if !closed(&i.lo) => vec![mv(b.clone(), a.clone(), true, true)],
-        _ => return None,
+        // [a, b] is [a, b) and the point b (the move (b + b t)/(1 + t) = b).
+        (Some(a), Some(b)) => vec![
+            mv(a.clone(), b.clone(), true, true),
+            mv(b.clone(), b.clone(), true, true),
+        ],
     })
 }
 
@@ -115,7 +119,10 @@ fn words(name: &str, i: &Interval) -> String {
         (Some(a), Some(b)) if !matches!(i.hi, End::Closed(_)) => {
             format!("{name} = ({a} + {b} t)/(1 + t)")
         }
-        (Some(a), Some(b)) => format!("{name} = ({b} + {a} t)/(1 + t)"),
+        (Some(a), Some(b)) if !matches!(i.lo, End::Closed(_)) => {
+            format!("{name} = ({b} + {a} t)/(1 + t)")
+        }
+        (Some(a), Some(b)) => format!("{name} = ({a} + {b} t)/(1 + t) or {name} = {b}"),
     }
 }
 
@@ -144,7 +151,16 @@ pub fn by_coefficients(
     }
     let mut den = Poly::one();
     for (g, k) in f.denominator() {
-        den = &den * &g.pow(*k);
+        // Bounded before it is expanded: a power past the degree limit is refused.
+        let degree = g
+            .terms()
+            .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| e.unsigned_abs()))
+            .max()
+            .unwrap_or(0);
+        if degree.saturating_mul(u64::from(*k)) > MAX_DEGREE.unsigned_abs() {
+            return None;
+        }
+        den = den.checked_mul(&g.checked_pow(*k).ok()?).ok()?;
     }
     // Both times one monomial, so that no negative power is left: the quotient and the
     // product of their signs are unchanged.
@@ -210,6 +226,13 @@ pub fn by_coefficients(
         cases = next;
     }
     let all = cases.iter().all(|(n, d, closed)| {
+        // A case that is one point (a closed end) may give 0, or leave f undefined.
+        if d.is_zero() {
+            return true;
+        }
+        if n.is_zero() {
+            return want.admits(0);
+        }
         match (coefficient_sign(n, closed), coefficient_sign(d, closed)) {
             (Some((sn, nonzero)), Some((sd, _))) => {
                 want.admits(sn * sd) && (want.admits(0) || nonzero)
@@ -288,6 +311,19 @@ mod tests {
             &[(x, positive.clone()), (y, positive)],
             Sign::Positive
         ));
+        // On the closed [1, 2], both ends included: x > 0 and 2 − x ≥ 0, but not
+        // 2 − x > 0 (0 at x = 2) nor x − 1 > 0 (0 at x = 1).
+        let closed = Interval {
+            lo: End::Closed(q(1, 1)),
+            hi: End::Closed(q(2, 1)),
+        };
+        let on = |f: &Poly, want| by_c(&Frac::from(f.clone()), &[(x, closed.clone())], want);
+        assert!(on(&px, Sign::Positive));
+        let two_minus = &Poly::constant(q(2, 1)) - &px;
+        assert!(on(&two_minus, Sign::NonNegative));
+        assert!(!on(&two_minus, Sign::Positive));
+        assert!(!on(&(&px - &Poly::one()), Sign::Positive));
+        assert!(on(&(&px - &Poly::one()), Sign::NonNegative));
         // The zero function is ≥ 0, not > 0.
         assert!(by_c(&Frac::default(), &[], Sign::NonNegative));
         assert!(!by_c(&Frac::default(), &[], Sign::Positive));

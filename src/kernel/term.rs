@@ -146,6 +146,10 @@ pub struct Letters {
 /// the kernel visit more index values than a product of 12 letters in 3D).
 pub const MAX_LETTERS: usize = 12;
 
+/// The one error of [`Term::letters`] that is a bound of the kernel, not a fault of
+/// the term: a term past it is not ill-formed, only too large to check.
+pub const TOO_MANY_LETTERS: &str = "more than 12 index letters in one product";
+
 /// What the kernel knows of the symbols: their ranks, and the dimension.
 pub trait Ranks {
     fn dim(&self) -> usize;
@@ -175,9 +179,7 @@ fn tally(parts: &[Letters], extra: &[char]) -> Result<Letters, String> {
     // The contraction here visits every value of these letters (those summed inside
     // a factor are that factor's own).
     if out.free.len() + out.summed.len() > MAX_LETTERS {
-        return Err(format!(
-            "more than {MAX_LETTERS} index letters in one product"
-        ));
+        return Err(TOO_MANY_LETTERS.to_owned());
     }
     for (k, p) in parts.iter().enumerate() {
         for c in &p.summed {

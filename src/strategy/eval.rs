@@ -149,7 +149,7 @@ fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
         }
         PolyError::NegativeNormalPower => "keep components of the normal out of divisors",
         PolyError::TooLarge => "split the statement with definitions, or decide it numerically",
-        PolyError::ExponentTooLarge => "exponents up to 2^24 are supported exactly",
+        PolyError::ExponentTooLarge => "exponents up to 2^40 are supported exactly",
     };
     origin.diagnostic(node.span, e.to_string()).with_help(help)
 }
@@ -548,7 +548,7 @@ impl ExactRing<'_, '_> {
         if let Some(q) = p.as_constant() {
             return q
                 .sqrt_exact()
-                .map(|q| Quotient::from(Poly::constant(q)))
+                .map(|q| Quotient::from(Poly::constant(q)).with_conditions(p.conditions()))
                 .ok_or_else(|| {
                     self.error(
                         node,
@@ -575,7 +575,8 @@ impl ExactRing<'_, '_> {
                 }) {
                     env.root_values.push(candidate.clone());
                 }
-                return Ok(candidate);
+                // √X is defined only where X is (as the kernel reads it).
+                return Ok(candidate.with_conditions(p.conditions()));
             }
         }
         // The statement may well hold; without the sign it is not decided.
@@ -690,7 +691,7 @@ impl Arithmetic for ExactRing<'_, '_> {
         Quotient::from(Poly::one())
     }
     fn is_exact_zero(&self, x: &Quotient) -> bool {
-        x.is_zero()
+        x.is_exact_zero()
     }
     fn mul(&mut self, a: Quotient, b: &Quotient) -> Result<Quotient, Failure> {
         let mut ring = Quotients {
@@ -849,14 +850,16 @@ impl Ring for ExactRing<'_, '_> {
             .collect();
         vars.sort_unstable();
         vars.dedup();
-        let degree = (max_exp * i64::from(k)) as f64;
+        let degree = max_exp as f64 * f64::from(k);
         let monomials = (1..=vars.len()).fold(1.0, |acc, j| acc * (degree + j as f64) / j as f64);
         let t = p.num_terms() as f64;
         let multisets = (1..=k).fold(1.0, |acc, j| acc * (t - 1.0 + f64::from(j)) / f64::from(j));
         let terms = multisets.min(monomials);
         // Coefficients grow too: (q)^k has about k times the bits of q.
         let max_bits = p.terms().map(|(_, c)| c.bits()).max().unwrap_or(0);
-        let too_big = max_exp * i64::from(k) > MAX_EXPONENT
+        let too_big = max_exp
+            .checked_mul(i64::from(k))
+            .is_none_or(|e| e > MAX_EXPONENT)
             || terms > MAX_TERMS as f64
             || max_bits.saturating_mul(u64::from(k)) > MAX_COEFFICIENT_BITS;
         if too_big {
@@ -871,7 +874,7 @@ impl Ring for ExactRing<'_, '_> {
         // A denominator's factors are not expanded, but their multiplicities are
         // exponents too.
         let multiplicity = q.factors().iter().map(|&(_, m)| m).max().unwrap_or(0);
-        if i64::from(multiplicity) * i64::from(k) > MAX_EXPONENT {
+        if u64::from(multiplicity) * u64::from(k) > MAX_EXPONENT.unsigned_abs() {
             return Err(self.limit(
                 node,
                 "this power of a quotient is too large to expand exactly",

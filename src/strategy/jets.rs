@@ -41,7 +41,7 @@ impl Jet {
     }
 
     fn is_constant(&self) -> bool {
-        self.partials.iter().all(Quotient::is_zero)
+        self.partials.iter().all(Quotient::is_exact_zero)
     }
 }
 
@@ -66,8 +66,10 @@ pub(super) fn gradients(
     let t = walk::walk(&mut jets, body, &())?;
     let mut values = Vec::with_capacity(t.components().len() * size);
     for jet in t.components() {
+        // A derivative is defined where the value is (as the kernel reads it).
         for k in 0..size {
-            values.push(jet.partials.get(k).cloned().unwrap_or_default());
+            let partial = jet.partials.get(k).cloned().unwrap_or_default();
+            values.push(partial.with_conditions(jet.value.conditions()));
         }
     }
     let mut it = values.into_iter();
@@ -100,7 +102,7 @@ impl Jets<'_, '_, '_> {
             return Ok(Vec::new());
         }
         fn nonzero(x: Option<&Quotient>) -> Option<&Quotient> {
-            x.filter(|q| !q.is_zero())
+            x.filter(|q| !q.is_exact_zero())
         }
         (0..self.size)
             .map(|k| f(&mut self.base, nonzero(a.get(k)), nonzero(b.get(k))))
@@ -148,7 +150,7 @@ impl Arithmetic for Jets<'_, '_, '_> {
         Jet::constant(Quotient::from(Poly::one()))
     }
     fn is_exact_zero(&self, x: &Jet) -> bool {
-        x.value.is_zero() && x.is_constant()
+        x.value.is_exact_zero() && x.is_constant()
     }
     /// (ab)' = a'b + ab'.
     fn mul(&mut self, a: Jet, b: &Jet) -> Result<Jet, Failure> {
