@@ -58,8 +58,10 @@ fn browser() -> Option<PathBuf> {
     candidates.into_iter().find(|p| p.is_file())
 }
 
+/// Chromium's output, killed after two minutes (a page that waits on the network
+/// would otherwise hold the test forever).
 fn chromium(browser: &Path, profile: &Path, args: &[&str]) -> std::process::Output {
-    Command::new(browser)
+    let mut child = Command::new(browser)
         .args([
             "--headless",
             "--no-sandbox",
@@ -72,8 +74,27 @@ fn chromium(browser: &Path, profile: &Path, args: &[&str]) -> std::process::Outp
         ])
         .arg(format!("--user-data-dir={}", profile.display()))
         .args(args)
-        .output()
-        .expect("the browser starts")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("the browser starts");
+    let stdout = child.stdout.take().expect("piped");
+    let reader = std::thread::spawn(move || {
+        let mut out = Vec::new();
+        let _ = std::io::Read::read_to_end(&mut { stdout }, &mut out);
+        out
+    });
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while child.try_wait().ok().flatten().is_none() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let _ = child.kill();
+    let status = child.wait().expect("the browser is waited for");
+    std::process::Output {
+        status,
+        stdout: reader.join().unwrap_or_default(),
+        stderr: Vec::new(),
+    }
 }
 
 #[test]
@@ -140,4 +161,120 @@ fn in_a_real_browser_the_page_renders_mathml_and_a_click_scrolls_to_the_claim() 
         ],
     );
     assert!(shot.is_file(), "no screenshot");
+}
+
+/// The tags of `html` (`<name …>`), for checking what markup a page carries.
+fn tags(html: &str) -> Vec<&str> {
+    html.match_indices('<')
+        .filter_map(|(k, _)| {
+            let rest = &html[k + 1..];
+            rest.starts_with(|c: char| c.is_ascii_alphabetic())
+                .then(|| &rest[..rest.find('>').unwrap_or(rest.len())])
+        })
+        .collect()
+}
+
+/// A page made from `tests/hostile/report.toml`, whose every text field carries
+/// markup: a script, an image with an error handler, a style hiding failures, an
+/// iframe and images fetching from `port`.
+fn hostile_page(port: u16) -> String {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/hostile/report.toml"),
+    )
+    .unwrap()
+    .replace("PORT", &port.to_string());
+    let file = cosserat_check::derivation::load_str("report.toml", &text).unwrap();
+    let rows = decide_all(std::slice::from_ref(&file), None).unwrap();
+    let refs: Vec<_> = rows.iter().collect();
+    report::html::render(&refs, &report::paper_of(&refs, &[]))
+}
+
+#[test]
+fn markup_from_a_hostile_file_stays_text() {
+    let html = hostile_page(9);
+    let tags = tags(&html);
+    let named = |name: &str| {
+        tags.iter()
+            .filter(|t| t.split([' ', '/']).next() == Some(name))
+            .count()
+    };
+    // The page's own style and script, and nothing else of the kind.
+    assert_eq!((named("script"), named("style")), (1, 1));
+    for name in [
+        "img",
+        "iframe",
+        "svg onload",
+        "link",
+        "object",
+        "embed",
+        "base",
+    ] {
+        assert_eq!(named(name), 0, "{name}");
+    }
+    let handlers: Vec<&&str> = tags
+        .iter()
+        .filter(|t| t.split_whitespace().skip(1).any(|a| a.starts_with("on")))
+        .collect();
+    assert!(handlers.is_empty(), "{handlers:?}");
+    assert!(!html.contains("href=\"javascript"));
+    // Shown as text instead.
+    assert!(
+        html.contains("&lt;img src=x onerror="),
+        "the payload is shown"
+    );
+    assert!(html.contains("Content-Security-Policy"));
+}
+
+#[test]
+fn in_a_real_browser_a_hostile_page_runs_nothing_fetches_nothing_and_shows_every_failure() {
+    let Some(browser) = browser() else {
+        eprintln!("skipped: no Chromium found (see the test above)");
+        return;
+    };
+    // A server that answers every request at once (so that a page that does make one
+    // finishes loading) and remembers that it came.
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = listener.local_addr().unwrap().port();
+    let requested = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let seen = requested.clone();
+    std::thread::spawn(move || {
+        for stream in listener.incoming() {
+            seen.store(true, std::sync::atomic::Ordering::SeqCst);
+            if let Ok(mut s) = stream {
+                use std::io::Write;
+                let _ = s.write_all(b"HTTP/1.0 204 No Content\r\n\r\n");
+            }
+        }
+    });
+    let html = hostile_page(port);
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/html-hostile");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("report.html");
+    std::fs::write(&file, &html).unwrap();
+    let dom = chromium(
+        &browser,
+        &dir.join("profile"),
+        &[
+            "--virtual-time-budget=10000",
+            "--dump-dom",
+            &format!("file://{}?selftest", file.display()),
+        ],
+    );
+    let dom = String::from_utf8_lossy(&dom.stdout);
+    let start = dom
+        .find("<pre id=\"selftest\">")
+        .unwrap_or_else(|| panic!("the page's own script did not run:\n{dom}"));
+    let json = &dom[start + "<pre id=\"selftest\">".len()..];
+    let json = &json[..json.find("</pre>").unwrap()];
+    let result: serde_json::Value = serde_json::from_str(&json.replace("&quot;", "\"")).unwrap();
+    assert_eq!(result["pwned"], 0, "an author's script ran: {result}");
+    assert_eq!(result["failing"], 2, "{result}");
+    assert_eq!(
+        result["failing_visible"], 2,
+        "a failure is hidden: {result}"
+    );
+    assert!(
+        !requested.load(std::sync::atomic::Ordering::SeqCst),
+        "the page made a request"
+    );
 }

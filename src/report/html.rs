@@ -49,9 +49,13 @@ fn text(s: &str) -> String {
 }
 
 /// LaTeX as MathML, or why it cannot be rendered (a construct `pulldown-latex` lacks).
+///
+/// The converter's output is re-emitted through an allowlist ([`super::mathml`]): text
+/// the converter copies unescaped (`\operatorname{<script>…}`) stays text.
 pub fn mathml(latex: &str, display: bool) -> Result<String, String> {
     use pulldown_latex::config::DisplayMode;
     use pulldown_latex::{push_mathml, Parser, RenderConfig, Storage};
+    super::mathml::within_bounds(latex)?;
     let storage = Storage::new();
     let events: Vec<_> = Parser::new(latex, &storage).collect();
     if let Some(Err(e)) = events.iter().find(|e| e.is_err()) {
@@ -67,7 +71,7 @@ pub fn mathml(latex: &str, display: bool) -> Result<String, String> {
     };
     let mut out = String::new();
     push_mathml(&mut out, events.into_iter(), config).map_err(|e| e.to_string())?;
-    Ok(out)
+    Ok(super::mathml::sanitized(&out))
 }
 
 /// A formula as MathML; LaTeX the renderer cannot read is shown as source, saying so.
@@ -90,6 +94,42 @@ fn prose(s: &str) -> String {
             out.push_str(&formula(part, false));
         } else {
             out.push_str(&escape(part));
+        }
+    }
+    out
+}
+
+/// The page's Content-Security-Policy: nothing is fetched, nothing is submitted, and
+/// only the page's own style and script run (named by their SHA-256), so that markup
+/// which got past every escape would still do nothing.
+fn policy() -> String {
+    format!(
+        "default-src 'none'; style-src '{}'; script-src '{}'; img-src data:; \
+         base-uri 'none'; form-action 'none'",
+        sha256_source(STYLE),
+        sha256_source(SCRIPT)
+    )
+}
+
+/// A CSP hash source: `sha256-` and the base64 of the text's SHA-256.
+fn sha256_source(text: &str) -> String {
+    use sha2::{Digest, Sha256};
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let digest = Sha256::digest(text.as_bytes());
+    let mut out = String::from("sha256-");
+    for chunk in digest.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(char::from(ALPHABET[(n >> (18 - 6 * k) & 63) as usize]));
+            } else {
+                out.push('=');
+            }
         }
     }
     out
@@ -126,8 +166,10 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
     let _ = write!(
         out,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta http-equiv=\"Content-Security-Policy\" content=\"{}\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
          <title>Derivation table: {}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n",
+        policy(),
         escape(paper)
     );
     let _ = write!(
@@ -469,7 +511,13 @@ const SCRIPT: &str = r#"
   // `?selftest`: click every node and record whether its claim scrolled to the top
   // (the browser test reads the result from the page).
   async function selftest() {
-    const out = { nodes: 0, claims: 0, math: 0, unrendered: 0, raw_latex: [], raw_latex_outside_code: [], clicks: 0, scrolled: 0, focused: 0, failures: [] };
+    const out = { nodes: 0, claims: 0, math: 0, unrendered: 0, raw_latex: [], raw_latex_outside_code: [], clicks: 0, scrolled: 0, focused: 0, failures: [], failing: 0, failing_visible: 0, pwned: window.__pwned || 0 };
+    const failing = [...document.querySelectorAll('article.claim.fails')];
+    out.failing = failing.length;
+    out.failing_visible = failing.filter(a => {
+      const s = getComputedStyle(a);
+      return a.getBoundingClientRect().height > 0 && s.display !== 'none' && s.visibility === 'visible' && s.opacity !== '0';
+    }).length;
     const nodes = [...svg.querySelectorAll('a.node')];
     out.nodes = nodes.length;
     out.claims = document.querySelectorAll('article.claim').length;

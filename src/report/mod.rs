@@ -11,6 +11,7 @@ pub mod json;
 pub mod latex;
 pub mod layout;
 pub mod markdown;
+pub mod mathml;
 pub mod plot;
 pub mod transcription;
 pub mod typeset;
