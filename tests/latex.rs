@@ -50,3 +50,94 @@ fn the_table_fits_a_portrait_page() {
 fn the_errata_fit_a_portrait_page() {
     compile(&["errata"], "errata");
 }
+
+/// A report made from `tests/hostile/report.toml`, whose statements, notes, reasons
+/// and titles carry TeX that reads a file (`\input{/etc/passwd}`), writes one
+/// (`\openout`), and closes the table and the document early. Compiled with a default
+/// pdflatex, it must neither read nor write a file other than its own, and the PDF must
+/// show every claim and the summary (checked with `pdftotext` when it is installed).
+#[test]
+fn a_hostile_report_reads_and_writes_nothing_and_shows_every_claim() {
+    if Command::new("pdflatex").arg("--version").output().is_err() {
+        eprintln!("skipped: pdflatex is not installed (apt-get install texlive-latex-base)");
+        return;
+    }
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/latex-hostile");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/hostile/report.toml"),
+    )
+    .unwrap()
+    .replace("PORT", "9");
+    std::fs::write(dir.join("report.toml"), text).unwrap();
+    for (name, command) in [("table", "verify"), ("errata", "errata")] {
+        let mut args = vec![command, "report.toml", "--format", "latex", "--standalone"];
+        if command == "errata" {
+            args = vec![command, "--dir", ".", "--format", "latex", "--standalone"];
+        }
+        let out = Command::new(env!("CARGO_BIN_EXE_cosserat-check"))
+            .args(&args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(out.status.code().is_some_and(|c| c <= 1), "{out:?}");
+        std::fs::write(dir.join(format!("{name}.tex")), &out.stdout).unwrap();
+        let compiled = Command::new("pdflatex")
+            .args([
+                "-interaction=nonstopmode",
+                "-recorder",
+                &format!("{name}.tex"),
+            ])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        // -recorder lists every file TeX opened: only its own and TeX Live's.
+        let fls = std::fs::read_to_string(dir.join(format!("{name}.fls"))).unwrap();
+        for line in fls.lines() {
+            let path = line.split_once(' ').map_or("", |(_, p)| p);
+            // TeX Live's own files, and its font cache (~/.texlive*/texmf-var).
+            let own = path.starts_with("/usr/") || path.contains("/texmf");
+            let here = !path.starts_with('/') || path.starts_with(dir.to_str().unwrap());
+            assert!(own || here, "{name}: TeX opened {line}");
+            assert!(
+                !path.contains("passwd") && !path.contains("pwned"),
+                "{name}: {line}"
+            );
+        }
+        assert!(!dir.join("pwned.txt").exists() && !dir.join("pwned.tex").exists());
+        assert!(
+            dir.join(format!("{name}.pdf")).is_file(),
+            "{name}: {}",
+            String::from_utf8_lossy(&compiled.stdout)
+        );
+        if Command::new("pdftotext").arg("-v").output().is_err() {
+            eprintln!("note: pdftotext is not installed; the PDF's text is not checked");
+            continue;
+        }
+        let txt = Command::new("pdftotext")
+            .args([&format!("{name}.pdf"), "-"])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let txt = String::from_utf8_lossy(&txt.stdout);
+        assert!(
+            !txt.contains("root:"),
+            "{name}: the password file is in the PDF"
+        );
+        let ids: &[&str] = if name == "table" {
+            &["op", "tex", "href"]
+        } else {
+            &["op", "tex"]
+        };
+        for id in ids {
+            assert!(txt.contains(id), "{name}: claim {id} is missing:\n{txt}");
+        }
+        if name == "table" {
+            assert!(
+                txt.contains("2 fail"),
+                "{name}: the summary is missing:\n{txt}"
+            );
+        }
+    }
+}

@@ -258,6 +258,17 @@ impl Loader {
     }
 
     fn run(self) -> Result<(DerivationFile, Vec<(String, IdDiag)>), LoadError> {
+        if let Some((at, what)) = super::control::first_control(&self.file.text) {
+            let end = at
+                + self.file.text[at..]
+                    .chars()
+                    .next()
+                    .map_or(1, char::len_utf8);
+            return Err(self
+                .diag(at..end, format!("{what} is not allowed in a derivation file"))
+                .with_help("remove it; a report would show it raw (write LaTeX such as \\beta in '…' strings)")
+                .into());
+        }
         let raw: RawFile = toml::from_str(&self.file.text).map_err(|e| {
             let span = e.span().unwrap_or(0..0);
             self.diag(

@@ -13,11 +13,26 @@ use std::fmt::Write as _;
 const OPEN: char = '\u{1}';
 const CLOSE: char = '\u{2}';
 
+/// A printed formula as mathematics when [`super::tex::check`] lets it into a `.tex`
+/// file; otherwise its text, for [`escape`] to show literally (with no backtick to
+/// start a quotation).
 fn math(s: &str) -> String {
-    format!(
-        "{OPEN}{}{CLOSE}",
-        s.split_whitespace().collect::<Vec<_>>().join(" ")
-    )
+    if super::tex::check(s).is_ok() {
+        format!(
+            "{OPEN}{}{CLOSE}",
+            s.split_whitespace().collect::<Vec<_>>().join(" ")
+        )
+    } else {
+        literal(s)
+    }
+}
+
+/// Text with the characters [`escape`] gives a meaning (markers, backticks) made plain.
+fn literal(s: &str) -> String {
+    s.chars()
+        .filter(|&c| c != OPEN && c != CLOSE)
+        .map(|c| if c == '`' { '‘' } else { c })
+        .collect()
 }
 
 /// A non-ASCII character in text mode, as LaTeX.
@@ -112,8 +127,10 @@ pub fn escape(s: &str) -> String {
                 if command {
                     // A command named alone (`\overline`) is quoted, not typeset.
                     let _ = write!(out, "\\texttt{{\\textbackslash {}}}", &text[1..]);
-                } else if text.contains(['\\', '{']) {
+                } else if text.contains(['\\', '{']) && super::tex::check(text).is_ok() {
                     let _ = write!(out, "${text}$");
+                } else if text.contains(['\\', '{']) {
+                    let _ = write!(out, "\\texttt{{{}}}", escape(&literal(text)));
                 } else {
                     out.push_str(&expression(text));
                 }
@@ -245,7 +262,15 @@ fn name(base: &str) -> String {
 /// A statement: math scaled down to the column when wider, or quoted prose with its own
 /// inline math.
 fn statement(c: &crate::derivation::Claim) -> String {
-    if c.prose && !super::prose_is_formula(&c.statement) {
+    let formulas_safe = c
+        .statement
+        .split('$')
+        .skip(1)
+        .step_by(2)
+        .all(|m| super::tex::check(m).is_ok());
+    if c.prose && !super::prose_is_formula(&c.statement) && !formulas_safe {
+        format!("``{}''", escape(&literal(&c.statement)))
+    } else if c.prose && !super::prose_is_formula(&c.statement) {
         // Prose is LaTeX text already (with $…$ for math); quote it.
         let mut inner = String::new();
         let mut in_math = false;

@@ -13,6 +13,7 @@ pub mod layout;
 pub mod markdown;
 pub mod mathml;
 pub mod plot;
+pub mod tex;
 pub mod transcription;
 pub mod typeset;
 pub mod words;

@@ -1,0 +1,109 @@
+//! Control characters are refused in a derivation file, written raw or as a TOML
+//! escape (`"\u001b[2J"`, `"\b"`): they would reach a terminal as escape sequences, a
+//! report as invisible text, or the LaTeX writer, and no statement needs one. A tab and
+//! the line ends are allowed.
+
+/// The byte offset of the first control character in `text` (raw, or escaped inside
+/// a basic string), with a description of it; `None` when there is none.
+pub fn first_control(text: &str) -> Option<(usize, String)> {
+    let bytes = text.as_bytes();
+    let mut k = 0;
+    let mut string: Option<&'static str> = None; // the closing quote(s) of the string we are in
+    let mut comment = false;
+    while k < bytes.len() {
+        let c = text[k..].chars().next()?;
+        if forbidden(c) {
+            return Some((k, describe(c)));
+        }
+        let rest = &text[k..];
+        match string {
+            None if comment => {
+                if c == '\n' {
+                    comment = false;
+                }
+            }
+            None => {
+                if c == '#' {
+                    comment = true;
+                } else {
+                    for quote in ["\"\"\"", "'''", "\"", "'"] {
+                        if rest.starts_with(quote) {
+                            string = Some(quote);
+                            k += quote.len();
+                            break;
+                        }
+                    }
+                    if string.is_some() {
+                        continue;
+                    }
+                }
+            }
+            Some(quote) => {
+                if rest.starts_with(quote) {
+                    string = None;
+                    k += quote.len();
+                    continue;
+                }
+                if c == '\\' && quote.starts_with('"') {
+                    if let Some(found) = escaped(&rest[1..]) {
+                        return Some((k, found));
+                    }
+                    // Skip the escaped character, so that `\"` does not end the string.
+                    k += 1 + rest[1..].chars().next().map_or(0, char::len_utf8);
+                    continue;
+                }
+            }
+        }
+        k += c.len_utf8();
+    }
+    None
+}
+
+fn forbidden(c: char) -> bool {
+    c.is_control() && !matches!(c, '\t' | '\n' | '\r')
+}
+
+fn describe(c: char) -> String {
+    format!("the control character U+{:04X}", u32::from(c))
+}
+
+/// The control character an escape (after its backslash) stands for, described.
+fn escaped(after: &str) -> Option<String> {
+    let hex = |n: usize| {
+        after
+            .get(1..=n)
+            .and_then(|h| u32::from_str_radix(h, 16).ok())
+            .and_then(char::from_u32)
+    };
+    let c = match after.chars().next()? {
+        'b' => '\u{8}',
+        'f' => '\u{c}',
+        'e' => '\u{1b}',
+        'u' => hex(4)?,
+        'U' => hex(8)?,
+        _ => return None,
+    };
+    forbidden(c).then(|| format!("{} (written as a TOML escape)", describe(c)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn raw_and_escaped_control_characters_are_found_where_they_are() {
+        assert_eq!(first_control("a = \"x\"\nb = 'y'\n"), None);
+        assert_eq!(first_control("a = \"x\u{1b}\"").map(|f| f.0), Some(6));
+        let (at, what) = first_control("a = \"ok\"\nb = \"\\u001b[2J\"").unwrap();
+        assert_eq!(at, 14);
+        assert!(what.contains("U+001B") && what.contains("escape"), "{what}");
+        // \b in a basic string is a backspace (a LaTeX \beta written in "…").
+        assert!(first_control("p = \"\\beta\"").is_some());
+        // In a literal string, or a comment, a backslash is only a backslash.
+        assert_eq!(first_control("p = '\\beta \\u0001'  # \\u0007"), None);
+        // An escaped quote does not end the string; a tab is fine.
+        assert_eq!(first_control("p = \"\\\"\\u0041\t\""), None);
+        assert!(first_control("p = \"\\\"\\u0002\"").is_some());
+        assert!(first_control("p = \"\"\"\n\\U0000009b\"\"\"").is_some());
+    }
+}

@@ -1,0 +1,349 @@
+//! Printed LaTeX from a stranger's file, checked before it enters a `.tex` report.
+//! TeX is a programming language: `\input{/etc/passwd}` reads a file when the report
+//! is compiled, `\openout` and `\write` write one, `$}` and `\end{document}` close the
+//! table early, `%` hides the rest of a line, and `^^5c` spells a backslash. A formula
+//! passes only when every token is on an allowlist of mathematical notation
+//! ([`COMMANDS`], [`ENVIRONMENTS`]), its braces balance, and `&` and `\\` appear only
+//! inside a matrix-like environment; anything else is shown as text, escaped.
+
+/// Control words a formula may use: letters, operators, relations, delimiters,
+/// accents, fonts, spacing.
+const COMMANDS: &[&str] = &[
+    // Greek
+    "alpha",
+    "beta",
+    "gamma",
+    "delta",
+    "epsilon",
+    "varepsilon",
+    "zeta",
+    "eta",
+    "theta",
+    "vartheta",
+    "iota",
+    "kappa",
+    "lambda",
+    "mu",
+    "nu",
+    "xi",
+    "pi",
+    "varpi",
+    "rho",
+    "varrho",
+    "sigma",
+    "varsigma",
+    "tau",
+    "upsilon",
+    "phi",
+    "varphi",
+    "chi",
+    "psi",
+    "omega",
+    "Gamma",
+    "Delta",
+    "Theta",
+    "Lambda",
+    "Xi",
+    "Pi",
+    "Sigma",
+    "Upsilon",
+    "Phi",
+    "Psi",
+    "Omega",
+    // operators and functions
+    "frac",
+    "tfrac",
+    "dfrac",
+    "sqrt",
+    "sum",
+    "prod",
+    "int",
+    "oint",
+    "lim",
+    "limits",
+    "nolimits",
+    "max",
+    "min",
+    "sup",
+    "inf",
+    "det",
+    "exp",
+    "log",
+    "ln",
+    "sin",
+    "cos",
+    "tan",
+    "cot",
+    "sec",
+    "csc",
+    "arcsin",
+    "arccos",
+    "arctan",
+    "sinh",
+    "cosh",
+    "tanh",
+    "sgn",
+    "tr",
+    "operatorname",
+    "mathop",
+    "partial",
+    "nabla",
+    "cdot",
+    "cdots",
+    "ldots",
+    "dots",
+    "vdots",
+    "ddots",
+    "times",
+    "otimes",
+    "oplus",
+    "pm",
+    "mp",
+    "circ",
+    "bullet",
+    "ast",
+    "star",
+    // relations and arrows
+    "le",
+    "leq",
+    "ge",
+    "geq",
+    "ne",
+    "neq",
+    "approx",
+    "sim",
+    "simeq",
+    "cong",
+    "equiv",
+    "propto",
+    "ll",
+    "gg",
+    "in",
+    "notin",
+    "ni",
+    "subset",
+    "subseteq",
+    "supset",
+    "cup",
+    "cap",
+    "to",
+    "rightarrow",
+    "Rightarrow",
+    "leftarrow",
+    "Leftarrow",
+    "leftrightarrow",
+    "Leftrightarrow",
+    "longrightarrow",
+    "Longrightarrow",
+    "iff",
+    "implies",
+    "mapsto",
+    "forall",
+    "exists",
+    "not",
+    "mid",
+    "parallel",
+    "perp",
+    "wedge",
+    "vee",
+    "neg",
+    "land",
+    "lor",
+    // symbols
+    "infty",
+    "ell",
+    "hbar",
+    "prime",
+    "emptyset",
+    "angle",
+    "deg",
+    "S",
+    // delimiters
+    "left",
+    "right",
+    "big",
+    "Big",
+    "bigg",
+    "Bigg",
+    "bigl",
+    "bigr",
+    "Bigl",
+    "Bigr",
+    "langle",
+    "rangle",
+    "lvert",
+    "rvert",
+    "lVert",
+    "rVert",
+    "vert",
+    "Vert",
+    "lbrace",
+    "rbrace",
+    "lfloor",
+    "rfloor",
+    "lceil",
+    "rceil",
+    // accents and fonts
+    "dot",
+    "ddot",
+    "hat",
+    "bar",
+    "tilde",
+    "vec",
+    "check",
+    "breve",
+    "acute",
+    "grave",
+    "overline",
+    "underline",
+    "widehat",
+    "widetilde",
+    "overbrace",
+    "underbrace",
+    "mathbf",
+    "mathrm",
+    "mathit",
+    "mathsf",
+    "mathtt",
+    "mathcal",
+    "mathbb",
+    "boldsymbol",
+    "text",
+    "textrm",
+    "textit",
+    "textbf",
+    "mbox",
+    // spacing and styles
+    "quad",
+    "qquad",
+    "displaystyle",
+    "textstyle",
+    "scriptstyle",
+    "begin",
+    "end",
+];
+
+/// Environments a formula may open; inside them `&` and `\\` separate cells and rows.
+const ENVIRONMENTS: &[&str] = &[
+    "matrix",
+    "pmatrix",
+    "bmatrix",
+    "Bmatrix",
+    "vmatrix",
+    "Vmatrix",
+    "smallmatrix",
+    "cases",
+    "aligned",
+    "gathered",
+    "split",
+];
+
+/// Control symbols (a backslash and one other character) a formula may use.
+const SYMBOLS: &str = ",;:! {}|_&#%$";
+
+/// Whether `latex` is a formula that may enter a `.tex` file as it is: `Err` names
+/// the first token that may not.
+pub fn check(latex: &str) -> Result<(), String> {
+    let mut depth = 0usize;
+    let mut envs: Vec<&str> = Vec::new();
+    let mut rest = latex;
+    while let Some(c) = rest.chars().next() {
+        let after = &rest[c.len_utf8()..];
+        match c {
+            '\\' => {
+                let word_len = after
+                    .find(|c: char| !c.is_ascii_alphabetic())
+                    .unwrap_or(after.len());
+                if word_len == 0 {
+                    let Some(symbol) = after.chars().next() else {
+                        return Err("a backslash at the end".into());
+                    };
+                    let in_env = !envs.is_empty();
+                    if !(SYMBOLS.contains(symbol) || (symbol == '\\' && in_env)) {
+                        return Err(format!("`\\{symbol}`"));
+                    }
+                    rest = &after[symbol.len_utf8()..];
+                    continue;
+                }
+                let word = &after[..word_len];
+                if !COMMANDS.contains(&word) {
+                    return Err(format!("`\\{word}`"));
+                }
+                rest = &after[word_len..];
+                if word == "begin" || word == "end" {
+                    let name = rest
+                        .strip_prefix('{')
+                        .and_then(|r| r.find('}').map(|k| &r[..k]))
+                        .filter(|name| ENVIRONMENTS.contains(name))
+                        .ok_or_else(|| format!("`\\{word}` of an environment not allowed"))?;
+                    if word == "begin" {
+                        envs.push(name);
+                    } else if envs.pop() != Some(name) {
+                        return Err(format!("`\\end{{{name}}}` without its `\\begin`"));
+                    }
+                    rest = &rest[name.len() + 2..];
+                }
+                continue;
+            }
+            '{' => depth += 1,
+            '}' => {
+                depth = depth
+                    .checked_sub(1)
+                    .ok_or_else(|| "a `}` closing no group".to_owned())?;
+            }
+            '&' if envs.is_empty() => return Err("`&` outside a matrix".into()),
+            '$' | '%' | '#' => return Err(format!("`{c}`")),
+            '^' if after.starts_with('^') => return Err("`^^`".into()),
+            c if c.is_control() => return Err("a control character".into()),
+            _ => {}
+        }
+        rest = after;
+    }
+    if depth != 0 {
+        return Err("a `{` never closed".into());
+    }
+    if let Some(env) = envs.last() {
+        return Err(format!("`\\begin{{{env}}}` never ended"));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check;
+
+    #[test]
+    fn mathematics_passes() {
+        for ok in [
+            r"\frac{\partial F_2}{\partial \sigma_{ij}} = \tfrac13 \quad (\tau = 0,\ h^C = 1/2)",
+            r"\mathbf{D}^{(el)} = G \begin{pmatrix} K+1 & 0 \\ 0 & 1 \end{pmatrix}",
+            r"\left\langle n_i n_j \right\rangle = \tfrac{1}{3}\delta_{ij}, \text{ for } x \ge 0",
+            r"\{ x \} \; \dot{\Gamma}",
+        ] {
+            assert_eq!(check(ok), Ok(()), "{ok}");
+        }
+    }
+
+    #[test]
+    fn tex_that_reads_writes_or_escapes_the_table_is_refused() {
+        for bad in [
+            r"\input{/etc/passwd}",
+            r"x \text{\openout5=pwned.txt}",
+            r"\immediate\write18{rm -rf ~}",
+            r"x $} \end{longtable}\end{document}",
+            r"x } \end{longtable}",
+            r"x % the rest of the line",
+            r"^^5cinput{/etc/passwd}",
+            r"\catcode`\@=11",
+            r"a & b",
+            r"a \\ b",
+            r"\begin{verbatim}",
+            r"\begin{pmatrix} a \end{bmatrix}",
+            r"\def\x{y}",
+            r"{",
+            "x \u{1}",
+        ] {
+            assert!(check(bad).is_err(), "{bad}");
+        }
+    }
+}
