@@ -87,7 +87,7 @@ pub struct PlotArgs {
     /// Output format: the table of values or the picture.
     #[arg(long, value_enum, default_value_t = FigureFormat::Csv)]
     pub format: FigureFormat,
-    /// Write to FILE instead of standard output.
+    /// Write to FILE instead of standard output (`-` is standard output). A regular file is replaced atomically; a device or FIFO is written into, never replaced.
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
 }
@@ -113,7 +113,7 @@ pub struct OutputArgs {
     /// With --format latex: a complete document instead of a table fragment.
     #[arg(long)]
     pub standalone: bool,
-    /// Write to FILE instead of standard output (only after every claim is decided).
+    /// Write to FILE instead of standard output, only after every claim is decided (`-` is standard output). A regular file is replaced atomically; a device or FIFO is written into, never replaced.
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
     /// Decide only the claim with this id (e.g. eq33), reading only its file and the files of the claims it uses.
@@ -563,21 +563,89 @@ fn refuse_inputs(path: &Path, inputs: &[&str]) -> Result<(), RunError> {
     Ok(())
 }
 
-/// Writes through `FILE.tmp-PID` beside `path`, then renames it over `path`.
-fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(format!(".tmp-{}", std::process::id()));
-    let tmp = path.with_file_name(name);
-    let written = std::fs::write(&tmp, text).and_then(|()| std::fs::rename(&tmp, path));
+/// Replaces the regular file `path` (or creates it) with `text` atomically: through a
+/// temporary file created exclusively, under an unpredictable name, in the same
+/// directory, renamed over it. A symbolic link is followed, so the file it names is
+/// replaced and the link stays. Anything else that exists there (a device, a FIFO, a
+/// directory) is never replaced: a device or FIFO is written directly, a directory is
+/// an error.
+fn write_file(path: &Path, text: &str) -> std::io::Result<()> {
+    use std::io::ErrorKind;
+    let target = match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => path.canonicalize()?,
+        Ok(m) if m.is_dir() => {
+            return Err(std::io::Error::new(
+                ErrorKind::IsADirectory,
+                "it is a directory",
+            ))
+        }
+        Ok(_) => {
+            // A device or FIFO (/dev/null, /dev/stdout, a pipe): write into it.
+            let mut f = std::fs::OpenOptions::new().write(true).open(path)?;
+            f.write_all(text.as_bytes())?;
+            return f.flush();
+        }
+        Err(e) if e.kind() == ErrorKind::NotFound => path.to_path_buf(),
+        Err(e) => return Err(e),
+    };
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = target.file_name().unwrap_or_default().to_string_lossy();
+    let (tmp, mut file) = (0..16)
+        .find_map(|_| {
+            let tmp = dir.join(format!(".{name}.{:016x}.tmp", unpredictable()));
+            match std::fs::OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(&tmp)
+            {
+                Ok(f) => Some(Ok((tmp, f))),
+                Err(e) if e.kind() == ErrorKind::AlreadyExists => None,
+                Err(e) => Some(Err(e)),
+            }
+        })
+        .unwrap_or_else(|| {
+            Err(std::io::Error::new(
+                ErrorKind::AlreadyExists,
+                "no temporary file could be created beside it",
+            ))
+        })?;
+    let written = file
+        .write_all(text.as_bytes())
+        .and_then(|()| file.sync_all())
+        .and_then(|()| {
+            if let Ok(m) = std::fs::metadata(&target) {
+                std::fs::set_permissions(&tmp, m.permissions())?;
+            }
+            std::fs::rename(&tmp, &target)
+        });
     if written.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
     written
 }
 
-/// Writes `text` to `out_file` (or `out`). A file is never one of the `inputs`, and is
-/// written through a temporary file in the same directory renamed over it, so that an
-/// interrupted run never leaves half a table.
+/// A number nobody can guess before the run (the standard library's randomly seeded
+/// hasher over the time and a counter): the temporary file's name.
+fn unpredictable() -> u64 {
+    use std::hash::{BuildHasher, Hasher};
+    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+    h.write_u128(
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos()),
+    );
+    h.write_u64(COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed));
+    h.write_u32(std::process::id());
+    h.finish()
+}
+
+/// Writes `text` to `out_file` (or `out`, also for `-`). A file is never one of the
+/// `inputs`, and is replaced atomically ([`write_file`]), so that an interrupted run
+/// never leaves half a table.
 fn emit(
     text: &str,
     out_file: &Option<PathBuf>,
@@ -585,13 +653,13 @@ fn emit(
     out: &mut dyn Write,
 ) -> Result<(), RunError> {
     match out_file {
-        Some(path) => {
+        Some(path) if path.as_os_str() != "-" => {
             refuse_inputs(path, inputs)?;
-            write_atomically(path, text).map_err(|e| {
+            write_file(path, text).map_err(|e| {
                 RunError::Input(format!("error: cannot write {}: {e}", path.display()))
             })?
         }
-        None => {
+        _ => {
             out.write_all(text.as_bytes())?;
             out.flush()?;
         }

@@ -728,6 +728,16 @@ fn devices_fifos_directories_and_huge_files_are_refused_promptly() {
         assert!(err.contains(&path) && err.contains(why), "{path}: {err}");
         assert!(out.stdout.is_empty());
     }
+    // In a directory, a FIFO named *.toml is refused too, not skipped in silence.
+    if fifo.exists() {
+        let out = run(&["check", "--dir", dir.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2));
+        assert!(
+            text(&out.stderr).contains("fifo.toml: not a regular file"),
+            "{}",
+            text(&out.stderr)
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -822,4 +832,51 @@ fn a_deep_chain_of_definitions_is_decided_or_refused_never_a_crash() {
         "{}",
         text(&out.stderr)
     );
+}
+
+/// `--out` replaces only regular files (atomically, through a temporary file created
+/// exclusively); a device is written into and stays a device; `-` is standard output;
+/// a full disk is an error with its reason; a symbolic link keeps pointing at the
+/// file, which gets the table.
+#[test]
+fn out_replaces_only_regular_files_and_writes_devices_in_place() {
+    use std::os::unix::fs::FileTypeExt;
+    let csv = |out: &str| run(&["check", "--format", "csv", "--out", out]);
+    let to_null = csv("/dev/null");
+    assert_eq!(to_null.status.code(), Some(0), "{}", text(&to_null.stderr));
+    assert!(std::fs::metadata("/dev/null")
+        .unwrap()
+        .file_type()
+        .is_char_device());
+    if Path::new("/dev/full").exists() {
+        let full = csv("/dev/full");
+        assert_eq!(full.status.code(), Some(2));
+        assert!(
+            text(&full.stderr).contains("/dev/full"),
+            "{}",
+            text(&full.stderr)
+        );
+    }
+    let dash = csv("-");
+    assert!(text(&dash.stdout).starts_with("id,section,statement"));
+    let dir = dir_with("out-link", "");
+    std::fs::write(dir.join("t.csv"), "old").unwrap();
+    std::os::unix::fs::symlink(dir.join("t.csv"), dir.join("link.csv")).unwrap();
+    let linked = csv(dir.join("link.csv").to_str().unwrap());
+    assert_eq!(linked.status.code(), Some(0));
+    assert!(std::fs::symlink_metadata(dir.join("link.csv"))
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read_to_string(dir.join("t.csv"))
+        .unwrap()
+        .starts_with("id,"));
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+    let to_dir = csv(dir.to_str().unwrap());
+    assert_eq!(to_dir.status.code(), Some(2));
 }

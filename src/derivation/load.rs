@@ -66,7 +66,9 @@ pub fn load_dir(dir: &Path) -> Result<Vec<DerivationFile>, LoadError> {
     load_files(&toml_files(dir)?)
 }
 
-/// The `*.toml` files directly in `dir`, sorted by name; an error when there are none.
+/// The `*.toml` files directly in `dir`, sorted by name; an error when there are none,
+/// or when a `*.toml` entry is not a regular file (a FIFO would block the run, a device
+/// never end it, and skipping it would say nothing).
 pub fn toml_files(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
     let io = |e: std::io::Error| LoadError::Io {
         path: dir.display().to_string(),
@@ -76,9 +78,17 @@ pub fn toml_files(dir: &Path) -> Result<Vec<PathBuf>, LoadError> {
         .map_err(io)?
         .filter_map(Result::ok)
         .map(|e| e.path())
-        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     paths.sort();
+    if let Some(odd) = paths.iter().find(|p| !p.is_file()) {
+        return Err(LoadError::Io {
+            path: odd.display().to_string(),
+            message:
+                "not a regular file (a directory, FIFO, socket or device); refusing to read it"
+                    .into(),
+        });
+    }
     if paths.is_empty() {
         return Err(LoadError::Io {
             path: dir.display().to_string(),
