@@ -272,7 +272,7 @@ impl Progress {
             let now = if working.is_empty() {
                 String::new()
             } else {
-                format!(" · {}", working.join(" · "))
+                format!(" · {}", report::words::inert(&working.join(" · ")))
             };
             eprint!("\r\x1b[2Kdecided {done}/{n}{now}");
             self.shown = true;
@@ -677,7 +677,7 @@ fn table(
     override_sampling(&mut files, args.seed, args.samples);
     // Where `uses` and the definitions disagree: warnings, which change no verdict.
     for w in crate::derivation::uses::warnings(&files, &read.unread_ids) {
-        eprintln!("{}\n", w.warning());
+        eprintln!("{}\n", report::words::inert(&w.warning()));
     }
     let mut progress = Progress::new();
     let run = Run {
@@ -880,7 +880,7 @@ fn plot(a: &PlotArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
             let missing = values.iter().filter(|v| v.is_none()).count();
             eprintln!(
                 "note: `{}` is undefined at {missing} of {} points (first: {why}); left out of the curve",
-                report::plot::plain(&curve.label),
+                report::words::inert(&report::plot::plain(&curve.label)),
                 values.len()
             );
         }

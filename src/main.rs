@@ -43,7 +43,7 @@ fn checked(cli: Cli) -> ExitCode {
         Ok(Status::Unexpected) => ExitCode::from(1),
         Ok(Status::InternalError) => ExitCode::from(3),
         Err(e) => {
-            eprintln!("{e}");
+            eprintln!("{}", cosserat_check::report::words::inert(&e.to_string()));
             ExitCode::from(2)
         }
     }

@@ -37,17 +37,8 @@ pub struct Rechecked {
 /// Text from the report, safe to print: control characters (terminal escapes) shown
 /// as `\u{…}`, at most 200 characters.
 fn shown(s: &str) -> String {
-    let mut out: String = s
-        .chars()
-        .take(200)
-        .map(|c| {
-            if c.is_control() {
-                format!("\\u{{{:x}}}", c as u32)
-            } else {
-                c.to_string()
-            }
-        })
-        .collect();
+    let head: String = s.chars().take(200).collect();
+    let mut out = crate::report::words::inert(&head.replace('\n', " "));
     if s.chars().count() > 200 {
         out.push('…');
     }

@@ -880,3 +880,52 @@ fn out_replaces_only_regular_files_and_writes_devices_in_place() {
     let to_dir = csv(dir.to_str().unwrap());
     assert_eq!(to_dir.status.code(), Some(2));
 }
+
+/// The hostile file of `tests/hostile/report.toml` as CSV, Markdown and the terminal
+/// view: no CSV cell starts a formula, the Markdown carries no HTML tag and no forged
+/// line, and no control character reaches the terminal, even from a file name.
+#[test]
+fn csv_markdown_and_the_terminal_carry_nothing_from_a_hostile_file_as_markup() {
+    let hostile = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/hostile/report.toml"),
+    )
+    .unwrap()
+    .replace("PORT", "9");
+    let dir = dir_with("hostile-formats", &hostile);
+    let file = dir.join("claims.toml");
+    let csv = text(&run(&["verify", file.to_str().unwrap(), "--format", "csv"]).stdout);
+    assert!(csv.lines().count() >= 5, "{csv}");
+    for line in csv.lines().skip(1) {
+        for cell in line.split("\",\"") {
+            let cell = cell.trim_start_matches('"');
+            assert!(
+                !cell.starts_with(['=', '+', '-', '@']),
+                "a formula cell: {cell}"
+            );
+        }
+    }
+    let md = text(&run(&["verify", file.to_str().unwrap(), "--format", "markdown"]).stdout);
+    assert!(!md.contains("<script") && !md.contains("<style") && !md.contains("<img"));
+    for line in md.lines().filter(|l| l.starts_with("| ")) {
+        let pipes = line.matches('|').count() - line.matches("\\|").count();
+        assert_eq!(pipes, 8, "a forged cell: {line}");
+    }
+    // A file name with a terminal escape, and a malformed file: the error names it inert.
+    let named = dir.join("x\u{1b}]0;pwned\u{7}.toml");
+    std::fs::write(&named, "section = \n").unwrap();
+    let out = run(&["verify", named.to_str().unwrap(), "--format", "compact"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!out.stderr.contains(&0x1b) && !out.stderr.contains(&0x07));
+    assert!(
+        text(&out.stderr).contains("\\u{1b}"),
+        "{}",
+        text(&out.stderr)
+    );
+    std::fs::write(&named, &hostile).unwrap();
+    let out = run(&["verify", named.to_str().unwrap(), "--format", "compact"]);
+    assert!(
+        !out.stdout.contains(&0x1b) && !out.stdout.contains(&0x07),
+        "{}",
+        text(&out.stdout)
+    );
+}

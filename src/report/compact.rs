@@ -4,7 +4,8 @@
 //! The full evidence stays in `explain`, `--format markdown`, JSON and HTML; this view
 //! only shortens it.
 
-use super::{words, Summary};
+use super::words::{self, inert};
+use super::Summary;
 use crate::derivation::Verdict;
 use crate::strategy::{Counterexample, Decided, Outcome, Strength};
 use std::fmt::Write as _;
@@ -22,8 +23,8 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
         .iter()
         .map(|r| {
             [
-                r.claim.id.clone(),
-                r.claim.section.clone(),
+                inert(&r.claim.id),
+                inert(&r.claim.section),
                 verdict(r),
                 match r.outcome.strength() {
                     Strength::Proof => "proof",
@@ -32,7 +33,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
                 .to_owned(),
                 r.outcome.method.as_str().to_owned(),
                 super::read_label(r),
-                shorten(&short_evidence(r), EVIDENCE_WIDTH),
+                inert(&shorten(&short_evidence(r), EVIDENCE_WIDTH)),
             ]
         })
         .collect();
@@ -46,7 +47,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
     };
     let widths: Vec<usize> = (0..6).map(width).collect();
     let mut out = String::new();
-    let _ = writeln!(out, "{paper}\n");
+    let _ = writeln!(out, "{}\n", inert(paper));
     let row = |cells: [&str; 7], paint: Option<&str>| {
         let mut line = String::new();
         for (k, cell) in cells.iter().enumerate().take(6) {

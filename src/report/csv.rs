@@ -1,11 +1,22 @@
 //! The derivation table as CSV (RFC 4180: every field quoted, quotes doubled), one row
-//! per claim, for spreadsheets and scripts.
+//! per claim, for spreadsheets and scripts; no cell starts a formula ([`neutralised`]).
 
 use super::full_evidence;
 use crate::strategy::Decided;
 
 fn field(s: &str) -> String {
-    format!("\"{}\"", s.replace('"', "\"\""))
+    format!("\"{}\"", neutralised(s).replace('"', "\"\""))
+}
+
+/// A text cell a spreadsheet will not run as a formula: one that starts with `=`, `+`,
+/// `-`, `@`, a tab or a carriage return gets a leading `'` (OWASP's advice against CSV
+/// injection). Numbers the checker writes are not text cells and keep their sign.
+pub fn neutralised(s: &str) -> std::borrow::Cow<'_, str> {
+    if s.starts_with(['=', '+', '-', '@', '\t', '\r']) {
+        format!("'{s}").into()
+    } else {
+        s.into()
+    }
 }
 
 /// Renders the table: a header line, then one line per claim.

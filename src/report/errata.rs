@@ -2,7 +2,7 @@
 //! the counterexample, the correction and its verdict, and the reason — ready to paste
 //! into an erratum.
 
-use super::markdown::{math, statement};
+use super::markdown::{cell, math, statement};
 use super::{evidence, graph};
 use crate::strategy::Decided;
 use std::fmt::Write as _;
@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 /// The errata in Markdown: each root error, then the failures inherited from it, then
 /// the failures whose origin cannot be told; one section per statement.
 pub fn markdown(rows: &[&Decided<'_>], paper: &str) -> String {
-    let mut out = format!("# Errata\n\n{paper}.\n\n");
+    let mut out = format!("# Errata\n\n{}.\n\n", super::markdown::line(paper));
     if rows.is_empty() {
         out.push_str("Every printed statement checked holds.\n");
         return out;
@@ -41,7 +41,12 @@ fn section(out: &mut String, r: &Decided<'_>, level: &str) {
         Some(_) => " — origin undetermined".to_owned(),
         None => String::new(),
     };
-    let _ = writeln!(out, "{level} {} (Section {}){origin}\n", c.id, c.section);
+    let _ = writeln!(
+        out,
+        "{level} {} (Section {}){origin}\n",
+        cell(&c.id),
+        cell(&c.section)
+    );
     let _ = writeln!(out, "- As printed: {}", statement(c));
     let _ = writeln!(
         out,
@@ -50,25 +55,25 @@ fn section(out: &mut String, r: &Decided<'_>, level: &str) {
         r.outcome.method.as_str()
     );
     if let Some(reason) = &c.reason {
-        let _ = writeln!(out, "- Why: {reason}");
+        let _ = writeln!(out, "- Why: {}", cell(reason));
     }
     if let Some(a) = &r.attribution {
-        let _ = writeln!(out, "- Origin: {}", graph::attribution(a));
+        let _ = writeln!(out, "- Origin: {}", cell(&graph::attribution(a)));
     }
-    let _ = writeln!(out, "- Evidence: {}", evidence(&r.outcome));
+    let _ = writeln!(out, "- Evidence: {}", cell(&evidence(&r.outcome)));
     if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
         let _ = writeln!(out, "- Correction: {}", math(&k.statement));
-        let _ = writeln!(out, "  - {}", k.reason);
+        let _ = writeln!(out, "  - {}", cell(&k.reason));
         let _ = writeln!(
             out,
             "  - Verdict: **{}** (method {}; {})",
             o.verdict_text(),
             o.method.as_str(),
-            evidence(o)
+            cell(&evidence(o))
         );
     }
     if let Some(note) = &c.note {
-        let _ = writeln!(out, "- Note: {note}");
+        let _ = writeln!(out, "- Note: {}", cell(note));
     }
     out.push('\n');
 }

@@ -5,12 +5,39 @@ use super::{full_evidence, verdict_label, Summary};
 use crate::strategy::Decided;
 use std::fmt::Write as _;
 
-/// Makes text safe inside a Markdown table cell.
+/// Makes text safe inside a Markdown table cell: one line, `|` escaped, and no `<`
+/// directly before a letter, `/`, `!` or `?` (where HTML would start a tag or comment,
+/// a space is put after it).
 pub fn cell(s: &str) -> String {
-    s.split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ")
-        .replace('|', "\\|")
+    let line = s.split_whitespace().collect::<Vec<_>>().join(" ");
+    let mut out = String::with_capacity(line.len());
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '|' => out.push_str("\\|"),
+            '<' if chars
+                .peek()
+                .is_some_and(|n| n.is_ascii_alphabetic() || "/!?".contains(*n)) =>
+            {
+                out.push_str("< ");
+            }
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// A line of text outside the table (the paper's name): a [`cell`] that cannot start
+/// a heading, a quotation, a list or a table row.
+pub fn line(s: &str) -> String {
+    let s = cell(s);
+    if s.starts_with(['#', '>', '-', '*', '+', '=', '|', '`', '~'])
+        || s.starts_with(|c: char| c.is_ascii_digit())
+    {
+        format!("\\{s}")
+    } else {
+        s
+    }
 }
 
 pub fn math(s: &str) -> String {
@@ -21,7 +48,7 @@ pub fn math(s: &str) -> String {
 pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "# Derivation table\n");
-    let _ = writeln!(out, "{paper}.\n");
+    let _ = writeln!(out, "{}.\n", line(paper));
     let _ = writeln!(
         out,
         "| claim | § | statement (as printed) | verdict | read | method | evidence |"

@@ -23,11 +23,14 @@ fn decimal(x: f64) -> String {
     crate::digits::significant(x, 12)
 }
 
+/// A text cell: neutralised against formulas, quoted when it holds a separator, a
+/// quote or a line end.
 fn csv_cell(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
+    let s = super::csv::neutralised(s);
+    if s.contains([',', '"', '\n', '\r']) {
         format!("\"{}\"", s.replace('"', "\"\""))
     } else {
-        s.to_owned()
+        s.into_owned()
     }
 }
 
