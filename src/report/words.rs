@@ -292,6 +292,21 @@ pub fn point(at: &Point) -> String {
         .join(", ")
 }
 
+/// Text for a terminal: every control character but the line end (an escape sequence
+/// could clear the screen, retitle the window or draw a fake verdict) shown as
+/// `\u{…}`, so that what a file or a file name holds is seen, never obeyed.
+pub fn inert(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        if c.is_control() && c != '\n' {
+            out.push_str(&format!("\\u{{{:x}}}", u32::from(c)));
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -313,19 +328,4 @@ mod tests {
         );
         assert!(!held.contains("-8.6") && !held.contains("≤ 0"));
     }
-}
-
-/// Text for a terminal: every control character but the line end (an escape sequence
-/// could clear the screen, retitle the window or draw a fake verdict) shown as
-/// `\u{…}`, so that what a file or a file name holds is seen, never obeyed.
-pub fn inert(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        if c.is_control() && c != '\n' {
-            out.push_str(&format!("\\u{{{:x}}}", u32::from(c)));
-        } else {
-            out.push(c);
-        }
-    }
-    out
 }
