@@ -206,3 +206,18 @@ fn a_root_where_the_function_is_undefined_is_not_a_root() {
     let got: Vec<Verdict> = outcomes_of(&text).iter().map(|o| o.verdict()).collect();
     assert_eq!(got, [Verdict::Fails, Verdict::Holds]);
 }
+
+/// Ten nested derivatives of a field: the exact route finds the sides differ, and the
+/// second evaluation, by central differences, would take (4d)^10 evaluations. It is
+/// refused at once (more than four nested differences), so the claim is undecided in
+/// well under a second instead of running for hours.
+#[test]
+fn nested_derivatives_past_four_are_not_taken_by_central_differences() {
+    let text = "section = \"t\"\ntitle = \"t\"\ndimension = 3\nposition = \"x\"\nfields = [\"phi\"]\n\n\
+                [[claim]]\nid = \"deep\"\nprinted = 'x'\nexpect = \"fails\"\nreason = \"r\"\n\
+                sides = [\"d(d(d(d(d(d(d(d(d(d(phi)/dx_1)/dx_1)/dx_1)/dx_1)/dx_1)/dx_1)/dx_1)/dx_1)/dx_1)/dx_1\", \"phi\"]\n";
+    let got = outcomes_of(text);
+    assert_eq!(got[0].verdict(), Verdict::Undecided, "{:?}", got[0]);
+    let finding = format!("{:?}", got[0].finding);
+    assert!(finding.contains("nested derivatives"), "{finding}");
+}

@@ -42,6 +42,49 @@ fn the_page_is_self_contained_with_a_node_per_claim_and_mathml() {
     assert!(html.contains("eq23") && html.contains("inherited from eq21"));
 }
 
+/// For every claim of the paper, how many claims it rests on (transitively through
+/// `uses`) and how many rest on it.
+fn closures() -> (Vec<(String, usize)>, Vec<(String, usize)>) {
+    let files: Vec<DerivationFile> =
+        load_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations")).unwrap();
+    let claims: Vec<_> = files.iter().flat_map(|f| f.claims.iter()).collect();
+    let ids: Vec<&str> = claims.iter().map(|c| c.id.as_str()).collect();
+    let uses: Vec<Vec<usize>> = claims
+        .iter()
+        .map(|c| {
+            c.uses
+                .iter()
+                .filter_map(|u| ids.iter().position(|i| *i == u.id))
+                .collect()
+        })
+        .collect();
+    let reach = |start: usize, next: &dyn Fn(usize) -> Vec<usize>| {
+        let mut seen = std::collections::BTreeSet::new();
+        let mut stack = next(start);
+        while let Some(j) = stack.pop() {
+            if seen.insert(j) {
+                stack.extend(next(j));
+            }
+        }
+        seen.remove(&start);
+        seen.len()
+    };
+    let up = |k: usize| uses[k].clone();
+    let down = |k: usize| {
+        (0..claims.len())
+            .filter(|&j| uses[j].contains(&k))
+            .collect()
+    };
+    (
+        (0..claims.len())
+            .map(|k| (ids[k].to_owned(), reach(k, &up)))
+            .collect(),
+        (0..claims.len())
+            .map(|k| (ids[k].to_owned(), reach(k, &down)))
+            .collect(),
+    )
+}
+
 /// Headless Chromium, if installed.
 fn browser() -> Option<PathBuf> {
     let candidates = std::env::var_os("CHROMIUM")
@@ -149,6 +192,14 @@ fn in_a_real_browser_the_page_renders_mathml_and_a_click_scrolls_to_the_claim() 
         "clicks that did not scroll to the claim: {result}"
     );
     assert_eq!(result["focused"], claims, "{result}");
+    // The focus counts every claim a claim rests on and every one resting on it, as
+    // the page's script follows the direct `uses` it carries.
+    let (up, down) = closures();
+    for (id, (u, d)) in up.iter().zip(&down).map(|((id, u), (_, d))| (id, (u, d))) {
+        let note = result["notes"][id.as_str()].as_str().unwrap_or_default();
+        let want = format!("{u} claim(s) it rests on and {d} that rest on it");
+        assert!(note.contains(&want), "{id}: {note} (want {want})");
+    }
     let shot = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/html-report.png");
     let _ = std::fs::remove_file(&shot);
     chromium(
@@ -276,5 +327,33 @@ fn in_a_real_browser_a_hostile_page_runs_nothing_fetches_nothing_and_shows_every
     assert!(
         !requested.load(std::sync::atomic::Ordering::SeqCst),
         "the page made a request"
+    );
+}
+
+/// A `uses` chain of 2,000 claims: the page carries each claim's direct neighbours
+/// only, so it grows linearly (it listed every ancestor of every node, quadratic).
+#[test]
+fn a_long_uses_chain_makes_a_page_linear_in_its_length() {
+    let n = 2_000;
+    let mut text =
+        String::from("section = \"c\"\ntitle = \"chain\"\ndimension = 2\nscalars = [\"x\"]\n");
+    for k in 0..n {
+        let uses = if k > 0 {
+            format!("uses = [\"c{}\"]\n", k - 1)
+        } else {
+            String::new()
+        };
+        text.push_str(&format!(
+            "[[claim]]\nid = \"c{k}\"\nprinted = 'x = x'\n{uses}expect = \"holds\"\nsides = [\"x\", \"x\"]\n"
+        ));
+    }
+    let file = cosserat_check::derivation::load_str("chain.toml", &text).unwrap();
+    let rows = decide_all(std::slice::from_ref(&file), None).unwrap();
+    let refs: Vec<_> = rows.iter().collect();
+    let html = report::html::render(&refs, "chain");
+    assert!(
+        html.len() < 1_500 * n,
+        "{} bytes for {n} claims",
+        html.len()
     );
 }

@@ -1,5 +1,6 @@
-//! A request to stop, for the one kernel computation without a work bound of its own:
-//! the remainder sequence of [`super::gcd`], the gcd's last resort.
+//! A request to stop: for the remainder sequence of [`super::gcd`] (asked between
+//! steps), and for every long evaluation or root isolation, which [`tick`]s and is
+//! unwound to [`stoppable`] once the claim's time is up.
 //!
 //! Every other kernel computation is bounded by the size of its input or by a budget
 //! of terms, points or bisections. The pseudo-remainder sequence over ℚ is not: its
@@ -37,10 +38,59 @@ pub(super) fn requested() -> bool {
     CONDITION.with(|c| c.borrow().as_ref().is_some_and(|stop| stop()))
 }
 
+/// What a computation stopped by [`tick`] unwinds with.
+#[derive(Debug)]
+pub struct Stopped;
+
+thread_local! {
+    static TICKS: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
+}
+
+/// A point in a long computation (a node of an evaluation, a step of a Sturm sequence)
+/// where it may be stopped: every 1,024th call checks the stop condition, and once it
+/// holds, unwinds with [`Stopped`] to the nearest [`stoppable`] (the panic hook does
+/// not run; nothing is printed). Outside [`under`] it never stops.
+pub fn tick() {
+    let n = TICKS.with(|t| {
+        let n = t.get().wrapping_add(1);
+        t.set(n);
+        n
+    });
+    if n % 1024 == 0 && requested() {
+        std::panic::resume_unwind(Box::new(Stopped));
+    }
+}
+
+/// Runs `f`; `Err(Stopped)` when a [`tick`] inside it stopped it. Any other panic goes
+/// on unwinding.
+pub fn stoppable<T>(f: impl FnOnce() -> T) -> Result<T, Stopped> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
+        Ok(v) => Ok(v),
+        Err(p) if p.is::<Stopped>() => Err(Stopped),
+        Err(p) => std::panic::resume_unwind(p),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use std::sync::atomic::{AtomicBool, Ordering};
+
+    #[test]
+    fn a_tick_stops_a_computation_only_under_a_condition_that_holds() {
+        let endless = || loop {
+            tick();
+        };
+        let stopped = under(Arc::new(|| true), || stoppable(endless));
+        assert!(stopped.is_err());
+        let counted = under(Arc::new(|| false), || {
+            stoppable(|| (0..5_000).for_each(|_| tick()))
+        });
+        assert!(counted.is_ok());
+        // Another panic is not a stop.
+        let other = std::panic::catch_unwind(|| stoppable(|| panic!("a defect")));
+        assert!(other.is_err());
+    }
 
     #[test]
     fn a_stop_is_requested_only_under_a_condition_that_holds() {

@@ -9,7 +9,6 @@ use super::layout::{layered, Layout};
 use super::{evidence, graph, Summary};
 use crate::derivation::Verdict;
 use crate::strategy::{Decided, Strength};
-use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
 /// Escapes text for HTML element content and attribute values.
@@ -330,21 +329,14 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
     );
 }
 
-/// Every node reachable from `k` along `next`, excluding `k`.
-fn reach(k: usize, next: &[Vec<usize>]) -> BTreeSet<usize> {
-    let mut seen = BTreeSet::new();
-    let mut stack = next[k].clone();
-    while let Some(j) = stack.pop() {
-        if seen.insert(j) {
-            stack.extend(&next[j]);
-        }
-    }
-    seen
-}
-
 /// The legend and the graph of `uses` as inline SVG.
 fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
-    let index = |id: &str| rows.iter().position(|r| r.claim.id == id);
+    let by_id: std::collections::HashMap<&str, usize> = rows
+        .iter()
+        .enumerate()
+        .map(|(k, r)| (r.claim.id.as_str(), k))
+        .collect();
+    let index = |id: &str| by_id.get(id).copied();
     let uses: Vec<Vec<usize>> = rows
         .iter()
         .map(|r| r.claim.uses.iter().filter_map(|u| index(&u.id)).collect())
@@ -387,9 +379,11 @@ fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
         let p = places[k];
         let (class, _) = verdict_of(r);
         let root = r.attribution.as_ref().is_some_and(|a| a.is_root());
-        let ids = |set: BTreeSet<usize>| {
-            set.into_iter()
-                .map(|j| escape(&rows[j].claim.id))
+        // The direct neighbours only (the page's script follows them to the whole
+        // ancestry), so that the page grows with the edges, not with their closure.
+        let ids = |set: &[usize]| {
+            set.iter()
+                .map(|&j| escape(&rows[j].claim.id))
                 .collect::<Vec<_>>()
                 .join(" ")
         };
@@ -406,8 +400,8 @@ fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
             out,
             "<a class=\"node {class}{}\" href=\"#claim-{id}\" data-id=\"{id}\" data-up=\"{}\" data-down=\"{}\"><title>{}</title><rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" rx=\"{}\"/><text x=\"{:.1}\" y=\"{:.1}\">{}</text></a>",
             if root { " root" } else { "" },
-            ids(reach(k, &uses)),
-            ids(reach(k, &used_by)),
+            ids(&uses[k]),
+            ids(&used_by[k]),
             escape(&title),
             p.x - p.width / 2.0,
             p.y - p.height / 2.0,
@@ -481,10 +475,25 @@ const SCRIPT: &str = r#"
   const svg = document.getElementById('graph');
   const note = document.getElementById('focus-note');
   function ids(s) { return s ? s.split(' ') : []; }
+  // Every claim reachable from `id` along `key` ('up': what it uses; 'down': what uses it).
+  function closure(byId, id, key) {
+    const seen = new Set(), stack = [id];
+    while (stack.length) {
+      const node = byId.get(stack.pop());
+      if (!node) continue;
+      for (const next of ids(node.dataset[key])) {
+        if (!seen.has(next)) { seen.add(next); stack.push(next); }
+      }
+    }
+    seen.delete(id);
+    return [...seen];
+  }
   function focus(id) {
-    const node = [...svg.querySelectorAll('.node')].find(n => n.dataset.id === id);
+    const nodes = [...svg.querySelectorAll('.node')];
+    const byId = new Map(nodes.map(n => [n.dataset.id, n]));
+    const node = byId.get(id);
     if (!node) return;
-    const up = ids(node.dataset.up), down = ids(node.dataset.down);
+    const up = closure(byId, id, 'up'), down = closure(byId, id, 'down');
     const keep = new Set([id, ...up, ...down]);
     svg.classList.add('focused');
     svg.querySelectorAll('.node').forEach(n => {
@@ -511,7 +520,7 @@ const SCRIPT: &str = r#"
   // `?selftest`: click every node and record whether its claim scrolled to the top
   // (the browser test reads the result from the page).
   async function selftest() {
-    const out = { nodes: 0, claims: 0, math: 0, unrendered: 0, raw_latex: [], raw_latex_outside_code: [], clicks: 0, scrolled: 0, focused: 0, failures: [], failing: 0, failing_visible: 0, pwned: window.__pwned || 0 };
+    const out = { nodes: 0, claims: 0, math: 0, unrendered: 0, raw_latex: [], raw_latex_outside_code: [], clicks: 0, scrolled: 0, focused: 0, failures: [], notes: {}, failing: 0, failing_visible: 0, pwned: window.__pwned || 0 };
     const failing = [...document.querySelectorAll('article.claim.fails')];
     out.failing = failing.length;
     out.failing_visible = failing.filter(a => {
@@ -537,6 +546,7 @@ const SCRIPT: &str = r#"
       if (target && Math.abs(top) < 2 && window.scrollY > 0) out.scrolled++;
       else out.failures.push(a.dataset.id + ' top=' + top);
       if (svg.classList.contains('focused') && a.classList.contains('current')) out.focused++;
+      out.notes[a.dataset.id] = note.textContent;
     }
     clear();
     window.scrollTo(0, 0);

@@ -131,14 +131,23 @@ fn decide_unisolated(
             Outcome::undecided(method, 0).with_finding(finding::Finding::DerivativesNotSampled)
         );
     }
-    let decided = match &check.strategy {
+    // A computation stopped at the time limit unwinds to here (`interrupt::tick`);
+    // the watch has expired then, so the match below makes it undecided.
+    let decided = crate::algebra::interrupt::stoppable(|| match &check.strategy {
         Strategy::Exact { .. } | Strategy::Proportional { .. } => exact::decide(decls, check, keep),
         Strategy::Numeric { .. } => numeric::decide_numeric(decls, check, states),
         Strategy::Gradient { .. } => numeric::decide_gradient(decls, check, states),
         Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),
         Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
         Strategy::Scalar { .. } => scalar::decide(decls, check),
-    };
+    })
+    .unwrap_or_else(|_| {
+        Ok(
+            Outcome::undecided(method, 0).with_finding(finding::Finding::TimeLimit {
+                seconds: watch::expired().map_or(0.0, |l| l.as_secs_f64()),
+            }),
+        )
+    });
     // A decision that outlived the time limit is undecided: it was stopped
     // (`watch::check`), whatever error the stop surfaced as, or the kernel gave up a
     // step and returned a meaningless value (`kernel::interrupt`). One that finished

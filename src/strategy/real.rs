@@ -34,6 +34,12 @@ use std::rc::Rc;
 /// refinement converges to 1e-12 in angle, so the maximum is found to rounding.
 pub const MAXN_GRID: usize = 360;
 
+/// The most derivatives along the position nested inside each other that central
+/// differences take: each level evaluates its argument 4d times, and each loses
+/// digits, so a fifth order would be both slow and meaningless (the exact route
+/// differentiates any order symbolically).
+pub const MAX_NESTED_DIFFERENCES: usize = 4;
+
 /// An evaluation error located in the expression's text.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RealError {
@@ -84,6 +90,8 @@ pub struct RealEnv<'a, T> {
     pub(super) perturbation: RefCell<Option<Perturbation>>,
     /// Counts changes of `perturbation`: definition values are memoised per epoch.
     epoch: Cell<u64>,
+    /// How many central differences are nested now ([`MAX_NESTED_DIFFERENCES`]).
+    differences: Cell<usize>,
     /// Fields that an assumption defines by an expression (`u_i = A_ij x_j`), with
     /// fields in use: evaluated from that expression wherever the position is.
     defined_fields: HashMap<String, (Vec<char>, Node, Vec<f64>)>,
@@ -111,6 +119,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             position: RefCell::new(Vec::new()),
             perturbation: RefCell::new(None),
             epoch: Cell::new(0),
+            differences: Cell::new(0),
             defined_fields: HashMap::default(),
             in_gradient: false,
         }
@@ -530,13 +539,31 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
                 "a derivative of a field is decided exactly: sampling has no fields to differentiate",
             ));
         }
+        let depth = env.differences.get();
+        if depth >= MAX_NESTED_DIFFERENCES {
+            return Err(err(
+                node,
+                format!(
+                    "more than {MAX_NESTED_DIFFERENCES} nested derivatives: central differences would \
+                     take (4d)^k evaluations and lose every digit"
+                ),
+            ));
+        }
         let d = env.decls.dim;
         let mut per_coordinate = Vec::with_capacity(d);
+        env.differences.set(depth + 1);
         for k in 0..d {
-            per_coordinate.push(
-                env.difference_along(k, taylor::STEP, &mut |env| walk::walk(&mut { env }, a, n))?,
-            );
+            let along =
+                env.difference_along(k, taylor::STEP, &mut |env| walk::walk(&mut { env }, a, n));
+            match along {
+                Ok(t) => per_coordinate.push(t),
+                Err(e) => {
+                    env.differences.set(depth);
+                    return Err(e);
+                }
+            }
         }
+        env.differences.set(depth);
         let rank = a.free_letters().len();
         Ok(Tensor::from_fn(d, rank + 1, |idx| {
             per_coordinate[idx[rank]].get(&idx[..rank]).clone()

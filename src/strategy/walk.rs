@@ -156,6 +156,9 @@ pub fn walk<R: Ring>(
     node: &Node,
     n: &R::Normal,
 ) -> Result<Tensor<R::Value>, R::Error> {
+    // Every ring's evaluation can be long (nested differences, exact expansions): the
+    // claim's time limit stops it here.
+    crate::algebra::interrupt::tick();
     ring.enter(node)?;
     let d = ring.dim();
     let labels = node.free_letters();
