@@ -56,7 +56,7 @@ pub fn tick() {
         t.set(n);
         n
     });
-    if n % 1024 == 0 && requested() {
+    if n.is_multiple_of(1024) && requested() {
         std::panic::resume_unwind(Box::new(Stopped));
     }
 }
