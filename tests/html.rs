@@ -44,7 +44,7 @@ fn the_page_is_self_contained_with_a_node_per_claim_and_mathml() {
 
 /// For every claim of the paper, how many claims it rests on (transitively through
 /// `uses`) and how many rest on it.
-fn closures() -> (Vec<(String, usize)>, Vec<(String, usize)>) {
+fn closures() -> Vec<(String, usize, usize)> {
     let files: Vec<DerivationFile> =
         load_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations")).unwrap();
     let claims: Vec<_> = files.iter().flat_map(|f| f.claims.iter()).collect();
@@ -194,8 +194,7 @@ fn in_a_real_browser_the_page_renders_mathml_and_a_click_scrolls_to_the_claim() 
     assert_eq!(result["focused"], claims, "{result}");
     // The focus counts every claim a claim rests on and every one resting on it, as
     // the page's script follows the direct `uses` it carries.
-    let (up, down) = closures();
-    for (id, (u, d)) in up.iter().zip(&down).map(|((id, u), (_, d))| (id, (u, d))) {
+    for (id, u, d) in closures() {
         let note = result["notes"][id.as_str()].as_str().unwrap_or_default();
         let want = format!("{u} claim(s) it rests on and {d} that rest on it");
         assert!(note.contains(&want), "{id}: {note} (want {want})");
