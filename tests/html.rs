@@ -75,14 +75,9 @@ fn closures() -> Vec<(String, usize, usize)> {
             .filter(|&j| uses[j].contains(&k))
             .collect()
     };
-    (
-        (0..claims.len())
-            .map(|k| (ids[k].to_owned(), reach(k, &up)))
-            .collect(),
-        (0..claims.len())
-            .map(|k| (ids[k].to_owned(), reach(k, &down)))
-            .collect(),
-    )
+    (0..claims.len())
+        .map(|k| (ids[k].to_owned(), reach(k, &up), reach(k, &down)))
+        .collect()
 }
 
 /// Headless Chromium, if installed.
