@@ -87,6 +87,10 @@ pub struct PlotArgs {
     /// Output format: the table of values or the picture.
     #[arg(long, value_enum, default_value_t = FigureFormat::Csv)]
     pub format: FigureFormat,
+    /// Time limit for evaluating all the curves, in seconds: past it the figure is not
+    /// written and the exit status is 2 [default: 600].
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
+    pub time_limit: Option<Duration>,
     /// Write to FILE instead of standard output (`-` is standard output). A regular file is replaced atomically; a device or FIFO is written into, never replaced.
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
@@ -873,9 +877,22 @@ fn split_top_level(s: &str) -> Vec<String> {
 fn plot(a: &PlotArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
     let figure = figure_of(a)?;
     let mut columns = Vec::with_capacity(figure.curves.len());
+    let limit = a.time_limit.unwrap_or(watch::DEFAULT_LIMIT);
+    let w = Watch::new("plot", limit);
     for curve in &figure.curves {
-        let (values, gap) = crate::strategy::probe::curve_values(curve, &figure.x)
-            .map_err(|e| RunError::Input(format!("error: {e}")))?;
+        // Under the time limit: a long evaluation is stopped (`interrupt::tick`).
+        let evaluated = watch::under(&w, || {
+            crate::algebra::interrupt::stoppable(|| {
+                crate::strategy::probe::curve_values(curve, &figure.x)
+            })
+        })
+        .map_err(|_| {
+            RunError::Input(format!(
+                "error: the curves were not evaluated within {} s\n  = help: raise it with --time-limit, or plot fewer points",
+                limit.as_secs_f64()
+            ))
+        })?;
+        let (values, gap) = evaluated.map_err(|e| RunError::Input(format!("error: {e}")))?;
         if let Some(why) = gap {
             let missing = values.iter().filter(|v| v.is_none()).count();
             eprintln!(

@@ -929,3 +929,30 @@ fn csv_markdown_and_the_terminal_carry_nothing_from_a_hostile_file_as_markup() {
         text(&out.stdout)
     );
 }
+
+/// `plot` evaluates its curves under a time limit: past it, no figure and exit 2.
+#[test]
+fn plot_stops_at_its_time_limit() {
+    let dir = dir_with(
+        "plot-limit",
+        "section = \"p\"\ntitle = \"p\"\ndimension = 3\nnormal = \"n\"\nscalars = [\"t\"]\n",
+    );
+    let file = dir.join("claims.toml");
+    let out = run(&[
+        "plot",
+        file.to_str().unwrap(),
+        "--y",
+        "avg((n_1 t + n_2)^40 (n_3 + t n_1)^40 (n_1 + n_2 t)^40)",
+        "--x",
+        "t=0..1:0.0002",
+        "--time-limit",
+        "0.1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("not evaluated within 0.1 s"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert!(out.stdout.is_empty());
+}

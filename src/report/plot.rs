@@ -216,18 +216,24 @@ fn rich(text: &str) -> String {
         .collect()
 }
 
-/// About five round ticks (1, 2 or 5 × 10^k apart) covering [lo, hi].
+/// About five round ticks (1, 2 or 5 × 10^k apart) covering [lo, hi]; just the two
+/// ends where no round step exists in f64 (a subnormal or an overflowing range).
 fn ticks(lo: f64, hi: f64) -> Vec<f64> {
-    let raw = (hi - lo) / 5.0;
+    // Halves first, so that a range near ±f64::MAX does not overflow.
+    let raw = (hi / 2.0 - lo / 2.0) / 2.5;
     let magnitude = 10f64.powf(raw.log10().floor());
     let step = [1.0, 2.0, 5.0, 10.0]
         .iter()
         .map(|m| m * magnitude)
         .find(|s| *s >= raw)
         .unwrap_or(10.0 * magnitude);
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
-    (first..=last).map(|k| k as f64 * step).collect()
+    let (first, last) = ((lo / step).ceil(), (hi / step).floor());
+    if !(step.is_normal() && first.is_finite() && last.is_finite()) || last - first > 20.0 {
+        return if lo < hi { vec![lo, hi] } else { vec![lo] };
+    }
+    (first as i64..=last as i64)
+        .map(|k| k as f64 * step)
+        .collect()
 }
 
 /// The y axis: linear with round ends, or logarithmic when the data span more than a
@@ -239,9 +245,11 @@ struct Axis {
 }
 
 impl Axis {
+    /// The axis of the finite `values` (a non-finite value is not drawn).
     fn of(values: &[f64]) -> Axis {
-        let min = values.iter().copied().fold(f64::INFINITY, f64::min);
-        let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let finite = values.iter().copied().filter(|v| v.is_finite());
+        let min = finite.clone().fold(f64::INFINITY, f64::min);
+        let max = finite.fold(f64::NEG_INFINITY, f64::max);
         if !min.is_finite() {
             return Axis {
                 lo: 0.0,
@@ -249,7 +257,7 @@ impl Axis {
                 log: false,
             };
         }
-        if min > 0.0 && max / min > 30.0 {
+        if min.is_normal() && min > 0.0 && max / min > 30.0 {
             return Axis {
                 lo: 10f64.powf(min.log10().floor()),
                 hi: 10f64.powf(max.log10().ceil()),
@@ -261,14 +269,21 @@ impl Axis {
             lo = 0.0;
         }
         if hi - lo < 1e-12 * hi.abs().max(1.0) {
-            lo -= 0.5;
-            hi += 0.5;
+            // A constant: a band around it, wide enough to be a band in f64.
+            let pad = 0.5f64.max(hi.abs() / 20.0);
+            lo = (lo - pad).max(f64::MIN);
+            hi = (hi + pad).min(f64::MAX);
         }
         let t = ticks(lo, hi);
         let step = if t.len() > 1 { t[1] - t[0] } else { hi - lo };
+        if !step.is_normal() || !(hi / step).is_finite() {
+            return Axis { lo, hi, log: false };
+        }
+        // Round ends, unless rounding would leave f64.
+        let (round_lo, round_hi) = ((lo / step).floor() * step, (hi / step).ceil() * step);
         Axis {
-            lo: (lo / step).floor() * step,
-            hi: (hi / step).ceil() * step,
+            lo: if round_lo.is_finite() { round_lo } else { lo },
+            hi: if round_hi.is_finite() { round_hi } else { hi },
             log: false,
         }
     }
@@ -278,7 +293,7 @@ impl Axis {
         if self.log {
             (v.log10() - self.lo.log10()) / (self.hi.log10() - self.lo.log10())
         } else {
-            (v - self.lo) / (self.hi - self.lo)
+            (v / 2.0 - self.lo / 2.0) / (self.hi / 2.0 - self.lo / 2.0)
         }
     }
 
@@ -288,7 +303,9 @@ impl Axis {
                 self.lo.log10().round() as i32,
                 self.hi.log10().round() as i32,
             );
-            (a..=b).map(|e| 10f64.powi(e)).collect()
+            // At most about a dozen labelled decades.
+            let every = usize::try_from((b - a) / 12 + 1).unwrap_or(1);
+            (a..=b).step_by(every).map(|e| 10f64.powi(e)).collect()
         } else {
             ticks(self.lo, self.hi)
         }
@@ -388,8 +405,12 @@ pub fn svg(figure: &Figure, columns: &[Column]) -> String {
         };
         let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
         for (x, v) in xs.iter().zip(col) {
-            match v {
-                Some(v) => runs.last_mut().expect("one run").push((px(*x), py(*v))),
+            // A value off the axis (non-finite, or ≤ 0 on a log axis) breaks the curve.
+            let point = v
+                .map(|v| (px(*x), py(v)))
+                .filter(|(a, b)| a.is_finite() && b.is_finite());
+            match point {
+                Some(p) => runs.last_mut().expect("one run").push(p),
                 None if !runs.last().expect("one run").is_empty() => runs.push(Vec::new()),
                 None => {}
             }
@@ -421,4 +442,37 @@ pub fn svg(figure: &Figure, columns: &[Column]) -> String {
     }
     s.push_str("</svg>\n");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Data at the edges of f64 (subnormal, near ±f64::MAX, constant, non-finite) give
+    /// an axis with a few finite ticks on which every finite value has a finite place.
+    #[test]
+    fn axes_stay_finite_and_small_at_the_edges_of_f64() {
+        let sets: [&[f64]; 7] = [
+            &[1e-320, 2e-320],
+            &[1e-320, 1.0],
+            &[-1.7e308, 1.7e308],
+            &[-1.7e256; 3],
+            &[f64::MAX, f64::MAX],
+            &[f64::NAN, f64::INFINITY, 1.0, 2.0],
+            &[1e-300, 1e300],
+        ];
+        for values in sets {
+            let axis = Axis::of(values);
+            let t = axis.ticks();
+            assert!(
+                !t.is_empty() && t.len() <= 25,
+                "{values:?}: {} ticks",
+                t.len()
+            );
+            assert!(t.iter().all(|x| x.is_finite()), "{values:?}: {t:?}");
+            for v in values.iter().filter(|v| v.is_finite()) {
+                assert!(axis.fraction(*v).is_finite(), "{values:?}: {v}");
+            }
+        }
+    }
 }
