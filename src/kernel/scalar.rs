@@ -17,6 +17,17 @@ use std::collections::BTreeMap;
 
 type R<T> = Result<T, Rejection>;
 
+/// The product of `f`'s denominator factors that `keep` selects, each to its power.
+fn denominator(f: &Frac, keep: impl Fn(&Poly) -> bool) -> R<Poly> {
+    let mut den = <Poly as num_traits::One>::one();
+    for (g, k) in f.denominator().iter().filter(|(g, _)| keep(g)) {
+        den = den
+            .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
+            .map_err(|_| EvalError::Limit)?;
+    }
+    Ok(den)
+}
+
 fn no(why: &str) -> Rejection {
     Rejection::False(why.to_owned())
 }
@@ -54,12 +65,7 @@ struct Target {
 fn reduce(env: &mut Env<'_>, f: Frac, hint: Option<&Reduced>) -> R<Frac> {
     let Some((n, d)) = hint else { return Ok(f) };
     let (nr, dr) = (env.poly_of(n)?, env.poly_of(d)?);
-    let mut den = <Poly as num_traits::One>::one();
-    for (g, k) in f.denominator() {
-        den = den
-            .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
-            .map_err(|_| EvalError::Limit)?;
-    }
+    let den = denominator(&f, |_| true)?;
     let mut vars = f.numerator().variables();
     vars.extend(den.variables());
     let lowest: Vec<(Var, super::poly::Exp)> = vars
@@ -158,12 +164,7 @@ fn univariate(f: &Frac, v: Var, box_: &[(Var, Interval)], env: &Env<'_>) -> R<(U
         })
     };
     let f = f.tidied();
-    let mut den = <Poly as num_traits::One>::one();
-    for (g, k) in f.denominator() {
-        den = den
-            .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
-            .map_err(|_| EvalError::Limit)?;
-    }
+    let den = denominator(&f, |_| true)?;
     let mut conds = <Poly as num_traits::One>::one();
     for c in f.conditions() {
         let of_v = c.variables().contains(&v);
@@ -353,13 +354,7 @@ pub(super) fn run(
             }];
             if let Some(f) = &t.function {
                 // No pole: the denominator has one strict sign on the box.
-                let den = Frac::from(f.denominator().iter().try_fold(
-                    <Poly as num_traits::One>::one(),
-                    |acc, (g, k)| {
-                        acc.checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
-                            .map_err(|_| EvalError::Limit)
-                    },
-                )?);
+                let den = Frac::from(denominator(f, |_| true)?);
                 let how = [Sign::Positive, Sign::Negative]
                     .into_iter()
                     .find_map(|s| by_coefficients(&den, &box_, s, &env.vars))
@@ -606,12 +601,7 @@ fn limit(
     };
     let f = scalar(env, function)?;
     let v = env.free_variable(variable)?;
-    let mut den = <Poly as num_traits::One>::one();
-    for (g, k) in f.denominator() {
-        den = den
-            .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
-            .map_err(|_| EvalError::Limit)?;
-    }
+    let den = denominator(&f, |_| true)?;
     // Both times v^m, so that neither has a negative power of v: the quotient is the
     // same, and the moves of v apply to polynomials.
     let low = f
@@ -721,14 +711,7 @@ fn limit(
                 (Some(a), Some(b)) => a < b,
                 _ => true,
             });
-        let mut moving = <Poly as num_traits::One>::one();
-        for (g, k) in f.denominator() {
-            if !interior || g.variables().contains(&v) {
-                moving = moving
-                    .checked_mul(&g.checked_pow(*k).map_err(|_| EvalError::Limit)?)
-                    .map_err(|_| EvalError::Limit)?;
-            }
-        }
+        let moving = denominator(&f, |g| !interior || g.variables().contains(&v))?;
         // Negative powers of the other variables are divisors free of the variable too.
         let laurent = f
             .numerator()

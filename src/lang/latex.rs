@@ -180,7 +180,7 @@ pub fn read_symbol(src: &str, options: &ReadOptions) -> Result<Math, LatexError>
     }
 }
 
-const GREEK: &[&str] = &[
+pub const GREEK: &[&str] = &[
     "alpha",
     "beta",
     "gamma",
@@ -220,10 +220,10 @@ const GREEK: &[&str] = &[
     "Omega",
     "ell",
 ];
-const FUNCTIONS: &[&str] = &[
+pub const FUNCTIONS: &[&str] = &[
     "cos", "sin", "tan", "exp", "ln", "log", "arctan", "arcsin", "arccos", "det",
 ];
-const ACCENTS: &[&str] = &[
+pub const ACCENTS: &[&str] = &[
     "dot",
     "ddot",
     "bar",
@@ -236,7 +236,7 @@ const ACCENTS: &[&str] = &[
 /// Commands that only space.
 const SPACES: &[&str] = &[",", "!", " ", ":", ">"];
 /// Size prefixes of delimiters.
-const SIZES: &[&str] = &[
+pub const SIZES: &[&str] = &[
     "left", "right", "big", "Big", "bigl", "bigr", "Bigl", "Bigr",
 ];
 

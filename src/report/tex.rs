@@ -6,50 +6,15 @@
 //! ([`COMMANDS`], [`ENVIRONMENTS`]), its braces balance, and `&` and `\\` appear only
 //! inside a matrix-like environment; anything else is shown as text, escaped.
 
-/// Control words a formula may use: letters, operators, relations, delimiters,
-/// accents, fonts, spacing.
+/// Control words a formula may use besides those the LaTeX reader knows (its Greek
+/// letters, functions, accents and delimiter sizes): operators, relations, symbols,
+/// delimiters, fonts, spacing.
 const COMMANDS: &[&str] = &[
-    // Greek
-    "alpha",
-    "beta",
-    "gamma",
-    "delta",
+    // Greek variants the reader does not take
     "epsilon",
-    "varepsilon",
-    "zeta",
-    "eta",
-    "theta",
-    "vartheta",
-    "iota",
-    "kappa",
-    "lambda",
-    "mu",
-    "nu",
-    "xi",
-    "pi",
     "varpi",
-    "rho",
     "varrho",
-    "sigma",
     "varsigma",
-    "tau",
-    "upsilon",
-    "phi",
-    "varphi",
-    "chi",
-    "psi",
-    "omega",
-    "Gamma",
-    "Delta",
-    "Theta",
-    "Lambda",
-    "Xi",
-    "Pi",
-    "Sigma",
-    "Upsilon",
-    "Phi",
-    "Psi",
-    "Omega",
     // operators and functions
     "frac",
     "tfrac",
@@ -66,19 +31,9 @@ const COMMANDS: &[&str] = &[
     "min",
     "sup",
     "inf",
-    "det",
-    "exp",
-    "log",
-    "ln",
-    "sin",
-    "cos",
-    "tan",
     "cot",
     "sec",
     "csc",
-    "arcsin",
-    "arccos",
-    "arctan",
     "sinh",
     "cosh",
     "tanh",
@@ -151,7 +106,6 @@ const COMMANDS: &[&str] = &[
     "lor",
     // symbols
     "infty",
-    "ell",
     "hbar",
     "prime",
     "emptyset",
@@ -159,16 +113,8 @@ const COMMANDS: &[&str] = &[
     "deg",
     "S",
     // delimiters
-    "left",
-    "right",
-    "big",
-    "Big",
     "bigg",
     "Bigg",
-    "bigl",
-    "bigr",
-    "Bigl",
-    "Bigr",
     "langle",
     "rangle",
     "lvert",
@@ -184,12 +130,6 @@ const COMMANDS: &[&str] = &[
     "lceil",
     "rceil",
     // accents and fonts
-    "dot",
-    "ddot",
-    "hat",
-    "bar",
-    "tilde",
-    "vec",
     "check",
     "breve",
     "acute",
@@ -200,14 +140,12 @@ const COMMANDS: &[&str] = &[
     "widetilde",
     "overbrace",
     "underbrace",
-    "mathbf",
     "mathrm",
     "mathit",
     "mathsf",
     "mathtt",
     "mathcal",
     "mathbb",
-    "boldsymbol",
     "text",
     "textrm",
     "textit",
@@ -222,6 +160,14 @@ const COMMANDS: &[&str] = &[
     "begin",
     "end",
 ];
+
+/// Whether `\word` may appear in a formula.
+fn allowed(word: &str) -> bool {
+    use crate::lang::latex::{ACCENTS, FUNCTIONS, GREEK, SIZES};
+    [COMMANDS, GREEK, FUNCTIONS, ACCENTS, SIZES]
+        .iter()
+        .any(|list| list.contains(&word))
+}
 
 /// Environments a formula may open; inside them `&` and `\\` separate cells and rows.
 const ENVIRONMENTS: &[&str] = &[
@@ -266,7 +212,7 @@ pub fn check(latex: &str) -> Result<(), String> {
                     continue;
                 }
                 let word = &after[..word_len];
-                if !COMMANDS.contains(&word) {
+                if !allowed(word) {
                     return Err(format!("`\\{word}`"));
                 }
                 rest = &after[word_len..];
