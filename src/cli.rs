@@ -133,6 +133,11 @@ pub struct OutputArgs {
     /// `undecided (time limit)` [default: 600].
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
     pub time_limit: Option<Duration>,
+    /// Time limit for the whole run, in seconds: a claim that starts when less than its
+    /// own limit is left gets only what is left, and past it every claim still to be
+    /// decided is `undecided (time limit)` [default: 3600].
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
+    pub run_limit: Option<Duration>,
 }
 
 fn parse_seconds(s: &str) -> Result<Duration, String> {
@@ -299,7 +304,22 @@ impl Progress {
 struct Run {
     keep: bool,
     limit: Duration,
+    /// When the whole run must end (`--run-limit`): no claim gets time past it.
+    deadline: Option<std::time::Instant>,
 }
+
+impl Run {
+    /// The time a claim starting now gets: its own limit, within the run's.
+    fn limit_now(&self) -> Duration {
+        self.deadline.map_or(self.limit, |d| {
+            self.limit
+                .min(d.saturating_duration_since(std::time::Instant::now()))
+        })
+    }
+}
+
+/// The default time limit of a whole run (`--run-limit`).
+pub const DEFAULT_RUN_LIMIT: Duration = Duration::from_secs(3_600);
 
 /// Decides every claim of the files (or only `only`), in file and claim order.
 pub fn decide_all<'f>(
@@ -309,6 +329,7 @@ pub fn decide_all<'f>(
     let run = Run {
         keep: false,
         limit: watch::DEFAULT_LIMIT,
+        deadline: None,
     };
     decide_with_progress(files, only, run, &mut Progress::quiet())
 }
@@ -345,7 +366,7 @@ fn decide_with_progress<'f>(
             rows.extend(decide_claims(ancestors, run, progress)?);
         }
     }
-    inherit::attribute(&mut rows, run.limit).map_err(|d| RunError::Input(d.to_string()))?;
+    inherit::attribute(&mut rows, run.limit_now()).map_err(|d| RunError::Input(d.to_string()))?;
     rows.retain(|r| only.is_none_or(|id| r.claim.id == id));
     Ok(rows)
 }
@@ -380,7 +401,7 @@ fn decide_claims<'f>(
                 let q = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 let Some(&k) = order.get(q) else { return };
                 let c = claims[k];
-                let w = Watch::new(&c.id, run.limit);
+                let w = Watch::new(&c.id, run.limit_now());
                 *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(w.clone());
                 let r = watch::under(&w, || {
                     if run.keep {
@@ -687,6 +708,7 @@ fn table(
     let run = Run {
         keep: false,
         limit: args.time_limit.unwrap_or(watch::DEFAULT_LIMIT),
+        deadline: Some(std::time::Instant::now() + args.run_limit.unwrap_or(DEFAULT_RUN_LIMIT)),
     };
     let rows = decide_with_progress(&files, args.only.as_deref(), run, &mut progress)?;
     progress.done(rows.len());
@@ -756,6 +778,7 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             let run = Run {
                 keep: true,
                 limit: watch::DEFAULT_LIMIT,
+                deadline: None,
             };
             let rows = decide_with_progress(&files, Some(&a.id), run, &mut Progress::new())?;
             emit(&report::explain::render(&rows[0]), &None, &[], out.stream)?;

@@ -956,3 +956,24 @@ fn plot_stops_at_its_time_limit() {
     );
     assert!(out.stdout.is_empty());
 }
+
+/// `--run-limit` bounds the whole run: claims that get no time left are
+/// `undecided (time limit)`, and every claim that was decided has its usual verdict.
+#[test]
+fn the_run_limit_leaves_claims_undecided_never_wrong() {
+    let out = run(&["check", "--run-limit", "0.001", "--format", "json"]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let claims = v["claims"].as_array().unwrap();
+    assert!(claims.iter().any(|c| c["detail"]
+        .as_str()
+        .is_some_and(|d| d.contains("time limit"))));
+    for c in claims {
+        let verdict = c["verdict"].as_str().unwrap();
+        assert!(
+            verdict == "undecided" || verdict == c["expected"],
+            "{}: {verdict}",
+            c["id"]
+        );
+    }
+}
