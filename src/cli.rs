@@ -905,7 +905,7 @@ fn plot(a: &PlotArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
     for curve in &figure.curves {
         // Under the time limit: a long evaluation is stopped (`interrupt::tick`).
         let evaluated = watch::under(&w, || {
-            crate::algebra::interrupt::stoppable(|| {
+            crate::kernel::interrupt::stoppable(|| {
                 crate::strategy::probe::curve_values(curve, &figure.x)
             })
         })

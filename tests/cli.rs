@@ -977,3 +977,29 @@ fn the_run_limit_leaves_claims_undecided_never_wrong() {
         );
     }
 }
+
+/// An exact expansion within the term budget whose coefficients have thousands of
+/// digits ((x − 1/3)^4096) is stopped by the time limit inside the polynomial product.
+#[test]
+fn the_time_limit_stops_a_long_polynomial_product() {
+    let dir = dir_with(
+        "long-product",
+        "section = \"s\"\ntitle = \"s\"\ndimension = 2\nscalars = [\"x\"]\n\
+         define = [\"a = (x - 1/3)^64\", \"b = a^64\", \"c = b (x - 1/7) (x^2 - 2)\"]\n\n\
+         [[claim]]\nid = \"s\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"sign\"\n\
+         sides = [\"c + 1\", \"0\"]\nrelation = \">\"\ngiven = [\"0 <= x <= 1\"]\n",
+    );
+    let file = dir.join("claims.toml");
+    let out = run(&[
+        "verify",
+        file.to_str().unwrap(),
+        "--time-limit",
+        "0.5",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let detail = v["claims"][0]["detail"].as_str().unwrap_or_default();
+    assert!(detail.contains("undecided (time limit)"), "{detail}");
+}

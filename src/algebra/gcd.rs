@@ -15,14 +15,14 @@
 //! for what the modular route cannot take (more than 16 variables, a degree above 64,
 //! its budget of points or primes spent); it is the kernel's one computation without a
 //! work bound, so it stops when the claim's time limit asks it to
-//! ([`super::interrupt`]).
+//! ([`crate::kernel::interrupt`]).
 //!
 //! Only ordinary polynomials (no negative exponents) are accepted: a Laurent
 //! polynomial is first cleared by [`clear_denominator_monomial`].
 
-use super::interrupt;
 use super::modular;
 use super::residue;
+use crate::kernel::interrupt;
 use crate::kernel::poly::{Exp, Monomial, Poly, Var};
 use crate::kernel::rational::Rational;
 use num_traits::{One, Zero};
@@ -677,7 +677,7 @@ mod tests {
         // holds from its second question ends the sequence there, with a
         // meaningless value that still divides both inputs (so that no caller's
         // division fails).
-        use crate::algebra::interrupt;
+        use crate::kernel::interrupt;
         use std::sync::atomic::{AtomicUsize, Ordering};
         use std::sync::Arc;
         let (_, x, y, z) = setup();

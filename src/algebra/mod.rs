@@ -9,7 +9,6 @@ pub mod certificate;
 pub mod einsum;
 pub mod gcd;
 pub mod indexed;
-pub mod interrupt;
 pub mod limit;
 pub mod linear;
 pub mod matrix;

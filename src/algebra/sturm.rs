@@ -112,7 +112,7 @@ impl UniPoly {
         let dd = d.0.len() - 1;
         let lead = d.0[dd].recip().expect("nonzero leading coefficient");
         while r.len() > dd && !r.is_empty() {
-            super::interrupt::tick();
+            crate::kernel::interrupt::tick();
             let k = r.len() - 1;
             let f = &r[k] * &lead;
             for (j, dc) in d.0.iter().enumerate() {
@@ -177,7 +177,7 @@ pub fn sturm_sequence(p: &UniPoly) -> Vec<UniPoly> {
         p.derivative().positive_scaled(),
     ];
     while !seq.last().expect("two entries").is_zero() {
-        super::interrupt::tick();
+        crate::kernel::interrupt::tick();
         let n = seq.len();
         let r = seq[n - 2].rem(&seq[n - 1]);
         seq.push(UniPoly::new(r.0.iter().map(|c| -c.clone()).collect()).positive_scaled());
@@ -260,7 +260,7 @@ fn isolate_roots_within(
         changes(0, &polys, b),
     )];
     while let Some((k, lo, hi, at_lo, at_hi)) = stack.pop() {
-        super::interrupt::tick();
+        crate::kernel::interrupt::tick();
         let n = at_lo.saturating_sub(at_hi);
         if n == 0 {
             continue;

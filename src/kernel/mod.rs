@@ -9,6 +9,7 @@ pub mod check;
 pub mod differentiate;
 pub mod eval;
 pub mod frac;
+pub mod interrupt;
 pub mod moments;
 pub mod poly;
 pub mod rational;

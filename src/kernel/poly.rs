@@ -443,6 +443,9 @@ impl Poly {
         }
         let mut products = Vec::with_capacity(self.terms.len().saturating_mul(rhs.terms.len()));
         for (m1, c1) in &self.terms {
+            // A row can be long (thousands of terms with coefficients of thousands of
+            // digits): the claim's time limit may stop it here.
+            super::interrupt::tick_by(rhs.terms.len());
             for (m2, c2) in &rhs.terms {
                 let m = m1.checked_mul(m2).ok_or(PolyError::ExponentTooLarge)?;
                 products.push((m, c1 * c2));

@@ -133,7 +133,7 @@ fn decide_unisolated(
     }
     // A computation stopped at the time limit unwinds to here (`interrupt::tick`);
     // the watch has expired then, so the match below makes it undecided.
-    let decided = crate::algebra::interrupt::stoppable(|| match &check.strategy {
+    let decided = crate::kernel::interrupt::stoppable(|| match &check.strategy {
         Strategy::Exact { .. } | Strategy::Proportional { .. } => exact::decide(decls, check, keep),
         Strategy::Numeric { .. } => numeric::decide_numeric(decls, check, states),
         Strategy::Gradient { .. } => numeric::decide_gradient(decls, check, states),

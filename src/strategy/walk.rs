@@ -158,7 +158,7 @@ pub fn walk<R: Ring>(
 ) -> Result<Tensor<R::Value>, R::Error> {
     // Every ring's evaluation can be long (nested differences, exact expansions): the
     // claim's time limit stops it here.
-    crate::algebra::interrupt::tick();
+    crate::kernel::interrupt::tick();
     ring.enter(node)?;
     let d = ring.dim();
     let labels = node.free_letters();

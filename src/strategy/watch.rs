@@ -87,7 +87,7 @@ pub fn under<T>(watch: &Arc<Watch>, f: impl FnOnce() -> T) -> T {
         let watch = watch.clone();
         Arc::new(move || watch.expired())
     };
-    let out = crate::algebra::interrupt::under(stop, f);
+    let out = crate::kernel::interrupt::under(stop, f);
     CURRENT.with(|c| *c.borrow_mut() = previous);
     out
 }

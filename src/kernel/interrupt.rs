@@ -1,6 +1,8 @@
-//! A request to stop: for the remainder sequence of [`super::gcd`] (asked between
-//! steps), and for every long evaluation or root isolation, which [`tick`]s and is
-//! unwound to [`stoppable`] once the claim's time is up.
+//! A request to stop: for the remainder sequence of `algebra::gcd` (asked between
+//! steps), and for every long evaluation, polynomial product or root isolation, which
+//! [`tick`]s and is unwound to [`stoppable`] once the claim's time is up. It lives in
+//! the kernel because the kernel's products tick too; a stop never makes a verdict:
+//! whatever was being computed is abandoned, and the claim is `undecided`.
 //!
 //! Every other kernel computation is bounded by the size of its input or by a budget
 //! of terms, points or bisections. The pseudo-remainder sequence over ℚ is not: its
@@ -34,7 +36,7 @@ pub fn under<T>(stop: Stop, f: impl FnOnce() -> T) -> T {
 
 /// Whether the current stop condition holds (never outside [`under`]). Once it has
 /// held, the caller's results are meaningless; see the module doc.
-pub(super) fn requested() -> bool {
+pub fn requested() -> bool {
     CONDITION.with(|c| c.borrow().as_ref().is_some_and(|stop| stop()))
 }
 
@@ -43,7 +45,7 @@ pub(super) fn requested() -> bool {
 pub struct Stopped;
 
 thread_local! {
-    static TICKS: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
+    static TICKS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
 }
 
 /// A point in a long computation (a node of an evaluation, a step of a Sturm sequence)
@@ -51,12 +53,19 @@ thread_local! {
 /// holds, unwinds with [`Stopped`] to the nearest [`stoppable`] (the panic hook does
 /// not run; nothing is printed). Outside [`under`] it never stops.
 pub fn tick() {
-    let n = TICKS.with(|t| {
-        let n = t.get().wrapping_add(1);
-        t.set(n);
-        n
+    tick_by(1);
+}
+
+/// [`tick`] for a step worth `work` simple ones (a row of a polynomial product): the
+/// condition is checked once per 1,024 units of work.
+pub fn tick_by(work: usize) {
+    let (before, after) = TICKS.with(|t| {
+        let before = t.get();
+        let after = before.wrapping_add(work as u64);
+        t.set(after);
+        (before, after)
     });
-    if n.is_multiple_of(1024) && requested() {
+    if before / 1024 != after / 1024 && requested() {
         std::panic::resume_unwind(Box::new(Stopped));
     }
 }
