@@ -88,6 +88,8 @@ impl Uni {
                 .recip()
                 .expect("nonzero");
         while r.len() >= d.0.len() {
+            // Sturm chains of high degree are long: the claim's time limit may stop one.
+            super::interrupt::tick_by(d.0.len());
             let q = &r[r.len() - 1] * &lead;
             let shift = r.len() - d.0.len();
             for (k, c) in d.0.iter().enumerate() {
@@ -111,6 +113,7 @@ impl Uni {
                 .expect("nonzero");
         let mut q = vec![Rational::zero(); a.0.len().saturating_sub(b.0.len()) + 1];
         while r.len() >= b.0.len() && !r.is_empty() {
+            super::interrupt::tick_by(b.0.len());
             let c = &r[r.len() - 1] * &lead;
             let shift = r.len() - b.0.len();
             for (k, x) in b.0.iter().enumerate() {
