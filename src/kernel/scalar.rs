@@ -17,6 +17,28 @@ use std::collections::BTreeMap;
 
 type R<T> = Result<T, Rejection>;
 
+/// `f`'s numerator and `den`, both times the power v^m that clears their negative powers
+/// of `v` (their quotient is unchanged), and that power.
+fn lifted(f: &Frac, den: &Poly, v: Var) -> R<(Poly, Poly, Poly)> {
+    let low = f
+        .numerator()
+        .terms()
+        .chain(den.terms())
+        .map(|(m, _)| m.exponent(v))
+        .min()
+        .unwrap_or(0);
+    let lift = Poly::term(
+        super::poly::Monomial::var(v, (-low).max(0)),
+        Rational::int(1),
+    );
+    let num = f
+        .numerator()
+        .checked_mul(&lift)
+        .map_err(|_| EvalError::Limit)?;
+    let den = den.checked_mul(&lift).map_err(|_| EvalError::Limit)?;
+    Ok((num, den, lift))
+}
+
 /// The product of `f`'s denominator factors that `keep` selects, each to its power.
 fn denominator(f: &Frac, keep: impl Fn(&Poly) -> bool) -> R<Poly> {
     let mut den = <Poly as num_traits::One>::one();
@@ -177,22 +199,7 @@ fn univariate(f: &Frac, v: Var, box_: &[(Var, Interval)], env: &Env<'_>) -> R<(U
     }
     // Both times v^m, so that no negative power of v is left (v = 0 is then a root of
     // the denominator: the function is undefined there, as it was).
-    let low = f
-        .numerator()
-        .terms()
-        .chain(den.terms())
-        .map(|(m, _)| m.exponent(v))
-        .min()
-        .unwrap_or(0);
-    let lift = Poly::term(
-        super::poly::Monomial::var(v, (-low).max(0)),
-        Rational::int(1),
-    );
-    let num = f
-        .numerator()
-        .checked_mul(&lift)
-        .map_err(|_| EvalError::Limit)?;
-    let den = den.checked_mul(&lift).map_err(|_| EvalError::Limit)?;
+    let (num, den, _) = lifted(&f, &den, v)?;
     Ok((one(&num)?, one(&den)?, one(&conds)?))
 }
 
@@ -604,22 +611,7 @@ fn limit(
     let den = denominator(&f, |_| true)?;
     // Both times v^m, so that neither has a negative power of v: the quotient is the
     // same, and the moves of v apply to polynomials.
-    let low = f
-        .numerator()
-        .terms()
-        .chain(den.terms())
-        .map(|(m, _)| m.exponent(v))
-        .min()
-        .unwrap_or(0);
-    let lift = Poly::term(
-        super::poly::Monomial::var(v, (-low).max(0)),
-        Rational::int(1),
-    );
-    let num = f
-        .numerator()
-        .checked_mul(&lift)
-        .map_err(|_| EvalError::Limit)?;
-    let den = den.checked_mul(&lift).map_err(|_| EvalError::Limit)?;
+    let (num, den, lift) = lifted(&f, &den, v)?;
     // The zero function tends to 0 (read as the order 1 above the denominator's).
     let (kd, d) = lowest(&den, v, to)?;
     let (kn, n) = if num.is_zero() {
