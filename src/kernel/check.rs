@@ -685,11 +685,7 @@ fn open_box(env: &mut Env<'_>, ctx: &super::statement::Context) -> R<()> {
     let normal = env.normal_vars().to_vec();
     for (name, i) in &ctx.given {
         let v = env.vars.intern(name);
-        let interior = match (i.lo.value(), i.hi.value()) {
-            (Some(a), Some(b)) => a < b,
-            _ => true,
-        };
-        if !interior || normal.contains(&v) {
+        if !i.has_interior() || normal.contains(&v) {
             return Err(Rejection::Mismatch(format!(
                 "the box bounds `{name}` to no open interval of a free variable"
             )));

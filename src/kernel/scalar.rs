@@ -697,12 +697,7 @@ fn limit(
         // the claim's, so only the other factors' leading coefficient must not vanish.
         // That needs a box with interior, on which such a factor cannot vanish
         // everywhere (else the claim would be about no point at all).
-        let interior = box_
-            .iter()
-            .all(|(_, i)| match (i.lo.value(), i.hi.value()) {
-                (Some(a), Some(b)) => a < b,
-                _ => true,
-            });
+        let interior = box_.iter().all(|(_, i)| i.has_interior());
         let moving = denominator(&f, |g| !interior || g.variables().contains(&v))?;
         // Negative powers of the other variables are divisors free of the variable too.
         let laurent = f

@@ -35,6 +35,15 @@ pub struct Interval {
 }
 
 impl Interval {
+    /// Whether the interval holds an open interval (a nonzero polynomial cannot vanish
+    /// on all of it).
+    pub fn has_interior(&self) -> bool {
+        match (self.lo.value(), self.hi.value()) {
+            (Some(a), Some(b)) => a < b,
+            _ => true,
+        }
+    }
+
     pub fn real_line() -> Self {
         Interval {
             lo: End::Unbounded,
