@@ -302,6 +302,54 @@ fn isolate_roots_within(
 }
 
 impl UniPoly {
+    /// `p` on the line through `point` along `v`: every other variable replaced by its
+    /// value there (a variable `point` leaves out is 0). `None` when a negative power
+    /// of a variable that is 0 there, or of `v`, occurs, or a value is too large.
+    pub fn restricted(p: &Poly, v: Var, point: &dyn Fn(Var) -> Rational) -> Option<UniPoly> {
+        let mut c: Vec<Rational> = Vec::new();
+        for (m, coef) in p.terms() {
+            let mut k = 0usize;
+            let mut value = coef.clone();
+            for &(w, e) in m.factors() {
+                if w == v {
+                    k = usize::try_from(e).ok()?;
+                } else {
+                    value = &value * &point(w).pow(e)?;
+                }
+            }
+            if c.len() <= k {
+                c.resize(k + 1, Rational::zero());
+            }
+            c[k] = &c[k] + &value;
+        }
+        Some(UniPoly::new(c))
+    }
+
+    /// The greatest common divisor of two polynomials, monic (zero when both are).
+    pub fn gcd(&self, other: &UniPoly) -> UniPoly {
+        let (mut a, mut b) = (self.clone(), other.clone());
+        while !b.is_zero() {
+            let r = a.rem(&b);
+            a = b;
+            b = r;
+        }
+        match a.0.last().and_then(Rational::recip) {
+            Some(lead) => UniPoly(a.0.iter().map(|c| c * &lead).collect()),
+            None => a,
+        }
+    }
+
+    /// The rational root of a multiple factor of degree one: for p = q² r with q
+    /// linear (a zero where p touches 0 without changing sign, as a square of a
+    /// linear form does on a line that crosses it), the root of q.
+    pub fn touching_root(&self) -> Option<Rational> {
+        let h = self.gcd(&self.derivative());
+        match h.0.as_slice() {
+            [c0, c1] => (-c0).checked_div(c1),
+            _ => None,
+        }
+    }
+
     /// The coefficients from the constant term up.
     pub fn coefficients(&self) -> &[Rational] {
         &self.0

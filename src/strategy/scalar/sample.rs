@@ -5,7 +5,8 @@
 //! is sampled evidence, never a proof.
 
 use super::{Context, Exact};
-use crate::algebra::sign::{sign_of, End, Interval, Sign};
+use crate::algebra::sign::{chart, sign_of, End, Interval, Sign, Violation};
+use crate::algebra::sturm::UniPoly;
 use crate::kernel::{Rational, Var};
 use crate::strategy::exact::SplitMix;
 use crate::strategy::finding::SampledSign;
@@ -162,6 +163,25 @@ pub(super) fn search(
         }
     }
     kept.sort_by(|a, b| a.0.cmp(&b.0));
+    // A strict sign can break on a set that no sample lands on: a square of a linear
+    // form is zero on a plane. On the coordinate lines through the points closest to
+    // breaking the claim (and through the first simple point, whose zeros read
+    // best), the exact zeros of the restriction are tried too.
+    if !want.admits(0) {
+        let cleared = g.cleared();
+        let simplest: BTreeMap<Var, Rational> = bx
+            .iter()
+            .zip(&simple)
+            .map(|((v, _), c)| (*v, c[0].clone()))
+            .collect();
+        let bases = std::iter::once(&simplest).chain(kept.iter().take(STARTS).map(|k| &k.1));
+        for start in bases {
+            watch::check()?;
+            if let Some(point) = zero_on_lines(g, &cleared, &bx, start, want) {
+                return Ok(Sampled::Violation { point });
+            }
+        }
+    }
     let (smallest, at) = kept
         .first()
         .map(|(_, p, v)| (super::readable(v), cx.shown(p)))
@@ -174,6 +194,51 @@ pub(super) fn search(
         smallest_margin: smallest,
         at,
     }))
+}
+
+/// The largest degree of a restriction to a line whose roots are isolated.
+const MAX_LINE_DEGREE: usize = 64;
+
+/// A point where `g` breaks the strict sign `want` on one of the coordinate lines
+/// through `point` inside the box: the rational zeros of the restriction that its sign
+/// chart finds, and the root of a linear multiple factor (a zero where `g` touches 0).
+/// Every candidate is evaluated exactly again; `None` when none breaks the claim.
+fn zero_on_lines(
+    g: &Exact,
+    (num, den): &(crate::kernel::Poly, crate::kernel::Poly),
+    bx: &[(Var, Interval)],
+    point: &BTreeMap<Var, Rational>,
+    want: Sign,
+) -> Option<BTreeMap<Var, Rational>> {
+    let at = |w: Var| point.get(&w).cloned().unwrap_or_else(|| Rational::int(0));
+    for (v, i) in bx {
+        let (Some(n), Some(d)) = (
+            UniPoly::restricted(num, *v, &at),
+            UniPoly::restricted(den, *v, &at),
+        ) else {
+            continue;
+        };
+        if n.degree().is_none_or(|k| k > MAX_LINE_DEGREE)
+            || d.degree().is_none_or(|k| k > MAX_LINE_DEGREE)
+        {
+            continue;
+        }
+        let mut candidates = Vec::new();
+        if let Some(Violation::At { x, .. }) = chart(&n, &d, i).and_then(|c| c.violation(want)) {
+            candidates.push(x);
+        }
+        candidates.extend(n.touching_root());
+        for x in candidates.into_iter().filter(|x| i.contains(x)) {
+            let mut p = point.clone();
+            p.insert(*v, x);
+            if g.eval(&p)
+                .is_some_and(|value| !want.admits(sign_of(&value)))
+            {
+                return Some(p);
+            }
+        }
+    }
+    None
 }
 
 /// A compass search in `f64` that lowers the margin from `start`, staying in the box;

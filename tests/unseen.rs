@@ -1,0 +1,58 @@
+//! Classes of claims that went wrong on derivations nobody on the project wrote, each in
+//! a file of fresh claims under `tests/unseen/` whose true verdicts were established by
+//! a second route (the claim's note). Every claim, and every correction, must come out
+//! as declared for every seed from 1 to 20.
+
+use cosserat_check::derivation::{load_files, Claim, Strategy};
+use cosserat_check::strategy::decide_claim;
+use std::path::PathBuf;
+
+/// Sets the seed of every sampled route of `claim` (and of its correction).
+fn reseed(claim: &mut Claim, seed: u64) {
+    let set = |s: &mut Strategy| match s {
+        Strategy::Numeric { sampling, .. }
+        | Strategy::Gradient { sampling, .. }
+        | Strategy::Convex { sampling, .. } => sampling.seed = seed,
+        Strategy::Scalar { seed: s, .. } => *s = seed,
+        _ => {}
+    };
+    set(&mut claim.check.strategy);
+    if let Some(c) = &mut claim.correction {
+        set(&mut c.check.strategy);
+    }
+}
+
+/// Decides every claim of `tests/unseen/NAME.toml` for seeds 1 to 20 and asserts each
+/// verdict; returns the number of claims.
+fn as_declared_for_every_seed(name: &str) -> usize {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("tests/unseen/{name}.toml"));
+    let mut files = load_files(&[path]).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let claims = files.iter().map(|f| f.claims.len()).sum();
+    for seed in 1..=20 {
+        for claim in files.iter_mut().flat_map(|f| f.claims.iter_mut()) {
+            reseed(claim, seed);
+            let d = decide_claim(claim).unwrap_or_else(|e| panic!("{}: {e}", claim.id));
+            assert_eq!(
+                d.outcome.verdict(),
+                claim.expect,
+                "{} with seed {seed}: {}",
+                claim.id,
+                cosserat_check::report::evidence(&d.outcome)
+            );
+            if let (Some(c), Some(o)) = (&claim.correction, &d.correction) {
+                assert_eq!(
+                    o.verdict(),
+                    c.expect,
+                    "{}'s correction, seed {seed}",
+                    claim.id
+                );
+            }
+        }
+    }
+    claims
+}
+
+#[test]
+fn strict_signs_broken_on_a_thin_set_fail_with_an_exact_point() {
+    assert_eq!(as_declared_for_every_seed("strict-inequalities"), 8);
+}
