@@ -192,6 +192,16 @@ const FORGED: &[(&str, &str, &str)] = &[
         "d",
         "a division by a power past 64 expanded without a bound (a hang)",
     ),
+    (
+        "proportional-at-different-parameters",
+        "navier-divided-by-G",
+        "a law times -G refuted by ratios at G = 3 and G = -1 (the factor may depend on G)",
+    ),
+    (
+        "factor-reads-a-field",
+        "heat-conduction-times-the-field",
+        "-k T_,ii = λ T T_,ii with λ = -k/T: a factor that reads the field T",
+    ),
 ];
 
 #[test]

@@ -56,3 +56,8 @@ fn as_declared_for_every_seed(name: &str) -> usize {
 fn strict_signs_broken_on_a_thin_set_fail_with_an_exact_point() {
     assert_eq!(as_declared_for_every_seed("strict-inequalities"), 8);
 }
+
+#[test]
+fn a_law_times_a_factor_of_the_parameters_is_the_same_law() {
+    assert_eq!(as_declared_for_every_seed("proportional-factors"), 8);
+}

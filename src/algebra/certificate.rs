@@ -368,8 +368,21 @@ pub struct Identities<'n> {
     normal: &'n [Var],
     components: usize,
     modulo_unit_normal: usize,
-    /// Compare `lhs` with `factor · rhs` (a proportionality with this nonzero factor).
-    factor: Option<Rational>,
+    /// Compare `lhs` with `factor · rhs` (a proportionality with this nonzero factor,
+    /// a constant or a rational function of the parameters).
+    factor: Option<RatFunc>,
+}
+
+/// `q · f` for a nonzero rational function `f`: the numerator times f's numerator,
+/// divided by f's denominator (which joins the conditions where it is not constant).
+pub fn scaled_by(q: &Quotient, f: &RatFunc) -> Quotient {
+    let scaled = q.with_numerator(q.numerator() * f.numerator());
+    match f.denominator().as_constant() {
+        Some(c) if c.is_one() => scaled,
+        _ => scaled
+            .divide(&Quotient::from(f.denominator().clone()))
+            .expect("the denominator of a rational function is nonzero"),
+    }
 }
 
 impl<'n> Identities<'n> {
@@ -384,14 +397,14 @@ impl<'n> Identities<'n> {
         }
     }
 
-    /// A comparison of `lhs` with `factor · rhs`, whose certificate also records that
-    /// the factor is nonzero (`None` for a zero factor). Which factor to try is the
-    /// caller's guess; the kernel verifies the identities it implies.
-    pub fn proportional(normal: &'n [Var], factor: Rational) -> Option<Self> {
-        (!factor.is_zero()).then(|| Identities {
-            factor: Some(factor),
+    /// A comparison of `lhs` with `factor · rhs`. Which factor to try is the caller's
+    /// guess (a zero factor finds where the left side is not zero); the kernel verifies
+    /// the identities it implies, and that the factor is nonzero.
+    pub fn proportional(normal: &'n [Var], factor: &RatFunc) -> Self {
+        Identities {
+            factor: Some(factor.clone()),
             ..Identities::new(normal)
-        })
+        }
     }
 
     /// Compares one component: `None` when the sides are identical (modulo n·n = 1)
@@ -405,7 +418,7 @@ impl<'n> Identities<'n> {
         let scaled;
         let rhs = match &self.factor {
             Some(f) => {
-                scaled = rhs.with_numerator(rhs.numerator() * &Poly::constant(f.clone()));
+                scaled = scaled_by(rhs, f);
                 &scaled
             }
             None => rhs,

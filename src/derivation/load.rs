@@ -1089,7 +1089,7 @@ impl Loader {
             (Strategy::Proportional { .. }, Some(at)) if !pair => (
                 at,
                 "strategy = \"proportional\"",
-                "left = λ · right for one nonzero constant λ",
+                "left = λ · right for one nonzero factor λ",
             ),
             (Strategy::Scalar { claim, .. }, Some(at))
                 if !pair && matches!(**claim, ScalarClaim::Sign(_)) =>

@@ -401,8 +401,9 @@ pub enum Strategy {
     /// Canonical polynomial expansion (the default). `domain` (`given`) bounds the
     /// parameters: square roots take their sign on it, and a counterexample lies in it.
     Exact { domain: ParamBox },
-    /// Canonical expansion of `left = λ · right` for one nonzero constant λ, the same
-    /// in every component: two sides that agree up to a sign or scale convention.
+    /// Canonical expansion of `left = λ · right` for one nonzero λ (a constant, or a
+    /// rational function of the parameters), the same in every component: two sides
+    /// that agree up to a sign or scale convention, or a modulus.
     Proportional { domain: ParamBox },
     /// Seeded random states in f64; `domain`, when given, is where a statement that
     /// fails is claimed to hold (verdict `conditional`).

@@ -38,6 +38,17 @@ pub struct Evaluation {
 /// A rational function in lowest terms, numerator and denominator by names.
 pub type Reduced = (PolyData, PolyData);
 
+/// The factor of a proportionality: a nonzero constant, or a rational function of the
+/// claim's parameters (the declared scalars that are not fields), nonzero as a
+/// function; the proportionality then holds where it is defined and nonzero, and the
+/// proof says so.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Factor {
+    Constant(Rational),
+    Function { num: PolyData, den: PolyData },
+}
+
 /// What a strategy found, to be checked against the statement.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
@@ -47,7 +58,7 @@ pub enum Fact {
     Identity { roots: Vec<FracData> },
     /// Each equality's left side is its factor (nonzero) times the right.
     Proportional {
-        factors: Vec<Rational>,
+        factors: Vec<Factor>,
         roots: Vec<FracData>,
     },
     /// The sides of one equality differ at a state that satisfies the assumptions,
@@ -180,8 +191,13 @@ pub enum Checked {
         #[serde(skip_serializing_if = "Vec::is_empty")]
         nonzero: Vec<String>,
     },
-    /// The left side is `factor` (nonzero) times the right.
-    Proportional { factor: String },
+    /// The left side is `factor` (nonzero) times the right, where each polynomial of
+    /// `nonzero` (the factor's numerator and denominator) is nonzero.
+    Proportional {
+        factor: String,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        nonzero: Vec<String>,
+    },
     /// √radicand = root: its square exactly, its sign on the box `on` by coefficients
     /// after `substitution` (empty: a nonnegative constant).
     SquareRoot {
@@ -350,10 +366,40 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
             let mut env = Env::new(&st.context, roots)?;
             let (l1, r1) = values_at(&mut env, chains, first)?;
             let one_zero = l1.is_zero() != r1.is_zero();
+            // A factor that depends on parameters may vanish, or have a pole, at the
+            // point's parameter values: there one evaluation proves nothing, unless the
+            // side that is zero there is zero as a function (then λ · right is zero
+            // wherever λ is defined, while the left is not; or the left is zero while
+            // λ · right is not, on an open set).
+            let pairs = equality_pairs(&mut env, chains, first)?;
+            let params = parameters(&st.context);
+            let reads = |f: &Frac| {
+                let mut vars = f.numerator().variables();
+                vars.extend(f.denominator().iter().flat_map(|(p, _)| p.variables()));
+                vars.into_iter().any(|v| params.contains(&env.vars.name(v)))
+            };
+            let constant = !pairs.iter().any(|(x, y)| reads(x) || reads(y));
+            let normal = env.normal_vars().to_vec();
+            let zero = |f: &Frac| {
+                f.numerator()
+                    .reduce_on_sphere(&normal)
+                    .is_ok_and(|p| p.is_zero())
+            };
+            let side_is_zero = pairs
+                .iter()
+                .all(|(x, y)| zero(if r1.is_zero() { y } else { x }));
             let shown = match second {
-                _ if one_zero => vec![(l1, r1)],
+                _ if one_zero && (constant || side_is_zero) => vec![(l1, r1)],
                 // A factor λ would be l1/r1 (r1 ≠ 0); then l2 = λ r2 means l2 r1 = l1 r2.
+                // With parameters, both evaluations must be at the same parameter
+                // values: l r' − l' r is then a nonzero function of the parameters
+                // (nonzero at theirs), so no factor works on a dense open set of them.
                 Some(s) if (s.chain, s.equality) == (first.chain, first.equality) => {
+                    if !same_parameters(&st.context, first, s) {
+                        return Err(Rejection::False(
+                            "the two evaluations are at different parameter values".into(),
+                        ));
+                    }
                     let (l2, r2) = values_at(&mut env, chains, s)?;
                     if r1.is_zero() || &l1 * &r2 == &l2 * &r1 {
                         return Err(Rejection::False("the first evaluation does not fix a factor, or the second agrees with it".into()));
@@ -432,12 +478,13 @@ fn identities(
     st: &Statement,
     chains: &[Vec<Term>],
     roots: &[FracData],
-    factors: Option<&[Rational]>,
+    factors: Option<&[Factor]>,
 ) -> R<Summary> {
     let mut env = Env::new(&st.context, roots)?;
     let normal = env.normal_vars().to_vec();
     let (mut components, mut modulo_unit_normal) = (0, 0);
     let mut nonzero: Vec<Poly> = Vec::new();
+    let mut factor_nonzero: Vec<Poly> = Vec::new();
     let mut k = 0;
     for chain in chains {
         if chain.len() < 2 {
@@ -450,10 +497,9 @@ fn identities(
                     let f = f
                         .get(k)
                         .ok_or_else(|| Rejection::Mismatch("a factor per equality".into()))?;
-                    if f.is_zero() {
-                        return Err(Rejection::False("a zero factor".into()));
-                    }
-                    Some(Frac::constant(f.clone()))
+                    let (f, zeros) = factor_of(&mut env, &st.context, f)?;
+                    factor_nonzero.extend(zeros);
+                    Some(f)
                 }
             };
             k += 1;
@@ -496,12 +542,83 @@ fn identities(
         nonzero,
     }];
     if let Some([f]) = factors {
-        out.push(Checked::Proportional {
-            factor: f.to_string(),
-        });
+        let factor = match f {
+            Factor::Constant(q) => q.to_string(),
+            Factor::Function { num, den } => {
+                let (n, d) = (env.poly_of(num)?, env.poly_of(den)?);
+                match d.as_constant() {
+                    Some(c) if c.is_one() && n.num_terms() == 1 => n.display(&env.vars),
+                    Some(c) if c.is_one() => format!("({})", n.display(&env.vars)),
+                    _ => format!("({}) / ({})", n.display(&env.vars), d.display(&env.vars)),
+                }
+            }
+        };
+        let mut nonzero: Vec<String> = factor_nonzero
+            .iter()
+            .map(|p| p.display(&env.vars))
+            .collect();
+        nonzero.sort();
+        nonzero.dedup();
+        out.push(Checked::Proportional { factor, nonzero });
     }
     out.extend(roots_taken(&env));
     Ok(out)
+}
+
+/// The names of a statement's parameters: its declared scalars that are not fields (or
+/// the normal, or the position). A proportionality's factor may depend on them alone.
+fn parameters(ctx: &super::statement::Context) -> Vec<&str> {
+    ctx.symbols
+        .iter()
+        .filter(|(name, rank)| {
+            **rank == 0
+                && !ctx.fields.contains_key(*name)
+                && ctx.normal.as_deref() != Some(name.as_str())
+                && ctx.position.as_deref() != Some(name.as_str())
+        })
+        .map(|(name, _)| name.as_str())
+        .collect()
+}
+
+/// A proportionality's factor as a fraction, and the polynomials it must not vanish
+/// on (its numerator and denominator, when not constant). A function factor reads
+/// only parameters that no assumption fixes, and is not the zero function.
+fn factor_of(
+    env: &mut Env<'_>,
+    ctx: &super::statement::Context,
+    f: &Factor,
+) -> R<(Frac, Vec<Poly>)> {
+    match f {
+        Factor::Constant(q) if q.is_zero() => Err(Rejection::False("a zero factor".into())),
+        Factor::Constant(q) => Ok((Frac::constant(q.clone()), Vec::new())),
+        Factor::Function { num, den } => {
+            let params = parameters(ctx);
+            for (name, _) in num.iter().chain(den).flat_map(|(m, _)| m) {
+                if !params.contains(&name.as_str()) || env.substituted_or_eliminated(name) {
+                    return Err(Rejection::Mismatch(format!(
+                        "the factor reads `{name}`, which is not a free parameter"
+                    )));
+                }
+            }
+            let (n, d) = (env.poly_of(num)?, env.poly_of(den)?);
+            if n.is_zero() || d.is_zero() {
+                return Err(Rejection::False("a zero factor, or a zero divisor".into()));
+            }
+            let f = Frac::from(n.clone())
+                .div(&Frac::from(d.clone()))
+                .map_err(EvalError::from)?;
+            // Listed as they read best: coprime integer coefficients, leading one positive.
+            let zeros = [n, d]
+                .into_iter()
+                .filter(|p| p.as_constant().is_none())
+                .map(|p| match super::poly::canonical_scale(&p) {
+                    Some(c) => &p * &Poly::constant(c),
+                    None => p,
+                })
+                .collect();
+            Ok((f, zeros))
+        }
+    }
 }
 
 /// The pairs of components an equality compares: for tensors, at every value of the
@@ -551,6 +668,35 @@ fn pairs_of(a: &Value, b: &Value, dim: usize) -> R<Vec<(Frac, Frac)>> {
 }
 
 /// One component of one equality: the pair of fractions its sides have there.
+/// Whether two evaluations agree on every parameter both name (a parameter one of them
+/// leaves out does not enter its sides there).
+fn same_parameters(ctx: &super::statement::Context, a: &Evaluation, b: &Evaluation) -> bool {
+    let value = |e: &Evaluation, name: &str| {
+        e.point
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, x)| x.clone())
+    };
+    parameters(ctx)
+        .into_iter()
+        .all(|p| match (value(a, p), value(b, p)) {
+            (Some(x), Some(y)) => x == y,
+            _ => true,
+        })
+}
+
+/// Every pair of components of the equality `e` names.
+fn equality_pairs(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<Vec<(Frac, Frac)>> {
+    let (Some(left), Some(right)) = (
+        chains.get(e.chain).and_then(|c| c.get(e.equality)),
+        chains.get(e.chain).and_then(|c| c.get(e.equality + 1)),
+    ) else {
+        return Err(Rejection::Mismatch("no such equality".into()));
+    };
+    let (a, b) = (env.eval(left)?, env.eval(right)?);
+    pairs_of(&a, &b, env.ctx_dim())
+}
+
 fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac, Frac)> {
     let chain = chains
         .get(e.chain)

@@ -1524,7 +1524,7 @@ impl Env<'_> {
     /// The dimension.
     /// Whether the variable of that name is fixed by an assumption: eliminated by an
     /// equation, or a component of a substituted symbol.
-    fn substituted_or_eliminated(&self, name: &str) -> bool {
+    pub(super) fn substituted_or_eliminated(&self, name: &str) -> bool {
         let substituted = self.ctx.substitutions.iter().any(|s| {
             name == s.symbol
                 || name

@@ -235,7 +235,9 @@ pub enum LimitValue {
 pub enum Claim {
     /// The sides of each chain are equal, for every value of the free indices.
     Equal { chains: Vec<Vec<Term>> },
-    /// The left side of each equality is a nonzero constant times the right.
+    /// The left side of each equality is a nonzero factor (a constant, or a rational
+    /// function of the parameters) times the right, where the factor is defined and
+    /// nonzero.
     Proportional { chains: Vec<Vec<Term>> },
     /// `left − right` has the sign on the box, wherever both are defined.
     Sign { left: Term, right: Term, sign: Sign },

@@ -330,7 +330,13 @@ fn roots(o: &Outcome) -> String {
 fn factor(o: &Outcome) -> String {
     checked(o)
         .find_map(|c| match c {
-            Checked::Proportional { factor } => Some(format!(" of left = {factor} · right")),
+            Checked::Proportional { factor, nonzero } if nonzero.is_empty() => {
+                Some(format!(" of left = {factor} · right"))
+            }
+            Checked::Proportional { factor, nonzero } => Some(format!(
+                " of left = {factor} · right where {} ≠ 0",
+                nonzero.join(" ≠ 0, ")
+            )),
             _ => None,
         })
         .unwrap_or_default()
@@ -438,8 +444,13 @@ fn counterexample_text(cx: &Counterexample) -> String {
         } else {
             format!("at {}, other variables 0", pts.join(", "))
         };
+        let which = if f.of_parameters {
+            "no factor of the parameters"
+        } else {
+            "no constant factor"
+        };
         parts.push(format!(
-            "the factor {} is fixed by left/right{at}, {point} (left {}, right {}), so no constant factor works",
+            "the factor {} is fixed by left/right{at}, {point} (left {}, right {}), so {which} works",
             f.factor, f.lhs_value, f.rhs_value
         ));
     }
@@ -473,7 +484,13 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
                     )
                 }
             }
-            Checked::Proportional { factor } => format!("one polynomial is {factor} times the other"),
+            Checked::Proportional { factor, nonzero } if nonzero.is_empty() => {
+                format!("one polynomial is {factor} times the other")
+            }
+            Checked::Proportional { factor, nonzero } => format!(
+                "one polynomial is {factor} times the other, where {} ≠ 0",
+                nonzero.join(" ≠ 0, ")
+            ),
             Checked::SquareRoot { radicand, root, on, substitution, cases } => {
                 let s = if *cases == 1 { "" } else { "s" };
                 let sign = if substitution.is_empty() {

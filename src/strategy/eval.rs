@@ -327,6 +327,19 @@ impl<'a> ExactEnv<'a> {
         }
     }
 
+    /// The variables of the parameters met so far: the declared scalars that are not
+    /// fields (a proportionality's factor may depend on them).
+    pub fn parameter_vars(&self) -> Vec<Var> {
+        (0..self.vars.len() as Var)
+            .filter(|&v| {
+                let name = self.vars.name(v);
+                self.decls.symbols.get(name) == Some(&0)
+                    && !self.decls.varies(name)
+                    && !self.normal.contains(&v)
+            })
+            .collect()
+    }
+
     /// Every component of every declared symbol, by its variable.
     pub fn component_vars(&mut self) -> HashMap<Var, Component> {
         let mut out = HashMap::default();

@@ -11,11 +11,11 @@ use super::indices::{self, Symbolic};
 use super::proportional::{self, Reference};
 use super::statement;
 use super::{reverify, Counterexample, Method, Outcome};
-use crate::algebra::certificate::{Difference, Identities};
+use crate::algebra::certificate::{scaled_by, Difference, Identities};
 use crate::algebra::sign::{inner_point, End, Interval};
-use crate::algebra::{assignments, residue, Quotient};
+use crate::algebra::{assignments, residue, Quotient, RatFunc};
 use crate::derivation::{Check, Strategy};
-use crate::kernel::check::{check as kernel_check, Checked, Evaluation, Fact};
+use crate::kernel::check::{check as kernel_check, Checked, Evaluation, Fact, Factor};
 use crate::kernel::{Poly, PolyError, Rational, Var, VarTable};
 use crate::lang::check::letters;
 use crate::lang::{Decls, Diagnostic};
@@ -203,8 +203,8 @@ fn decide_recording(
     let mut identities = Identities::new(&normal);
     // A proportionality's factor (1 when the right side is zero everywhere: the left
     // must then be zero, and any nonzero factor states it).
-    let mut factor: Option<Rational> =
-        matches!(check.strategy, Strategy::Proportional { .. }).then(|| Rational::int(1));
+    let mut factor: Option<RatFunc> =
+        matches!(check.strategy, Strategy::Proportional { .. }).then(|| RatFunc::int(1));
     for (ci, chain) in check.chains.iter().enumerate() {
         let mut values = Vec::with_capacity(chain.len());
         for (si, side) in chain.iter().enumerate() {
@@ -246,11 +246,18 @@ fn decide_recording(
                     // left side is zero too, a plain identity.
                     Ok(None) => {}
                     Ok(Some(found)) => {
-                        factor = Some(found.factor());
-                        match Identities::proportional(&normal, found.factor()) {
-                            Some(ids) => identities = ids,
-                            None => return zero_factor(&env, decls, check, &found, (l, r)),
+                        // λ = 0: no nonzero factor works. With a constant factor the
+                        // reference shows it; with one of the parameters it does so
+                        // only where the left side is zero everywhere, else the
+                        // comparison with 0 finds where the left side is not zero.
+                        if found.function.is_zero()
+                            && (!proportional::reads_parameters(&env, (l, r))
+                                || zero_everywhere(&normal, l, &labels, decls.dim))
+                        {
+                            return zero_factor(&env, decls, check, &found, (l, r));
                         }
+                        factor = Some(found.function.clone());
+                        identities = Identities::proportional(&normal, &found.function);
                         reference = Some(found);
                     }
                 }
@@ -283,7 +290,7 @@ fn decide_recording(
                 let Some(diff) = compared else {
                     continue;
                 };
-                let scaled = reference.as_ref().map(|f| scale(rp, &f.factor()));
+                let scaled = reference.as_ref().map(|f| scaled_by(rp, &f.function));
                 let (mut cx, point, mut values) = counterexample(
                     &env.vars,
                     env.normal_vars(),
@@ -293,6 +300,20 @@ fn decide_recording(
                     &diff,
                 );
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
+                // A factor of the parameters is fixed again at the parameter values of
+                // the difference's point: both evaluations must share them.
+                let reference = match reference.as_ref().map(|f| f.at_parameters_of(&env, &point, (l, r))) {
+                    Some(None) => {
+                        return Ok(Outcome::undecided(Method::Exact, identities.components())
+                            .with_finding(Finding::ResourceLimit {
+                                what: "the right side is zero where the factor would be fixed at the parameter values of the difference".to_owned(),
+                                at: location(&chain[k].origin.diagnostic(Default::default(), "")),
+                                help: "decide the claim as an identity with the factor written out".to_owned(),
+                            }))
+                    }
+                    Some(Some(moved)) => Some(moved),
+                    None => None,
+                };
                 cx.chain = ci + 1;
                 cx.reduced_on_sphere = diff
                     .numerator
@@ -328,11 +349,12 @@ fn decide_recording(
                     let factor = found.factor();
                     cx.rhs = format!("{factor} · ({})", cx.rhs);
                     let (lq, rq) = (l.at(&found.assignment), r.at(&found.assignment));
-                    cx.factor = Some(Box::new(found.witness(&env, lq, rq)));
-                    values = values.map(|(lv, rv)| {
-                        let unscaled = rv.checked_div(&factor).expect("nonzero factor");
-                        (lv, unscaled)
-                    });
+                    let of_parameters = proportional::reads_parameters(&env, (l, r));
+                    cx.factor = Some(Box::new(found.witness(&env, lq, rq, of_parameters)));
+                    // The right side unscaled: its own value at the point (λ may be 0
+                    // at the point's parameters).
+                    let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+                    values = values.and_then(|(lv, _)| rp.eval(&at).map(|rv| (lv, rv)));
                 }
                 cx.indices = index_values(&assignment);
                 let (ln, rn) = (&chain[k].node, &chain[k + 1].node);
@@ -415,7 +437,13 @@ fn decide_recording(
     let roots = env.root_data();
     let fact = match factor {
         Some(f) => Fact::Proportional {
-            factors: vec![f],
+            factors: vec![match f.as_constant() {
+                Some(q) => Factor::Constant(q),
+                None => Factor::Function {
+                    num: statement::poly_data(f.numerator(), &env.vars),
+                    den: statement::poly_data(f.denominator(), &env.vars),
+                },
+            }],
             roots,
         },
         None => Fact::Identity { roots },
@@ -579,8 +607,17 @@ fn index_values(assignment: &[(char, usize)]) -> BTreeMap<String, usize> {
 }
 
 /// `factor · q`.
-fn scale(q: &Quotient, factor: &Rational) -> Quotient {
-    q.with_numerator(q.numerator() * &Poly::constant(factor.clone()))
+/// Whether every component of `side` is zero (modulo n·n = 1).
+fn zero_everywhere(normal: &[Var], side: &Labeled, labels: &[char], dim: usize) -> bool {
+    let zero = Quotient::default();
+    let mut ids = Identities::new(normal);
+    for a in assignments(dim, labels.len()) {
+        let assignment: Vec<(char, usize)> = labels.iter().copied().zip(a).collect();
+        if !matches!(ids.compare(side.at(&assignment), &zero), Ok(None)) {
+            return false;
+        }
+    }
+    true
 }
 
 /// A proportionality refuted at its reference: the left side is 0 where the right

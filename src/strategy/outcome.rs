@@ -99,6 +99,10 @@ pub struct Counterexample {
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct FactorWitness {
     pub factor: String,
+    /// The claim has parameters, so the factor may be a function of them (fixed here at
+    /// the parameter values of the difference's point).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub of_parameters: bool,
     pub indices: BTreeMap<String, usize>,
     pub point: BTreeMap<String, String>,
     pub lhs_value: String,

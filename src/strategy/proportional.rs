@@ -1,20 +1,28 @@
-//! `strategy = "proportional"`: the two sides agree up to one nonzero constant factor,
+//! `strategy = "proportional"`: the two sides agree up to one nonzero factor,
 //! `left = λ · right` in every component (a balance law derived in another sign or
-//! scale convention than the printed one).
+//! scale convention than the printed one, or multiplied by a modulus).
+//!
+//! Convention: λ is a constant or a rational function of the claim's parameters (the
+//! declared scalars that are not fields), the same in every component and at every
+//! state; the claim then holds where λ is defined and nonzero, and the proof names
+//! λ's numerator and denominator as the polynomials that must not vanish ("where
+//! G ≠ 0"). A law multiplied by a parameter is the same law where it is nonzero.
 //!
 //! The factor is fixed where the right side is first nonzero: at the first component
 //! that is not identically zero, a rational point where it is nonzero gives
-//! λ = left/right. Any factor that works must equal that ratio there, so the kernel
-//! then compares `left` with `λ · right` in every component ([`Identities::proportional`]).
-//! A difference refutes every factor at once: the reference point fixes λ, the
-//! difference's point shows that λ does not work. Both points are re-evaluated by the
-//! interpreter before a `fails` is printed.
+//! λ = left/right with the other variables fixed there and the parameters kept. Any
+//! factor that works must equal that ratio, so the kernel then compares `left` with
+//! `λ · right` in every component ([`Identities::proportional`]). A difference refutes
+//! every factor at once: the reference, moved to the parameter values of the
+//! difference's point, fixes λ there, and the difference's point shows that λ does not
+//! work at the same parameter values. Both points are re-evaluated by the interpreter
+//! before a `fails` is printed.
 
 use super::eval::{ExactEnv, Labeled};
 use super::exact::{point_where_differ, shown_point};
 use super::FactorWitness;
 use crate::algebra::certificate::Identities;
-use crate::algebra::{assignments, Quotient};
+use crate::algebra::{assignments, Quotient, RatFunc};
 use crate::kernel::{PolyError, Rational, Var};
 use std::collections::BTreeMap;
 
@@ -26,6 +34,8 @@ pub struct Reference {
     pub point: BTreeMap<Var, Rational>,
     pub lhs: Rational,
     pub rhs: Rational,
+    /// λ as a function of the parameters (a constant when it reads none).
+    pub function: RatFunc,
 }
 
 impl Reference {
@@ -36,10 +46,59 @@ impl Reference {
             .expect("the reference point has a nonzero right side")
     }
 
+    /// Whether λ depends on parameters.
+    pub fn is_function(&self) -> bool {
+        self.function.as_constant().is_none()
+    }
+
+    /// The reference moved to the parameter values of `point` (the other variables
+    /// kept): where λ takes its value at `point`'s parameters. `None` when the right
+    /// side is zero there, or a side undefined.
+    pub fn at_parameters_of(
+        &self,
+        env: &ExactEnv<'_>,
+        point: &BTreeMap<Var, Rational>,
+        (l, r): (&Labeled, &Labeled),
+    ) -> Option<Reference> {
+        let mut moved = self.point.clone();
+        for v in env.parameter_vars() {
+            moved.insert(
+                v,
+                point.get(&v).cloned().unwrap_or_else(|| Rational::int(0)),
+            );
+        }
+        let at = |v: Var| moved.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        let rhs = r.at(&self.assignment).eval(&at)?;
+        let lhs = l.at(&self.assignment).eval(&at)?;
+        (!rhs.is_zero()).then(|| Reference {
+            assignment: self.assignment.clone(),
+            point: moved,
+            lhs,
+            rhs,
+            function: self.function.clone(),
+        })
+    }
+
     /// The reference as the report shows it.
-    pub fn witness(&self, env: &ExactEnv<'_>, l: &Quotient, r: &Quotient) -> FactorWitness {
+    pub fn witness(
+        &self,
+        env: &ExactEnv<'_>,
+        l: &Quotient,
+        r: &Quotient,
+        of_parameters: bool,
+    ) -> FactorWitness {
+        let factor = if self.is_function() {
+            format!(
+                "{} (here {})",
+                self.function.display(&env.vars),
+                self.factor()
+            )
+        } else {
+            self.factor().to_string()
+        };
         FactorWitness {
-            factor: self.factor().to_string(),
+            factor,
+            of_parameters,
             indices: self
                 .assignment
                 .iter()
@@ -50,6 +109,18 @@ impl Reference {
             rhs_value: self.rhs.to_string(),
         }
     }
+}
+
+/// Whether either side reads a parameter (a declared scalar that is not a field): only
+/// then may the factor depend on parameters, and must a refutation compare two
+/// evaluations at the same parameter values.
+pub fn reads_parameters(env: &ExactEnv<'_>, (l, r): (&Labeled, &Labeled)) -> bool {
+    let parameters = env.parameter_vars();
+    !parameters.is_empty()
+        && [l, r]
+            .iter()
+            .flat_map(|s| s.tensor.components())
+            .any(|q| q.variables().iter().any(|v| parameters.contains(v)))
 }
 
 /// The reference of a pair of sides: the first component (in index order) whose right
@@ -83,12 +154,23 @@ pub fn reference(
         let (point, rhs, _) =
             point_where_differ(normal, rp, &zero, env.domain()).ok_or_else(missed)?;
         let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
-        let lhs = l.at(&assignment).eval(&at).ok_or_else(missed)?;
+        let lp = l.at(&assignment);
+        let lhs = lp.eval(&at).ok_or_else(missed)?;
+        // λ with every variable but the parameters fixed at the point.
+        let parameters = env.parameter_vars();
+        let keep = |v: Var| (!parameters.contains(&v)).then(|| at(v));
+        let function = lp
+            .to_ratfunc()
+            .fix(&keep)
+            .zip(rp.to_ratfunc().fix(&keep))
+            .and_then(|(a, b)| &a / &b)
+            .ok_or_else(missed)?;
         return Ok(Some(Reference {
             assignment,
             point,
             lhs,
             rhs,
+            function,
         }));
     }
     Ok(None)
