@@ -110,15 +110,15 @@ fn a_displacement_potential_is_substituted() {
         + &claim("not-symmetric-zero", "fails", "[\"u_i,j + u_j,i\", \"0\"]");
     let verdicts: Vec<Verdict> = outcomes_of(&text).iter().map(|o| o.verdict()).collect();
     assert_eq!(verdicts, [Verdict::Holds, Verdict::Holds, Verdict::Fails]);
-    // One component set to a derivative is not an affine relation between components:
-    // a located error, not a crash.
+    // One component set to a derivative is not a polynomial in components: a located
+    // error, not a crash.
     let component = format!(
         "{HEAD}position = \"x\"\nfields = [\"u_i\", \"phi\"]\nassume = [\"u_1 = phi_,1\"]\n\n{}",
         claim("c", "holds", "[\"u_1\", \"phi_,1\"]")
     );
     let e = error_of(&component);
     assert!(e.contains("f.toml:"), "{e}");
-    assert!(e.contains("affine"), "{e}");
+    assert!(e.contains("polynomial in the components"), "{e}");
 }
 
 #[test]

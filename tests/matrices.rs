@@ -76,7 +76,6 @@ fn malformed_matrix_statements_are_located_errors() {
         (claim("sides = [\"det(s_ij)\", \"x\"]"), "det(…) takes a matrix, but this is a tensor"),
         (claim("sides = [\"inv([[1, 2], [2, 4]])\", \"A\"]"), "this system is singular: the determinant of its matrix is identically zero"),
         (claim("sides = [\"solve([[x, x], [1, 1]], v)\", \"v\"]"), "this system is singular"),
-        (claim("strategy = \"numeric\"\nsamples = 50\nsides = [\"inv([[1, 2], [2, 4]]) cos(x)\", \"A\"]"), "singular matrix: its determinant is 0 here"),
         (claim("sides = [\"A\", \"A\"]\nassume = [\"x = [[1, 2], [3, 4]]\"]"), "an assumption takes a scalar or a tensor, but this is a 2×2 matrix"),
         (claim("strategy = \"sign\"\nsides = [\"A\", \"A\"]\nrelation = \">\""), "compares exactly two sides"),
         (claim("strategy = \"monotone\"\nfunction = \"A\"\nin = \"x\"\ndirection = \"increasing\""), "this field takes a scalar or a tensor, but this is a 2×2 matrix"),
@@ -112,6 +111,21 @@ fn collapsing_products_and_mixed_sums_are_typed() {
         let e = common::error_of(&claim(&format!("sides = [{sides}]")));
         assert!(e.contains(want), "{sides}\n→ {e}");
     }
+}
+
+/// A sampled matrix that is singular at every state (a set of positive measure) leaves
+/// that claim undecided, with where and why; it is not a counterexample.
+#[test]
+fn a_matrix_singular_everywhere_leaves_a_sampled_claim_undecided() {
+    let o = &common::outcomes_of(&claim(
+        "strategy = \"numeric\"\nsamples = 50\nsides = [\"inv([[1, 2], [2, 4]]) cos(x)\", \"A\"]",
+    ))[0];
+    let ev = cosserat_check::report::evidence(o);
+    assert_eq!(o.verdict(), Verdict::Undecided, "{ev}");
+    assert!(
+        ev.contains("singular matrix: its determinant is 0 here") && ev.contains("f.toml:"),
+        "{ev}"
+    );
 }
 
 /// A definition is defined where all its entries are: a counterexample to one entry of

@@ -110,6 +110,14 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     let Ok(outcome) = decide(decls, &light) else {
         return Fate::Rejected;
     };
+    // Sides undefined on a set of positive measure (a square root of a negative
+    // quantity everywhere): a statement that says nothing, refused like ill-formed input.
+    if matches!(
+        outcome.finding,
+        Some(cosserat_check::strategy::finding::Finding::Undefined { .. })
+    ) {
+        return Fate::Rejected;
+    }
     if outcome.verdict() == Verdict::Undecided {
         return Fate::Undecided;
     }

@@ -61,3 +61,13 @@ fn strict_signs_broken_on_a_thin_set_fail_with_an_exact_point() {
 fn a_law_times_a_factor_of_the_parameters_is_the_same_law() {
     assert_eq!(as_declared_for_every_seed("proportional-factors"), 8);
 }
+
+#[test]
+fn component_assumptions_polynomial_in_parameters_are_solved() {
+    assert_eq!(as_declared_for_every_seed("polynomial-assumptions"), 11);
+}
+
+#[test]
+fn divisors_that_vanish_on_thin_sets_are_stepped_off_claim_by_claim() {
+    assert_eq!(as_declared_for_every_seed("undefined-on-thin-sets"), 7);
+}

@@ -293,7 +293,7 @@ impl Loader {
                 return Err(self
                     .diag(c.id.span(), format!("bad range for `{name}`: {bounds:?}"))
                     .with_help(
-                        "ranges = { name = [low, high] } with a declared symbol and low < high",
+                        "ranges = { name = [low, high] } with a declared symbol and low ≤ high",
                     ));
             }
             ranges.insert(name.clone(), (bounds[0], bounds[1]));

@@ -540,12 +540,18 @@ impl<'c> Env<'c> {
         for row in rows {
             // Reduce by the pivots found so far.
             let row = substitute(&row, &values)?;
-            // The pivot: an explicit component first, then by name, the highest
-            // index first (a symmetric tensor keeps its upper triangle).
+            // The pivot: a component that occurs in the row once, alone and to the
+            // power 1 (so that row = 0 says exactly pivot = the rest, whatever the rest
+            // is: a polynomial in other components); an explicit component first,
+            // then by name, the highest index first (a symmetric tensor keeps its
+            // upper triangle).
+            let occurrences = |v: Var| row.terms().filter(|(m, _)| m.exponent(v) != 0).count();
             let pivot = row
                 .terms()
                 .filter_map(|(m, c)| match m.factors() {
-                    [(v, 1)] if is_component(self, *v) => Some((*v, c.clone())),
+                    [(v, 1)] if is_component(self, *v) && occurrences(*v) == 1 => {
+                        Some((*v, c.clone()))
+                    }
                     _ => None,
                 })
                 .min_by_key(|(v, _)| {
@@ -557,25 +563,10 @@ impl<'c> Env<'c> {
                     continue;
                 }
                 return Err(EvalError::IllFormed(
-                    "the assumptions contradict each other, or are not linear in the components"
+                    "the assumptions contradict each other, or constrain no component linearly"
                         .into(),
                 ));
             };
-            // Every other term must be free of components of degree one or more
-            // times a component: the row is affine in the components.
-            for (m, _) in row.terms() {
-                let components = m
-                    .factors()
-                    .iter()
-                    .filter(|(w, _)| is_component(self, *w))
-                    .count();
-                let single = matches!(m.factors(), [(_, 1)]);
-                if components > 1 || (components == 1 && !single) {
-                    return Err(EvalError::IllFormed(
-                        "an assumption is not affine in the components".into(),
-                    ));
-                }
-            }
             let scale = Poly::constant(-&c.recip().ok_or(EvalError::DivisionByZero)?);
             let rest = &row - &Poly::term(super::poly::Monomial::var(v, 1), c.clone());
             let value = rest.checked_mul(&scale).map_err(|_| EvalError::Limit)?;

@@ -250,6 +250,13 @@ pub fn evidence(o: &Outcome) -> String {
         if let Some(x) = &n.exclusion {
             line.push_str(&format!("; excluded {} samples with {x}", n.excluded));
         }
+        if n.undefined > 0 {
+            line.push_str(&format!(
+                "; stepped off {} state{} where a side is undefined but defined next to it",
+                n.undefined,
+                if n.undefined == 1 { "" } else { "s" }
+            ));
+        }
         if let Some(s) = &n.search {
             let at: Vec<String> = s.at.iter().map(|(k, v)| format!("{k}={v}")).collect();
             line.push_str(&format!(

@@ -15,6 +15,12 @@ pub fn finding(f: &Finding) -> String {
         Finding::Uncertified { what, at, help } => {
             format!("undecided: {what} (at {at}); {help}")
         }
+        Finding::Undefined { what, at, point } => format!(
+            "undecided: the sides are undefined on a set of positive measure, not only at \
+             isolated points: {what} (at {at}) at {} and at every state tried near it; restrict \
+             `ranges` or `given`, or exclude the set with `singular`",
+            self::point(point)
+        ),
         Finding::KernelRefused { why } => format!(
             "undecided: the search's result was not accepted by the kernel's check ({why})"
         ),

@@ -14,11 +14,20 @@
 //! eliminates the lower triangle, `traceless` the last diagonal component, and
 //! `sigma_13 = 0` the component it names.
 //!
+//! A component assumption may be polynomial in other symbols, as long as it is affine in
+//! the components it constrains (`u_2 = z^2`, `D_12 = t D_11`): every symbol that occurs in
+//! a product or a power of any equation is a **parameter** of the system, and each product
+//! of parameters is a column of its own, ordered after the components, so the solution
+//! gives each eliminated component as an affine function of the free components with a
+//! polynomial in the parameters as its constant term. A combination of the equations
+//! that constrains the parameters alone is an input error; so is a parameter that is a
+//! field (its value would have to be differentiated through the product).
+//!
 //! An `X = expression` whose right side is not affine (`S = 3 V / (2 R_g)`) substitutes
 //! the whole symbol after the system is solved; substitutions are evaluated in the order
 //! of their dependencies, and a cycle is an input error.
 
-use super::eval::ExactEnv;
+use super::eval::{component_name, ExactEnv};
 use crate::algebra::assignments;
 use crate::algebra::linear::{self, Affine, AffineEquation, Solution};
 use crate::derivation::{Assumption, AssumptionKind};
@@ -31,6 +40,32 @@ use std::collections::BTreeSet;
 
 /// A component of a declared symbol: its name and 0-based indices.
 pub type Component = (String, Vec<usize>);
+
+/// A product of components with exponents: a column of the system. A component is the
+/// product of itself alone, to the power 1; a product of parameters is one column.
+pub type Product = Vec<(Component, u32)>;
+
+/// The value of a product at a state, from the value of each component.
+pub fn product_value<T: Clone + std::ops::Mul<Output = T>>(
+    product: &Product,
+    one: T,
+    mut value: impl FnMut(&Component) -> T,
+) -> T {
+    product.iter().fold(one, |acc, (c, e)| {
+        let x = value(c);
+        (0..*e).fold(acc, |acc, _| acc * x.clone())
+    })
+}
+
+/// A component the assumptions determine: `constant + Σ coefficient · (free component)
+/// + Σ coefficient · (product of parameters)`.
+#[derive(Debug)]
+pub struct Dependent<'a> {
+    pub component: &'a Component,
+    pub terms: Vec<(&'a Component, &'a Rational)>,
+    pub products: Vec<(&'a Product, &'a Rational)>,
+    pub constant: &'a Rational,
+}
 
 /// Largest number of component equations one claim may assume (a rank-4 tensor in 3D
 /// with minor and major symmetries needs a few hundred).
@@ -46,7 +81,7 @@ enum Role {
 /// component as an affine function of the free ones; then the substitutions, in order.
 #[derive(Debug)]
 pub struct Parametrisation {
-    columns: Vec<Component>,
+    columns: Vec<Product>,
     solution: Solution,
     /// The equations as assumed (before solving), for re-checking states.
     equations: Vec<AffineEquation>,
@@ -62,8 +97,16 @@ pub enum Constrained {
     Free,
     /// Set to a constant.
     Fixed(Rational),
-    /// An affine function of free components.
+    /// An affine function of free components (and of products of parameters).
     Dependent,
+}
+
+/// The component a column is, when it is one component to the power 1.
+fn single(p: &Product) -> Option<&Component> {
+    match p.as_slice() {
+        [(c, 1)] => Some(c),
+        _ => None,
+    }
 }
 
 impl Parametrisation {
@@ -114,19 +157,32 @@ impl Parametrisation {
             }
         }
         let substitutions = substitution_order(assumptions, &roles)?;
-        // The unknowns: every component in an equation, explicit left sides first.
+        // The unknowns: every component in an equation, explicit left sides first; a
+        // component in a product or a power is a parameter.
         let mut explicit: BTreeSet<&Component> = BTreeSet::new();
         let mut all: BTreeSet<&Component> = BTreeSet::new();
+        let mut parameters: BTreeSet<&Component> = BTreeSet::new();
         for (a, r) in assumptions.iter().zip(&roles) {
             let Role::Linear(polys) = r else { continue };
             for p in polys {
                 for (m, _) in p.terms() {
+                    let product = !matches!(m.factors(), [(_, 1)]);
                     for (v, _) in m.factors() {
                         let c = &components[v];
                         if substituted.contains(&c.0) {
                             return Err(a.diagnostic(
                                 format!("`{}` is replaced by a substitution, so its components cannot also be constrained", c.0),
                             ).with_help("constrain the symbols of the substitution's right side instead"));
+                        }
+                        if product {
+                            if decls.varies(&c.0) {
+                                return Err(a.diagnostic(format!(
+                                    "`{}` is a field, and occurs in a product or a power here",
+                                    c.0
+                                ))
+                                .with_help("a component assumption may be polynomial only in symbols that are not fields; relate whole fields with X = expression"));
+                            }
+                            parameters.insert(c);
                         }
                         all.insert(c);
                     }
@@ -149,9 +205,33 @@ impl Parametrisation {
                 _ => {}
             }
         }
-        let mut columns: Vec<Component> = all.iter().map(|&c| c.clone()).collect();
-        columns.sort_by_key(|c| (!explicit.contains(c), c.0.clone(), Reverse(c.1.clone())));
-        let column_of: HashMap<&Component, usize> =
+        let mut unknowns: Vec<&Component> = all
+            .iter()
+            .copied()
+            .filter(|c| !parameters.contains(c))
+            .collect();
+        unknowns.sort_by_key(|c| (!explicit.contains(c), c.0.clone(), Reverse(c.1.clone())));
+        let mut columns: Vec<Product> = unknowns.iter().map(|&c| vec![(c.clone(), 1)]).collect();
+        let unknown_count = columns.len();
+        // The products of parameters, in a fixed order after the unknowns.
+        let product_of = |m: &crate::kernel::Monomial| -> Product {
+            m.factors()
+                .iter()
+                .map(|(v, e)| (components[v].clone(), u32::try_from(*e).unwrap_or(0)))
+                .collect()
+        };
+        let mut products: BTreeSet<Product> = BTreeSet::new();
+        for r in &roles {
+            let Role::Linear(polys) = r else { continue };
+            for (m, _) in polys.iter().flat_map(Poly::terms) {
+                let p = product_of(m);
+                if !p.is_empty() && single(&p).is_none_or(|c| parameters.contains(c)) {
+                    products.insert(p);
+                }
+            }
+        }
+        columns.extend(products);
+        let column_of: HashMap<&Product, usize> =
             columns.iter().enumerate().map(|(k, c)| (c, k)).collect();
         let mut equations = Vec::new();
         for (k, r) in roles.iter().enumerate() {
@@ -165,10 +245,9 @@ impl Parametrisation {
                 for (m, q) in p.terms() {
                     match m.factors() {
                         [] => eq.constant = q.clone(),
-                        [(v, 1)] => {
-                            eq.coeffs.insert(column_of[&components[v]], q.clone());
+                        _ => {
+                            eq.coeffs.insert(column_of[&product_of(m)], q.clone());
                         }
-                        _ => unreachable!("affine by construction"),
                     }
                 }
                 equations.push(eq);
@@ -184,6 +263,35 @@ impl Parametrisation {
         }
         let solution = linear::solve(columns.len(), &equations)
             .map_err(|clash| contradiction(assumptions, &clash.sources))?;
+        // A pivot among the products: the equations relate the parameters alone.
+        if let Some(k) = (unknown_count..columns.len()).find(|&k| !solution.is_free(k)) {
+            // The assumptions that read a parameter of that product.
+            let shares = |c: &Product| {
+                c.iter()
+                    .any(|(f, _)| columns[k].iter().any(|(g, _)| f == g))
+            };
+            let mut sources: Vec<usize> = equations
+                .iter()
+                .filter(|e| e.coeffs.keys().any(|c| shares(&columns[*c])))
+                .map(|e| e.source)
+                .collect();
+            sources.dedup();
+            let names: Vec<String> = columns[k]
+                .iter()
+                .map(|((s, i), _)| format!("`{}`", component_name(s, i)))
+                .collect();
+            let written: Vec<String> = sources
+                .iter()
+                .map(|&j| format!("`{}`", assumptions[j].text))
+                .collect();
+            return Err(assumptions[sources[0]]
+                .diagnostic(format!(
+                    "the assumptions {} constrain the parameters {} (each occurs in a product or a power), not only components",
+                    written.join(", "),
+                    names.join(", ")
+                ))
+                .with_help("fix or relate parameters by whole-symbol equations (t = …), not through components"));
+        }
         Ok(Parametrisation {
             columns,
             solution,
@@ -192,19 +300,23 @@ impl Parametrisation {
         })
     }
 
-    /// Every component the assumptions determine: its value is `constant + Σ
-    /// coefficient · (free component)`.
-    pub fn dependents(
-        &self,
-    ) -> impl Iterator<Item = (&Component, Vec<(&Component, &Rational)>, &Rational)> {
+    /// Every component the assumptions determine, with its value.
+    pub fn dependents(&self) -> impl Iterator<Item = Dependent<'_>> {
         self.columns.iter().enumerate().filter_map(|(k, c)| {
-            self.solution.dependent(k).map(|a: &Affine| {
-                let terms = a
-                    .terms
-                    .iter()
-                    .map(|(f, q)| (&self.columns[*f], q))
-                    .collect();
-                (c, terms, &a.constant)
+            let a: &Affine = self.solution.dependent(k)?;
+            let (mut terms, mut products) = (Vec::new(), Vec::new());
+            for (f, q) in &a.terms {
+                let column = &self.columns[*f];
+                match single(column) {
+                    Some(c) => terms.push((c, q)),
+                    None => products.push((column, q)),
+                }
+            }
+            Some(Dependent {
+                component: single(c).expect("a pivot is a component"),
+                terms,
+                products,
+                constant: &a.constant,
             })
         })
     }
@@ -219,7 +331,7 @@ impl Parametrisation {
         let Some(k) = self
             .columns
             .iter()
-            .position(|(s, i)| s == symbol && i == index)
+            .position(|c| single(c).is_some_and(|(s, i)| s == symbol && i == index))
         else {
             return Constrained::Free;
         };
@@ -233,8 +345,13 @@ impl Parametrisation {
     /// The dependent components whose value involves the free component `c`.
     pub fn dependents_on<'a>(&'a self, c: &'a Component) -> impl Iterator<Item = &'a Component> {
         self.dependents()
-            .filter(move |(_, terms, _)| terms.iter().any(|(f, _)| *f == c))
-            .map(|(d, _, _)| d)
+            .filter(move |d| {
+                d.terms.iter().any(|(f, _)| *f == c)
+                    || d.products
+                        .iter()
+                        .any(|(p, _)| p.iter().any(|(f, _)| f == c))
+            })
+            .map(|d| d.component)
     }
 
     /// The largest relative residual of the assumed equations at a state (0 when every
@@ -246,7 +363,7 @@ impl Parametrisation {
                 let mut sum = e.constant.to_f64();
                 let mut scale = sum.abs();
                 for (c, q) in &e.coeffs {
-                    let term = q.to_f64() * value(&self.columns[*c]);
+                    let term = q.to_f64() * product_value(&self.columns[*c], 1.0, &value);
                     sum += term;
                     scale += term.abs();
                 }
@@ -259,7 +376,9 @@ impl Parametrisation {
     /// given values and the others the values the solution gives them: the solution is
     /// re-checked against the equations as assumed, not trusted.
     pub fn holds_exactly(&self, free: impl Fn(&Component) -> Rational) -> bool {
-        let values = self.solution.complete(|k| free(&self.columns[k]));
+        let values = self
+            .solution
+            .complete(|k| product_value(&self.columns[k], Rational::int(1), &free));
         self.equations.iter().all(|e| {
             e.coeffs
                 .iter()
@@ -299,8 +418,8 @@ fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, D
         } => {
             let not_affine = || {
                 a.origin
-                    .diagnostic(body.span, "a component assumption must be affine in the components, with rational coefficients")
-                    .with_help("write e.g. sigma_13 = 0 or sigma_22 = sigma_11; relate whole symbols with X = expression")
+                    .diagnostic(body.span, "a component assumption must be a polynomial in the components, with rational coefficients")
+                    .with_help("write e.g. sigma_13 = 0, sigma_22 = sigma_11 or u_2 = z^2; relate whole symbols with X = expression")
             };
             let value = env
                 .eval(body, &a.origin)
@@ -308,7 +427,7 @@ fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, D
                 .tensor
                 .into_scalar()
                 .expect("validated: scalar");
-            if !env.is_affine(&value) {
+            if !env.is_polynomial(&value) {
                 return Err(not_affine());
             }
             Role::Linear(vec![&var(env, symbol, index) - value.numerator()])

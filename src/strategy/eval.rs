@@ -12,7 +12,7 @@
 //! on the unit sphere and the derivatives of fields assume a polynomial denominator
 //! free of them.
 
-use super::assume::{Component, Parametrisation};
+use super::assume::{product_value, Component, Parametrisation};
 use super::jets::Jet;
 use super::walk::{self, Ring};
 use crate::algebra::certificate::Certificate;
@@ -176,12 +176,17 @@ impl<'a> ExactEnv<'a> {
                 env.symbol(a.kind.symbol());
             }
         }
-        for ((symbol, idx), terms, constant) in parametrisation.dependents() {
-            let value = terms
-                .iter()
-                .fold(Poly::constant(constant.clone()), |acc, ((s, i), q)| {
-                    &acc + &(&env.component(s, i) * &Poly::constant((*q).clone()))
-                });
+        for d in parametrisation.dependents() {
+            let (symbol, idx) = d.component;
+            let linear = d.terms.iter().map(|(c, q)| (vec![((*c).clone(), 1)], *q));
+            let products = d.products.iter().map(|(p, q)| ((*p).clone(), *q));
+            let value =
+                linear
+                    .chain(products)
+                    .fold(Poly::constant(d.constant.clone()), |acc, (p, q)| {
+                        let x = product_value(&p, Poly::one(), |(s, i)| env.component(s, i));
+                        &acc + &(&x * &Poly::constant(q.clone()))
+                    });
             let mut t = env.symbol(symbol);
             *t.get_mut(idx) = Quotient::from(value);
             env.symbols.insert(symbol.clone(), t);
@@ -358,20 +363,32 @@ impl<'a> ExactEnv<'a> {
         out
     }
 
+    /// Whether `v` is a component of a declared symbol: not the normal, and not a
+    /// derivative of a field (`phi_,i` in a potential `u_i = phi_,i`).
+    fn is_component(&self, v: &Var) -> bool {
+        !self.normal.contains(v)
+            && !matches!(self.varying.get(v), Some(Varying::Jet { orders, .. }) if !orders.is_empty())
+    }
+
     /// Whether `q` is affine in the components with rational coefficients: no products,
     /// powers or divisions of variables, and no normal.
     pub fn is_affine(&self, q: &Quotient) -> bool {
-        // A derivative of a field (`phi_,i` in a potential `u_i = phi_,i`) is not a
-        // component: such an assumption substitutes the whole symbol.
-        let component = |v: &Var| {
-            !self.normal.contains(v)
-                && !matches!(self.varying.get(v), Some(Varying::Jet { orders, .. }) if !orders.is_empty())
-        };
         q.factors().is_empty()
             && q.numerator().terms().all(|(m, _)| match m.factors() {
                 [] => true,
-                [(v, 1)] => component(v),
+                [(v, 1)] => self.is_component(v),
                 _ => false,
+            })
+    }
+
+    /// Whether `q` is a polynomial in the components with rational coefficients: no
+    /// division by a sum or by a variable, no normal, no derivative of a field.
+    pub fn is_polynomial(&self, q: &Quotient) -> bool {
+        q.factors().is_empty()
+            && q.numerator().terms().all(|(m, _)| {
+                m.factors()
+                    .iter()
+                    .all(|(v, e)| *e > 0 && self.is_component(v))
             })
     }
 

@@ -5,6 +5,7 @@
 //! a rational point that satisfies the assumptions (a point on the unit sphere for
 //! the normal).
 
+use super::assume::product_value;
 use super::eval::{component_name, ExactEnv, Labeled};
 use super::finding::{Expansion, Finding, Record};
 use super::indices::{self, Symbolic};
@@ -489,14 +490,22 @@ pub(super) fn full_point(
         })
         .collect();
     if let Some(p) = env.parametrisation() {
-        for ((symbol, idx), terms, constant) in p.dependents() {
-            let value = terms.iter().fold(constant.clone(), |acc, ((s, i), q)| {
-                let x = values
+        for d in p.dependents() {
+            let at = |(s, i): &(String, Vec<usize>)| {
+                values
                     .get(&component_name(s, i))
                     .cloned()
-                    .unwrap_or_else(|| Rational::int(0));
-                &acc + &(*q * &x)
-            });
+                    .unwrap_or_else(|| Rational::int(0))
+            };
+            let linear = d.terms.iter().map(|(c, q)| *q * &at(c));
+            let products = d
+                .products
+                .iter()
+                .map(|(p, q)| *q * &product_value(p, Rational::int(1), at));
+            let value = linear
+                .chain(products)
+                .fold(d.constant.clone(), |acc, x| &acc + &x);
+            let (symbol, idx) = d.component;
             values.insert(component_name(symbol, idx), value);
         }
     }

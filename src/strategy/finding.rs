@@ -40,6 +40,13 @@ pub enum Finding {
         at: String,
         help: String,
     },
+    /// The sides are undefined on a set of positive measure: at a random state and at
+    /// every state tried near it (`what` at `at`, file:line:col).
+    Undefined {
+        what: String,
+        at: String,
+        point: Point,
+    },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.
     Unconfirmed { difference: String, why: Rejection },

@@ -59,6 +59,9 @@ enum Judged {
     /// adaptive averages' error, or that error is above [`QUADRATURE_MAX`]: the reason
     /// and the state.
     Unresolved(Unresolved, Point),
+    /// A side is undefined at the state (a divisor is zero, a function is outside its
+    /// domain): where and why.
+    Undefined(Diagnostic),
 }
 
 /// A violation caused by adaptive averages counts only beyond this multiple of their
@@ -86,7 +89,9 @@ fn check_state(
     let d = sampler.decls.dim;
     // Every comparison's (labels, index values, left, right) at one level.
     type Pairs = Vec<(Vec<char>, Vec<usize>, f64, f64)>;
-    let compare = |level: Level| -> Result<Vec<Vec<Pairs>>, Diagnostic> {
+    // The outer error is malformed input; the inner one, a side undefined at the state.
+    type Compared = Result<Vec<Vec<Pairs>>, Diagnostic>;
+    let compare = |level: Level| -> Result<Compared, Diagnostic> {
         let mut chains = Vec::new();
         for chain in &sampler.check.chains {
             let mut values = Vec::new();
@@ -95,11 +100,13 @@ fn check_state(
                     .node
                     .as_ref()
                     .map_err(|e| s.origin.diagnostic(e.span, e.message.clone()))?;
-                values.push(
-                    sampler
-                        .eval_at(&state.symbols, node, &state.n, level)
-                        .map_err(|r| s.origin.diagnostic(r.span, r.message))?,
-                );
+                match sampler.eval_at(&state.symbols, node, &state.n, level) {
+                    Ok(v) => values.push(v),
+                    Err(r) if r.pointwise => {
+                        return Ok(Err(s.origin.diagnostic(r.span, r.message)))
+                    }
+                    Err(r) => return Err(s.origin.diagnostic(r.span, r.message)),
+                }
             }
             let links = values
                 .windows(2)
@@ -113,15 +120,21 @@ fn check_state(
                 .collect();
             chains.push(links);
         }
-        Ok(chains)
+        Ok(Ok(chains))
     };
     let residual = |p: &(Vec<char>, Vec<usize>, f64, f64)| relation_holds(relation, p.2, p.3).1;
     sampler.fine.reset();
-    let fine = compare(Level::Fine)?;
+    let fine = match compare(Level::Fine)? {
+        Ok(v) => v,
+        Err(undefined) => return Ok(Judged::Undefined(undefined)),
+    };
     let mut others: Vec<Vec<Vec<Pairs>>> = Vec::new();
     if sampler.fine.used() {
         sampler.coarse.reset();
-        let coarse = compare(Level::Coarse)?;
+        let coarse = match compare(Level::Coarse)? {
+            Ok(v) => v,
+            Err(undefined) => return Ok(Judged::Undefined(undefined)),
+        };
         let disagree = fine
             .iter()
             .flatten()
@@ -134,7 +147,10 @@ fn check_state(
         others.push(coarse);
         if disagree {
             sampler.arbiter.reset();
-            others.push(compare(Level::Arbiter)?);
+            match compare(Level::Arbiter)? {
+                Ok(v) => others.push(v),
+                Err(undefined) => return Ok(Judged::Undefined(undefined)),
+            }
         }
     }
     let own_error = sampler
@@ -254,6 +270,7 @@ fn sampled_evidence(
             .singular
             .as_ref()
             .map(|s| format!("|{}| < {SINGULAR_EPS:e}{why}", s.text)),
+        undefined: 0,
         domain: None,
         tolerance,
         search: None,
@@ -267,11 +284,13 @@ fn keep_worst(worst: &mut Vec<(f64, State)>, margin: f64, state: State) {
     worst.truncate(search::WORST_STARTS);
 }
 
-/// What sampling found: nothing, a violation, or a state it could not judge.
+/// What sampling found: nothing, a violation, a state it could not judge, or sides
+/// undefined on a set of positive measure (why, and the state).
 enum Found {
     Nothing,
     Violation(Box<State>, Counterexample),
     Unresolved(Unresolved, Point),
+    Undefined(Diagnostic, Point),
 }
 
 /// Random samples, then the adversarial search, inside `extra` (a conditional
@@ -285,20 +304,40 @@ fn sample_and_search(
 ) -> Result<(Found, Option<SearchEvidence>), Diagnostic> {
     let mut worst = Vec::new();
     for _ in 0..sampler.sampling.samples {
-        let state = sampler.next(extra, &mut tally.excluded)?;
+        let mut state = sampler.next(extra, &mut tally.excluded)?;
         let mut margin = f64::NEG_INFINITY;
-        let judged = check_state(
+        let mut judged = check_state(
             sampler,
             &state,
             relation,
             &mut margin,
             &mut tally.quadrature,
         )?;
+        // Undefined at a random state: on a set of measure zero (a zero of a divisor)
+        // when a state next to it is defined, which then takes its place; else on a
+        // set of positive measure, and the claim is not decided.
+        if let Judged::Undefined(why) = judged {
+            let mut moved = None;
+            for near in search::nearby(sampler, &state, extra)? {
+                let mut m = f64::NEG_INFINITY;
+                let j = check_state(sampler, &near, relation, &mut m, &mut tally.quadrature)?;
+                if !matches!(j, Judged::Undefined(_)) {
+                    moved = Some((near, j, m));
+                    break;
+                }
+            }
+            let Some((near, j, m)) = moved else {
+                return Ok((Found::Undefined(why, sampler.describe(&state)), None));
+            };
+            tally.undefined += 1;
+            (state, judged, margin) = (near, j, m);
+        }
         tally.largest = tally.largest.max(margin);
         match judged {
             Judged::Satisfied => keep_worst(&mut worst, margin, state),
             Judged::Violated(cx) => return Ok((confirmed(sampler, state, relation, cx), None)),
             Judged::Unresolved(why, at) => return Ok((Found::Unresolved(why, at), None)),
+            Judged::Undefined(_) => unreachable!("stepped off above"),
         }
     }
     let check = sampler.check;
@@ -314,6 +353,7 @@ fn sample_and_search(
     let budget = search::EVALUATIONS_PER_SAMPLE * sampler.sampling.samples;
     let mut unresolved = None;
     let mut quadrature = tally.quadrature;
+    let mut undefined = 0;
     let result = search::worst_case(
         sampler,
         &starts,
@@ -329,11 +369,18 @@ fn sample_and_search(
                     unresolved = Some((why, at));
                     true
                 }
+                // Undefined here: the search does not move here (it steps off).
+                Judged::Undefined(_) => {
+                    undefined += 1;
+                    m = f64::NEG_INFINITY;
+                    false
+                }
             };
             Ok((!stop).then_some(m))
         },
     )?;
     tally.quadrature = quadrature;
+    tally.undefined += undefined;
     let evidence = SearchEvidence {
         starts: result.starts,
         evaluations: result.evaluations,
@@ -356,6 +403,7 @@ fn sample_and_search(
                     confirmed(sampler, state, relation, cx)
                 }
                 Judged::Unresolved(why, at) => Found::Unresolved(why, at),
+                Judged::Undefined(why) => Found::Undefined(why, sampler.describe(&state)),
                 Judged::Satisfied => Found::Nothing,
             }
         }
@@ -386,6 +434,8 @@ fn confirmed(
 struct Tally {
     largest: f64,
     excluded: usize,
+    /// States where the sides are undefined on a set of measure zero, stepped off.
+    undefined: usize,
     /// The largest relative error estimate of a comparison through adaptive averages
     /// (0 when there were none).
     quadrature: f64,
@@ -396,6 +446,7 @@ impl Tally {
         Tally {
             largest: f64::NEG_INFINITY,
             excluded: 0,
+            undefined: 0,
             quadrature: 0.0,
         }
     }
@@ -436,6 +487,7 @@ pub fn decide_numeric(
         NumericEvidence {
             domain,
             search,
+            undefined: tally.undefined,
             ..sampled_evidence(
                 sampling,
                 tally.largest,
@@ -458,6 +510,16 @@ pub fn decide_numeric(
         }
         Found::Unresolved(why, at) => {
             return Ok(undecided(Finding::Unresolved { why, at }, &tally, search))
+        }
+        // Nothing was measured: no sampled evidence to show.
+        Found::Undefined(why, point) => {
+            return Ok(
+                Outcome::undecided(Method::Numeric, 0).with_finding(Finding::Undefined {
+                    what: why.message.clone(),
+                    at: format!("{}:{}:{}", why.path, why.line, why.col),
+                    point,
+                }),
+            );
         }
         Found::Violation(state, cx) => (state, cx),
     };
@@ -507,6 +569,13 @@ pub fn decide_numeric(
             inside_search,
         )
         .with_counterexample(cx)),
+        Found::Undefined(why, point) => Ok(Outcome::undecided(Method::Numeric, 0)
+            .with_finding(Finding::Undefined {
+                what: why.message.clone(),
+                at: format!("{}:{}:{}", why.path, why.line, why.col),
+                point,
+            })
+            .with_counterexample(cx)),
         Found::Nothing => Ok(
             Outcome::conditional(Method::Numeric, 2 * sampling.samples, None)
                 .with_counterexample(cx)
@@ -568,7 +637,24 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String>
     }
     let in_wrt = |c: &Component| wrt.contains(&c.0);
     let mut tied = Vec::new();
-    for (d, terms, constant) in p.dependents() {
+    for dependent in p.dependents() {
+        let (d, terms, constant) = (dependent.component, &dependent.terms, dependent.constant);
+        // A product of parameters moves with no free component of the derivative, or
+        // would make the tie nonlinear.
+        if let Some((f, _)) = dependent
+            .products
+            .iter()
+            .flat_map(|(p, _)| p.iter())
+            .find(|(f, _)| free.contains(f))
+        {
+            return Err(format!(
+                "`{}` depends on a power or product of `{}` through the assumptions; \
+                 derivatives with respect to `{}` are ambiguous",
+                component_name(&d.0, &d.1),
+                component_name(&f.0, &f.1),
+                f.0
+            ));
+        }
         let touches = terms.iter().any(|(f, _)| free.contains(f));
         if !in_wrt(d) && !touches {
             continue;
@@ -587,7 +673,7 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String>
             ));
         }
         let mut linear = Vec::new();
-        for (f, q) in terms {
+        for (f, q) in terms.iter().copied() {
             let Some(k) = free.iter().position(|c| c == f) else {
                 return Err(format!(
                     "`{}` is tied to `{}`, which is not a variable of the derivative; derivatives with \

@@ -281,6 +281,10 @@ pub struct NumericEvidence {
     /// Samples excluded because they lie on the singular set.
     pub excluded: usize,
     pub exclusion: Option<String>,
+    /// States (random or of the search) where a side was undefined only on a set of
+    /// measure zero (a zero of a divisor), stepped off.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub undefined: usize,
     /// The domain on which a conditional statement holds.
     pub domain: Option<String>,
     pub tolerance: String,
@@ -315,4 +319,8 @@ pub struct SearchEvidence {
     pub worst_margin: f64,
     /// Where it was found.
     pub at: BTreeMap<String, String>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }

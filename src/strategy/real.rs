@@ -10,7 +10,7 @@
 //! [`super::quadrature`]); `maxn(…)` maximises over the normal's angle in the
 //! plane by a dense grid refined by golden-section search (see [`MAXN_GRID`]).
 
-use super::assume::Parametrisation;
+use super::assume::{product_value, Component, Parametrisation};
 use super::quadrature::{Level, Quadrature};
 use super::taylor::{self, TaylorFields};
 use super::variation::{self, Perturbation};
@@ -45,12 +45,26 @@ pub const MAX_NESTED_DIFFERENCES: usize = 4;
 pub struct RealError {
     pub span: Span,
     pub message: String,
+    /// The expression has no value at this state only (a divisor zero, a function
+    /// outside its domain, a derivative that does not exist): a sampled claim steps off
+    /// such a state. Otherwise the expression cannot be evaluated at all.
+    pub pointwise: bool,
 }
 
 fn err(node: &Node, message: impl Into<String>) -> RealError {
     RealError {
         span: node.span,
         message: message.into(),
+        pointwise: false,
+    }
+}
+
+/// The expression at `node` has no value at this state (see [`RealError::pointwise`]).
+pub(super) fn undefined(span: Span, message: impl Into<String>) -> RealError {
+    RealError {
+        span,
+        message: message.into(),
+        pointwise: true,
     }
 }
 
@@ -223,7 +237,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
         for k in 0..MAXN_GRID {
             let v = f(k as f64 * h)?;
             if !v.is_finite() {
-                return Err(err(node, "maxn(…): the argument is not finite"));
+                return Err(undefined(node.span, "maxn(…): the argument is not finite"));
             }
             grid.push(v);
         }
@@ -255,28 +269,42 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
         n: &[f64],
     ) -> Result<(), RealError> {
         self.memo.borrow_mut().clear();
+        let symbols = &self.symbols;
         if let Some(fields) = &mut self.fields {
             // A component tied to others is tied as a function of the position.
-            for ((symbol, idx), terms, constant) in parametrisation.dependents() {
+            // A product of parameters (never fields) is a constant in space.
+            for d in parametrisation.dependents() {
+                let (symbol, idx) = d.component;
                 if self.decls.fields.contains_key(symbol) {
-                    let terms: Vec<_> = terms
+                    let terms: Vec<_> = d
+                        .terms
                         .iter()
                         .map(|((s, i), q)| ((s.clone(), i.clone()), q.to_f64()))
                         .collect();
-                    fields.tie((symbol, idx), &terms, constant.to_f64());
+                    let products = d.products.iter().fold(0.0, |acc, (p, q)| {
+                        let at =
+                            |(s, i): &Component| symbols.get(s).map_or(f64::NAN, |t| t.get(i).re());
+                        acc + q.to_f64() * product_value(p, 1.0, at)
+                    });
+                    fields.tie((symbol, idx), &terms, d.constant.to_f64() + products);
                 }
             }
         }
-        for ((symbol, idx), terms, constant) in parametrisation.dependents() {
-            let value = terms
+        for d in parametrisation.dependents() {
+            let at = |(s, i): &Component| {
+                self.symbols
+                    .get(s)
+                    .map_or_else(|| T::from(f64::NAN), |t| t.get(i).clone())
+            };
+            let linear = d.terms.iter().map(|(c, q)| at(c) * q.to_f64());
+            let products = d
+                .products
                 .iter()
-                .fold(T::from(constant.to_f64()), |acc, ((s, i), q)| {
-                    let x = self
-                        .symbols
-                        .get(s)
-                        .map_or_else(|| T::from(f64::NAN), |t| t.get(i).clone());
-                    acc + x * q.to_f64()
-                });
+                .map(|(p, q)| product_value(p, T::from(1.0), at) * q.to_f64());
+            let value = linear
+                .chain(products)
+                .fold(T::from(d.constant.to_f64()), |acc, x| acc + x);
+            let (symbol, idx) = d.component;
             if let Some(t) = self.symbols.get_mut(symbol) {
                 *t.get_mut(idx) = value;
             }
@@ -479,7 +507,7 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
 
     fn divide(&mut self, x: T, den: &T, divisor: &Node) -> Result<T, RealError> {
         if den.re() == 0.0 {
-            return Err(err(divisor, "division by zero"));
+            return Err(undefined(divisor.span, "division by zero"));
         }
         Ok(x / den.clone())
     }
@@ -489,11 +517,11 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     }
 
     fn apply(&mut self, f: Func, x: T, node: &Node) -> Result<T, RealError> {
-        elementary(f, x).map_err(|m| err(node, m))
+        elementary(f, x).map_err(|m| undefined(node.span, m))
     }
 
     fn apply2(&mut self, f: Func2, x: T, y: T, node: &Node) -> Result<T, RealError> {
-        elementary2(f, x, y).map_err(|m| err(node, m))
+        elementary2(f, x, y).map_err(|m| undefined(node.span, m))
     }
 
     fn pi(&mut self, _node: &Node) -> Result<T, RealError> {
@@ -631,8 +659,8 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
             // A derivative that is not finite does not exist here (√ at 0, a kink): an
             // error at this sample, never a value that a comparison could call false.
             if c.re.is_finite() && g.iter().any(|x| !x.is_finite()) {
-                return Err(err(
-                    node,
+                return Err(undefined(
+                    node.span,
                     format!("grad(…) does not exist at this sample: a derivative by `{symbol}` is not finite (exclude the set with `singular`)"),
                 ));
             }
@@ -655,7 +683,7 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     }
 
     fn singular(&mut self, node: &Node) -> RealError {
-        err(node, "singular matrix: its determinant is 0 here")
+        undefined(node.span, "singular matrix: its determinant is 0 here")
     }
 }
 

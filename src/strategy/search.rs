@@ -171,6 +171,43 @@ fn to_state(
     sampler.complete(symbols, n)
 }
 
+/// States tried near a state where the sides are undefined, and how far each
+/// coordinate moves (a fraction of its range).
+const NEARBY: usize = 3;
+const NEARBY_STEP: f64 = 1e-6;
+
+/// Up to [`NEARBY`] states near `state`: every free coordinate moved by a random
+/// fraction of [`NEARBY_STEP`] of its range (a range of one value stays put), inside the
+/// hypotheses and off the singular set. Sides undefined at `state` but defined at one
+/// of them are undefined there only on a set of measure zero (a zero of a divisor).
+pub(super) fn nearby(
+    sampler: &mut Sampler<'_>,
+    state: &State,
+    extra: &[Constraint],
+) -> Result<Vec<State>, Diagnostic> {
+    let coords = coordinates(sampler, &None);
+    let x = to_vec(&coords, state);
+    let mut out = Vec::new();
+    for _ in 0..NEARBY {
+        let y: Vec<f64> = coords
+            .iter()
+            .zip(&x)
+            .map(|(c, &v)| {
+                let (lo, hi) = c.bounds();
+                (v + NEARBY_STEP * (hi - lo) * sampler.rng.uniform()).clamp(lo, hi)
+            })
+            .collect();
+        let s = to_state(sampler, &coords, state, &y)?;
+        if sampler.satisfies(&s, &sampler.sampling.given)?
+            && sampler.satisfies(&s, extra)?
+            && !sampler.singular(&s)?
+        {
+            out.push(s);
+        }
+    }
+    Ok(out)
+}
+
 /// Searches for the state of largest `margin` (positive: the statement is violated),
 /// starting from `worst` (the worst random samples) and from the centre and corners of
 /// the sampled box, within `budget` evaluations in all. `margin` answers `None` when the

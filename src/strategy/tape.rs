@@ -301,19 +301,16 @@ impl Tape {
                 Op::Neg(a) => -v[a].clone(),
                 Op::Div(a, b, span) => {
                     if v[b].re() == 0.0 {
-                        return Err(RealError {
-                            span,
-                            message: "division by zero".into(),
-                        });
+                        return Err(super::real::undefined(span, "division by zero"));
                     }
                     v[a].clone() / &v[b]
                 }
                 Op::Powi(a, k) => v[a].powi(k),
                 Op::Apply(f, a, span) => super::real::elementary(f, v[a].clone())
-                    .map_err(|message| RealError { span, message })?,
+                    .map_err(|message| super::real::undefined(span, message))?,
                 Op::Apply2(f, a, b, span) => {
                     super::real::elementary2(f, v[a].clone(), v[b].clone())
-                        .map_err(|message| RealError { span, message })?
+                        .map_err(|message| super::real::undefined(span, message))?
                 }
                 Op::MaxN(k, span) => self.maxn[k].max_over_angle(inputs, n, span, quad)?,
                 Op::Avg(k, c) => {
@@ -463,10 +460,10 @@ impl Tape {
         for k in 0..MAXN_GRID {
             let v = f(k as f64 * h)?;
             if !v.is_finite() {
-                return Err(RealError {
+                return Err(super::real::undefined(
                     span,
-                    message: "maxn(…): the argument is not finite".into(),
-                });
+                    "maxn(…): the argument is not finite",
+                ));
             }
             grid.push(v);
         }

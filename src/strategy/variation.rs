@@ -123,6 +123,7 @@ pub fn variations<T: DualNum<Primitive = f64>>(
     let fail = |m: &str| RealError {
         span: node.span,
         message: m.to_owned(),
+        pointwise: false,
     };
     if env.fields.is_none() {
         return Err(fail(
