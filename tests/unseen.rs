@@ -71,3 +71,11 @@ fn component_assumptions_polynomial_in_parameters_are_solved() {
 fn divisors_that_vanish_on_thin_sets_are_stepped_off_claim_by_claim() {
     assert_eq!(as_declared_for_every_seed("undefined-on-thin-sets"), 7);
 }
+
+#[test]
+fn a_wrong_limit_is_refuted_at_generic_parameters() {
+    assert_eq!(
+        as_declared_for_every_seed("limits-at-generic-parameters"),
+        6
+    );
+}

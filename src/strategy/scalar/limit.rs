@@ -121,6 +121,11 @@ fn describe(l: &Limit, cx: &Context<'_>) -> String {
     }
 }
 
+/// Points of the other parameters tried for a refutation: small integers, then
+/// seeded random rationals of the box.
+const SIMPLE_POINTS: usize = 8;
+const RANDOM_POINTS: usize = 16;
+
 /// The refutation of a stated limit at a rational point of the other parameters where
 /// the found limit differs from it.
 fn refutation(
@@ -134,14 +139,28 @@ fn refutation(
     let Some(found) = found else {
         return Outcome::undecided(Method::RationalFunction, 0);
     };
-    let others: Vec<Var> = f.variables().into_iter().filter(|w| *w != v).collect();
-    // Try a few points of the box; keep the first where both limits are defined and differ.
-    for k in 0..8 {
+    // The other parameters of the function and of the stated limit.
+    let mut others: Vec<Var> = f.variables();
+    others.extend(claimed.map(Exact::variables).unwrap_or_default());
+    others.sort_unstable();
+    others.dedup();
+    others.retain(|w| *w != v);
+    // Try a few points of the box; keep the first where both limits are defined and
+    // differ. Small integers first (they read best; distinct for distinct parameters),
+    // then seeded random rationals: a nonzero polynomial difference vanishes at almost
+    // none of those.
+    let mut rng = super::sample::Rng::new(cx.seed, 0x11_3175);
+    for k in 0..SIMPLE_POINTS + RANDOM_POINTS {
         let point: BTreeMap<Var, Rational> = others
             .iter()
-            .map(|&w| {
+            .enumerate()
+            .map(|(j, &w)| {
                 let i = cx.interval(w);
-                let base = Rational::int(1 + k);
+                if k >= SIMPLE_POINTS {
+                    return (w, rng.draw(&i));
+                }
+                // Distinct values for distinct parameters.
+                let base = Rational::int(1 + (k + j) as i64);
                 let x = if i.contains(&base) {
                     base
                 } else {

@@ -26,9 +26,14 @@ pub(super) enum Sampled {
 }
 
 /// Exact sample points from the exact route's generator: the same seed, the same points.
-struct Rng(SplitMix);
+pub(super) struct Rng(SplitMix);
 
 impl Rng {
+    /// The generator of a claim's `seed`, for the purpose `salt`.
+    pub(super) fn new(seed: u64, salt: u64) -> Self {
+        Rng(SplitMix(seed ^ salt))
+    }
+
     fn next(&mut self) -> u64 {
         self.0.next()
     }
@@ -46,7 +51,7 @@ impl Rng {
     }
 
     /// A rational point of `i`; one time in sixteen a closed end itself.
-    fn draw(&mut self, i: &Interval) -> Rational {
+    pub(super) fn draw(&mut self, i: &Interval) -> Rational {
         if self.next().is_multiple_of(16) {
             let ends: Vec<&Rational> = [&i.lo, &i.hi]
                 .into_iter()
@@ -91,7 +96,7 @@ pub(super) fn search(
     want: Sign,
 ) -> Result<Sampled, TimeUp> {
     let bx = cx.box_on(vars);
-    let mut rng = Rng(SplitMix(cx.seed ^ 0x5CA1_AB1E));
+    let mut rng = Rng::new(cx.seed, 0x5CA1_AB1E);
     let mut excluded = 0;
     let mut kept: Vec<(Rational, BTreeMap<Var, Rational>, Rational)> = Vec::new();
     // Simple points first (small integers and halves inside the box, every
