@@ -79,3 +79,8 @@ fn a_wrong_limit_is_refuted_at_generic_parameters() {
         6
     );
 }
+
+#[test]
+fn implications_broken_next_to_a_hypothesis_boundary_fail() {
+    assert_eq!(as_declared_for_every_seed("implications"), 4);
+}

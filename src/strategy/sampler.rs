@@ -286,16 +286,29 @@ impl<'a> Sampler<'a> {
     /// adaptive averages must hold with the averages' error bound to spare, so that
     /// their error cannot put a state inside a hypothesis it violates.
     pub(super) fn satisfies(&self, state: &State, cs: &[Constraint]) -> Result<bool, Diagnostic> {
+        Ok(self.slack(state, cs)?.is_some())
+    }
+
+    /// How far inside the hypotheses `cs` the state is: the smallest relative spare of
+    /// any (infinite when there are none), or `None` when one is violated (as
+    /// [`Sampler::satisfies`] judges).
+    pub(super) fn slack(
+        &self,
+        state: &State,
+        cs: &[Constraint],
+    ) -> Result<Option<f64>, Diagnostic> {
+        let mut least = f64::INFINITY;
         for c in cs {
             self.fine.reset();
             let (l, r) = (self.scalar(state, &c.lhs)?, self.scalar(state, &c.rhs)?);
             let (ok, residual) = relation_holds(c.relation, l, r);
             let spare = self.adaptive_error(l, r);
             if !ok || residual + spare > TOL {
-                return Ok(false);
+                return Ok(None);
             }
+            least = least.min(-(residual + spare));
         }
-        Ok(true)
+        Ok(Some(least))
     }
 
     /// Whether the state lies on the singular set (within the error bound of any

@@ -31,6 +31,11 @@ pub const EVALUATIONS_PER_SAMPLE: usize = 3;
 /// set, cancellation of large terms) just above the sampling tolerance; a genuine
 /// violation stands far above it.
 pub const SEARCH_CONFIRM: f64 = 1e-6;
+/// Starts on the boundary of the hypotheses (when there are any), the random draws
+/// tried for a state outside them, and the bisection steps towards the boundary.
+const BOUNDARY_STARTS: usize = 3;
+const BOUNDARY_DRAWS: usize = 16;
+const BISECTIONS: usize = 40;
 /// Initial step, as a fraction of each coordinate's range.
 const FIRST_STEP: f64 = 0.25;
 /// The search from one start ends when the step falls below this fraction.
@@ -171,6 +176,23 @@ fn to_state(
     sampler.complete(symbols, n)
 }
 
+/// What the search maximises at a state: the margin, and on a tie the slack of the
+/// hypotheses, so that a step that moves away from a hypothesis' boundary without
+/// changing the margin is taken. Violations that fill a thin region along a boundary
+/// (an implication "F ≤ 0 ⇒ …" broken only where F is close to its bound) are reached
+/// by such steps alternating with steps that raise the margin up to the boundary.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Value {
+    margin: f64,
+    slack: f64,
+}
+
+impl Value {
+    fn better_than(&self, other: &Value) -> bool {
+        self.margin > other.margin || (self.margin == other.margin && self.slack > other.slack)
+    }
+}
+
 /// States tried near a state where the sides are undefined, and how far each
 /// coordinate moves (a fraction of its range).
 const NEARBY: usize = 3;
@@ -260,6 +282,38 @@ pub(super) fn worst_case(
         let rng = &mut sampler.rng;
         starts.push(corner(&mut |_| Some(rng.uniform() >= 0.0)));
     }
+    // Points on the boundary of the hypotheses, by bisection between a worst sample and
+    // a random state outside them: a violation that fills a thin region along a
+    // boundary is reached from there (see [`Value`]).
+    let given = &sampler.sampling.given;
+    if !given.is_empty() || !extra.is_empty() {
+        for b in 0..BOUNDARY_STARTS {
+            let mut outside = None;
+            for _ in 0..BOUNDARY_DRAWS {
+                let s = sampler.draw()?;
+                if !(sampler.satisfies(&s, given)? && sampler.satisfies(&s, extra)?) {
+                    outside = Some(to_vec(&coords, &s));
+                    break;
+                }
+            }
+            let Some(mut out) = outside else { break };
+            let mut inside = to_vec(&coords, &worst[b % worst.len()]);
+            for _ in 0..BISECTIONS {
+                let mid: Vec<f64> = inside
+                    .iter()
+                    .zip(&out)
+                    .map(|(a, c)| 0.5 * (a + c))
+                    .collect();
+                let state = to_state(sampler, &coords, &template, &mid)?;
+                if sampler.satisfies(&state, given)? && sampler.satisfies(&state, extra)? {
+                    inside = mid;
+                } else {
+                    out = mid;
+                }
+            }
+            starts.push(inside);
+        }
+    }
     let per_start = budget / starts.len().max(1);
     let sampler = &*sampler;
     // The points visited, by the bits of their coordinates: a pattern search steps back
@@ -267,10 +321,10 @@ pub(super) fn worst_case(
     // evaluation, as it did when it was computed again; its margin is the one already
     // found (the margin is a function of the state, and what it records — quadrature
     // accuracy — is a maximum), and it cannot raise the worst margin found so far.
-    let mut seen: HashMap<Vec<u64>, Option<f64>> = HashMap::default();
-    // A state inside the hypotheses and off the singular set, with its margin; `None`
-    // for a point the search may not visit.
-    let mut visit = |x: &[f64], result: &mut SearchResult| -> Result<Option<f64>, Diagnostic> {
+    let mut seen: HashMap<Vec<u64>, Option<Value>> = HashMap::default();
+    // A state inside the hypotheses and off the singular set, with its margin and the
+    // hypotheses' slack; `None` for a point the search may not visit.
+    let mut visit = |x: &[f64], result: &mut SearchResult| -> Result<Option<Value>, Diagnostic> {
         sampler.time_left()?;
         super::watch::progress("search", result.evaluations, budget);
         let key: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
@@ -281,13 +335,16 @@ pub(super) fn worst_case(
             return Ok(known);
         }
         let state = to_state(sampler, &coords, &template, x)?;
-        if !sampler.satisfies(&state, &sampler.sampling.given)?
-            || !sampler.satisfies(&state, extra)?
-            || sampler.singular(&state)?
-        {
-            seen.insert(key, None);
-            return Ok(None);
-        }
+        let slack = match (
+            sampler.slack(&state, &sampler.sampling.given)?,
+            sampler.slack(&state, extra)?,
+        ) {
+            (Some(a), Some(b)) if !sampler.singular(&state)? => a.min(b),
+            _ => {
+                seen.insert(key, None);
+                return Ok(None);
+            }
+        };
         result.evaluations += 1;
         let m = margin(sampler, &state)?;
         let value = m.unwrap_or(f64::INFINITY);
@@ -295,6 +352,10 @@ pub(super) fn worst_case(
             result.worst = value;
             result.worst_state = Some(state.clone());
         }
+        let value = Value {
+            margin: value,
+            slack,
+        };
         match m {
             // The search stops here: never revisited.
             None => result.violation = Some(state),
@@ -329,7 +390,7 @@ pub(super) fn worst_case(
                         continue;
                     }
                     if let Some(fy) = visit(&y, &mut result)? {
-                        if fy > f {
+                        if fy.better_than(&f) {
                             (x, f, improved) = (y, fy, true);
                             break;
                         }
