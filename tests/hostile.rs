@@ -221,3 +221,24 @@ fn nested_derivatives_past_four_are_not_taken_by_central_differences() {
     let finding = format!("{:?}", got[0].finding);
     assert!(finding.contains("nested derivatives"), "{finding}");
 }
+
+/// A proportionality whose factor reads a parameter the box fixes: "where the factor
+/// ≠ 0" could be empty (G b_i ∝ b_i on G = 0 is false), so the kernel proves nothing.
+#[test]
+fn a_factor_of_a_parameter_the_box_fixes_proves_nothing() {
+    for (given, left) in [
+        ("[\"G >= 0\", \"G <= 0\"]", "G b_i"),
+        ("[\"G >= 1\", \"G <= 1\"]", "(G - 1) b_i"),
+    ] {
+        let text = format!(
+            "{HEAD}tensors = [\"b_i\"]\nscalars = [\"G\"]\n\n[[claim]]\nid = \"pinned\"\nprinted = 'x'\nexpect = \"fails\"\nreason = \"false on the box\"\nstrategy = \"proportional\"\ngiven = {given}\nsides = [\"{left}\", \"b_i\"]\n"
+        );
+        let o = &outcomes_of(&text)[0];
+        assert_ne!(
+            o.verdict(),
+            Verdict::Holds,
+            "{}",
+            cosserat_check::report::evidence(o)
+        );
+    }
+}

@@ -198,6 +198,16 @@ const FORGED: &[(&str, &str, &str)] = &[
         "a law times -G refuted by ratios at G = 3 and G = -1 (the factor may depend on G)",
     ),
     (
+        "assumption-fixes-a-coordinate",
+        "fixed-coordinate",
+        "d(x_1 x_1)/dx_1 = 0 under x_1 = 1: the coordinate fixed before differentiating",
+    ),
+    (
+        "factor-on-a-box-that-fixes-it",
+        "degenerate-box",
+        "G b_i = G · b_i on the box G = 0, where no nonzero factor exists",
+    ),
+    (
         "factor-reads-a-field",
         "heat-conduction-times-the-field",
         "-k T_,ii = λ T T_,ii with λ = -k/T: a factor that reads the field T",

@@ -592,11 +592,23 @@ fn factor_of(
         Factor::Constant(q) if q.is_zero() => Err(Rejection::False("a zero factor".into())),
         Factor::Constant(q) => Ok((Frac::constant(q.clone()), Vec::new())),
         Factor::Function { num, den } => {
+            // Each parameter it reads ranges over an open interval of the box, so that
+            // the factor (a nonzero function) is nonzero on a dense part of the box: a
+            // box that fixes one could make "where the factor ≠ 0" empty.
             let params = parameters(ctx);
             for (name, _) in num.iter().chain(den).flat_map(|(m, _)| m) {
                 if !params.contains(&name.as_str()) || env.substituted_or_eliminated(name) {
                     return Err(Rejection::Mismatch(format!(
                         "the factor reads `{name}`, which is not a free parameter"
+                    )));
+                }
+                if ctx
+                    .given
+                    .iter()
+                    .any(|(n, i)| n == name && !i.has_interior())
+                {
+                    return Err(Rejection::Mismatch(format!(
+                        "the factor reads `{name}`, which the box fixes: write it as an assumption"
                     )));
                 }
             }

@@ -475,6 +475,12 @@ impl<'c> Env<'c> {
                 Equation::Symmetric(s) | Equation::Antisymmetric(s) | Equation::Traceless(s) => s,
                 Equation::Component { symbol, .. } | Equation::Equals { symbol, .. } => symbol,
             };
+            if self.ctx.position.as_deref() == Some(symbol.as_str()) {
+                return Err(EvalError::IllFormed(
+                    "an assumption constrains the position, whose coordinates are independent"
+                        .into(),
+                ));
+            }
             self.assumed.insert(symbol.clone());
             let rank = self.rank(symbol)?;
             let var = |env: &mut Self, idx: &[usize]| Poly::var(env.component_var(symbol, idx));
@@ -532,8 +538,11 @@ impl<'c> Env<'c> {
         }
         self.mentions_of_equations(&equations)?;
         // Components are the variables that are components of declared symbols.
+        // A coordinate of the position is never eliminated: it is the independent
+        // variable of every derivative.
         let is_component = |env: &Self, v: Var| {
             !env.normal.contains(&v)
+                && !matches!(env.varying.get(&v), Some(Varying::Coordinate(_)))
                 && !matches!(env.varying.get(&v), Some(Varying::Jet { orders, .. }) if !orders.is_empty())
         };
         let mut values: BTreeMap<Var, Poly> = BTreeMap::new();

@@ -391,6 +391,14 @@ impl Parametrisation {
 /// The equations an assumption contributes, or that it substitutes a whole symbol.
 fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, Diagnostic> {
     let d = decls.dim;
+    if decls.position.as_deref() == Some(a.kind.symbol()) {
+        return Err(a
+            .diagnostic(format!(
+                "`{}` is the position: its coordinates are the independent variables of every derivative",
+                a.kind.symbol()
+            ))
+            .with_help("constrain the fields instead (u_i = A_ij x_j), or use a scalar"));
+    }
     let var = |env: &mut ExactEnv<'_>, s: &str, idx: &[usize]| env.component(s, idx);
     Ok(match &a.kind {
         AssumptionKind::Traceless { symbol } => {

@@ -363,11 +363,17 @@ impl<'a> ExactEnv<'a> {
         out
     }
 
-    /// Whether `v` is a component of a declared symbol: not the normal, and not a
-    /// derivative of a field (`phi_,i` in a potential `u_i = phi_,i`).
+    /// Whether `v` is a component of a declared symbol that an assumption may relate:
+    /// not the normal, not a coordinate of the position (an independent variable of
+    /// every derivative), and not a derivative of a field (`phi_,i` in a potential
+    /// `u_i = phi_,i`).
     fn is_component(&self, v: &Var) -> bool {
         !self.normal.contains(v)
-            && !matches!(self.varying.get(v), Some(Varying::Jet { orders, .. }) if !orders.is_empty())
+            && match self.varying.get(v) {
+                Some(Varying::Coordinate(_)) => false,
+                Some(Varying::Jet { orders, .. }) => orders.is_empty(),
+                None => true,
+            }
     }
 
     /// Whether `q` is affine in the components with rational coefficients: no products,

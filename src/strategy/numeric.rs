@@ -101,6 +101,15 @@ fn check_state(
                     .as_ref()
                     .map_err(|e| s.origin.diagnostic(e.span, e.message.clone()))?;
                 match sampler.eval_at(&state.symbols, node, &state.n, level) {
+                    // A value that is not finite (an overflow, inf − inf) is no value
+                    // of the expression in floating point: the state is stepped off like
+                    // one where the side is undefined, never a counterexample.
+                    Ok(v) if v.1.components().iter().any(|x: &f64| !x.is_finite()) => {
+                        return Ok(Err(s.origin.diagnostic(
+                            node.span,
+                            "the value is not finite in floating point here (an overflow)",
+                        )))
+                    }
                     Ok(v) => values.push(v),
                     Err(r) if r.pointwise => {
                         return Ok(Err(s.origin.diagnostic(r.span, r.message)))

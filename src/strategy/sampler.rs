@@ -23,6 +23,8 @@ use std::rc::Rc;
 pub const SINGULAR_EPS: f64 = 1e-8;
 /// Draws allowed per accepted sample before the hypotheses are judged too narrow.
 const MAX_DRAWS_PER_SAMPLE: usize = 100;
+/// Rounding allowed at the ends of a declared range (relative).
+const RANGE_TOL: f64 = 1e-12;
 
 /// One random state: every symbol's components (after the assumptions) and a normal.
 #[derive(Clone, Debug)]
@@ -192,6 +194,27 @@ impl<'a> Sampler<'a> {
             .get(symbol)
             .copied()
             .unwrap_or((-1.0, 1.0))
+    }
+
+    /// Whether every component of a symbol with a declared range that the assumptions
+    /// compute from others (`s` in `C_11 = t^2`, `C_11 = s`) lies in it, as the drawn
+    /// ones do: a range says where the symbol's values lie, so a state that puts a
+    /// computed component outside it is no state of the claim. (A component fixed to a
+    /// constant is the assumption's business, not the range's.)
+    pub(super) fn in_ranges(&self, state: &State) -> bool {
+        use super::assume::Constrained;
+        let d = self.decls.dim;
+        self.sampling.ranges.iter().all(|(name, &(lo, hi))| {
+            let Some(t) = state.symbols.get(name) else {
+                return true;
+            };
+            let slack = |b: f64| RANGE_TOL * (1.0 + b.abs());
+            assignments(d, t.rank()).all(|idx| {
+                let x = *t.get(&idx);
+                self.parametrisation.constrained(name, &idx) != Constrained::Dependent
+                    || (lo - slack(lo) <= x && x <= hi + slack(hi))
+            })
+        })
     }
 
     pub(super) fn draw(&mut self) -> Result<State, Diagnostic> {
@@ -372,7 +395,10 @@ impl<'a> Sampler<'a> {
         super::watch::progress("samples", self.drawn, self.sampling.samples);
         for _ in 0..MAX_DRAWS_PER_SAMPLE {
             let s = self.draw()?;
-            if !self.satisfies(&s, &self.sampling.given)? || !self.satisfies(&s, extra)? {
+            if !self.in_ranges(&s)
+                || !self.satisfies(&s, &self.sampling.given)?
+                || !self.satisfies(&s, extra)?
+            {
                 continue;
             }
             if self.singular(&s)? {

@@ -220,7 +220,8 @@ pub(super) fn nearby(
             })
             .collect();
         let s = to_state(sampler, &coords, state, &y)?;
-        if sampler.satisfies(&s, &sampler.sampling.given)?
+        if sampler.in_ranges(&s)
+            && sampler.satisfies(&s, &sampler.sampling.given)?
             && sampler.satisfies(&s, extra)?
             && !sampler.singular(&s)?
         {
@@ -339,7 +340,9 @@ pub(super) fn worst_case(
             sampler.slack(&state, &sampler.sampling.given)?,
             sampler.slack(&state, extra)?,
         ) {
-            (Some(a), Some(b)) if !sampler.singular(&state)? => a.min(b),
+            (Some(a), Some(b)) if sampler.in_ranges(&state) && !sampler.singular(&state)? => {
+                a.min(b)
+            }
             _ => {
                 seen.insert(key, None);
                 return Ok(None);

@@ -179,7 +179,26 @@ pub(super) fn search(
             .zip(&simple)
             .map(|((v, _), c)| (*v, c[0].clone()))
             .collect();
-        let bases = std::iter::once(&simplest).chain(kept.iter().take(STARTS).map(|k| &k.1));
+        // The closest points rounded to the simplest rationals near them: a search that
+        // converged to an isolated rational zero (1/3, 2/7) lands next to it, not on it.
+        let rounded: Vec<BTreeMap<Var, Rational>> = kept
+            .iter()
+            .take(STARTS)
+            .map(|(_, p, _)| {
+                p.iter()
+                    .map(|(v, x)| {
+                        let eps = &Rational::ratio(1, 1 << 20).expect("nonzero")
+                            * &(&Rational::int(1) + &abs(x));
+                        let r = Rational::simplest_between(&(x - &eps), &(x + &eps));
+                        let inside = bx.iter().any(|(w, i)| w == v && i.contains(&r));
+                        (*v, if inside { r } else { x.clone() })
+                    })
+                    .collect()
+            })
+            .collect();
+        let bases = std::iter::once(&simplest)
+            .chain(rounded.iter())
+            .chain(kept.iter().take(STARTS).map(|k| &k.1));
         for start in bases {
             watch::check()?;
             if let Some(point) = zero_on_lines(g, &cleared, &bx, start, want) {
@@ -300,4 +319,12 @@ fn descend(
         .map(|(v, t)| (*v, Rational::from_f64_exact(*t).expect("finite")))
         .collect();
     (point, evaluations)
+}
+
+fn abs(x: &Rational) -> Rational {
+    if x.is_negative() {
+        -x.clone()
+    } else {
+        x.clone()
+    }
 }
