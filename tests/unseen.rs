@@ -84,3 +84,8 @@ fn a_wrong_limit_is_refuted_at_generic_parameters() {
 fn implications_broken_next_to_a_hypothesis_boundary_fail() {
     assert_eq!(as_declared_for_every_seed("implications"), 4);
 }
+
+#[test]
+fn fields_given_by_potentials_are_decided() {
+    assert_eq!(as_declared_for_every_seed("potentials"), 5);
+}
