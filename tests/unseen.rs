@@ -89,3 +89,11 @@ fn implications_broken_next_to_a_hypothesis_boundary_fail() {
 fn fields_given_by_potentials_are_decided() {
     assert_eq!(as_declared_for_every_seed("potentials"), 5);
 }
+
+#[test]
+fn roots_in_one_variable_times_a_factor_of_one_sign() {
+    assert_eq!(
+        as_declared_for_every_seed("roots-with-a-parameter-factor"),
+        4
+    );
+}

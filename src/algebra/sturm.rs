@@ -301,6 +301,36 @@ fn isolate_roots_within(
     Some(out)
 }
 
+/// `p = content · rest`: `content` free of `v`, `rest` a polynomial in `v` alone with
+/// rational coefficients (the coefficient of every power of `v` is a rational multiple
+/// of one polynomial); `None` otherwise. (The kernel checks its own split.)
+pub fn content_in(p: &Poly, v: Var) -> Option<(Poly, Poly)> {
+    use std::collections::BTreeMap;
+    let mut by_power: BTreeMap<i64, Poly> = BTreeMap::new();
+    for (m, c) in p.terms() {
+        let k = m.exponent(v);
+        if k < 0 {
+            return None;
+        }
+        by_power
+            .entry(k)
+            .or_default()
+            .add_term(m.without(v), c.clone());
+    }
+    let content = by_power.values().next()?.clone();
+    let (lead_m, lead_c) = content.leading()?;
+    let mut rest = Poly::zero();
+    for (k, a) in &by_power {
+        let (m, c) = a.leading()?;
+        let ratio = c.checked_div(lead_c)?;
+        if m != lead_m || a != &(&content * &Poly::constant(ratio.clone())) {
+            return None;
+        }
+        rest.add_term(crate::kernel::Monomial::var(v, *k), ratio);
+    }
+    Some((content, rest))
+}
+
 impl UniPoly {
     /// `p` on the line through `point` along `v`: every other variable replaced by its
     /// value there (a variable `point` leaves out is 0). `None` when a negative power

@@ -679,7 +679,6 @@ fn pairs_of(a: &Value, b: &Value, dim: usize) -> R<Vec<(Frac, Frac)>> {
     }
 }
 
-/// One component of one equality: the pair of fractions its sides have there.
 /// Whether two evaluations agree on every parameter both name (a parameter one of them
 /// leaves out does not enter its sides there).
 fn same_parameters(ctx: &super::statement::Context, a: &Evaluation, b: &Evaluation) -> bool {
@@ -709,6 +708,7 @@ fn equality_pairs(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<
     pairs_of(&a, &b, env.ctx_dim())
 }
 
+/// One component of one equality: the pair of fractions its sides have there.
 fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac, Frac)> {
     let chain = chains
         .get(e.chain)

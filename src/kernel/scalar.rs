@@ -200,7 +200,65 @@ fn univariate(f: &Frac, v: Var, box_: &[(Var, Interval)], env: &Env<'_>) -> R<(U
     // Both times v^m, so that no negative power of v is left (v = 0 is then a root of
     // the denominator: the function is undefined there, as it was).
     let (num, den, _) = lifted(&f, &den, v)?;
-    Ok((one(&num)?, one(&den)?, one(&conds)?))
+    // A factor free of v that keeps one strict sign on the box (μ in μ (x² − 1), with
+    // μ > 0) changes neither the roots in v nor, up to that sign, the sign of f: it is
+    // divided out, and its sign moves to the numerator.
+    let mut negative = false;
+    let mut part = |p: &Poly| -> R<Uni> {
+        if let Some(u) = Uni::of(p, v) {
+            return Ok(u);
+        }
+        let strict = |content: &Poly| {
+            [Sign::Positive, Sign::Negative].into_iter().find(|&s| {
+                by_coefficients(&Frac::from(content.clone()), box_, s, &env.vars).is_some()
+            })
+        };
+        match content_in(p, v) {
+            Some((content, u)) => match strict(&content) {
+                Some(s) => {
+                    negative ^= s == Sign::Negative;
+                    Ok(u)
+                }
+                None => one(p),
+            },
+            None => one(p),
+        }
+    };
+    let (n, d) = (part(&num)?, part(&den)?);
+    let n = if negative { n.negated() } else { n };
+    Ok((n, d, one(&conds)?))
+}
+
+/// `p = content · q(v)`: `content` free of `v`, and `q` a polynomial in `v` alone with
+/// rational coefficients (every power of `v` has a rational multiple of one polynomial
+/// as its coefficient); `None` otherwise.
+fn content_in(p: &Poly, v: Var) -> Option<(Poly, Uni)> {
+    let mut by_power: BTreeMap<super::poly::Exp, Poly> = BTreeMap::new();
+    for (m, c) in p.terms() {
+        let k = m.exponent(v);
+        if k < 0 {
+            return None;
+        }
+        by_power
+            .entry(k)
+            .or_default()
+            .add_term(m.without(v), c.clone());
+    }
+    let content = by_power.values().next()?.clone();
+    let (lead_m, lead_c) = content.leading()?;
+    let mut q = Poly::zero();
+    for (k, a) in &by_power {
+        let (m, c) = a.leading()?;
+        if m != lead_m {
+            return None;
+        }
+        let ratio = c.checked_div(lead_c)?;
+        if a != &(&content * &Poly::constant(ratio.clone())) {
+            return None;
+        }
+        q.add_term(super::poly::Monomial::var(v, *k), ratio);
+    }
+    Some((content, Uni::of(&q, v)?))
 }
 
 fn sign_of(x: &Rational) -> i32 {

@@ -44,6 +44,11 @@ impl Uni {
         self.0.is_empty()
     }
 
+    /// `−self`: the same roots, every sign flipped.
+    pub fn negated(&self) -> Uni {
+        Uni(self.0.iter().map(|c| -c.clone()).collect())
+    }
+
     fn degree(&self) -> usize {
         self.0.len().saturating_sub(1)
     }

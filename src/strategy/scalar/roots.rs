@@ -5,7 +5,7 @@
 
 use super::{Context, Stop};
 use crate::algebra::certificate::Certificate;
-use crate::algebra::sign::Real;
+use crate::algebra::sign::{Real, Sign};
 use crate::derivation::Expression;
 use crate::kernel::check::Fact;
 use crate::kernel::Rational;
@@ -39,16 +39,33 @@ pub(super) fn decide(
         }
     }
     let others: Vec<_> = f.variables().into_iter().filter(|w| *w != v).collect();
-    if !others.is_empty() {
-        evidence.points.push(format!(
-            "the function also depends on {}; roots are decided for functions of one parameter only",
-            others.iter().map(|w| cx.name(*w)).collect::<Vec<_>>().join(", ")
-        ));
-        return Ok(Outcome::undecided(Method::RationalFunction, 0)
-            .with_finding(Finding::RationalFunction(evidence)));
-    }
-    let i = cx.interval(v);
     let (num, den) = f.cleared();
+    // Other parameters only in a factor of one strict sign on the box (μ in
+    // μ (x² − 1), μ > 0): the roots are those of the rest.
+    let alone = |p: &crate::kernel::Poly| -> Option<crate::kernel::Poly> {
+        let (content, rest) = crate::algebra::sturm::content_in(p, v)?;
+        let bx = cx.box_on(&content.variables());
+        let c = crate::algebra::RatFunc::from_poly(&content);
+        [Sign::Positive, Sign::Negative]
+            .into_iter()
+            .any(|s| Certificate::sign_by_coefficients(&c, &bx, s, &cx.env.vars).is_some())
+            .then_some(rest)
+    };
+    let (num, den) =
+        match (others.is_empty(), alone(&num), alone(&den)) {
+            (true, _, _) => (num, den),
+            (false, Some(n), Some(d)) => (n, d),
+            _ => {
+                evidence.points.push(format!(
+                "the function also depends on {}, not only through a factor of one sign; roots \
+                 are decided for functions of one parameter only",
+                others.iter().map(|w| cx.name(*w)).collect::<Vec<_>>().join(", ")
+            ));
+                return Ok(Outcome::undecided(Method::RationalFunction, 0)
+                    .with_finding(Finding::RationalFunction(evidence)));
+            }
+        };
+    let i = cx.interval(v);
     let names = &cx.env.vars;
     let zeros = match Certificate::roots_exactly((&num, &den), v, &i, &stated, names) {
         Ok(_) => {
@@ -83,7 +100,8 @@ pub(super) fn decide(
         if zeros.contains(&Real::Exact(r.clone())) {
             continue;
         }
-        let point = BTreeMap::from([(v, r.clone())]);
+        // Other parameters (a factor of one sign) inside the box.
+        let point = cx.complete(&BTreeMap::from([(v, r.clone())]));
         let value = f.eval(&point);
         let confirmed = match (&value, cx.interpret(function, &point)) {
             (Some(q), Ok(y)) => super::agrees(y, q),
@@ -99,6 +117,16 @@ pub(super) fn decide(
             ""
         } else {
             " (outside the domain)"
+        };
+        let others: Vec<String> = point
+            .iter()
+            .filter(|(w, _)| **w != v && f.variables().contains(w))
+            .map(|(w, x)| format!("{} = {x}", cx.name(*w)))
+            .collect();
+        let outside = if others.is_empty() {
+            outside.to_owned()
+        } else {
+            format!("{outside}, {}", others.join(", "))
         };
         let how = Reverified::FloatingPoint;
         return Ok(super::sign::with_evidence(
