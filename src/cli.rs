@@ -19,7 +19,7 @@ use std::time::{Duration, Instant};
 #[derive(Debug, Parser)]
 #[command(name = "cosserat-check", version, about, long_about = None)]
 #[command(
-    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then), 3 when the checker itself failed on some claim (that claim is `undecided (internal error)`; the others are decided and written).\nSee README.md for the derivation-file format."
+    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then), 3 when the checker itself failed on some claim (that claim is `undecided (internal error)`; the others are decided and written).\nSee docs/guide.md for the derivation-file format."
 )]
 #[command(args_conflicts_with_subcommands = true)]
 pub struct Cli {
@@ -195,7 +195,7 @@ pub enum Format {
     Markdown,
     /// A LaTeX longtable (a fragment; --standalone for a whole document).
     Latex,
-    /// The JSON contract (see README).
+    /// The JSON contract (see docs/guide.md).
     Json,
     /// Comma-separated values, one row per claim.
     Csv,

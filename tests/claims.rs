@@ -251,18 +251,19 @@ fn output_is_deterministic() {
 #[test]
 fn the_readme_excerpt_matches_the_table() {
     let readme =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide.md"))
+            .unwrap();
     let rows = report::refs(decided());
     let table = report::markdown::render(&rows, &report::paper_of(&rows, &[]));
     let rows: Vec<&str> = readme
         .lines()
         .filter(|l| l.starts_with("| eq") && l[4..].starts_with(|c: char| c.is_ascii_digit()))
         .collect();
-    assert!(!rows.is_empty(), "the README shows no table rows");
+    assert!(!rows.is_empty(), "the guide shows no table rows");
     for row in rows {
         assert!(
             table.lines().any(|l| l == row),
-            "README row is out of date:\n{row}"
+            "guide row is out of date:\n{row}"
         );
     }
 }

@@ -1,11 +1,15 @@
-//! The README matches the program (issue 17, item 5): every example command in its `sh`
+//! The README and the guide (`docs/guide.md`) match the program: every example command in their `sh`
 //! blocks runs with the exit status its comment gives, the derivation-file example
 //! verifies, and every field of the JSON contract is in the JSON output.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const README: &str = include_str!("../README.md");
+const README: &str = concat!(
+    include_str!("../README.md"),
+    "\n",
+    include_str!("../docs/guide.md")
+);
 
 /// The contents of every fenced block of `lang`.
 fn blocks(lang: &str) -> Vec<String> {

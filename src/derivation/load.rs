@@ -285,7 +285,7 @@ impl Loader {
                 span,
                 format!("malformed derivation file: {}", e.message().trim()),
             )
-            .with_help("see README.md, section \"Derivation files\", for the format")
+            .with_help("see docs/guide.md, section \"Derivation files\", for the format")
         })?;
         let decls = Arc::new(self.decls(&raw)?);
         let mut defs = Vec::new();
@@ -1179,7 +1179,7 @@ impl Loader {
             ..Printed::of_claim(c)
         };
         let t = self.transcript(&input, file, decls, &probe, Vec::new(), Vec::new())?;
-        let help = "give sides = [\"left\", \"right\"] in index notation, or make the printed statement readable (README, \"Reading the printed statement\")";
+        let help = "give sides = [\"left\", \"right\"] in index notation, or make the printed statement readable (docs/guide.md, \"Reading the printed statement\")";
         let reading = t.reading.map_err(|u| {
             let col = crate::lang::latex::column(c.printed.get_ref(), u.span.start);
             self.diag(
@@ -1233,7 +1233,7 @@ impl Loader {
         for (key, value) in sups.into_iter().chain(symbols) {
             out.add(key, value.get_ref().values()).map_err(|e| {
                 self.diag(value.span(), e.message)
-                    .with_help("a notation entry maps one printed symbol to the language: '\\sigma_{ij}^{(1)}' = \"sig1_ij\"; see README.md, \"Reading the printed statement\"")
+                    .with_help("a notation entry maps one printed symbol to the language: '\\sigma_{ij}^{(1)}' = \"sig1_ij\"; see docs/guide.md, \"Reading the printed statement\"")
             })?;
         }
         Ok(out)
