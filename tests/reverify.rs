@@ -54,17 +54,49 @@ fn a_sampled_non_polynomial_counterexample_is_confirmed_by_the_interpreter() {
         "expect = \"fails\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"sqrt(x^2 + y^2)\", \"abs(x) + abs(y)\"]",
     );
     assert_eq!(o.verdict(), Verdict::Fails);
-    assert_eq!(reverified(&o), Some(Reverified::Interpreter));
+    // The interpreter confirms it, and the sides' interval enclosures exclude equality.
+    assert_eq!(reverified(&o), Some(Reverified::Intervals));
     assert_eq!(o.strength(), Strength::Sampled);
+    // Where the sides have no enclosure (an average of a non-polynomial), the
+    // interpreter alone confirms it.
+    let o = decide(
+        "expect = \"fails\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"avg(sqrt(1 + (A_ij n_i n_j)^2))\", \"1 + A_11 A_11\"]",
+    );
+    assert_eq!(o.verdict(), Verdict::Fails);
+    assert_eq!(reverified(&o), Some(Reverified::Interpreter));
 }
 
 #[test]
 fn rounding_is_never_a_counterexample() {
     // (x + 10^16) − 10^16 = x is an identity; in f64 the left side loses every digit of
-    // x, so the samples violate it. Exactly, it holds at every sample: undecided, with
-    // the reason, never `fails`.
+    // x, so the samples violate it. In interval arithmetic the sides' enclosures admit
+    // equality at every sample, so no sample tests the claim: undecided, with the
+    // reason, never `fails` (and never `holds`).
     let o = decide(
         "expect = \"undecided\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"(x + 10000000000000000) - 10000000000000000\", \"x\"]",
+    );
+    assert_eq!(o.verdict(), Verdict::Undecided, "{o:?}");
+    assert!(
+        matches!(
+            &o.finding,
+            Some(Finding::Unresolved {
+                why: Unresolved::MostlyRounding {
+                    rounding: 200,
+                    samples: 200
+                },
+                ..
+            })
+        ),
+        "{:?}",
+        o.finding
+    );
+    let why = cosserat_check::report::evidence(&o);
+    assert!(why.contains("rounding"), "{why}");
+    // A violation that the exact evaluation of a polynomial statement shows to be
+    // rounding is not a counterexample either: the sides' difference is far below the
+    // tolerance, so only the exact route could tell, and it says they are equal.
+    let o = decide(
+        "expect = \"undecided\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"(x + 10000000000000000) - 10000000000000000 + avg(n_i n_i) - 1\", \"x\"]",
     );
     assert_eq!(o.verdict(), Verdict::Undecided, "{o:?}");
     assert!(
@@ -78,8 +110,6 @@ fn rounding_is_never_a_counterexample() {
         "{:?}",
         o.finding
     );
-    let why = cosserat_check::report::evidence(&o);
-    assert!(why.contains("rounding"), "{why}");
     // The exact strategy proves it.
     let o = decide(
         "expect = \"holds\"\nstrategy = \"exact\"\nsides = [\"(x + 10000000000000000) - 10000000000000000\", \"x\"]",

@@ -97,3 +97,8 @@ fn roots_in_one_variable_times_a_factor_of_one_sign() {
         4
     );
 }
+
+#[test]
+fn sides_that_cancel_in_floating_point_are_not_refuted_by_rounding() {
+    assert_eq!(as_declared_for_every_seed("cancellation"), 11);
+}

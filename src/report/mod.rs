@@ -257,6 +257,14 @@ pub fn evidence(o: &Outcome) -> String {
                 if n.undefined == 1 { "" } else { "s" }
             ));
         }
+        if n.rounding > 0 {
+            line.push_str(&format!(
+                "; {} state{} where the relation fails in floating point only within rounding \
+                 (the sides' interval enclosures admit it)",
+                n.rounding,
+                if n.rounding == 1 { "" } else { "s" }
+            ));
+        }
         if let Some(s) = &n.search {
             let at: Vec<String> = s.at.iter().map(|(k, v)| format!("{k}={v}")).collect();
             line.push_str(&format!(

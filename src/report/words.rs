@@ -214,6 +214,12 @@ fn unresolved(why: &Unresolved, at: &Point) -> String {
              error estimate {error:.1e} at {}: the averages by adaptive quadrature cannot decide it",
             point(at)
         ),
+        Unresolved::MostlyRounding { rounding, samples } => format!(
+            "at {rounding} of {samples} samples (the last at {}) the relation fails in floating \
+             point and holds only within rounding (the sides' interval enclosures admit it): \
+             sampling in floating point cannot test this claim; the exact strategy may",
+            point(at)
+        ),
         Unresolved::NotConfirmed(r) => format!(
             "a floating-point violation at {} was not confirmed by a second evaluation: {}",
             point(at),
@@ -251,6 +257,11 @@ pub fn rejection(r: &Rejection) -> String {
         Rejection::CannotEvaluate { message } => {
             format!("the interpreter cannot evaluate the sides at the point: {message}")
         }
+        Rejection::WithinRounding { lhs, rhs } => format!(
+            "the violation is within rounding: in interval arithmetic the left side lies in \
+             [{:e}, {:e}] and the right in [{:e}, {:e}], which admit the relation",
+            lhs.0, lhs.1, rhs.0, rhs.1
+        ),
     }
 }
 

@@ -141,6 +141,10 @@ pub enum Unresolved {
     },
     /// A floating-point violation the second evaluation did not confirm.
     NotConfirmed(Rejection),
+    /// At more than half of the random samples the relation held only within the
+    /// sides' interval enclosures (see `strategy::interval`): the samples do not test
+    /// the claim.
+    MostlyRounding { rounding: usize, samples: usize },
 }
 
 /// Why a second evaluation did not confirm a counterexample (`reverify`).
@@ -166,6 +170,9 @@ pub enum Rejection {
     InterpreterSatisfied { lhs: f64, rhs: f64, residual: f64 },
     /// The interpreter cannot evaluate the sides there.
     CannotEvaluate { message: String },
+    /// The sides' interval enclosures at the point admit the relation: the violation is
+    /// within rounding.
+    WithinRounding { lhs: (f64, f64), rhs: (f64, f64) },
 }
 
 /// What a decision evaluated, kept when asked (`strategy::decide_recorded`).

@@ -12,6 +12,7 @@ mod indices;
 #[cfg(test)]
 mod indices_tests;
 pub mod inherit;
+mod interval;
 pub mod isolate;
 mod jets;
 pub mod numeric;

@@ -18,6 +18,7 @@
 use super::assume::Component;
 use super::eval::component_name;
 use super::finding::{Finding, Point, Unresolved};
+use super::interval::Enclosures;
 use super::quadrature::{self, Level};
 use super::real::component_pairs;
 pub use super::sampler::SINGULAR_EPS;
@@ -166,6 +167,8 @@ fn check_state(
         .fine
         .worst_error()
         .max(sampler.arbiter.worst_error());
+    let mut enclosures = Enclosures::new(sampler, state);
+    let mut rounding = false;
     for (ci, chain) in sampler.check.chains.iter().enumerate() {
         for k in 0..chain.len().saturating_sub(1) {
             for (p, fp) in fine[ci][k].iter().enumerate() {
@@ -218,6 +221,20 @@ fn check_state(
                         }
                     }
                 }
+                if !ok && others.is_empty() {
+                    // A difference that cancellation can explain is no violation: where
+                    // the sides' interval enclosures admit the relation, the state is
+                    // within rounding (`interval`); where no enclosure is computed, the
+                    // floating-point judgement stands and the second evaluation decides.
+                    let at: Vec<(char, usize)> =
+                        labels.iter().copied().zip(a.iter().copied()).collect();
+                    if let Ok((li, ri, _)) = enclosures.pair(ci, k, &at) {
+                        if li.may_satisfy(relation, &ri) {
+                            rounding = true;
+                            continue;
+                        }
+                    }
+                }
                 *largest = largest.max(res);
                 if !ok {
                     sampler.verify_state(state)?;
@@ -239,6 +256,11 @@ fn check_state(
                 }
             }
         }
+    }
+    if rounding {
+        sampler
+            .within_rounding
+            .set(sampler.within_rounding.get() + 1);
     }
     Ok(Judged::Satisfied)
 }
@@ -280,6 +302,7 @@ fn sampled_evidence(
             .as_ref()
             .map(|s| format!("|{}| < {SINGULAR_EPS:e}{why}", s.text)),
         undefined: 0,
+        rounding: 0,
         domain: None,
         tolerance,
         search: None,
@@ -312,9 +335,12 @@ fn sample_and_search(
     tally: &mut Tally,
 ) -> Result<(Found, Option<SearchEvidence>), Diagnostic> {
     let mut worst = Vec::new();
+    // Random samples where the relation held only within rounding, and the last one.
+    let mut rounding: (usize, Option<Point>) = (0, None);
     for _ in 0..sampler.sampling.samples {
         let mut state = sampler.next(extra, &mut tally.excluded)?;
         let mut margin = f64::NEG_INFINITY;
+        let before = sampler.within_rounding.get();
         let mut judged = check_state(
             sampler,
             &state,
@@ -322,6 +348,9 @@ fn sample_and_search(
             &mut margin,
             &mut tally.quadrature,
         )?;
+        if sampler.within_rounding.get() > before {
+            rounding = (rounding.0 + 1, Some(sampler.describe(&state)));
+        }
         // Undefined at a random state: on a set of measure zero (a zero of a divisor)
         // when a state next to it is defined, which then takes its place; else on a
         // set of positive measure, and the claim is not decided.
@@ -347,6 +376,17 @@ fn sample_and_search(
             Judged::Violated(cx) => return Ok((confirmed(sampler, state, relation, cx), None)),
             Judged::Unresolved(why, at) => return Ok((Found::Unresolved(why, at), None)),
             Judged::Undefined(_) => unreachable!("stepped off above"),
+        }
+    }
+    // Samples that only show rounding do not test the claim: when they are most of
+    // them, floating point cannot decide it.
+    if let (n, Some(at)) = rounding {
+        if 2 * n > sampler.sampling.samples {
+            let why = Unresolved::MostlyRounding {
+                rounding: n,
+                samples: sampler.sampling.samples,
+            };
+            return Ok((Found::Unresolved(why, at), None));
         }
     }
     let check = sampler.check;
@@ -497,6 +537,7 @@ pub fn decide_numeric(
             domain,
             search,
             undefined: tally.undefined,
+            rounding: sampler.within_rounding.get(),
             ..sampled_evidence(
                 sampling,
                 tally.largest,

@@ -122,6 +122,9 @@ pub enum Reverified {
     TaylorDifferences,
     /// The `f64` interpreter (not the compiled tape) confirms the violation.
     Interpreter,
+    /// The interpreter confirms it, and interval enclosures of the sides exclude the
+    /// relation: the violation is not rounding.
+    Intervals,
     /// Central differences of the function agree with the num-dual derivative.
     CentralDifferences,
     /// The second derivative along the eigenvector, by central differences of the
@@ -285,6 +288,11 @@ pub struct NumericEvidence {
     /// measure zero (a zero of a divisor), stepped off.
     #[serde(skip_serializing_if = "is_zero")]
     pub undefined: usize,
+    /// States where the sides differ in floating point, but their interval enclosures
+    /// admit the relation: the difference is within rounding (cancellation), no
+    /// violation.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub rounding: usize,
     /// The domain on which a conditional statement holds.
     pub domain: Option<String>,
     pub tolerance: String,

@@ -14,11 +14,16 @@
 //!   are not polynomial, the tree-walking interpreter evaluates them again instead of
 //!   the tape (strength `sampled`).
 //!
+//!   Both evaluations round alike, so where the sides have interval enclosures
+//!   ([`super::interval`]) the violation counts only if the enclosures exclude the
+//!   relation.
+//!
 //! A counterexample that the second evaluation does not confirm is never printed: the
 //! claim is `undecided`, with the reason.
 
 use super::eval::{component_name, ExactEnv, Labeled};
 use super::finding::Rejection;
+use super::interval::Enclosures;
 use super::real::{component_pairs, RealEnv};
 use super::sampler::{relation_holds, Sampler, State};
 use super::taylor::{self, TaylorFields};
@@ -401,12 +406,28 @@ fn by_interpreter(
     let (lf, rf) = pick(sampler.decls.dim, &l, &r, cx).map_err(cannot)?;
     let (ok, residual) = relation_holds(relation, lf, rf);
     if ok {
-        Err(Rejection::InterpreterSatisfied {
+        return Err(Rejection::InterpreterSatisfied {
             lhs: lf,
             rhs: rf,
             residual,
-        })
-    } else {
-        Ok(Reverified::Interpreter)
+        });
+    }
+    // Both evaluations round alike: the violation counts only where the sides'
+    // interval enclosures exclude the relation.
+    let (labels, _) = component_pairs(sampler.decls.dim, &l, &r);
+    let at: Vec<(char, usize)> = labels
+        .iter()
+        .map(|&c| (c, cx.indices.get(&c.to_string()).map_or(0, |v| v - 1)))
+        .collect();
+    // An enclosure taken on the domain (a root of an argument that rounding leaves on
+    // both sides of 0) can dismiss a violation but not confirm one; the interpreter's
+    // confirmation stands then, as where there is no enclosure.
+    match Enclosures::new(sampler, state).pair(cx.chain - 1, cx.equality - 1, &at) {
+        Ok((li, ri, _)) if li.may_satisfy(relation, &ri) => Err(Rejection::WithinRounding {
+            lhs: (li.lo, li.hi),
+            rhs: (ri.lo, ri.hi),
+        }),
+        Ok((_, _, false)) => Ok(Reverified::Intervals),
+        Ok((_, _, true)) | Err(_) => Ok(Reverified::Interpreter),
     }
 }

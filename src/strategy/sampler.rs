@@ -15,7 +15,7 @@ use crate::digits::{self, significant};
 use crate::lang::{Decls, Diagnostic, Node};
 use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::BTreeMap;
 use std::rc::Rc;
 
@@ -62,6 +62,9 @@ pub(super) struct Sampler<'a> {
     reads: Reads,
     /// Samples drawn so far (for progress).
     drawn: usize,
+    /// States whose floating-point violation lay within the sides' interval
+    /// enclosures (see [`super::interval`]).
+    pub(super) within_rounding: Cell<usize>,
 }
 
 /// Where a sampled decision keeps the states it drew, for `explain`.
@@ -91,6 +94,7 @@ impl<'a> Sampler<'a> {
             recording: None,
             reads: check.reads(),
             drawn: 0,
+            within_rounding: Cell::new(0),
         })
     }
 
