@@ -102,3 +102,8 @@ fn roots_in_one_variable_times_a_factor_of_one_sign() {
 fn sides_that_cancel_in_floating_point_are_not_refuted_by_rounding() {
     assert_eq!(as_declared_for_every_seed("cancellation"), 11);
 }
+
+#[test]
+fn monotone_and_sign_claims_times_a_factor_of_one_sign() {
+    assert_eq!(as_declared_for_every_seed("one-sign-factors"), 8);
+}

@@ -290,6 +290,35 @@ impl Context<'_> {
     /// a parameter the function does not read can still decide the sign of a square
     /// root on the way (σ in √(f_r² σ²)), so the interpreter that confirms the point,
     /// and the reader, must take it from the box.
+    /// `p` = c · q(v), with c free of `v` and of one strict sign on the box (μ in
+    /// μ (x² − 1), with μ > 0; a nonzero constant): q, and whether c is negative.
+    /// Such a factor changes neither the roots in `v` nor, up to its sign, the sign of
+    /// `p`; the kernel divides it out again in its own one-variable reduction.
+    fn in_one_variable(&self, p: &Poly, v: Var) -> Option<(Poly, bool)> {
+        let (content, rest) = crate::algebra::sturm::content_in(p, v)?;
+        let bx = self.box_on(&content.variables());
+        let c = RatFunc::from_poly(&content);
+        [Sign::Positive, Sign::Negative]
+            .into_iter()
+            .find(|&s| Certificate::sign_by_coefficients(&c, &bx, s, &self.env.vars).is_some())
+            .map(|s| (rest, s == Sign::Negative))
+    }
+
+    /// A rational function's numerator and denominator, each in `v` alone once a factor
+    /// of one strict sign is divided out ([`Context::in_one_variable`]), the
+    /// numerator carrying both factors' signs; `None` when another parameter occurs
+    /// otherwise.
+    fn cleared_in(&self, f: &Exact, v: Var) -> Option<(Poly, Poly)> {
+        let (num, den) = f.cleared();
+        let (n, n_negative) = self.in_one_variable(&num, v)?;
+        let (d, d_negative) = self.in_one_variable(&den, v)?;
+        Some(if n_negative != d_negative {
+            (-&n, d)
+        } else {
+            (n, d)
+        })
+    }
+
     fn complete(&self, point: &BTreeMap<Var, Rational>) -> BTreeMap<Var, Rational> {
         let mut point = point.clone();
         for (name, i) in &self.domain.bounds {

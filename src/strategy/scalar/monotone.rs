@@ -46,7 +46,10 @@ pub(super) fn decide(
         return Ok(constant(cx, function, &f, v, evidence));
     }
     let names = &cx.env.vars;
-    if f.variables() != [v] {
+    // The slope and the function in v alone, once a factor of one strict sign on the
+    // box is divided out (μ in μ g(ν), μ > 0): decided by their sign charts in v.
+    let charted = cx.cleared_in(&slope, v).zip(cx.cleared_in(&f, v));
+    let Some(((num, den), (f_num, f_den))) = charted else {
         // Several parameters: the sign of the derivative on the box, and a
         // denominator of one strict sign (no pole), each by the kernel if it can.
         let den = Exact {
@@ -75,14 +78,13 @@ pub(super) fn decide(
                     .with_finding(Finding::RationalFunction(*evidence)),
             },
         );
-    }
+    };
     let i = cx.interval(v);
-    let (num, den) = slope.cleared();
     // Poles of the reduced function (a cancelled divisor is a removable point, not a
     // pole that breaks monotonicity).
     let (Some(chart), Some(of_f)) = (
         chart_of((&num, &den), v, &i),
-        chart_of((f.f.numerator(), f.f.denominator()), v, &i),
+        chart_of((&f_num, &f_den), v, &i),
     ) else {
         return Ok(Outcome::undecided(Method::RationalFunction, 0)
             .with_finding(Finding::RationalFunction(evidence)));
@@ -124,13 +126,14 @@ pub(super) fn decide(
     let bad = chart.pieces.iter().position(|p| !want.admits(p.sign()));
     let witness = match bad {
         Some(k) => {
+            // The other parameters (in a factor of one sign) anywhere in the box.
             let s = chart.pieces[k].sample.clone();
             two_points(
                 cx,
                 function,
                 &f,
                 v,
-                &BTreeMap::from([(v, s)]),
+                &cx.complete(&BTreeMap::from([(v, s)])),
                 increasing,
                 evidence.clone(),
             )
@@ -334,7 +337,7 @@ fn across_pole(
 ) -> Outcome {
     for (k, _) in of_f.cuts.iter().enumerate().filter(|(_, c)| c.pole) {
         let (a, b) = (&of_f.pieces[k].sample, &of_f.pieces[k + 1].sample);
-        let at_a = BTreeMap::from([(v, a.clone())]);
+        let at_a = cx.complete(&BTreeMap::from([(v, a.clone())]));
         if wrong_way(f, &at_a, v, b, increasing) {
             return with_evidence(
                 pair(cx, function, f, v, &at_a, b, Some(increasing)),

@@ -5,7 +5,7 @@
 
 use super::{Context, Stop};
 use crate::algebra::certificate::Certificate;
-use crate::algebra::sign::{Real, Sign};
+use crate::algebra::sign::Real;
 use crate::derivation::Expression;
 use crate::kernel::check::Fact;
 use crate::kernel::Rational;
@@ -39,22 +39,12 @@ pub(super) fn decide(
         }
     }
     let others: Vec<_> = f.variables().into_iter().filter(|w| *w != v).collect();
-    let (num, den) = f.cleared();
     // Other parameters only in a factor of one strict sign on the box (μ in
     // μ (x² − 1), μ > 0): the roots are those of the rest.
-    let alone = |p: &crate::kernel::Poly| -> Option<crate::kernel::Poly> {
-        let (content, rest) = crate::algebra::sturm::content_in(p, v)?;
-        let bx = cx.box_on(&content.variables());
-        let c = crate::algebra::RatFunc::from_poly(&content);
-        [Sign::Positive, Sign::Negative]
-            .into_iter()
-            .any(|s| Certificate::sign_by_coefficients(&c, &bx, s, &cx.env.vars).is_some())
-            .then_some(rest)
-    };
     let (num, den) =
-        match (others.is_empty(), alone(&num), alone(&den)) {
-            (true, _, _) => (num, den),
-            (false, Some(n), Some(d)) => (n, d),
+        match (others.is_empty(), cx.cleared_in(&f, v)) {
+            (true, _) => f.cleared(),
+            (false, Some(nd)) => nd,
             _ => {
                 evidence.points.push(format!(
                 "the function also depends on {}, not only through a factor of one sign; roots \

@@ -7,7 +7,7 @@ use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::{Sign, Violation};
 use crate::derivation::Expression;
 use crate::kernel::check::Fact;
-use crate::kernel::{Rational, Var};
+use crate::kernel::{Poly, Rational, Var};
 use crate::strategy::finding::{Finding, RationalEvidence};
 use crate::strategy::{reverify, Counterexample, Method, Outcome};
 use std::collections::BTreeMap;
@@ -79,6 +79,7 @@ pub(super) fn decide_function(
     let proved = |fact: Fact, e: RationalEvidence| {
         Decided::Holds(Box::new(with_evidence(cx.by_kernel(fact, None), e)))
     };
+    let function_vars = function.map(|f| f.variables());
     let (reduced, function) = (Some(cx.reduced(g)), function.map(|f| cx.reduced(f)));
     let by_coefficients = || Fact::SignByCoefficients {
         reduced: reduced.clone(),
@@ -93,6 +94,52 @@ pub(super) fn decide_function(
             Decided::At(first_defined(cx, g, &vars))
         });
     }
+    // The sign chart of num/den in `v` (the other parameters, if any, only in a factor
+    // of one strict sign, divided out), certified on v's interval by the kernel.
+    let charted = |v: Var, (num, den): (Poly, Poly), mut evidence: RationalEvidence| {
+        let i = cx.interval(v);
+        let chart = crate::algebra::sign::chart_of((&num, &den), v, &i);
+        if let Some(chart) = &chart {
+            evidence.points = chart
+                .cuts
+                .iter()
+                .map(|c| {
+                    let what = if c.pole { "pole" } else { "zero" };
+                    format!("{what} at {} = {}", names.name(v), c.at)
+                })
+                .collect();
+        }
+        Ok(
+            match Certificate::sign_on_interval((&num, &den), v, &i, want, names) {
+                Ok(_) => {
+                    let fact = Fact::SignOnInterval {
+                        variable: names.name(v).to_owned(),
+                        cuts: chart.as_ref().map(|c| cuts(c, &i)).unwrap_or_default(),
+                        reduced: reduced.clone(),
+                        function: function.clone(),
+                        roots: cx.roots(),
+                    };
+                    proved(fact, evidence)
+                }
+                // The other parameters anywhere in the box.
+                Err(Some(violation)) => match *violation {
+                    Violation::At { x, .. } => Decided::At(cx.complete(&BTreeMap::from([(v, x)]))),
+                    Violation::Zero { lo, hi } => Decided::AtRoot {
+                        var: v,
+                        lo,
+                        hi,
+                        evidence: Box::new(evidence),
+                    },
+                },
+                Err(None) => {
+                    return Err(Stop::Outcome(Box::new(
+                        Outcome::undecided(Method::RationalFunction, 0)
+                            .with_finding(Finding::RationalFunction(evidence)),
+                    )))
+                }
+            },
+        )
+    };
     match vars.as_slice() {
         [] => {
             let box_ = cx.box_on(&vars);
@@ -103,53 +150,21 @@ pub(super) fn decide_function(
                 },
             )
         }
-        [v] => {
-            let i = cx.interval(*v);
-            let (num, den) = g.cleared();
-            let chart = crate::algebra::sign::chart_of((&num, &den), *v, &i);
-            if let Some(chart) = &chart {
-                evidence.points = chart
-                    .cuts
-                    .iter()
-                    .map(|c| {
-                        let what = if c.pole { "pole" } else { "zero" };
-                        format!("{what} at {} = {}", names.name(*v), c.at)
-                    })
-                    .collect();
-            }
-            Ok(
-                match Certificate::sign_on_interval((&num, &den), *v, &i, want, names) {
-                    Ok(_) => {
-                        let fact = Fact::SignOnInterval {
-                            variable: names.name(*v).to_owned(),
-                            cuts: chart.as_ref().map(|c| cuts(c, &i)).unwrap_or_default(),
-                            reduced: reduced.clone(),
-                            function: function.clone(),
-                            roots: cx.roots(),
-                        };
-                        proved(fact, evidence)
-                    }
-                    Err(Some(violation)) => match *violation {
-                        Violation::At { x, .. } => Decided::At(BTreeMap::from([(*v, x)])),
-                        Violation::Zero { lo, hi } => Decided::AtRoot {
-                            var: *v,
-                            lo,
-                            hi,
-                            evidence: Box::new(evidence),
-                        },
-                    },
-                    Err(None) => {
-                        return Err(Stop::Outcome(Box::new(
-                            Outcome::undecided(Method::RationalFunction, 0)
-                                .with_finding(Finding::RationalFunction(evidence)),
-                        )))
-                    }
-                },
-            )
+        // One variable, the function's own (a monotone claim's slope may have one
+        // variable that is not the function's: the coefficients decide it below).
+        [v] if function_vars.as_ref().is_none_or(|f| f == &[*v]) => {
+            charted(*v, g.cleared(), evidence)
         }
         _ => {
             if Certificate::sign_by_coefficients(&g.f, &cx.box_on(&vars), want, names).is_some() {
                 return Ok(proved(by_coefficients(), evidence));
+            }
+            // Of one parameter once a factor of one strict sign on the box is divided
+            // out (μ (x − 1)² ≥ 0 with μ > 0): its sign chart in that parameter.
+            if function_vars.is_none() {
+                if let Some((v, nd)) = vars.iter().find_map(|&v| Some((v, cx.cleared_in(g, v)?))) {
+                    return charted(v, nd, evidence);
+                }
             }
             // Stopped by the time limit: undecided, with the limit as the finding
             // (`strategy::decide` gives it to every decision that outlived it).
@@ -291,7 +306,8 @@ fn at_root(
     evidence: RationalEvidence,
 ) -> Outcome {
     let mid = &(lo + hi) * &Rational::ratio(1, 2).expect("nonzero");
-    let point = BTreeMap::from([(var, mid.clone())]);
+    // The other parameters (in a factor of one sign) anywhere in the box.
+    let point = cx.complete(&BTreeMap::from([(var, mid.clone())]));
     let values = cx
         .interpret(left, &point)
         .and_then(|a| cx.interpret(right, &point).map(|b| (a, b)));
