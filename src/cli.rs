@@ -19,7 +19,7 @@ use std::time::{Duration, Instant};
 #[derive(Debug, Parser)]
 #[command(name = "cosserat-check", version, about, long_about = None)]
 #[command(
-    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then), 3 when the checker itself failed on some claim (that claim is `undecided (internal error)`; the others are decided and written).\nSee docs/guide.md for the derivation-file format."
+    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then), 3 when the checker itself failed on some claim (that claim is `undecided (internal error)`; the others are decided and written).\nThe guide (the derivation-file format, every strategy, the JSON contract): `cosserat-check guide`; files to start from: `cosserat-check examples --out DIR`; this help as a manual page: `cosserat-check manpage`."
 )]
 #[command(args_conflicts_with_subcommands = true)]
 pub struct Cli {
@@ -48,6 +48,32 @@ pub enum Command {
     /// alone, from the statements it records; exit 0 when every proof is accepted, 1
     /// when one is refused, 2 when the file is not a report.
     Recheck(RecheckArgs),
+    /// Write the paper's derivation files and the examples (embedded in the binary)
+    /// into a directory, as `derivations/*.toml` and `derivations/examples/*.toml`, so
+    /// that every documented command works from there. An existing file with other
+    /// content is never replaced (exit 2, nothing written).
+    Examples(ExamplesArgs),
+    /// Print a shell completion script (e.g. `completions bash > /etc/bash_completion.d/cosserat-check`).
+    Completions(CompletionsArgs),
+    /// Print the manual page (roff; e.g. `manpage > cosserat-check.1; man ./cosserat-check.1`).
+    Manpage,
+    /// Print the user guide (Markdown): the derivation-file format, every strategy,
+    /// the reports and the JSON contract.
+    Guide,
+}
+
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExamplesArgs {
+    /// The directory to write into (created if it does not exist).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Clone, clap::Args)]
+pub struct CompletionsArgs {
+    /// The shell.
+    #[arg(value_enum)]
+    pub shell: clap_complete::Shell,
 }
 
 #[derive(Debug, Clone, clap::Args)]
@@ -117,6 +143,10 @@ pub struct OutputArgs {
     /// With --format latex: a complete document instead of a table fragment.
     #[arg(long)]
     pub standalone: bool,
+    /// Colours in the compact table: `auto` colours a terminal unless NO_COLOR is set
+    /// or TERM is `dumb`.
+    #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]
+    pub color: ColorChoice,
     /// Write to FILE instead of standard output, only after every claim is decided (`-` is standard output). A regular file is replaced atomically; a device or FIFO is written into, never replaced.
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
@@ -195,13 +225,38 @@ pub enum Format {
     Markdown,
     /// A LaTeX longtable (a fragment; --standalone for a whole document).
     Latex,
-    /// The JSON contract (see docs/guide.md).
+    /// The JSON contract (see `cosserat-check guide`).
     Json,
     /// Comma-separated values, one row per claim.
     Csv,
     /// One self-contained HTML page (works offline): statements as MathML, the
     /// derivation graph as SVG (click a claim to focus it), every claim's evidence.
     Html,
+}
+
+/// When the compact table is coloured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
+pub enum ColorChoice {
+    /// On a terminal, without --out, unless NO_COLOR is set or TERM is `dumb`.
+    #[default]
+    Auto,
+    Always,
+    Never,
+}
+
+impl ColorChoice {
+    /// Whether to colour, for output to a terminal (`terminal`) or elsewhere.
+    fn colours(self, terminal: bool) -> bool {
+        match self {
+            ColorChoice::Always => true,
+            ColorChoice::Never => false,
+            ColorChoice::Auto => {
+                terminal
+                    && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+                    && std::env::var_os("TERM").is_none_or(|t| t != "dumb")
+            }
+        }
+    }
 }
 
 /// The outcome of a run, mapped to the process exit code by `main`.
@@ -541,7 +596,7 @@ fn render(
     files: &[DerivationFile],
     rows: &[Decided<'_>],
     args: &OutputArgs,
-    errata: bool,
+    (errata, explain): (bool, &str),
     terminal: bool,
 ) -> String {
     let papers: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
@@ -559,7 +614,8 @@ fn render(
         (Format::Compact, _) => report::compact::render(
             &rows,
             &paper,
-            terminal && args.out.is_none() && std::env::var_os("NO_COLOR").is_none(),
+            args.color.colours(terminal && args.out.is_none()),
+            explain,
         ),
         (Format::Markdown, false) => report::markdown::render(&rows, &paper),
         (Format::Markdown, true) => report::errata::markdown(&rows, &paper),
@@ -695,7 +751,7 @@ fn emit(
 fn table(
     read: Reading,
     args: &OutputArgs,
-    errata: bool,
+    (errata, explain): (bool, &str),
     out: &mut Output<'_>,
 ) -> Result<Status, RunError> {
     let mut files = read.files;
@@ -714,12 +770,40 @@ fn table(
     progress.done(rows.len());
     let inputs: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
     emit(
-        &render(&files, &rows, args, errata, out.terminal),
+        &render(&files, &rows, args, (errata, explain), out.terminal),
         &args.out,
         &inputs,
         out.stream,
     )?;
     Ok(Status::of(&rows))
+}
+
+/// The command that explains one claim of this run's files, for the compact table's
+/// footer: `explain ID` reads the same files only when told which.
+fn explain_hint(dir: Option<&Path>, files: &[PathBuf]) -> String {
+    fn quoted(p: &Path) -> String {
+        let t = p.display().to_string();
+        if !t.is_empty()
+            && t.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "._/-+=:,@".contains(c))
+        {
+            t
+        } else {
+            format!("'{}'", t.replace('\'', "'\\''"))
+        }
+    }
+    let mut hint = "cosserat-check explain ID".to_owned();
+    if let Some(d) = dir {
+        hint.push_str(&format!(" --dir {}", quoted(d)));
+    }
+    if !files.is_empty() {
+        hint.push_str(" --file");
+        for f in files {
+            hint.push(' ');
+            hint.push_str(&quoted(f));
+        }
+    }
+    hint
 }
 
 /// Where a run writes its report.
@@ -733,24 +817,21 @@ pub struct Output<'a> {
 /// Runs the command line, writing the report to `out`.
 pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
     match cli.command.unwrap_or(Command::Check(cli.check)) {
-        Command::Check(a) => table(
-            read(a.dir, &[], a.output.only.as_deref())?,
-            &a.output,
-            false,
-            out,
-        ),
-        Command::Errata(a) => table(
-            read(a.dir, &[], a.output.only.as_deref())?,
-            &a.output,
-            true,
-            out,
-        ),
-        Command::Verify(a) => table(
-            read(None, &a.files, a.output.only.as_deref())?,
-            &a.output,
-            false,
-            out,
-        ),
+        Command::Check(a) => {
+            let explain = explain_hint(a.dir.as_deref(), &[]);
+            let read = read(a.dir, &[], a.output.only.as_deref())?;
+            table(read, &a.output, (false, &explain), out)
+        }
+        Command::Errata(a) => {
+            let explain = explain_hint(a.dir.as_deref(), &[]);
+            let read = read(a.dir, &[], a.output.only.as_deref())?;
+            table(read, &a.output, (true, &explain), out)
+        }
+        Command::Verify(a) => {
+            let explain = explain_hint(None, &a.files);
+            let read = read(None, &a.files, a.output.only.as_deref())?;
+            table(read, &a.output, (false, &explain), out)
+        }
         Command::Plot(a) => plot(&a, out),
         Command::Recheck(a) => {
             let path = a.report.display().to_string();
@@ -773,6 +854,41 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
                 Status::Unexpected
             })
         }
+        Command::Examples(a) => {
+            let written = write_examples(&a.out)?;
+            let all = crate::corpus::FILES.len() + crate::corpus::EXAMPLES.len();
+            let kept = if written < all {
+                format!(" ({} were there already, unchanged)", all - written)
+            } else {
+                String::new()
+            };
+            let text = format!(
+                "wrote {written} of {all} files under {}{kept}; try: cd {} && cosserat-check\n",
+                a.out.display(),
+                a.out.display()
+            );
+            emit(&report::words::inert(&text), &None, &[], out.stream)?;
+            Ok(Status::AsExpected)
+        }
+        Command::Completions(a) => {
+            let mut cmd = <Cli as clap::CommandFactory>::command();
+            let mut bytes = Vec::new();
+            clap_complete::generate(a.shell, &mut cmd, "cosserat-check", &mut bytes);
+            out.stream.write_all(&bytes)?;
+            Ok(Status::AsExpected)
+        }
+        Command::Guide => {
+            out.stream
+                .write_all(include_str!("../docs/guide.md").as_bytes())?;
+            Ok(Status::AsExpected)
+        }
+        Command::Manpage => {
+            let cmd = <Cli as clap::CommandFactory>::command().about(about());
+            let mut bytes = Vec::new();
+            clap_mangen::Man::new(cmd).render(&mut bytes)?;
+            out.stream.write_all(&bytes)?;
+            Ok(Status::AsExpected)
+        }
         Command::Explain(a) => {
             let files = read(a.dir, &a.files, Some(&a.id))?.files;
             let run = Run {
@@ -785,6 +901,45 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             Ok(Status::of(&rows[..1]))
         }
     }
+}
+
+/// Writes the embedded corpus and examples under `dir`; returns how many files were
+/// written. A file already there with the same text is left alone; one with other text
+/// (or anything that is not a regular file) is an error, found before anything is
+/// written.
+fn write_examples(dir: &Path) -> Result<usize, RunError> {
+    let all: Vec<(&str, &str)> = crate::corpus::FILES
+        .iter()
+        .chain(crate::corpus::EXAMPLES)
+        .copied()
+        .collect();
+    let mut todo = Vec::new();
+    for (name, text) in &all {
+        let path = dir.join(name);
+        match std::fs::symlink_metadata(&path) {
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => todo.push((path, *text)),
+            Ok(m) if m.is_file() && std::fs::read(&path).is_ok_and(|b| b == text.as_bytes()) => {}
+            _ => {
+                return Err(RunError::Input(format!(
+                    "error: {} exists with other content (or is not a regular file); nothing \
+                     was written\n  = help: write into an empty directory",
+                    report::words::inert(&path.display().to_string())
+                )))
+            }
+        }
+    }
+    for (path, text) in &todo {
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)?;
+        }
+        // Created exclusively: a file that appeared since the check is not replaced.
+        std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(path)
+            .and_then(|mut f| f.write_all(text.as_bytes()))?;
+    }
+    Ok(todo.len())
 }
 
 /// A file's text, refused past `limit` bytes before it is read whole.

@@ -51,6 +51,39 @@ pub const FILES: &[(&str, &str)] = &[
     ),
 ];
 
+/// The examples of the guide (`derivations/examples/*.toml`), embedded so that
+/// `cosserat-check examples --out DIR` can write them from an installed binary.
+pub const EXAMPLES: &[(&str, &str)] = &[
+    (
+        "derivations/examples/balance.toml",
+        include_str!("../derivations/examples/balance.toml"),
+    ),
+    (
+        "derivations/examples/fields.toml",
+        include_str!("../derivations/examples/fields.toml"),
+    ),
+    (
+        "derivations/examples/matrices.toml",
+        include_str!("../derivations/examples/matrices.toml"),
+    ),
+    (
+        "derivations/examples/moduli.toml",
+        include_str!("../derivations/examples/moduli.toml"),
+    ),
+    (
+        "derivations/examples/rational-functions.toml",
+        include_str!("../derivations/examples/rational-functions.toml"),
+    ),
+    (
+        "derivations/examples/states.toml",
+        include_str!("../derivations/examples/states.toml"),
+    ),
+    (
+        "derivations/examples/textbook.toml",
+        include_str!("../derivations/examples/textbook.toml"),
+    ),
+];
+
 /// The embedded corpus, read and checked like files on disk.
 pub fn load() -> Result<Vec<crate::derivation::DerivationFile>, crate::derivation::LoadError> {
     crate::derivation::load_texts(FILES)

@@ -3,7 +3,7 @@
 //! to an exit code.
 
 use clap::{CommandFactory, FromArgMatches};
-use cosserat_check::cli::{about, run, Cli, Output, Status};
+use cosserat_check::cli::{about, run, Cli, Output, RunError, Status};
 use std::io::IsTerminal;
 use std::process::ExitCode;
 
@@ -42,6 +42,9 @@ fn checked(cli: Cli) -> ExitCode {
         Ok(Status::AsExpected) => ExitCode::SUCCESS,
         Ok(Status::Unexpected) => ExitCode::from(1),
         Ok(Status::InternalError) => ExitCode::from(3),
+        // The reader went away (`… | head`): nothing is wrong with the input or the
+        // run, so the run ends quietly, as ripgrep does.
+        Err(RunError::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("{}", cosserat_check::report::words::inert(&e.to_string()));
             ExitCode::from(2)

@@ -356,8 +356,13 @@ fn every_subcommand_has_complete_help() {
                 "--seed",
                 "--samples",
                 "--out",
+                "--color",
             ][..],
         ),
+        ("examples", &["--out"][..]),
+        ("completions", &["<SHELL>", "bash", "zsh", "fish"][..]),
+        ("manpage", &[][..]),
+        ("guide", &[][..]),
     ] {
         let out = run(&[cmd, "--help"]);
         assert_eq!(out.status.code(), Some(0));
@@ -1002,4 +1007,119 @@ fn the_time_limit_stops_a_long_polynomial_product() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let detail = v["claims"][0]["detail"].as_str().unwrap_or_default();
     assert!(detail.contains("undecided (time limit)"), "{detail}");
+}
+
+#[test]
+fn standard_input_is_read_for_a_dash() {
+    let file = std::fs::read("derivations/examples/moduli.toml").unwrap();
+    let mut child = bin()
+        .args(["verify", "-", "--format", "json"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::io::Write::write_all(&mut child.stdin.take().unwrap(), &file).unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("\"claims\""));
+    // Malformed input on standard input is located in `<stdin>`.
+    let mut child = bin()
+        .args(["verify", "-"])
+        .stdin(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::io::Write::write_all(&mut child.stdin.take().unwrap(), b"x = [").unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("<stdin>:1:"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+#[test]
+fn colour_follows_the_flag_no_color_and_a_dumb_terminal() {
+    let esc = |args: &[&str], env: &[(&str, &str)]| {
+        let mut c = bin();
+        c.args(args);
+        for (k, v) in env {
+            c.env(k, v);
+        }
+        let out = c.output().unwrap();
+        text(&out.stdout).contains('\u{1b}')
+    };
+    let compact = ["--only", "eq21", "--format", "compact"];
+    assert!(
+        !esc(&compact, &[]),
+        "piped output is never coloured by default"
+    );
+    let always = ["--only", "eq21", "--format", "compact", "--color", "always"];
+    assert!(esc(&always, &[]));
+    let never = ["--only", "eq21", "--format", "compact", "--color", "never"];
+    assert!(!esc(&never, &[]));
+}
+
+#[test]
+fn examples_are_written_for_an_installed_binary_and_never_replace_a_file() {
+    let dir = std::env::temp_dir().join(format!("cosserat-check-examples-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let d = dir.to_str().unwrap();
+    let out = run(&["examples", "--out", d]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(dir.join("derivations/A-2-bifurcation.toml").is_file());
+    assert!(dir.join("derivations/examples/moduli.toml").is_file());
+    // The documented commands work from there.
+    let checked = Command::new(env!("CARGO_BIN_EXE_cosserat-check"))
+        .current_dir(&dir)
+        .args(["verify", "derivations/examples/moduli.toml"])
+        .output()
+        .unwrap();
+    assert_eq!(checked.status.code(), Some(0), "{}", text(&checked.stderr));
+    // Again: nothing to write. A changed file is refused, and nothing is written.
+    assert_eq!(run(&["examples", "--out", d]).status.code(), Some(0));
+    let edited = dir.join("derivations/examples/moduli.toml");
+    std::fs::write(&edited, "edited").unwrap();
+    std::fs::remove_file(dir.join("derivations/A-2-bifurcation.toml")).unwrap();
+    let out = run(&["examples", "--out", d]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(std::fs::read_to_string(&edited).unwrap(), "edited");
+    assert!(!dir.join("derivations/A-2-bifurcation.toml").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn completions_a_manual_page_and_the_guide_are_installed_help() {
+    for shell in ["bash", "zsh", "fish", "elvish", "powershell"] {
+        let out = run(&["completions", shell]);
+        assert_eq!(out.status.code(), Some(0));
+        assert!(text(&out.stdout).contains("verify"), "{shell}");
+    }
+    let man = run(&["manpage"]);
+    assert!(
+        text(&man.stdout).starts_with(".ie") || text(&man.stdout).contains(".TH cosserat-check 1")
+    );
+    assert!(text(&man.stdout).contains("verify"));
+    let guide = text(&run(&["guide"]).stdout);
+    assert!(guide.contains("Derivation files"));
+    // Hints point to installed help, never to a file of the source tree.
+    let help = text(&run(&["--help"]).stdout);
+    assert!(help.contains("cosserat-check guide") && !help.contains("docs/guide.md"));
+}
+
+#[test]
+fn a_closed_pipe_ends_the_run_quietly() {
+    let mut child = bin()
+        .args(["--format", "markdown"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader goes away before anything is written
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(text(&out.stderr).is_empty(), "{}", text(&out.stderr));
 }

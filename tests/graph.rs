@@ -74,7 +74,8 @@ fn a_failure_that_holds_once_the_lemma_is_corrected_is_inherited_and_an_own_erro
     );
     let errata = report::errata::markdown(&refs, "p");
     assert!(
-        errata.contains("Failures: 3 root errors, 2 inherited"),
+        errata
+            .contains("Origin of the 5 failing or conditional claims: 3 root errors, 2 inherited"),
         "{errata}"
     );
     assert!(

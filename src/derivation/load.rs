@@ -176,6 +176,30 @@ pub(super) fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
         path: label.clone(),
         message,
     };
+    let too_big = || {
+        io(format!(
+            "larger than the {} MiB a derivation file may have",
+            MAX_FILE_BYTES >> 20
+        ))
+    };
+    if is_stdin(path) {
+        // Read once, however often the file is read (`--only` reads files twice).
+        static STDIN: std::sync::OnceLock<Result<Vec<u8>, String>> = std::sync::OnceLock::new();
+        let read = STDIN.get_or_init(|| {
+            let mut bytes = Vec::new();
+            std::io::stdin()
+                .lock()
+                .take(MAX_FILE_BYTES + 1)
+                .read_to_end(&mut bytes)
+                .map(|_| bytes)
+                .map_err(|e| e.to_string())
+        });
+        let bytes = read.clone().map_err(io)?;
+        if bytes.len() as u64 > MAX_FILE_BYTES {
+            return Err(too_big());
+        }
+        return Ok(bytes);
+    }
     let meta = std::fs::metadata(path).map_err(|e| io(e.to_string()))?;
     if !meta.is_file() {
         let what = if meta.is_dir() {
@@ -187,12 +211,6 @@ pub(super) fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
             "{what}; derivation files are regular files (use --dir for a directory)"
         )));
     }
-    let too_big = || {
-        io(format!(
-            "larger than the {} MiB a derivation file may have",
-            MAX_FILE_BYTES >> 20
-        ))
-    };
     if meta.len() > MAX_FILE_BYTES {
         return Err(too_big());
     }
@@ -206,8 +224,17 @@ pub(super) fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
     Ok(bytes)
 }
 
+/// `-` names standard input.
+pub fn is_stdin(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
 fn load_file_with_ids(path: &Path) -> Result<(DerivationFile, Vec<(String, IdDiag)>), LoadError> {
-    let label = path.display().to_string();
+    let label = if is_stdin(path) {
+        "<stdin>".to_owned()
+    } else {
+        path.display().to_string()
+    };
     let bytes = read_bounded(path)?;
     let text = match String::from_utf8(bytes) {
         Ok(t) => t,
@@ -285,7 +312,7 @@ impl Loader {
                 span,
                 format!("malformed derivation file: {}", e.message().trim()),
             )
-            .with_help("see docs/guide.md, section \"Derivation files\", for the format")
+            .with_help("see `cosserat-check guide`, section \"Derivation files\", for the format")
         })?;
         let decls = Arc::new(self.decls(&raw)?);
         let mut defs = Vec::new();
@@ -1179,7 +1206,7 @@ impl Loader {
             ..Printed::of_claim(c)
         };
         let t = self.transcript(&input, file, decls, &probe, Vec::new(), Vec::new())?;
-        let help = "give sides = [\"left\", \"right\"] in index notation, or make the printed statement readable (docs/guide.md, \"Reading the printed statement\")";
+        let help = "give sides = [\"left\", \"right\"] in index notation, or make the printed statement readable (`cosserat-check guide`, \"Reading the printed statement\")";
         let reading = t.reading.map_err(|u| {
             let col = crate::lang::latex::column(c.printed.get_ref(), u.span.start);
             self.diag(
@@ -1233,7 +1260,7 @@ impl Loader {
         for (key, value) in sups.into_iter().chain(symbols) {
             out.add(key, value.get_ref().values()).map_err(|e| {
                 self.diag(value.span(), e.message)
-                    .with_help("a notation entry maps one printed symbol to the language: '\\sigma_{ij}^{(1)}' = \"sig1_ij\"; see docs/guide.md, \"Reading the printed statement\"")
+                    .with_help("a notation entry maps one printed symbol to the language: '\\sigma_{ij}^{(1)}' = \"sig1_ij\"; see `cosserat-check guide`, \"Reading the printed statement\"")
             })?;
         }
         Ok(out)

@@ -124,7 +124,9 @@ impl Loader {
                         at.span(),
                         format!("`{key}` does not apply to strategy = \"{name}\""),
                     )
-                    .with_help("see docs/guide.md, section \"Claims about rational functions\""));
+                    .with_help(
+                        "see `cosserat-check guide`, section \"Claims about rational functions\"",
+                    ));
             }
         }
         if let (Some(f), ScalarClaim::Sign(_)) = (&c.function, &claim) {

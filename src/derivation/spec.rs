@@ -39,7 +39,7 @@ impl Loader {
                     anchor.span(),
                     format!("strategy = \"{name}\" needs `{what}`"),
                 )
-                .with_help("see docs/guide.md, section \"Derivation files\"")
+                .with_help("see `cosserat-check guide`, section \"Derivation files\"")
             })
         };
         let scalar = |s: &S| self.expression(s, decls, &sigs, &[]);

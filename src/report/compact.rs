@@ -15,7 +15,7 @@ pub const EVIDENCE_WIDTH: usize = 80;
 
 /// How the table marks failures: `color` adds ANSI colours (bold red for `fails`,
 /// yellow for `conditional` and `undecided`) to the words, which say it without them.
-pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
+pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool, explain: &str) -> String {
     let header = [
         "claim", "§", "verdict", "strength", "method", "read", "evidence",
     ];
@@ -83,9 +83,10 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool) -> String {
     }
     let _ = writeln!(
         out,
-        "{}\nFull evidence: `cosserat-check explain ID`, or `--format markdown|json|html` \
-         (this compact view is printed only to a terminal).",
-        summary.transcription_sentence()
+        "{}\nFull evidence: `{}`, or `--format markdown|json|html` (this compact view is \
+         printed only to a terminal).",
+        summary.transcription_sentence(),
+        super::words::inert(explain)
     );
     out
 }

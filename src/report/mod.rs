@@ -119,8 +119,8 @@ impl Summary {
         s
     }
 
-    /// "Failures: … root errors, … inherited[, … of undetermined origin]." (empty when
-    /// nothing fails).
+    /// "Origin of the N failing or conditional claims: … root errors, … inherited[, … of
+    /// undetermined origin]." (empty when nothing fails).
     pub fn origin_sentence(&self) -> String {
         let failing = self.root_errors + self.inherited + self.undetermined_origin;
         if failing == 0 {
@@ -131,8 +131,11 @@ impl Summary {
         } else {
             String::new()
         };
+        // Conditional claims fail outside their domain: they are counted here too, so
+        // that the numbers add up to the fails and conditionals above.
         format!(
-            "Failures: {} root error{}, {} inherited from a failing claim they use{undetermined}.",
+            "Origin of the {failing} failing or conditional claim{}: {} root error{}, {} inherited from a failing claim they use{undetermined}.",
+            if failing == 1 { "" } else { "s" },
             self.root_errors,
             if self.root_errors == 1 { "" } else { "s" },
             self.inherited
