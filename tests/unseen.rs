@@ -100,7 +100,7 @@ fn roots_in_one_variable_times_a_factor_of_one_sign() {
 
 #[test]
 fn sides_that_cancel_in_floating_point_are_not_refuted_by_rounding() {
-    assert_eq!(as_declared_for_every_seed("cancellation"), 11);
+    assert_eq!(as_declared_for_every_seed("cancellation"), 17);
 }
 
 #[test]

@@ -262,8 +262,8 @@ pub fn evidence(o: &Outcome) -> String {
         }
         if n.rounding > 0 {
             line.push_str(&format!(
-                "; {} state{} where the relation fails in floating point only within rounding \
-                 (the sides' interval enclosures admit it)",
+                "; {} state{} where floating point cannot tell whether the relation holds \
+                 (the sides' interval enclosures admit it), excluded",
                 n.rounding,
                 if n.rounding == 1 { "" } else { "s" }
             ));

@@ -214,10 +214,12 @@ fn unresolved(why: &Unresolved, at: &Point) -> String {
              error estimate {error:.1e} at {}: the averages by adaptive quadrature cannot decide it",
             point(at)
         ),
-        Unresolved::MostlyRounding { rounding, samples } => format!(
-            "at {rounding} of {samples} samples (the last at {}) the relation fails in floating \
-             point and holds only within rounding (the sides' interval enclosures admit it): \
-             sampling in floating point cannot test this claim; the exact strategy may",
+        Unresolved::WithinRounding { random, samples } => format!(
+            "at {random} of {samples} random samples (the first at {}) the floating-point \
+             values violate the relation but the sides' interval enclosures admit it: \
+             floating point cannot tell there (rounding, as where a side cancels or swamps \
+             another), and no violation was confirmed anywhere; the exact strategy may \
+             decide it",
             point(at)
         ),
         Unresolved::NotConfirmed(r) => format!(
@@ -303,6 +305,9 @@ fn value(x: f64) -> String {
 
 /// A point as `name = value, …`.
 pub fn point(at: &Point) -> String {
+    if at.is_empty() {
+        return "(no parameter)".to_owned();
+    }
     at.iter()
         .map(|(k, v)| format!("{k} = {v}"))
         .collect::<Vec<_>>()

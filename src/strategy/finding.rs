@@ -141,10 +141,11 @@ pub enum Unresolved {
     },
     /// A floating-point violation the second evaluation did not confirm.
     NotConfirmed(Rejection),
-    /// At more than half of the random samples the relation held only within the
-    /// sides' interval enclosures (see `strategy::interval`): the samples do not test
-    /// the claim.
-    MostlyRounding { rounding: usize, samples: usize },
+    /// No violation was confirmed, but at `random` of the `samples` random samples
+    /// (more than one in a hundred) the floating-point values violate the relation while
+    /// the sides' interval enclosures admit it (see `strategy::interval`): floating
+    /// point cannot tell there.
+    WithinRounding { random: usize, samples: usize },
 }
 
 /// Why a second evaluation did not confirm a counterexample (`reverify`).

@@ -5,8 +5,10 @@
 //! 0.49999… in `f64` with five digits wrong, and `(x − sin x)/x³` is worse. Two such
 //! sides differ far beyond any relative tolerance although they are equal. Every value
 //! here is an interval [lo, hi] that contains the exact value of the expression at the
-//! state, so two sides whose intervals overlap may be equal, and a violation counts only
-//! where the intervals exclude the relation.
+//! state. Where the sides' intervals admit the relation, floating point cannot tell
+//! whether it holds at that state: the state is no violation, and no evidence that the
+//! claim holds either (a sampled claim with such states is undecided unless a violation
+//! is confirmed elsewhere). A violation is confirmed where the intervals exclude it.
 //!
 //! Each operation rounds outward: `+ − × ÷` and `sqrt` are correctly rounded in IEEE
 //! arithmetic, so one step to the next `f64` on each side encloses the exact result; the
@@ -18,9 +20,12 @@
 //! records that it **assumed** the state to lie in the domain: its enclosures then hold
 //! only if the sides have a value at the exact state. That is enough to dismiss a
 //! violation (at a state outside the domain there is no violation either), never to
-//! confirm one. A construct that has no enclosure here (averages over the normal,
-//! `maxn`, derivatives, variations, gradients) stops the evaluation with
-//! [`Enclosure::Unsupported`], and the caller keeps its floating-point judgement.
+//! confirm one. A construct that has no enclosure here (averages of a non-polynomial in
+//! n, derivatives, variations, gradients) stops the evaluation with
+//! an [`Enclosure`] error, and the caller keeps its floating-point judgement. An average
+//! of a polynomial in n (by its rule at rounded nodes) and `maxn` (by the grid and golden
+//! sections of the interpreter) are evaluated loosely: they may dismiss a violation as
+//! rounding, never confirm one.
 
 use super::assume::{product_value, Parametrisation};
 use super::sampler::{Sampler, State};
@@ -38,9 +43,16 @@ use std::f64::consts::PI;
 /// Units in the last place by which a libm result is widened on each side.
 pub const LIBM_ULPS: u32 = 2;
 
-/// Beyond this magnitude of the argument, `sin`, `cos` and `tan` are enclosed by their
-/// whole range (the position of the extrema is not computed there).
+/// Beyond this magnitude of an interval argument, `sin`, `cos` and `tan` are enclosed by
+/// their whole range (the position of the extrema is not computed there); at a single
+/// number libm's value is used whatever its size.
 const TRIG_REDUCTION: f64 = 1e6;
+
+/// How far from π/2 + kπ computed in `f64` the exact point may lie, at `p` with
+/// |k| ≤ 10⁶: a few units in the last place of p, and k rounding errors of π.
+fn slack(p: f64) -> f64 {
+    1e-15 * (1.0 + p.abs())
+}
 
 /// A closed interval [lo, hi] of reals; infinite ends allowed, never NaN.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -120,11 +132,33 @@ impl Interval {
         }
     }
 
+    /// Whether this is the number 0 exactly (a component an assumption sets to 0).
+    fn is_zero(&self) -> bool {
+        self.lo == 0.0 && self.hi == 0.0
+    }
+
     fn add(self, b: Self) -> Self {
+        // Adding an exact 0 is exact: no widening, so a component set to 0 stays 0.
+        if b.is_zero() {
+            return self;
+        }
+        if self.is_zero() {
+            return b;
+        }
         Interval::new(self.lo + b.lo, self.hi + b.hi, 1)
     }
 
     fn mul(self, b: Self) -> Self {
+        // 0 times any real is 0 exactly (the ends of an unbounded interval are no values).
+        if self.is_zero() || b.is_zero() {
+            return Interval::point(0.0);
+        }
+        if b == Interval::point(1.0) {
+            return self;
+        }
+        if self == Interval::point(1.0) {
+            return b;
+        }
         Interval::hull(
             &[
                 self.lo * b.lo,
@@ -246,19 +280,27 @@ impl Interval {
     /// later.
     fn periodic(self, f: fn(f64) -> f64, peak: f64) -> Self {
         let whole = Interval { lo: -1.0, hi: 1.0 };
-        if !(self.lo.is_finite() && self.hi.is_finite())
-            || self.lo.abs().max(self.hi.abs()) > TRIG_REDUCTION
-            || self.hi - self.lo >= 2.0 * PI
-        {
+        if !(self.lo.is_finite() && self.hi.is_finite()) {
+            return whole;
+        }
+        // At one number libm's value is accurate whatever its size (its argument
+        // reduction is exact).
+        if self.lo == self.hi {
+            let e = Interval::new(f(self.lo), f(self.lo), LIBM_ULPS);
+            return Interval {
+                lo: e.lo.max(-1.0),
+                hi: e.hi.min(1.0),
+            };
+        }
+        if self.lo.abs().max(self.hi.abs()) > TRIG_REDUCTION || self.hi - self.lo >= 2.0 * PI {
             return whole;
         }
         let mut e = Interval::hull(&[f(self.lo), f(self.hi)], LIBM_ULPS);
-        let slack = 1e-9;
         let inside = |at: f64| {
             let k0 = ((self.lo - at) / (2.0 * PI)).floor() - 1.0;
             (0..4).any(|j| {
                 let p = at + (k0 + j as f64) * 2.0 * PI;
-                p >= self.lo - slack && p <= self.hi + slack
+                p >= self.lo - slack(p) && p <= self.hi + slack(p)
             })
         };
         if inside(peak) {
@@ -281,10 +323,9 @@ impl Interval {
         }
         // A pole π/2 + kπ inside (generously) leaves no enclosure.
         let k0 = ((self.lo - PI / 2.0) / PI).floor() - 1.0;
-        let slack = 1e-9;
         let pole = (0..4).any(|j| {
             let p = PI / 2.0 + (k0 + j as f64) * PI;
-            p >= self.lo - slack && p <= self.hi + slack
+            p >= self.lo - slack(p) && p <= self.hi + slack(p)
         });
         if pole {
             return (Interval::entire(), true);
@@ -324,6 +365,14 @@ impl Interval {
     /// point of the branch cut (x < 0, y = 0) is attained at the box's corners; a box
     /// that meets them gets the whole range [−π, π].
     fn atan2(self, x: Self) -> Self {
+        // On the cut itself the value is the branch's: atan2(0, x) is 0 for x > 0 and π
+        // for x < 0 (as libm gives it for +0).
+        if self == Interval::point(0.0) && x.lo > 0.0 {
+            return self;
+        }
+        if self == Interval::point(0.0) && x.hi < 0.0 {
+            return Interval::new(PI, PI, 1);
+        }
         if self.contains_zero() && x.lo <= 0.0 {
             return Interval::new(-PI, PI, 1);
         }
@@ -368,8 +417,10 @@ pub struct IntervalEnv<'a> {
     /// The state's normal (nothing here changes it: averages and `maxn` are not
     /// enclosed).
     n: Vec<f64>,
-    /// Whether some enclosure holds only on the domain (see the module doc).
-    assumed: Cell<bool>,
+    /// Whether some value is loose: an enclosure that holds only on the domain (see the
+    /// module doc), or an average by a rule with rounded nodes. A loose evaluation can
+    /// dismiss a violation, never confirm one.
+    loose: Cell<bool>,
 }
 
 impl<'a> IntervalEnv<'a> {
@@ -394,7 +445,7 @@ impl<'a> IntervalEnv<'a> {
             symbols,
             memo: RefCell::new(HashMap::default()),
             n: state.n.clone(),
-            assumed: Cell::new(false),
+            loose: Cell::new(false),
         };
         for d in parametrisation.dependents() {
             let at = |(s, i): &(String, Vec<usize>)| {
@@ -437,14 +488,14 @@ impl<'a> IntervalEnv<'a> {
         Ok((node.free_letters(), walk::walk(&mut &*self, node, &self.n)?))
     }
 
-    /// Whether an enclosure so far holds only if the state lies in the domain.
-    pub fn assumed(&self) -> bool {
-        self.assumed.get()
+    /// Whether some value so far is loose (see [`IntervalEnv::loose`]).
+    pub fn loose(&self) -> bool {
+        self.loose.get()
     }
 
     fn on_domain(&self, (x, assumed): OnDomain) -> Interval {
         if assumed {
-            self.assumed.set(true);
+            self.loose.set(true);
         }
         x
     }
@@ -590,12 +641,80 @@ impl Ring for &IntervalEnv<'_> {
         Ok(Interval::new(PI, PI, 1))
     }
 
-    fn average(&mut self, _a: &Node, _node: &Node, _n: &[f64]) -> R<Tensor<Interval>> {
-        unsupported("an average over the normal")
+    /// A polynomial in n of degree ≤ 40 by the rule exact for its degree, at nodes and
+    /// weights rounded to `f64`: close to an enclosure but not one, so the evaluation
+    /// becomes loose ([`IntervalEnv::loose`]).
+    fn average(&mut self, a: &Node, _node: &Node, _n: &[f64]) -> R<Tensor<Interval>> {
+        let env: &IntervalEnv<'_> = self;
+        let degree = walk::normal_degree(a, env.defs, &mut HashMap::default())
+            .filter(|&d| d <= 40)
+            .ok_or_else(|| Enclosure("an average of a non-polynomial in n".into()))?;
+        env.loose.set(true);
+        let mut acc: Option<Tensor<Interval>> = None;
+        for (point, w) in super::float::rule_for(env.decls, degree.max(1)) {
+            let w = Interval::new(w, w, 2);
+            let t = walk::walk(&mut { env }, a, &point)?.map(|x| x.mul(w));
+            acc = Some(match acc {
+                None => t,
+                Some(s) => {
+                    let sum: Vec<Interval> = s
+                        .components()
+                        .iter()
+                        .zip(t.components())
+                        .map(|(x, y)| x.add(*y))
+                        .collect();
+                    Tensor::from_components(s.dim(), s.rank(), sum)
+                }
+            });
+        }
+        acc.ok_or_else(|| Enclosure("an empty averaging rule".into()))
     }
 
-    fn maximum(&mut self, _a: &Node, _node: &Node) -> R<Interval> {
-        unsupported("maxn(…)")
+    /// The maximum over the in-plane angle: at least the value at every point of the
+    /// interpreter's grid (a true lower bound), and about the value at the maximiser
+    /// that golden sections find from the best grid point (not a bound: loose).
+    fn maximum(&mut self, a: &Node, _node: &Node) -> R<Interval> {
+        let env: &IntervalEnv<'_> = self;
+        let d = env.decls.dim;
+        if d == 3 && !env.decls.normal_in_plane {
+            return unsupported("maxn(…) with the normal out of the plane");
+        }
+        env.loose.set(true);
+        let at = |theta: f64| -> R<Interval> {
+            let mut n = vec![theta.cos(), theta.sin()];
+            n.resize(d, 0.0);
+            walk::scalar(&mut { env }, a, &n)
+        };
+        let mid = |i: Interval| (i.lo + i.hi) / 2.0;
+        let step = 2.0 * PI / super::real::MAXN_GRID as f64;
+        let (mut low, mut high, mut best) = (
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+            (0.0, f64::NEG_INFINITY),
+        );
+        for k in 0..super::real::MAXN_GRID {
+            let theta = k as f64 * step;
+            let v = at(theta)?;
+            (low, high) = (low.max(v.lo), high.max(v.hi));
+            if mid(v) > best.1 {
+                best = (theta, mid(v));
+            }
+        }
+        let g = (5f64.sqrt() - 1.0) / 2.0;
+        let (mut lo, mut hi) = (best.0 - step, best.0 + step);
+        for _ in 0..60 {
+            let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+            if mid(at(x1)?) < mid(at(x2)?) {
+                lo = x1;
+            } else {
+                hi = x2;
+            }
+        }
+        let v = at((lo + hi) / 2.0)?;
+        Ok(Interval {
+            lo: low.max(v.lo),
+            hi: high.max(v.hi),
+        })
     }
 
     fn derivatives(&mut self, _a: &Node, _node: &Node, _n: &[f64]) -> R<Tensor<Interval>> {
@@ -657,8 +776,8 @@ impl<'s, 'a> Enclosures<'s, 'a> {
     }
 
     /// The enclosures of sides `k` and `k + 1` of chain `chain` (both 0-based) at the
-    /// index values `at` (0-based, by letter), and whether they hold only on the
-    /// domain ([`IntervalEnv::assumed`]).
+    /// index values `at` (0-based, by letter), and whether they are loose
+    /// ([`IntervalEnv::loose`]).
     pub(super) fn pair(
         &mut self,
         chain: usize,
@@ -695,7 +814,7 @@ impl<'s, 'a> Enclosures<'s, 'a> {
             Ok(*t.get(&idx))
         };
         let (l, r) = (side(k)?, side(k + 1)?);
-        Ok((l, r, env.assumed()))
+        Ok((l, r, env.loose()))
     }
 }
 

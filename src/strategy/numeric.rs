@@ -223,9 +223,11 @@ fn check_state(
                 }
                 if !ok && others.is_empty() {
                     // A difference that cancellation can explain is no violation: where
-                    // the sides' interval enclosures admit the relation, the state is
-                    // within rounding (`interval`); where no enclosure is computed, the
-                    // floating-point judgement stands and the second evaluation decides.
+                    // the sides' interval enclosures admit the relation, floating point
+                    // cannot tell at this state (`interval`), which is no evidence either
+                    // way (the claim is then undecided unless a violation is confirmed
+                    // elsewhere); where no enclosure is computed, the floating-point
+                    // judgement stands and the second evaluation decides.
                     let at: Vec<(char, usize)> =
                         labels.iter().copied().zip(a.iter().copied()).collect();
                     if let Ok((li, ri, _)) = enclosures.pair(ci, k, &at) {
@@ -335,8 +337,14 @@ fn sample_and_search(
     tally: &mut Tally,
 ) -> Result<(Found, Option<SearchEvidence>), Diagnostic> {
     let mut worst = Vec::new();
-    // Random samples where the relation held only within rounding, and the last one.
-    let mut rounding: (usize, Option<Point>) = (0, None);
+    // Random samples where floating point could not tell whether the relation holds
+    // (see `check_state`). Sampling cannot see a set much smaller than one sample in a
+    // hundred, and such states are no different: past that share they mark a region
+    // floating point cannot judge, and the claim is not decided unless a violation is
+    // confirmed. Fewer, and those met by the search or next to a point where a side is
+    // undefined (where it pushes towards cancellation on purpose), are excluded and
+    // counted.
+    let mut random_rounding: (usize, Option<Point>) = (0, None);
     for _ in 0..sampler.sampling.samples {
         let mut state = sampler.next(extra, &mut tally.excluded)?;
         let mut margin = f64::NEG_INFINITY;
@@ -349,7 +357,10 @@ fn sample_and_search(
             &mut tally.quadrature,
         )?;
         if sampler.within_rounding.get() > before {
-            rounding = (rounding.0 + 1, Some(sampler.describe(&state)));
+            random_rounding.0 += 1;
+            random_rounding
+                .1
+                .get_or_insert_with(|| sampler.describe(&state));
         }
         // Undefined at a random state: on a set of measure zero (a zero of a divisor)
         // when a state next to it is defined, which then takes its place; else on a
@@ -376,17 +387,6 @@ fn sample_and_search(
             Judged::Violated(cx) => return Ok((confirmed(sampler, state, relation, cx), None)),
             Judged::Unresolved(why, at) => return Ok((Found::Unresolved(why, at), None)),
             Judged::Undefined(_) => unreachable!("stepped off above"),
-        }
-    }
-    // Samples that only show rounding do not test the claim: when they are most of
-    // them, floating point cannot decide it.
-    if let (n, Some(at)) = rounding {
-        if 2 * n > sampler.sampling.samples {
-            let why = Unresolved::MostlyRounding {
-                rounding: n,
-                samples: sampler.sampling.samples,
-            };
-            return Ok((Found::Unresolved(why, at), None));
         }
     }
     let check = sampler.check;
@@ -458,6 +458,15 @@ fn sample_and_search(
         }
         None => Found::Nothing,
     };
+    if let (Found::Nothing, (n, Some(at))) = (&found, random_rounding) {
+        if 100 * n > sampler.sampling.samples {
+            let why = Unresolved::WithinRounding {
+                random: n,
+                samples: sampler.sampling.samples,
+            };
+            return Ok((Found::Unresolved(why, at), Some(evidence)));
+        }
+    }
     Ok((found, Some(evidence)))
 }
 
