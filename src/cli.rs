@@ -908,6 +908,13 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
 /// (or anything that is not a regular file) is an error, found before anything is
 /// written.
 fn write_examples(dir: &Path) -> Result<usize, RunError> {
+    if crate::derivation::load::is_stdin(dir) {
+        return Err(RunError::Input(
+            "error: examples --out needs a directory; `-` (standard output) cannot hold files\n  \
+             = help: name a directory, e.g. --out my-derivations"
+                .to_owned(),
+        ));
+    }
     let all: Vec<(&str, &str)> = crate::corpus::FILES
         .iter()
         .chain(crate::corpus::EXAMPLES)
@@ -916,16 +923,20 @@ fn write_examples(dir: &Path) -> Result<usize, RunError> {
     let mut todo = Vec::new();
     for (name, text) in &all {
         let path = dir.join(name);
+        let shown = report::words::inert(&path.display().to_string());
+        let refuse = |why: String| {
+            Err(RunError::Input(format!(
+                "error: {shown}: {why}; nothing was written\n  = help: write into an empty \
+                 directory"
+            )))
+        };
         match std::fs::symlink_metadata(&path) {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => todo.push((path, *text)),
             Ok(m) if m.is_file() && std::fs::read(&path).is_ok_and(|b| b == text.as_bytes()) => {}
-            _ => {
-                return Err(RunError::Input(format!(
-                    "error: {} exists with other content (or is not a regular file); nothing \
-                     was written\n  = help: write into an empty directory",
-                    report::words::inert(&path.display().to_string())
-                )))
-            }
+            Ok(m) if m.is_file() => return refuse("exists with other content".into()),
+            Ok(_) => return refuse("exists and is not a regular file".into()),
+            // A file where a directory of the path should be, or no access.
+            Err(e) => return refuse(format!("cannot be written there ({e})")),
         }
     }
     for (path, text) in &todo {

@@ -6,7 +6,7 @@
 //! point is confirmed exactly: strength `proof` comes only from the kernel.
 
 use cosserat_check::derivation::{load_str, Verdict};
-use cosserat_check::strategy::finding::{Finding, Rejection, Unresolved};
+use cosserat_check::strategy::finding::{Finding, Unresolved};
 use cosserat_check::strategy::{decide_claim, Outcome, Reverified, Strength};
 
 const HEADER: &str = r#"
@@ -68,12 +68,12 @@ fn a_sampled_non_polynomial_counterexample_is_confirmed_by_the_interpreter() {
 
 #[test]
 fn rounding_is_never_a_counterexample() {
-    // (x + 10^16) − 10^16 = x is an identity; in f64 the left side loses every digit of
-    // x, so the samples violate it. In interval arithmetic the sides' enclosures admit
-    // equality at random samples, where floating point therefore cannot tell:
+    // (e^x + 10^16) − 10^16 = e^x is an identity; in f64 the left side loses every digit
+    // of e^x, so the samples violate it. In interval arithmetic the sides' enclosures
+    // admit equality at random samples, where floating point therefore cannot tell:
     // undecided, with the reason, never `fails` (and never `holds`).
     let o = decide(
-        "expect = \"undecided\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"(x + 10000000000000000) - 10000000000000000\", \"x\"]",
+        "expect = \"undecided\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"(exp(x) + 10000000000000000) - 10000000000000000\", \"exp(x)\"]",
     );
     assert_eq!(o.verdict(), Verdict::Undecided, "{o:?}");
     assert!(
@@ -89,23 +89,31 @@ fn rounding_is_never_a_counterexample() {
     );
     let why = cosserat_check::report::evidence(&o);
     assert!(why.contains("rounding"), "{why}");
-    // Where the sides have no interval enclosure (a gradient), a violation that the
-    // exact evaluation of a polynomial statement shows to be rounding is not a
-    // counterexample either: only the exact route can tell, and it says they are equal.
+    // Polynomial sides are judged exactly at each state where floating point sees a
+    // violation: (x + 10^16) − 10^16 = x then holds at every sample.
     let o = decide(
-        "expect = \"undecided\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"(x + 10000000000000000) - 10000000000000000 + grad(y^2, y) - 2 y\", \"x\"]",
+        "expect = \"holds\"\nstrategy = \"numeric\"\nsides = [\"(x + 10000000000000000) - 10000000000000000\", \"x\"]",
     );
-    assert_eq!(o.verdict(), Verdict::Undecided, "{o:?}");
+    assert_eq!(
+        (o.verdict(), o.strength()),
+        (Verdict::Holds, Strength::Sampled),
+        "{o:?}"
+    );
+    // A counterexample found in floating point is still confirmed by a second route:
+    // exactly, and its values are the exact ones, not the sample's rounding.
+    let o = decide(
+        "expect = \"fails\"\nreason = \"r\"\nstrategy = \"numeric\"\nsides = [\"(x + 100000000) (x + 100000000) - 10000000000000000 - 200000000 x\", \"0\"]",
+    );
+    assert_eq!(o.verdict(), Verdict::Fails, "{o:?}");
+    let cx = o.counterexample.as_ref().unwrap();
+    assert_eq!(cx.reverified, Some(Reverified::Exact));
+    let (x, left): (f64, f64) = (
+        cx.point["x"].parse().unwrap(),
+        cx.lhs_value.as_ref().unwrap().parse().unwrap(),
+    );
     assert!(
-        matches!(
-            &o.finding,
-            Some(Finding::Unresolved {
-                why: Unresolved::NotConfirmed(Rejection::Rounding { .. }),
-                ..
-            })
-        ),
-        "{:?}",
-        o.finding
+        (left - x * x).abs() <= 1e-4 * x * x,
+        "left {left} at x = {x}: x² exactly"
     );
     // The exact strategy proves it.
     let o = decide(

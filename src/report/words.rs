@@ -315,12 +315,15 @@ pub fn point(at: &Point) -> String {
 }
 
 /// Text for a terminal: every control character but the line end (an escape sequence
-/// could clear the screen, retitle the window or draw a fake verdict) shown as
-/// `\u{…}`, so that what a file or a file name holds is seen, never obeyed.
+/// could clear the screen, retitle the window or draw a fake verdict) and every
+/// bidirectional control (which reorders what follows it on the line, so that a
+/// verdict could read as another) shown as `\u{…}`, so that what a file or a file
+/// name holds is seen, never obeyed.
 pub fn inert(s: &str) -> String {
+    let bidi = |c: char| matches!(c, '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{61c}');
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
-        if c.is_control() && c != '\n' {
+        if (c.is_control() && c != '\n') || bidi(c) {
             out.push_str(&format!("\\u{{{:x}}}", u32::from(c)));
         } else {
             out.push(c);
@@ -332,6 +335,13 @@ pub fn inert(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn control_and_bidirectional_characters_are_shown_never_obeyed() {
+        assert_eq!(inert("a\u{1b}[31mb"), "a\\u{1b}[31mb");
+        assert_eq!(inert("x\u{202e}y\u{2066}z"), "x\\u{202e}y\\u{2066}z");
+        assert_eq!(inert("line\nnext σ"), "line\nnext σ");
+    }
 
     #[test]
     fn a_satisfied_inequality_is_said_as_a_margin_not_a_negative_violation() {

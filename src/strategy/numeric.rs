@@ -21,6 +21,7 @@ use super::finding::{Finding, Point, Unresolved};
 use super::interval::Enclosures;
 use super::quadrature::{self, Level};
 use super::real::component_pairs;
+use super::reverify::ExactSides;
 pub use super::sampler::SINGULAR_EPS;
 use super::sampler::{relation_holds, Sampler, Sink, State};
 use super::{
@@ -230,10 +231,24 @@ fn check_state(
                     // judgement stands and the second evaluation decides.
                     let at: Vec<(char, usize)> =
                         labels.iter().copied().zip(a.iter().copied()).collect();
-                    if let Ok((li, ri, _)) = enclosures.pair(ci, k, &at) {
-                        if li.may_satisfy(relation, &ri) {
-                            rounding = true;
-                            continue;
+                    // Polynomial sides are judged exactly at the rational point the
+                    // state denotes: satisfied there, the state is evidence like any.
+                    let exact = sampler
+                        .exact
+                        .borrow_mut()
+                        .get_or_insert_with(|| ExactSides::new(sampler))
+                        .holds_at(sampler.check, state, relation, (ci, k), &at);
+                    match exact {
+                        Some(true) => continue,
+                        // Violated exactly: a violation (confirmed again below).
+                        Some(false) => {}
+                        None => {
+                            if let Ok((li, ri, _)) = enclosures.pair(ci, k, &at) {
+                                if li.may_satisfy(relation, &ri) {
+                                    rounding = true;
+                                    continue;
+                                }
+                            }
                         }
                     }
                 }
@@ -479,7 +494,7 @@ fn confirmed(
     relation: Relation,
     mut cx: Counterexample,
 ) -> Found {
-    match reverify::numeric_counterexample(sampler, &state, relation, &cx) {
+    match reverify::numeric_counterexample(sampler, &state, relation, &mut cx) {
         Ok(how) => {
             cx.reverified = Some(how);
             Found::Violation(Box::new(state), cx)

@@ -247,10 +247,16 @@ pub(super) fn numeric_counterexample(
     sampler: &Sampler<'_>,
     state: &State,
     relation: Relation,
-    cx: &Counterexample,
+    cx: &mut Counterexample,
 ) -> Result<Reverified, Rejection> {
     match exactly(sampler, state, relation, cx) {
-        Some(Ok(())) => Ok(Reverified::Exact),
+        // The values shown are the exact ones (the sample's may be rounding).
+        Some(Ok((l, r))) => {
+            let shown = |q: &Rational| crate::digits::significant(q.to_f64(), crate::digits::VALUE);
+            cx.lhs_value = Some(shown(&l));
+            cx.rhs_value = Some(shown(&r));
+            Ok(Reverified::Exact)
+        }
         Some(Err(why)) => Err(why),
         None => by_interpreter(sampler, state, relation, cx),
     }
@@ -262,7 +268,7 @@ fn exactly(
     state: &State,
     relation: Relation,
     cx: &Counterexample,
-) -> Option<Result<(), Rejection>> {
+) -> Option<Result<(Rational, Rational), Rejection>> {
     let check = sampler.check;
     let mut env = ExactEnv::new(sampler.decls, &check.defs, &check.assumptions).ok()?;
     let chain = &check.chains[cx.chain - 1];
@@ -321,8 +327,51 @@ fn exactly(
             rhs: rv.to_string(),
         })
     } else {
-        Ok(())
+        Ok((lv, rv))
     })
+}
+
+/// The exact route at sampled states, built once per claim when first needed: the
+/// environment and each side evaluated (`None` where not polynomial or over the
+/// budget).
+pub(super) struct ExactSides<'a> {
+    env: Option<ExactEnv<'a>>,
+    sides: HashMap<(usize, usize), Option<Labeled>>,
+}
+
+impl<'a> ExactSides<'a> {
+    pub(super) fn new(sampler: &Sampler<'a>) -> Self {
+        let check = sampler.check;
+        ExactSides {
+            env: ExactEnv::new(sampler.decls, &check.defs, &check.assumptions).ok(),
+            sides: HashMap::default(),
+        }
+    }
+
+    /// Whether, exactly, sides `k` and `k + 1` of chain `chain` (0-based) satisfy
+    /// `relation` at the rational point `state` denotes, for the index values `at`
+    /// (0-based); `None` where the sides are not polynomial, or not defined there.
+    pub(super) fn holds_at(
+        &mut self,
+        check: &Check,
+        state: &State,
+        relation: Relation,
+        (chain, k): (usize, usize),
+        at: &[(char, usize)],
+    ) -> Option<bool> {
+        let env = self.env.as_mut()?;
+        let mut side = |j: usize| -> Option<Quotient> {
+            let value = self.sides.entry((chain, j)).or_insert_with(|| {
+                let s = &check.chains[chain][j];
+                env.eval(s.node.as_ref().ok()?, &s.origin).ok()
+            });
+            value.as_ref().map(|v| v.at(at).clone())
+        };
+        let (l, r) = (side(k)?, side(k + 1)?);
+        let point = exact_point(env, state)?;
+        let value = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        Some(holds_exactly(relation, &l.eval(&value)?, &r.eval(&value)?))
+    }
 }
 
 fn holds_exactly(relation: Relation, l: &Rational, r: &Rational) -> bool {

@@ -65,6 +65,8 @@ pub(super) struct Sampler<'a> {
     /// States whose floating-point violation lay within the sides' interval
     /// enclosures (see [`super::interval`]).
     pub(super) within_rounding: Cell<usize>,
+    /// The exact route at sampled states (polynomial sides), built when first needed.
+    pub(super) exact: RefCell<Option<super::reverify::ExactSides<'a>>>,
 }
 
 /// Where a sampled decision keeps the states it drew, for `explain`.
@@ -95,6 +97,7 @@ impl<'a> Sampler<'a> {
             reads: check.reads(),
             drawn: 0,
             within_rounding: Cell::new(0),
+            exact: RefCell::new(None),
         })
     }
 

@@ -309,7 +309,14 @@ fn two_points(
     evidence: RationalEvidence,
 ) -> Outcome {
     let i = cx.interval(v);
-    let a = point[&v].clone();
+    // A point from the derivative's sign may leave the variable out (a slope free of
+    // it, such as (μ − 1) in (μ − 1) x): any value of the variable will do there.
+    let mut point = cx.complete(point);
+    let a = point
+        .entry(v)
+        .or_insert_with(|| crate::algebra::sign::inner_point(&i))
+        .clone();
+    let point = &point;
     let mut step = Rational::ratio(1, 16).expect("nonzero");
     for _ in 0..60 {
         let b = &a + &step;
