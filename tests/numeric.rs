@@ -160,11 +160,16 @@ wrt = ["sigma"]"#;
 }
 
 #[test]
-fn a_genuine_circle_has_no_not_circle_witness() {
+fn a_genuine_circle_refutes_not_circle_by_its_circle() {
     let not_circle = "expect = \"holds\"\nstrategy = \"not-circle\"\nx = \"tn\"\ny = \"tau\"";
-    // No witness is not a counterexample: the claim is undecided, never `fails`.
+    // Mohr's circle: no witness exists, and the circle itself, checked by the kernel
+    // on the whole locus, refutes the claim.
     let (v, m, ev) = decide(not_circle);
-    assert_eq!((v, m), (Verdict::Undecided, Method::Witness), "{ev}");
+    assert_eq!((v, m), (Verdict::Fails, Method::Witness), "{ev}");
+    assert!(ev.contains("the locus is a circle"), "{ev}");
+    // A segment is not a circle, but has no witness either: undecided, never `fails`.
+    let (v, _, ev) = decide(&not_circle.replace("\"tau\"", "\"2 tn\""));
+    assert_eq!(v, Verdict::Undecided, "{ev}");
     assert!(ev.contains("not a counterexample"), "{ev}");
     // Distorting the shear axis breaks the circle: a witness exists.
     let (v, _, ev) = decide(&not_circle.replace("\"tau\"", "\"2 tau\""));

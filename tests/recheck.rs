@@ -138,6 +138,11 @@ fn a_file_that_is_not_a_report_is_refused_with_its_reason() {
 /// The other claims of a file are genuine proofs the checker wrote, accepted again.
 const FORGED: &[(&str, &str, &str)] = &[
     (
+        "circle-with-a-wrong-radius",
+        "mohr-circle",
+        "Mohr's circle refuting 'not a circle' with F = s_11 s_22 - 2 s_12^2: the locus is not on it",
+    ),
+    (
         "negative-constant-denominator",
         "s2",
         "(x^2+1)(a^2+1)/(-2) > 0: a negative constant denominator was dropped",

@@ -107,3 +107,8 @@ fn sides_that_cancel_in_floating_point_are_not_refuted_by_rounding() {
 fn monotone_and_sign_claims_times_a_factor_of_one_sign() {
     assert_eq!(as_declared_for_every_seed("one-sign-factors"), 9);
 }
+
+#[test]
+fn a_locus_that_is_a_circle_is_refuted_by_its_circle() {
+    assert_eq!(as_declared_for_every_seed("circles"), 8);
+}

@@ -145,6 +145,12 @@ pub enum Fact {
         us: Vec<Rational>,
         roots: Vec<FracData>,
     },
+    /// Its refutation: the coefficients D, E, F (rational functions of the state) of the
+    /// circle x² + y² + D x + E y + F = 0 on which the whole locus lies.
+    OnCircle {
+        circle: [Reduced; 3],
+        roots: Vec<FracData>,
+    },
 }
 
 impl Fact {
@@ -166,7 +172,8 @@ impl Fact {
             | Fact::Pole { roots, .. }
             | Fact::Limit { roots, .. }
             | Fact::Roots { roots }
-            | Fact::NotConcyclic { roots, .. } => roots,
+            | Fact::NotConcyclic { roots, .. }
+            | Fact::OnCircle { roots, .. } => roots,
         }
     }
 }
@@ -254,6 +261,12 @@ pub enum Checked {
     },
     /// Four points on no common circle or line.
     NotConcyclic { determinant: String },
+    /// The locus lies on one circle of nonzero radius at every state off a thin set,
+    /// and covers it (a polynomial in the normal of constant distance from the centre).
+    OnCircle {
+        center: String,
+        radius_squared: String,
+    },
 }
 
 /// Everything a proof verified.
@@ -438,6 +451,7 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
         | Fact::Limit { .. }
         | Fact::Roots { .. }
         | Fact::NotConcyclic { .. }
+        | Fact::OnCircle { .. }
             if chains.is_none() =>
         {
             let mut env = Env::new(&st.context, fact.roots())?;

@@ -597,6 +597,7 @@ pub(super) fn run(
         F::Limit { point, .. } => limit(env, claim, &box_, point.as_deref())?,
         F::Roots { .. } => roots(env, claim, &box_)?,
         F::NotConcyclic { point, us, .. } => not_concyclic(env, claim, point, us)?,
+        F::OnCircle { circle, .. } => on_circle(env, claim, circle)?,
         _ => {
             return Err(Rejection::Mismatch(
                 "this fact is about another kind of claim".into(),
@@ -944,6 +945,91 @@ fn not_concyclic(
         Conclusion::Holds,
         vec![Checked::NotConcyclic {
             determinant: det.to_string(),
+        }],
+    ))
+}
+
+/// The locus of (x, y) over the unit normal in a plane is a circle: at every state off
+/// a thin set it lies on x² + y² + D x + E y + F = 0, whose radius² (D² + E²)/4 − F is
+/// not identically 0, and covers it. Covering follows from x and y being polynomials in
+/// n = (cos θ, sin θ), not constant on the circle: w = (x − a) + i (y − b) is then a
+/// trigonometric polynomial Σ c_k e^{ikθ} of constant modulus r, and |w|² constant
+/// leaves one frequency only (the product of the highest and lowest would remain), so
+/// w = c_k e^{ikθ} with k ≠ 0, which runs over the whole circle.
+fn on_circle(
+    env: &mut Env<'_>,
+    claim: &Claim,
+    circle: &[Reduced; 3],
+) -> R<(Conclusion, Vec<Checked>)> {
+    let Claim::NotCircle { x, y } = claim else {
+        return Err(Rejection::Mismatch("not a not-circle claim".into()));
+    };
+    let normal = env.normal_vars().to_vec();
+    if normal.len() != 2 {
+        return Err(Rejection::Mismatch("a normal in a plane".into()));
+    }
+    let reads_normal = |p: &Poly| p.variables().iter().any(|v| normal.contains(v));
+    let (fx, fy) = (scalar(env, x)?, scalar(env, y)?);
+    // Polynomials in n, not both constant on the circle (the reduction by n·n = 1 is
+    // canonical in the plane: a term left that reads n makes the value move with it).
+    let mut moves = false;
+    for f in [&fx, &fy] {
+        if f.denominator().iter().any(|(p, _)| reads_normal(p)) {
+            return Err(no("the locus divides by the normal"));
+        }
+        let on_circle = f
+            .numerator()
+            .reduce_on_sphere(&normal)
+            .map_err(|_| no("a negative power of the normal"))?;
+        moves |= on_circle
+            .terms()
+            .any(|(m, _)| normal.iter().any(|&v| m.exponent(v) != 0));
+    }
+    if !moves {
+        return Err(no("the locus does not move with the normal: a point"));
+    }
+    let mut coefficient = |(n, d): &Reduced| -> R<Frac> {
+        let (n, d) = (env.poly_of(n)?, env.poly_of(d)?);
+        if reads_normal(&n) || reads_normal(&d) {
+            return Err(no("the circle moves with the normal"));
+        }
+        frac(Frac::from(n).div(&Frac::from(d)))
+    };
+    let [d, e, f] = [
+        coefficient(&circle[0])?,
+        coefficient(&circle[1])?,
+        coefficient(&circle[2])?,
+    ];
+    // x² + y² + D x + E y + F, its numerator 0 on the circle of normals.
+    let q = frac(fx.pow(2))?;
+    let q = frac(q.add(&frac(fy.pow(2))?))?;
+    let q = frac(q.add(&frac(d.mul(&fx))?))?;
+    let q = frac(q.add(&frac(e.mul(&fy))?))?;
+    let q = frac(q.add(&f))?;
+    let rest = q
+        .numerator()
+        .reduce_on_sphere(&normal)
+        .map_err(|_| no("a negative power of the normal"))?;
+    if !rest.is_zero() {
+        return Err(no("the locus is not on the circle"));
+    }
+    let quarter = Frac::constant(Rational::ratio(1, 4).ok_or(EvalError::Limit)?);
+    let r2 = frac(frac(d.pow(2))?.add(&frac(e.pow(2))?))?;
+    let r2 = frac(frac(r2.mul(&quarter))?.sub(&f))?;
+    if r2.is_zero() {
+        return Err(no("the circle has radius 0: a point"));
+    }
+    let half = Frac::constant(Rational::ratio(-1, 2).ok_or(EvalError::Limit)?);
+    let (cx, cy) = (frac(d.mul(&half))?, frac(e.mul(&half))?);
+    Ok((
+        Conclusion::Fails,
+        vec![Checked::OnCircle {
+            center: format!(
+                "({}, {})",
+                super::eval::show(&cx, &env.vars),
+                super::eval::show(&cy, &env.vars)
+            ),
+            radius_squared: super::eval::show(&r2, &env.vars),
         }],
     ))
 }

@@ -571,6 +571,15 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
             Checked::NotConcyclic { determinant } => {
                 format!("four points on no common circle or line (det = {determinant})")
             }
+            Checked::OnCircle {
+                center,
+                radius_squared,
+            } => format!(
+                "the whole locus lies on the circle with centre {center} and radius² \
+                 {radius_squared}, and covers it (a polynomial in the normal at constant \
+                 distance from the centre), at every state where these are defined and the \
+                 radius is not 0"
+            ),
         })
         .collect();
     Some(words.join("; "))

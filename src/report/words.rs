@@ -52,6 +52,16 @@ pub fn finding(f: &Finding) -> String {
                 points.join(", ")
             )
         }
+        Finding::OnCircle {
+            center,
+            radius_squared,
+        } => format!(
+            "the locus is a circle: at every state where these are defined and the radius is \
+             not 0, every point (x, y) lies on the circle with centre {center} and radius² \
+             {radius_squared}, and covers it (a polynomial in the normal at constant distance \
+             from the centre runs over the whole circle; checked as an identity in the state \
+             and the normal)"
+        ),
         Finding::NoWitness { attempts } => format!(
             "undecided: no witness among {attempts} rational states (every four points tried were \
              concyclic); this is not a counterexample"

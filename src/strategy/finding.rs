@@ -62,6 +62,12 @@ pub enum Finding {
     RationalFunction(RationalEvidence),
     /// No witness among `attempts` rational states (not a counterexample).
     NoWitness { attempts: usize },
+    /// The locus is a circle (the refutation of a not-circle claim): its centre and
+    /// radius² as functions of the state.
+    OnCircle {
+        center: String,
+        radius_squared: String,
+    },
     /// A sampled state the checker could not judge.
     Unresolved { why: Unresolved, at: Point },
     /// The statement fails outside the declared domain; inside, a state could not be

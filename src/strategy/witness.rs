@@ -10,7 +10,7 @@ use super::eval::ExactEnv;
 use super::finding::Finding;
 use super::{Method, Outcome};
 use crate::algebra::certificate::{Certificate, Fact};
-use crate::algebra::Quotient;
+use crate::algebra::{Quotient, RatFunc};
 use crate::derivation::{Check, Strategy};
 use crate::kernel::{Rational, Var};
 use crate::lang::{Decls, Diagnostic};
@@ -135,9 +135,104 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
             );
         }
     }
+    // No witness: perhaps the locus is a circle. The circle through three of its points,
+    // as rational functions of the state, goes to the kernel, which checks it on the
+    // whole locus; refused, it proves nothing either way.
+    if let Some(circle) = circle_through(&px, &py, &normal) {
+        let statement = super::statement::not_circle(decls, check, &x.node, &y.node)?;
+        let names = &env.vars;
+        let data = |f: &RatFunc| {
+            (
+                super::statement::poly_data(f.numerator(), names),
+                super::statement::poly_data(f.denominator(), names),
+            )
+        };
+        let fact = crate::kernel::check::Fact::OnCircle {
+            circle: [data(&circle[0]), data(&circle[1]), data(&circle[2])],
+            roots: env.root_data(),
+        };
+        if let Ok(proof) = crate::kernel::check::check(statement, fact) {
+            let finding = match proof.summary().iter().find_map(|c| match c {
+                crate::kernel::check::Checked::OnCircle {
+                    center,
+                    radius_squared,
+                } => Some((center.clone(), radius_squared.clone())),
+                _ => None,
+            }) {
+                Some((center, radius_squared)) => Finding::OnCircle {
+                    center,
+                    radius_squared,
+                },
+                None => Finding::NoWitness { attempts: ATTEMPTS },
+            };
+            return Ok(Outcome::proved(Method::Witness, 1, proof).with_finding(finding));
+        }
+    }
     // Not finding a witness proves nothing about the statement.
     Ok(Outcome::undecided(Method::Witness, ATTEMPTS)
         .with_finding(Finding::NoWitness { attempts: ATTEMPTS }))
+}
+
+/// The circle x² + y² + D x + E y + F = 0 through the locus at three normals, its
+/// coefficients [D, E, F] as rational functions of the state (Cramer's rule). The
+/// normals are at angles whose doubles differ too (a locus quadratic in n takes the
+/// same point at n and −n); `None` when every triple tried is collinear or undefined.
+fn circle_through(px: &Quotient, py: &Quotient, normal: &[Var]) -> Option<[RatFunc; 3]> {
+    [[0, 1, 2], [0, 2, 3], [1, 2, 3]].into_iter().find_map(|t| {
+        circle_at(
+            px,
+            py,
+            normal,
+            t.map(|k| [(0, 1), (1, 1), (1, 2), (1, 3)][k]),
+        )
+    })
+}
+
+/// [`circle_through`] at the normals ((1 − u²), 2u)/(1 + u²) for u = a/b of each pair.
+fn circle_at(
+    px: &Quotient,
+    py: &Quotient,
+    normal: &[Var],
+    us: [(i64, i64); 3],
+) -> Option<[RatFunc; 3]> {
+    let (x, y) = (px.to_ratfunc(), py.to_ratfunc());
+    let point = |(a, b): (i64, i64)| -> Option<[RatFunc; 2]> {
+        let (n1, n2) = circle_point(&Rational::ratio(a, b)?);
+        let at = |v: Var| {
+            if v == normal[0] {
+                Some(n1.clone())
+            } else if v == normal[1] {
+                Some(n2.clone())
+            } else {
+                None
+            }
+        };
+        Some([x.fix(&at)?, y.fix(&at)?])
+    };
+    let points = [point(us[0])?, point(us[1])?, point(us[2])?];
+    let one = RatFunc::int(1);
+    // Rows [x, y, 1 | −(x² + y²)].
+    let rows: Vec<[RatFunc; 4]> = points
+        .iter()
+        .map(|[a, b]| {
+            let rhs = -(&(&(a * a) + &(b * b)));
+            [a.clone(), b.clone(), one.clone(), rhs]
+        })
+        .collect();
+    let det3 = |c: [usize; 3]| -> RatFunc {
+        let m = |r: usize, k: usize| &rows[r][c[k]];
+        let minor = |r1: usize, r2: usize, k1: usize, k2: usize| {
+            &(m(r1, k1) * m(r2, k2)) - &(m(r1, k2) * m(r2, k1))
+        };
+        &(&(m(0, 0) * &minor(1, 2, 1, 2)) - &(m(0, 1) * &minor(1, 2, 0, 2)))
+            + &(m(0, 2) * &minor(1, 2, 0, 1))
+    };
+    let det = det3([0, 1, 2]);
+    if det.is_zero() {
+        return None;
+    }
+    let solve = |c: [usize; 3]| &det3(c) / &det;
+    Some([solve([3, 1, 2])?, solve([0, 3, 2])?, solve([0, 1, 3])?])
 }
 
 #[cfg(test)]
