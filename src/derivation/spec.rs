@@ -170,10 +170,27 @@ impl Loader {
             "sign" | "monotone" | "limit" | "roots" => {
                 self.scalar_strategy(name, c, decls, defs)?
             }
-            "not-circle" => Strategy::NotCircle {
-                x: scalar(&need(&c.x, "x")?)?,
-                y: scalar(&need(&c.y, "y")?)?,
-            },
+            "not-circle" => {
+                // The claim is about a generic state: a box or sampling would be ignored.
+                let ignored = [
+                    (!c.given.is_empty()).then_some("given"),
+                    (!c.domain.is_empty()).then_some("domain"),
+                    (!c.ranges.is_empty()).then_some("ranges"),
+                    c.samples.as_ref().map(|_| "samples"),
+                    c.seed.as_ref().map(|_| "seed"),
+                    c.singular.as_ref().map(|_| "singular"),
+                    c.relation.as_ref().map(|_| "relation"),
+                ];
+                if let Some(field) = ignored.into_iter().flatten().next() {
+                    return Err(self
+                        .diag(anchor.span(), format!("`{field}` does not apply to strategy = \"not-circle\", a claim about the locus at a generic state"))
+                        .with_help("remove it; fix parameters with assume = [\"a = 1\"] instead"));
+                }
+                Strategy::NotCircle {
+                    x: scalar(&need(&c.x, "x")?)?,
+                    y: scalar(&need(&c.y, "y")?)?,
+                }
+            }
             other => {
                 return Err(self
                     .diag(anchor.span(), format!("unknown strategy `{other}`"))

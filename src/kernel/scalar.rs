@@ -1019,6 +1019,22 @@ fn on_circle(
     if r2.is_zero() {
         return Err(no("the circle has radius 0: a point"));
     }
+    // Not identically 0, the radius is nonzero at generic states of a box open in each
+    // parameter it reads; a box without interior in one of them could hold only states
+    // where it is 0, where the locus is a point.
+    let box_ = env.given_box();
+    let mut read = r2.numerator().variables();
+    for (p, _) in r2.denominator() {
+        read.extend(p.variables());
+    }
+    if box_
+        .iter()
+        .any(|(v, i)| read.contains(v) && !i.has_interior())
+    {
+        return Err(no(
+            "the box has no interior in a parameter the radius reads: the radius may be 0 on all of it",
+        ));
+    }
     let half = Frac::constant(Rational::ratio(-1, 2).ok_or(EvalError::Limit)?);
     let (cx, cy) = (frac(d.mul(&half))?, frac(e.mul(&half))?);
     Ok((
