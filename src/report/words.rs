@@ -280,6 +280,14 @@ pub fn rejection(r: &Rejection) -> String {
 /// What a sampled decision measured, with its extreme over the samples (`worst`
 /// false) or the worst value the search for the worst case found (`worst` true).
 pub fn measure(m: Measure, v: f64, worst: bool) -> String {
+    // No comparison was made (every state was excluded, or undefined).
+    if v.is_infinite() && v < 0.0 {
+        return if worst {
+            "no state compared".to_owned()
+        } else {
+            "no sample compared".to_owned()
+        };
+    }
     match (m, worst) {
         (Measure::RelativeDifference, false) => {
             format!("the sides differ by at most {v:.1e} (relative)")
@@ -364,6 +372,9 @@ mod tests {
             measure(Measure::RelativeViolation, 0.0, true),
             "smallest relative margin 0.0e0 (held)"
         );
+        // Nothing compared is said so, never as a margin of −∞.
+        let none = measure(Measure::RelativeDifference, f64::NEG_INFINITY, false);
+        assert_eq!(none, "no sample compared");
         assert_eq!(
             measure(Measure::RelativeViolation, 0.25, false),
             "largest relative violation 2.5e-1"
