@@ -34,6 +34,16 @@ impl Real {
     }
 }
 
+impl Real {
+    /// "name = x" for an exact number, "name ≈ x" for an isolated irrational one.
+    pub fn equated(&self, name: &str) -> String {
+        match self {
+            Real::Exact(x) => format!("{name} = {x}"),
+            Real::Isolated { .. } => format!("{name} {self}"),
+        }
+    }
+}
+
 impl fmt::Display for Real {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

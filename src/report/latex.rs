@@ -12,6 +12,10 @@ use std::fmt::Write as _;
 /// [`escape`]).
 const OPEN: char = '\u{1}';
 const CLOSE: char = '\u{2}';
+/// Around mathematics (between [`OPEN`] and [`CLOSE`]) that [`escape`] scales to the
+/// column with `\ccfit`.
+const FIT: char = '\u{3}';
+const FIT_END: char = '\u{4}';
 
 /// A printed formula as mathematics when [`super::tex::check`] lets it into a `.tex`
 /// file; otherwise its text, for [`escape`] to show literally (with no backtick to
@@ -30,7 +34,7 @@ fn math(s: &str) -> String {
 /// Text with the characters [`escape`] gives a meaning (markers, backticks) made plain.
 fn literal(s: &str) -> String {
     s.chars()
-        .filter(|&c| c != OPEN && c != CLOSE)
+        .filter(|&c| ![OPEN, CLOSE, FIT, FIT_END].contains(&c))
         .map(|c| if c == '`' { '‘' } else { c })
         .collect()
 }
@@ -145,6 +149,14 @@ pub fn escape(s: &str) -> String {
                 out.push('$');
                 in_math = true;
             }
+            // On a line of its own, so that scaled to the column it fits beside nothing.
+            FIT => out.push_str("\\newline\\ccfit{"),
+            FIT_END => out.push_str("}\\newline "),
+            // Straight double quotes as TeX's opening and closing quotes.
+            '"' => {
+                let opening = out.is_empty() || out.ends_with([' ', '(', '[', '{', '~']);
+                out.push_str(if opening { "``" } else { "''" });
+            }
             '`' => code = Some(String::new()),
             '\\' => out.push_str("\\textbackslash{}"),
             '{' | '}' | '$' | '&' | '#' | '_' | '%' => {
@@ -199,8 +211,29 @@ pub fn expression(s: &str) -> String {
             }
             continue;
         }
+        // The truncation note of a long polynomial, "(82 terms in all)", is words.
+        if c == '(' {
+            let rest: String = chars[k..].iter().collect();
+            if let Some(n) = rest
+                .strip_prefix('(')
+                .and_then(|r| r.split_once(" terms in all)"))
+                .map(|(n, _)| n)
+                .filter(|n| !n.is_empty() && n.chars().all(|d| d.is_ascii_digit()))
+            {
+                let _ = write!(out, "\\text{{({n} terms in all)}}");
+                k += n.len() + " terms in all)".len() + 1;
+                continue;
+            }
+        }
         match c {
             '*' => out.push_str("\\,"),
+            // A product written with a space.
+            ' ' if k > 0
+                && chars[k - 1].is_ascii_alphanumeric()
+                && chars.get(k + 1).is_some_and(|n| n.is_ascii_alphanumeric()) =>
+            {
+                out.push_str("\\,")
+            }
             '^' => {
                 // The exponent: a signed integer or one character.
                 let mut e = String::new();
@@ -312,10 +345,24 @@ fn stacked(latex: &str) -> String {
             k += 5;
             continue;
         }
+        // An implication starts a new line, the arrow first.
+        let arrow = ["\\Rightarrow", "\\implies", "\\Leftrightarrow", "\\iff"]
+            .into_iter()
+            .find(|a| {
+                rest.starts_with(a)
+                    && !rest[a.len()..].starts_with(|c: char| c.is_ascii_alphabetic())
+            });
+        if let (true, Some(a)) = (top, arrow) {
+            lines.push(vec![a.to_owned()]);
+            k += a.len();
+            continue;
+        }
         let c = rest.chars().next().unwrap_or(' ');
         match c {
-            '{' => depth += 1,
-            '}' => depth -= 1,
+            // Brackets group as braces do: an `=` inside a condition (τ = 0, …) is no
+            // step of the chain.
+            '{' | '(' | '[' => depth += 1,
+            '}' | ')' | ']' => depth -= 1,
             '\\' if bytes.get(k + 1).is_some_and(|b| !b.is_ascii_alphabetic()) => {
                 // An escaped character (`\{`, `\,`) is copied whole.
                 let line = lines.last_mut().expect("one line");
@@ -359,7 +406,11 @@ fn stacked(latex: &str) -> String {
     if rows.len() <= 1 || depth != 0 || delims != 0 {
         return latex.to_owned();
     }
-    format!("\\begin{{aligned}}{}\\end{{aligned}}", rows.join(" \\\\ "))
+    // Top-aligned, so that its first line sits on the row's first line.
+    format!(
+        "\\begin{{aligned}}[t]{}\\end{{aligned}}",
+        rows.join(" \\\\ ")
+    )
 }
 
 /// What a fragment needs: its packages, and `\ccfit`, which scales a formula down to
@@ -443,6 +494,23 @@ fn short_evidence(r: &Decided<'_>) -> String {
     escape(&s)
 }
 
+/// The rows in the order of their sections (3.1 before 3.10, numbered sections before
+/// appendices), file order kept within a section.
+fn in_section_order<'r, 'd>(rows: &[&'r Decided<'d>]) -> Vec<&'r Decided<'d>> {
+    let key = |section: &str| -> Vec<(u8, u64, String)> {
+        section
+            .split('.')
+            .map(|part| match part.parse::<u64>() {
+                Ok(n) => (0, n, String::new()),
+                Err(_) => (1, 0, part.to_owned()),
+            })
+            .collect()
+    };
+    let mut out = rows.to_vec();
+    out.sort_by_key(|r| key(&r.claim.section));
+    out
+}
+
 /// The derivation table as a longtable that fits a portrait page (statements scaled to
 /// their column when wider), followed by the full evidence in a second table keyed by
 /// claim.
@@ -455,12 +523,20 @@ pub fn render(rows: &[&Decided<'_>], standalone: bool, paper: &str) -> String {
         out,
         "\\begin{{longtable}}{{@{{}}>{{\\raggedright}}p{{0.15\\linewidth}}>{{\\raggedright}}p{{0.40\\linewidth}}>{{\\raggedright}}p{{0.15\\linewidth}}>{{\\raggedright\\arraybackslash}}p{{0.18\\linewidth}}@{{}}}}"
     );
-    let _ = writeln!(out, "\\hline\nclaim (\\S) & statement (as printed) & verdict & decided by \\\\\n\\hline\n\\endhead");
+    let _ = writeln!(
+        out,
+        "\\caption{{Derivation table: each claim as printed, its verdict and how it was \
+         decided.}}\\label{{tab:derivation}}\\\\"
+    );
+    // The caption on the first page only; the column heads on every page.
+    let head = "\\hline\nclaim (\\S) & statement (as printed) & verdict & decided by \\\\\n\\hline";
+    let _ = writeln!(out, "{head}\n\\endfirsthead\n{head}\n\\endhead");
+    let rows = &in_section_order(rows);
     for r in rows {
         let c = r.claim;
         let _ = writeln!(
             out,
-            "{} (\\S{{}}{}) & {} & {} & {} \\\\",
+            "{} (\\S{{}}{}) & {} & {} & {} \\\\[3pt]",
             escape(&c.id),
             escape(&c.section),
             statement(c),
@@ -483,13 +559,18 @@ pub fn render(rows: &[&Decided<'_>], standalone: bool, paper: &str) -> String {
         out,
         "\\begin{{longtable}}{{@{{}}>{{\\raggedright}}p{{0.17\\linewidth}}>{{\\raggedright\\arraybackslash}}p{{0.78\\linewidth}}@{{}}}}"
     );
-    let _ = writeln!(out, "\\hline\nclaim & evidence \\\\\n\\hline\n\\endhead");
+    let _ = writeln!(
+        out,
+        "\\caption{{The evidence for each claim.}}\\label{{tab:evidence}}\\\\"
+    );
+    let head = "\\hline\nclaim & evidence \\\\\n\\hline";
+    let _ = writeln!(out, "{head}\n\\endfirsthead\n{head}\n\\endhead");
     for r in rows {
         let _ = writeln!(
             out,
             "{} & {} \\\\",
             escape(&r.claim.id),
-            escape(&full_evidence(r, &|s| format!("\\ccfit{{{}}}", math(s))))
+            escape(&full_evidence(r, &|s| format!("{FIT}{}{FIT_END}", math(s))))
         );
     }
     let _ = writeln!(out, "\\hline\n\\end{{longtable}}\n}}");
@@ -580,20 +661,44 @@ mod tests {
     fn a_chain_is_stacked_on_its_equals_signs_and_parts_on_lines() {
         assert_eq!(
             stacked("a = \\frac{b}{c=d} = e, \\quad f = g"),
-            "\\begin{aligned}a &= \\frac{b}{c=d} \\\\ &= e \\\\ f &= g\\end{aligned}"
+            "\\begin{aligned}[t]a &= \\frac{b}{c=d} \\\\ &= e \\\\ f &= g\\end{aligned}"
         );
         assert_eq!(
             stacked("\\left(a = b\\right) = c"),
             "\\left(a = b\\right) = c"
         );
         assert_eq!(stacked("a \\le b"), "a \\le b");
+        // An `=` inside a condition is no step; an implication starts a line.
+        assert_eq!(
+            stacked("h = 1 \\quad (\\tau = 0, h^C = 1/2)"),
+            "\\begin{aligned}[t]h &= 1 \\\\ &(\\tau = 0, h^C = 1/2)\\end{aligned}"
+        );
+        assert_eq!(
+            stacked("a = b \\Rightarrow c = d"),
+            "\\begin{aligned}[t]a &= b \\\\ \\Rightarrow c &= d\\end{aligned}"
+        );
+    }
+
+    #[test]
+    fn words_quotes_and_scaled_formulas_read_as_text() {
+        assert!(expression("x + ... (82 terms in all)").contains("\\text{(82 terms in all)}"));
+        assert_eq!(escape("the \"static\" model"), "the ``static'' model");
+        let fitted = escape(&format!(
+            "Correction {FIT}{OPEN}x = 1{CLOSE}{FIT_END}: holds"
+        ));
+        assert_eq!(
+            fitted,
+            "Correction \\newline\\ccfit{$x = 1$}\\newline : holds"
+        );
+        // A file's text cannot smuggle the markers in.
+        assert_eq!(literal(&format!("{FIT}x{FIT_END}")), "x");
     }
 
     #[test]
     fn expressions_are_typeset_as_mathematics() {
         assert_eq!(
             expression("-n_2*R_g*Dw_31 + sigma_ki n_k^2*V^-1"),
-            "$-n_{2}\\,R_{g}\\,\\mathrm{Dw}_{31} + \\sigma_{ki} n_{k}^{2}\\,V^{-1}$"
+            "$-n_{2}\\,R_{g}\\,\\mathrm{Dw}_{31} + \\sigma_{ki}\\,n_{k}^{2}\\,V^{-1}$"
         );
         assert_eq!(
             expression("eps_ijk … mut_ij"),

@@ -94,12 +94,12 @@ pub(super) fn decide(
         .cuts
         .iter()
         .filter(|c| !c.pole)
-        .map(|c| format!("d/d{name} = 0 at {name} = {}", c.at))
+        .map(|c| format!("d/d{name} = 0 at {}", c.at.equated(&name)))
         .chain(
             of_f.cuts
                 .iter()
                 .filter(|c| c.pole)
-                .map(|c| format!("pole at {name} = {}", c.at)),
+                .map(|c| format!("pole at {}", c.at.equated(&name))),
         )
         .collect();
     let runs = runs(&chart, &of_f, want);

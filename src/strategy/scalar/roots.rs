@@ -77,7 +77,7 @@ pub(super) fn decide(
     let name = cx.name(v);
     evidence.points = zeros
         .iter()
-        .map(|z| format!("root at {name} = {z}"))
+        .map(|z| format!("root at {}", z.equated(&name)))
         .collect();
     if zeros.is_empty() {
         evidence.points.push(format!(

@@ -105,7 +105,7 @@ pub(super) fn decide_function(
                 .iter()
                 .map(|c| {
                     let what = if c.pole { "pole" } else { "zero" };
-                    format!("{what} at {} = {}", names.name(v), c.at)
+                    format!("{what} at {}", c.at.equated(names.name(v)))
                 })
                 .collect();
         }
