@@ -57,6 +57,14 @@ pub fn product_value<T: Clone + std::ops::Mul<Output = T>>(
     })
 }
 
+/// A whole-symbol substitution `X_ij… = expression` (see [`Parametrisation::substituted`]).
+pub struct Substitution<'a> {
+    pub assumption: &'a Assumption,
+    pub symbol: &'a str,
+    pub formal: &'a [char],
+    pub body: &'a crate::lang::Node,
+}
+
 /// A component the assumptions determine: `constant + Σ coefficient · (free component)
 /// + Σ coefficient · (product of parameters)`.
 #[derive(Debug)]
@@ -324,6 +332,30 @@ impl Parametrisation {
     /// Indices into the assumptions of the substitutions, in the order to apply them.
     pub fn substitutions(&self) -> &[usize] {
         &self.substitutions
+    }
+
+    /// The whole-symbol substitutions among `assumptions` (those this was solved from),
+    /// in the order of their dependencies.
+    pub fn substituted<'s>(
+        &'s self,
+        assumptions: &'s [Assumption],
+    ) -> impl Iterator<Item = Substitution<'s>> + 's {
+        self.substitutions.iter().filter_map(move |&k| {
+            let assumption = &assumptions[k];
+            match &assumption.kind {
+                AssumptionKind::Equals {
+                    symbol,
+                    formal,
+                    body,
+                } => Some(Substitution {
+                    assumption,
+                    symbol,
+                    formal,
+                    body,
+                }),
+                _ => None,
+            }
+        })
     }
 
     /// How the assumptions constrain one component (substitutions aside).

@@ -21,7 +21,7 @@ use crate::algebra::quotient::{DivideError, Quotients};
 use crate::algebra::sign::Interval;
 use crate::algebra::{assignments, Quotient, Tensor};
 use crate::derivation::ParamBox;
-use crate::derivation::{Assumption, AssumptionKind, Definition};
+use crate::derivation::{Assumption, Definition};
 use crate::kernel::{Poly, PolyError, Rational, Var, VarTable};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin};
@@ -191,19 +191,10 @@ impl<'a> ExactEnv<'a> {
             *t.get_mut(idx) = Quotient::from(value);
             env.symbols.insert(symbol.clone(), t);
         }
-        for &k in parametrisation.substitutions() {
-            let a = &assumptions[k];
-            let AssumptionKind::Equals {
-                symbol,
-                formal,
-                body,
-            } = &a.kind
-            else {
-                unreachable!("substitutions are equations")
-            };
-            let value = env.eval(body, &a.origin)?;
-            let t = to_formal_order(&value, formal);
-            env.symbols.insert(symbol.clone(), t);
+        for sub in parametrisation.substituted(assumptions) {
+            let value = env.eval(sub.body, &sub.assumption.origin)?;
+            let t = to_formal_order(&value, sub.formal);
+            env.symbols.insert(sub.symbol.to_owned(), t);
         }
         env.assumed = assumptions.iter().flat_map(Assumption::symbols).collect();
         env.parametrisation = Some(parametrisation);

@@ -32,7 +32,7 @@ use super::sampler::{Sampler, State};
 use super::walk::{self, Ring};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::Tensor;
-use crate::derivation::{Assumption, AssumptionKind, Definition, Relation};
+use crate::derivation::{Assumption, Definition, Relation};
 use crate::kernel::Rational;
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node};
@@ -466,18 +466,10 @@ impl<'a> IntervalEnv<'a> {
                 *t.get_mut(idx) = value;
             }
         }
-        for &k in parametrisation.substitutions() {
-            let AssumptionKind::Equals {
-                symbol,
-                formal,
-                body,
-            } = &assumptions[k].kind
-            else {
-                unreachable!("substitutions are equations")
-            };
+        for sub in parametrisation.substituted(assumptions) {
             let n = env.n.clone();
-            let t = walk::in_formal_order(&mut &env, body, formal, &n)?;
-            env.symbols.insert(symbol.clone(), t);
+            let t = walk::in_formal_order(&mut &env, sub.body, sub.formal, &n)?;
+            env.symbols.insert(sub.symbol.to_owned(), t);
             env.memo.borrow_mut().clear();
         }
         Ok(env)

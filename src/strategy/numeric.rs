@@ -29,9 +29,7 @@ use super::{
     SearchEvidence,
 };
 use crate::algebra::{assignments, Tensor};
-use crate::derivation::{
-    AssumptionKind, Check, Expression, GradientConvention, Relation, Sampling, Strategy,
-};
+use crate::derivation::{Check, Expression, GradientConvention, Relation, Sampling, Strategy};
 use crate::digits::{self, significant};
 use crate::lang::{Decls, Diagnostic};
 use nalgebra::{DVector, SymmetricEigen};
@@ -687,13 +685,9 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String>
     let (decls, check, p) = (sampler.decls, sampler.check, &sampler.parametrisation);
     let mut free: Vec<Component> = Vec::new();
     for symbol in wrt {
-        for &k in p.substitutions() {
-            let a = &check.assumptions[k];
-            let AssumptionKind::Equals { body, .. } = &a.kind else {
-                continue;
-            };
-            if a.kind.symbol() == symbol || body.symbols().contains(symbol.as_str()) {
-                return Err(format!("`{symbol}` is tied to the substitution `{}`; derivatives with respect to it are ambiguous", a.text));
+        for sub in p.substituted(&check.assumptions) {
+            if sub.symbol == symbol || sub.body.symbols().contains(symbol.as_str()) {
+                return Err(format!("`{symbol}` is tied to the substitution `{}`; derivatives with respect to it are ambiguous", sub.assumption.text));
             }
         }
         let rank = decls.symbols.get(symbol).copied().unwrap_or(0);

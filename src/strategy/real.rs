@@ -17,7 +17,7 @@ use super::variation::{self, Perturbation};
 use super::walk::{self, Ring};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::{assignments, Tensor};
-use crate::derivation::{Assumption, AssumptionKind, Definition};
+use crate::derivation::{Assumption, Definition};
 use crate::kernel::Rational;
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node, Span};
@@ -309,22 +309,17 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
                 *t.get_mut(idx) = value;
             }
         }
-        for &k in parametrisation.substitutions() {
-            let AssumptionKind::Equals {
-                symbol,
-                formal,
-                body,
-            } = &assumptions[k].kind
-            else {
-                unreachable!("substitutions are equations")
-            };
+        for sub in parametrisation.substituted(assumptions) {
+            let (symbol, formal, body) = (sub.symbol, sub.formal, sub.body);
             if self.fields.is_some() && self.decls.varies(symbol) {
-                self.defined_fields
-                    .insert(symbol.clone(), (formal.clone(), body.clone(), n.to_vec()));
+                self.defined_fields.insert(
+                    symbol.to_owned(),
+                    (formal.to_vec(), body.clone(), n.to_vec()),
+                );
                 continue;
             }
             let t = walk::in_formal_order(&mut &*self, body, formal, n)?;
-            self.symbols.insert(symbol.clone(), t);
+            self.symbols.insert(symbol.to_owned(), t);
             self.memo.borrow_mut().clear();
         }
         Ok(())

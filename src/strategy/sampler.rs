@@ -10,7 +10,7 @@ use super::quadrature::{Level, Quadrature};
 use super::real::{Labeled, RealEnv, RealError};
 use super::tape::Tape;
 use crate::algebra::{assignments, Tensor};
-use crate::derivation::{AssumptionKind, Check, Constraint, Expression, Reads, Relation, Sampling};
+use crate::derivation::{Check, Constraint, Expression, Reads, Relation, Sampling};
 use crate::digits::{self, significant};
 use crate::lang::{Decls, Diagnostic, Node};
 use num_dual::DualNum;
@@ -272,16 +272,9 @@ impl<'a> Sampler<'a> {
             state.symbols.get(s).map_or(f64::NAN, |t| *t.get(idx))
         };
         let mut ok = p.residual(value) <= TOL;
-        for &k in p.substitutions() {
-            let AssumptionKind::Equals {
-                symbol,
-                formal,
-                body,
-            } = &self.check.assumptions[k].kind
-            else {
-                continue;
-            };
-            let Ok((ls, t)) = self.eval(&state.symbols, body, &state.n) else {
+        for sub in p.substituted(&self.check.assumptions) {
+            let (symbol, formal) = (sub.symbol, sub.formal);
+            let Ok((ls, t)) = self.eval(&state.symbols, sub.body, &state.n) else {
                 ok = false;
                 continue;
             };

@@ -13,7 +13,7 @@
 
 use super::sampler::{Sampler, State};
 use crate::algebra::assignments;
-use crate::derivation::{AssumptionKind, Constraint};
+use crate::derivation::Constraint;
 use crate::lang::Diagnostic;
 use rustc_hash::FxHashMap as HashMap;
 use std::collections::BTreeSet;
@@ -425,10 +425,11 @@ pub(super) fn components_read<'n>(
         out.extend(sampler.tape(node)?.inputs_read().into_iter().cloned());
     }
     // Substitutions read their own right sides.
-    for &k in sampler.parametrisation.substitutions() {
-        if let AssumptionKind::Equals { body, .. } = &sampler.check.assumptions[k].kind {
-            out.extend(sampler.tape(body)?.inputs_read().into_iter().cloned());
-        }
+    for sub in sampler
+        .parametrisation
+        .substituted(&sampler.check.assumptions)
+    {
+        out.extend(sampler.tape(sub.body)?.inputs_read().into_iter().cloned());
     }
     Some(out)
 }
