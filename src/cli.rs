@@ -616,6 +616,9 @@ fn render(
             &paper,
             args.color.colours(terminal && args.out.is_none()),
             explain,
+            (terminal && args.out.is_none())
+                .then(terminal_columns)
+                .flatten(),
         ),
         (Format::Markdown, false) => report::markdown::render(&rows, &paper),
         (Format::Markdown, true) => report::errata::markdown(&rows, &paper),
@@ -625,6 +628,16 @@ fn render(
         (Format::Csv, _) => report::csv::render(&rows),
         (Format::Html, _) => report::html::render(&rows, &paper),
     }
+}
+
+/// The width of the terminal standard output is: `COLUMNS` when set, else asked of
+/// the terminal.
+fn terminal_columns() -> Option<usize> {
+    std::env::var("COLUMNS")
+        .ok()
+        .and_then(|c| c.trim().parse::<usize>().ok())
+        .filter(|&c| c > 0)
+        .or_else(|| terminal_size::terminal_size().map(|(w, _)| usize::from(w.0)))
 }
 
 /// `--out` must not name a file that was read as input.

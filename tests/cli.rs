@@ -1123,3 +1123,37 @@ fn a_closed_pipe_ends_the_run_quietly() {
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert!(text(&out.stderr).is_empty(), "{}", text(&out.stderr));
 }
+
+#[test]
+fn the_compact_table_fits_the_terminal() {
+    // `script` (util-linux) gives the run a terminal, COLUMNS its width.
+    let bin = env!("CARGO_BIN_EXE_cosserat-check");
+    let rows_at = |columns: usize| -> Option<Vec<String>> {
+        let out = Command::new("script")
+            .args(["-qec", &format!("{bin} --color never"), "/dev/null"])
+            .env("COLUMNS", columns.to_string())
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .ok()?;
+        let shown = text(&out.stdout).replace('\r', "");
+        Some(
+            shown
+                .lines()
+                .filter(|l| l.starts_with("eq") || l.starts_with("sec"))
+                .map(str::to_owned)
+                .collect(),
+        )
+    };
+    let Some(narrow) = rows_at(140) else {
+        eprintln!("note: `script` is not installed; the width of the terminal not tested");
+        return;
+    };
+    assert!(narrow.len() > 40);
+    for row in &narrow {
+        assert!(row.chars().count() <= 140, "wider than the terminal: {row}");
+    }
+    // A wider terminal shows more of the evidence.
+    let wide = rows_at(220).unwrap();
+    let total = |rows: &[String]| rows.iter().map(|r| r.chars().count()).sum::<usize>();
+    assert!(total(&wide) > total(&narrow));
+}

@@ -10,12 +10,24 @@ use crate::derivation::Verdict;
 use crate::strategy::{Counterexample, Decided, Outcome, Strength};
 use std::fmt::Write as _;
 
-/// The widest the evidence column gets, in characters; longer evidence ends in `…`.
+/// The widest the evidence column gets, in characters, when the width of the terminal
+/// is not known; longer evidence ends in `…`.
 pub const EVIDENCE_WIDTH: usize = 80;
+
+/// The narrowest the evidence column gets on a narrow terminal.
+const EVIDENCE_MIN: usize = 24;
 
 /// How the table marks failures: `color` adds ANSI colours (bold red for `fails`,
 /// yellow for `conditional` and `undecided`) to the words, which say it without them.
-pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool, explain: &str) -> String {
+/// `columns`, the terminal's width when known: the evidence then fills what the other
+/// columns leave (never less than a short phrase).
+pub fn render(
+    rows: &[&Decided<'_>],
+    paper: &str,
+    color: bool,
+    explain: &str,
+    columns: Option<usize>,
+) -> String {
     let header = [
         "claim", "§", "verdict", "strength", "method", "read", "evidence",
     ];
@@ -33,7 +45,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool, explain: &str) ->
                 .to_owned(),
                 r.outcome.method.as_str().to_owned(),
                 super::read_label(r),
-                inert(&shorten(&short_evidence(r), EVIDENCE_WIDTH)),
+                inert(&short_evidence(r)),
             ]
         })
         .collect();
@@ -46,6 +58,17 @@ pub fn render(rows: &[&Decided<'_>], paper: &str, color: bool, explain: &str) ->
             .unwrap_or(0)
     };
     let widths: Vec<usize> = (0..6).map(width).collect();
+    let evidence = columns.map_or(EVIDENCE_WIDTH, |c| {
+        c.saturating_sub(widths.iter().map(|w| w + 2).sum::<usize>())
+            .max(EVIDENCE_MIN)
+    });
+    let lines: Vec<[String; 7]> = lines
+        .into_iter()
+        .map(|mut l| {
+            l[6] = shorten(&l[6], evidence);
+            l
+        })
+        .collect();
     let mut out = String::new();
     let _ = writeln!(out, "{}\n", inert(paper));
     let row = |cells: [&str; 7], paint: Option<&str>| {
@@ -167,16 +190,26 @@ fn counterexample_line(cx: &Counterexample) -> String {
     }
 }
 
-/// `text` cut to `width` characters, the last one `…` when anything was cut.
+/// `text` cut to `width` characters, the last one `…` when anything was cut, at the
+/// end of a word when one ends in the second half.
 fn shorten(text: &str, width: usize) -> String {
     let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
     if text.chars().count() <= width {
-        text
-    } else {
-        let mut cut: String = text.chars().take(width.saturating_sub(1)).collect();
-        cut.push('…');
-        cut
+        return text;
     }
+    let mut cut: String = text.chars().take(width.saturating_sub(1)).collect();
+    let next_is_space = text.chars().nth(width.saturating_sub(1)) == Some(' ');
+    if !next_is_space {
+        if let Some(k) = cut
+            .rfind(' ')
+            .filter(|&k| cut[..k].chars().count() >= width / 2)
+        {
+            cut.truncate(k);
+        }
+    }
+    let mut cut = cut.trim_end().to_owned();
+    cut.push('…');
+    cut
 }
 
 #[cfg(test)]
@@ -188,5 +221,11 @@ mod tests {
         assert_eq!(shorten("a  b", 10), "a b");
         assert_eq!(shorten("abcdef", 4), "abc…");
         assert_eq!(shorten("αβγδ", 4), "αβγδ");
+        // A word is not cut in the middle when an earlier one ends late enough.
+        assert_eq!(
+            shorten("correction holds at every point", 20),
+            "correction holds at…"
+        );
+        assert_eq!(shorten("a correctionholdsatevery", 10), "a correct…");
     }
 }
