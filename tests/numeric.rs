@@ -291,3 +291,15 @@ gradient = { sigma = "delta_i1 delta_j1" }"#;
     let (v, _, ev) = decide(&kink.replace("[0.0, 0.0]", "[0.5, 1.0]"));
     assert_eq!(v, Verdict::Holds, "{ev}");
 }
+
+#[test]
+fn an_overflow_is_said_as_one_not_as_a_gap_in_the_domain() {
+    // exp(x)/4 = exp(x - log 4) is true everywhere; beyond x ≈ 709.8 both sides overflow
+    // f64. That is no set where the sides are undefined, and never a counterexample.
+    let (v, _, ev) = decide(
+        "expect = \"undecided\"\nreason = \"r\"\nstrategy = \"numeric\"\nranges = { phi = [709.0, 712.0] }\nsides = [\"exp(phi)/4\", \"exp(phi - log(4))\"]",
+    );
+    assert_eq!(v, Verdict::Undecided, "{ev}");
+    assert!(ev.contains("overflow floating point"), "{ev}");
+    assert!(!ev.contains("undefined on a set"), "{ev}");
+}

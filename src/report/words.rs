@@ -15,7 +15,21 @@ pub fn finding(f: &Finding) -> String {
         Finding::Uncertified { what, at, help } => {
             format!("undecided: {what} (at {at}); {help}")
         }
-        Finding::Undefined { what, at, point } => format!(
+        // An overflow is no gap in the domain: the value exists, f64 cannot hold it.
+        Finding::Undefined {
+            what,
+            at,
+            point,
+            overflow: true,
+        } => format!(
+            "undecided: the sides overflow floating point on a set of positive measure: {what} \
+             (at {at}) at {} and at every state tried near it; restrict `ranges` or `given`, \
+             or decide it exactly",
+            self::point(point)
+        ),
+        Finding::Undefined {
+            what, at, point, ..
+        } => format!(
             "undecided: the sides are undefined on a set of positive measure, not only at \
              isolated points: {what} (at {at}) at {} and at every state tried near it; restrict \
              `ranges` or `given`, or exclude the set with `singular`",

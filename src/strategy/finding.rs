@@ -46,6 +46,9 @@ pub enum Finding {
         what: String,
         at: String,
         point: Point,
+        /// The value exists but overflows `f64` (no gap in the domain).
+        #[serde(skip_serializing_if = "std::ops::Not::not")]
+        overflow: bool,
     },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.

@@ -64,6 +64,9 @@ enum Judged {
     Undefined(Diagnostic),
 }
 
+/// Why a side has no value at a state where it is defined but overflows `f64`.
+const OVERFLOW: &str = "the value is not finite in floating point here (an overflow)";
+
 /// A violation caused by adaptive averages counts only beyond this multiple of their
 /// error estimate; between one and this multiple the state is unresolved.
 pub const QUADRATURE_CLEAR: f64 = 10.0;
@@ -105,10 +108,7 @@ fn check_state(
                     // of the expression in floating point: the state is stepped off like
                     // one where the side is undefined, never a counterexample.
                     Ok(v) if v.1.components().iter().any(|x: &f64| !x.is_finite()) => {
-                        return Ok(Err(s.origin.diagnostic(
-                            node.span,
-                            "the value is not finite in floating point here (an overflow)",
-                        )))
+                        return Ok(Err(s.origin.diagnostic(node.span, OVERFLOW)))
                     }
                     Ok(v) => values.push(v),
                     Err(r) if r.pointwise => {
@@ -590,6 +590,7 @@ pub fn decide_numeric(
                     what: why.message.clone(),
                     at: format!("{}:{}:{}", why.path, why.line, why.col),
                     point,
+                    overflow: why.message == OVERFLOW,
                 }),
             );
         }
@@ -646,6 +647,7 @@ pub fn decide_numeric(
                 what: why.message.clone(),
                 at: format!("{}:{}:{}", why.path, why.line, why.col),
                 point,
+                overflow: why.message == OVERFLOW,
             })
             .with_counterexample(cx)),
         Found::Nothing => Ok(
