@@ -106,3 +106,22 @@ fn malformed_scalar_claims_are_located_errors() {
         assert!(e.contains("f.toml:"), "located: {e}");
     }
 }
+
+#[test]
+fn a_cancelled_divisor_is_no_pole_of_a_monotone_function() {
+    // (x² − 1)/(x − 1) is x + 1 with x = 1 left out: a removable point, which the
+    // evidence never calls a pole, with or without a factor of one sign.
+    for (function, given) in [
+        ("(x^2 - 1)/(x - 1)", ""),
+        ("a (x^2 - 1)/(x - 1)", "given = [\"a > 0\"]\n"),
+    ] {
+        let text = claim(&format!(
+            "strategy = \"monotone\"\nfunction = \"{function}\"\nin = \"x\"\ndirection = \"increasing\"\n{given}"
+        ));
+        let file = cosserat_check::derivation::load_str("t.toml", &text).unwrap();
+        let d = cosserat_check::strategy::decide_claim(&file.claims[0]).unwrap();
+        let ev = cosserat_check::report::evidence(&d.outcome);
+        assert_ne!(d.outcome.verdict(), Verdict::Fails, "{function}: {ev}");
+        assert!(!ev.contains("pole at"), "{function}: {ev}");
+    }
+}

@@ -308,8 +308,7 @@ impl Context<'_> {
     /// of one strict sign is divided out ([`Context::in_one_variable`]), the
     /// numerator carrying both factors' signs; `None` when another parameter occurs
     /// otherwise.
-    fn cleared_in(&self, f: &Exact, v: Var) -> Option<(Poly, Poly)> {
-        let (num, den) = f.cleared();
+    fn cleared_in(&self, (num, den): (Poly, Poly), v: Var) -> Option<(Poly, Poly)> {
         let (n, n_negative) = self.in_one_variable(&num, v)?;
         let (d, d_negative) = self.in_one_variable(&den, v)?;
         Some(if n_negative != d_negative {

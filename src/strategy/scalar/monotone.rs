@@ -48,7 +48,12 @@ pub(super) fn decide(
     let names = &cx.env.vars;
     // The slope and the function in v alone, once a factor of one strict sign on the
     // box is divided out (μ in μ g(ν), μ > 0): decided by their sign charts in v.
-    let charted = cx.cleared_in(&slope, v).zip(cx.cleared_in(&f, v));
+    // The function's own numerator and denominator: a cancelled divisor is a removable
+    // point, not a pole that breaks monotonicity.
+    let reduced = (f.f.numerator().clone(), f.f.denominator().clone());
+    let charted = cx
+        .cleared_in(slope.cleared(), v)
+        .zip(cx.cleared_in(reduced, v));
     let Some(((num, den), (f_num, f_den))) = charted else {
         // Several parameters: the sign of the derivative on the box, and a
         // denominator of one strict sign (no pole), each by the kernel if it can.

@@ -42,7 +42,7 @@ pub(super) fn decide(
     // Other parameters only in a factor of one strict sign on the box (μ in
     // μ (x² − 1), μ > 0): the roots are those of the rest.
     let (num, den) =
-        match (others.is_empty(), cx.cleared_in(&f, v)) {
+        match (others.is_empty(), cx.cleared_in(f.cleared(), v)) {
             (true, _) => f.cleared(),
             (false, Some(nd)) => nd,
             _ => {

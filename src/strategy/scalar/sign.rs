@@ -162,7 +162,10 @@ pub(super) fn decide_function(
             // Of one parameter once a factor of one strict sign on the box is divided
             // out (μ (x − 1)² ≥ 0 with μ > 0): its sign chart in that parameter.
             if function_vars.is_none() {
-                if let Some((v, nd)) = vars.iter().find_map(|&v| Some((v, cx.cleared_in(g, v)?))) {
+                if let Some((v, nd)) = vars
+                    .iter()
+                    .find_map(|&v| Some((v, cx.cleared_in(g.cleared(), v)?)))
+                {
                     return charted(v, nd, evidence);
                 }
             }
