@@ -154,7 +154,10 @@ pub fn escape(s: &str) -> String {
             FIT_END => out.push_str("}\\newline "),
             // Straight double quotes as TeX's opening and closing quotes.
             '"' => {
-                let opening = out.is_empty() || out.ends_with([' ', '(', '[', '{', '~']);
+                // After a space, an opening bracket or a break point (`(\allowbreak{}`).
+                let opening = out.is_empty()
+                    || out.ends_with([' ', '(', '[', '{', '~'])
+                    || out.ends_with("\\allowbreak{}");
                 out.push_str(if opening { "``" } else { "''" });
             }
             '`' => code = Some(String::new()),
@@ -683,6 +686,7 @@ mod tests {
     fn words_quotes_and_scaled_formulas_read_as_text() {
         assert!(expression("x + ... (82 terms in all)").contains("\\text{(82 terms in all)}"));
         assert_eq!(escape("the \"static\" model"), "the ``static'' model");
+        assert_eq!(escape("(\"static\")"), "(\\allowbreak{}``static'')");
         let fitted = escape(&format!(
             "Correction {FIT}{OPEN}x = 1{CLOSE}{FIT_END}: holds"
         ));
