@@ -3,7 +3,6 @@
 //! num-dual gradients of a separately written F₂, nalgebra matrices, an LU solve, a
 //! bisection for the critical hardening — against the file's exact derivation.
 
-#[path = "appendix/route.rs"]
 mod route;
 
 use cosserat_check::algebra::{gcd, RatFunc};

@@ -7,7 +7,7 @@ use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_files, load_str, Strategy, Verdict};
 use cosserat_check::strategy::{decide, float, Reverified};
 
-mod common;
+use crate::common;
 
 const CORPUS: &str = "tests/soundness/balance-laws.toml";
 

@@ -8,7 +8,7 @@ use cosserat_check::derivation::load_str;
 use cosserat_check::derivation::Verdict;
 use cosserat_check::strategy::Reverified;
 
-mod common;
+use crate::common;
 
 #[test]
 fn identities_hold_and_their_twins_fail_confirmed_by_differences() {

@@ -2,7 +2,7 @@
 //! wraps into a proof, no rank allocates before it is bounded, no count wraps past a
 //! cap, and a displacement potential is read, not a crash.
 
-mod common;
+use crate::common;
 
 use common::{error_of, outcomes_of};
 use cosserat_check::derivation::{load_str, Verdict};

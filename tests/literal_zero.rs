@@ -2,7 +2,7 @@
 //! item 5): as a side, a term of a sum, a definition's body and a closed-form
 //! gradient; each use has a twin that must fail.
 
-mod common;
+use crate::common;
 
 #[test]
 fn zero_is_a_zero_tensor_of_any_rank_and_wrong_uses_fail() {

@@ -7,7 +7,7 @@
 use cosserat_check::derivation::Verdict;
 use cosserat_check::strategy::Strength;
 
-mod common;
+use crate::common;
 
 #[test]
 fn matrix_claims_and_their_twins_are_decided_as_declared() {

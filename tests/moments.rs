@@ -8,7 +8,7 @@
 //! exactly; on the circle, M equally spaced points do.
 
 use approx::assert_relative_eq;
-use cosserat_check::kernel::{monomial_moment, tensor_moment, Rational};
+use cosserat_check::kernel::{monomial_moment, Rational};
 use nalgebra::{DMatrix, SymmetricEigen};
 
 /// Gauss–Legendre nodes and weights on [−1, 1] (Golub–Welsch).
@@ -83,6 +83,16 @@ fn the_quadrature_is_not_trivially_agreeing() {
     assert_relative_eq!(sphere_average(&[4, 0, 0]), 0.2, epsilon = 1e-13);
     assert!((sphere_average(&[4, 0, 0]) - 1.0).abs() > 0.5);
     assert_relative_eq!(circle_average(&[2, 2]), 0.125, epsilon = 1e-13);
+}
+
+/// ⟨n_{i1} … n_{ik}⟩ for the (0-based) component indices `indices`: eqs. (25), (26)
+/// component by component.
+fn tensor_moment(dim: usize, indices: &[usize]) -> Rational {
+    let mut exps = vec![0u32; dim];
+    for &i in indices {
+        exps[i] += 1;
+    }
+    monomial_moment(dim, &exps)
 }
 
 #[test]

@@ -5,7 +5,7 @@
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::load_str;
 
-mod common;
+use crate::common;
 
 #[test]
 fn identities_hold_and_their_twins_fail() {

@@ -8,7 +8,7 @@ use cosserat_check::derivation::load_str;
 use cosserat_check::derivation::Verdict;
 use cosserat_check::kernel::check::Checked;
 
-mod common;
+use crate::common;
 
 #[test]
 fn identities_hold_where_their_divisors_do_not_vanish_and_twins_fail() {

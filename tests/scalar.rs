@@ -8,7 +8,7 @@ use cosserat_check::derivation::Verdict;
 use cosserat_check::kernel::check::Checked as Fact;
 use cosserat_check::strategy::Strength;
 
-mod common;
+use crate::common;
 
 #[test]
 fn scalar_claims_and_their_twins_are_decided_as_declared() {

@@ -8,7 +8,7 @@
 use cosserat_check::derivation::Verdict;
 use cosserat_check::strategy::Strength;
 
-mod common;
+use crate::common;
 
 #[test]
 fn gradients_at_states_and_their_twins_are_decided_as_declared() {

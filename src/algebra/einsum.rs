@@ -57,7 +57,7 @@ pub fn einsum<A: Arithmetic>(
 /// [`einsum`] with each product's last multiplication (by the last factor, when there
 /// are at least two) done by `last` instead of [`Arithmetic::mul`]: a linear map of the
 /// product applied as the product is formed, such as its average over the normal
-/// ([`crate::kernel::Poly::average_of_product`]), which then never forms the terms the map
+/// ([`super::polynomial::average_of_product`]), which then never forms the terms the map
 /// sends to zero. The sum over the summed letters is of the mapped products.
 pub fn einsum_closing<A: Arithmetic>(
     arithmetic: &mut A,

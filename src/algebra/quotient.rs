@@ -108,7 +108,7 @@ fn union(to: &mut Vec<Poly>, from: &[Poly]) {
 
 impl Quotient {
     /// The square root of a perfect square of a rational function, up to sign: `r`
-    /// with `r·r = self` (see [`Poly::sqrt_exact`]), defined where `self` is. A
+    /// with `r·r = self` (see [`super::polynomial::sqrt`]), defined where `self` is. A
     /// factor of odd multiplicity is first multiplied into the numerator and the
     /// denominator, so that every multiplicity is even; the value is then a square
     /// exactly when the numerator is. `None`: not a square (or its root's numerator
@@ -124,7 +124,7 @@ impl Quotient {
         }
         Some(
             Open {
-                num: num.sqrt_exact(max_terms)?,
+                num: super::polynomial::sqrt(&num, max_terms)?,
                 den,
                 conditions: self.conditions().to_vec(),
             }

@@ -184,12 +184,12 @@ impl RatFunc {
     /// LaTeX: `\frac{num}{den}`.
     pub fn latex(&self, names: &VarTable) -> String {
         if self.den.is_one() {
-            return self.num.latex(names);
+            return super::polynomial::latex(&self.num, names);
         }
         format!(
             "\\frac{{{}}}{{{}}}",
-            self.num.latex(names),
-            self.den.latex(names)
+            super::polynomial::latex(&self.num, names),
+            super::polynomial::latex(&self.den, names)
         )
     }
 }

@@ -162,7 +162,7 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
             if lo == hi {
                 return (lo, hi);
             }
-            let s = Rational::simplest_between(&lo, &hi);
+            let s = crate::algebra::rational::simplest_between(&lo, &hi);
             if inner.eval(&s).is_zero() {
                 (s.clone(), s)
             } else {
@@ -202,7 +202,7 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
             Some(Real::Isolated { lo, .. }) => (lo.clone(), true),
         };
         let sample = if left < right {
-            Rational::simplest_between(&left, &right)
+            crate::algebra::rational::simplest_between(&left, &right)
         } else {
             // Two isolating intervals that share an end: that end is inside.
             debug_assert!(left == right && left_in && right_in);
@@ -352,9 +352,9 @@ pub fn coefficient_sign(p: &Poly, closed: &[Var]) -> Option<CoefficientSign> {
 pub fn inner_point(i: &Interval) -> Rational {
     match (i.lo.value(), i.hi.value()) {
         (Some(a), Some(b)) if a == b => a.clone(),
-        (Some(a), Some(b)) => Rational::simplest_between(a, b),
-        (Some(a), None) => Rational::simplest_between(a, &(a + &Rational::int(2))),
-        (None, Some(b)) => Rational::simplest_between(&(b - &Rational::int(2)), b),
+        (Some(a), Some(b)) => crate::algebra::rational::simplest_between(a, b),
+        (Some(a), None) => crate::algebra::rational::simplest_between(a, &(a + &Rational::int(2))),
+        (None, Some(b)) => crate::algebra::rational::simplest_between(&(b - &Rational::int(2)), b),
         (None, None) => Rational::zero(),
     }
 }

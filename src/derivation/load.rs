@@ -1704,9 +1704,9 @@ pub fn parse_grid(text: &str, decls: &Decls) -> Result<Grid, String> {
         let (n, d) = t.split_once('/').unwrap_or((t, "1"));
         let (n, d) = (n.trim(), d.trim());
         let minus = n.strip_prefix('-');
-        let n = Rational::parse_decimal(minus.unwrap_or(n));
+        let n = crate::lang::parser::parse_decimal(minus.unwrap_or(n));
         let n = if minus.is_some() { n.map(|x| -x) } else { n };
-        n.zip(Rational::parse_decimal(d))
+        n.zip(crate::lang::parser::parse_decimal(d))
             .and_then(|(n, d)| n.checked_div(&d))
             .ok_or(format!("`{t}` is not a number"))
     };
@@ -1724,10 +1724,8 @@ pub fn parse_grid(text: &str, decls: &Decls) -> Result<Grid, String> {
     if step.is_negative() || step.is_zero() {
         return Err("the step must be positive".into());
     }
-    let steps = span
-        .checked_div(&step)
-        .expect("the step is not zero")
-        .floor();
+    let steps =
+        crate::algebra::rational::floor(&span.checked_div(&step).expect("the step is not zero"));
     if steps < Rational::int(1) {
         return Err("the step is longer than the range: a curve needs two points".into());
     }

@@ -291,10 +291,9 @@ fn rational(text: &str) -> Option<Rational> {
         None => (false, t.strip_prefix('+').unwrap_or(t).trim()),
     };
     let value = match body.split_once('/') {
-        Some((n, d)) => {
-            Rational::parse_decimal(n.trim())?.checked_div(&Rational::parse_decimal(d.trim())?)?
-        }
-        None => Rational::parse_decimal(body)?,
+        Some((n, d)) => crate::lang::parser::parse_decimal(n.trim())?
+            .checked_div(&crate::lang::parser::parse_decimal(d.trim())?)?,
+        None => crate::lang::parser::parse_decimal(body)?,
     };
     Some(if negative { -value } else { value })
 }

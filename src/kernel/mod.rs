@@ -19,6 +19,6 @@ pub mod statement;
 pub mod term;
 pub mod univariate;
 
-pub use moments::{monomial_moment, tensor_moment};
+pub use moments::monomial_moment;
 pub use poly::{Monomial, Poly, PolyError, Var, VarTable};
 pub use rational::Rational;

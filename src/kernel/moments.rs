@@ -52,16 +52,6 @@ pub fn monomial_moment(dim: usize, exponents: &[u32]) -> Rational {
         .expect("a product of positive integers is nonzero")
 }
 
-/// ⟨n_{i1} … n_{ik}⟩ for the (0-based) component indices `indices`: eqs. (25), (26)
-/// and the odd-order averages, component by component.
-pub fn tensor_moment(dim: usize, indices: &[usize]) -> Rational {
-    let mut exps = vec![0u32; dim];
-    for &i in indices {
-        exps[i] += 1;
-    }
-    monomial_moment(dim, &exps)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

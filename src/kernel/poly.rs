@@ -562,72 +562,6 @@ impl Poly {
         Ok(Poly::from_terms(out))
     }
 
-    /// `(self · other).average_over_normal(vars)`, without forming the products whose
-    /// average vanishes: a moment is zero unless every exponent of n is even, so a pair
-    /// of terms counts only when their n-exponents have the same parities. The terms
-    /// are grouped by that parity and only pairs within a group are multiplied (about
-    /// one pair in 2^d). Averages of products such as eqs. (33), (36) and (38).
-    ///
-    /// Where a term has a negative power of n, or n has more than four components, it
-    /// is the product averaged, with that route's errors.
-    pub fn average_of_product(&self, other: &Poly, vars: &[Var]) -> Result<Poly, PolyError> {
-        /// A term split into its n-exponents (with their parities as bits) and the rest.
-        struct Split<'p> {
-            parity: usize,
-            exps: [u32; 4],
-            rest: Monomial,
-            coefficient: &'p Rational,
-        }
-        fn split<'p>(p: &'p Poly, vars: &[Var]) -> Option<Vec<Split<'p>>> {
-            p.terms
-                .iter()
-                .map(|(m, c)| {
-                    let (signed, rest) = m.split(vars);
-                    let mut exps = [0u32; 4];
-                    let mut parity = 0;
-                    for (k, &e) in signed.iter().enumerate() {
-                        exps[k] = u32::try_from(e).ok()?;
-                        parity |= ((e & 1) as usize) << k;
-                    }
-                    Some(Split {
-                        parity,
-                        exps,
-                        rest,
-                        coefficient: c,
-                    })
-                })
-                .collect()
-        }
-        let (Some(a), Some(b)) = (
-            (vars.len() <= 4).then(|| split(self, vars)).flatten(),
-            (vars.len() <= 4).then(|| split(other, vars)).flatten(),
-        ) else {
-            return (self * other).average_over_normal(vars);
-        };
-        let mut by_parity: Vec<Vec<&Split>> = (0..16).map(|_| Vec::new()).collect();
-        for t in &b {
-            by_parity[t.parity].push(t);
-        }
-        let mut moments: HashMap<[u32; 4], Rational> = HashMap::default();
-        let mut out = Vec::new();
-        for s in &a {
-            for t in &by_parity[s.parity] {
-                let mut exps = [0u32; 4];
-                for ((e, x), y) in exps.iter_mut().zip(s.exps).zip(t.exps) {
-                    *e = x + y;
-                }
-                let moment = moments
-                    .entry(exps)
-                    .or_insert_with(|| monomial_moment(vars.len(), &exps[..vars.len()]));
-                out.push((
-                    s.rest.mul(&t.rest),
-                    &(s.coefficient * t.coefficient) * &*moment,
-                ));
-            }
-        }
-        Ok(Poly::from_terms(out))
-    }
-
     /// The canonical normal form modulo `n·n − 1` (the normal is a unit vector).
     ///
     /// `{n·n − 1}` is a Gröbner basis of its ideal for any order in which the last
@@ -659,79 +593,6 @@ impl Poly {
         Ok(Poly::from_terms(out))
     }
 
-    /// The square root of a perfect square: `r` with `r·r = self` and a positive
-    /// leading coefficient, or `None` when `self` is not the square of a (Laurent)
-    /// polynomial with rational coefficients, or its root would pass `max_terms`.
-    ///
-    /// Long division from the top in graded lexicographic order (compatible with
-    /// products, so leading terms multiply): the root's leading term is the square
-    /// root of `self`'s; each next term is the remainder's leading term over twice
-    /// the root's, and the remainder's leading monomial strictly decreases. A root's
-    /// exponents in each variable lie within half of `self`'s range in it (the top
-    /// and bottom parts of a square are squares), so a term outside that box proves
-    /// that `self` is not a square, and the division stops.
-    ///
-    /// ```
-    /// use cosserat_check::kernel::{Poly, Rational, VarTable};
-    /// let mut names = VarTable::new();
-    /// let (x, y) = (Poly::var(names.intern("x")), Poly::var(names.intern("y")));
-    /// let r = &(&x * &Poly::constant(Rational::int(2))) - &y;
-    /// assert_eq!((&r * &r).sqrt_exact(100), Some(r));
-    /// assert_eq!((&(&x * &x) + &y).sqrt_exact(100), None);
-    /// ```
-    pub fn sqrt_exact(&self, max_terms: usize) -> Option<Poly> {
-        let Some((m0, c0)) = self.leading() else {
-            return Some(Poly::zero());
-        };
-        let halved: Vec<(Var, Exp)> = m0
-            .factors()
-            .iter()
-            .map(|&(v, e)| (e % 2 == 0).then_some((v, e / 2)))
-            .collect::<Option<_>>()?;
-        let lead_m = Monomial::from_factors(halved);
-        let lead_c = c0.sqrt_exact()?;
-        let bounds: Vec<(Var, Exp, Exp)> = self
-            .variables()
-            .into_iter()
-            .map(|v| {
-                let exps = self.terms.iter().map(|(m, _)| m.exponent(v));
-                let (lo, hi) =
-                    exps.fold((Exp::MAX, Exp::MIN), |(lo, hi), e| (lo.min(e), hi.max(e)));
-                (v, lo, hi)
-            })
-            .collect();
-        let in_box = |m: &Monomial| {
-            m.factors()
-                .iter()
-                .all(|(v, _)| bounds.iter().any(|(w, _, _)| w == v))
-                && bounds.iter().all(|&(v, lo, hi)| {
-                    let e = 2 * m.exponent(v);
-                    lo <= e && e <= hi
-                })
-        };
-        let over_twice_lead = (&lead_c + &lead_c)
-            .recip()
-            .expect("a leading coefficient is nonzero");
-        let lead_inverse = lead_m.pow(-1)?;
-        let lead = Poly::term(lead_m, lead_c);
-        let mut root = lead.clone();
-        let mut rem = self - &(&lead * &lead);
-        let two = Poly::constant(Rational::int(2));
-        loop {
-            let Some((m, c)) = rem.leading() else {
-                return Some(root);
-            };
-            let tm = m.mul(&lead_inverse);
-            if !in_box(&tm) || root.num_terms() >= max_terms {
-                return None;
-            }
-            let t = Poly::term(tm, c * &over_twice_lead);
-            rem = &rem - &(&(&(&root * &t) * &two) + &(&t * &t));
-            root = &root + &t;
-        }
-    }
-
-    /// The leading term in graded lexicographic order (the first term displayed).
     /// `self / d` when `d` divides `self` exactly, both ordinary polynomials (no
     /// negative exponent); `None` when it does not, or after `steps` steps. Division
     /// by the leading term in the graded order: with one divisor, a leading term it
@@ -764,69 +625,59 @@ impl Poly {
         None
     }
 
+    /// The leading term in graded lexicographic order (the first term displayed).
     pub fn leading(&self) -> Option<(&Monomial, &Rational)> {
         self.terms().min_by(|a, b| graded_lex_desc(a.0, b.0))
     }
 
+    /// The terms in graded lexicographic order, largest first: the order of display.
+    pub fn graded_terms(&self) -> Vec<(&Monomial, &Rational)> {
+        let mut terms: Vec<_> = self.terms().collect();
+        terms.sort_by(|a, b| graded_lex_desc(a.0, b.0));
+        terms
+    }
+
     /// Plain-text form with variable names, highest total degree first.
     pub fn display(&self, names: &VarTable) -> String {
-        self.render(names, false, usize::MAX)
+        self.display_truncated(names, usize::MAX)
     }
 
     /// Like [`Poly::display`], showing at most `max_terms` leading terms and saying how
     /// many there are in all when some are left out.
     pub fn display_truncated(&self, names: &VarTable, max_terms: usize) -> String {
-        let shown = self.render(names, false, max_terms);
-        if self.terms.len() > max_terms {
-            format!("{shown} + … ({} terms in all)", self.terms.len())
-        } else {
-            shown
-        }
-    }
-
-    /// LaTeX form, highest total degree first.
-    pub fn latex(&self, names: &VarTable) -> String {
-        self.render(names, true, usize::MAX)
-    }
-
-    fn render(&self, names: &VarTable, latex: bool, max_terms: usize) -> String {
         if self.terms.is_empty() {
             return "0".into();
         }
-        let mut terms: Vec<_> = self.terms().collect();
-        terms.sort_by(|a, b| graded_lex_desc(a.0, b.0));
         let mut s = String::new();
-        for (k, (m, c)) in terms.into_iter().take(max_terms).enumerate() {
-            let neg = c.is_negative();
-            if k == 0 {
-                if neg {
-                    s.push('-');
-                }
-            } else {
-                s.push_str(if neg { " - " } else { " + " });
-            }
-            let abs = if neg { -c } else { c.clone() };
-            let coeff = if latex { abs.latex() } else { abs.to_string() };
+        for (k, (m, c)) in self.graded_terms().into_iter().take(max_terms).enumerate() {
+            s.push_str(match (k, c.is_negative()) {
+                (0, true) => "-",
+                (0, false) => "",
+                (_, true) => " - ",
+                (_, false) => " + ",
+            });
+            let abs = if c.is_negative() { -c } else { c.clone() };
             let mut parts: Vec<String> = Vec::new();
             if !abs.is_one() || m.is_one() {
-                parts.push(coeff);
+                parts.push(abs.to_string());
             }
             for &(v, e) in m.factors() {
                 let name = names.name(v);
-                parts.push(match (e, latex) {
-                    (1, _) => name.to_owned(),
-                    (_, true) => format!("{name}^{{{e}}}"),
-                    (_, false) => format!("{name}^{e}"),
+                parts.push(if e == 1 {
+                    name.to_owned()
+                } else {
+                    format!("{name}^{e}")
                 });
             }
-            let _ = write!(s, "{}", parts.join(if latex { " " } else { "*" }));
+            s.push_str(&parts.join("*"));
+        }
+        if self.terms.len() > max_terms {
+            let _ = write!(s, " + … ({} terms in all)", self.terms.len());
         }
         s
     }
 }
 
-/// Graded lexicographic order, largest first: higher total degree first, then the
-/// larger exponent of the earliest variable (`x^3 + 3*x^2*y + …`).
 /// The rational `s` with `s·p` in canonical associate form: coprime integer
 /// coefficients, the leading term (graded lexicographic) positive; `None` for the
 /// zero polynomial.
@@ -848,6 +699,8 @@ pub fn canonical_scale(p: &Poly) -> Option<Rational> {
     Some(scale)
 }
 
+/// Graded lexicographic order, largest first: higher total degree first, then the
+/// larger exponent of the earliest variable (`x^3 + 3*x^2*y + …`).
 fn graded_lex_desc(a: &Monomial, b: &Monomial) -> std::cmp::Ordering {
     b.total_degree().cmp(&a.total_degree()).then_with(|| {
         let mut vars: Vec<Var> = a.0.iter().chain(&b.0).map(|&(v, _)| v).collect();
@@ -1086,49 +939,6 @@ mod tests {
         assert!(over_one > 150, "{over_one}");
     }
 
-    /// Square roots of random squares are found (up to the sign the root's leading
-    /// coefficient fixes), and random squares plus a perturbation are not squares.
-    #[test]
-    fn square_roots_of_random_squares() {
-        let (_, xs) = vars(&["x", "y", "z"]);
-        let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
-        for _ in 0..200 {
-            let mut r = Poly::zero();
-            for _ in 0..(1 + next() % 5) {
-                let m = Monomial::from_factors(
-                    (0..3)
-                        .map(|k| (k as Var, (next() % 4) as Exp - 1))
-                        .collect(),
-                );
-                let c = q((next() % 13) as i64 - 6, 1 + (next() % 4) as i64);
-                r.add_term(m, c);
-            }
-            let square = &r * &r;
-            let root = square.sqrt_exact(1000).expect("a square has a root");
-            assert!(root == r || root == -r.clone(), "{root:?} vs {r:?}");
-            // A square plus a term below its lowest order in x is no square unless it
-            // cancels to one; check the claimed root whenever one is returned.
-            let bumped = &square + &(&xs[0] * &Poly::constant(q(1, 1)));
-            if let Some(t) = bumped.sqrt_exact(1000) {
-                assert_eq!(&t * &t, bumped);
-            }
-        }
-        let (x, y) = (&xs[0], &xs[1]);
-        assert_eq!((&(x * x) + &Poly::constant(q(1, 1))).sqrt_exact(100), None);
-        assert_eq!((&(x * x) - &(y * y)).sqrt_exact(100), None);
-        assert_eq!(Poly::constant(q(2, 1)).sqrt_exact(100), None);
-        assert_eq!(
-            Poly::constant(q(9, 4)).sqrt_exact(100),
-            Some(Poly::constant(q(3, 2)))
-        );
-    }
-
     #[test]
     fn equal_polynomials_have_identical_representations() {
         let (_, v) = vars(&["x", "y"]);
@@ -1360,54 +1170,6 @@ mod tests {
     /// averaged: random polynomials in n (2 or 3 components) and two other variables,
     /// with powers of n up to 5 and of the others from −1 to 2; and a negative power of
     /// n gives the product's own error.
-    #[test]
-    fn average_of_a_product_is_the_product_averaged() {
-        let (_, v) = vars(&["n1", "n2", "n3", "x", "y"]);
-        let mut next = below(0x5eed_a7e5);
-        let random = |dim: usize, next: &mut dyn FnMut(u64) -> u64| -> Poly {
-            let terms = 1 + next(9) as usize;
-            let mut p = Poly::zero();
-            for _ in 0..terms {
-                let mut t = Poly::constant(q(next(19) as i64 - 9, 1 + next(6) as i64));
-                for n in &v[..dim] {
-                    t = &t * &n.pow(next(6) as u32);
-                }
-                // x and y (variables 3 and 4), possibly inverted.
-                for other in 3..5 {
-                    let e = next(4) as Exp - 1;
-                    t = &t * &Poly::from_terms([(Monomial::var(other, e), Rational::one())]);
-                }
-                p += &t;
-            }
-            p
-        };
-        let mut nonzero = 0;
-        for round in 0..400 {
-            let dim = 2 + round % 2;
-            let n: Vec<Var> = (0..dim).map(|k| k as Var).collect();
-            let (a, b) = (random(dim, &mut next), random(dim, &mut next));
-            let fused = a.average_of_product(&b, &n).unwrap();
-            assert_eq!(fused, (&a * &b).average_over_normal(&n).unwrap(), "{round}");
-            nonzero += usize::from(!fused.is_zero());
-        }
-        assert!(nonzero > 200, "the averages are mostly not zero: {nonzero}");
-        let n: Vec<Var> = (0..3).map(|k| k as Var).collect();
-        let inverse = Poly::from_terms([(Monomial::var(0, -1), Rational::one())]);
-        assert_eq!(
-            inverse.average_of_product(&v[1], &n),
-            (&inverse * &v[1]).average_over_normal(&n)
-        );
-        assert_eq!(
-            inverse.average_of_product(&v[1], &n),
-            Err(PolyError::NegativeNormalPower)
-        );
-        // n₁⁻¹ · n₁³ = n₁²: the product has no negative power, and neither has the fused
-        // route's answer.
-        assert_eq!(
-            inverse.average_of_product(&v[0].pow(3), &n).unwrap(),
-            Poly::constant(q(1, 3))
-        );
-    }
     #[test]
     fn derivatives_are_exact() {
         let (names, v) = vars(&["x", "y"]);

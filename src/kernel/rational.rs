@@ -18,10 +18,6 @@ use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 /// The most bits an exact power may have ([`Rational::pow`]).
 const MAX_POWER_BITS: u64 = 1 << 24;
 
-/// The largest power of ten a decimal literal may carry (`1e300`): enough for any
-/// physical constant, small enough that no literal makes a huge integer.
-pub const MAX_DECIMAL_EXPONENT: i64 = 300;
-
 /// The representation: `Small(n, d)` with d > 0, gcd(n, d) = 1 and n ≠ i64::MIN (so
 /// that negation stays small), used exactly when the value fits; `Big` otherwise.
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
@@ -133,53 +129,6 @@ impl Rational {
         }
     }
 
-    /// The rational a finite `f64` denotes, exactly (every finite float is a dyadic
-    /// rational); `None` for NaN and infinities.
-    pub fn from_f64_exact(x: f64) -> Option<Self> {
-        BigRational::from_float(x).map(from_big_reduced)
-    }
-
-    /// A decimal literal such as `12`, `0.25`, `3.` or `2.5e-3`, exactly; `None` for anything else
-    /// and for exponents beyond ±[`MAX_DECIMAL_EXPONENT`].
-    pub fn parse_decimal(text: &str) -> Option<Self> {
-        // Scientific notation: a mantissa times an exact power of ten (`1e-3` is 1/1000).
-        if let Some((mantissa, exponent)) = text.split_once(['e', 'E']) {
-            let m = Rational::parse_decimal(mantissa)?;
-            let digits = exponent.strip_prefix(['+', '-']).unwrap_or(exponent);
-            if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-                return None;
-            }
-            let e: i64 = exponent.parse().ok()?;
-            if e.abs() > MAX_DECIMAL_EXPONENT {
-                return None;
-            }
-            let power = from_big_reduced(BigRational::from_integer(num_traits::pow(
-                BigInt::from(10),
-                e.unsigned_abs() as usize,
-            )));
-            return if e < 0 {
-                m.checked_div(&power)
-            } else {
-                Some(&m * &power)
-            };
-        }
-        let (int_part, frac_part) = match text.split_once('.') {
-            Some((a, b)) => (a, b),
-            None => (text, ""),
-        };
-        let all_digits = |s: &str| s.bytes().all(|b| b.is_ascii_digit());
-        if int_part.is_empty() && frac_part.is_empty()
-            || !all_digits(int_part)
-            || !all_digits(frac_part)
-        {
-            return None;
-        }
-        let digits = format!("{int_part}{frac_part}");
-        let numer: BigInt = digits.parse().ok()?;
-        let denom = num_traits::pow(BigInt::from(10), frac_part.len());
-        Some(from_big_reduced(BigRational::new(numer, denom)))
-    }
-
     pub fn is_zero(&self) -> bool {
         matches!(self.0, Repr::Small(0, _))
     }
@@ -252,46 +201,6 @@ impl Rational {
         (&root * &root == r).then(|| from_big_reduced(root))
     }
 
-    /// The largest integer not above `self`.
-    pub fn floor(&self) -> Self {
-        use num_integer::Integer;
-        Rational::from_big(self.numer().div_floor(&self.denom()), BigInt::from(1))
-            .expect("1 is nonzero")
-    }
-
-    /// The simplest rational strictly between `a` and `b` (`a < b`): the one with the
-    /// smallest denominator, and among those the smallest absolute numerator (the
-    /// Stern–Brocot descent by continued fractions). Sample points chosen this way
-    /// read as `1` or `3/2` rather than as bisection midpoints.
-    pub fn simplest_between(a: &Rational, b: &Rational) -> Rational {
-        debug_assert!(a < b);
-        let zero = Rational::int(0);
-        if a.is_negative() && !b.is_negative() && !b.is_zero() {
-            return zero;
-        }
-        if !b.is_negative() && !b.is_zero() {
-            // 0 ≤ a < b.
-            let one = Rational::int(1);
-            let fl = a.floor();
-            let next = &fl + &one;
-            if next < *b {
-                return next;
-            }
-            // fl ≤ a < b ≤ fl + 1: descend into the fractional parts.
-            let (fa, fb) = (a - &fl, b - &fl);
-            let inner = if fa.is_zero() {
-                &fb.recip().expect("b > fl").floor() + &one
-            } else {
-                Rational::simplest_between(
-                    &fb.recip().expect("b > fl"),
-                    &fa.recip().expect("fa ≠ 0"),
-                )
-            };
-            return &fl + &inner.recip().expect("inner ≥ 1");
-        }
-        -Rational::simplest_between(&-b, &-a)
-    }
-
     /// The numerator (the sign is carried here; the denominator is positive).
     pub fn numer(&self) -> BigInt {
         match &self.0 {
@@ -340,15 +249,6 @@ impl Rational {
             }
             _ => self.big().to_f64().unwrap_or(f64::NAN),
         }
-    }
-
-    /// LaTeX form: `\frac{p}{q}` or `p`, with a leading minus sign.
-    pub fn latex(&self) -> String {
-        if self.is_integer() {
-            return self.numer().to_string();
-        }
-        let sign = if self.is_negative() { "-" } else { "" };
-        format!("{sign}\\frac{{{}}}{{{}}}", self.numer().abs(), self.denom())
     }
 }
 
@@ -581,54 +481,6 @@ mod tests {
     }
 
     #[test]
-    fn floor_rounds_towards_minus_infinity() {
-        assert_eq!(q(7, 2).floor(), Rational::int(3));
-        assert_eq!(q(-7, 2).floor(), Rational::int(-4));
-        assert_eq!(Rational::int(-3).floor(), Rational::int(-3));
-    }
-
-    #[test]
-    fn simplest_rational_between_two() {
-        let s = |a: Rational, b: Rational| Rational::simplest_between(&a, &b);
-        assert_eq!(s(q(-1, 3), q(1, 2)), Rational::int(0));
-        assert_eq!(s(q(1, 3), q(1, 2)), q(2, 5));
-        assert_eq!(s(Rational::int(0), Rational::int(1)), q(1, 2));
-        assert_eq!(s(Rational::int(2), q(7, 3)), q(9, 4));
-        assert_eq!(s(q(-1, 2), q(-1, 3)), q(-2, 5));
-        assert_eq!(s(q(-1, 2), Rational::int(0)), q(-1, 3));
-        assert_eq!(s(q(3, 2), q(7, 2)), Rational::int(2));
-        // Brute force: no rational with a smaller denominator lies strictly between.
-        for (a, b) in [
-            (q(31, 100), q(32, 100)),
-            (q(-7, 11), q(-5, 8)),
-            (q(1, 1000), q(1, 999)),
-        ] {
-            let x = s(a.clone(), b.clone());
-            assert!(a < x && x < b);
-            let d = x.denom().to_i64().unwrap();
-            for den in 1..d {
-                let lo = (&a * &Rational::int(den)).floor();
-                let cand = (&lo + &Rational::int(1))
-                    .checked_div(&Rational::int(den))
-                    .unwrap();
-                assert!(!(a < cand && cand < b), "{cand} is simpler than {x}");
-            }
-        }
-    }
-
-    #[test]
-    fn floats_convert_exactly() {
-        assert_eq!(Rational::from_f64_exact(0.75), Rational::ratio(3, 4));
-        assert_eq!(Rational::from_f64_exact(-2.0), Some(Rational::int(-2)));
-        // 0.1 is not 1/10 in binary: the conversion keeps what the float is.
-        let tenth = Rational::from_f64_exact(0.1).unwrap();
-        assert_ne!(Some(tenth.clone()), Rational::ratio(1, 10));
-        assert_eq!(tenth.to_f64(), 0.1);
-        assert_eq!(Rational::from_f64_exact(f64::NAN), None);
-        assert_eq!(Rational::from_f64_exact(f64::INFINITY), None);
-    }
-
-    #[test]
     fn canonical_form_makes_equal_values_identical() {
         assert_eq!(q(2, 4), q(-1, -2));
         assert_eq!(q(2, 4).to_string(), "1/2");
@@ -658,32 +510,10 @@ mod tests {
     }
 
     #[test]
-    fn decimal_literals_parse_exactly() {
-        assert_eq!(Rational::parse_decimal("0.25"), Some(q(1, 4)));
-        assert_eq!(Rational::parse_decimal("12"), Some(Rational::int(12)));
-        assert_eq!(Rational::parse_decimal("3."), Some(Rational::int(3)));
-        assert_eq!(Rational::parse_decimal("."), None);
-        assert_eq!(Rational::parse_decimal("1.2.3"), None);
-        assert_eq!(Rational::parse_decimal("1e-3"), Some(q(1, 1000)));
-        assert_eq!(Rational::parse_decimal("2.5E+2"), Some(Rational::int(250)));
-        assert_eq!(Rational::parse_decimal("25e-1"), Some(q(5, 2)));
-        assert_eq!(Rational::parse_decimal("1e"), None);
-        assert_eq!(Rational::parse_decimal("1e+"), None);
-        assert_eq!(Rational::parse_decimal("e3"), None);
-        assert_eq!(Rational::parse_decimal("1e400"), None);
-    }
-
-    #[test]
     fn square_roots_only_of_squares() {
         assert_eq!(q(9, 4).sqrt_exact(), Some(q(3, 2)));
         assert_eq!(q(2, 1).sqrt_exact(), None);
         assert_eq!(q(-4, 1).sqrt_exact(), None);
-    }
-
-    #[test]
-    fn latex_form() {
-        assert_eq!(q(-1, 15).latex(), "-\\frac{1}{15}");
-        assert_eq!(q(4, 1).latex(), "4");
     }
 
     #[test]

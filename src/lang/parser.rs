@@ -432,7 +432,7 @@ fn lex(src: &str) -> Result<Vec<(Tok, Span)>, LangError> {
                 }
             }
             let text = &src[start..k];
-            let value = Rational::parse_decimal(text).ok_or_else(|| {
+            let value = parse_decimal(text).ok_or_else(|| {
                 LangError::new(
                     ErrorKind::Syntax,
                     Span::new(start, k),
@@ -1171,6 +1171,45 @@ fn binary(l: Expr, r: Expr, f: fn(Box<Expr>, Box<Expr>) -> ExprKind) -> Expr {
     }
 }
 
+/// The largest power of ten a decimal literal may carry (`1e300`): enough for any
+/// physical constant, small enough that no literal makes a huge integer.
+pub const MAX_DECIMAL_EXPONENT: i64 = 300;
+
+/// A decimal literal such as `12`, `0.25`, `3.` or `2.5e-3`, exactly; `None` for
+/// anything else and for exponents beyond ±[`MAX_DECIMAL_EXPONENT`].
+pub fn parse_decimal(text: &str) -> Option<Rational> {
+    use num_bigint::BigInt;
+    // Scientific notation: a mantissa times an exact power of ten (`1e-3` is 1/1000).
+    if let Some((mantissa, exponent)) = text.split_once(['e', 'E']) {
+        let m = parse_decimal(mantissa)?;
+        let digits = exponent.strip_prefix(['+', '-']).unwrap_or(exponent);
+        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let e: i64 = exponent.parse().ok()?;
+        if e.abs() > MAX_DECIMAL_EXPONENT {
+            return None;
+        }
+        let power = num_traits::pow(BigInt::from(10), e.unsigned_abs() as usize);
+        let power = Rational::from_big(power, BigInt::from(1))?;
+        return if e < 0 {
+            m.checked_div(&power)
+        } else {
+            Some(&m * &power)
+        };
+    }
+    let (int_part, frac_part) = text.split_once('.').unwrap_or((text, ""));
+    let all_digits = |s: &str| s.bytes().all(|b| b.is_ascii_digit());
+    if int_part.is_empty() && frac_part.is_empty()
+        || !all_digits(int_part)
+        || !all_digits(frac_part)
+    {
+        return None;
+    }
+    let numer: BigInt = format!("{int_part}{frac_part}").parse().ok()?;
+    Rational::from_big(numer, num_traits::pow(BigInt::from(10), frac_part.len()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1221,6 +1260,23 @@ mod tests {
                 args.iter().map(shape).collect::<Vec<_>>().join(", ")
             ),
         }
+    }
+
+    #[test]
+    fn decimal_literals_parse_exactly() {
+        let q = |n, d| Rational::ratio(n, d);
+        assert_eq!(parse_decimal("0.25"), q(1, 4));
+        assert_eq!(parse_decimal("12"), q(12, 1));
+        assert_eq!(parse_decimal("3."), q(3, 1));
+        assert_eq!(parse_decimal("."), None);
+        assert_eq!(parse_decimal("1.2.3"), None);
+        assert_eq!(parse_decimal("1e-3"), q(1, 1000));
+        assert_eq!(parse_decimal("2.5E+2"), q(250, 1));
+        assert_eq!(parse_decimal("25e-1"), q(5, 2));
+        assert_eq!(parse_decimal("1e"), None);
+        assert_eq!(parse_decimal("1e+"), None);
+        assert_eq!(parse_decimal("e3"), None);
+        assert_eq!(parse_decimal("1e400"), None);
     }
 
     #[test]

@@ -620,7 +620,7 @@ impl ExactRing<'_, '_> {
 
     /// `avg(product)` (eqs. (33), (36), (38)): the product evaluated as the walk does it
     /// (entered, its factors, their contraction), each product of components averaged
-    /// as it is formed ([`Poly::average_of_product`], charged as the product), so that
+    /// as it is formed ([`crate::algebra::polynomial::average_of_product`], charged as the product), so that
     /// the terms whose average vanishes are never formed. That skips the product's own
     /// size limit, so it is done only where the limit cannot bite (at most
     /// [`MAX_TERMS`] term products in every component) and only for polynomials without
@@ -674,7 +674,7 @@ impl ExactRing<'_, '_> {
                 .work_left
                 .checked_sub(cost)
                 .ok_or(Failure::OverBudget)?;
-            p.average_of_product(c, &normal)
+            crate::algebra::polynomial::average_of_product(p, c, &normal)
                 .map(Quotient::from)
                 .map_err(|e| Failure::Located(poly_error(origin, at, e)))
         });

@@ -126,7 +126,7 @@ impl Probe {
         let mut point: BTreeMap<Var, Rational> = BTreeMap::new();
         for (name, x) in at {
             let v = env.vars.intern(name);
-            let q = Rational::from_f64_exact(*x)
+            let q = crate::algebra::rational::from_f64_exact(*x)
                 .ok_or_else(|| format!("{name} = {x} is not finite"))?;
             point.insert(v, q);
         }

@@ -389,7 +389,7 @@ fn exact_point(env: &mut ExactEnv<'_>, state: &State) -> Option<HashMap<Var, Rat
     let mut point = HashMap::default();
     for (v, (symbol, idx)) in env.component_vars() {
         let x = *state.symbols.get(&symbol)?.get(&idx);
-        point.insert(v, Rational::from_f64_exact(x)?);
+        point.insert(v, crate::algebra::rational::from_f64_exact(x)?);
     }
     let normal = env.normal_vars().to_vec();
     if !normal.is_empty() {
@@ -402,7 +402,7 @@ fn exact_point(env: &mut ExactEnv<'_>, state: &State) -> Option<HashMap<Var, Rat
 /// A rational point of the unit circle or sphere next to `n` (a unit vector in `f64`),
 /// by stereographic projection from the pole farther from `n`.
 fn on_unit_sphere(n: &[f64]) -> Option<Vec<Rational>> {
-    let q = |x: f64| Rational::from_f64_exact(x);
+    let q = |x: f64| crate::algebra::rational::from_f64_exact(x);
     let one = Rational::int(1);
     let two = Rational::int(2);
     match n {

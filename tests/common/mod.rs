@@ -6,7 +6,6 @@ use cosserat_check::strategy::Decided;
 
 /// Decides every claim of `path`, asserts that there are `count` and that each verdict
 /// (and each correction's) is the declared one, and hands the rows to `inspect`.
-#[allow(dead_code)]
 pub fn assert_as_declared(path: &str, count: usize, inspect: impl FnOnce(&[Decided<'_>])) {
     let files = load_files(&[path]).unwrap();
     let rows = decide_all(&files, None).unwrap();
@@ -26,7 +25,6 @@ pub fn assert_as_declared(path: &str, count: usize, inspect: impl FnOnce(&[Decid
 
 /// Asserts that `count` rows fail and that each failure's counterexample was confirmed
 /// by the second evaluation `how`.
-#[allow(dead_code)]
 pub fn assert_failures_confirmed(
     rows: &[Decided<'_>],
     count: usize,
@@ -45,7 +43,6 @@ pub fn assert_failures_confirmed(
 }
 
 /// The located error a file gets: from loading, or else from deciding it.
-#[allow(dead_code)]
 pub fn error_of(text: &str) -> String {
     match cosserat_check::derivation::load_str("f.toml", text) {
         Err(e) => e.to_string(),
@@ -57,7 +54,6 @@ pub fn error_of(text: &str) -> String {
 }
 
 /// The outcome of every claim of the file `text` (named f.toml in diagnostics).
-#[allow(dead_code)]
 pub fn outcomes_of(text: &str) -> Vec<cosserat_check::strategy::Outcome> {
     let f = cosserat_check::derivation::load_str("f.toml", text).expect("loads");
     decide_all(std::slice::from_ref(&f), None)

@@ -189,7 +189,8 @@ pub(super) fn search(
                     .map(|(v, x)| {
                         let eps = &Rational::ratio(1, 1 << 20).expect("nonzero")
                             * &(&Rational::int(1) + &abs(x));
-                        let r = Rational::simplest_between(&(x - &eps), &(x + &eps));
+                        let r =
+                            crate::algebra::rational::simplest_between(&(x - &eps), &(x + &eps));
                         let inside = bx.iter().any(|(w, i)| w == v && i.contains(&r));
                         (*v, if inside { r } else { x.clone() })
                     })
@@ -284,9 +285,9 @@ fn descend(
         sign * g.f.eval_f64(&at)
     };
     let inside = |x: &[f64]| {
-        bx.iter()
-            .zip(x)
-            .all(|((_, i), &t)| Rational::from_f64_exact(t).is_some_and(|q| i.contains(&q)))
+        bx.iter().zip(x).all(|((_, i), &t)| {
+            crate::algebra::rational::from_f64_exact(t).is_some_and(|q| i.contains(&q))
+        })
     };
     let mut best = f(&x);
     let mut evaluations = 1;
@@ -316,7 +317,12 @@ fn descend(
     let point = vars
         .iter()
         .zip(&x)
-        .map(|(v, t)| (*v, Rational::from_f64_exact(*t).expect("finite")))
+        .map(|(v, t)| {
+            (
+                *v,
+                crate::algebra::rational::from_f64_exact(*t).expect("finite"),
+            )
+        })
         .collect();
     (point, evaluations)
 }
