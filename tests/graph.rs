@@ -5,7 +5,7 @@
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_files, uses, DerivationFile};
 use cosserat_check::report;
-use cosserat_check::strategy::inherit::Attribution;
+use cosserat_check::strategy::Attribution;
 use cosserat_check::strategy::Decided;
 use std::path::Path;
 

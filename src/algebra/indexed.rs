@@ -262,7 +262,7 @@ fn constant_value(terms: &[ConstantTerm], x: &[usize]) -> Rational {
         for (eps, slots) in factors {
             if *eps {
                 let v: Vec<usize> = slots.iter().map(|&k| x[k]).collect();
-                sign *= super::permutation_sign(&v);
+                sign *= super::tensor::permutation_sign(&v);
             } else if x[slots[0]] != x[slots[1]] {
                 sign = 0;
             }
@@ -294,7 +294,7 @@ pub fn first_difference(
     if values.checked_mul(difference.len())? > EVALUATION_BUDGET {
         return None;
     }
-    for (ordinal, x) in super::assignments(dim, labels.len()).enumerate() {
+    for (ordinal, x) in super::tensor::assignments(dim, labels.len()).enumerate() {
         if !constant_value(&difference, &x).is_zero() {
             // Terms the forms share may still have symbols: then the sides' values are
             // not numbers, and nothing is returned.
@@ -794,7 +794,7 @@ fn for_each_pairing(labels: &[Label], pairs: &mut Vec<Pair>, f: &mut dyn FnMut(&
 fn permutations(n: usize) -> Vec<(Vec<usize>, i8)> {
     fn go(prefix: &mut Vec<usize>, n: usize, out: &mut Vec<(Vec<usize>, i8)>) {
         if prefix.len() == n {
-            out.push((prefix.clone(), super::permutation_sign(prefix)));
+            out.push((prefix.clone(), super::tensor::permutation_sign(prefix)));
             return;
         }
         for k in 0..n {

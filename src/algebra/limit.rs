@@ -8,7 +8,7 @@
 //! sign to the power `b − a`) when `a < b`. Where `D_b` (or, for an infinite limit,
 //! `N_a`) vanishes the orders change: these are the conditions of the result.
 
-use super::RatFunc;
+use super::ratfunc::RatFunc;
 use crate::kernel::poly::{Poly, Var};
 
 pub use crate::kernel::statement::{Approach, Side};

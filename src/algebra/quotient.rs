@@ -15,7 +15,8 @@
 
 use super::einsum::{Arithmetic, OverBudget};
 use super::gcd::{canonical_scale, clear_denominator_monomial, divide_exact, monomial_content};
-use super::RatFunc;
+use super::ratfunc::RatFunc;
+use super::residue;
 use crate::kernel::poly::{Monomial, Poly, Var, VarTable};
 use crate::kernel::rational::Rational;
 use num_traits::One;
@@ -659,6 +660,47 @@ pub const CLEARING_WORK: usize = 1_000_000;
 /// large polynomial costs time quadratic in its size, and cancelling only tidies the
 /// display (comparisons clear denominators anyway).
 const TIDY_TERMS: usize = 2_000;
+
+impl Quotient {
+    /// The residue mod [`residue::P`] at a point of residues (the conditions are not
+    /// checked: an exact evaluation does that); `None` where a denominator vanishes.
+    pub fn residue(&self, value: &dyn Fn(Var) -> u64) -> Option<u64> {
+        let mut den = 1;
+        for (f, k) in self.factors() {
+            den = residue::mul(
+                den,
+                residue::pow(residue::of_poly(f, value)?, u64::from(*k)),
+            );
+        }
+        Some(residue::mul(
+            residue::of_poly(self.numerator(), value)?,
+            residue::inverse(den)?,
+        ))
+    }
+
+    /// Whether `self` and `other` certainly differ at the point (`false`: maybe
+    /// equal). A denominator that vanishes mod P screens nothing: `true`, and an exact
+    /// evaluation decides.
+    pub fn differs_mod_p(&self, other: &Quotient, value: &dyn Fn(Var) -> u64) -> bool {
+        match (self.residue(value), other.residue(value)) {
+            (Some(x), Some(y)) => x != y,
+            _ => true,
+        }
+    }
+}
+
+impl Quotient {
+    /// A quotient by variable names (a square root offered to the kernel).
+    pub fn data(&self, names: &VarTable) -> crate::kernel::statement::FracData {
+        use crate::kernel::statement::poly_data;
+        crate::kernel::statement::FracData {
+            num: poly_data(self.numerator(), names),
+            den: (self.factors().iter())
+                .map(|(f, k)| (poly_data(f, names), *k))
+                .collect(),
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {

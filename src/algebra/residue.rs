@@ -9,7 +9,6 @@
 //! coprimality with them mod P, and the modular gcd (`super::modular`) builds its
 //! candidates from them mod several primes.
 
-use super::quotient::Quotient;
 use crate::kernel::poly::{Poly, Var};
 use crate::kernel::rational::Rational;
 use num_bigint::BigInt;
@@ -149,15 +148,15 @@ impl Field {
     }
 }
 
-fn mul(a: u64, b: u64) -> u64 {
+pub(super) fn mul(a: u64, b: u64) -> u64 {
     MERSENNE.mul(a, b)
 }
 
-fn pow(a: u64, e: u64) -> u64 {
+pub(super) fn pow(a: u64, e: u64) -> u64 {
     MERSENNE.pow(a, e)
 }
 
-fn inverse(a: u64) -> Option<u64> {
+pub(super) fn inverse(a: u64) -> Option<u64> {
     MERSENNE.inverse(a)
 }
 
@@ -180,24 +179,6 @@ pub fn of_poly(p: &Poly, value: &dyn Fn(Var) -> u64) -> Option<u64> {
         total = (total + t) % P;
     }
     Some(total)
-}
-
-/// A quotient's residue (its conditions are not checked: an exact evaluation does that).
-pub fn of_quotient(q: &Quotient, value: &dyn Fn(Var) -> u64) -> Option<u64> {
-    let mut den = 1;
-    for (f, k) in q.factors() {
-        den = mul(den, pow(of_poly(f, value)?, u64::from(*k)));
-    }
-    Some(mul(of_poly(q.numerator(), value)?, inverse(den)?))
-}
-
-/// Whether `a` and `b` certainly differ at the point (`false`: maybe equal).
-pub fn differ(a: &Quotient, b: &Quotient, value: &dyn Fn(Var) -> u64) -> bool {
-    match (of_quotient(a, value), of_quotient(b, value)) {
-        (Some(x), Some(y)) => x != y,
-        // A denominator vanishes mod P: no screen; let the exact evaluation decide.
-        _ => true,
-    }
 }
 
 /// `p` as a polynomial in `w` over 𝔽_P, every other variable at its residue

@@ -8,8 +8,8 @@
 //! `num` (zeros), the roots of `den` (poles, where `f` is undefined), and the sign on
 //! every piece between them. Sign, monotonicity and root claims are read off it.
 
+use super::ratfunc::RatFunc;
 use super::sturm::{count_roots, isolate_roots, Bound, UniPoly};
-use super::RatFunc;
 use crate::kernel::poly::{Poly, Var, VarTable};
 use crate::kernel::rational::Rational;
 use num_traits::Zero;

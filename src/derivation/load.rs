@@ -1,6 +1,7 @@
 //! Reading derivation files: TOML text → checked [`DerivationFile`]s. Every mistake
 //! becomes a [`Diagnostic`] naming the file, line and column; nothing panics.
 
+use super::model::ParamBox;
 use super::model::{
     Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
     Figure, Grid, ScalarClaim, Side, Stated, Strategy, Transcript, Use, Verdict, MAX_NESTING,
@@ -9,7 +10,6 @@ use super::notation::{self, Notation};
 use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
 use super::spans::{content_map, sub_origin};
 use crate::algebra::tensor::{assignment_count_saturating, MAX_COMPONENTS};
-use crate::derivation::ParamBox;
 use crate::kernel::Rational;
 use crate::lang::check::{letters, RESERVED};
 use crate::lang::matrix::{shape_words, MatrixOp, MatrixRead};

@@ -8,22 +8,36 @@
 //! operations follow their rules; a definition's derivative is a new definition,
 //! named `∂name/∂σ_c`, made once. A term that does not read σ has derivative 0.
 
-use super::eval::{component_name, Env, EvalError};
 use super::rational::Rational;
 use super::statement::Definition;
-use super::term::{Leaf, MatOp, MatRead, Slot, Term};
+use super::term::{
+    component_name, index_error, EvalError, Leaf, MatOp, MatRead, Ranks, Slot, Term,
+};
 use std::collections::BTreeSet;
 
 type R<T> = Result<T, EvalError>;
 
+/// What differentiating needs of the evaluator: the definitions a term reads, and a
+/// place for the derivatives of definitions it makes.
+pub trait Definitions: Ranks {
+    /// Every symbol `t` reads, through the definitions it reads.
+    fn mentions(&self, t: &Term, out: &mut BTreeSet<String>) -> R<()>;
+    /// Registers a definition made by differentiating another; its name is new.
+    fn derive(&mut self, def: Definition);
+    /// Whether a derived definition of that name exists.
+    fn has_derived(&self, name: &str) -> bool;
+    /// The definition of that name (a derived one included).
+    fn definition_of(&self, name: &str) -> Option<Definition>;
+}
+
 /// ∂t/∂(symbol at component c).
-pub fn differentiate(t: &Term, symbol: &str, c: &[usize], env: &mut Env<'_>) -> R<Term> {
+pub fn differentiate(t: &Term, symbol: &str, c: &[usize], env: &mut dyn Definitions) -> R<Term> {
     let mut reads = BTreeSet::new();
     env.mentions(t, &mut reads)?;
     if !reads.contains(symbol) {
         return zero_like(t, env);
     }
-    let d = |t: &Term, env: &mut Env<'_>| differentiate(t, symbol, c, env);
+    let d = |t: &Term, env: &mut dyn Definitions| differentiate(t, symbol, c, env);
     let b = Box::new;
     Ok(match t {
         Term::Const { .. } => zero_like(t, env)?,
@@ -178,7 +192,7 @@ pub fn differentiate(t: &Term, symbol: &str, c: &[usize], env: &mut Env<'_>) -> 
 }
 
 /// 0 with the free letters of `t` (or a zero matrix of its shape).
-fn zero_like(t: &Term, env: &Env<'_>) -> R<Term> {
+fn zero_like(t: &Term, env: &dyn Definitions) -> R<Term> {
     if let Some((rows, cols)) = t.shape(env) {
         return Ok(Term::Mat {
             rows,
@@ -186,7 +200,7 @@ fn zero_like(t: &Term, env: &Env<'_>) -> R<Term> {
             op: MatOp::Literal(vec![Term::int(0); rows * cols]),
         });
     }
-    let free = t.letters(env).map_err(super::eval::index_error)?.free;
+    let free = t.letters(env).map_err(index_error)?.free;
     Ok(Term::Const {
         value: Rational::int(0),
         free,
@@ -194,7 +208,7 @@ fn zero_like(t: &Term, env: &Env<'_>) -> R<Term> {
 }
 
 /// The name of the derivative of definition `name`, made (once) if it is new.
-fn derived(name: &str, symbol: &str, c: &[usize], env: &mut Env<'_>) -> R<String> {
+fn derived(name: &str, symbol: &str, c: &[usize], env: &mut dyn Definitions) -> R<String> {
     let dname = format!("∂{name}/∂{}", component_name(symbol, c));
     if !env.has_derived(&dname) {
         let def = env

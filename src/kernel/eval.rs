@@ -13,12 +13,13 @@
 //! radicand and its sign is certified on the box. A hostile term stops at the work
 //! budget, never runs without bound.
 
-use super::differentiate::differentiate;
-use super::frac::{Frac, FracError};
+use super::differentiate::{differentiate, Definitions};
+use super::frac::Frac;
 use super::poly::{Poly, Var, VarTable};
 use super::rational::Rational;
 use super::statement::{Context, Definition, Equation, FracData, PolyData};
-use super::term::{Leaf, Letters, MatOp, MatRead, Order, Ranks, Slot, Term};
+pub use super::term::{children, component_name, EvalError};
+use super::term::{index_error, Leaf, Letters, MatOp, MatRead, Order, Ranks, Slot, Term};
 use num_traits::{One, Zero};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
@@ -32,28 +33,6 @@ pub const MAX_DEPTH: usize = 20_000;
 
 /// The most components a symbol, definition or intermediate value may have (3^10).
 pub const MAX_COMPONENTS: usize = 59_049;
-
-/// Why the kernel has no value for a term.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub enum EvalError {
-    #[error("ill-formed: {0}")]
-    IllFormed(String),
-    #[error("not evaluable exactly: {0}")]
-    Unsupported(String),
-    #[error("division by zero")]
-    DivisionByZero,
-    #[error("the kernel's work or size bound")]
-    Limit,
-}
-
-impl From<FracError> for EvalError {
-    fn from(e: FracError) -> Self {
-        match e {
-            FracError::DivisionByZero => EvalError::DivisionByZero,
-            FracError::TooLarge => EvalError::Limit,
-        }
-    }
-}
 
 type R<T> = Result<T, EvalError>;
 
@@ -92,24 +71,6 @@ impl Value {
             Value::Tensor { letters, .. } => letters,
             Value::Matrix { .. } => &[],
         }
-    }
-}
-
-/// The variable name of a component: `sigma_12`, or the symbol's own name for a scalar.
-pub fn component_name(symbol: &str, idx: &[usize]) -> String {
-    if idx.is_empty() {
-        return symbol.to_owned();
-    }
-    let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
-    format!("{symbol}_{digits}")
-}
-
-/// An error of [`Term::letters`]: ill-formed, or past the kernel's bound.
-pub(super) fn index_error(why: String) -> EvalError {
-    if why == super::term::TOO_MANY_LETTERS {
-        EvalError::Limit
-    } else {
-        EvalError::IllFormed(why)
     }
 }
 
@@ -1483,29 +1444,6 @@ pub fn substitute(p: &Poly, values: &BTreeMap<Var, Poly>) -> R<Poly> {
     Ok(out)
 }
 
-/// The direct subterms of a term.
-pub fn children(t: &Term) -> Vec<&Term> {
-    match t {
-        Term::Const { .. } | Term::Leaf { .. } | Term::Opaque { .. } => Vec::new(),
-        Term::Sum(ts) | Term::Product(ts) => ts.iter().collect(),
-        Term::Neg(a)
-        | Term::Pow(a, _)
-        | Term::Sqrt(a)
-        | Term::Avg(a)
-        | Term::Deriv(a, _)
-        | Term::Read(_, a) => vec![a],
-        Term::Div(a, b) => vec![a, b],
-        Term::Grad { body, .. } | Term::Variation { body, .. } => vec![body],
-        Term::Mat { op, .. } => match op {
-            MatOp::Literal(ts) | MatOp::Sum(ts) => ts.iter().collect(),
-            MatOp::Def(_) | MatOp::Identity => Vec::new(),
-            MatOp::Scale(a, b) | MatOp::Product(a, b) | MatOp::Solve(a, b) => vec![a, b],
-            MatOp::Transpose(a) | MatOp::Inverse(a) | MatOp::Adjugate(a) => vec![a],
-            MatOp::View { tensor, .. } => vec![tensor],
-        },
-    }
-}
-
 impl Env<'_> {
     /// The kernel's polynomial of a hint, its variables interned by name.
     pub(super) fn poly_of(&mut self, p: &PolyData) -> R<Poly> {
@@ -1558,21 +1496,22 @@ impl Env<'_> {
     pub fn eliminated(&self) -> Vec<(Var, Poly)> {
         self.pivots.iter().map(|(v, p)| (*v, p.clone())).collect()
     }
+}
 
-    /// Registers a definition made by differentiating another (see
-    /// [`super::differentiate`]); its name is new.
-    pub(super) fn derive(&mut self, def: Definition) {
+impl Definitions for Env<'_> {
+    fn mentions(&self, t: &Term, out: &mut BTreeSet<String>) -> R<()> {
+        Env::mentions(self, t, out)
+    }
+
+    fn derive(&mut self, def: Definition) {
         self.derived.push(def);
     }
 
-    /// Whether a derived definition of that name exists (statement definitions
-    /// cannot carry a derived name: see [`Env::new`]).
-    pub(super) fn has_derived(&self, name: &str) -> bool {
+    fn has_derived(&self, name: &str) -> bool {
         self.derived.iter().any(|d| d.name == name)
     }
 
-    /// The definition of that name (a derived one included).
-    pub(super) fn definition_of(&self, name: &str) -> Option<Definition> {
+    fn definition_of(&self, name: &str) -> Option<Definition> {
         self.definition(name).cloned()
     }
 }

@@ -8,6 +8,7 @@
 pub mod check;
 pub mod differentiate;
 pub mod eval;
+pub mod fact;
 pub mod frac;
 pub mod interrupt;
 pub mod moments;

@@ -4,8 +4,8 @@
 //! roots between rational points (`univariate`), signs by coefficients (`sign`), exact
 //! values.
 
-use super::check::{Checked, Conclusion, Reduced, Rejection};
 use super::eval::{Env, EvalError};
+use super::fact::{Checked, Conclusion, Reduced, Rejection};
 use super::frac::Frac;
 use super::poly::{Poly, Var};
 use super::rational::Rational;
@@ -388,13 +388,13 @@ fn at(env: &mut Env<'_>, f: &Frac, point: &[(String, Rational)]) -> R<Option<Rat
     Ok(f.eval(&|v| p.get(&v).cloned()))
 }
 
-/// The scalar facts (see [`super::check::Fact`]).
+/// The scalar facts (see [`super::fact::Fact`]).
 pub(super) fn run(
     env: &mut Env<'_>,
     claim: &Claim,
-    fact: &super::check::Fact,
+    fact: &super::fact::Fact,
 ) -> R<(Conclusion, Vec<Checked>)> {
-    use super::check::Fact as F;
+    use super::fact::Fact as F;
     let box_ = env.given_box();
     Ok(match fact {
         F::SignByCoefficients {

@@ -283,3 +283,17 @@ pub struct Statement {
     pub context: Context,
     pub claim: Claim,
 }
+
+/// A polynomial by variable names.
+pub fn poly_data(p: &super::poly::Poly, names: &super::poly::VarTable) -> PolyData {
+    p.terms()
+        .map(|(m, c)| {
+            let factors = m
+                .factors()
+                .iter()
+                .map(|&(v, e)| (names.name(v).to_owned(), e))
+                .collect();
+            (factors, c.clone())
+        })
+        .collect()
+}

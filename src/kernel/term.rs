@@ -479,3 +479,66 @@ fn check_order(o: &Order, len: usize, dim: usize) -> Result<(), String> {
         Err("an order's positions do not fit its slots or the matrix".to_owned())
     }
 }
+
+/// Why the kernel has no value for a term.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum EvalError {
+    #[error("ill-formed: {0}")]
+    IllFormed(String),
+    #[error("not evaluable exactly: {0}")]
+    Unsupported(String),
+    #[error("division by zero")]
+    DivisionByZero,
+    #[error("the kernel's work or size bound")]
+    Limit,
+}
+
+impl From<super::frac::FracError> for EvalError {
+    fn from(e: super::frac::FracError) -> Self {
+        match e {
+            super::frac::FracError::DivisionByZero => EvalError::DivisionByZero,
+            super::frac::FracError::TooLarge => EvalError::Limit,
+        }
+    }
+}
+
+/// The variable name of a component: `sigma_12`, or the symbol's own name for a scalar.
+pub fn component_name(symbol: &str, idx: &[usize]) -> String {
+    if idx.is_empty() {
+        return symbol.to_owned();
+    }
+    let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
+    format!("{symbol}_{digits}")
+}
+
+/// An error of [`Term::letters`]: ill-formed, or past the kernel's bound.
+pub(super) fn index_error(why: String) -> EvalError {
+    if why == super::term::TOO_MANY_LETTERS {
+        EvalError::Limit
+    } else {
+        EvalError::IllFormed(why)
+    }
+}
+
+/// The direct subterms of a term.
+pub fn children(t: &Term) -> Vec<&Term> {
+    match t {
+        Term::Const { .. } | Term::Leaf { .. } | Term::Opaque { .. } => Vec::new(),
+        Term::Sum(ts) | Term::Product(ts) => ts.iter().collect(),
+        Term::Neg(a)
+        | Term::Pow(a, _)
+        | Term::Sqrt(a)
+        | Term::Avg(a)
+        | Term::Deriv(a, _)
+        | Term::Read(_, a) => vec![a],
+        Term::Div(a, b) => vec![a, b],
+        Term::Grad { body, .. } | Term::Variation { body, .. } => vec![body],
+        Term::Mat { op, .. } => match op {
+            MatOp::Literal(ts) | MatOp::Sum(ts) => ts.iter().collect(),
+            MatOp::Def(_) | MatOp::Identity => Vec::new(),
+            MatOp::Scale(a, b) | MatOp::Product(a, b) | MatOp::Solve(a, b) => vec![a, b],
+            MatOp::Transpose(a) | MatOp::Inverse(a) | MatOp::Adjugate(a) => vec![a],
+            MatOp::View { tensor, .. } => vec![tensor],
+        },
+    }
+}

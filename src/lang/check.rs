@@ -11,7 +11,6 @@
 //!   `eps` has rank d.
 
 use super::diag::Span;
-use super::matrix::{MatrixOp, MatrixRead};
 use super::parser::{ErrorKind, Expr, ExprKind, Func, Func2, IndexTok, LangError, Wrt};
 use crate::algebra::tensor::{
     assignment_count_saturating as assignment_count, MAX_ASSIGNMENTS, MAX_COMPONENTS,
@@ -131,6 +130,66 @@ pub enum NodeKind {
     },
     /// A scalar or a tensor read off a matrix: det, trace, an entry, the index view.
     Read(MatrixRead, Box<Node>),
+}
+
+/// A declared position order bound to index slots: `voigt_ij` is the order `voigt`
+/// with its positions' components read into the slots i and j.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Order {
+    pub name: String,
+    /// The positions, each one component per slot (0-based).
+    pub positions: Vec<Vec<usize>>,
+    pub slots: Vec<Slot>,
+}
+
+impl Order {
+    /// The position whose components are `values`, if the order has it.
+    pub fn position_of(&self, values: &[usize]) -> Option<usize> {
+        self.positions.iter().position(|p| p == values)
+    }
+}
+
+/// A matrix-valued node's operation (the node is [`NodeKind::Matrix`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MatrixOp {
+    /// The entries row by row, each a scalar node.
+    Literal(Vec<Node>),
+    /// A matrix definition.
+    Def(String),
+    Identity,
+    /// Matrices of one shape.
+    Sum(Vec<Node>),
+    /// A scalar times a matrix.
+    Scale(Box<Node>, Box<Node>),
+    Product(Box<Node>, Box<Node>),
+    Transpose(Box<Node>),
+    Inverse(Box<Node>),
+    Adjugate(Box<Node>),
+    /// `solve(A, b)`.
+    Solve(Box<Node>, Box<Node>),
+    /// The matrix (or, without `cols`, column) view of a tensor: entry (a, b) is the
+    /// component at the rows' position a and the columns' position b.
+    View {
+        tensor: Box<Node>,
+        rows: Box<Order>,
+        cols: Option<Box<Order>>,
+    },
+}
+
+/// What is read off a matrix (the node is [`NodeKind::Read`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MatrixRead {
+    Det,
+    Trace,
+    /// One entry, 0-based.
+    Entry(usize, usize),
+    /// The index view: the tensor whose component at the rows' position a (and the
+    /// columns' position b) is the entry (a, b), and zero at positions the orders
+    /// leave out.
+    Tensor {
+        rows: Box<Order>,
+        cols: Option<Box<Order>>,
+    },
 }
 
 impl Node {

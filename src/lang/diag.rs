@@ -136,6 +136,11 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
+    /// Where it points, as `path:line:col`.
+    pub fn location(&self) -> String {
+        format!("{}:{}:{}", self.path, self.line, self.col)
+    }
+
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(help.into());
         self

@@ -4,8 +4,8 @@
 //! The full evidence stays in `explain`, `--format markdown`, JSON and HTML; this view
 //! only shortens it.
 
+use super::summary::Summary;
 use super::words::{self, inert};
-use super::Summary;
 use crate::derivation::Verdict;
 use crate::strategy::{Counterexample, Decided, Outcome, Strength};
 use std::fmt::Write as _;
@@ -44,7 +44,7 @@ pub fn render(
                 }
                 .to_owned(),
                 r.outcome.method.as_str().to_owned(),
-                super::read_label(r),
+                super::row::read_label(r),
                 inert(&short_evidence(r)),
             ]
         })
@@ -156,7 +156,7 @@ fn outcome_line(o: &Outcome) -> String {
     if let (Verdict::Undecided, Some(f)) = (o.verdict(), &o.finding) {
         return words::finding(f);
     }
-    if let Some(w) = super::proof_words(o) {
+    if let Some(w) = super::evidence::proof_words(o) {
         return w;
     }
     if let Some(n) = &o.numeric {

@@ -1,7 +1,7 @@
 //! The derivation table as CSV (RFC 4180: every field quoted, quotes doubled), one row
 //! per claim, for spreadsheets and scripts; no cell starts a formula ([`neutralised`]).
 
-use super::full_evidence;
+use super::row::full_evidence;
 use crate::strategy::Decided;
 
 fn field(s: &str) -> String {
@@ -45,7 +45,7 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
                 crate::strategy::Strength::Proof => "proof",
                 crate::strategy::Strength::Sampled => "sampled",
             },
-            &super::read_label(r),
+            &super::row::read_label(r),
         ]
         .map(field);
         out.push_str(&cells.join(","));

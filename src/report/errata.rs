@@ -2,8 +2,9 @@
 //! the counterexample, the correction and its verdict, and the reason — ready to paste
 //! into an erratum.
 
+use super::evidence::evidence;
+use super::graph;
 use super::markdown::{cell, math, statement};
-use super::{evidence, graph};
 use crate::strategy::Decided;
 use std::fmt::Write as _;
 

@@ -4,7 +4,7 @@
 //! states (numeric), and the full evidence. It renders what the decision recorded
 //! (`strategy::decide_recorded`); nothing is computed again here.
 
-use super::evidence;
+use super::evidence::evidence;
 use crate::derivation::{Check, Strategy};
 use crate::lang::Decls;
 use crate::strategy::finding::Record;
@@ -154,7 +154,7 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
         outcome.verdict_text(),
         outcome.method.as_str()
     );
-    if let Some(w) = super::proof_words(outcome) {
+    if let Some(w) = super::evidence::proof_words(outcome) {
         let _ = writeln!(out, "Proof (checked by the kernel): {w}");
     }
     let _ = writeln!(out, "Evidence: {}", evidence(outcome));

@@ -1,8 +1,8 @@
 //! The derivation graph in words: where each failure comes from (a root error, or
 //! inherited from the claims it uses), and the errata grouped by root error.
 
-use super::evidence;
-use crate::strategy::inherit::Attribution;
+use super::evidence::evidence;
+use crate::strategy::decided::Attribution;
 use crate::strategy::Decided;
 
 /// The attribution of a failing claim, in one sentence.

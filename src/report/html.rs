@@ -5,8 +5,10 @@
 //! jumps to its claim and focuses the graph on the claim's ancestors and descendants.
 //! No request leaves the page: no fonts, scripts or styles are fetched.
 
+use super::evidence::evidence;
+use super::graph;
 use super::layout::{layered, Layout};
-use super::{evidence, graph, Summary};
+use super::summary::Summary;
 use crate::derivation::Verdict;
 use crate::strategy::{Decided, Strength};
 use std::fmt::Write as _;
@@ -230,7 +232,7 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
         out,
         "<article class=\"claim {class}{origin}\" id=\"claim-{id}\">\n<h3><a href=\"#claim-{id}\">{id}</a> \
          <span class=\"badge {class}\">{glyph} {}</span>",
-        escape(&super::verdict_label(r)),
+        escape(&super::row::verdict_label(r)),
         id = escape(&c.id)
     );
     if let Some(a) = &r.attribution {
@@ -245,7 +247,7 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
         );
     }
     out.push_str("</h3>\n<div class=\"statement\">");
-    if c.prose && !super::prose_is_formula(&c.statement) {
+    if c.prose && !super::row::prose_is_formula(&c.statement) {
         let _ = write!(out, "“{}”", prose(&c.statement));
     } else {
         out.push_str(&formula(&c.statement, true));

@@ -11,7 +11,7 @@
 //! `undecided`, `unexpected`, `machine_read`, `differs`, `hand`, `prose`, `root_errors`,
 //! `inherited`, `undetermined_origin`).
 
-use super::Summary;
+use super::summary::Summary;
 use crate::kernel::check::Proof;
 use crate::strategy::finding::Finding;
 use crate::strategy::Outcome;

@@ -4,7 +4,9 @@
 //! text is escaped and transliterated to ASCII, so the output compiles with plain
 //! pdflatex.
 
-use super::{evidence, full_evidence, Summary};
+use super::evidence::evidence;
+use super::row::full_evidence;
+use super::summary::Summary;
 use crate::strategy::Decided;
 use std::fmt::Write as _;
 
@@ -304,9 +306,9 @@ fn statement(c: &crate::derivation::Claim) -> String {
         .skip(1)
         .step_by(2)
         .all(|m| super::tex::check(m).is_ok());
-    if c.prose && !super::prose_is_formula(&c.statement) && !formulas_safe {
+    if c.prose && !super::row::prose_is_formula(&c.statement) && !formulas_safe {
         format!("``{}''", escape(&literal(&c.statement)))
-    } else if c.prose && !super::prose_is_formula(&c.statement) {
+    } else if c.prose && !super::row::prose_is_formula(&c.statement) {
         // Prose is LaTeX text already (with $…$ for math); quote it.
         let mut inner = String::new();
         let mut in_math = false;

@@ -1,7 +1,8 @@
 //! The derivation table in Markdown, with statements as inline LaTeX (`$…$`), ready to
 //! paste into a README, a review or an erratum.
 
-use super::{full_evidence, verdict_label, Summary};
+use super::row::{full_evidence, verdict_label};
+use super::summary::Summary;
 use crate::strategy::Decided;
 use std::fmt::Write as _;
 
@@ -68,7 +69,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
             cell(&c.section),
             statement(c),
             verdict,
-            super::read_label(r),
+            super::row::read_label(r),
             r.outcome.method.as_str(),
             cell(&ev)
         );

@@ -255,7 +255,7 @@ impl<'a> ExactEnv<'a> {
     pub fn root_data(&self) -> Vec<crate::kernel::statement::FracData> {
         self.root_values
             .iter()
-            .map(|q| super::statement::frac_data(q, &self.vars))
+            .map(|q| q.data(&self.vars))
             .collect()
     }
 
@@ -446,7 +446,7 @@ impl Refusal {
         let parts = |d: &Diagnostic| {
             (
                 d.message.clone(),
-                super::exact::location(d),
+                d.location(),
                 d.help.clone().unwrap_or_default(),
             )
         };

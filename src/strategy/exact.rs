@@ -9,9 +9,10 @@ use super::assume::product_value;
 use super::eval::{component_name, ExactEnv, Labeled};
 use super::finding::{Expansion, Finding, Record};
 use super::indices::{self, Symbolic};
+use super::outcome::{Counterexample, Method, Outcome};
 use super::proportional::{self, Reference};
+use super::reverify;
 use super::statement;
-use super::{reverify, Counterexample, Method, Outcome};
 use crate::algebra::certificate::{scaled_by, Difference, Identities};
 use crate::algebra::sign::{inner_point, End, Interval};
 use crate::algebra::{assignments, residue, Quotient, RatFunc};
@@ -148,7 +149,7 @@ fn decide_recording(
                     equality: si.max(1),
                     lhs: side.text.clone(),
                     rhs: String::new(),
-                    ill_formed: Some(format!("{}: {}", location(&d), e.message)),
+                    ill_formed: Some(format!("{}: {}", d.location(), e.message)),
                     ..Counterexample::default()
                 };
                 let fact = Fact::IllFormed {
@@ -237,7 +238,10 @@ fn decide_recording(
                         return Ok(Outcome::undecided(Method::Exact, 0).with_finding(
                             Finding::ResourceLimit {
                                 what: why,
-                                at: location(&chain[k].origin.diagnostic(Default::default(), "")),
+                                at: chain[k]
+                                    .origin
+                                    .diagnostic(Default::default(), "")
+                                    .location(),
                                 help: "decide the claim as an identity with the factor written out"
                                     .to_owned(),
                             },
@@ -276,7 +280,7 @@ fn decide_recording(
                         return Ok(Outcome::undecided(Method::Exact, identities.components())
                             .with_finding(Finding::ResourceLimit {
                                 what: d.message.clone(),
-                                at: location(&d),
+                                at: d.location(),
                                 help:
                                     "split the statement with definitions, or decide it numerically"
                                         .to_owned(),
@@ -308,7 +312,7 @@ fn decide_recording(
                         return Ok(Outcome::undecided(Method::Exact, identities.components())
                             .with_finding(Finding::ResourceLimit {
                                 what: "the right side is zero where the factor would be fixed at the parameter values of the difference".to_owned(),
-                                at: location(&chain[k].origin.diagnostic(Default::default(), "")),
+                                at: chain[k].origin.diagnostic(Default::default(), "").location(),
                                 help: "decide the claim as an identity with the factor written out".to_owned(),
                             }))
                     }
@@ -441,8 +445,8 @@ fn decide_recording(
             factors: vec![match f.as_constant() {
                 Some(q) => Factor::Constant(q),
                 None => Factor::Function {
-                    num: statement::poly_data(f.numerator(), &env.vars),
-                    den: statement::poly_data(f.denominator(), &env.vars),
+                    num: crate::kernel::statement::poly_data(f.numerator(), &env.vars),
+                    den: crate::kernel::statement::poly_data(f.denominator(), &env.vars),
                 },
             }],
             roots,
@@ -690,10 +694,6 @@ fn zero_factor(
     })
 }
 
-pub(super) fn location(d: &Diagnostic) -> String {
-    format!("{}:{}:{}", d.path, d.line, d.col)
-}
-
 fn union(a: &[char], b: &[char]) -> Vec<char> {
     let mut u: Vec<char> = a.iter().chain(b).copied().collect();
     u.sort_unstable();
@@ -891,7 +891,7 @@ pub(super) fn point_where_differ(
             .collect();
         if residues.values().all(Option::is_some) {
             let value = |v: Var| residues.get(&v).copied().flatten().unwrap_or(0);
-            if !residue::differ(lhs, rhs, &value) {
+            if !lhs.differs_mod_p(rhs, &value) {
                 continue;
             }
         }

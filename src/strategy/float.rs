@@ -10,83 +10,18 @@
 
 use super::assume::Parametrisation;
 use super::real::{component_pairs, RealEnv};
-use super::taylor::{self, TaylorFields};
+use super::taylor::TaylorFields;
 use crate::algebra::sign::{End, Interval};
 use crate::algebra::Tensor;
 use crate::derivation::{Check, Strategy, Verdict};
 use crate::lang::Decls;
+use crate::strategy::tolerance::{TAYLOR_AGREEMENT, TOL};
 use rustc_hash::FxHashMap as HashMap;
-
-/// Relative tolerance of a float comparison: |l − r| ≤ TOL · (1 + |l| + |r|). Inputs
-/// are O(1), expressions have a few hundred operations at most, so rounding stays
-/// near 1e-14; a wrong statement differs by O(1e-2) or more at a random point.
-pub const TOL: f64 = 1e-9;
 
 /// Degree of the random polynomial fields: derivatives up to this order are random,
 /// higher ones zero (a statement with fifth derivatives is not distinguished from one
 /// without them).
 pub const FIELD_DEGREE: u32 = 4;
-
-/// Quadrature nodes and weights (weights sum to 1) for the uniform average over the
-/// unit circle or sphere, exact for polynomials in n of degree ≤ 15.
-pub fn sphere_rule(dim: usize) -> Vec<(Vec<f64>, f64)> {
-    sphere_rule_exact_to(dim, 15)
-}
-
-/// A rule exact for polynomials in n of degree ≤ `degree`: on the circle, M = degree + 1
-/// equally spaced points (exact for trigonometric degree < M); on the sphere, an
-/// N-point Gauss–Legendre rule in z = cos θ with 2N − 1 ≥ degree times M = degree + 1
-/// equally spaced φ. (A monomial n_1^a n_2^b n_3^c with a + b odd integrates to 0 over
-/// φ exactly; with a + b even it is a polynomial of degree ≤ degree in z.)
-pub fn sphere_rule_exact_to(dim: usize, degree: usize) -> Vec<(Vec<f64>, f64)> {
-    use std::f64::consts::PI;
-    let m = degree + 1;
-    if dim == 2 {
-        return (0..m)
-            .map(|k| {
-                let phi = 2.0 * PI * k as f64 / m as f64;
-                (vec![phi.cos(), phi.sin()], 1.0 / m as f64)
-            })
-            .collect();
-    }
-    let (zs, ws) = gauss_legendre(degree / 2 + 1);
-    let mut out = Vec::with_capacity(zs.len() * m);
-    for (z, w) in zs.iter().zip(&ws) {
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        for k in 0..m {
-            let phi = 2.0 * PI * k as f64 / m as f64;
-            out.push((vec![r * phi.cos(), r * phi.sin(), *z], w / 2.0 / m as f64));
-        }
-    }
-    out
-}
-
-/// Gauss–Legendre nodes and weights on [−1, 1] by Newton iteration on P_n.
-fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut xs = Vec::with_capacity(n);
-    let mut ws = Vec::with_capacity(n);
-    for i in 0..n {
-        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-        let mut dp = 1.0;
-        for _ in 0..100 {
-            let (mut p0, mut p1) = (1.0, x);
-            for k in 2..=n {
-                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-            let dx = p1 / dp;
-            x -= dx;
-            if dx.abs() < 1e-16 {
-                break;
-            }
-        }
-        xs.push(x);
-        ws.push(2.0 / ((1.0 - x * x) * dp * dp));
-    }
-    (xs, ws)
-}
 
 /// A small deterministic generator (xorshift64*), independent of the exact route's.
 pub struct Rng(u64);
@@ -124,21 +59,8 @@ impl Rng {
     }
 }
 
-/// The quadrature rule of `avg(…)` for these declarations, exact to `degree`: the
-/// sphere, or the circle (embedded with n_3 = 0) for plane problems.
-pub fn rule_for(decls: &Decls, degree: usize) -> Vec<(Vec<f64>, f64)> {
-    let free = if decls.normal_in_plane { 2 } else { decls.dim };
-    sphere_rule_exact_to(free, degree)
-        .into_iter()
-        .map(|(mut p, w)| {
-            p.resize(decls.dim, 0.0);
-            (p, w)
-        })
-        .collect()
-}
-
 /// The float route's verdict on a check: `holds` when every equality agrees within
-/// [`TOL`] (with field derivatives, [`taylor::AGREEMENT`]) at `samples` seeded random
+/// [`TOL`] (with field derivatives, [`TAYLOR_AGREEMENT`]) at `samples` seeded random
 /// points, else `fails`. `Ok(None)` when the check
 /// has an ill-formed (verbatim) side or averages an argument that is not a polynomial
 /// in n, which this route does not judge.
@@ -158,7 +80,7 @@ pub fn decide(
     // differences, to the stencil's accuracy.
     let differentiates = check.reads().differentiates;
     let tol = if differentiates {
-        taylor::AGREEMENT
+        TAYLOR_AGREEMENT
     } else {
         TOL
     };
@@ -242,22 +164,5 @@ fn inside(i: &Interval, u: f64) -> f64 {
         (Some(a), None) => a + 2.0 * unit,
         (None, Some(b)) => b - 2.0 * unit,
         (Some(a), Some(b)) => a + (b - a) * unit,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn rules_integrate_known_moments() {
-        for dim in [2usize, 3] {
-            let rule = sphere_rule(dim);
-            let total: f64 = rule.iter().map(|(_, w)| w).sum();
-            assert!((total - 1.0).abs() < 1e-14);
-            let m4: f64 = rule.iter().map(|(p, w)| w * p[0].powi(4)).sum();
-            let want = if dim == 2 { 3.0 / 8.0 } else { 1.0 / 5.0 };
-            assert!((m4 - want).abs() < 1e-14, "dim {dim}: {m4}");
-        }
     }
 }

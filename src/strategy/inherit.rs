@@ -8,58 +8,13 @@
 //! the claim's check reads: a failing claim whose statement does not enter the check
 //! cannot be what makes it fail.
 
-use super::{decide, watch, Decided, Outcome};
+use super::decided::{Attribution, Decided};
+use super::dispatch::decide;
+use super::watch;
 use crate::derivation::{Claim, Verdict};
 use crate::lang::Diagnostic;
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Duration;
-
-/// Where a failing claim's failure comes from.
-#[derive(Clone, Debug)]
-pub enum Attribution {
-    /// The claim's own step is wrong: it still fails with `corrected` (the failing
-    /// claims it uses whose statements enter its check) replaced by their corrections,
-    /// or no failing claim it uses enters its check at all.
-    Root {
-        corrected: Vec<String>,
-        /// The re-decision with `corrected` replaced (none when nothing was replaced).
-        outcome: Option<Outcome>,
-    },
-    /// The claim holds once `from` are replaced by their corrections.
-    Inherited { from: Vec<String>, outcome: Outcome },
-    /// The checker cannot tell: a failing claim whose statement enters the check has
-    /// no corrected form to replace it with (`uncorrectable`), or the re-decision was
-    /// undecided. Never counted as a root error.
-    Undetermined {
-        corrected: Vec<String>,
-        uncorrectable: Vec<String>,
-        outcome: Option<Outcome>,
-    },
-}
-
-impl Attribution {
-    /// Whether the claim is a root error.
-    pub fn is_root(&self) -> bool {
-        matches!(self, Attribution::Root { .. })
-    }
-
-    /// The claims the failure is inherited from (empty unless inherited).
-    pub fn inherited_from(&self) -> &[String] {
-        match self {
-            Attribution::Inherited { from, .. } => from,
-            _ => &[],
-        }
-    }
-
-    /// `root`, `inherited` or `undetermined`.
-    pub fn label(&self) -> &'static str {
-        match self {
-            Attribution::Root { .. } => "root",
-            Attribution::Inherited { .. } => "inherited",
-            Attribution::Undetermined { .. } => "undetermined",
-        }
-    }
-}
 
 /// Whether a verdict accuses the printed statement.
 pub fn failing(v: Verdict) -> bool {

@@ -36,17 +36,13 @@ use crate::derivation::{Assumption, Definition, Relation};
 use crate::kernel::Rational;
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Decls, Node};
+use crate::strategy::tolerance::TRIG_REDUCTION;
 use rustc_hash::FxHashMap as HashMap;
 use std::cell::{Cell, RefCell};
 use std::f64::consts::PI;
 
 /// Units in the last place by which a libm result is widened on each side.
 pub const LIBM_ULPS: u32 = 2;
-
-/// Beyond this magnitude of an interval argument, `sin`, `cos` and `tan` are enclosed by
-/// their whole range (the position of the extrema is not computed there); at a single
-/// number libm's value is used whatever its size.
-const TRIG_REDUCTION: f64 = 1e6;
 
 /// How far from π/2 + kπ computed in `f64` the exact point may lie, at `p` with
 /// |k| ≤ 10⁶: a few units in the last place of p, and k rounding errors of π.
@@ -643,7 +639,7 @@ impl Ring for &IntervalEnv<'_> {
             .ok_or_else(|| Enclosure("an average of a non-polynomial in n".into()))?;
         env.loose.set(true);
         let mut acc: Option<Tensor<Interval>> = None;
-        for (point, w) in super::float::rule_for(env.decls, degree.max(1)) {
+        for (point, w) in super::quadrature::rule_for(env.decls, degree.max(1)) {
             let w = Interval::new(w, w, 2);
             let t = walk::walk(&mut { env }, a, &point)?.map(|x| x.mul(w));
             acc = Some(match acc {

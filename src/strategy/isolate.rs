@@ -9,7 +9,7 @@
 //! which sit outside the isolated call.
 
 use super::finding::Finding;
-use super::{Method, Outcome};
+use super::outcome::{Method, Outcome};
 use std::cell::{Cell, RefCell};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Once;

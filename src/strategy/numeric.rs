@@ -19,36 +19,29 @@ use super::assume::Component;
 use super::eval::component_name;
 use super::finding::{Finding, Point, Unresolved};
 use super::interval::Enclosures;
+use super::outcome::{
+    Counterexample, Measure, Method, NumericEvidence, Outcome, Reverified, SearchEvidence,
+};
 use super::quadrature::{self, Level};
 use super::real::component_pairs;
 use super::reverify::ExactSides;
-pub use super::sampler::SINGULAR_EPS;
 use super::sampler::{relation_holds, Sampler, Sink, State};
-use super::{
-    reverify, search, Counterexample, Measure, Method, NumericEvidence, Outcome, Reverified,
-    SearchEvidence,
-};
+pub use super::tolerance::SINGULAR_EPS;
+use super::{reverify, search};
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::{Check, Expression, GradientConvention, Relation, Sampling, Strategy};
 use crate::digits::{self, significant};
 use crate::lang::{Decls, Diagnostic};
+use crate::strategy::tolerance::{
+    FD_STEP, FD_TOL, QUADRATURE_CLEAR, QUADRATURE_MAX, SECOND_DIFFERENCE_STEP,
+    SECOND_DIFFERENCE_TOL,
+};
 use nalgebra::{DVector, SymmetricEigen};
 use num_dual::{hessian, Dual2DVec64, DualNum, DualSVec64};
 use rustc_hash::FxHashMap as HashMap;
 use std::collections::BTreeMap;
 
-pub use super::float::TOL;
-
-/// Relative step of central differences.
-pub const FD_STEP: f64 = 1e-6;
-/// Relative tolerance between num-dual and central differences.
-pub const FD_TOL: f64 = 1e-6;
-/// Relative step of the second difference that confirms a negative Hessian eigenvalue:
-/// its truncation error is O(step²) and its rounding error O(ε/step²) ≈ 1e-10.
-pub const SECOND_DIFFERENCE_STEP: f64 = 1e-3;
-/// The second difference must be below −this·(1 + max|λ|) to confirm a negative
-/// eigenvalue (well above its rounding error).
-pub const SECOND_DIFFERENCE_TOL: f64 = 1e-7;
+pub use super::tolerance::TOL;
 
 /// What one state says about a statement.
 enum Judged {
@@ -66,12 +59,6 @@ enum Judged {
 
 /// Why a side has no value at a state where it is defined but overflows `f64`.
 const OVERFLOW: &str = "the value is not finite in floating point here (an overflow)";
-
-/// A violation caused by adaptive averages counts only beyond this multiple of their
-/// error estimate; between one and this multiple the state is unresolved.
-pub const QUADRATURE_CLEAR: f64 = 10.0;
-/// The largest relative error estimate of the averages a `holds` may rest on.
-pub const QUADRATURE_MAX: f64 = 1e-5;
 
 /// Checks every chain at one state; the first violation as a counterexample.
 ///
@@ -426,7 +413,9 @@ fn sample_and_search(
             let mut m = f64::NEG_INFINITY;
             let stop = match check_state(s, state, relation, &mut m, &mut quadrature)? {
                 Judged::Satisfied => false,
-                Judged::Violated(_) => !m.is_finite() || m > search::SEARCH_CONFIRM,
+                Judged::Violated(_) => {
+                    !m.is_finite() || m > crate::strategy::tolerance::SEARCH_CONFIRM
+                }
                 Judged::Unresolved(why, at) => {
                     unresolved = Some((why, at));
                     true

@@ -20,7 +20,7 @@
 
 use super::eval::{ExactEnv, Labeled};
 use super::exact::{point_where_differ, shown_point};
-use super::FactorWitness;
+use super::outcome::FactorWitness;
 use crate::algebra::certificate::Identities;
 use crate::algebra::{assignments, Quotient, RatFunc};
 use crate::kernel::{PolyError, Rational, Var};

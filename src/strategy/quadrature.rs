@@ -23,7 +23,7 @@
 //! The estimate of a piece is |K15 − G7| (QUADPACK's Kronrod pair, without its
 //! empirical rescaling). It is not a bound: at a kink both rules err alike, and a kink
 //! between a piece's outermost node and its end is invisible to both. Hence the bound
-//! a decision uses is [`SAFETY`] times the larger of the estimate and the tolerance,
+//! a decision uses is [`QUADRATURE_SAFETY`] times the larger of the estimate and the tolerance,
 //! plus the disagreement of two partitions whose blind spots differ. Like every
 //! adaptive rule it can still be fooled by a feature narrower than the initial pieces
 //! that no node of either partition sees; the integrands here are absolute values,
@@ -38,6 +38,7 @@ type Budget = Cell<usize>;
 
 /// The integrand: its components at a point of the circle or sphere.
 pub type Integrand<'f, T, E> = dyn FnMut(&[f64]) -> Result<Vec<T>, E> + 'f;
+use crate::strategy::tolerance::QUADRATURE_SAFETY;
 use std::f64::consts::PI;
 
 /// The evaluations a statement with such averages gets: the decision's error estimate
@@ -80,12 +81,6 @@ impl Level {
         }
     }
 }
-
-/// The factor between an average's error estimate (or its tolerance times ∫|f|,
-/// whichever is larger) and the bound a decision uses: at kinks the 15- and 7-point
-/// rules err alike, and on the sphere the true error of ⟨|a·n|⟩ was seen 2.5 times
-/// above both.
-pub const SAFETY: f64 = 10.0;
 
 /// Integrand evaluations allowed for one average (the sphere's inner integrals
 /// included); when they run out the average is marked as not converged.
@@ -150,7 +145,7 @@ impl Quadrature {
         self.converged.get()
     }
 
-    /// The largest absolute error bound of an average: [`SAFETY`] times the larger of
+    /// The largest absolute error bound of an average: [`QUADRATURE_SAFETY`] times the larger of
     /// its |K − G| estimate and its tolerance times ∫|f|.
     pub fn worst_error(&self) -> f64 {
         self.worst_error.get()
@@ -174,7 +169,7 @@ impl Quadrature {
     fn record<T>(&self, a: &Integral<T>, tolerance: f64) {
         self.used.set(true);
         self.converged.set(self.converged.get() && a.converged);
-        let bound = SAFETY * a.error.max(tolerance * a.l1);
+        let bound = QUADRATURE_SAFETY * a.error.max(tolerance * a.l1);
         self.worst_error.set(self.worst_error.get().max(bound));
     }
 
@@ -473,6 +468,80 @@ fn normalised<T: DualNum<Primitive = f64>>(i: Integral<T>, measure: f64) -> Inte
     }
 }
 
+/// The quadrature rule of `avg(…)` for these declarations, exact to `degree`: the
+/// sphere, or the circle (embedded with n_3 = 0) for plane problems.
+pub fn rule_for(decls: &crate::lang::Decls, degree: usize) -> Vec<(Vec<f64>, f64)> {
+    let free = if decls.normal_in_plane { 2 } else { decls.dim };
+    sphere_rule_exact_to(free, degree)
+        .into_iter()
+        .map(|(mut p, w)| {
+            p.resize(decls.dim, 0.0);
+            (p, w)
+        })
+        .collect()
+}
+
+/// Quadrature nodes and weights (weights sum to 1) for the uniform average over the
+/// unit circle or sphere, exact for polynomials in n of degree ≤ 15.
+pub fn sphere_rule(dim: usize) -> Vec<(Vec<f64>, f64)> {
+    sphere_rule_exact_to(dim, 15)
+}
+
+/// A rule exact for polynomials in n of degree ≤ `degree`: on the circle, M = degree + 1
+/// equally spaced points (exact for trigonometric degree < M); on the sphere, an
+/// N-point Gauss–Legendre rule in z = cos θ with 2N − 1 ≥ degree times M = degree + 1
+/// equally spaced φ. (A monomial n_1^a n_2^b n_3^c with a + b odd integrates to 0 over
+/// φ exactly; with a + b even it is a polynomial of degree ≤ degree in z.)
+pub fn sphere_rule_exact_to(dim: usize, degree: usize) -> Vec<(Vec<f64>, f64)> {
+    use std::f64::consts::PI;
+    let m = degree + 1;
+    if dim == 2 {
+        return (0..m)
+            .map(|k| {
+                let phi = 2.0 * PI * k as f64 / m as f64;
+                (vec![phi.cos(), phi.sin()], 1.0 / m as f64)
+            })
+            .collect();
+    }
+    let (zs, ws) = gauss_legendre(degree / 2 + 1);
+    let mut out = Vec::with_capacity(zs.len() * m);
+    for (z, w) in zs.iter().zip(&ws) {
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        for k in 0..m {
+            let phi = 2.0 * PI * k as f64 / m as f64;
+            out.push((vec![r * phi.cos(), r * phi.sin(), *z], w / 2.0 / m as f64));
+        }
+    }
+    out
+}
+
+/// Gauss–Legendre nodes and weights on [−1, 1] by Newton iteration on P_n.
+fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut xs = Vec::with_capacity(n);
+    let mut ws = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut dp = 1.0;
+        for _ in 0..100 {
+            let (mut p0, mut p1) = (1.0, x);
+            for k in 2..=n {
+                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+            let dx = p1 / dp;
+            x -= dx;
+            if dx.abs() < 1e-16 {
+                break;
+            }
+        }
+        xs.push(x);
+        ws.push(2.0 / ((1.0 - x * x) * dp * dp));
+    }
+    (xs, ws)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -487,6 +556,18 @@ mod tests {
             .average::<f64, ()>(free, free, &mut |n| Ok(vec![f(n)]))
             .unwrap();
         (v[0], q)
+    }
+
+    #[test]
+    fn rules_integrate_known_moments() {
+        for dim in [2usize, 3] {
+            let rule = sphere_rule(dim);
+            let total: f64 = rule.iter().map(|(_, w)| w).sum();
+            assert!((total - 1.0).abs() < 1e-14);
+            let m4: f64 = rule.iter().map(|(p, w)| w * p[0].powi(4)).sum();
+            let want = if dim == 2 { 3.0 / 8.0 } else { 1.0 / 5.0 };
+            assert!((m4 - want).abs() < 1e-14, "dim {dim}: {m4}");
+        }
     }
 
     #[test]
@@ -510,7 +591,11 @@ mod tests {
             let tol = Level::Fine.tolerance(free);
             assert!(q.used() && q.converged(), "{free}: not converged");
             assert!((got - want).abs() < 10.0 * tol, "{free}: {got} vs {want}");
-            assert!(q.worst_error() <= SAFETY * tol, "bound {}", q.worst_error());
+            assert!(
+                q.worst_error() <= QUADRATURE_SAFETY * tol,
+                "bound {}",
+                q.worst_error()
+            );
         }
     }
 

@@ -5,7 +5,7 @@
 //! answer.
 //!
 //! `avg(…)` re-evaluates its argument at the nodes of a quadrature rule exact for its
-//! degree in n (see [`super::float::sphere_rule_exact_to`]), or, when the argument is
+//! degree in n (see [`super::quadrature::sphere_rule_exact_to`]), or, when the argument is
 //! not a polynomial in n, by adaptive quadrature with an error estimate (see
 //! [`super::quadrature`]); `maxn(…)` maximises over the normal's angle in the
 //! plane by a dense grid refined by golden-section search (see [`MAXN_GRID`]).
@@ -208,7 +208,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
         self.rules
             .borrow_mut()
             .entry(degree)
-            .or_insert_with(|| Rc::new(super::float::rule_for(self.decls, degree)))
+            .or_insert_with(|| Rc::new(super::quadrature::rule_for(self.decls, degree)))
             .clone()
     }
 
@@ -577,7 +577,9 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
         env.differences.set(depth + 1);
         for k in 0..d {
             let along =
-                env.difference_along(k, taylor::STEP, &mut |env| walk::walk(&mut { env }, a, n));
+                env.difference_along(k, crate::strategy::tolerance::TAYLOR_STEP, &mut |env| {
+                    walk::walk(&mut { env }, a, n)
+                });
             match along {
                 Ok(t) => per_coordinate.push(t),
                 Err(e) => {

@@ -24,20 +24,17 @@
 use super::eval::{component_name, ExactEnv, Labeled};
 use super::finding::Rejection;
 use super::interval::Enclosures;
+use super::outcome::{Counterexample, Reverified};
 use super::real::{component_pairs, RealEnv};
 use super::sampler::{relation_holds, Sampler, State};
-use super::taylor::{self, TaylorFields};
-use super::{Counterexample, Reverified};
+use super::taylor::TaylorFields;
 use crate::algebra::{Quotient, Tensor};
 use crate::derivation::{Check, Constraint, Expression, Relation};
 use crate::kernel::{Rational, Var};
 use crate::lang::Decls;
+use crate::strategy::tolerance::REVERIFY_AGREEMENT;
 use rustc_hash::FxHashMap as HashMap;
 use std::collections::BTreeMap;
-
-/// Relative agreement required between the exact values of a counterexample and the
-/// interpreter's `f64` values at the same point.
-const AGREEMENT: f64 = 1e-9;
 
 /// The exact strategy's counterexample at `point` (values of the variables the sides
 /// use, and the whole normal), with exact side values `lhs`, `rhs`, confirmed by the `f64`
@@ -57,9 +54,12 @@ pub(super) fn exact_counterexample(
     // Derivatives of fields are taken by central differences (see `taylor`), to the
     // stencil's accuracy rather than to rounding.
     let (agreement, how) = if check.reads().differentiates {
-        (taylor::AGREEMENT, Reverified::TaylorDifferences)
+        (
+            crate::strategy::tolerance::TAYLOR_AGREEMENT,
+            Reverified::TaylorDifferences,
+        )
     } else {
-        (AGREEMENT, Reverified::FloatingPoint)
+        (REVERIFY_AGREEMENT, Reverified::FloatingPoint)
     };
     for absent in [0.0, 1.0, 0.577_215_664_901_532_9] {
         match float_values(decls, check, env, point, absent, cx) {

@@ -5,26 +5,23 @@
 use super::assume::Parametrisation;
 use super::finding::SampledState;
 use super::float::Rng;
-use super::numeric::TOL;
 use super::quadrature::{Level, Quadrature};
 use super::real::{Labeled, RealEnv, RealError};
 use super::tape::Tape;
+use super::tolerance::TOL;
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::{Check, Constraint, Expression, Reads, Relation, Sampling};
 use crate::digits::{self, significant};
 use crate::lang::{Decls, Diagnostic, Node};
+use crate::strategy::tolerance::{RANGE_TOL, SINGULAR_EPS};
 use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;
 use std::cell::{Cell, RefCell};
 use std::collections::BTreeMap;
 use std::rc::Rc;
 
-/// Samples whose singular expression is below this in magnitude are excluded.
-pub const SINGULAR_EPS: f64 = 1e-8;
 /// Draws allowed per accepted sample before the hypotheses are judged too narrow.
 const MAX_DRAWS_PER_SAMPLE: usize = 100;
-/// Rounding allowed at the ends of a declared range (relative).
-const RANGE_TOL: f64 = 1e-12;
 
 /// One random state: every symbol's components (after the assumptions) and a normal.
 #[derive(Clone, Debug)]

@@ -15,6 +15,7 @@ use super::sampler::{Sampler, State};
 use crate::algebra::assignments;
 use crate::derivation::Constraint;
 use crate::lang::Diagnostic;
+use crate::strategy::tolerance::{FIRST_STEP, LAST_STEP, NEARBY_STEP};
 use rustc_hash::FxHashMap as HashMap;
 use std::collections::BTreeSet;
 use std::f64::consts::PI;
@@ -26,20 +27,11 @@ pub const RANDOM_CORNERS: usize = 4;
 /// Evaluations of the whole search per random sample: the search costs this many times
 /// the random sampling.
 pub const EVALUATIONS_PER_SAMPLE: usize = 3;
-/// A violation found by the search counts only with a relative margin above this: the
-/// search maximises the residual, so it can climb onto rounding noise (near a singular
-/// set, cancellation of large terms) just above the sampling tolerance; a genuine
-/// violation stands far above it.
-pub const SEARCH_CONFIRM: f64 = 1e-6;
 /// Starts on the boundary of the hypotheses (when there are any), the random draws
 /// tried for a state outside them, and the bisection steps towards the boundary.
 const BOUNDARY_STARTS: usize = 3;
 const BOUNDARY_DRAWS: usize = 16;
 const BISECTIONS: usize = 40;
-/// Initial step, as a fraction of each coordinate's range.
-const FIRST_STEP: f64 = 0.25;
-/// The search from one start ends when the step falls below this fraction.
-const LAST_STEP: f64 = 1e-9;
 
 /// The margin of a statement at a state (positive: violated), or `None` when the state
 /// violates it outright.
@@ -196,7 +188,6 @@ impl Value {
 /// States tried near a state where the sides are undefined, and how far each
 /// coordinate moves (a fraction of its range).
 const NEARBY: usize = 3;
-const NEARBY_STEP: f64 = 1e-6;
 
 /// Up to [`NEARBY`] states near `state`: every free coordinate moved by a random
 /// fraction of [`NEARBY_STEP`] of its range (a range of one value stays put), inside the

@@ -9,13 +9,9 @@
 //! equations are linear and that no substitution reads a later one.
 
 use super::assume::Parametrisation;
-use crate::algebra::Quotient;
 use crate::derivation::{AssumptionKind, Check, ParamBox, Side};
-use crate::kernel::statement::{
-    Claim, Context, Definition, Equation, FracData, PolyData, Statement, Substitution,
-};
+use crate::kernel::statement::{Claim, Context, Definition, Equation, Statement, Substitution};
 use crate::kernel::term::{Leaf, MatOp, MatRead, Order, Term};
-use crate::kernel::{Poly, VarTable};
 use crate::lang::check::Target;
 use crate::lang::matrix::{MatrixOp, MatrixRead};
 use crate::lang::parser::ExprKind;
@@ -467,30 +463,4 @@ pub fn not_circle(
         context,
         claim: Claim::NotCircle { x, y },
     })
-}
-
-/// A polynomial by variable names.
-pub fn poly_data(p: &Poly, names: &VarTable) -> PolyData {
-    p.terms()
-        .map(|(m, c)| {
-            let factors = m
-                .factors()
-                .iter()
-                .map(|&(v, e)| (names.name(v).to_owned(), e))
-                .collect();
-            (factors, c.clone())
-        })
-        .collect()
-}
-
-/// A quotient by variable names (a square root offered to the kernel).
-pub fn frac_data(q: &Quotient, names: &VarTable) -> FracData {
-    FracData {
-        num: poly_data(q.numerator(), names),
-        den: q
-            .factors()
-            .iter()
-            .map(|(f, k)| (poly_data(f, names), *k))
-            .collect(),
-    }
 }

@@ -1082,7 +1082,7 @@ impl Ring for Compiler<'_> {
                 self.push(Op::Avg(k, c - 1))
             }));
         };
-        let rule = super::float::rule_for(self.decls, degree.clamp(1, 40));
+        let rule = super::quadrature::rule_for(self.decls, degree.clamp(1, 40));
         let mut acc: Option<Tensor<usize>> = None;
         for (point, w) in rule {
             let pn: Vec<usize> = point.iter().map(|&x| self.c(x)).collect();

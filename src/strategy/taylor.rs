@@ -13,16 +13,6 @@ use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;
 use std::collections::BTreeMap;
 
-/// Step of the central differences. The five-point stencil is exact for polynomials of
-/// degree ≤ 4 in the step and has truncation error h⁴/30 · |f⁽⁵⁾| otherwise; rounding
-/// adds about ε/h per level of nesting.
-pub const STEP: f64 = 1e-3;
-
-/// Relative agreement required between an exact value involving derivatives and the
-/// difference quotients' value: the stencil's error at [`STEP`], nested up to three
-/// derivatives deep (ε/h³ ≈ 2e-7), with a margin.
-pub const AGREEMENT: f64 = 1e-5;
-
 /// A field component: the field's name and the component's indices (0-based).
 type Component = (String, Vec<usize>);
 
@@ -183,6 +173,7 @@ pub fn stencil_with<T: DualNum<Primitive = f64>>([m2, m1, p1, p2]: [T; 4], h: f6
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::strategy::tolerance::TAYLOR_STEP;
 
     /// u(x) with u = 2, u_,1 = 3, u_,12 = 5, u_,11 = 4 at the centre (1, 0, -1).
     fn field() -> TaylorFields {
@@ -215,7 +206,7 @@ mod tests {
         assert_eq!(f.centre, vec![1.0, 0.0, -1.0]);
         let u = |x: [f64; 3]| f.value("u", &[], &x).unwrap();
         assert_eq!(u([1.0, 0.0, -1.0]), 2.0);
-        let h = STEP;
+        let h = TAYLOR_STEP;
         let d1 = |x: [f64; 3]| stencil_with(STEPS.map(|s| u([x[0] + s * h, x[1], x[2]])), h);
         let d2 = |x: [f64; 3]| stencil_with(STEPS.map(|s| u([x[0], x[1] + s * h, x[2]])), h);
         let c = [1.0, 0.0, -1.0];

@@ -14,7 +14,8 @@
 // claim, on the way out), so its size costs nothing.
 #![allow(clippy::result_large_err)]
 
-use super::{decide, Outcome, Strength};
+use super::dispatch::decide;
+use super::outcome::{Outcome, Strength};
 use crate::algebra::sign::Sign;
 use crate::derivation::edit::Incomparable;
 use crate::derivation::notation::{ReadMember, ReadPart};

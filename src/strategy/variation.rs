@@ -15,15 +15,9 @@ use super::walk;
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::Definition;
 use crate::lang::{Node, NodeKind, Target};
+use crate::strategy::tolerance::VARIATION_STEP;
 use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;
-
-/// Step of the differences in ε and along the coordinates of α. The five-point
-/// stencil is exact for polynomials of degree ≤ 4, so for the usual densities
-/// (quadratic in the field) the ε-difference has no truncation error at any step, and
-/// a step ten times the interpreter's keeps the rounding of the nested differences
-/// (each level multiplies it by about 1.5/h) well below the agreement required.
-const VARIATION_STEP: f64 = 1e-2;
 
 /// A perturbation of one field component: `amount · Π (x_k − centre_k)^e_k / e_k!`.
 #[derive(Clone, Debug)]

@@ -8,7 +8,7 @@
 
 use super::eval::ExactEnv;
 use super::finding::Finding;
-use super::{Method, Outcome};
+use super::outcome::{Method, Outcome};
 use crate::algebra::certificate::{Certificate, Fact};
 use crate::algebra::{Quotient, RatFunc};
 use crate::derivation::{Check, Strategy};
@@ -143,8 +143,8 @@ pub fn decide_not_circle(decls: &Decls, check: &Check) -> Result<Outcome, Diagno
         let names = &env.vars;
         let data = |f: &RatFunc| {
             (
-                super::statement::poly_data(f.numerator(), names),
-                super::statement::poly_data(f.denominator(), names),
+                crate::kernel::statement::poly_data(f.numerator(), names),
+                crate::kernel::statement::poly_data(f.denominator(), names),
             )
         };
         let fact = crate::kernel::check::Fact::OnCircle {

@@ -6,8 +6,8 @@
 //! interpreter: near the point, the function must be closer to the limit found than
 //! to the one stated.
 
+use super::context::{Context, Exact, Stop};
 use super::sign::{decide_function, with_evidence, Decided};
-use super::{Context, Exact, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::limit::{self as klimit, Approach, Limit, Side};
 use crate::algebra::sign::{inner_point, Sign};
@@ -15,7 +15,7 @@ use crate::derivation::{Expression, LimitValue};
 use crate::kernel::check::Fact;
 use crate::kernel::{Rational, Var};
 use crate::strategy::finding::Finding;
-use crate::strategy::{Counterexample, Method, Outcome, Reverified};
+use crate::strategy::outcome::{Counterexample, Method, Outcome, Reverified};
 use std::collections::BTreeMap;
 
 pub(super) fn decide(

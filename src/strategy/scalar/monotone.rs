@@ -4,15 +4,15 @@
 //! gives the exact turning points; a claim that holds between them and fails beyond is
 //! `conditional`, with the interval where it holds.
 
+use super::context::{Context, Exact, Stop};
 use super::sign::{cuts, decide_function, with_evidence, Decided};
-use super::{Context, Exact, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::{chart_of, End, Interval, Real, Sign, SignChart};
 use crate::derivation::Expression;
 use crate::kernel::check::Fact;
 use crate::kernel::{Rational, Var};
 use crate::strategy::finding::{Finding, RationalEvidence};
-use crate::strategy::{Counterexample, Method, Outcome, Reverified};
+use crate::strategy::outcome::{Counterexample, Method, Outcome, Reverified};
 use std::collections::BTreeMap;
 
 pub(super) fn decide(
@@ -397,7 +397,7 @@ fn pair(
     };
     let confirmed = matches!(
         (cx.interpret(function, point), cx.interpret(function, &at_b)),
-        (Ok(x), Ok(y)) if super::agrees(x, &fa) && super::agrees(y, &fb)
+        (Ok(x), Ok(y)) if super::context::agrees(x, &fa) && super::context::agrees(y, &fb)
     );
     if !confirmed {
         return Outcome::undecided(Method::RationalFunction, 0);

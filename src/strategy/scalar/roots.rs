@@ -3,14 +3,14 @@
 //! numerator (Sturm), so a root left out is found as surely as a stated one that is
 //! not a root.
 
-use super::{Context, Stop};
+use super::context::{Context, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::Real;
 use crate::derivation::Expression;
 use crate::kernel::check::Fact;
 use crate::kernel::Rational;
 use crate::strategy::finding::Finding;
-use crate::strategy::{Counterexample, Method, Outcome, Reverified};
+use crate::strategy::outcome::{Counterexample, Method, Outcome, Reverified};
 use std::collections::BTreeMap;
 
 pub(super) fn decide(
@@ -94,7 +94,7 @@ pub(super) fn decide(
         let point = cx.complete(&BTreeMap::from([(v, r.clone())]));
         let value = f.eval(&point);
         let confirmed = match (&value, cx.interpret(function, &point)) {
-            (Some(q), Ok(y)) => super::agrees(y, q),
+            (Some(q), Ok(y)) => super::context::agrees(y, q),
             (None, _) => true,
             _ => false,
         };

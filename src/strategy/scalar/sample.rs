@@ -4,7 +4,7 @@
 //! exactly again. A violation found either way is an exact counterexample; none found
 //! is sampled evidence, never a proof.
 
-use super::{Context, Exact};
+use super::context::{Context, Exact};
 use crate::algebra::sign::{chart, sign_of, End, Interval, Sign, Violation};
 use crate::algebra::sturm::UniPoly;
 use crate::kernel::{Rational, Var};
@@ -209,7 +209,7 @@ pub(super) fn search(
     }
     let (smallest, at) = kept
         .first()
-        .map(|(_, p, v)| (super::readable(v), cx.shown(p)))
+        .map(|(_, p, v)| (super::context::readable(v), cx.shown(p)))
         .unwrap_or_else(|| ("none (every sample undefined)".to_owned(), BTreeMap::new()));
     Ok(Sampled::Holds(SampledSign {
         samples: kept.len(),

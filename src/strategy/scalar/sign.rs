@@ -1,15 +1,16 @@
 //! `strategy = "sign"`: `left − right` has the stated sign at every point of the box
 //! where both sides are defined.
 
+use super::context::{Context, Exact, Stop};
 use super::sample::{self, Sampled};
-use super::{Context, Exact, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::{Sign, Violation};
 use crate::derivation::Expression;
 use crate::kernel::check::Fact;
 use crate::kernel::{Poly, Rational, Var};
 use crate::strategy::finding::{Finding, RationalEvidence};
-use crate::strategy::{reverify, Counterexample, Method, Outcome};
+use crate::strategy::outcome::{Counterexample, Method, Outcome};
+use crate::strategy::reverify;
 use std::collections::BTreeMap;
 
 pub(super) fn decide(cx: &mut Context<'_>, want: Sign) -> Result<Outcome, Stop> {
@@ -337,7 +338,7 @@ fn at_root(
         lhs_value: Some(crate::digits::significant(a, crate::digits::VALUE)),
         rhs_value: Some(crate::digits::significant(b, crate::digits::VALUE)),
         difference: "0".to_owned(),
-        reverified: Some(crate::strategy::Reverified::FloatingPoint),
+        reverified: Some(crate::strategy::outcome::Reverified::FloatingPoint),
         ..Counterexample::default()
     };
     let fact = Fact::ZeroBetween {
