@@ -4,7 +4,7 @@
 //! assumptions). The derivation files under `tests/soundness/` hold the true verdicts.
 
 use cosserat_check::derivation::{load_files, load_str};
-use cosserat_check::strategy::assume::{Constrained, Parametrisation};
+use cosserat_check::strategy::parametrisation::{Constrained, Parametrisation};
 use cosserat_check::strategy::decide_claim;
 use std::path::PathBuf;
 

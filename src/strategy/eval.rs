@@ -12,19 +12,19 @@
 //! on the unit sphere and the derivatives of fields assume a polynomial denominator
 //! free of them.
 
-use super::assume::{product_value, Component, Parametrisation};
-use super::jets::Jet;
+use super::parametrisation::{product_value, Component, Parametrisation};
 use super::walk::{self, Ring};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::einsum::{einsum, einsum_closing, Arithmetic, Polynomials};
-use crate::algebra::quotient::{DivideError, Quotients};
+use crate::algebra::quotient::Quotients;
 use crate::algebra::sign::Interval;
 use crate::algebra::{assignments, Quotient, Tensor};
 use crate::derivation::ParamBox;
 use crate::derivation::{Assumption, Definition};
-use crate::kernel::{Poly, PolyError, Rational, Var, VarTable};
-use crate::lang::parser::{Func, Func2};
-use crate::lang::{Decls, Diagnostic, Node, NodeKind, Origin};
+pub use crate::kernel::eval::jet_name;
+pub use crate::kernel::term::component_name;
+use crate::kernel::{Poly, PolyError, Var, VarTable};
+use crate::lang::{Decls, Diagnostic, Node, Origin};
 use num_traits::{One, Zero};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
@@ -91,57 +91,36 @@ pub enum Varying {
     },
 }
 
-/// The variable name of a field component's derivative: `u_2,13` is ∂²u_2/∂x_1∂x_3,
-/// `theta_,2` is ∂θ/∂x_2 (the component's own name when `orders` is empty).
-pub fn jet_name(field: &str, idx: &[usize], orders: &[usize]) -> String {
-    let mut name = component_name(field, idx);
-    if !orders.is_empty() {
-        name.push_str(if idx.is_empty() { "_," } else { "," });
-        name.extend(orders.iter().map(|k| char::from(b'1' + *k as u8)));
-    }
-    name
-}
-
 /// The exact evaluation environment of one claim.
 pub struct ExactEnv<'a> {
-    decls: &'a Decls,
-    defs: &'a [Definition],
+    pub(super) decls: &'a Decls,
+    pub(super) defs: &'a [Definition],
     pub vars: VarTable,
     /// The variables a derivative acts on (see [`Varying`]).
-    varying: HashMap<Var, Varying>,
+    pub(super) varying: HashMap<Var, Varying>,
     /// Components of symbols of rank one or more: not allowed in a divisor.
-    tensor_components: HashSet<Var>,
-    normal: Vec<Var>,
-    symbols: HashMap<String, Tensor<Quotient>>,
-    cache: HashMap<String, Tensor<Quotient>>,
+    pub(super) tensor_components: HashSet<Var>,
+    pub(super) normal: Vec<Var>,
+    pub(super) symbols: HashMap<String, Tensor<Quotient>>,
+    pub(super) cache: HashMap<String, Tensor<Quotient>>,
     /// Term products still allowed (see [`MAX_WORK`]).
-    work_left: usize,
+    pub(super) work_left: usize,
     /// Every symbol an assumption mentions (on either side): such a field cannot be
     /// varied component by component.
-    assumed: HashSet<String>,
-    parametrisation: Option<Parametrisation>,
+    pub(super) assumed: HashSet<String>,
+    pub(super) parametrisation: Option<Parametrisation>,
     /// The claim's box of parameter values (`given`): the sign of a square root is
     /// certified on it.
-    domain: Vec<(Var, Interval)>,
+    pub(super) domain: Vec<(Var, Interval)>,
     /// The square roots taken exactly, each with the kernel's certificate.
-    roots: Vec<Certificate>,
+    pub(super) roots: Vec<Certificate>,
     /// Their values, offered to the kernel when it re-checks a proof.
-    root_values: Vec<Quotient>,
+    pub(super) root_values: Vec<Quotient>,
     /// Definitions with their derivatives by a symbol (`grad`), by (symbol, name).
     pub(super) jet_cache: HashMap<(String, String), Tensor<Jet>>,
 }
 
-/// The variable name of a component: `sigma_12`, or the symbol's own name for a scalar.
-pub fn component_name(symbol: &str, idx: &[usize]) -> String {
-    if idx.is_empty() {
-        symbol.to_owned()
-    } else {
-        let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
-        format!("{symbol}_{digits}")
-    }
-}
-
-fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
+pub(super) fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
     let help = match e {
         PolyError::DivisionByZero => "the divisor is identically zero",
         PolyError::DivisionBySum => {
@@ -281,7 +260,7 @@ impl<'a> ExactEnv<'a> {
 
     /// The variable of one component, registered as varying when the symbol is a
     /// field or the position.
-    fn component_var(&mut self, symbol: &str, idx: &[usize]) -> Var {
+    pub(super) fn component_var(&mut self, symbol: &str, idx: &[usize]) -> Var {
         let v = self.vars.intern(&component_name(symbol, idx));
         if !idx.is_empty() {
             self.tensor_components.insert(v);
@@ -305,7 +284,7 @@ impl<'a> ExactEnv<'a> {
 
     /// ∂v/∂x_k for one variable: 1 or 0 for a coordinate, the next jet variable for a
     /// field that depends on x_k, and `None` (zero) for everything else.
-    fn derivative_of_var(&mut self, v: Var, k: usize) -> Option<Poly> {
+    pub(super) fn derivative_of_var(&mut self, v: Var, k: usize) -> Option<Poly> {
         match self.varying.get(&v)? {
             Varying::Coordinate(j) => (*j == k).then(Poly::one),
             Varying::Jet { field, idx, orders } => {
@@ -358,7 +337,7 @@ impl<'a> ExactEnv<'a> {
     /// not the normal, not a coordinate of the position (an independent variable of
     /// every derivative), and not a derivative of a field (`phi_,i` in a potential
     /// `u_i = phi_,i`).
-    fn is_component(&self, v: &Var) -> bool {
+    pub(super) fn is_component(&self, v: &Var) -> bool {
         !self.normal.contains(v)
             && match self.varying.get(v) {
                 Some(Varying::Coordinate(_)) => false,
@@ -390,7 +369,7 @@ impl<'a> ExactEnv<'a> {
     }
 
     /// The component tensor of a declared symbol (fresh variables on first use).
-    fn symbol(&mut self, name: &str) -> Tensor<Quotient> {
+    pub(super) fn symbol(&mut self, name: &str) -> Tensor<Quotient> {
         if let Some(t) = self.symbols.get(name) {
             return t.clone();
         }
@@ -518,7 +497,7 @@ impl ExactRing<'_, '_> {
     }
 
     /// A resource limit reached at `node`.
-    fn limit(&self, node: &Node, message: impl Into<String>, help: &str) -> Failure {
+    pub(super) fn limit(&self, node: &Node, message: impl Into<String>, help: &str) -> Failure {
         Failure::Limit(
             self.origin
                 .diagnostic(node.span, message)
@@ -571,7 +550,7 @@ impl ExactRing<'_, '_> {
     /// √p exactly: a nonnegative rational, or a rational function whose square is
     /// `p` and whose sign the kernel certifies on the claim's box (`given`), with
     /// the certificate kept for the proof.
-    fn square_root(&mut self, p: &Quotient, node: &Node) -> Result<Quotient, Failure> {
+    pub(super) fn square_root(&mut self, p: &Quotient, node: &Node) -> Result<Quotient, Failure> {
         if let Some(q) = p.as_constant() {
             return q
                 .sqrt_exact()
@@ -625,7 +604,7 @@ impl ExactRing<'_, '_> {
     /// size limit, so it is done only where the limit cannot bite (at most
     /// [`MAX_TERMS`] term products in every component) and only for polynomials without
     /// negative powers of n; otherwise the product is formed, limited and averaged.
-    fn average_of_product(
+    pub(super) fn average_of_product(
         &mut self,
         product: &Node,
         fs: &[Node],
@@ -684,7 +663,7 @@ impl ExactRing<'_, '_> {
 
 /// Term counts: each product of components has at most the product of their counts
 /// of terms, and a sum at most the sum (saturating: a bound, never an overflow).
-struct TermCounts;
+pub(super) struct TermCounts;
 
 impl Arithmetic for TermCounts {
     type Value = usize;
@@ -740,356 +719,6 @@ impl Arithmetic for ExactRing<'_, '_> {
     }
 }
 
-impl Ring for ExactRing<'_, '_> {
-    /// The normal is a polynomial variable: nothing to pass.
-    type Normal = ();
-
-    fn dim(&self) -> usize {
-        self.env.decls.dim
-    }
-
-    fn constant(&mut self, q: &Rational) -> Quotient {
-        Quotient::from(Poly::constant(q.clone()))
-    }
-
-    fn neg(&mut self, x: Quotient) -> Quotient {
-        -x
-    }
-
-    fn normal(&mut self, _n: &()) -> Tensor<Quotient> {
-        // An in-plane normal has no third component: n_3 = 0.
-        let normal = &self.env.normal;
-        Tensor::from_fn(self.env.decls.dim, 1, |i| {
-            Quotient::from(normal.get(i[0]).map_or_else(Poly::zero, |&v| Poly::var(v)))
-        })
-    }
-
-    fn symbol(&mut self, name: &str, _node: &Node) -> Result<Tensor<Quotient>, Failure> {
-        Ok(self.env.symbol(name))
-    }
-
-    fn definition(
-        &mut self,
-        name: &str,
-        node: &Node,
-        _n: &(),
-    ) -> Result<Tensor<Quotient>, Failure> {
-        if let Some(t) = self.env.cache.get(name) {
-            return Ok(t.clone());
-        }
-        let Some(def) = self.env.definition(name) else {
-            return Err(Failure::Located(self.origin.diagnostic(
-                node.span,
-                format!("internal: definition `{name}` is not in scope"),
-            )));
-        };
-        let mut inner = ExactRing {
-            env: &mut *self.env,
-            origin: &def.origin,
-        };
-        let t = walk::in_formal_order(&mut inner, &def.body, &def.sig.formal, &())?;
-        // A definition is defined where every component is: reading one entry of a
-        // matrix whose other entries divide by G is undefined at G = 0 (and the
-        // interpreter that confirms a counterexample evaluates the whole definition).
-        let all = conditions_of(t.components());
-        let t = if all.is_empty() {
-            t
-        } else {
-            t.into_map(|q| q.with_conditions(&all))
-        };
-        self.env.cache.insert(name.to_owned(), t.clone());
-        Ok(t)
-    }
-
-    /// A single-term divisor (3, V, 2*R_g) divides the numerator as before; a sum must
-    /// be a polynomial in scalar parameters, and joins the denominator. A divisor
-    /// written as a product of scalars or a power, `(1 + nu) (1 - 2 nu)`, is divided
-    /// by one factor at a time, so that the factors stay apart in the denominator and
-    /// in the conditions where the statement holds.
-    fn divide(&mut self, x: Quotient, den: &Quotient, divisor: &Node) -> Result<Quotient, Failure> {
-        if den.factors().is_empty() && den.numerator().num_terms() > 1 {
-            let parts: Vec<(&Node, u32)> = match &divisor.kind {
-                NodeKind::Product(fs) if fs.iter().all(|f| f.free_letters().is_empty()) => {
-                    fs.iter().map(|f| (f, 1)).collect()
-                }
-                NodeKind::Pow(a, k) => vec![(&**a, *k)],
-                _ => Vec::new(),
-            };
-            if !parts.is_empty() {
-                let mut out = x;
-                for (part, k) in parts {
-                    // x / a^k = x · (1/a)^k: one division, then a power under its limits.
-                    let value = walk::scalar(self, part, &())?;
-                    let one = Arithmetic::one(self);
-                    let inverse = self.divide(one, &value, part)?;
-                    let inverse = self.power(inverse, k, divisor)?;
-                    out = self.mul(out, &inverse)?;
-                }
-                return Ok(out);
-            }
-        }
-        let env = &*self.env;
-        let single_term = den.factors().is_empty() && den.numerator().num_terms() == 1;
-        let offending = den
-            .variables()
-            .into_iter()
-            .filter(|_| !single_term)
-            .find(|v| {
-                env.normal.contains(v)
-                    || env.varying.contains_key(v)
-                    || env.tensor_components.contains(v)
-            });
-        if let Some(v) = offending {
-            let name = env.vars.name(v);
-            let what = if env.normal.contains(&v) {
-                format!("`{name}` is a component of the normal")
-            } else if env.varying.contains_key(&v) {
-                format!("`{name}` varies with position")
-            } else {
-                format!("`{name}` is a component of a tensor")
-            };
-            return Err(self.error(
-                divisor,
-                format!("exact mode divides by a sum only when it is a polynomial in scalar parameters; {what}"),
-                "decide this claim with strategy = \"numeric\", or multiply the statement out",
-            ));
-        }
-        x.divide(den).map_err(|DivideError::ByZero| {
-            Failure::Located(poly_error(self.origin, divisor, PolyError::DivisionByZero))
-        })
-    }
-
-    fn power(&mut self, q: Quotient, k: u32, node: &Node) -> Result<Quotient, Failure> {
-        let p = q.numerator();
-        let max_exp = p
-            .terms()
-            .flat_map(|(m, _)| m.factors().iter().map(|&(_, e)| e.abs()))
-            .max()
-            .unwrap_or(0);
-        // Terms of p^k: at most the number of multisets of k of p's t terms,
-        // C(t + k − 1, k) (each term of the expansion is one such product), and at most
-        // the number of monomials of degree ≤ k·(max exponent) in p's variables. The
-        // first is exact for a sum of distinct monomials such as (a_i n_i)^16: 153 terms,
-        // where the second says 74,613 (issue 18).
-        let mut vars: Vec<_> = p
-            .terms()
-            .flat_map(|(m, _)| m.factors().iter().map(|&(v, _)| v))
-            .collect();
-        vars.sort_unstable();
-        vars.dedup();
-        let degree = max_exp as f64 * f64::from(k);
-        let monomials = (1..=vars.len()).fold(1.0, |acc, j| acc * (degree + j as f64) / j as f64);
-        let t = p.num_terms() as f64;
-        let multisets = (1..=k).fold(1.0, |acc, j| acc * (t - 1.0 + f64::from(j)) / f64::from(j));
-        let terms = multisets.min(monomials);
-        // Coefficients grow too: (q)^k has about k times the bits of q.
-        let max_bits = p.terms().map(|(_, c)| c.bits()).max().unwrap_or(0);
-        let too_big = max_exp
-            .checked_mul(i64::from(k))
-            .is_none_or(|e| e > MAX_EXPONENT)
-            || terms > MAX_TERMS as f64
-            || max_bits.saturating_mul(u64::from(k)) > MAX_COEFFICIENT_BITS;
-        if too_big {
-            return Err(self.limit(
-                node,
-                "this power is too large to expand exactly",
-                &format!(
-                    "exponents up to {MAX_EXPONENT}, expansions up to {MAX_TERMS} terms and coefficients up to {MAX_COEFFICIENT_BITS} bits are supported"
-                ),
-            ));
-        }
-        // A denominator's factors are not expanded, but their multiplicities are
-        // exponents too.
-        let multiplicity = q.factors().iter().map(|&(_, m)| m).max().unwrap_or(0);
-        if u64::from(multiplicity) * u64::from(k) > MAX_EXPONENT.unsigned_abs() {
-            return Err(self.limit(
-                node,
-                "this power of a quotient is too large to expand exactly",
-                &format!("exponents up to {MAX_EXPONENT} are supported"),
-            ));
-        }
-        Ok(q.pow(k))
-    }
-
-    fn apply2(
-        &mut self,
-        f: Func2,
-        _x: Quotient,
-        _y: Quotient,
-        node: &Node,
-    ) -> Result<Quotient, Failure> {
-        let what = match f {
-            Func2::Pow => "a power with an exponent that is not a whole number".to_owned(),
-            f => format!("{}(…, …)", f.name()),
-        };
-        Err(self.error(
-            node,
-            format!("{what} has no exact polynomial value"),
-            "decide this claim with strategy = \"numeric\"",
-        ))
-    }
-
-    fn pi(&mut self, node: &Node) -> Result<Quotient, Failure> {
-        Err(self.error(
-            node,
-            "π is not a rational number, so it has no exact polynomial value",
-            "decide this claim with strategy = \"numeric\"",
-        ))
-    }
-
-    fn apply(&mut self, f: Func, p: Quotient, node: &Node) -> Result<Quotient, Failure> {
-        match f {
-            Func::Sqrt => self.square_root(&p, node),
-            _ => Err(self.error(
-                node,
-                format!("{}(…) has no exact polynomial value", f.name()),
-                "decide this claim with strategy = \"numeric\"",
-            )),
-        }
-    }
-
-    /// The average acts on the numerator: no divisor contains the normal.
-    fn average(&mut self, a: &Node, node: &Node, _n: &()) -> Result<Tensor<Quotient>, Failure> {
-        if let NodeKind::Product(fs) = &a.kind {
-            if fs.len() >= 2 {
-                return self.average_of_product(a, fs, node);
-            }
-        }
-        let v = walk::walk(self, a, &())?;
-        v.try_map(|q| self.averaged(q, node))
-    }
-
-    fn maximum(&mut self, _a: &Node, node: &Node) -> Result<Quotient, Failure> {
-        Err(self.error(
-            node,
-            "maxn(…) is a maximum over orientations, not a polynomial",
-            "decide this claim with strategy = \"numeric\"",
-        ))
-    }
-
-    /// The total derivative D_k p = Σ_v ∂p/∂v · ∂v/∂x_k over the variables of p
-    /// (the chain rule on jet variables), for every component and every k. No divisor
-    /// varies with position, so the derivative acts on the numerator alone.
-    fn derivatives(
-        &mut self,
-        a: &Node,
-        _node: &Node,
-        _n: &(),
-    ) -> Result<Tensor<Quotient>, Failure> {
-        let v = walk::walk(self, a, &())?;
-        let d = self.env.decls.dim;
-        let mut values = Vec::with_capacity(v.components().len() * d);
-        for q in v.components() {
-            for k in 0..d {
-                let dk = self.total_derivative(q.numerator(), k)?;
-                values.push(q.with_numerator(dk));
-            }
-        }
-        // Components are stored with the last slot fastest, so the coordinate slot
-        // added last comes out in this order.
-        let mut it = values.into_iter();
-        Ok(Tensor::from_fn(d, v.rank() + 1, |_| {
-            it.next().expect("one value per component and coordinate")
-        }))
-    }
-
-    /// The Euler operator on jet variables: for each component v_j of the field,
-    /// Σ_α (−1)^|α| D_α (∂P/∂v_j,α) over the jet variables v_j,α that P's numerator
-    /// contains. A field that an assumption mentions is refused: its components are
-    /// then not independent, and varying them one by one would be wrong.
-    fn variations(
-        &mut self,
-        body: &Node,
-        field: &str,
-        node: &Node,
-        _n: &(),
-    ) -> Result<Tensor<Quotient>, Failure> {
-        if self.env.assumed.contains(field) {
-            return Err(self.error(
-                node,
-                format!("`{field}` is varied, but an assumption constrains it"),
-                "vary a field that no assumption mentions; write the constraint into the density instead",
-            ));
-        }
-        let v = walk::walk(self, body, &())?;
-        let d = self.env.decls.dim;
-        let rank = self.env.decls.symbols.get(field).copied().unwrap_or(0);
-        let components: Vec<Vec<usize>> = assignments(d, rank).collect();
-        let mut values = Vec::with_capacity(v.components().len() * components.len());
-        for q in v.components() {
-            let p = q.numerator();
-            let mut jets: Vec<(Var, Vec<usize>, Vec<usize>)> = p
-                .variables()
-                .into_iter()
-                .filter_map(|x| match self.env.varying.get(&x) {
-                    Some(Varying::Jet {
-                        field: f,
-                        idx,
-                        orders,
-                    }) if f == field => Some((x, idx.clone(), orders.clone())),
-                    _ => None,
-                })
-                .collect();
-            jets.sort_unstable();
-            for idx in &components {
-                let mut acc = Poly::zero();
-                for (x, _, orders) in jets.iter().filter(|(_, i, _)| i == idx) {
-                    let mut term = p.derivative(*x);
-                    for &k in orders {
-                        term = self.total_derivative(&term, k)?;
-                    }
-                    if orders.len() % 2 == 1 {
-                        term = -term;
-                    }
-                    acc += &term;
-                }
-                values.push(q.with_numerator(acc));
-            }
-        }
-        let mut it = values.into_iter();
-        Ok(Tensor::from_fn(d, v.rank() + rank, |_| {
-            it.next()
-                .expect("one value per component of the density and of the field")
-        }))
-    }
-
-    /// ∂body/∂symbol at the state, by the chain rule over exact quotients
-    /// ([`super::jets`]).
-    fn gradients(
-        &mut self,
-        body: &Node,
-        symbol: &str,
-        _node: &Node,
-        _n: &(),
-    ) -> Result<Tensor<Quotient>, Failure> {
-        super::jets::gradients(self, body, symbol)
-    }
-
-    fn leave(&mut self, node: &Node, value: Tensor<Quotient>) -> Result<Tensor<Quotient>, Failure> {
-        self.within_limits(node, value.components())?;
-        Ok(value)
-    }
-
-    fn at(&mut self, e: Failure, node: &Node) -> Failure {
-        match e {
-            Failure::OverBudget => Failure::Limit(too_much(self.origin, node)),
-            located => located,
-        }
-    }
-
-    fn not_scalar(&mut self, node: &Node) -> Failure {
-        Failure::Located(self.origin.diagnostic(node.span, "expected a scalar"))
-    }
-
-    fn singular(&mut self, node: &Node) -> Failure {
-        self.error(
-            node,
-            "this system is singular: the determinant of its matrix is identically zero",
-            "a singular matrix has no inverse and the system no unique solution; check the matrix, or solve a reduced system",
-        )
-    }
-}
-
 /// Every condition (a divisor that must not vanish) of the given values, once each.
 pub(super) fn conditions_of<'q>(values: impl IntoIterator<Item = &'q Quotient>) -> Vec<Poly> {
     let mut all: Vec<Poly> = Vec::new();
@@ -1103,7 +732,7 @@ pub(super) fn conditions_of<'q>(values: impl IntoIterator<Item = &'q Quotient>) 
     all
 }
 
-fn too_much(origin: &Origin, node: &Node) -> Diagnostic {
+pub(super) fn too_much(origin: &Origin, node: &Node) -> Diagnostic {
     origin
         .diagnostic(
             node.span,
@@ -1113,7 +742,7 @@ fn too_much(origin: &Origin, node: &Node) -> Diagnostic {
 }
 
 /// Reorders a sorted-label tensor into a definition's formal index order.
-fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Quotient> {
+pub(super) fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Quotient> {
     let perm: Vec<usize> = formal
         .iter()
         .map(|c| {
@@ -1125,4 +754,25 @@ fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Quotient> {
         })
         .collect();
     value.tensor.permuted(&perm)
+}
+
+/// A value at the state and its partial derivatives by each component of the
+/// symbol (in the symbol's component order); no derivatives at all means zero ones.
+#[derive(Clone, Debug, Default)]
+pub struct Jet {
+    pub(super) value: Quotient,
+    pub(super) partials: Vec<Quotient>,
+}
+
+impl Jet {
+    pub(super) fn constant(value: Quotient) -> Self {
+        Jet {
+            value,
+            partials: Vec::new(),
+        }
+    }
+
+    pub(super) fn is_constant(&self) -> bool {
+        self.partials.iter().all(Quotient::is_exact_zero)
+    }
 }

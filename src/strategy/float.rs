@@ -8,7 +8,7 @@
 //! ≤ 15 in n. A disagreement between this route and the exact one is a bug in one of
 //! them, and the test suite fails on it.
 
-use super::assume::Parametrisation;
+use super::parametrisation::Parametrisation;
 use super::real::{component_pairs, RealEnv};
 use super::taylor::TaylorFields;
 use crate::algebra::sign::{End, Interval};

@@ -27,7 +27,7 @@
 //! sections of the interpreter) are evaluated loosely: they may dismiss a violation as
 //! rounding, never confirm one.
 
-use super::assume::{product_value, Parametrisation};
+use super::parametrisation::{product_value, Parametrisation};
 use super::sampler::{Sampler, State};
 use super::walk::{self, Ring};
 use crate::algebra::einsum::Arithmetic;

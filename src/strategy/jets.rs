@@ -15,7 +15,7 @@
 //! The sampled route takes the same derivatives with num-dual numbers
 //! (`RealEnv::gradients`), a different method, so the two cross-check each other.
 
-use super::eval::{conditions_of, ExactRing, Failure};
+use super::eval::{conditions_of, ExactRing, Failure, Jet};
 use super::walk::{self, Ring};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::{Quotient, Tensor};
@@ -23,27 +23,6 @@ use crate::kernel::{Poly, Rational};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::Node;
 use num_traits::One;
-
-/// A value at the state and its partial derivatives by each component of the
-/// symbol (in the symbol's component order); no derivatives at all means zero ones.
-#[derive(Clone, Debug, Default)]
-pub struct Jet {
-    value: Quotient,
-    partials: Vec<Quotient>,
-}
-
-impl Jet {
-    fn constant(value: Quotient) -> Self {
-        Jet {
-            value,
-            partials: Vec::new(),
-        }
-    }
-
-    fn is_constant(&self) -> bool {
-        self.partials.iter().all(Quotient::is_exact_zero)
-    }
-}
 
 /// `grad(body, symbol)` at the state: a tensor with `body`'s slots followed by the
 /// symbol's (see [`crate::lang::NodeKind::Wrt`]).

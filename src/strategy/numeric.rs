@@ -15,16 +15,16 @@
 //! NaN or infinity never passes: a non-finite value is a violation unless the sample
 //! lies on the declared singular set, which is excluded and counted in the evidence.
 
-use super::assume::Component;
 use super::eval::component_name;
 use super::finding::{Finding, Point, Unresolved};
 use super::interval::Enclosures;
 use super::outcome::{
     Counterexample, Measure, Method, NumericEvidence, Outcome, Reverified, SearchEvidence,
 };
+use super::parametrisation::Component;
 use super::quadrature::{self, Level};
 use super::real::component_pairs;
-use super::reverify::ExactSides;
+use super::reverify::ExactCache;
 use super::sampler::{relation_holds, Sampler, Sink, State};
 pub use super::tolerance::SINGULAR_EPS;
 use super::{reverify, search};
@@ -71,6 +71,7 @@ const OVERFLOW: &str = "the value is not finite in floating point here (an overf
 /// [`QUADRATURE_CLEAR`] times it.
 fn check_state(
     sampler: &Sampler<'_>,
+    exact: &ExactCache<'_>,
     state: &State,
     relation: Relation,
     largest: &mut f64,
@@ -218,11 +219,7 @@ fn check_state(
                         labels.iter().copied().zip(a.iter().copied()).collect();
                     // Polynomial sides are judged exactly at the rational point the
                     // state denotes: satisfied there, the state is evidence like any.
-                    let exact = sampler
-                        .exact
-                        .borrow_mut()
-                        .get_or_insert_with(|| ExactSides::new(sampler))
-                        .holds_at(sampler.check, state, relation, (ci, k), &at);
+                    let exact = exact.holds_at(state, relation, (ci, k), &at);
                     match exact {
                         Some(true) => continue,
                         // Violated exactly: a violation (confirmed again below).
@@ -345,12 +342,15 @@ fn sample_and_search(
     // undefined (where it pushes towards cancellation on purpose), are excluded and
     // counted.
     let mut random_rounding: (usize, Option<Point>) = (0, None);
+    // The exact route at sampled states (polynomial sides), built when first needed.
+    let exact = ExactCache::new(sampler.decls, sampler.check);
     for _ in 0..sampler.sampling.samples {
         let mut state = sampler.next(extra, &mut tally.excluded)?;
         let mut margin = f64::NEG_INFINITY;
         let before = sampler.within_rounding.get();
         let mut judged = check_state(
             sampler,
+            &exact,
             &state,
             relation,
             &mut margin,
@@ -369,7 +369,14 @@ fn sample_and_search(
             let mut moved = None;
             for near in search::nearby(sampler, &state, extra)? {
                 let mut m = f64::NEG_INFINITY;
-                let j = check_state(sampler, &near, relation, &mut m, &mut tally.quadrature)?;
+                let j = check_state(
+                    sampler,
+                    &exact,
+                    &near,
+                    relation,
+                    &mut m,
+                    &mut tally.quadrature,
+                )?;
                 if !matches!(j, Judged::Undefined(_)) {
                     moved = Some((near, j, m));
                     break;
@@ -411,7 +418,7 @@ fn sample_and_search(
         budget,
         &mut |s, state| {
             let mut m = f64::NEG_INFINITY;
-            let stop = match check_state(s, state, relation, &mut m, &mut quadrature)? {
+            let stop = match check_state(s, &exact, state, relation, &mut m, &mut quadrature)? {
                 Judged::Satisfied => false,
                 Judged::Violated(_) => {
                     !m.is_finite() || m > crate::strategy::tolerance::SEARCH_CONFIRM
@@ -448,7 +455,14 @@ fn sample_and_search(
     let found = match result.violation {
         Some(state) => {
             let mut m = f64::NEG_INFINITY;
-            match check_state(sampler, &state, relation, &mut m, &mut tally.quadrature)? {
+            match check_state(
+                sampler,
+                &exact,
+                &state,
+                relation,
+                &mut m,
+                &mut tally.quadrature,
+            )? {
                 Judged::Violated(cx) => {
                     tally.largest = tally.largest.max(m);
                     confirmed(sampler, state, relation, cx)
@@ -672,7 +686,7 @@ impl Variables {
 /// The free and tied components of `wrt`; an error when a derivative would be
 /// ambiguous (a component tied to one outside `wrt`, or to a whole-symbol substitution).
 fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String> {
-    use super::assume::Constrained;
+    use super::parametrisation::Constrained;
     let (decls, check, p) = (sampler.decls, sampler.check, &sampler.parametrisation);
     let mut free: Vec<Component> = Vec::new();
     for symbol in wrt {

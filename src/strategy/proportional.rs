@@ -19,8 +19,8 @@
 //! before a `fails` is printed.
 
 use super::eval::{ExactEnv, Labeled};
-use super::exact::{point_where_differ, shown_point};
 use super::outcome::FactorWitness;
+use super::points::{point_where_differ, shown_point};
 use crate::algebra::certificate::Identities;
 use crate::algebra::{assignments, Quotient, RatFunc};
 use crate::kernel::{PolyError, Rational, Var};

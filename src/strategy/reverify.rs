@@ -34,6 +34,7 @@ use crate::kernel::{Rational, Var};
 use crate::lang::Decls;
 use crate::strategy::tolerance::REVERIFY_AGREEMENT;
 use rustc_hash::FxHashMap as HashMap;
+use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 /// The exact strategy's counterexample at `point` (values of the variables the sides
@@ -334,24 +335,49 @@ fn exactly(
 /// The exact route at sampled states, built once per claim when first needed: the
 /// environment and each side evaluated (`None` where not polynomial or over the
 /// budget).
-pub(super) struct ExactSides<'a> {
+struct ExactSides<'a> {
     env: Option<ExactEnv<'a>>,
     sides: HashMap<(usize, usize), Option<Labeled>>,
 }
 
-impl<'a> ExactSides<'a> {
-    pub(super) fn new(sampler: &Sampler<'a>) -> Self {
-        let check = sampler.check;
-        ExactSides {
-            env: ExactEnv::new(sampler.decls, &check.defs, &check.assumptions).ok(),
-            sides: HashMap::default(),
+/// [`ExactSides`] of one claim, built when first needed.
+pub(super) struct ExactCache<'a> {
+    decls: &'a Decls,
+    check: &'a Check,
+    sides: RefCell<Option<ExactSides<'a>>>,
+}
+
+impl<'a> ExactCache<'a> {
+    pub(super) fn new(decls: &'a Decls, check: &'a Check) -> Self {
+        ExactCache {
+            decls,
+            check,
+            sides: RefCell::new(None),
         }
     }
 
+    /// [`ExactSides::holds_at`], the sides evaluated on first use.
+    pub(super) fn holds_at(
+        &self,
+        state: &State,
+        relation: Relation,
+        at: (usize, usize),
+        values: &[(char, usize)],
+    ) -> Option<bool> {
+        let mut sides = self.sides.borrow_mut();
+        let sides = sides.get_or_insert_with(|| ExactSides {
+            env: ExactEnv::new(self.decls, &self.check.defs, &self.check.assumptions).ok(),
+            sides: HashMap::default(),
+        });
+        sides.holds_at(self.check, state, relation, at, values)
+    }
+}
+
+impl<'a> ExactSides<'a> {
     /// Whether, exactly, sides `k` and `k + 1` of chain `chain` (0-based) satisfy
     /// `relation` at the rational point `state` denotes, for the index values `at`
     /// (0-based); `None` where the sides are not polynomial, or not defined there.
-    pub(super) fn holds_at(
+    fn holds_at(
         &mut self,
         check: &Check,
         state: &State,

@@ -2,9 +2,9 @@
 //! hypotheses, singular sets), evaluating expressions at them (compiled tapes, the
 //! interpreter as fallback), and describing them in counterexamples.
 
-use super::assume::Parametrisation;
 use super::finding::SampledState;
 use super::float::Rng;
+use super::parametrisation::Parametrisation;
 use super::quadrature::{Level, Quadrature};
 use super::real::{Labeled, RealEnv, RealError};
 use super::tape::Tape;
@@ -62,8 +62,6 @@ pub(super) struct Sampler<'a> {
     /// States whose floating-point violation lay within the sides' interval
     /// enclosures (see [`super::interval`]).
     pub(super) within_rounding: Cell<usize>,
-    /// The exact route at sampled states (polynomial sides), built when first needed.
-    pub(super) exact: RefCell<Option<super::reverify::ExactSides<'a>>>,
 }
 
 /// Where a sampled decision keeps the states it drew, for `explain`.
@@ -94,7 +92,6 @@ impl<'a> Sampler<'a> {
             reads: check.reads(),
             drawn: 0,
             within_rounding: Cell::new(0),
-            exact: RefCell::new(None),
         })
     }
 
@@ -206,7 +203,7 @@ impl<'a> Sampler<'a> {
     /// computed component outside it is no state of the claim. (A component fixed to a
     /// constant is the assumption's business, not the range's.)
     pub(super) fn in_ranges(&self, state: &State) -> bool {
-        use super::assume::Constrained;
+        use super::parametrisation::Constrained;
         let d = self.decls.dim;
         self.sampling.ranges.iter().all(|(name, &(lo, hi))| {
             let Some(t) = state.symbols.get(name) else {

@@ -84,7 +84,7 @@ fn coordinates(
     sampler: &Sampler<'_>,
     relevant: &Option<BTreeSet<(String, Vec<usize>)>>,
 ) -> Vec<Coordinate> {
-    use super::assume::Constrained;
+    use super::parametrisation::Constrained;
     let p = &sampler.parametrisation;
     let substituted: BTreeSet<&str> = p
         .substitutions()

@@ -5,10 +5,10 @@
 //! The reading is one-to-one: each checked node becomes the term of the same shape,
 //! each assumption the equation or substitution it is. Which assumptions are solved
 //! as one linear system and in which order the substitutions apply is taken from the
-//! untrusted solver ([`super::assume::Parametrisation`]); the kernel verifies that the
+//! untrusted solver ([`super::parametrisation::Parametrisation`]); the kernel verifies that the
 //! equations are linear and that no substitution reads a later one.
 
-use super::assume::Parametrisation;
+use super::parametrisation::Parametrisation;
 use crate::derivation::{AssumptionKind, Check, ParamBox, Side};
 use crate::kernel::statement::{Claim, Context, Definition, Equation, Statement, Substitution};
 use crate::kernel::term::{Leaf, MatOp, MatRead, Order, Term};

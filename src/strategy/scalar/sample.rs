@@ -8,8 +8,8 @@ use super::context::{Context, Exact};
 use crate::algebra::sign::{chart, sign_of, End, Interval, Sign, Violation};
 use crate::algebra::sturm::UniPoly;
 use crate::kernel::{Rational, Var};
-use crate::strategy::exact::SplitMix;
 use crate::strategy::finding::SampledSign;
+use crate::strategy::points::SplitMix;
 use crate::strategy::watch::{self, TimeUp};
 use std::collections::BTreeMap;
 

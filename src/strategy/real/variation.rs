@@ -9,37 +9,16 @@
 //! moving with them. It shares the expression walk with the exact route and nothing
 //! else: no jet variables, no symbolic ∂P/∂v_j,α.
 
-use super::real::{RealEnv, RealError};
-use super::taylor;
-use super::walk;
+use super::env::{Perturbation, RealEnv};
+use super::error::RealError;
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::Definition;
 use crate::lang::{Node, NodeKind, Target};
+use crate::strategy::taylor;
 use crate::strategy::tolerance::VARIATION_STEP;
+use crate::strategy::walk;
 use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;
-
-/// A perturbation of one field component: `amount · Π (x_k − centre_k)^e_k / e_k!`.
-#[derive(Clone, Debug)]
-pub struct Perturbation {
-    pub field: String,
-    pub idx: Vec<usize>,
-    pub exponents: Vec<u32>,
-    pub centre: Vec<f64>,
-    pub amount: f64,
-}
-
-impl Perturbation {
-    /// Its value at `x`.
-    pub fn at(&self, x: &[f64]) -> f64 {
-        self.exponents.iter().zip(x.iter().zip(&self.centre)).fold(
-            self.amount,
-            |acc, (&e, (xi, ci))| {
-                acc * (xi - ci).powi(e as i32) / (1..=e).map(f64::from).product::<f64>()
-            },
-        )
-    }
-}
 
 /// The deepest nesting of derivatives above a leaf that `counts` accepts, through
 /// definitions (`None`: no such leaf). With the varied field's leaves, it bounds the
