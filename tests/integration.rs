@@ -23,6 +23,7 @@ mod hostile;
 mod html;
 mod kernel;
 mod latex;
+mod layers;
 mod literal_zero;
 mod matrices;
 mod moments;
