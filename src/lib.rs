@@ -12,7 +12,11 @@ pub mod derivation;
 pub mod digits;
 pub mod kernel;
 pub mod lang;
-pub mod mutate;
+/// Mutants of a statement, for the unit tests of the index canonicaliser (the sweep
+/// over the paper is `tests/mutants.rs`); test-only, so it lives with the tests.
+#[cfg(test)]
+#[path = "../tests/support/mutate.rs"]
+mod mutate;
 pub mod parallel;
 pub mod recheck;
 pub mod report;

@@ -3,9 +3,10 @@
 //! route perturbs the field and takes central differences, and must agree on every
 //! claim; `strategy = "proportional"` accepts a law stated with another sign or scale.
 
+use crate::support::float;
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_files, load_str, Strategy, Verdict};
-use cosserat_check::strategy::{decide, float, Reverified};
+use cosserat_check::strategy::{decide, Reverified};
 
 use crate::common;
 

@@ -3,10 +3,11 @@
 //! table (Markdown and JSON) is snapshot-tested, and every exact verdict is
 //! cross-checked by the independent floating-point route.
 
+use crate::support::float;
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, DerivationFile, Strategy, Verdict};
 use cosserat_check::report;
-use cosserat_check::strategy::{float, Decided, Method};
+use cosserat_check::strategy::{Decided, Method};
 use std::path::Path;
 use std::sync::OnceLock;
 

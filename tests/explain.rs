@@ -1,9 +1,9 @@
-//! `explain` renders what the decision recorded (`strategy::decide_recorded`): every
+//! `explain` renders what the decision recorded (`strategy::decide_claim_recorded`): every
 //! side's expansion as the exact decision computed it, also past a failing chain, and
 //! the first states a sampled decision drew. An ordinary decision records nothing.
 
 use cosserat_check::derivation::{load_str, Verdict};
-use cosserat_check::strategy::{decide, decide_recorded};
+use cosserat_check::strategy::{decide, decide_claim_recorded};
 
 const FILE: &str = r#"
 section = "t"
@@ -34,7 +34,7 @@ fn an_exact_record_holds_every_side_as_the_decision_expanded_it() {
     let file = load_str("t.toml", FILE).unwrap();
     let c = &file.claims[0];
     assert!(decide(&c.decls, &c.check).unwrap().record.is_none());
-    let o = decide_recorded(&c.decls, &c.check).unwrap();
+    let o = decide_claim_recorded(c).unwrap().outcome;
     assert_eq!(o.verdict(), Verdict::Fails);
     let record = o.record.expect("recorded");
     // The decision stops at the first chain; the record still has the second.
@@ -56,7 +56,7 @@ fn a_sampled_record_holds_the_first_states_drawn() {
     let file = load_str("t.toml", FILE).unwrap();
     let c = &file.claims[1];
     assert!(decide(&c.decls, &c.check).unwrap().record.is_none());
-    let o = decide_recorded(&c.decls, &c.check).unwrap();
+    let o = decide_claim_recorded(c).unwrap().outcome;
     assert_eq!(o.verdict(), Verdict::Holds);
     let states = o.record.expect("recorded").states;
     assert_eq!(states.len(), 3);

@@ -2,6 +2,13 @@
 //! once. Slow sweeps run here too; `cargo test --release` runs them all.
 
 mod common;
+/// Test-only helpers shared with the library's unit tests: written against `crate::lang`,
+/// which here is the library's.
+mod support {
+    pub mod float;
+    pub mod mutate;
+}
+use cosserat_check::lang;
 
 mod adversarial;
 mod appendix;

@@ -99,17 +99,10 @@ fn paths(code: &str, roots: &[&str]) -> Vec<Vec<String>> {
         let mut segments = vec![root.to_string()];
         i += root.chars().count() + 2;
         loop {
-            let start = i;
-            while i < bytes.len() && ident(bytes[i]) {
-                i += 1;
-            }
-            if i > start {
-                segments.push(bytes[start..i].iter().collect());
-            }
-            if bytes[i..].starts_with(&[':', ':', '{']) {
+            if bytes.get(i) == Some(&'{') {
                 // One path per item of the group (its first segment is enough).
-                let close = (i + 3..bytes.len()).find(|&k| bytes[k] == '}').unwrap();
-                let group: String = bytes[i + 3..close].iter().collect();
+                let close = (i + 1..bytes.len()).find(|&k| bytes[k] == '}').unwrap();
+                let group: String = bytes[i + 1..close].iter().collect();
                 for item in group.split(',') {
                     let first = item.trim().split("::").next().unwrap_or("");
                     let first = first.split_whitespace().next().unwrap_or("");
@@ -119,9 +112,15 @@ fn paths(code: &str, roots: &[&str]) -> Vec<Vec<String>> {
                         out.push(p);
                     }
                 }
-                out.push(segments);
                 i = close;
                 break;
+            }
+            let start = i;
+            while i < bytes.len() && ident(bytes[i]) {
+                i += 1;
+            }
+            if i > start {
+                segments.push(bytes[start..i].iter().collect());
             }
             if i > start && bytes[i..].starts_with(&[':', ':']) {
                 i += 2;
@@ -286,12 +285,15 @@ fn a_circle_and_an_upward_import_are_found() {
     std::fs::create_dir_all(dir.join("kernel")).unwrap();
     let write = |path: &str, text: &str| std::fs::write(dir.join(path), text).unwrap();
     write("lib.rs", "pub mod kernel;\npub mod report;\n");
-    write("kernel/mod.rs", "pub mod a;\npub mod b;\npub mod c;\n");
+    write(
+        "kernel/mod.rs",
+        "pub mod a;\npub mod b;\npub mod c;\npub use c::{k};\n",
+    );
     write("kernel/a.rs", "use super::b::{f, G};\n");
     write("kernel/b.rs", "pub fn f() { super::a::g(); }\n");
     write(
         "kernel/c.rs",
-        "// crate::report::h();\npub fn k() { crate::report::h(); }\n",
+        "use super::{a};\n// crate::report::h();\npub fn k() { crate::report::h(); }\n",
     );
     write(
         "report.rs",
@@ -299,6 +301,11 @@ fn a_circle_and_an_upward_import_are_found() {
     );
     let graph = imports(&dir);
     std::fs::remove_dir_all(&dir).unwrap();
+    let m = |s: &str| s.split('/').map(str::to_owned).collect::<Module>();
+    // A group right after the root names its items, not the root's module.
+    assert!(graph[&m("kernel")].contains(&m("kernel/c")));
+    assert!(graph[&m("kernel/c")].contains(&m("kernel/a")));
+    assert!(!graph[&m("kernel/c")].contains(&m("kernel")));
     assert_eq!(circles(&graph), ["kernel/a → kernel/b → kernel/a"]);
     assert_eq!(
         against_order(&graph),

@@ -11,7 +11,7 @@
 //! with no derivative at a sample, a mutated locus for which no witness is found.
 //!
 //! Survivors must be equivalent (the mutated statement is still true):
-//! - for the exact strategy, the independent floating-point route (`strategy::float`:
+//! - for the exact strategy, the independent floating-point route (`tests/support/float.rs`:
 //!   random values, quadrature averages, no polynomial code) must also find the mutant
 //!   true, and the two routes must agree on every mutant they both decide;
 //! - for the sampled strategies (decided here with 50 samples), every survivor is
@@ -21,12 +21,13 @@
 //! The report — kill rates per strategy and kind, and every equivalent mutant — is
 //! snapshot-tested, so a new survivor shows up as a diff to review.
 
+use crate::support::float;
+use crate::support::mutate::{mutants, MutantKind};
 use cosserat_check::derivation::{
     load_dir, load_files, Check, Claim, DerivationFile, Strategy, Verdict,
 };
 use cosserat_check::lang::Decls;
-use cosserat_check::mutate::{mutants, MutantKind};
-use cosserat_check::strategy::{decide, float};
+use cosserat_check::strategy::decide;
 use std::collections::BTreeMap;
 use std::path::Path;
 

@@ -8,9 +8,9 @@
 use cosserat_check::algebra::Tensor;
 use cosserat_check::derivation::{load_dir, Claim, Strategy};
 use cosserat_check::lang::Node;
-use cosserat_check::strategy::float::Rng;
 use cosserat_check::strategy::parametrisation::Parametrisation;
 use cosserat_check::strategy::quadrature::{Level, Quadrature};
+use cosserat_check::strategy::random::Rng;
 use cosserat_check::strategy::real::RealEnv;
 use cosserat_check::strategy::tape::Tape;
 use num_dual::Dual64;

@@ -2,10 +2,10 @@
 //! each refusal, the notation table, the statuses, and the paper: which claims are
 //! machine-read, and that a mutated side makes a machine-read claim `differs`.
 
+use crate::support::mutate::mutants;
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_str, Strategy, Transcript};
 use cosserat_check::lang::latex::{read, Connective, MathKind, ReadOptions, Rel};
-use cosserat_check::mutate::mutants;
 use cosserat_check::strategy::transcription::{transcribe, Hand, Status, Why};
 use cosserat_check::strategy::{decide, Decided};
 use std::path::Path;

@@ -1,9 +1,21 @@
-//! The trusted kernel: the few things every proof depends on.
+//! The trusted kernel: everything a proof depends on, and nothing that searches.
 //!
-//! Exact rationals, canonical sparse polynomials with checked exponents, and the exact
-//! isotropic moments of a unit vector. Everything else in the crate reaches a proved
-//! verdict only through these types, so they are kept small and are tested hardest
-//! (unit tests here, cross-checks in `tests/`).
+//! - numbers and polynomials: exact rationals ([`rational`]), canonical sparse
+//!   polynomials with checked exponents ([`poly`]), fractions kept over their divisors
+//!   ([`frac`]), polynomials in one variable with Sturm counts ([`univariate`]), the
+//!   exact isotropic moments of a unit vector ([`moments`]);
+//! - statements: the terms of index notation and their free letters ([`term`]), the
+//!   context that gives them meaning ([`statement`]), and their evaluator ([`eval`],
+//!   with [`differentiate`] for `grad`), written to be read rather than to be fast;
+//! - facts: what a search hands in ([`fact`]), the checker that alone turns a fact into
+//!   a [`check::Proof`] ([`check`]), the scalar facts ([`scalar`]) and signs by
+//!   coefficients ([`sign`]); [`interrupt`] lets a claim's time limit stop a long
+//!   computation, which then proves nothing.
+//!
+//! The kernel imports nothing from the rest of the crate (`tests/layers.rs` checks it):
+//! a bug outside can make a claim `undecided`, never a proof. Its size and what it
+//! checks are stated in `docs/guide.md` ("How verdicts are reached, and why to trust
+//! them"); unit tests here, cross-checks in `tests/`.
 
 pub mod check;
 pub mod differentiate;

@@ -2,7 +2,7 @@
 //! reviewer to audit the verdict by hand — the setting, the definitions and
 //! assumptions it uses, each side's canonical expansion (exact) or the first sampled
 //! states (numeric), and the full evidence. It renders what the decision recorded
-//! (`strategy::decide_recorded`); nothing is computed again here.
+//! (`strategy::decide_claim_recorded`); nothing is computed again here.
 
 use super::evidence::evidence;
 use crate::derivation::{Check, Strategy};

@@ -13,15 +13,6 @@ pub fn decide(
     decide_keeping(decls, check, false)
 }
 
-/// Decides one check and keeps what the decision evaluated (`Outcome::record`): the
-/// canonical expansion of every side, or the first states drawn.
-pub fn decide_recorded(
-    decls: &crate::lang::Decls,
-    check: &crate::derivation::Check,
-) -> Result<Outcome, Diagnostic> {
-    decide_keeping(decls, check, true)
-}
-
 pub(super) fn decide_keeping(
     decls: &crate::lang::Decls,
     check: &crate::derivation::Check,

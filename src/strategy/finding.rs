@@ -185,7 +185,7 @@ pub enum Rejection {
     WithinRounding { lhs: (f64, f64), rhs: (f64, f64) },
 }
 
-/// What a decision evaluated, kept when asked (`strategy::decide_recorded`).
+/// What a decision evaluated, kept when asked (`strategy::decide_claim_recorded`).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Record {
     /// The exact strategy: every side's canonical expansion.

@@ -11,7 +11,7 @@ pub mod eval;
 pub mod exact;
 mod exact_ring;
 pub mod finding;
-pub mod float;
+
 mod indices;
 #[cfg(test)]
 mod indices_tests;
@@ -26,6 +26,7 @@ pub mod points;
 pub mod probe;
 mod proportional;
 pub mod quadrature;
+pub mod random;
 pub mod real;
 mod reverify;
 pub mod sampler;
@@ -42,7 +43,7 @@ pub mod witness;
 
 pub use claim::{decide_claim, decide_claim_recorded};
 pub use decided::{Attribution, Decided};
-pub use dispatch::{decide, decide_recorded};
+pub use dispatch::decide;
 pub use outcome::{
     Counterexample, FactorWitness, Measure, Method, NumericEvidence, Outcome, Reverified,
     SearchEvidence, Strength,

@@ -3,9 +3,9 @@
 //! interpreter as fallback), and describing them in counterexamples.
 
 use super::finding::SampledState;
-use super::float::Rng;
 use super::parametrisation::Parametrisation;
 use super::quadrature::{Level, Quadrature};
+use super::random::Rng;
 use super::real::{Labeled, RealEnv, RealError};
 use super::tape::Tape;
 use super::tolerance::TOL;

@@ -5,8 +5,9 @@
 //! many, which the command line shows as progress, and they ask [`check`] between
 //! samples whether the claim's time is up. When it is, the decision stops and the claim
 //! is `undecided (time limit)` (`strategy::decide`): a runaway claim never runs without
-//! bound, and never becomes a verdict. Nothing here changes what a decision computes,
-//! only whether it finishes.
+//! bound, and never becomes a verdict. A decision that finishes within its limit
+//! computes what it would compute without a watch; one that does not is undecided, and
+//! says so.
 
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};

@@ -1,8 +1,10 @@
 //! Evaluation of checked expressions over the reals, generic over the scalar: `f64`
 //! for sampling, and num-dual numbers (`DualDVec64`, `Dual2DVec64`, …) for gradients
-//! and Hessians. It shares only the parser and validator with the exact route, and
-//! has its own contraction code: a shared bug would make both routes agree on a wrong
-//! answer.
+//! and Hessians. It shares the parser, the validator, the one walk of every route
+//! (`walk.rs`) and the contraction (`algebra::einsum`) with the exact route, and
+//! nothing of its arithmetic: floating point or dual numbers instead of polynomials,
+//! quadrature instead of exact moments. Every proof is re-checked by the kernel's own
+//! evaluator, which shares nothing with either route.
 //!
 //! `avg(…)` re-evaluates its argument at the nodes of a quadrature rule exact for its
 //! degree in n (see [`super::quadrature::sphere_rule_exact_to`]), or, when the argument is

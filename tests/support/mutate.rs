@@ -89,7 +89,7 @@ fn collect(src: &str, e: &Expr, out: &mut Vec<Edit>) {
     let range = e.span.start..e.span.end;
     match &e.kind {
         ExprKind::Number(q) => {
-            let bumped = q + &crate::kernel::Rational::int(1);
+            let bumped = q + &1i64.into();
             out.push((MutantKind::Coefficient, range, format!("({bumped})")));
         }
         ExprKind::Name { base, indices, .. } => {

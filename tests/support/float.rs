@@ -1,63 +1,28 @@
-//! An independent floating-point route for cross-checking exact verdicts.
+//! An independent floating-point route for cross-checking exact verdicts, as a test
+//! oracle (`tests/claims.rs`, `tests/mutants.rs`, `tests/balance.rs`).
 //!
-//! It shares only the parser and validator with the exact strategy (evaluation is
-//! [`super::real`]): no polynomial, no moment formula. Symbols get seeded random values in [−1, 1], the normal is a random
-//! unit vector, and `avg(…)` re-evaluates its argument at the nodes of a quadrature
-//! rule on the circle (trapezoid, 32 points) or the sphere (8-point Gauss–Legendre in
-//! cos θ by Newton iteration × 16 equally spaced φ), exact for polynomials of degree
-//! ≤ 15 in n. A disagreement between this route and the exact one is a bug in one of
-//! them, and the test suite fails on it.
+//! It evaluates with the library's real ring (floating point, no polynomial, no moment
+//! formula) and shares the parser, the validator, the walk and the solved assumptions
+//! with the exact strategy. Symbols get seeded random values in [−1, 1], the normal is
+//! a random unit vector, and `avg(…)` re-evaluates its argument at the nodes of a
+//! quadrature rule exact for polynomials of degree ≤ 15 in n. A disagreement between
+//! this route and the exact one is a bug in one of them, and the test suite fails on it.
 
-use super::parametrisation::Parametrisation;
-use super::real::{component_pairs, RealEnv};
-use super::taylor::TaylorFields;
-use crate::algebra::sign::{End, Interval};
-use crate::algebra::Tensor;
-use crate::derivation::{Check, Strategy, Verdict};
-use crate::lang::Decls;
-use crate::strategy::tolerance::{TAYLOR_AGREEMENT, TOL};
-use rustc_hash::FxHashMap as HashMap;
+use cosserat_check::algebra::sign::{End, Interval};
+use cosserat_check::algebra::Tensor;
+use cosserat_check::derivation::{Check, Strategy, Verdict};
+use cosserat_check::lang::Decls;
+use cosserat_check::strategy::parametrisation::Parametrisation;
+use cosserat_check::strategy::random::Rng;
+use cosserat_check::strategy::real::{component_pairs, RealEnv};
+use cosserat_check::strategy::taylor::TaylorFields;
+use cosserat_check::strategy::tolerance::{TAYLOR_AGREEMENT, TOL};
+use std::collections::HashMap;
 
 /// Degree of the random polynomial fields: derivatives up to this order are random,
 /// higher ones zero (a statement with fifth derivatives is not distinguished from one
 /// without them).
 pub const FIELD_DEGREE: u32 = 4;
-
-/// A small deterministic generator (xorshift64*), independent of the exact route's.
-pub struct Rng(u64);
-
-impl Rng {
-    /// A generator for `seed` (0 is mapped to 1: xorshift needs a nonzero state).
-    pub fn new(seed: u64) -> Self {
-        Rng(seed.max(1))
-    }
-
-    /// Uniform in [−1, 1).
-    pub fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-
-    /// Uniform in 0..n (n > 0).
-    pub fn below(&mut self, n: usize) -> usize {
-        let k = ((self.uniform() + 1.0) / 2.0 * n as f64) as usize;
-        k.min(n - 1)
-    }
-
-    /// A random unit normal (in the 1-2 plane for plane problems), padded to the
-    /// dimension with zeros.
-    pub fn unit_normal(&mut self, decls: &Decls) -> Vec<f64> {
-        let free = if decls.normal_in_plane { 2 } else { decls.dim };
-        let mut v: Vec<f64> = (0..free).map(|_| self.uniform()).collect();
-        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-3);
-        v.iter_mut().for_each(|x| *x /= norm);
-        v.resize(decls.dim, 0.0);
-        v
-    }
-}
 
 /// The float route's verdict on a check: `holds` when every equality agrees within
 /// [`TOL`] (with field derivatives, [`TAYLOR_AGREEMENT`]) at `samples` seeded random
@@ -88,7 +53,7 @@ pub fn decide(
     let domain = check.strategy.exact_domain();
     let mut factor: Option<f64> = None;
     for _ in 0..samples {
-        let mut symbols: HashMap<String, Tensor<f64>> = HashMap::default();
+        let mut symbols: HashMap<String, Tensor<f64>> = HashMap::new();
         for (name, &rank) in &decls.symbols {
             let mut t = Tensor::from_fn(d, rank, |_| rng.uniform());
             // A scalar the claim bounds (`given`) is drawn inside its interval.
