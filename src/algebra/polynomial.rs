@@ -154,33 +154,8 @@ pub fn average_of_product(x: &Poly, y: &Poly, vars: &[Var]) -> Result<Poly, Poly
 
 /// LaTeX form, highest total degree first.
 pub fn latex(p: &Poly, names: &VarTable) -> String {
-    if p.is_zero() {
-        return "0".into();
-    }
-    let mut s = String::new();
-    for (k, (m, c)) in p.graded_terms().into_iter().enumerate() {
-        s.push_str(match (k, c.is_negative()) {
-            (0, true) => "-",
-            (0, false) => "",
-            (_, true) => " - ",
-            (_, false) => " + ",
-        });
-        let abs = if c.is_negative() { -c } else { c.clone() };
-        let mut parts: Vec<String> = Vec::new();
-        if !abs.is_one() || m.is_one() {
-            parts.push(rational_latex(&abs));
-        }
-        for &(v, e) in m.factors() {
-            let name = names.name(v);
-            parts.push(if e == 1 {
-                name.to_owned()
-            } else {
-                format!("{name}^{{{e}}}")
-            });
-        }
-        s.push_str(&parts.join(" "));
-    }
-    s
+    let power = |name: &str, e: Exp| format!("{name}^{{{e}}}");
+    p.written(names, usize::MAX, &rational_latex, &power, " ")
 }
 
 /// LaTeX form of a rational: `\frac{p}{q}` or `p`, with a leading minus sign.
@@ -195,27 +170,8 @@ pub fn rational_latex(q: &Rational) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::poly::testing::{below, q, vars};
     use num_traits::{One, Zero};
-
-    fn q(n: i64, d: i64) -> Rational {
-        Rational::ratio(n, d).unwrap()
-    }
-
-    /// A deterministic stream (xorshift from `seed`) of numbers below the argument.
-    fn below(mut seed: u64) -> impl FnMut(u64) -> u64 {
-        move |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        }
-    }
-
-    fn vars(names: &[&str]) -> (VarTable, Vec<Poly>) {
-        let mut t = VarTable::new();
-        let ps = names.iter().map(|n| Poly::var(t.intern(n))).collect();
-        (t, ps)
-    }
 
     #[test]
     fn latex_forms() {

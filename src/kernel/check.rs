@@ -174,10 +174,10 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
                 .ok_or_else(|| Rejection::Mismatch("no such side".into()))?;
             let env = Env::new(&st.context, &[])?;
             match t.letters(&env) {
-                Err(why) if why == super::term::TOO_MANY_LETTERS => {
-                    Err(Rejection::Eval(EvalError::Limit))
+                Err(EvalError::IllFormed(why)) => {
+                    Ok((Conclusion::Fails, vec![Checked::IllFormed { why }]))
                 }
-                Err(why) => Ok((Conclusion::Fails, vec![Checked::IllFormed { why }])),
+                Err(e) => Err(Rejection::Eval(e)),
                 Ok(_) => Err(Rejection::False("the side is well-formed".into())),
             }
         }

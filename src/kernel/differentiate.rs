@@ -10,9 +10,7 @@
 
 use super::rational::Rational;
 use super::statement::Definition;
-use super::term::{
-    component_name, index_error, EvalError, Leaf, MatOp, MatRead, Ranks, Slot, Term,
-};
+use super::term::{component_name, EvalError, Leaf, MatOp, MatRead, Ranks, Slot, Term};
 use std::collections::BTreeSet;
 
 type R<T> = Result<T, EvalError>;
@@ -200,7 +198,7 @@ fn zero_like(t: &Term, env: &dyn Definitions) -> R<Term> {
             op: MatOp::Literal(vec![Term::int(0); rows * cols]),
         });
     }
-    let free = t.letters(env).map_err(index_error)?.free;
+    let free = t.letters(env)?.free;
     Ok(Term::Const {
         value: Rational::int(0),
         free,

@@ -19,7 +19,7 @@ use super::poly::{Poly, Var, VarTable};
 use super::rational::Rational;
 use super::statement::{Context, Definition, Equation, FracData, PolyData};
 pub use super::term::{children, component_name, EvalError};
-use super::term::{index_error, Leaf, Letters, MatOp, MatRead, Order, Ranks, Slot, Term};
+use super::term::{Leaf, Letters, MatOp, MatRead, Order, Ranks, Slot, Term};
 use num_traits::{One, Zero};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
@@ -479,9 +479,7 @@ impl<'c> Env<'c> {
                 }
                 Equation::Equals { formal, value, .. } => {
                     let values = self.affine(value)?;
-                    let letters = Term::letters(value, self)
-                        .map_err(EvalError::IllFormed)?
-                        .free;
+                    let letters = Term::letters(value, self)?.free;
                     let mut sorted = formal.clone();
                     sorted.sort_unstable();
                     if sorted != letters || formal.len() != rank {
@@ -639,7 +637,7 @@ impl<'c> Env<'c> {
         if self.depth >= MAX_DEPTH {
             return Err(EvalError::Limit);
         }
-        let letters = t.letters(self).map_err(index_error)?;
+        let letters = t.letters(self)?;
         self.depth += 1;
         let value = self.eval_checked(t, &letters);
         self.depth -= 1;

@@ -645,6 +645,24 @@ impl Poly {
     /// Like [`Poly::display`], showing at most `max_terms` leading terms and saying how
     /// many there are in all when some are left out.
     pub fn display_truncated(&self, names: &VarTable, max_terms: usize) -> String {
+        let power = |name: &str, e: Exp| format!("{name}^{e}");
+        let mut s = self.written(names, max_terms, &|c| c.to_string(), &power, "*");
+        if self.terms.len() > max_terms {
+            let _ = write!(s, " + … ({} terms in all)", self.terms.len());
+        }
+        s
+    }
+
+    /// The first `max_terms` terms, highest total degree first, each coefficient (when
+    /// not 1) and power written by the given forms and joined by `times`.
+    pub fn written(
+        &self,
+        names: &VarTable,
+        max_terms: usize,
+        coefficient: &dyn Fn(&Rational) -> String,
+        power: &dyn Fn(&str, Exp) -> String,
+        times: &str,
+    ) -> String {
         if self.terms.is_empty() {
             return "0".into();
         }
@@ -659,20 +677,17 @@ impl Poly {
             let abs = if c.is_negative() { -c } else { c.clone() };
             let mut parts: Vec<String> = Vec::new();
             if !abs.is_one() || m.is_one() {
-                parts.push(abs.to_string());
+                parts.push(coefficient(&abs));
             }
             for &(v, e) in m.factors() {
                 let name = names.name(v);
                 parts.push(if e == 1 {
                     name.to_owned()
                 } else {
-                    format!("{name}^{e}")
+                    power(name, e)
                 });
             }
-            s.push_str(&parts.join("*"));
-        }
-        if self.terms.len() > max_terms {
-            let _ = write!(s, " + … ({} terms in all)", self.terms.len());
+            s.push_str(&parts.join(times));
         }
         s
     }
@@ -869,16 +884,17 @@ impl Neg for Poly {
     }
 }
 
+/// Helpers of the unit tests of polynomials, here and in `algebra`.
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) mod testing {
+    use super::{Poly, Rational, VarTable};
 
-    fn q(n: i64, d: i64) -> Rational {
+    pub(crate) fn q(n: i64, d: i64) -> Rational {
         Rational::ratio(n, d).unwrap()
     }
 
     /// A deterministic stream (xorshift from `seed`) of numbers below the argument.
-    fn below(mut seed: u64) -> impl FnMut(u64) -> u64 {
+    pub(crate) fn below(mut seed: u64) -> impl FnMut(u64) -> u64 {
         move |m: u64| {
             seed ^= seed << 13;
             seed ^= seed >> 7;
@@ -887,11 +903,18 @@ mod tests {
         }
     }
 
-    fn vars(names: &[&str]) -> (VarTable, Vec<Poly>) {
+    /// Variables of these names, as polynomials, and their table.
+    pub(crate) fn vars(names: &[&str]) -> (VarTable, Vec<Poly>) {
         let mut t = VarTable::new();
         let ps = names.iter().map(|n| Poly::var(t.intern(n))).collect();
         (t, ps)
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::testing::{below, q, vars};
+    use super::*;
 
     /// Evaluation over one denominator agrees with term-by-term evaluation: random
     /// polynomials of 8–40 terms (small and 30-digit coefficients, in some rounds a

@@ -146,10 +146,6 @@ pub struct Letters {
 /// the kernel visit more index values than a product of 12 letters in 3D).
 pub const MAX_LETTERS: usize = 12;
 
-/// The one error of [`Term::letters`] that is a bound of the kernel, not a fault of
-/// the term: a term past it is not ill-formed, only too large to check.
-pub const TOO_MANY_LETTERS: &str = "more than 12 index letters in one product";
-
 /// What the kernel knows of the symbols: their ranks, and the dimension.
 pub trait Ranks {
     fn dim(&self) -> usize;
@@ -163,7 +159,7 @@ pub trait Ranks {
 
 /// Letters once free, twice summed; a third occurrence, or a letter summed inside one
 /// part and used again in another, is ill-formed.
-fn tally(parts: &[Letters], extra: &[char]) -> Result<Letters, String> {
+fn tally(parts: &[Letters], extra: &[char]) -> Result<Letters, EvalError> {
     let mut seen: BTreeMap<char, usize> = BTreeMap::new();
     for c in parts.iter().flat_map(|p| &p.free).chain(extra) {
         *seen.entry(*c).or_default() += 1;
@@ -173,13 +169,17 @@ fn tally(parts: &[Letters], extra: &[char]) -> Result<Letters, String> {
         match n {
             1 => out.free.push(c),
             2 => out.summed.push(c),
-            n => return Err(format!("index `{c}` occurs {n} times in one product")),
+            n => {
+                return Err(EvalError::IllFormed(format!(
+                    "index `{c}` occurs {n} times in one product"
+                )))
+            }
         }
     }
     // The contraction here visits every value of these letters (those summed inside
     // a factor are that factor's own).
     if out.free.len() + out.summed.len() > MAX_LETTERS {
-        return Err(TOO_MANY_LETTERS.to_owned());
+        return Err(EvalError::Limit);
     }
     for (k, p) in parts.iter().enumerate() {
         for c in &p.summed {
@@ -191,9 +191,9 @@ fn tally(parts: &[Letters], extra: &[char]) -> Result<Letters, String> {
                 .any(|(j, q)| j != k && q.free.contains(c))
                 || extra.contains(c);
             if again {
-                return Err(format!(
+                return Err(EvalError::IllFormed(format!(
                     "index `{c}` is summed inside one factor and used again in another"
-                ));
+                )));
             }
         }
         out.summed.extend(&p.summed);
@@ -201,13 +201,16 @@ fn tally(parts: &[Letters], extra: &[char]) -> Result<Letters, String> {
     Ok(out)
 }
 
-fn slot_letters(slots: &[Slot], dim: usize) -> Result<Vec<char>, String> {
+fn slot_letters(slots: &[Slot], dim: usize) -> Result<Vec<char>, EvalError> {
     let mut out = Vec::new();
     for s in slots {
         match s {
             Slot::Letter(c) => out.push(*c),
             Slot::Fixed(k) if *k >= dim => {
-                return Err(format!("fixed index {} is out of range 1..{dim}", k + 1))
+                return Err(EvalError::IllFormed(format!(
+                    "fixed index {} is out of range 1..{dim}",
+                    k + 1
+                )))
             }
             Slot::Fixed(_) => {}
         }
@@ -215,10 +218,10 @@ fn slot_letters(slots: &[Slot], dim: usize) -> Result<Vec<char>, String> {
     Ok(out)
 }
 
-fn scalar(t: &Term, r: &dyn Ranks, what: &str) -> Result<Letters, String> {
+fn scalar(t: &Term, r: &dyn Ranks, what: &str) -> Result<Letters, EvalError> {
     let l = t.letters(r)?;
     if !l.free.is_empty() || t.shape(r).is_some() {
-        return Err(format!("{what} must be a scalar"));
+        return Err(EvalError::IllFormed(format!("{what} must be a scalar")));
     }
     Ok(l)
 }
@@ -250,7 +253,7 @@ impl Term {
     /// index three times in a product, terms of a sum with different free indices, a
     /// slot count that is not the rank, a fixed index out of range, a non-scalar where
     /// a scalar belongs.
-    pub fn letters(&self, r: &dyn Ranks) -> Result<Letters, String> {
+    pub fn letters(&self, r: &dyn Ranks) -> Result<Letters, EvalError> {
         let dim = r.dim();
         Ok(match self {
             Term::Const { free, .. } | Term::Opaque { free, .. } => {
@@ -264,18 +267,21 @@ impl Term {
             }
             Term::Leaf { of, slots } => {
                 let rank = match of {
-                    Leaf::Symbol(s) => r
-                        .symbol_rank(s)
-                        .ok_or_else(|| format!("`{s}` is not a declared symbol"))?,
-                    Leaf::Def(d) => r
-                        .def_rank(d)
-                        .ok_or_else(|| format!("`{d}` is not a definition of the statement"))?,
+                    Leaf::Symbol(s) => r.symbol_rank(s).ok_or_else(|| {
+                        EvalError::IllFormed(format!("`{s}` is not a declared symbol"))
+                    })?,
+                    Leaf::Def(d) => r.def_rank(d).ok_or_else(|| {
+                        EvalError::IllFormed(format!("`{d}` is not a definition of the statement"))
+                    })?,
                     Leaf::Delta => 2,
                     Leaf::Eps => dim,
                     Leaf::Normal => 1,
                 };
                 if slots.len() != rank {
-                    return Err(format!("{} indices where the rank is {rank}", slots.len()));
+                    return Err(EvalError::IllFormed(format!(
+                        "{} indices where the rank is {rank}",
+                        slots.len()
+                    )));
                 }
                 let own = Letters {
                     free: slot_letters(slots, dim)?,
@@ -284,15 +290,18 @@ impl Term {
                 tally(&[own], &[])?
             }
             Term::Sum(terms) => {
-                let first = terms.first().ok_or("an empty sum")?.letters(r)?;
+                let first = terms
+                    .first()
+                    .ok_or_else(|| EvalError::IllFormed("an empty sum".to_owned()))?
+                    .letters(r)?;
                 let mut summed = first.summed.clone();
                 for t in &terms[1..] {
                     let l = t.letters(r)?;
                     if l.free != first.free {
-                        return Err(format!(
+                        return Err(EvalError::IllFormed(format!(
                             "terms of a sum have different free indices: {:?} and {:?}",
                             first.free, l.free
-                        ));
+                        )));
                     }
                     summed.extend(l.summed);
                 }
@@ -306,7 +315,9 @@ impl Term {
                     .iter()
                     .map(|f| {
                         if f.shape(r).is_some() {
-                            return Err("a matrix in a product of tensors".to_owned());
+                            return Err(EvalError::IllFormed(
+                                "a matrix in a product of tensors".to_owned(),
+                            ));
                         }
                         f.letters(r)
                     })
@@ -335,14 +346,19 @@ impl Term {
                 field: name,
                 slots,
             } => {
-                let rank = r
-                    .symbol_rank(name)
-                    .ok_or_else(|| format!("`{name}` is not a declared symbol"))?;
+                let rank = r.symbol_rank(name).ok_or_else(|| {
+                    EvalError::IllFormed(format!("`{name}` is not a declared symbol"))
+                })?;
                 if slots.len() != rank {
-                    return Err(format!("{} indices where the rank is {rank}", slots.len()));
+                    return Err(EvalError::IllFormed(format!(
+                        "{} indices where the rank is {rank}",
+                        slots.len()
+                    )));
                 }
                 if body.shape(r).is_some() {
-                    return Err("a matrix cannot be differentiated".to_owned());
+                    return Err(EvalError::IllFormed(
+                        "a matrix cannot be differentiated".to_owned(),
+                    ));
                 }
                 let inner = body.letters(r)?;
                 tally(&[inner], &slot_letters(slots, dim)?)?
@@ -352,23 +368,31 @@ impl Term {
                 Letters::default()
             }
             Term::Read(read, m) => {
-                let (rows, cols) = m
-                    .shape(r)
-                    .ok_or("a matrix read off something that is not a matrix")?;
+                let (rows, cols) = m.shape(r).ok_or_else(|| {
+                    EvalError::IllFormed(
+                        "a matrix read off something that is not a matrix".to_owned(),
+                    )
+                })?;
                 m.letters(r)?;
                 match read {
                     MatRead::Det | MatRead::Trace if rows != cols => {
-                        return Err("det and trace need a square matrix".to_owned())
+                        return Err(EvalError::IllFormed(
+                            "det and trace need a square matrix".to_owned(),
+                        ))
                     }
                     MatRead::Entry(i, j) if *i >= rows || *j >= cols => {
-                        return Err("an entry outside the matrix".to_owned())
+                        return Err(EvalError::IllFormed(
+                            "an entry outside the matrix".to_owned(),
+                        ))
                     }
                     MatRead::Tensor { rows: ro, cols: co } => {
                         check_order(ro, rows, dim)?;
                         if let Some(co) = co {
                             check_order(co, cols, dim)?;
                         } else if cols != 1 {
-                            return Err("a tensor view of a matrix needs two orders".to_owned());
+                            return Err(EvalError::IllFormed(
+                                "a tensor view of a matrix needs two orders".to_owned(),
+                            ));
                         }
                         let mut letters = slot_letters(&ro.slots, dim)?;
                         if let Some(co) = co {
@@ -394,19 +418,23 @@ impl Term {
         cols: usize,
         op: &MatOp,
         r: &dyn Ranks,
-    ) -> Result<(), String> {
-        let same = |t: &Term, shape: (usize, usize)| -> Result<(), String> {
+    ) -> Result<(), EvalError> {
+        let same = |t: &Term, shape: (usize, usize)| -> Result<(), EvalError> {
             t.letters(r)?;
             match t.shape(r) {
                 Some(s) if s == shape => Ok(()),
-                _ => Err(format!("a matrix of shape {shape:?} was expected")),
+                _ => Err(EvalError::IllFormed(format!(
+                    "a matrix of shape {shape:?} was expected"
+                ))),
             }
         };
         let square = rows == cols;
         match op {
             MatOp::Literal(entries) => {
                 if entries.len() != rows * cols {
-                    return Err("a matrix literal with the wrong number of entries".to_owned());
+                    return Err(EvalError::IllFormed(
+                        "a matrix literal with the wrong number of entries".to_owned(),
+                    ));
                 }
                 for e in entries {
                     scalar(e, r, "a matrix entry")?;
@@ -414,7 +442,9 @@ impl Term {
             }
             MatOp::Def(name) => {
                 if r.def_shape(name) != Some((rows, cols)) {
-                    return Err(format!("`{name}` is not a matrix definition of this shape"));
+                    return Err(EvalError::IllFormed(format!(
+                        "`{name}` is not a matrix definition of this shape"
+                    )));
                 }
             }
             MatOp::Identity if square => {}
@@ -428,11 +458,15 @@ impl Term {
                 same(m, (rows, cols))?;
             }
             MatOp::Product(a, b) => {
-                let (ra, ca) = a.shape(r).ok_or("a product of matrices needs matrices")?;
+                let (ra, ca) = a.shape(r).ok_or_else(|| {
+                    EvalError::IllFormed("a product of matrices needs matrices".to_owned())
+                })?;
                 same(a, (rows, ca))?;
                 same(b, (ca, cols))?;
                 if ra != rows {
-                    return Err("mismatched shapes in a matrix product".to_owned());
+                    return Err(EvalError::IllFormed(
+                        "mismatched shapes in a matrix product".to_owned(),
+                    ));
                 }
             }
             MatOp::Transpose(a) => same(a, (cols, rows))?,
@@ -450,7 +484,11 @@ impl Term {
                 match co {
                     Some(co) => check_order(co, cols, r.dim())?,
                     None if cols == 1 => {}
-                    None => return Err("a matrix view needs two orders".to_owned()),
+                    None => {
+                        return Err(EvalError::IllFormed(
+                            "a matrix view needs two orders".to_owned(),
+                        ))
+                    }
                 }
                 let mut letters = slot_letters(&ro.slots, r.dim())?;
                 if let Some(co) = co {
@@ -459,16 +497,22 @@ impl Term {
                 letters.sort_unstable();
                 let inner = tensor.letters(r)?;
                 if inner.free != letters {
-                    return Err("a view's orders do not name the tensor's free indices".to_owned());
+                    return Err(EvalError::IllFormed(
+                        "a view's orders do not name the tensor's free indices".to_owned(),
+                    ));
                 }
             }
-            _ => return Err("this matrix operation needs a square matrix".to_owned()),
+            _ => {
+                return Err(EvalError::IllFormed(
+                    "this matrix operation needs a square matrix".to_owned(),
+                ))
+            }
         }
         Ok(())
     }
 }
 
-fn check_order(o: &Order, len: usize, dim: usize) -> Result<(), String> {
+fn check_order(o: &Order, len: usize, dim: usize) -> Result<(), EvalError> {
     let fits = o.positions.len() == len
         && o.positions
             .iter()
@@ -476,7 +520,9 @@ fn check_order(o: &Order, len: usize, dim: usize) -> Result<(), String> {
     if fits {
         Ok(())
     } else {
-        Err("an order's positions do not fit its slots or the matrix".to_owned())
+        Err(EvalError::IllFormed(
+            "an order's positions do not fit its slots or the matrix".to_owned(),
+        ))
     }
 }
 
@@ -509,15 +555,6 @@ pub fn component_name(symbol: &str, idx: &[usize]) -> String {
     }
     let digits: String = idx.iter().map(|i| (i + 1).to_string()).collect();
     format!("{symbol}_{digits}")
-}
-
-/// An error of [`Term::letters`]: ill-formed, or past the kernel's bound.
-pub(super) fn index_error(why: String) -> EvalError {
-    if why == super::term::TOO_MANY_LETTERS {
-        EvalError::Limit
-    } else {
-        EvalError::IllFormed(why)
-    }
 }
 
 /// The direct subterms of a term.
