@@ -65,6 +65,7 @@ fn circle_averages_are_decided_soundly_for_seeds_1_to_10() {
 }
 
 #[test]
+#[ignore = "slow sweep: run by `cargo test --release -- --include-ignored`, as CI does"]
 fn sphere_averages_are_decided_soundly() {
     // About 10 s a seed: each state takes a few 10^5 integrand evaluations.
     verdicts_as_declared("averages-sphere.toml", 1..=1);
