@@ -433,67 +433,50 @@ fn decide_claims<'f>(
     progress: &mut Progress,
 ) -> Result<Vec<Decided<'f>>, RunError> {
     let n = claims.len();
-    // Claims are independent: two workers (this machine's cores) take the next claim
-    // as they finish one, and the results are put back in claim order, so the output
-    // and the first error reported do not depend on scheduling.
-    let workers = std::thread::available_parallelism()
-        .map_or(1, usize::from)
-        .clamp(1, 2)
-        .min(n.max(1));
-    // Longest first, so that a slow claim does not start last while the other worker
-    // idles; the results still go back in claim order.
+    // Claims are independent: the workers take the next claim as they finish one, and
+    // the results are put back in claim order, so the output and the first error
+    // reported do not depend on scheduling. Longest first, so that a slow claim does not
+    // start last while the other workers idle.
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by_key(|&k| std::cmp::Reverse(expected_cost(claims[k])));
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let watches: Vec<Mutex<Option<Arc<Watch>>>> = (0..workers).map(|_| Mutex::new(None)).collect();
+    let watches: Vec<Mutex<Option<Arc<Watch>>>> = (0..crate::parallel::workers(n))
+        .map(|_| Mutex::new(None))
+        .collect();
     let mut slots: Vec<Option<Result<Decided<'f>, RunError>>> = (0..n).map(|_| None).collect();
-    std::thread::scope(|scope| {
-        let (tx, rx) = std::sync::mpsc::channel();
-        for slot in &watches {
-            let (tx, claims, next) = (tx.clone(), &claims, &next);
-            let order = &order;
-            crate::parallel::spawn_scoped(scope, move || loop {
-                let q = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                let Some(&k) = order.get(q) else { return };
-                let c = claims[k];
-                let w = Watch::new(&c.id, run.limit_now());
-                *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(w.clone());
-                let r = watch::under(&w, || {
-                    if run.keep {
-                        decide_claim_recorded(c)
-                    } else {
-                        decide_claim(c)
-                    }
-                })
-                .map_err(|d| RunError::Input(d.to_string()));
-                *slot.lock().unwrap_or_else(|e| e.into_inner()) = None;
-                if tx.send((k, r)).is_err() {
-                    return;
-                }
-            });
-        }
-        drop(tx);
-        let mut done = 0;
-        loop {
-            match rx.recv_timeout(Duration::from_millis(200)) {
-                Ok((k, r)) => {
-                    slots[k] = Some(r);
-                    done += 1;
-                }
-                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
-                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+    let mut done = 0;
+    let decide = |k: usize, worker: usize| {
+        let c = claims[k];
+        let slot = &watches[worker];
+        let w = Watch::new(&c.id, run.limit_now());
+        *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(w.clone());
+        let r = watch::under(&w, || {
+            if run.keep {
+                decide_claim_recorded(c)
+            } else {
+                decide_claim(c)
             }
-            let working: Vec<String> = watches
-                .iter()
-                .filter_map(|w| {
-                    w.lock()
-                        .unwrap_or_else(|e| e.into_inner())
-                        .as_ref()
-                        .map(|w| w.status())
-                })
-                .collect();
-            progress.show(done, n, &working);
+        })
+        .map_err(|d| RunError::Input(d.to_string()));
+        *slot.lock().unwrap_or_else(|e| e.into_inner()) = None;
+        r
+    };
+    // A claim's panic is isolated where it is decided; a worker that stops all the same
+    // leaves its claim without a result, which is an error below.
+    let _ = crate::parallel::pool(&order, Duration::from_millis(200), decide, |finished| {
+        if let Some((k, r)) = finished {
+            slots[k] = Some(r);
+            done += 1;
         }
+        let working: Vec<String> = watches
+            .iter()
+            .filter_map(|w| {
+                w.lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .as_ref()
+                    .map(|w| w.status())
+            })
+            .collect();
+        progress.show(done, n, &working);
     });
     slots
         .into_iter()
