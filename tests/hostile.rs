@@ -242,3 +242,25 @@ fn a_factor_of_a_parameter_the_box_fixes_proves_nothing() {
         );
     }
 }
+
+/// The zeroth power of a quotient keeps no divisor: `(1/(1 − 2ν))^0 + 1` once left a
+/// divisor of multiplicity 0 that a later product cancelled below zero (an overflow,
+/// found by the fuzzer in an inverse matrix). It is 2 wherever 1 − 2ν ≠ 0.
+#[test]
+fn the_zeroth_power_of_a_quotient_is_one_where_it_is_defined() {
+    let text = format!("{HEAD}scalars = [\"nu\"]\ndefine = [\"K = 1 / (1 - 2 nu)\"]\n\n")
+        + &claim(
+            "zeroth",
+            "holds",
+            "[\"(K^0 + 1) (1 - 2 nu)\", \"2 (1 - 2 nu)\"]",
+        )
+        + &claim(
+            "zeroth-wrong",
+            "fails",
+            "[\"K^0 (1 - 2 nu)\", \"2 (1 - 2 nu)\"]",
+        );
+    let outcomes = outcomes_of(&text);
+    assert_eq!(outcomes[0].verdict(), Verdict::Holds, "{:?}", outcomes[0]);
+    assert_eq!(outcomes[0].strength(), Strength::Proof);
+    assert_eq!(outcomes[1].verdict(), Verdict::Fails, "{:?}", outcomes[1]);
+}

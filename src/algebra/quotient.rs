@@ -249,11 +249,12 @@ impl Quotient {
 
     /// `self^k`.
     pub fn pow(&self, k: u32) -> Quotient {
+        // The zeroth power keeps no divisor (a factor of multiplicity 0 would be
+        // cancelled below zero later), only the conditions where the base is defined.
         Open {
             num: self.num.pow(k),
-            den: self
-                .factors()
-                .iter()
+            den: (self.factors().iter())
+                .filter(|_| k > 0)
                 .map(|(f, m)| (f.clone(), m * k))
                 .collect(),
             conditions: self.conditions().to_vec(),
