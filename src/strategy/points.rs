@@ -32,25 +32,37 @@ impl SplitMix {
     }
 }
 
-/// A rational point of the unit circle or sphere (stereographic projection).
+/// The point of the unit circle (one parameter u) or sphere (two, u and v) by the
+/// stereographic projection: ((1 − u²), 2u)/(1 + u²), or
+/// (2u, 2v, 1 − u² − v²)/(1 + u² + v²), every rational point of either but a pole;
+/// `flip` negates the coordinate along the pole (the first on the circle, the last on
+/// the sphere).
+pub(crate) fn stereographic(params: &[Rational], flip: bool) -> Vec<Rational> {
+    let (one, two) = (Rational::int(1), Rational::int(2));
+    let r2 = params
+        .iter()
+        .fold(Rational::int(0), |acc, p| &acc + &(p * p));
+    let den = &one + &r2;
+    let over = |x: Rational| x.checked_div(&den).expect("1 + r² > 0");
+    let along = over(&one - &r2);
+    let along = if flip { -along } else { along };
+    let mut point: Vec<Rational> = params.iter().map(|p| over(&two * p)).collect();
+    if params.len() == 1 {
+        point.insert(0, along);
+    } else {
+        point.push(along);
+    }
+    point
+}
+
+/// A rational point of the unit circle or sphere, its parameters drawn from `rng`.
 pub(crate) fn sphere_point(rng: &mut SplitMix, dim: usize) -> Vec<Rational> {
     let u = Rational::ratio(rng.small(), 1 + (rng.next() % 3) as i64).expect("nonzero denominator");
     let v = Rational::ratio(rng.small(), 1 + (rng.next() % 3) as i64).expect("nonzero denominator");
-    let one = Rational::int(1);
-    let two = Rational::int(2);
     if dim == 2 {
-        let s = &(&u * &u) + &one;
-        let x = (&one - &(&u * &u)).checked_div(&s).expect("s > 0");
-        let y = (&two * &u).checked_div(&s).expect("s > 0");
-        return vec![x, y];
+        return stereographic(&[u], false);
     }
-    let s = &(&(&u * &u) + &(&v * &v)) + &one;
-    let x = (&two * &u).checked_div(&s).expect("s > 0");
-    let y = (&two * &v).checked_div(&s).expect("s > 0");
-    let z = (&(&(&u * &u) + &(&v * &v)) - &one)
-        .checked_div(&s)
-        .expect("s > 0");
-    let mut p = vec![x, y, z];
+    let mut p = stereographic(&[u, v], true);
     p.truncate(dim);
     p
 }

@@ -429,31 +429,18 @@ fn exact_point(env: &mut ExactEnv<'_>, state: &State) -> Option<HashMap<Var, Rat
 /// by stereographic projection from the pole farther from `n`.
 fn on_unit_sphere(n: &[f64]) -> Option<Vec<Rational>> {
     let q = |x: f64| crate::algebra::rational::from_f64_exact(x);
-    let one = Rational::int(1);
-    let two = Rational::int(2);
+    let stereographic = super::points::stereographic;
     match n {
+        // u = y/(1 + s x), s = ±1 the sign of x.
         [x, y] => {
-            // (x, y) = (s (1 − u²), 2u)/(1 + u²) with u = y/(1 + s x), s = ±1.
             let s = if *x >= 0.0 { 1.0 } else { -1.0 };
-            let u = q(y / (1.0 + s * x))?;
-            let den = &one + &(&u * &u);
-            let px = (&one - &(&u * &u)).checked_div(&den)?;
-            let px = if s < 0.0 { -px } else { px };
-            Some(vec![px, (&two * &u).checked_div(&den)?])
+            Some(stereographic(&[q(y / (1.0 + s * x))?], s < 0.0))
         }
+        // u = x/(1 + s z), v = y/(1 + s z), s = ±1 the sign of z.
         [x, y, z] => {
-            // (x, y, z) = (2u, 2v, s (1 − u² − v²))/(1 + u² + v²), u = x/(1 + s z), v = y/(1 + s z).
             let s = if *z >= 0.0 { 1.0 } else { -1.0 };
             let (u, v) = (q(x / (1.0 + s * z))?, q(y / (1.0 + s * z))?);
-            let r2 = &(&u * &u) + &(&v * &v);
-            let den = &one + &r2;
-            let pz = (&one - &r2).checked_div(&den)?;
-            let pz = if s < 0.0 { -pz } else { pz };
-            Some(vec![
-                (&two * &u).checked_div(&den)?,
-                (&two * &v).checked_div(&den)?,
-                pz,
-            ])
+            Some(stereographic(&[u, v], s < 0.0))
         }
         _ => None,
     }

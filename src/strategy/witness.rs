@@ -21,11 +21,8 @@ const ATTEMPTS: usize = 64;
 
 /// A rational point of the unit circle: ((1 − u²), 2u)/(1 + u²).
 fn circle_point(u: &Rational) -> (Rational, Rational) {
-    let one = Rational::int(1);
-    let s = &(u * u) + &one;
-    let x = (&one - &(u * u)).checked_div(&s).expect("1 + u² > 0");
-    let y = (&Rational::int(2) * u).checked_div(&s).expect("1 + u² > 0");
-    (x, y)
+    let p = super::points::stereographic(std::slice::from_ref(u), false);
+    (p[0].clone(), p[1].clone())
 }
 
 /// Decides a `strategy = "not-circle"` check.
