@@ -100,10 +100,24 @@ fn paths(code: &str, roots: &[&str]) -> Vec<Vec<String>> {
         i += root.chars().count() + 2;
         loop {
             if bytes.get(i) == Some(&'{') {
-                // One path per item of the group (its first segment is enough).
-                let close = (i + 1..bytes.len()).find(|&k| bytes[k] == '}').unwrap();
-                let group: String = bytes[i + 1..close].iter().collect();
-                for item in group.split(',') {
+                // One path per item of the group (its first segment is enough); a
+                // nested group belongs to the item it follows.
+                let mut depth = 0;
+                let mut close = i;
+                let mut items = vec![String::new()];
+                for (k, &c) in bytes.iter().enumerate().skip(i + 1) {
+                    match c {
+                        '{' => depth += 1,
+                        '}' if depth == 0 => {
+                            close = k;
+                            break;
+                        }
+                        '}' => depth -= 1,
+                        ',' if depth == 0 => items.push(String::new()),
+                        _ => items.last_mut().unwrap().push(c),
+                    }
+                }
+                for item in &items {
                     let first = item.trim().split("::").next().unwrap_or("");
                     let first = first.split_whitespace().next().unwrap_or("");
                     if !first.is_empty() && first != "self" {
@@ -287,10 +301,14 @@ fn a_circle_and_an_upward_import_are_found() {
     write("lib.rs", "pub mod kernel;\npub mod report;\n");
     write(
         "kernel/mod.rs",
-        "pub mod a;\npub mod b;\npub mod c;\npub use c::{k};\n",
+        "pub mod a;\npub mod b;\npub mod c;\npub mod d;\npub use c::{k};\n",
     );
     write("kernel/a.rs", "use super::b::{f, G};\n");
-    write("kernel/b.rs", "pub fn f() { super::a::g(); }\n");
+    write(
+        "kernel/b.rs",
+        "use super::{a::{g, h}, d};\npub fn f() { super::a::g(); }\n",
+    );
+    write("kernel/d.rs", "pub fn e() {}\n");
     write(
         "kernel/c.rs",
         "use super::{a};\n// crate::report::h();\npub fn k() { crate::report::h(); }\n",
@@ -306,6 +324,9 @@ fn a_circle_and_an_upward_import_are_found() {
     assert!(graph[&m("kernel")].contains(&m("kernel/c")));
     assert!(graph[&m("kernel/c")].contains(&m("kernel/a")));
     assert!(!graph[&m("kernel/c")].contains(&m("kernel")));
+    // A nested group belongs to its item.
+    assert!(graph[&m("kernel/b")].contains(&m("kernel/d")));
+    assert!(!graph[&m("kernel/b")].contains(&m("kernel")));
     assert_eq!(circles(&graph), ["kernel/a → kernel/b → kernel/a"]);
     assert_eq!(
         against_order(&graph),
