@@ -295,6 +295,9 @@ impl Status {
 pub enum RunError {
     #[error("{0}")]
     Input(String),
+    /// A defect of the checker, not of the input (exit 3).
+    #[error("internal error of the checker: {0}; please report it")]
+    Internal(String),
     #[error("error: cannot write the output: {0}")]
     Output(#[from] std::io::Error),
 }
@@ -480,7 +483,7 @@ fn decide_claims<'f>(
     });
     slots
         .into_iter()
-        .map(|r| r.unwrap_or_else(|| Err(RunError::Input("error: a worker stopped".into()))))
+        .map(|r| r.unwrap_or_else(|| Err(RunError::Internal("a worker stopped".into()))))
         .collect()
 }
 

@@ -47,7 +47,10 @@ fn checked(cli: Cli) -> ExitCode {
         Err(RunError::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("{}", cosserat_check::report::words::inert(&e.to_string()));
-            ExitCode::from(2)
+            match e {
+                RunError::Internal(_) => ExitCode::from(3),
+                _ => ExitCode::from(2),
+            }
         }
     }
 }

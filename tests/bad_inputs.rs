@@ -40,6 +40,7 @@ fn every_bad_file_gets_a_located_message_and_no_output() {
             Err(_) => panic!("{name}: the checker panicked"),
             Ok(Ok(status)) => panic!("{name}: accepted ({status:?}) instead of refused"),
             Ok(Err(RunError::Output(e))) => panic!("{name}: output error {e}"),
+            Ok(Err(RunError::Internal(e))) => panic!("{name}: internal error {e}"),
             Ok(Err(RunError::Input(m))) => m,
         };
         assert!(out.is_empty(), "{name}: wrote output despite the error");
