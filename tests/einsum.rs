@@ -1,4 +1,4 @@
-//! The kernel's one contraction (`kernel::einsum`) against a reference built another
+//! The one contraction of every route (`algebra::einsum`) against a reference built another
 //! way: the outer product of all factors, a basis vector traced against every fixed
 //! slot, then pairwise traces of repeated letters and a permutation into the output
 //! order, all with `Tensor`'s own `outer`, `contract` and `permuted`. Random tensors

@@ -11,7 +11,7 @@
 //! subexpressions are shared, and evaluation is one pass over a `Vec` generic over the
 //! scalar (`f64` or num-dual numbers).
 //!
-//! Contraction is the kernel's [`einsum`] over op ids, the same code the interpreter runs
+//! Contraction is the one [`einsum`] over op ids, the same code the interpreter runs
 //! over numbers; `tests/tape.rs` holds the tape to the interpreter on every sampled claim
 //! of the paper, so the compiler's folding, sharing and unrolling are checked against
 //! plain evaluation. Errors keep the interpreter's messages and spans (division by

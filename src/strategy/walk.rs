@@ -1,10 +1,10 @@
 //! The one tree walk every route evaluates expressions with, generic over the ring it
 //! computes in ([`Ring`]): canonical polynomials under a work budget (the exact
-//! strategy, `eval.rs`), `f64` and num-dual numbers (the interpreter, `real.rs`), and op
-//! ids of the tape compiler (`tape.rs`), as SymEngine's single visitor does it.
+//! strategy, `exact_ring.rs`), `f64` and num-dual numbers (the interpreter, `real/`), and
+//! op ids of the tape compiler (`tape.rs`), as SymEngine's single visitor does it.
 //!
-//! The walk owns what the routes have in common — free-index labels, contraction by the
-//! kernel's [`einsum`], sums, scalar arguments — and asks the ring for what is its own:
+//! The walk owns what the routes have in common — free-index labels, contraction by
+//! [`einsum`], sums, scalar arguments — and asks the ring for what is its own:
 //! the values of symbols and definitions, division, powers, functions, and the two
 //! operations over the normal (`avg`, by exact moments, by quadrature or as a sub-tape;
 //! `maxn`). Independence between routes therefore comes from their methods (canonical
