@@ -22,7 +22,6 @@ const RANKS: &[(&str, usize)] = &[
     ("algebra", 2),
     ("lang", 3),
     ("derivation", 4),
-    ("mutate", 4),
     ("strategy", 5),
     ("report", 6),
     ("corpus", 7),

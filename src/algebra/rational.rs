@@ -50,11 +50,8 @@ pub fn simplest_between(a: &Rational, b: &Rational) -> Rational {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::poly::testing::q;
     use num_traits::ToPrimitive;
-
-    fn q(n: i64, d: i64) -> Rational {
-        Rational::ratio(n, d).unwrap()
-    }
 
     #[test]
     fn floor_rounds_towards_minus_infinity() {

@@ -115,7 +115,7 @@ pub struct ExactEnv<'a> {
     /// The square roots taken exactly, each with the kernel's certificate.
     pub(super) roots: Vec<Certificate>,
     /// Their values, offered to the kernel when it re-checks a proof.
-    pub(super) root_values: Vec<Quotient>,
+    root_values: Vec<Quotient>,
     /// Definitions with their derivatives by a symbol (`grad`), by (symbol, name).
     pub(super) jet_cache: HashMap<(String, String), Tensor<Jet>>,
 }
@@ -284,7 +284,7 @@ impl<'a> ExactEnv<'a> {
 
     /// ∂v/∂x_k for one variable: 1 or 0 for a coordinate, the next jet variable for a
     /// field that depends on x_k, and `None` (zero) for everything else.
-    pub(super) fn derivative_of_var(&mut self, v: Var, k: usize) -> Option<Poly> {
+    fn derivative_of_var(&mut self, v: Var, k: usize) -> Option<Poly> {
         match self.varying.get(&v)? {
             Varying::Coordinate(j) => (*j == k).then(Poly::one),
             Varying::Jet { field, idx, orders } => {
@@ -663,7 +663,7 @@ impl ExactRing<'_, '_> {
 
 /// Term counts: each product of components has at most the product of their counts
 /// of terms, and a sum at most the sum (saturating: a bound, never an overflow).
-pub(super) struct TermCounts;
+struct TermCounts;
 
 impl Arithmetic for TermCounts {
     type Value = usize;
@@ -742,7 +742,7 @@ pub(super) fn too_much(origin: &Origin, node: &Node) -> Diagnostic {
 }
 
 /// Reorders a sorted-label tensor into a definition's formal index order.
-pub(super) fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Quotient> {
+fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Quotient> {
     let perm: Vec<usize> = formal
         .iter()
         .map(|c| {

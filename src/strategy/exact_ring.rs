@@ -1,7 +1,10 @@
 //! The exact environment as the walk's ring: every node of a checked expression
 //! evaluated to tensors of canonical quotients ([`super::eval`] holds the environment).
 
-use super::eval::*;
+use super::eval::{
+    conditions_of, poly_error, too_much, ExactRing, Failure, Varying, MAX_COEFFICIENT_BITS,
+    MAX_EXPONENT, MAX_TERMS,
+};
 use super::walk::{self, Ring};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::quotient::DivideError;

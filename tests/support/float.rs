@@ -17,7 +17,6 @@ use cosserat_check::strategy::random::Rng;
 use cosserat_check::strategy::real::{component_pairs, RealEnv};
 use cosserat_check::strategy::taylor::TaylorFields;
 use cosserat_check::strategy::tolerance::{TAYLOR_AGREEMENT, TOL};
-use std::collections::HashMap;
 
 /// Degree of the random polynomial fields: derivatives up to this order are random,
 /// higher ones zero (a statement with fifth derivatives is not distinguished from one
@@ -53,7 +52,7 @@ pub fn decide(
     let domain = check.strategy.exact_domain();
     let mut factor: Option<f64> = None;
     for _ in 0..samples {
-        let mut symbols: HashMap<String, Tensor<f64>> = HashMap::new();
+        let mut symbols: Vec<(String, Tensor<f64>)> = Vec::new();
         for (name, &rank) in &decls.symbols {
             let mut t = Tensor::from_fn(d, rank, |_| rng.uniform());
             // A scalar the claim bounds (`given`) is drawn inside its interval.
@@ -62,7 +61,7 @@ pub fn decide(
                     *t.get_mut(&[]) = inside(&i, *t.get(&[]));
                 }
             }
-            symbols.insert(name.clone(), t);
+            symbols.push((name.clone(), t));
         }
         let mut env = RealEnv::new(decls, &check.defs, symbols);
         if differentiates {

@@ -1,10 +1,9 @@
 //! The scalar functions of a number (`f64` or num-dual) and the maximum over the
 //! normal's angle: the one definition the interpreter and the compiled tapes share.
 
+use super::error::RealError;
 use crate::lang::parser::{Func, Func2};
 use num_dual::DualNum;
-
-use super::error::*;
 
 /// Golden-section search for the maximum of `f` on [c − h, c + h]: the maximiser and
 /// the value (never below f(c)).

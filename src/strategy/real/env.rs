@@ -2,7 +2,7 @@
 //! over a scalar `T` (`f64` or num-dual), and its errors.
 
 use super::elementary::golden_max;
-use super::error::*;
+use super::error::{err, undefined, RealError};
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::{Assumption, Definition};
 use crate::lang::{Decls, Node};

@@ -1,6 +1,9 @@
 //! The real environment as the walk's ring: numbers, contractions, averages by
 //! quadrature, derivatives along fields and the variations.
 
+use super::elementary::{elementary, elementary2};
+use super::env::{RealEnv, MAX_NESTED_DIFFERENCES, MEMO_LIMIT};
+use super::error::{err, undefined, RealError};
 use super::variation::{self};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::Tensor;
@@ -12,10 +15,6 @@ use crate::strategy::walk::{self, Ring};
 use nalgebra::{Dyn, U1};
 use num_dual::{Derivative, DualDVec64, DualNum};
 use rustc_hash::FxHashMap as HashMap;
-
-use super::elementary::*;
-use super::env::*;
-use super::error::*;
 
 /// Numbers: plain arithmetic in `T`.
 impl<T: DualNum<Primitive = f64>> Arithmetic for &RealEnv<'_, T> {
