@@ -11,11 +11,11 @@
 //! `-- --claim ID` and `-- --derive-a2` print one median for benches/sympy_compare.py.
 
 use cosserat_check::algebra::gcd;
+use cosserat_check::check::decide_claim;
+use cosserat_check::check::probe::Probe;
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_str, DerivationFile, Strategy};
 use cosserat_check::kernel::{monomial_moment, Poly};
-use cosserat_check::strategy::decide_claim;
-use cosserat_check::strategy::probe::Probe;
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;

@@ -2,11 +2,11 @@
 //! verdict equals the one its derivation file declares, 1 when any differs, 2 for
 //! malformed input (with a located diagnostic on stderr; nothing is written then).
 
+use crate::check::{decide_claim, decide_claim_recorded, inherit, Decided};
+use crate::decide::watch::{self, Watch};
 use crate::derivation::only::Reading;
 use crate::derivation::{load_files, DerivationFile, LoadError, Strategy};
 use crate::report;
-use crate::strategy::watch::{self, Watch};
-use crate::strategy::{decide_claim, decide_claim_recorded, inherit, Decided};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -275,7 +275,7 @@ impl Status {
         let internal = rows.iter().any(|r| {
             std::iter::once(&r.outcome)
                 .chain(&r.correction)
-                .any(crate::strategy::isolate::is_internal_error)
+                .any(crate::check::isolate::is_internal_error)
                 || std::iter::once(&r.transcription)
                     .chain(&r.correction_transcription)
                     .any(|t| t.is_internal_error())
@@ -1071,7 +1071,7 @@ fn plot(a: &PlotArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
         // Under the time limit: a long evaluation is stopped (`interrupt::tick`).
         let evaluated = watch::under(&w, || {
             crate::kernel::interrupt::stoppable(|| {
-                crate::strategy::probe::curve_values(curve, &figure.x)
+                crate::check::probe::curve_values(curve, &figure.x)
             })
         })
         .map_err(|_| {
@@ -1114,7 +1114,7 @@ mod tests {
     /// error: the other claims are decided, the report is written, the status is 3.
     #[test]
     fn a_panic_in_one_claim_is_its_internal_error_and_the_run_goes_on() {
-        use crate::strategy::isolate::{PROVOKE_PANIC, PROVOKE_TRANSCRIPTION_PANIC};
+        use crate::check::isolate::{PROVOKE_PANIC, PROVOKE_TRANSCRIPTION_PANIC};
         use clap::Parser;
         let dir = std::env::temp_dir().join(format!("cc-panic-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();

@@ -6,10 +6,13 @@
 //! with its evidence. Data flows one way: file → parse/validate → decide → report.
 
 pub mod algebra;
+pub mod check;
 pub mod cli;
 pub mod corpus;
+pub mod decide;
 pub mod derivation;
 pub mod digits;
+pub mod eval;
 pub mod kernel;
 pub mod lang;
 /// Mutants of a statement, for the unit tests of the index canonicaliser (the sweep
@@ -20,4 +23,4 @@ mod mutate;
 pub mod parallel;
 pub mod recheck;
 pub mod report;
-pub mod strategy;
+pub mod tolerance;

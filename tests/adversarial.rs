@@ -3,8 +3,8 @@
 //! (including the sharp bound) must still hold (issue: no sampled `holds` without a
 //! search for the worst violation).
 
+use cosserat_check::check::decide_claim;
 use cosserat_check::derivation::{load_files, Strategy};
-use cosserat_check::strategy::decide_claim;
 use std::path::PathBuf;
 
 #[test]
@@ -35,7 +35,7 @@ fn thin_violations_are_found_for_every_seed_from_1_to_20() {
 
 #[test]
 fn sampled_and_proved_verdicts_are_labelled_differently() {
-    use cosserat_check::strategy::Strength;
+    use cosserat_check::decide::Strength;
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/soundness");
     let files = load_files(&[
         dir.join("adversarial.toml"),

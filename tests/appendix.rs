@@ -6,9 +6,9 @@
 mod route;
 
 use cosserat_check::algebra::{gcd, RatFunc};
+use cosserat_check::check::probe::{curve_values, Probe};
 use cosserat_check::derivation::load_files;
 use cosserat_check::kernel::{Poly, Rational, VarTable};
-use cosserat_check::strategy::probe::{curve_values, Probe};
 use route::{Point, ShearSign};
 
 /// Largest relative disagreement allowed between the file's exact derivation evaluated

@@ -3,9 +3,9 @@
 //! assumptions that clash, and rank-4 symmetries are expressible (issue: order-free
 //! assumptions). The derivation files under `tests/soundness/` hold the true verdicts.
 
+use cosserat_check::check::decide_claim;
+use cosserat_check::derivation::parametrisation::{Constrained, Parametrisation};
 use cosserat_check::derivation::{load_files, load_str};
-use cosserat_check::strategy::decide_claim;
-use cosserat_check::strategy::parametrisation::{Constrained, Parametrisation};
 use std::path::PathBuf;
 
 fn soundness_file(name: &str) -> PathBuf {

@@ -1,15 +1,15 @@
-//! Sound averages of integrands that are not polynomials in n (`strategy::quadrature`):
+//! Sound averages of integrands that are not polynomials in n (`eval::quadrature`):
 //! exact values hold, mutants fail, an amplified quadrature error is refused rather
 //! than reported as a counterexample, and the averages of the shear traction magnitude
 //! |t^(t)| agree with an independent high-accuracy reference.
 
 use cosserat_check::algebra::Tensor;
+use cosserat_check::check::decide_claim;
+use cosserat_check::decide::finding::{Finding, Unresolved};
 use cosserat_check::derivation::{load_files, load_str, Strategy, Verdict};
-use cosserat_check::strategy::decide_claim;
-use cosserat_check::strategy::finding::{Finding, Unresolved};
-use cosserat_check::strategy::quadrature::{Level, Quadrature};
-use cosserat_check::strategy::real::RealEnv;
-use cosserat_check::strategy::tape::Tape;
+use cosserat_check::eval::quadrature::{Level, Quadrature};
+use cosserat_check::eval::real::RealEnv;
+use cosserat_check::eval::tape::Tape;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::path::PathBuf;

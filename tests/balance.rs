@@ -4,9 +4,10 @@
 //! claim; `strategy = "proportional"` accepts a law stated with another sign or scale.
 
 use crate::support::float;
+use cosserat_check::check::decide;
 use cosserat_check::cli::decide_all;
+use cosserat_check::decide::Reverified;
 use cosserat_check::derivation::{load_files, load_str, Strategy, Verdict};
-use cosserat_check::strategy::{decide, Reverified};
 
 use crate::common;
 

@@ -4,10 +4,11 @@
 //! cross-checked by the independent floating-point route.
 
 use crate::support::float;
+use cosserat_check::check::Decided;
 use cosserat_check::cli::decide_all;
+use cosserat_check::decide::Method;
 use cosserat_check::derivation::{load_dir, DerivationFile, Strategy, Verdict};
 use cosserat_check::report;
-use cosserat_check::strategy::{Decided, Method};
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -275,7 +276,7 @@ fn the_readme_excerpt_matches_the_table() {
 #[test]
 fn polynomial_gradients_agree_with_exact_derivatives() {
     use cosserat_check::algebra::assignments;
-    use cosserat_check::strategy::eval::ExactEnv;
+    use cosserat_check::eval::exact::env::ExactEnv;
     let mut proved = Vec::new();
     for r in decided() {
         let claim = r.claim;

@@ -2,10 +2,11 @@
 //! statement reads, auxiliary numbers (a central difference, an eigenvalue) apart from
 //! the point, and numbers rounded to significant digits rather than fixed decimals.
 
+use cosserat_check::check::Decided;
 use cosserat_check::cli::decide_all;
+use cosserat_check::decide::Counterexample;
 use cosserat_check::derivation::load_files;
 use cosserat_check::report;
-use cosserat_check::strategy::{Counterexample, Decided};
 
 const FILE: &str = "tests/user/irrelevant-symbols.toml";
 

@@ -7,8 +7,8 @@
 
 use cosserat_check::algebra::einsum::{einsum, Plain, Polynomials, Slot};
 use cosserat_check::algebra::Tensor;
+use cosserat_check::decide::random::Rng;
 use cosserat_check::kernel::{Poly, Rational, VarTable};
-use cosserat_check::strategy::random::Rng;
 use num_traits::Zero;
 
 /// One random contraction: factor ranks, their slots and the output letters. Every

@@ -1,9 +1,9 @@
-//! `explain` renders what the decision recorded (`strategy::decide_claim_recorded`): every
+//! `explain` renders what the decision recorded (`check::decide_claim_recorded`): every
 //! side's expansion as the exact decision computed it, also past a failing chain, and
 //! the first states a sampled decision drew. An ordinary decision records nothing.
 
+use cosserat_check::check::{decide, decide_claim_recorded};
 use cosserat_check::derivation::{load_str, Verdict};
-use cosserat_check::strategy::{decide, decide_claim_recorded};
 
 const FILE: &str = r#"
 section = "t"

@@ -4,9 +4,8 @@
 //! say undecided, and slips in the notation are located errors.
 
 use cosserat_check::cli::decide_all;
-use cosserat_check::derivation::load_str;
-use cosserat_check::derivation::Verdict;
-use cosserat_check::strategy::Reverified;
+use cosserat_check::decide::Reverified;
+use cosserat_check::derivation::{load_str, Verdict};
 
 use crate::common;
 

@@ -4,8 +4,8 @@
 //! projected onto the constrained set), and each convention refutes the other's closed
 //! form. Without a convention the derivative is refused as ambiguous.
 
+use cosserat_check::check::decide_claim;
 use cosserat_check::derivation::{load_str, Verdict};
-use cosserat_check::strategy::decide_claim;
 
 const HEADER: &str = r#"
 section = "t"

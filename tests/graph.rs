@@ -2,11 +2,10 @@
 //! and root errors told from inherited failures by re-deciding a failing claim with the
 //! failing claims it uses replaced by their corrections.
 
+use cosserat_check::check::{Attribution, Decided};
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_files, uses, DerivationFile};
 use cosserat_check::report;
-use cosserat_check::strategy::Attribution;
-use cosserat_check::strategy::Decided;
 use std::path::Path;
 
 fn attribution<'a>(rows: &'a [Decided<'_>], id: &str) -> &'a Attribution {

@@ -5,8 +5,8 @@
 use crate::common;
 
 use common::{error_of, outcomes_of};
+use cosserat_check::decide::Strength;
 use cosserat_check::derivation::{load_str, Verdict};
-use cosserat_check::strategy::Strength;
 
 const HEAD: &str = "paper = \"hostile\"\nsection = \"h\"\ntitle = \"h\"\ndimension = 3\n";
 

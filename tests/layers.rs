@@ -1,6 +1,6 @@
 //! The one-way structure of `src/`: no file imports, directly or through others, a file
 //! that imports it back; the top-level folders depend only downwards, in the order data
-//! flows (kernel, algebra, lang, derivation, strategy, report, then the command line);
+//! flows (kernel, algebra, lang, derivation, eval, decide, check, report, then the command line);
 //! and the trusted kernel names nothing outside itself.
 //!
 //! An import is any path that starts with `crate::`, `super::` or `self::` outside
@@ -18,15 +18,18 @@ type Module = Vec<String>;
 const RANKS: &[(&str, usize)] = &[
     ("digits", 0),
     ("parallel", 0),
+    ("tolerance", 0),
     ("kernel", 1),
     ("algebra", 2),
     ("lang", 3),
     ("derivation", 4),
-    ("strategy", 5),
-    ("report", 6),
-    ("corpus", 7),
-    ("recheck", 7),
-    ("cli", 8),
+    ("eval", 5),
+    ("decide", 6),
+    ("check", 7),
+    ("report", 8),
+    ("corpus", 9),
+    ("recheck", 9),
+    ("cli", 10),
 ];
 
 fn files(dir: &Path, out: &mut Vec<PathBuf>) {

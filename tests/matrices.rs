@@ -4,8 +4,8 @@
 //! with a counterexample confirmed by the interpreter; singular systems and shape
 //! errors are located input errors, never a division by zero or a guess.
 
+use cosserat_check::decide::Strength;
 use cosserat_check::derivation::Verdict;
-use cosserat_check::strategy::Strength;
 
 use crate::common;
 

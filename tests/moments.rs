@@ -2,7 +2,7 @@
 //!
 //! The quadrature is built here from scratch with nalgebra: Gauss–Legendre nodes by
 //! the Golub–Welsch method (eigenvalues of the Jacobi matrix), a different algorithm
-//! from the Newton iteration used by `strategy::quadrature`. On the sphere, an N-point rule
+//! from the Newton iteration used by `eval::quadrature`. On the sphere, an N-point rule
 //! in z = cos θ (exact to degree 2N − 1) times M equally spaced φ (exact for
 //! trigonometric degree < M) integrates every monomial of degree < min(2N, M)
 //! exactly; on the circle, M equally spaced points do.

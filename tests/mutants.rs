@@ -23,11 +23,11 @@
 
 use crate::support::float;
 use crate::support::mutate::{mutants, MutantKind};
+use cosserat_check::check::decide;
 use cosserat_check::derivation::{
     load_dir, load_files, Check, Claim, DerivationFile, Strategy, Verdict,
 };
 use cosserat_check::lang::Decls;
-use cosserat_check::strategy::decide;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -115,7 +115,7 @@ fn fate(decls: &Decls, expected: Verdict, mutated: Result<Check, impl std::fmt::
     // quantity everywhere): a statement that says nothing, refused like ill-formed input.
     if matches!(
         outcome.finding,
-        Some(cosserat_check::strategy::finding::Finding::Undefined { .. })
+        Some(cosserat_check::decide::finding::Finding::Undefined { .. })
     ) {
         return Fate::Rejected;
     }

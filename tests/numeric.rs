@@ -2,8 +2,9 @@
 //! wrong circle radius, a false inequality, a false maximum, a non-convex function, a
 //! genuine circle offered as "not a circle", and a statement undefined on its samples.
 
+use cosserat_check::check::decide_claim;
+use cosserat_check::decide::Method;
 use cosserat_check::derivation::{load_str, Verdict};
-use cosserat_check::strategy::{decide_claim, Method};
 
 /// A plane problem as in derivations/4.2-yield-surfaces.toml.
 const HEADER: &str = r#"

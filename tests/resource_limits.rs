@@ -2,9 +2,9 @@
 //! and its location; the file's other claims are decided (issue 13).
 
 use cosserat_check::cli::decide_all;
+use cosserat_check::decide::finding::Finding;
 use cosserat_check::derivation::{load_files, Verdict};
 use cosserat_check::report;
-use cosserat_check::strategy::finding::Finding;
 
 #[test]
 fn a_limit_makes_one_claim_undecided_and_the_rest_are_decided() {

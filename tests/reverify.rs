@@ -1,13 +1,14 @@
 //! Every counterexample is evaluated a second time before a `fails` is printed
-//! (`strategy::reverify`): exact counterexamples by the floating-point interpreter,
+//! (`decide::reverify`): exact counterexamples by the floating-point interpreter,
 //! sampled ones exactly where the statement is polynomial and by the interpreter
 //! otherwise. A floating-point violation that the exact evaluation does not confirm is
 //! never a counterexample. A sampled `fails` stays of strength `sampled` even when the
 //! point is confirmed exactly: strength `proof` comes only from the kernel.
 
+use cosserat_check::check::decide_claim;
+use cosserat_check::decide::finding::{Finding, Unresolved};
+use cosserat_check::decide::{Outcome, Reverified, Strength};
 use cosserat_check::derivation::{load_str, Verdict};
-use cosserat_check::strategy::finding::{Finding, Unresolved};
-use cosserat_check::strategy::{decide_claim, Outcome, Reverified, Strength};
 
 const HEADER: &str = r#"
 section = "t"

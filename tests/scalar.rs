@@ -4,9 +4,9 @@
 //! `fails` with a confirmed counterexample; proofs come from the kernel, and the one
 //! claim without a certificate is labelled sampled.
 
+use cosserat_check::decide::Strength;
 use cosserat_check::derivation::Verdict;
 use cosserat_check::kernel::check::Checked as Fact;
-use cosserat_check::strategy::Strength;
 
 use crate::common;
 
@@ -119,7 +119,7 @@ fn a_cancelled_divisor_is_no_pole_of_a_monotone_function() {
             "strategy = \"monotone\"\nfunction = \"{function}\"\nin = \"x\"\ndirection = \"increasing\"\n{given}"
         ));
         let file = cosserat_check::derivation::load_str("t.toml", &text).unwrap();
-        let d = cosserat_check::strategy::decide_claim(&file.claims[0]).unwrap();
+        let d = cosserat_check::check::decide_claim(&file.claims[0]).unwrap();
         let ev = cosserat_check::report::evidence(&d.outcome);
         assert_ne!(d.outcome.verdict(), Verdict::Fails, "{function}: {ev}");
         assert!(!ev.contains("pole at"), "{function}: {ev}");

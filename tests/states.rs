@@ -5,8 +5,8 @@
 //! num-dual numbers under `strategy = "numeric"`. Every claim that holds has a wrong
 //! twin that must come out `fails`, confirmed by the interpreter.
 
+use cosserat_check::decide::Strength;
 use cosserat_check::derivation::Verdict;
-use cosserat_check::strategy::Strength;
 
 use crate::common;
 

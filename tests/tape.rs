@@ -1,4 +1,4 @@
-//! The compiled tape (`strategy::tape`) against the interpreter (`strategy::real`) on
+//! The compiled tape (`eval::tape`) against the interpreter (`eval::real`) on
 //! every expression the sampled strategies evaluate in the paper: the sides of numeric
 //! claims, the functions of gradient and convexity claims and their closed forms, the
 //! hypotheses, domains and singular sets. Values in `f64` and first derivatives with
@@ -6,13 +6,13 @@
 //! two different subexpressions or contracted the wrong slot would show here.
 
 use cosserat_check::algebra::Tensor;
+use cosserat_check::decide::random::Rng;
+use cosserat_check::derivation::parametrisation::Parametrisation;
 use cosserat_check::derivation::{load_dir, Claim, Strategy};
+use cosserat_check::eval::quadrature::{Level, Quadrature};
+use cosserat_check::eval::real::RealEnv;
+use cosserat_check::eval::tape::Tape;
 use cosserat_check::lang::Node;
-use cosserat_check::strategy::parametrisation::Parametrisation;
-use cosserat_check::strategy::quadrature::{Level, Quadrature};
-use cosserat_check::strategy::random::Rng;
-use cosserat_check::strategy::real::RealEnv;
-use cosserat_check::strategy::tape::Tape;
 use num_dual::Dual64;
 use std::collections::HashMap;
 use std::path::Path;

@@ -3,11 +3,11 @@
 //! machine-read, and that a mutated side makes a machine-read claim `differs`.
 
 use crate::support::mutate::mutants;
+use cosserat_check::check::transcription::{transcribe, Hand, Status, Why};
+use cosserat_check::check::{decide, Decided};
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::{load_dir, load_str, Strategy, Transcript};
 use cosserat_check::lang::latex::{read, Connective, MathKind, ReadOptions, Rel};
-use cosserat_check::strategy::transcription::{transcribe, Hand, Status, Why};
-use cosserat_check::strategy::{decide, Decided};
 use std::path::Path;
 
 fn parts(src: &str) -> Vec<(Vec<String>, Vec<Rel>)> {

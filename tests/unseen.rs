@@ -3,8 +3,8 @@
 //! a second route (the claim's note). Every claim, and every correction, must come out
 //! as declared for every seed from 1 to 20.
 
+use cosserat_check::check::decide_claim;
 use cosserat_check::derivation::{load_files, Claim, Strategy};
-use cosserat_check::strategy::decide_claim;
 use std::path::PathBuf;
 
 /// Sets the seed of every sampled route of `claim` (and of its correction).

@@ -10,12 +10,12 @@
 //! statistics and exits 1 when it found anything.
 
 use cosserat_check::derivation::{load_str, Strategy};
-use cosserat_check::strategy::decide;
-use cosserat_check::strategy::finding::Finding;
-use cosserat_check::strategy::probe::curve_values;
-use cosserat_check::strategy::quadrature::{Level, Quadrature};
-use cosserat_check::strategy::tape::Tape;
-use cosserat_check::strategy::transcription::transcribe;
+use cosserat_check::check::decide;
+use cosserat_check::decide::finding::Finding;
+use cosserat_check::check::probe::curve_values;
+use cosserat_check::eval::quadrature::{Level, Quadrature};
+use cosserat_check::eval::tape::Tape;
+use cosserat_check::check::transcription::transcribe;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};

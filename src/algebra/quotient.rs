@@ -654,7 +654,7 @@ pub fn cleared_difference(a: &Quotient, b: &Quotient) -> Option<(Poly, Vec<(Poly
 }
 
 /// Term products one comparison may spend clearing denominators (as much as a whole
-/// claim's evaluation may: `strategy::eval::MAX_WORK`).
+/// claim's evaluation may: `eval::exact::env::MAX_WORK`).
 pub const CLEARING_WORK: usize = 1_000_000;
 
 /// Numerators larger than this are not tried for cancellation: exact division of a

@@ -5,7 +5,7 @@
 //! identical representations, so equality is structural, exactly as for [`Poly`].
 //!
 //! Claims about parameters are decided in this type: signs, monotonicity, limits and
-//! roots of a rational function (`strategy::scalar`), and the exact values of
+//! roots of a rational function (`decide::scalar`), and the exact values of
 //! definitions such as an elastoplastic tangent or a shear band's A².
 
 use super::gcd::{self, clear_denominator_monomial};

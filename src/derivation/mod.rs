@@ -10,11 +10,13 @@ pub mod load;
 pub mod model;
 pub mod notation;
 pub mod only;
+pub mod parametrisation;
 mod raw;
 mod reads;
 mod scalar;
 mod spans;
 mod spec;
+pub mod statement;
 pub mod uses;
 
 pub use load::{load_dir, load_files, load_str, load_texts, parse_grid, LoadError};

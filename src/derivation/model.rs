@@ -120,7 +120,7 @@ impl std::ops::Deref for Definition {
 /// An assumption of a claim or a file, as written, with what it says.
 ///
 /// Component-level assumptions are affine equations on components and are solved
-/// together, once, whatever their order (`strategy::assume`); a substitution whose
+/// together, once, whatever their order (`eval::assume`); a substitution whose
 /// right side is not affine replaces the whole symbol.
 #[derive(Clone, Debug)]
 pub struct Assumption {
@@ -434,7 +434,7 @@ pub enum Strategy {
     NotCircle { x: Expression, y: Expression },
     /// A claim about a scalar rational function of the parameters (its sign, its
     /// monotonicity in one of them, a limit, its real roots) on a box of parameter
-    /// values, decided by `strategy::scalar`: exactly (Sturm sequences, coefficient
+    /// values, decided by `decide::scalar`: exactly (Sturm sequences, coefficient
     /// signs, lowest orders) where the kernel can, by exact evaluation at seeded
     /// sample points otherwise.
     Scalar {

@@ -8,7 +8,7 @@
 //! of terms, points or bisections. The pseudo-remainder sequence over ℚ is not: its
 //! coefficients can swell for minutes on inputs of a few dozen terms. So a decision
 //! runs the kernel [`under`] a stop condition (the claim's time limit, from
-//! `strategy::watch`), and the remainder sequence asks [`requested`] between steps.
+//! `decide::watch`), and the remainder sequence asks [`requested`] between steps.
 //!
 //! A stopped computation returns a value that means nothing. That is sound only
 //! because whoever set the condition discards everything computed after it became

@@ -6,8 +6,9 @@
 
 use super::summary::Summary;
 use super::words::{self, inert};
+use crate::check::Decided;
+use crate::decide::{Counterexample, Outcome, Strength};
 use crate::derivation::Verdict;
-use crate::strategy::{Counterexample, Decided, Outcome, Strength};
 use std::fmt::Write as _;
 
 /// The widest the evidence column gets, in characters, when the width of the terminal

@@ -2,7 +2,7 @@
 //! per claim, for spreadsheets and scripts; no cell starts a formula ([`neutralised`]).
 
 use super::row::full_evidence;
-use crate::strategy::Decided;
+use crate::check::Decided;
 
 fn field(s: &str) -> String {
     format!("\"{}\"", neutralised(s).replace('"', "\"\""))
@@ -42,8 +42,8 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
             corr,
             corr_verdict,
             match r.outcome.strength() {
-                crate::strategy::Strength::Proof => "proof",
-                crate::strategy::Strength::Sampled => "sampled",
+                crate::decide::Strength::Proof => "proof",
+                crate::decide::Strength::Sampled => "sampled",
             },
             &super::row::read_label(r),
         ]

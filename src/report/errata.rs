@@ -5,7 +5,7 @@
 use super::evidence::evidence;
 use super::graph;
 use super::markdown::{cell, math, statement};
-use crate::strategy::Decided;
+use crate::check::Decided;
 use std::fmt::Write as _;
 
 /// The errata in Markdown: each root error, then the failures inherited from it, then

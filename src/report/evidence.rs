@@ -2,8 +2,8 @@
 //! becomes a sentence.
 
 use super::words;
+use crate::decide::{Counterexample, Outcome};
 use crate::kernel::check::Checked;
-use crate::strategy::{Counterexample, Outcome};
 
 /// One line of evidence for an outcome, in plain text with inline code.
 pub fn evidence(o: &Outcome) -> String {
@@ -55,7 +55,7 @@ pub fn evidence(o: &Outcome) -> String {
         parts.push(words::finding(f));
         // A rational-function claim's proof that it holds: the kernel's facts, in
         // words (a refutation's evidence is its counterexample).
-        if let (crate::strategy::finding::Finding::RationalFunction(_), Some(w), false) = (
+        if let (crate::decide::finding::Finding::RationalFunction(_), Some(w), false) = (
             f,
             proof_words(o),
             o.verdict() == crate::derivation::Verdict::Fails,

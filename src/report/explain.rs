@@ -2,13 +2,14 @@
 //! reviewer to audit the verdict by hand — the setting, the definitions and
 //! assumptions it uses, each side's canonical expansion (exact) or the first sampled
 //! states (numeric), and the full evidence. It renders what the decision recorded
-//! (`strategy::decide_claim_recorded`); nothing is computed again here.
+//! (`check::decide_claim_recorded`); nothing is computed again here.
 
 use super::evidence::evidence;
+use crate::check::Decided;
+use crate::decide::finding::Record;
+use crate::decide::Outcome;
 use crate::derivation::{Check, Strategy};
 use crate::lang::Decls;
-use crate::strategy::finding::Record;
-use crate::strategy::{Decided, Outcome};
 use std::fmt::Write as _;
 
 fn setting(decls: &Decls) -> String {
@@ -267,7 +268,7 @@ pub fn render(r: &Decided<'_>) -> String {
 /// typeset as LaTeX, and whether they say the same.
 fn reading_section(
     out: &mut String,
-    t: &crate::strategy::transcription::Transcription,
+    t: &crate::check::transcription::Transcription,
     check: &Check,
     transcript: &crate::derivation::Transcript,
     printed: &str,

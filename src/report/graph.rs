@@ -2,8 +2,8 @@
 //! inherited from the claims it uses), and the errata grouped by root error.
 
 use super::evidence::evidence;
-use crate::strategy::decided::Attribution;
-use crate::strategy::Decided;
+use crate::check::decided::Attribution;
+use crate::check::Decided;
 
 /// The attribution of a failing claim, in one sentence.
 pub fn attribution(a: &Attribution) -> String {

@@ -9,8 +9,9 @@ use super::evidence::evidence;
 use super::graph;
 use super::layout::{layered, Layout};
 use super::summary::Summary;
+use crate::check::Decided;
+use crate::decide::Strength;
 use crate::derivation::Verdict;
-use crate::strategy::{Decided, Strength};
 use std::fmt::Write as _;
 
 /// Escapes text for HTML element content and attribute values.

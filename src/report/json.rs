@@ -12,10 +12,10 @@
 //! `inherited`, `undetermined_origin`).
 
 use super::summary::Summary;
+use crate::check::Decided;
+use crate::decide::finding::Finding;
+use crate::decide::{Counterexample, Method, NumericEvidence, Outcome, Strength};
 use crate::kernel::check::Proof;
-use crate::strategy::finding::Finding;
-use crate::strategy::Outcome;
-use crate::strategy::{Counterexample, Decided, Method, NumericEvidence, Strength};
 use serde::Serialize;
 use serde_json::value::RawValue;
 
@@ -45,7 +45,7 @@ struct ClaimRow<'a> {
     numeric: Option<&'a NumericEvidence>,
     /// The finding in words.
     detail: Option<String>,
-    /// The finding as data (`strategy::Finding`).
+    /// The finding as data (`decide::Finding`).
     finding: Option<&'a Finding>,
     reason: Option<&'a str>,
     note: Option<&'a str>,
@@ -77,12 +77,12 @@ struct TranscriptionRow {
 }
 
 fn transcription_row(
-    t: &crate::strategy::transcription::Transcription,
+    t: &crate::check::transcription::Transcription,
     check: &crate::derivation::Check,
     transcript: &crate::derivation::Transcript,
     printed: &str,
 ) -> TranscriptionRow {
-    use crate::strategy::transcription::Status;
+    use crate::check::transcription::Status;
     TranscriptionRow {
         status: t.label(),
         detail: super::transcription::describe(t, printed),

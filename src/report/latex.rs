@@ -7,7 +7,7 @@
 use super::evidence::evidence;
 use super::row::full_evidence;
 use super::summary::Summary;
-use crate::strategy::Decided;
+use crate::check::Decided;
 use std::fmt::Write as _;
 
 /// Marks math that must pass through unescaped (inserted by [`math`], consumed by
@@ -448,8 +448,8 @@ fn verdict_cell(r: &Decided<'_>) -> String {
         cell,
         " ({})",
         match r.outcome.strength() {
-            crate::strategy::Strength::Proof => "proof",
-            crate::strategy::Strength::Sampled => "sampled",
+            crate::decide::Strength::Proof => "proof",
+            crate::decide::Strength::Sampled => "sampled",
         }
     );
     match &r.attribution {

@@ -3,7 +3,7 @@
 
 use super::row::{full_evidence, verdict_label};
 use super::summary::Summary;
-use crate::strategy::Decided;
+use crate::check::Decided;
 use std::fmt::Write as _;
 
 /// Makes text safe inside a Markdown table cell: one line, `|` escaped, and no `<`

@@ -3,7 +3,7 @@
 
 use super::evidence::evidence;
 use super::{graph, transcription};
-use crate::strategy::Decided;
+use crate::check::Decided;
 
 /// Whether a prose claim's statement is a formula rather than a sentence: it has no
 /// `$…$` but LaTeX commands or scripts (a formula the paper does not print, stated by
@@ -15,7 +15,7 @@ pub fn prose_is_formula(statement: &str) -> bool {
 /// Whether a row belongs in the errata: its printed statement fails, or holds only on
 /// a domain (an undecided claim accuses nobody).
 pub fn is_erratum(r: &Decided<'_>) -> bool {
-    crate::strategy::inherit::failing(r.outcome.verdict())
+    crate::check::inherit::failing(r.outcome.verdict())
 }
 
 /// The transcription status for a table: "machine", "differs", "hand" or "prose",

@@ -1,6 +1,6 @@
 //! The counts a table is summarised by, and the work it is credited to.
 
-use crate::strategy::Decided;
+use crate::check::Decided;
 use serde::Serialize;
 
 /// The work a table is credited to: the papers of its rows' files, in order; with no

@@ -1,9 +1,9 @@
 //! The words for a transcription status: whether the sides say what the printed
 //! statement says, and where they part.
 
+use crate::check::transcription::{Agreement, Hand, Status, Transcription, Why};
+use crate::decide::Strength;
 use crate::lang::Span;
-use crate::strategy::transcription::{Agreement, Hand, Status, Transcription, Why};
-use crate::strategy::Strength;
 
 /// The status with its detail, in one sentence or two: "machine-read (proof)",
 /// "differs at column 31 `\frac{1}{3}`: …", "hand: prose".

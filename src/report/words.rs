@@ -1,9 +1,9 @@
 //! Findings in words: the only place where what a decision recorded
-//! (`strategy::Finding`) becomes a sentence.
+//! (`decide::Finding`) becomes a sentence.
 
+use crate::decide::finding::{Finding, Point, Rejection, Unresolved};
+use crate::decide::Measure;
 use crate::digits;
-use crate::strategy::finding::{Finding, Point, Rejection, Unresolved};
-use crate::strategy::Measure;
 
 /// A finding as one clause of the evidence.
 pub fn finding(f: &Finding) -> String {
@@ -182,7 +182,7 @@ pub fn finding(f: &Finding) -> String {
 }
 
 /// The evidence of a claim about a rational function.
-fn rational_evidence(e: &crate::strategy::finding::RationalEvidence) -> String {
+fn rational_evidence(e: &crate::decide::finding::RationalEvidence) -> String {
     let mut parts = vec![format!("decided {} on {}", e.decided, e.domain)];
     if let Some(l) = &e.limit {
         parts.push(format!("the limit is {l}"));

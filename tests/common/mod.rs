@@ -1,8 +1,8 @@
 //! Helpers shared by the test files that decide a soundness corpus.
 
+use cosserat_check::check::Decided;
 use cosserat_check::cli::decide_all;
 use cosserat_check::derivation::load_files;
-use cosserat_check::strategy::Decided;
 
 /// Decides every claim of `path`, asserts that there are `count` and that each verdict
 /// (and each correction's) is the declared one, and hands the rows to `inspect`.
@@ -28,7 +28,7 @@ pub fn assert_as_declared(path: &str, count: usize, inspect: impl FnOnce(&[Decid
 pub fn assert_failures_confirmed(
     rows: &[Decided<'_>],
     count: usize,
-    how: cosserat_check::strategy::Reverified,
+    how: cosserat_check::decide::Reverified,
 ) {
     use cosserat_check::derivation::Verdict;
     let failed: Vec<_> = rows
@@ -54,7 +54,7 @@ pub fn error_of(text: &str) -> String {
 }
 
 /// The outcome of every claim of the file `text` (named f.toml in diagnostics).
-pub fn outcomes_of(text: &str) -> Vec<cosserat_check::strategy::Outcome> {
+pub fn outcomes_of(text: &str) -> Vec<cosserat_check::decide::Outcome> {
     let f = cosserat_check::derivation::load_str("f.toml", text).expect("loads");
     decide_all(std::slice::from_ref(&f), None)
         .unwrap()

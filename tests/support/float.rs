@@ -10,13 +10,13 @@
 
 use cosserat_check::algebra::sign::{End, Interval};
 use cosserat_check::algebra::Tensor;
+use cosserat_check::decide::random::Rng;
+use cosserat_check::derivation::parametrisation::Parametrisation;
 use cosserat_check::derivation::{Check, Strategy, Verdict};
+use cosserat_check::eval::real::{component_pairs, RealEnv};
+use cosserat_check::eval::taylor::TaylorFields;
 use cosserat_check::lang::Decls;
-use cosserat_check::strategy::parametrisation::Parametrisation;
-use cosserat_check::strategy::random::Rng;
-use cosserat_check::strategy::real::{component_pairs, RealEnv};
-use cosserat_check::strategy::taylor::TaylorFields;
-use cosserat_check::strategy::tolerance::{TAYLOR_AGREEMENT, TOL};
+use cosserat_check::tolerance::{TAYLOR_AGREEMENT, TOL};
 
 /// Degree of the random polynomial fields: derivatives up to this order are random,
 /// higher ones zero (a statement with fifth derivatives is not distinguished from one

@@ -1,0 +1,88 @@
+//! Dispatch: each check to its strategy, under the claim's time limit and in
+//! isolation from panics.
+
+use super::isolate;
+use crate::decide::{finding, identity, numeric, sampler, scalar, watch, witness, Method, Outcome};
+use crate::lang::Diagnostic;
+
+/// Decides one check with its strategy.
+pub fn decide(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+) -> Result<Outcome, Diagnostic> {
+    decide_keeping(decls, check, false)
+}
+
+pub(crate) fn decide_keeping(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+    keep: bool,
+) -> Result<Outcome, Diagnostic> {
+    isolate::isolated(method_of(check), || decide_unisolated(decls, check, keep))
+}
+
+/// The method a check's strategy decides with.
+pub(crate) fn method_of(check: &crate::derivation::Check) -> Method {
+    use crate::derivation::Strategy;
+    match &check.strategy {
+        Strategy::Numeric { .. } => Method::Numeric,
+        Strategy::Gradient { .. } => Method::Gradient,
+        Strategy::Convex { .. } => Method::Convex,
+        Strategy::Exact { .. } | Strategy::Proportional { .. } => Method::Exact,
+        Strategy::NotCircle { .. } => Method::Witness,
+        Strategy::Scalar { .. } => Method::RationalFunction,
+    }
+}
+
+/// [`decide_keeping`] without the panic isolation.
+pub(crate) fn decide_unisolated(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+    keep: bool,
+) -> Result<Outcome, Diagnostic> {
+    use crate::derivation::Strategy;
+    let sink = sampler::Sink::default();
+    let states = keep.then_some(&sink);
+    let method = method_of(check);
+    if method != Method::Exact && check.reads().differentiates {
+        return Ok(
+            Outcome::undecided(method, 0).with_finding(finding::Finding::DerivativesNotSampled)
+        );
+    }
+    // A computation stopped at the time limit unwinds to here (`interrupt::tick`);
+    // the watch has expired then, so the match below makes it undecided.
+    let decided = crate::kernel::interrupt::stoppable(|| match &check.strategy {
+        Strategy::Exact { .. } | Strategy::Proportional { .. } => {
+            identity::decide(decls, check, keep)
+        }
+        Strategy::Numeric { .. } => numeric::decide_numeric(decls, check, states),
+        Strategy::Gradient { .. } => numeric::decide_gradient(decls, check, states),
+        Strategy::Convex { .. } => numeric::decide_convex(decls, check, states),
+        Strategy::NotCircle { .. } => witness::decide_not_circle(decls, check),
+        Strategy::Scalar { .. } => scalar::decide(decls, check),
+    })
+    .unwrap_or_else(|_| {
+        Ok(
+            Outcome::undecided(method, 0).with_finding(finding::Finding::TimeLimit {
+                seconds: watch::expired().map_or(0.0, |l| l.as_secs_f64()),
+            }),
+        )
+    });
+    // A decision that outlived the time limit is undecided: it was stopped
+    // (`watch::check`), whatever error the stop surfaced as, or the kernel gave up a
+    // step and returned a meaningless value (`kernel::interrupt`). One that finished
+    // in time stands.
+    let mut outcome = match (decided, watch::expired()) {
+        (Ok(o), None) => o,
+        (_, Some(limit)) => {
+            Outcome::undecided(method, 0).with_finding(finding::Finding::TimeLimit {
+                seconds: limit.as_secs_f64(),
+            })
+        }
+        (Err(e), None) => return Err(e),
+    };
+    if keep {
+        outcome.record.get_or_insert_with(Default::default).states = sink.into_inner();
+    }
+    Ok(outcome)
+}

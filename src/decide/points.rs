@@ -1,0 +1,192 @@
+//! Exact rational points: where two sides of an equality differ (sparse points first,
+//! the normal on the unit sphere by stereographic projection), from one deterministic
+//! generator so that the same sides always get the same point.
+
+use crate::algebra::sign::{inner_point, End, Interval};
+use crate::algebra::{residue, Quotient};
+use crate::kernel::{Rational, Var, VarTable};
+use std::collections::BTreeMap;
+
+/// A deterministic generator (SplitMix64) for exact points: the same claim always gets
+/// the same point (counterexample points here, samples of `scalar`).
+pub(crate) struct SplitMix(pub(crate) u64);
+
+impl SplitMix {
+    pub(crate) fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// A nonzero integer in −4..=4.
+    fn small(&mut self) -> i64 {
+        let k = (self.next() % 8) as i64;
+        if k < 4 {
+            k - 4
+        } else {
+            k - 3
+        }
+    }
+}
+
+/// The point of the unit circle (one parameter u) or sphere (two, u and v) by the
+/// stereographic projection: ((1 − u²), 2u)/(1 + u²), or
+/// (2u, 2v, 1 − u² − v²)/(1 + u² + v²), every rational point of either but a pole;
+/// `flip` negates the coordinate along the pole (the first on the circle, the last on
+/// the sphere).
+pub(crate) fn stereographic(params: &[Rational], flip: bool) -> Vec<Rational> {
+    let (one, two) = (Rational::int(1), Rational::int(2));
+    let r2 = params
+        .iter()
+        .fold(Rational::int(0), |acc, p| &acc + &(p * p));
+    let den = &one + &r2;
+    let over = |x: Rational| x.checked_div(&den).expect("1 + r² > 0");
+    let along = over(&one - &r2);
+    let along = if flip { -along } else { along };
+    let mut point: Vec<Rational> = params.iter().map(|p| over(&two * p)).collect();
+    if params.len() == 1 {
+        point.insert(0, along);
+    } else {
+        point.push(along);
+    }
+    point
+}
+
+/// A rational point of the unit circle or sphere, its parameters drawn from `rng`.
+pub(crate) fn sphere_point(rng: &mut SplitMix, dim: usize) -> Vec<Rational> {
+    let u = Rational::ratio(rng.small(), 1 + (rng.next() % 3) as i64).expect("nonzero denominator");
+    let v = Rational::ratio(rng.small(), 1 + (rng.next() % 3) as i64).expect("nonzero denominator");
+    if dim == 2 {
+        return stereographic(&[u], false);
+    }
+    let mut p = stereographic(&[u, v], true);
+    p.truncate(dim);
+    p
+}
+
+/// The coordinates of `point` that the two sides use, by name, for the report.
+pub fn shown_point(
+    names: &VarTable,
+    lhs: &Quotient,
+    rhs: &Quotient,
+    point: &BTreeMap<Var, Rational>,
+) -> BTreeMap<String, String> {
+    let used = used_variables(lhs, rhs);
+    point
+        .iter()
+        .filter(|(v, _)| used.contains(v))
+        .map(|(&v, q)| (names.name(v).to_owned(), q.to_string()))
+        .collect()
+}
+
+fn used_variables(lhs: &Quotient, rhs: &Quotient) -> Vec<Var> {
+    let mut used: Vec<Var> = lhs.variables();
+    used.extend(rhs.variables());
+    used.sort_unstable();
+    used.dedup();
+    used
+}
+
+/// `x` when the interval holds it; otherwise a point inside that still moves with
+/// `x`, so that different draws give different points.
+fn into_interval(i: &Interval, x: Rational) -> Rational {
+    if i.contains(&x) {
+        return x;
+    }
+    let size = if x.is_negative() {
+        -x.clone()
+    } else {
+        x.clone()
+    };
+    let step = &size + &Rational::int(1);
+    let inside = match (&i.lo, &i.hi) {
+        (End::Unbounded, End::Unbounded) => x,
+        (End::Open(a) | End::Closed(a), End::Unbounded) => a + &step,
+        (End::Unbounded, End::Open(b) | End::Closed(b)) => b - &step,
+        // a + (b − a)·s/(s + 1), strictly inside for s ≥ 1.
+        (End::Open(a) | End::Closed(a), End::Open(b) | End::Closed(b)) => {
+            let fraction = step
+                .checked_div(&(&step + &Rational::int(1)))
+                .expect("s + 1 > 0");
+            a + &(&(b - a) * &fraction)
+        }
+    };
+    if i.contains(&inside) {
+        inside
+    } else {
+        inner_point(i)
+    }
+}
+
+/// A rational point where both sides are defined and differ, with their values there:
+/// sparse points first (one variable 1, the rest 0) because they read best, then dense
+/// ones; the normal always lies on the unit sphere, and the point carries the whole
+/// normal (for the second evaluation). The same sides always get the same point.
+pub fn point_where_differ(
+    normal: &[Var],
+    lhs: &Quotient,
+    rhs: &Quotient,
+    domain: &[(Var, Interval)],
+) -> Option<(BTreeMap<Var, Rational>, Rational, Rational)> {
+    // A bounded variable gets a value in its interval even where the sides do not
+    // read it: the interpreter that confirms the point evaluates the statement before
+    // the state is substituted (a square root of τ² at τ = 0 has no derivative).
+    let mut used = used_variables(lhs, rhs);
+    used.extend(domain.iter().map(|(v, _)| *v));
+    used.sort_unstable();
+    used.dedup();
+    let mut rng = SplitMix(0x05EE_DC05_E4A7);
+    let others: Vec<Var> = used
+        .iter()
+        .copied()
+        .filter(|v| !normal.contains(v))
+        .collect();
+    let sparse = others.iter().map(|&v| Some(v)).chain(std::iter::once(None));
+    let candidates = sparse
+        .flat_map(|one| (0..4).map(move |_| one))
+        .map(Some)
+        .chain((0..64).map(|_| None));
+    for candidate in candidates {
+        let n = sphere_point(&mut rng, normal.len().max(2));
+        let mut point: BTreeMap<Var, Rational> = BTreeMap::new();
+        for &v in &used {
+            let value = match (normal.iter().position(|&w| w == v), candidate) {
+                (Some(k), _) => n[k].clone(),
+                (None, Some(Some(one))) => Rational::int(i64::from(v == one)),
+                (None, Some(None)) => Rational::int(0),
+                (None, None) => Rational::int(rng.small()),
+            };
+            let value = match domain.iter().find(|(w, _)| *w == v) {
+                Some((_, i)) => into_interval(i, value),
+                None => value,
+            };
+            point.insert(v, value);
+        }
+        // Screen modulo a prime first: equal residues mean (almost surely) equal
+        // values, and the exact evaluation of a high power at a dense point costs
+        // bigint arithmetic that is wasted on a candidate that will be skipped.
+        let residues: BTreeMap<Var, Option<u64>> = point
+            .iter()
+            .map(|(&v, q)| (v, residue::of_rational(q)))
+            .collect();
+        if residues.values().all(Option::is_some) {
+            let value = |v: Var| residues.get(&v).copied().flatten().unwrap_or(0);
+            if !lhs.differs_mod_p(rhs, &value) {
+                continue;
+            }
+        }
+        let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        let (Some(l), Some(r)) = (lhs.eval(&at), rhs.eval(&at)) else {
+            continue;
+        };
+        if l != r {
+            for (k, &v) in normal.iter().enumerate() {
+                point.entry(v).or_insert_with(|| n[k].clone());
+            }
+            return Some((point, l, r));
+        }
+    }
+    None
+}

@@ -1,0 +1,410 @@
+//! Assumptions as one exact affine system over the components, solved once.
+//!
+//! Every component-level assumption is an affine equation with rational coefficients:
+//! `symmetric(X)`, `antisymmetric(X)`, `traceless(X)`, a fixed component `sigma_13 = 0`,
+//! and any `X_ij… = expression` whose right side is affine in components, such as the
+//! minor and major symmetries `C_ijkl = C_jikl`, `C_ijkl = C_klij`. They are collected
+//! into one system and solved exactly over ℚ by the kernel ([`crate::algebra::linear`]),
+//! so the result does not depend on the order in which they are written, and a
+//! contradiction is an input error that names the assumptions that clash.
+//!
+//! Which components are eliminated is fixed by a rule, not by the order of writing:
+//! first the components an assumption sets explicitly (its left side), then the others;
+//! within each group, a symbol's components from the highest index down. So `symmetric`
+//! eliminates the lower triangle, `traceless` the last diagonal component, and
+//! `sigma_13 = 0` the component it names.
+//!
+//! A component assumption may be polynomial in other symbols, as long as it is affine in
+//! the components it constrains (`u_2 = z^2`, `D_12 = t D_11`): every symbol that occurs in
+//! a product or a power of any equation is a **parameter** of the system, and each product
+//! of parameters is a column of its own, ordered after the components, so the solution
+//! gives each eliminated component as an affine function of the free components with a
+//! polynomial in the parameters as its constant term. A combination of the equations
+//! that constrains the parameters alone is an input error; so is a parameter that is a
+//! field (its value would have to be differentiated through the product).
+//!
+//! An `X = expression` whose right side is not affine (`S = 3 V / (2 R_g)`) substitutes
+//! the whole symbol after the system is solved; substitutions are evaluated in the order
+//! of their dependencies, and a cycle is an input error.
+
+use super::exact::env::ExactEnv;
+use crate::algebra::assignments;
+use crate::algebra::linear::{self, AffineEquation};
+use crate::derivation::parametrisation::{single, Component, Parametrisation, Product};
+use crate::derivation::{Assumption, AssumptionKind};
+use crate::kernel::term::component_name;
+use crate::kernel::{Poly, Rational, Var};
+use crate::lang::{Decls, Diagnostic};
+use num_traits::Zero;
+use rustc_hash::FxHashMap as HashMap;
+use std::cmp::Reverse;
+use std::collections::BTreeSet;
+
+/// Largest number of component equations one claim may assume (a rank-4 tensor in 3D
+/// with minor and major symmetries needs a few hundred).
+pub const MAX_EQUATIONS: usize = 20_000;
+
+/// How an assumption enters: equations in the system, or a substitution.
+enum Role {
+    Linear(Vec<Poly>),
+    Substitution,
+}
+
+impl Parametrisation {
+    /// Solves the assumptions of one claim.
+    pub fn new(decls: &Decls, assumptions: &[Assumption]) -> Result<Self, Diagnostic> {
+        let mut env = ExactEnv::unconstrained(decls);
+        // Which component each variable is: needed only to read equations.
+        let components = if assumptions.is_empty() {
+            HashMap::default()
+        } else {
+            env.component_vars()
+        };
+        let mut roles = Vec::with_capacity(assumptions.len());
+        for a in assumptions {
+            roles.push(role(&mut env, decls, a)?);
+        }
+        let var_symbol = |v: &Var| components.get(v).map(|(s, _)| s.as_str());
+        let symbols_of = |polys: &[Poly]| -> BTreeSet<String> {
+            polys
+                .iter()
+                .flat_map(|p| p.terms().flat_map(|(m, _)| m.factors().to_vec()))
+                .filter_map(|(v, _)| var_symbol(&v).map(str::to_owned))
+                .collect()
+        };
+        // Substituted symbols; an affine `X = …` that refers to one becomes a
+        // substitution too (it is evaluated after the one it refers to).
+        let mut substituted: BTreeSet<String> = BTreeSet::new();
+        loop {
+            let mut changed = false;
+            for (a, r) in assumptions.iter().zip(roles.iter_mut()) {
+                let demote = match r {
+                    Role::Substitution => {
+                        changed |= substituted.insert(a.kind.symbol().to_owned());
+                        false
+                    }
+                    Role::Linear(polys) => {
+                        matches!(a.kind, AssumptionKind::Equals { .. })
+                            && !symbols_of(polys).is_disjoint(&substituted)
+                    }
+                };
+                if demote {
+                    *r = Role::Substitution;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        let substitutions = substitution_order(assumptions, &roles)?;
+        // The unknowns: every component in an equation, explicit left sides first; a
+        // component in a product or a power is a parameter.
+        let mut explicit: BTreeSet<&Component> = BTreeSet::new();
+        let mut all: BTreeSet<&Component> = BTreeSet::new();
+        let mut parameters: BTreeSet<&Component> = BTreeSet::new();
+        for (a, r) in assumptions.iter().zip(&roles) {
+            let Role::Linear(polys) = r else { continue };
+            for p in polys {
+                for (m, _) in p.terms() {
+                    let product = !matches!(m.factors(), [(_, 1)]);
+                    for (v, _) in m.factors() {
+                        let c = &components[v];
+                        if substituted.contains(&c.0) {
+                            return Err(a.diagnostic(
+                                format!("`{}` is replaced by a substitution, so its components cannot also be constrained", c.0),
+                            ).with_help("constrain the symbols of the substitution's right side instead"));
+                        }
+                        if product {
+                            if decls.varies(&c.0) {
+                                return Err(a.diagnostic(format!(
+                                    "`{}` is a field, and occurs in a product or a power here",
+                                    c.0
+                                ))
+                                .with_help("a component assumption may be polynomial only in symbols that are not fields; relate whole fields with X = expression"));
+                            }
+                            parameters.insert(c);
+                        }
+                        all.insert(c);
+                    }
+                }
+            }
+        }
+        // Marked after every unknown is known, so that the choice does not depend on the
+        // order of the assumptions.
+        for (a, r) in assumptions.iter().zip(&roles) {
+            if !matches!(r, Role::Linear(_)) {
+                continue;
+            }
+            match &a.kind {
+                AssumptionKind::Component { symbol, index, .. } => {
+                    explicit.extend(all.get(&(symbol.clone(), index.clone())));
+                }
+                AssumptionKind::Equals { symbol, .. } => {
+                    explicit.extend(all.iter().filter(|c| &c.0 == symbol));
+                }
+                _ => {}
+            }
+        }
+        let mut unknowns: Vec<&Component> = all
+            .iter()
+            .copied()
+            .filter(|c| !parameters.contains(c))
+            .collect();
+        unknowns.sort_by_key(|c| (!explicit.contains(c), c.0.clone(), Reverse(c.1.clone())));
+        let mut columns: Vec<Product> = unknowns.iter().map(|&c| vec![(c.clone(), 1)]).collect();
+        let unknown_count = columns.len();
+        // The products of parameters, in a fixed order after the unknowns.
+        let product_of = |m: &crate::kernel::Monomial| -> Product {
+            m.factors()
+                .iter()
+                .map(|(v, e)| (components[v].clone(), u32::try_from(*e).unwrap_or(0)))
+                .collect()
+        };
+        let mut products: BTreeSet<Product> = BTreeSet::new();
+        for r in &roles {
+            let Role::Linear(polys) = r else { continue };
+            for (m, _) in polys.iter().flat_map(Poly::terms) {
+                let p = product_of(m);
+                if !p.is_empty() && single(&p).is_none_or(|c| parameters.contains(c)) {
+                    products.insert(p);
+                }
+            }
+        }
+        columns.extend(products);
+        let column_of: HashMap<&Product, usize> =
+            columns.iter().enumerate().map(|(k, c)| (c, k)).collect();
+        let mut equations = Vec::new();
+        for (k, r) in roles.iter().enumerate() {
+            let Role::Linear(polys) = r else { continue };
+            for p in polys {
+                let mut eq = AffineEquation {
+                    coeffs: Default::default(),
+                    constant: Rational::int(0),
+                    source: k,
+                };
+                for (m, q) in p.terms() {
+                    match m.factors() {
+                        [] => eq.constant = q.clone(),
+                        _ => {
+                            eq.coeffs.insert(column_of[&product_of(m)], q.clone());
+                        }
+                    }
+                }
+                equations.push(eq);
+            }
+        }
+        if equations.len() > MAX_EQUATIONS {
+            let a = &assumptions[equations[MAX_EQUATIONS].source];
+            return Err(a
+                .diagnostic(format!(
+                    "the assumptions give more than {MAX_EQUATIONS} component equations"
+                ))
+                .with_help("constrain fewer or smaller tensors"));
+        }
+        let solution = linear::solve(columns.len(), &equations)
+            .map_err(|clash| contradiction(assumptions, &clash.sources))?;
+        // A pivot among the products: the equations relate the parameters alone.
+        if let Some(k) = (unknown_count..columns.len()).find(|&k| !solution.is_free(k)) {
+            // The assumptions that read a parameter of that product.
+            let shares = |c: &Product| {
+                c.iter()
+                    .any(|(f, _)| columns[k].iter().any(|(g, _)| f == g))
+            };
+            let mut sources: Vec<usize> = equations
+                .iter()
+                .filter(|e| e.coeffs.keys().any(|c| shares(&columns[*c])))
+                .map(|e| e.source)
+                .collect();
+            sources.dedup();
+            let names: Vec<String> = columns[k]
+                .iter()
+                .map(|((s, i), _)| format!("`{}`", component_name(s, i)))
+                .collect();
+            let written: Vec<String> = sources
+                .iter()
+                .map(|&j| format!("`{}`", assumptions[j].text))
+                .collect();
+            return Err(assumptions[sources[0]]
+                .diagnostic(format!(
+                    "the assumptions {} constrain the parameters {} (each occurs in a product or a power), not only components",
+                    written.join(", "),
+                    names.join(", ")
+                ))
+                .with_help("fix or relate parameters by whole-symbol equations (t = …), not through components"));
+        }
+        Ok(Parametrisation {
+            columns,
+            solution,
+            equations,
+            substitutions,
+        })
+    }
+}
+
+/// The equations an assumption contributes, or that it substitutes a whole symbol.
+fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, Diagnostic> {
+    let d = decls.dim;
+    if decls.position.as_deref() == Some(a.kind.symbol()) {
+        return Err(a
+            .diagnostic(format!(
+                "`{}` is the position: its coordinates are the independent variables of every derivative",
+                a.kind.symbol()
+            ))
+            .with_help("constrain the fields instead (u_i = A_ij x_j), or use a scalar"));
+    }
+    let var = |env: &mut ExactEnv<'_>, s: &str, idx: &[usize]| env.component(s, idx);
+    Ok(match &a.kind {
+        AssumptionKind::Traceless { symbol } => {
+            let trace = (0..d).fold(Poly::zero(), |acc, k| &acc + &var(env, symbol, &[k, k]));
+            Role::Linear(vec![trace])
+        }
+        AssumptionKind::Symmetric { symbol } | AssumptionKind::Antisymmetric { symbol } => {
+            let anti = matches!(a.kind, AssumptionKind::Antisymmetric { .. });
+            let mut out = Vec::new();
+            for i in 0..d {
+                for j in i..d {
+                    if i == j && !anti {
+                        continue;
+                    }
+                    let (x, y) = (var(env, symbol, &[i, j]), var(env, symbol, &[j, i]));
+                    out.push(if anti { &x + &y } else { &x - &y });
+                }
+            }
+            Role::Linear(out)
+        }
+        AssumptionKind::Component {
+            symbol,
+            index,
+            body,
+        } => {
+            let not_affine = || {
+                a.origin
+                    .diagnostic(body.span, "a component assumption must be a polynomial in the components, with rational coefficients")
+                    .with_help("write e.g. sigma_13 = 0, sigma_22 = sigma_11 or u_2 = z^2; relate whole symbols with X = expression")
+            };
+            let value = env
+                .eval(body, &a.origin)
+                .map_err(|_| not_affine())?
+                .tensor
+                .into_scalar()
+                .expect("validated: scalar");
+            if !env.is_polynomial(&value) {
+                return Err(not_affine());
+            }
+            Role::Linear(vec![&var(env, symbol, index) - value.numerator()])
+        }
+        AssumptionKind::Equals {
+            symbol,
+            formal,
+            body,
+        } => {
+            let Ok(value) = env.eval(body, &a.origin) else {
+                return Ok(Role::Substitution);
+            };
+            let rank = formal.len();
+            let mut out = Vec::new();
+            for idx in assignments(d, rank) {
+                let assignment: Vec<(char, usize)> =
+                    formal.iter().copied().zip(idx.iter().copied()).collect();
+                let p = value.at(&assignment);
+                if !env.is_affine(p) {
+                    return Ok(Role::Substitution);
+                }
+                out.push(&var(env, symbol, &idx) - p.numerator());
+            }
+            Role::Linear(out)
+        }
+    })
+}
+
+/// The substitutions, each after those whose symbols its right side refers to.
+fn substitution_order(
+    assumptions: &[Assumption],
+    roles: &[Role],
+) -> Result<Vec<usize>, Diagnostic> {
+    let subs: Vec<usize> = (0..assumptions.len())
+        .filter(|&k| matches!(roles[k], Role::Substitution))
+        .collect();
+    let of = |symbol: &str| -> Vec<usize> {
+        subs.iter()
+            .copied()
+            .filter(|&k| assumptions[k].kind.symbol() == symbol)
+            .collect()
+    };
+    for &k in &subs {
+        if let [first, second, ..] = of(assumptions[k].kind.symbol())[..] {
+            let a = &assumptions[second];
+            return Err(a
+                .diagnostic(format!(
+                    "`{}` is already replaced by `{}`",
+                    a.kind.symbol(),
+                    assumptions[first].text
+                ))
+                .with_help("a symbol can be substituted once"));
+        }
+    }
+    // Depth-first, in the order written; a node on the current path again is a cycle.
+    fn visit(
+        k: usize,
+        assumptions: &[Assumption],
+        of: &dyn Fn(&str) -> Vec<usize>,
+        path: &mut Vec<usize>,
+        done: &mut Vec<usize>,
+    ) -> Result<(), Diagnostic> {
+        if done.contains(&k) {
+            return Ok(());
+        }
+        if let Some(at) = path.iter().position(|&p| p == k) {
+            let a = &assumptions[k];
+            let cycle: Vec<&str> = path[at..]
+                .iter()
+                .chain([&k])
+                .map(|&p| assumptions[p].kind.symbol())
+                .collect();
+            return Err(a
+                .diagnostic(format!(
+                    "substitutions refer to each other in a cycle: {}",
+                    cycle.join(" → ")
+                ))
+                .with_help("a substituted symbol cannot depend on itself"));
+        }
+        path.push(k);
+        let AssumptionKind::Equals { body, .. } = &assumptions[k].kind else {
+            unreachable!("substitutions are equations")
+        };
+        for s in body.symbols() {
+            for dep in of(s) {
+                visit(dep, assumptions, of, path, done)?;
+            }
+        }
+        path.pop();
+        done.push(k);
+        Ok(())
+    }
+    let mut done = Vec::new();
+    for &k in &subs {
+        visit(k, assumptions, &of, &mut Vec::new(), &mut done)?;
+    }
+    Ok(done)
+}
+
+fn contradiction(assumptions: &[Assumption], sources: &[usize]) -> Diagnostic {
+    let line = |a: &Assumption| a.diagnostic("").line;
+    let first = &assumptions[sources[0]];
+    let names: Vec<String> = sources
+        .iter()
+        .map(|&k| format!("`{}` (line {})", assumptions[k].text, line(&assumptions[k])))
+        .collect();
+    let message = if sources.len() == 1 {
+        format!("the assumption `{}` has no solution", first.text)
+    } else {
+        format!(
+            "these assumptions contradict each other: {}",
+            names.join(", ")
+        )
+    };
+    first
+        .diagnostic(message)
+        .with_help("together they admit no value of the components; correct or remove one")
+}
