@@ -7,7 +7,7 @@
 //! What this cannot see is a statement edited into another true one: that is why each
 //! line names what was proved, for the reader to compare with the paper.
 
-use crate::kernel::check::{check, Checked, Conclusion, Fact};
+use crate::kernel::check::{check, Checked, Conclusion, Fact, Rejection};
 use crate::kernel::statement::Statement;
 use serde::Deserialize;
 
@@ -24,6 +24,36 @@ struct Written {
 }
 
 /// What `recheck` found.
+/// Why a file is not a report that can be re-checked.
+#[derive(Debug, thiserror::Error)]
+pub enum NotAReport {
+    #[error("the report is larger than {} MiB", MAX_REPORT_BYTES >> 20)]
+    TooLarge,
+    #[error("not a JSON report: {0}")]
+    Json(#[from] serde_json::Error),
+    #[error("not a cosserat-check report: no `claims` array")]
+    NoClaims,
+}
+
+/// Why the proofs of one claim are refused.
+#[derive(Debug, thiserror::Error)]
+enum Refused {
+    #[error("proofs recorded for a verdict of strength `{0}`")]
+    NotOfStrengthProof(String),
+    #[error("a `{0}` of strength proof without a kernel proof")]
+    NoProof(String),
+    #[error("a proof that is not well written: {0}")]
+    IllWritten(serde_json::Error),
+    #[error("{0}")]
+    Kernel(#[from] Rejection),
+    #[error("the proof concludes `{said}`, the report says `{written}`")]
+    Conclusion { said: &'static str, written: String },
+    #[error("the recorded summary is not what the kernel checked")]
+    Summary,
+    #[error("the proofs do not conclude the verdict `{0}`")]
+    Verdict(String),
+}
+
 #[derive(Debug)]
 pub struct Rechecked {
     /// One line per claim (and correction) with a verdict of strength `proof`.
@@ -46,7 +76,7 @@ fn shown(s: &str) -> String {
 }
 
 /// Re-checks every proof of the report `text`; `Err` when it is not a report.
-pub fn recheck(text: &str) -> Result<Rechecked, String> {
+pub fn recheck(text: &str) -> Result<Rechecked, NotAReport> {
     // On a thread of its own: a statement may nest definitions as deep as the kernel's
     // bound, deeper than the caller's stack allows.
     std::thread::scope(|scope| {
@@ -56,19 +86,15 @@ pub fn recheck(text: &str) -> Result<Rechecked, String> {
     })
 }
 
-fn recheck_here(text: &str) -> Result<Rechecked, String> {
+fn recheck_here(text: &str) -> Result<Rechecked, NotAReport> {
     if text.len() > MAX_REPORT_BYTES {
-        return Err(format!(
-            "the report is larger than {} MiB",
-            MAX_REPORT_BYTES >> 20
-        ));
+        return Err(NotAReport::TooLarge);
     }
-    let report: serde_json::Value =
-        serde_json::from_str(text).map_err(|e| format!("not a JSON report: {e}"))?;
+    let report: serde_json::Value = serde_json::from_str(text)?;
     let claims = report
         .get("claims")
         .and_then(|c| c.as_array())
-        .ok_or("not a cosserat-check report: no `claims` array")?;
+        .ok_or(NotAReport::NoClaims)?;
     let mut out = Rechecked {
         lines: Vec::new(),
         accepted: 0,
@@ -99,7 +125,7 @@ fn recheck_here(text: &str) -> Result<Rechecked, String> {
 
 /// One claim's (or correction's) proofs: `None` when its verdict is not of strength
 /// `proof`.
-fn one(row: &serde_json::Value) -> Result<Option<String>, String> {
+fn one(row: &serde_json::Value) -> Result<Option<String>, Refused> {
     let text = |k: &str| row.get(k).and_then(|v| v.as_str()).unwrap_or("");
     let (verdict, strength) = (text("verdict"), text("strength"));
     let written = row
@@ -111,37 +137,30 @@ fn one(row: &serde_json::Value) -> Result<Option<String>, String> {
         return if written.is_empty() {
             Ok(None)
         } else {
-            Err(format!(
-                "proofs recorded for a verdict of strength `{}`",
-                shown(strength)
-            ))
+            Err(Refused::NotOfStrengthProof(shown(strength)))
         };
     }
     if written.is_empty() {
-        return Err(format!(
-            "a `{}` of strength proof without a kernel proof",
-            shown(verdict)
-        ));
+        return Err(Refused::NoProof(shown(verdict)));
     }
     let mut conclusions = Vec::new();
     let mut items = 0;
     for w in written {
-        let w: Written = serde_json::from_value(w)
-            .map_err(|e| format!("a proof that is not well written: {e}"))?;
-        let proof = check(w.statement, w.fact).map_err(|e| e.to_string())?;
+        let w: Written = serde_json::from_value(w).map_err(Refused::IllWritten)?;
+        let proof = check(w.statement, w.fact)?;
         let said = match proof.conclusion() {
             Conclusion::Holds => "holds",
             Conclusion::Fails => "fails",
         };
         if w.conclusion != said {
-            return Err(format!(
-                "the proof concludes `{said}`, the report says `{}`",
-                shown(&w.conclusion)
-            ));
+            return Err(Refused::Conclusion {
+                said,
+                written: shown(&w.conclusion),
+            });
         }
         let summary: Vec<Checked> = proof.summary().to_vec();
         if serde_json::to_value(&summary).ok().as_ref() != Some(&w.summary) {
-            return Err("the recorded summary is not what the kernel checked".to_owned());
+            return Err(Refused::Summary);
         }
         items += summary.len();
         conclusions.push(proof.conclusion());
@@ -153,10 +172,7 @@ fn one(row: &serde_json::Value) -> Result<Option<String>, String> {
         _ => false,
     };
     if !agrees {
-        return Err(format!(
-            "the proofs do not conclude the verdict `{}`",
-            shown(verdict)
-        ));
+        return Err(Refused::Verdict(shown(verdict)));
     }
     let s = if conclusions.len() == 1 { "" } else { "s" };
     Ok(Some(format!(

@@ -120,8 +120,12 @@ fn an_edited_proof_statement_conclusion_or_verdict_is_refused() {
 fn a_file_that_is_not_a_report_is_refused_with_its_reason() {
     assert!(recheck("not json")
         .unwrap_err()
+        .to_string()
         .contains("not a JSON report"));
-    assert!(recheck("{}").unwrap_err().contains("no `claims`"));
+    assert!(recheck("{}")
+        .unwrap_err()
+        .to_string()
+        .contains("no `claims`"));
     // A proof that is not well written.
     let r = serde_json::json!({"claims": [{"id": "x", "verdict": "holds", "strength": "proof", "proofs": [{"conclusion": "holds"}]}]});
     let out = recheck(&r.to_string()).unwrap();

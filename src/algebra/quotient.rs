@@ -86,9 +86,10 @@ impl Open {
 }
 
 /// Why a division could not be carried out.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum DivideError {
     /// The divisor is identically zero.
+    #[error("division by an identically zero divisor")]
     ByZero,
 }
 

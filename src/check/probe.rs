@@ -119,18 +119,31 @@ impl Probe {
     /// The expression in floating point at the parameter values `at` (by name), by
     /// the interpreter: num-dual gradients, `f64` matrices and square roots, so a
     /// second route to [`Probe::exact`]. Parameters it does not name are 0.
-    pub fn at(&self, at: &[(&str, f64)]) -> Result<f64, String> {
+    pub fn at(&self, at: &[(&str, f64)]) -> Result<f64, ProbeError> {
         let side = self.node();
-        let node = side.node.as_ref().map_err(|e| e.message.clone())?;
-        let mut env = self.env().map_err(|d| d.to_string())?;
+        let node = side
+            .node
+            .as_ref()
+            .map_err(|e| ProbeError::Side(side.origin.diagnostic(e.span, e.message.clone())))?;
+        let mut env = self.env()?;
         let mut point: BTreeMap<Var, Rational> = BTreeMap::new();
         for (name, x) in at {
             let v = env.vars.intern(name);
-            let q = crate::algebra::rational::from_f64_exact(*x)
-                .ok_or_else(|| format!("{name} = {x} is not finite"))?;
+            let q = crate::algebra::rational::from_f64_exact(*x).ok_or_else(|| {
+                ProbeError::NotFinite {
+                    name: (*name).to_owned(),
+                    value: *x,
+                }
+            })?;
             point.insert(v, q);
         }
-        crate::decide::reverify::interpret_scalar(&self.decls, &self.check, &env, &point, node)
+        Ok(crate::decide::reverify::interpret_scalar(
+            &self.decls,
+            &self.check,
+            &env,
+            &point,
+            node,
+        )?)
     }
 }
 
@@ -147,36 +160,63 @@ fn exact_side(
     Ok(value.at(&[]).to_ratfunc())
 }
 
+/// Why a probe or a curve has no value.
+#[derive(Debug, thiserror::Error)]
+pub enum ProbeError {
+    /// The file the expression is read in is malformed.
+    #[error("{0}")]
+    Input(#[from] Diagnostic),
+    /// The expression is malformed.
+    #[error("{}", .0.message)]
+    Side(Diagnostic),
+    #[error("{0}")]
+    NoValue(#[from] crate::decide::reverify::NoValue),
+    #[error("{name} = {value} is not finite")]
+    NotFinite { name: String, value: f64 },
+    #[error("`{curve}` is not a number at {grid} = {value}: it reads a parameter that is neither {grid} nor fixed; give it with --set NAME=VALUE")]
+    Unfixed {
+        curve: String,
+        grid: String,
+        value: String,
+    },
+}
+
 /// A curve's values on its grid: `None` where the curve is undefined (a square root of
 /// a negative number, a pole), with the first reason. An error when a value depends on
 /// a parameter that is neither the grid's nor fixed by an assumption.
 pub fn curve_values(
     curve: &Curve,
     grid: &Grid,
-) -> Result<(Vec<Option<f64>>, Option<String>), String> {
-    let mut env = ExactEnv::new(&curve.decls, &curve.check.defs, &curve.check.assumptions)
-        .map_err(|d| d.to_string())?;
+) -> Result<(Vec<Option<f64>>, Option<String>), ProbeError> {
+    let mut env = ExactEnv::new(&curve.decls, &curve.check.defs, &curve.check.assumptions)?;
     if let Some(domain) = curve.check.strategy.exact_domain() {
         env.set_domain(domain);
     }
     let side = &curve.check.chains[0][0];
-    let node = side.node.as_ref().map_err(|e| e.message.clone())?;
+    let node = side
+        .node
+        .as_ref()
+        .map_err(|e| ProbeError::Side(side.origin.diagnostic(e.span, e.message.clone())))?;
     let x = env.vars.intern(&grid.name);
     let mut first_gap = None;
     let mut values = Vec::with_capacity(grid.values.len());
     for value in &grid.values {
         let point = BTreeMap::from([(x, value.clone())]);
-        match crate::decide::reverify::interpret_with(&curve.decls, &curve.check, &env, &point, node, f64::NAN)
-        {
+        match crate::decide::reverify::interpret_with(
+            &curve.decls,
+            &curve.check,
+            &env,
+            &point,
+            node,
+            f64::NAN,
+        ) {
             Ok(y) if y.is_finite() => values.push(Some(y)),
             Ok(_) => {
-                return Err(format!(
-                    "`{}` is not a number at {} = {}: it reads a parameter that is neither {} nor fixed; give it with --set NAME=VALUE",
-                    curve.text,
-                    grid.name,
-                    value,
-                    grid.name
-                ))
+                return Err(ProbeError::Unfixed {
+                    curve: curve.text.clone(),
+                    grid: grid.name.clone(),
+                    value: value.to_string(),
+                })
             }
             Err(why) => {
                 first_gap.get_or_insert_with(|| format!("{} = {value}: {why}", grid.name));

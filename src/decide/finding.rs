@@ -206,9 +206,18 @@ pub struct Expansion {
     /// Each component: the free indices' values (1-based) and the canonical
     /// polynomial, truncated; or why the side could not be expanded, as `explain`
     /// prints it.
-    pub components: Result<Vec<Component>, String>,
+    pub components: Result<Vec<Component>, Unexpanded>,
     /// Whether components were left out.
     pub more: bool,
+}
+
+/// Why a side was not expanded.
+#[derive(Clone, Debug, PartialEq, Serialize, thiserror::Error)]
+pub enum Unexpanded {
+    #[error("ill-formed as printed: {0}")]
+    IllFormed(String),
+    #[error("(cannot expand: {0})")]
+    Refused(String),
 }
 
 /// One component of an expanded side: the free indices' values (1-based) and the

@@ -5,7 +5,7 @@
 //! a rational point that satisfies the assumptions (a point on the unit sphere for
 //! the normal).
 
-use super::finding::{Expansion, Finding, Record};
+use super::finding::{Expansion, Finding, Record, Unexpanded};
 use super::indices::{self, Symbolic};
 use super::outcome::{Counterexample, Method, Outcome};
 use super::points::{point_where_differ, shown_point};
@@ -52,7 +52,7 @@ fn expansion(
     decls: &Decls,
     (chain, side): (usize, usize),
     text: &str,
-    value: Result<&Labeled, String>,
+    value: Result<&Labeled, Unexpanded>,
 ) -> Expansion {
     let (components, more) = match value {
         Err(why) => (Err(why), false),
@@ -100,10 +100,10 @@ fn expand_rest(
     for (ci, chain) in check.chains.iter().enumerate().skip(from) {
         for (si, side) in chain.iter().enumerate() {
             let value = match &side.node {
-                Err(e) => Err(format!("ill-formed as printed: {}", e.message)),
+                Err(e) => Err(Unexpanded::IllFormed(e.message.clone())),
                 Ok(node) => env
                     .eval(node, &side.origin)
-                    .map_err(|r| format!("(cannot expand: {})", r.diagnostic().message)),
+                    .map_err(|r| Unexpanded::Refused(r.diagnostic().message.clone())),
             };
             let e = expansion(
                 env,
@@ -237,7 +237,7 @@ fn decide_recording(
                     Err(why) => {
                         return Ok(Outcome::undecided(Method::Exact, 0).with_finding(
                             Finding::ResourceLimit {
-                                what: why,
+                                what: why.to_string(),
                                 at: chain[k]
                                     .origin
                                     .diagnostic(Default::default(), "")

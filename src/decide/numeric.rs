@@ -682,16 +682,46 @@ impl Variables {
     }
 }
 
+/// Why a derivative with respect to some components is ambiguous under the assumptions.
+#[derive(Debug, thiserror::Error)]
+enum Ambiguous {
+    #[error("`{symbol}` is tied to the substitution `{assumption}`; derivatives with respect to it are ambiguous")]
+    Substitution { symbol: String, assumption: String },
+    #[error("the assumptions fix every component of {wrt}: there is nothing to differentiate")]
+    AllFixed { wrt: String },
+    #[error("`{dependent}` depends on a power or product of `{on}` through the assumptions; derivatives with respect to `{symbol}` are ambiguous")]
+    Nonlinear {
+        dependent: String,
+        on: String,
+        symbol: String,
+    },
+    #[error("`{dependent}` depends on `{on}` through the assumptions but is not a variable of the derivative; derivatives with respect to `{symbol}` are ambiguous")]
+    DependentOutside {
+        dependent: String,
+        on: String,
+        symbol: String,
+    },
+    #[error("`{dependent}` is tied to `{on}`, which is not a variable of the derivative; derivatives with respect to `{symbol}` are ambiguous")]
+    TiedOutside {
+        dependent: String,
+        on: String,
+        symbol: String,
+    },
+}
+
 /// The free and tied components of `wrt`; an error when a derivative would be
 /// ambiguous (a component tied to one outside `wrt`, or to a whole-symbol substitution).
-fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String> {
+fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, Ambiguous> {
     use crate::derivation::parametrisation::Constrained;
     let (decls, check, p) = (sampler.decls, sampler.check, &sampler.parametrisation);
     let mut free: Vec<Component> = Vec::new();
     for symbol in wrt {
         for sub in p.substituted(&check.assumptions) {
             if sub.symbol == symbol || sub.body.symbols().contains(symbol.as_str()) {
-                return Err(format!("`{symbol}` is tied to the substitution `{}`; derivatives with respect to it are ambiguous", sub.assumption.text));
+                return Err(Ambiguous::Substitution {
+                    symbol: symbol.clone(),
+                    assumption: sub.assumption.text.clone(),
+                });
             }
         }
         let rank = decls.symbols.get(symbol).copied().unwrap_or(0);
@@ -702,10 +732,9 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String>
         }
     }
     if free.is_empty() {
-        return Err(format!(
-            "the assumptions fix every component of {}: there is nothing to differentiate",
-            wrt.join(", ")
-        ));
+        return Err(Ambiguous::AllFixed {
+            wrt: wrt.join(", "),
+        });
     }
     let in_wrt = |c: &Component| wrt.contains(&c.0);
     let mut tied = Vec::new();
@@ -719,13 +748,11 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String>
             .flat_map(|(p, _)| p.iter())
             .find(|(f, _)| free.contains(f))
         {
-            return Err(format!(
-                "`{}` depends on a power or product of `{}` through the assumptions; \
-                 derivatives with respect to `{}` are ambiguous",
-                component_name(&d.0, &d.1),
-                component_name(&f.0, &f.1),
-                f.0
-            ));
+            return Err(Ambiguous::Nonlinear {
+                dependent: component_name(&d.0, &d.1),
+                on: component_name(&f.0, &f.1),
+                symbol: f.0.clone(),
+            });
         }
         let touches = terms.iter().any(|(f, _)| free.contains(f));
         if !in_wrt(d) && !touches {
@@ -736,24 +763,20 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, String>
                 .iter()
                 .find(|(f, _)| free.contains(f))
                 .expect("touches");
-            return Err(format!(
-                "`{}` depends on `{}` through the assumptions but is not a variable of the derivative; \
-                 derivatives with respect to `{}` are ambiguous",
-                component_name(&d.0, &d.1),
-                component_name(&f.0, &f.1),
-                f.0
-            ));
+            return Err(Ambiguous::DependentOutside {
+                dependent: component_name(&d.0, &d.1),
+                on: component_name(&f.0, &f.1),
+                symbol: f.0.clone(),
+            });
         }
         let mut linear = Vec::new();
         for (f, q) in terms.iter().copied() {
             let Some(k) = free.iter().position(|c| c == f) else {
-                return Err(format!(
-                    "`{}` is tied to `{}`, which is not a variable of the derivative; derivatives with \
-                     respect to `{}` are ambiguous",
-                    component_name(&d.0, &d.1),
-                    component_name(&f.0, &f.1),
-                    d.0
-                ));
+                return Err(Ambiguous::TiedOutside {
+                    dependent: component_name(&d.0, &d.1),
+                    on: component_name(&f.0, &f.1),
+                    symbol: d.0.clone(),
+                });
             };
             linear.push((k, q.to_f64()));
         }
@@ -945,8 +968,11 @@ pub fn decide_gradient(
     let wrt: Vec<String> = closed_forms.iter().map(|(s, _)| s.clone()).collect();
     let mut sampler = Sampler::new(decls, check, sampling, function)?;
     sampler.record(sink, vec![function.clone()]);
-    let vars =
-        variables(&sampler, &wrt).map_err(|m| function.origin.diagnostic(function.node.span, m))?;
+    let vars = variables(&sampler, &wrt).map_err(|m| {
+        function
+            .origin
+            .diagnostic(function.node.span, m.to_string())
+    })?;
     let convention = match (vars.tied.first(), convention) {
         (None, _) => None,
         (Some(_), Some(c)) => Some(*c),
@@ -1179,8 +1205,11 @@ pub fn decide_convex(
     };
     let mut sampler = Sampler::new(decls, check, sampling, function)?;
     sampler.record(sink, vec![function.clone()]);
-    let vars =
-        variables(&sampler, wrt).map_err(|m| function.origin.diagnostic(function.node.span, m))?;
+    let vars = variables(&sampler, wrt).map_err(|m| {
+        function
+            .origin
+            .diagnostic(function.node.span, m.to_string())
+    })?;
     let mut excluded = 0;
     let mut smallest = f64::INFINITY;
     for _ in 0..sampling.samples {

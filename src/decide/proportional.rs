@@ -123,6 +123,16 @@ pub fn reads_parameters(env: &ExactEnv<'_>, (l, r): (&Labeled, &Labeled)) -> boo
             .any(|q| q.variables().iter().any(|v| parameters.contains(v)))
 }
 
+/// Why no reference component was found: a polynomial past its limits, or no rational
+/// point among the candidates tried.
+#[derive(Debug, thiserror::Error)]
+pub enum NoReference {
+    #[error("{0}")]
+    Limit(#[from] PolyError),
+    #[error("no rational point found where the right side is nonzero and the left side defined, to fix the factor")]
+    NoPoint,
+}
+
 /// The reference of a pair of sides: the first component (in index order) whose right
 /// side is not identically zero (modulo n·n = 1), at a point where it is nonzero.
 /// `Ok(None)` when the right side is zero in every component: then the sides are
@@ -133,29 +143,23 @@ pub fn reference(
     dim: usize,
     (l, r): (&Labeled, &Labeled),
     labels: &[char],
-) -> Result<Option<Reference>, String> {
+) -> Result<Option<Reference>, NoReference> {
     let normal = env.normal_vars();
     let zero = Quotient::default();
     for a in assignments(dim, labels.len()) {
         let assignment: Vec<(char, usize)> = labels.iter().copied().zip(a).collect();
         let rp = r.at(&assignment);
-        let zero_there = Identities::new(normal)
-            .compare(rp, &zero)
-            .map_err(|e: PolyError| e.to_string())?
-            .is_none();
+        let zero_there = Identities::new(normal).compare(rp, &zero)?.is_none();
         if zero_there {
             continue;
         }
         // Nonzero as a function, so a point where it is nonzero exists; the search
         // tries a fixed number of candidates and may miss it.
-        let missed = || {
-            "no rational point found where the right side is nonzero and the left side defined, to fix the factor".to_owned()
-        };
         let (point, rhs, _) =
-            point_where_differ(normal, rp, &zero, env.domain()).ok_or_else(missed)?;
+            point_where_differ(normal, rp, &zero, env.domain()).ok_or(NoReference::NoPoint)?;
         let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
         let lp = l.at(&assignment);
-        let lhs = lp.eval(&at).ok_or_else(missed)?;
+        let lhs = lp.eval(&at).ok_or(NoReference::NoPoint)?;
         // λ with every variable but the parameters fixed at the point.
         let parameters = env.parameter_vars();
         let keep = |v: Var| (!parameters.contains(&v)).then(|| at(v));
@@ -164,7 +168,7 @@ pub fn reference(
             .fix(&keep)
             .zip(rp.to_ratfunc().fix(&keep))
             .and_then(|(a, b)| &a / &b)
-            .ok_or_else(missed)?;
+            .ok_or(NoReference::NoPoint)?;
         return Ok(Some(Reference {
             assignment,
             point,

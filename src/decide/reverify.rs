@@ -28,11 +28,13 @@ use super::sampler::{relation_holds, Sampler};
 use crate::algebra::{Quotient, Tensor};
 use crate::derivation::{Check, Constraint, Expression, Relation};
 use crate::eval::exact::env::{component_name, ExactEnv, Labeled};
+use crate::eval::real::RealError;
 use crate::eval::real::{component_pairs, RealEnv};
 use crate::eval::state::State;
 use crate::eval::taylor::TaylorFields;
 use crate::kernel::{Rational, Var};
 use crate::lang::Decls;
+use crate::lang::Diagnostic;
 use crate::tolerance::REVERIFY_AGREEMENT;
 use rustc_hash::FxHashMap as HashMap;
 use std::cell::RefCell;
@@ -52,7 +54,7 @@ pub(crate) fn exact_counterexample(
     // Variables the point leaves out do not occur in the sides; any value will do as
     // long as the assumptions can be evaluated there (`S = 3 V / (2 R_g)` cannot at
     // R_g = 0), so a few are tried.
-    let mut last = String::new();
+    let mut last = NoValue::NotScalar;
     // Derivatives of fields are taken by central differences (see `taylor`), to the
     // stencil's accuracy rather than to rounding.
     let (agreement, how) = if check.reads().differentiates {
@@ -69,7 +71,9 @@ pub(crate) fn exact_counterexample(
             Err(why) => last = why,
         }
     }
-    Err(Rejection::CannotEvaluate { message: last })
+    Err(Rejection::CannotEvaluate {
+        message: last.to_string(),
+    })
 }
 
 /// Whether the interpreter's values agree with the exact ones.
@@ -97,6 +101,22 @@ fn confirm(
     }
 }
 
+/// Why the floating-point interpreter gave no value to confirm with.
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum NoValue {
+    /// A side of the statement could not be read.
+    #[error("{}", .0.message)]
+    Side(Diagnostic),
+    #[error("{}", .0.message)]
+    Eval(RealError),
+    #[error("the assumptions cannot be evaluated there: {}", .0.message)]
+    Assumptions(RealError),
+    #[error("not a scalar")]
+    NotScalar,
+    #[error("the counterexample's indices are not among the components")]
+    Indices,
+}
+
 /// Both sides of the counterexample's equality by the interpreter at `point`, the
 /// variables it leaves out set to `absent`.
 fn float_values(
@@ -106,7 +126,7 @@ fn float_values(
     point: &BTreeMap<Var, Rational>,
     absent: f64,
     cx: &Counterexample,
-) -> Result<(f64, f64), String> {
+) -> Result<(f64, f64), NoValue> {
     let (real, n) = interpreter_at(decls, check, env, point, absent)?;
     let chain = &check.chains[cx.chain - 1];
     // Only the counterexample's component is evaluated where the side allows it.
@@ -115,13 +135,16 @@ fn float_values(
         .iter()
         .filter_map(|(c, &v)| Some((c.chars().next()?, v.checked_sub(1)?)))
         .collect();
-    let side = |k: usize| -> Result<crate::eval::real::Labeled<f64>, String> {
-        let node = chain[k].node.as_ref().map_err(|e| e.message.clone())?;
+    let side = |k: usize| -> Result<crate::eval::real::Labeled<f64>, NoValue> {
+        let node = chain[k]
+            .node
+            .as_ref()
+            .map_err(|e| NoValue::Side(chain[k].origin.diagnostic(e.span, e.message.clone())))?;
         match node.at_indices(&at) {
             Some(fixed) => real.eval(&fixed, &n),
             None => real.eval(node, &n),
         }
-        .map_err(|e| e.message)
+        .map_err(NoValue::Eval)
     };
     let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
     pick(decls.dim, &l, &r, cx)
@@ -135,8 +158,8 @@ pub(crate) fn interpret_scalar(
     env: &ExactEnv<'_>,
     point: &BTreeMap<Var, Rational>,
     node: &crate::lang::Node,
-) -> Result<f64, String> {
-    let mut last = String::new();
+) -> Result<f64, NoValue> {
+    let mut last = NoValue::NotScalar;
     for absent in [0.0, 1.0, 0.577_215_664_901_532_9] {
         match interpret_with(decls, check, env, point, node, absent) {
             Ok(v) => return Ok(v),
@@ -155,10 +178,10 @@ pub(crate) fn interpret_with(
     point: &BTreeMap<Var, Rational>,
     node: &crate::lang::Node,
     absent: f64,
-) -> Result<f64, String> {
+) -> Result<f64, NoValue> {
     let (real, n) = interpreter_at(decls, check, env, point, absent)?;
-    let (_, v) = real.eval(node, &n).map_err(|e| e.message)?;
-    v.into_scalar().ok_or_else(|| "not a scalar".to_owned())
+    let (_, v) = real.eval(node, &n).map_err(NoValue::Eval)?;
+    v.into_scalar().ok_or(NoValue::NotScalar)
 }
 
 /// The interpreter's environment at `point`, the variables it leaves out set to
@@ -169,7 +192,7 @@ fn interpreter_at<'c>(
     env: &ExactEnv<'_>,
     point: &BTreeMap<Var, Rational>,
     absent: f64,
-) -> Result<(RealEnv<'c, f64>, Vec<f64>), String> {
+) -> Result<(RealEnv<'c, f64>, Vec<f64>), NoValue> {
     let value = |name: &str| {
         env.vars
             .lookup(name)
@@ -206,7 +229,7 @@ fn interpreter_at<'c>(
     }
     if let Some(p) = env.parametrisation() {
         real.assume(p, &check.assumptions, &n)
-            .map_err(|e| format!("the assumptions cannot be evaluated there: {}", e.message))?;
+            .map_err(NoValue::Assumptions)?;
     }
     Ok((real, n))
 }
@@ -229,7 +252,7 @@ fn pick(
     l: &crate::eval::real::Labeled<f64>,
     r: &crate::eval::real::Labeled<f64>,
     cx: &Counterexample,
-) -> Result<(f64, f64), String> {
+) -> Result<(f64, f64), NoValue> {
     let (labels, pairs) = component_pairs(dim, l, r);
     let wanted: Vec<usize> = labels
         .iter()
@@ -239,7 +262,7 @@ fn pick(
         .into_iter()
         .find(|(a, _, _)| *a == wanted)
         .map(|(_, lf, rf)| (lf, rf))
-        .ok_or_else(|| "the counterexample's indices are not among the components".to_owned())
+        .ok_or(NoValue::Indices)
 }
 
 /// The numeric strategy's counterexample at `state`, confirmed exactly where the
@@ -466,7 +489,7 @@ fn by_interpreter(
             .map_err(|e| cannot(e.message))
     };
     let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
-    let (lf, rf) = pick(sampler.decls.dim, &l, &r, cx).map_err(cannot)?;
+    let (lf, rf) = pick(sampler.decls.dim, &l, &r, cx).map_err(|e| cannot(e.to_string()))?;
     let (ok, residual) = relation_holds(relation, lf, rf);
     if ok {
         return Err(Rejection::InterpreterSatisfied {

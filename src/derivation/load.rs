@@ -19,34 +19,27 @@ use crate::lang::{
 };
 use crate::lang::{Node, NodeKind};
 use std::collections::BTreeMap;
-use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use toml::Spanned;
 
 /// Why derivation files could not be read.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum LoadError {
     /// The file or directory could not be read at all.
+    #[error("error: cannot read {path}: {message}")]
     Io { path: String, message: String },
     /// The file was read but is malformed.
+    #[error("{}", paragraphs(.0))]
     Invalid(Vec<Diagnostic>),
 }
 
-impl fmt::Display for LoadError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            LoadError::Io { path, message } => write!(f, "error: cannot read {path}: {message}"),
-            LoadError::Invalid(ds) => {
-                let parts: Vec<String> = ds.iter().map(ToString::to_string).collect();
-                f.write_str(&parts.join("\n\n"))
-            }
-        }
-    }
+/// Diagnostics one after another, a blank line between them.
+fn paragraphs(ds: &[Diagnostic]) -> String {
+    let parts: Vec<String> = ds.iter().map(ToString::to_string).collect();
+    parts.join("\n\n")
 }
-
-impl std::error::Error for LoadError {}
 
 impl From<Diagnostic> for LoadError {
     fn from(d: Diagnostic) -> Self {
@@ -184,7 +177,8 @@ pub(super) fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
     };
     if is_stdin(path) {
         // Read once, however often the file is read (`--only` reads files twice).
-        static STDIN: std::sync::OnceLock<Result<Vec<u8>, String>> = std::sync::OnceLock::new();
+        static STDIN: std::sync::OnceLock<Result<Vec<u8>, Arc<std::io::Error>>> =
+            std::sync::OnceLock::new();
         let read = STDIN.get_or_init(|| {
             let mut bytes = Vec::new();
             std::io::stdin()
@@ -192,9 +186,9 @@ pub(super) fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
                 .take(MAX_FILE_BYTES + 1)
                 .read_to_end(&mut bytes)
                 .map(|_| bytes)
-                .map_err(|e| e.to_string())
+                .map_err(Arc::new)
         });
-        let bytes = read.clone().map_err(io)?;
+        let bytes = read.clone().map_err(|e| io(e.to_string()))?;
         if bytes.len() as u64 > MAX_FILE_BYTES {
             return Err(too_big());
         }
@@ -479,7 +473,7 @@ impl Loader {
             self.diag(s.span(), format!("cannot read `{}` as a range: {why}", s.get_ref()))
                 .with_help("write \"f_r = 0.05 .. 3 : 0.05\" (a declared scalar, from .. to, and an optional step)")
         };
-        parse_grid(s.get_ref(), decls).map_err(|why| bad(&why))
+        parse_grid(s.get_ref(), decls).map_err(|why| bad(&why.to_string()))
     }
 
     /// `orders = { voigt = ["11", "22", "12", "21"] }`: each position a string of
@@ -1683,22 +1677,39 @@ pub(super) fn entrywise(
 /// The most points a figure's range may have.
 const MAX_POINTS: usize = 10_000;
 
+/// Why a range of a figure could not be read.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum GridError {
+    #[error("no `=` between the parameter and its range")]
+    NoEquals,
+    #[error("`{0}` is not a declared scalar")]
+    NotScalar(String),
+    #[error("no `..` between the bounds")]
+    NoDots,
+    #[error("`{0}` is not a number")]
+    NotNumber(String),
+    #[error("the range is empty (`to` must exceed `from`)")]
+    Empty,
+    #[error("the step must be positive")]
+    Step,
+    #[error("the step is longer than the range: a curve needs two points")]
+    LongStep,
+    #[error("more than {MAX_POINTS} points")]
+    TooMany,
+}
+
 /// Reads `NAME = FROM .. TO [: STEP]` (also the `--x` of `plot`, without spaces).
-pub fn parse_grid(text: &str, decls: &Decls) -> Result<Grid, String> {
-    let (name, range) = text
-        .split_once('=')
-        .ok_or("no `=` between the parameter and its range")?;
+pub fn parse_grid(text: &str, decls: &Decls) -> Result<Grid, GridError> {
+    let (name, range) = text.split_once('=').ok_or(GridError::NoEquals)?;
     let name = name.trim();
     if decls.symbols.get(name).is_none_or(|&rank| rank != 0) {
-        return Err(format!("`{name}` is not a declared scalar"));
+        return Err(GridError::NotScalar(name.to_owned()));
     }
     let (bounds, step) = match range.split_once(':') {
         Some((b, st)) => (b, Some(st.trim())),
         None => (range, None),
     };
-    let (from, to) = bounds
-        .split_once("..")
-        .ok_or("no `..` between the bounds")?;
+    let (from, to) = bounds.split_once("..").ok_or(GridError::NoDots)?;
     let number = |t: &str| {
         let t = t.trim();
         let (n, d) = t.split_once('/').unwrap_or((t, "1"));
@@ -1708,11 +1719,11 @@ pub fn parse_grid(text: &str, decls: &Decls) -> Result<Grid, String> {
         let n = if minus.is_some() { n.map(|x| -x) } else { n };
         n.zip(crate::lang::parser::parse_decimal(d))
             .and_then(|(n, d)| n.checked_div(&d))
-            .ok_or(format!("`{t}` is not a number"))
+            .ok_or_else(|| GridError::NotNumber(t.to_owned()))
     };
     let (from, to) = (number(from)?, number(to)?);
     if to <= from {
-        return Err("the range is empty (`to` must exceed `from`)".into());
+        return Err(GridError::Empty);
     }
     let span = &to - &from;
     let step = match step {
@@ -1722,15 +1733,15 @@ pub fn parse_grid(text: &str, decls: &Decls) -> Result<Grid, String> {
             .expect("100 is not zero"),
     };
     if step.is_negative() || step.is_zero() {
-        return Err("the step must be positive".into());
+        return Err(GridError::Step);
     }
     let steps =
         crate::algebra::rational::floor(&span.checked_div(&step).expect("the step is not zero"));
     if steps < Rational::int(1) {
-        return Err("the step is longer than the range: a curve needs two points".into());
+        return Err(GridError::LongStep);
     }
     if steps >= Rational::int(MAX_POINTS as i64) {
-        return Err(format!("more than {MAX_POINTS} points"));
+        return Err(GridError::TooMany);
     }
     let count = steps.to_f64() as usize;
     let values = (0..=count)

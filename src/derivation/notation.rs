@@ -43,7 +43,8 @@ pub struct Notation {
 }
 
 /// Why an entry of a table is malformed.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
+#[error("{message}")]
 pub struct EntryError {
     pub message: String,
 }

@@ -307,10 +307,10 @@ impl Tape {
                 }
                 Op::Powi(a, k) => v[a].powi(k),
                 Op::Apply(f, a, span) => super::real::elementary(f, v[a].clone())
-                    .map_err(|message| super::real::undefined(span, message))?,
+                    .map_err(|e| super::real::undefined(span, e.to_string()))?,
                 Op::Apply2(f, a, b, span) => {
                     super::real::elementary2(f, v[a].clone(), v[b].clone())
-                        .map_err(|message| super::real::undefined(span, message))?
+                        .map_err(|e| super::real::undefined(span, e.to_string()))?
                 }
                 Op::MaxN(k, span) => self.maxn[k].max_over_angle(inputs, n, span, quad)?,
                 Op::Avg(k, c) => {

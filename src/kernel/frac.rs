@@ -25,10 +25,12 @@ pub struct Frac {
 }
 
 /// Why a fraction operation has no result.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum FracError {
+    #[error("division by zero")]
     DivisionByZero,
     /// An exponent or a multiplicity beyond the kernel's bounds.
+    #[error("an exponent or a multiplicity beyond the kernel's bounds")]
     TooLarge,
 }
 

@@ -129,7 +129,8 @@ pub struct Script {
 }
 
 /// Why a printed statement could not be read, and where.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{message}")]
 pub struct LatexError {
     pub span: Span,
     pub message: String,

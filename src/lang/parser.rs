@@ -360,7 +360,8 @@ pub enum ErrorKind {
 }
 
 /// An error inside one expression's text.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{message}")]
 pub struct LangError {
     pub kind: ErrorKind,
     pub span: Span,

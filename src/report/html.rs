@@ -8,6 +8,7 @@
 use super::evidence::evidence;
 use super::graph;
 use super::layout::{layered, Layout};
+use super::mathml::Unrendered;
 use super::summary::Summary;
 use crate::check::Decided;
 use crate::decide::Strength;
@@ -54,14 +55,14 @@ fn text(s: &str) -> String {
 ///
 /// The converter's output is re-emitted through an allowlist ([`super::mathml`]): text
 /// the converter copies unescaped (`\operatorname{<script>…}`) stays text.
-pub fn mathml(latex: &str, display: bool) -> Result<String, String> {
+pub fn mathml(latex: &str, display: bool) -> Result<String, Unrendered> {
     use pulldown_latex::config::DisplayMode;
     use pulldown_latex::{push_mathml, Parser, RenderConfig, Storage};
     super::mathml::within_bounds(latex)?;
     let storage = Storage::new();
     let events: Vec<_> = Parser::new(latex, &storage).collect();
     if let Some(Err(e)) = events.iter().find(|e| e.is_err()) {
-        return Err(e.to_string());
+        return Err(Unrendered::Converter(e.to_string()));
     }
     let config = RenderConfig {
         display_mode: if display {
@@ -72,7 +73,8 @@ pub fn mathml(latex: &str, display: bool) -> Result<String, String> {
         ..RenderConfig::default()
     };
     let mut out = String::new();
-    push_mathml(&mut out, events.into_iter(), config).map_err(|e| e.to_string())?;
+    push_mathml(&mut out, events.into_iter(), config)
+        .map_err(|e| Unrendered::Converter(e.to_string()))?;
     Ok(super::mathml::sanitized(&out))
 }
 
@@ -83,7 +85,7 @@ fn formula(latex: &str, display: bool) -> String {
         Err(why) => format!(
             "<code class=\"source\">{}</code> <span class=\"note\">(shown as LaTeX source: {})</span>",
             escape(latex),
-            escape(&why)
+            escape(&why.to_string())
         ),
     }
 }

@@ -90,11 +90,23 @@ const ATTRIBUTES: &[&str] = &[
 
 const MAX_VALUE: usize = 48;
 
+/// Why a formula is not converted: past a bound of its size.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Unrendered {
+    #[error("longer than {MAX_LATEX} bytes")]
+    TooLong,
+    #[error("nested more than {MAX_GROUP_DEPTH} groups deep")]
+    TooDeep,
+    /// What the converter said about LaTeX it cannot read.
+    #[error("{0}")]
+    Converter(String),
+}
+
 /// Whether `latex` is small enough to convert: within [`MAX_LATEX`] bytes and
 /// [`MAX_GROUP_DEPTH`] nested groups. `Err` says why not.
-pub fn within_bounds(latex: &str) -> Result<(), String> {
+pub fn within_bounds(latex: &str) -> Result<(), Unrendered> {
     if latex.len() > MAX_LATEX {
-        return Err(format!("longer than {MAX_LATEX} bytes"));
+        return Err(Unrendered::TooLong);
     }
     let (mut depth, mut deepest) = (0usize, 0usize);
     let mut rest = latex;
@@ -118,7 +130,7 @@ pub fn within_bounds(latex: &str) -> Result<(), String> {
         deepest = deepest.max(depth);
     }
     if deepest > MAX_GROUP_DEPTH {
-        return Err(format!("nested more than {MAX_GROUP_DEPTH} groups deep"));
+        return Err(Unrendered::TooDeep);
     }
     Ok(())
 }

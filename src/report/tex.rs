@@ -187,9 +187,38 @@ const ENVIRONMENTS: &[&str] = &[
 /// Control symbols (a backslash and one other character) a formula may use.
 const SYMBOLS: &str = ",;:! {}|_&#%$";
 
+/// The first token of a formula that may not enter a `.tex` file.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Refused {
+    #[error("a backslash at the end")]
+    TrailingBackslash,
+    /// A control word or symbol outside the allowlist.
+    #[error("`\\{0}`")]
+    Macro(String),
+    #[error("`\\{0}` of an environment not allowed")]
+    Environment(String),
+    #[error("`\\end{{{0}}}` without its `\\begin`")]
+    UnopenedEnd(String),
+    #[error("`\\begin{{{0}}}` never ended")]
+    UnendedBegin(String),
+    #[error("a `}}` closing no group")]
+    ClosingBrace,
+    #[error("a `{{` never closed")]
+    OpenBrace,
+    #[error("`&` outside a matrix")]
+    Ampersand,
+    /// `$`, `%` or `#`.
+    #[error("`{0}`")]
+    Special(char),
+    #[error("`^^`")]
+    Caret,
+    #[error("a control character")]
+    Control,
+}
+
 /// Whether `latex` is a formula that may enter a `.tex` file as it is: `Err` names
 /// the first token that may not.
-pub fn check(latex: &str) -> Result<(), String> {
+pub fn check(latex: &str) -> Result<(), Refused> {
     let mut depth = 0usize;
     let mut envs: Vec<&str> = Vec::new();
     let mut rest = latex;
@@ -202,18 +231,18 @@ pub fn check(latex: &str) -> Result<(), String> {
                     .unwrap_or(after.len());
                 if word_len == 0 {
                     let Some(symbol) = after.chars().next() else {
-                        return Err("a backslash at the end".into());
+                        return Err(Refused::TrailingBackslash);
                     };
                     let in_env = !envs.is_empty();
                     if !(SYMBOLS.contains(symbol) || (symbol == '\\' && in_env)) {
-                        return Err(format!("`\\{symbol}`"));
+                        return Err(Refused::Macro(symbol.to_string()));
                     }
                     rest = &after[symbol.len_utf8()..];
                     continue;
                 }
                 let word = &after[..word_len];
                 if !allowed(word) {
-                    return Err(format!("`\\{word}`"));
+                    return Err(Refused::Macro(word.to_owned()));
                 }
                 rest = &after[word_len..];
                 if word == "begin" || word == "end" {
@@ -221,11 +250,11 @@ pub fn check(latex: &str) -> Result<(), String> {
                         .strip_prefix('{')
                         .and_then(|r| r.find('}').map(|k| &r[..k]))
                         .filter(|name| ENVIRONMENTS.contains(name))
-                        .ok_or_else(|| format!("`\\{word}` of an environment not allowed"))?;
+                        .ok_or_else(|| Refused::Environment(word.to_owned()))?;
                     if word == "begin" {
                         envs.push(name);
                     } else if envs.pop() != Some(name) {
-                        return Err(format!("`\\end{{{name}}}` without its `\\begin`"));
+                        return Err(Refused::UnopenedEnd(name.to_owned()));
                     }
                     rest = &rest[name.len() + 2..];
                 }
@@ -233,23 +262,21 @@ pub fn check(latex: &str) -> Result<(), String> {
             }
             '{' => depth += 1,
             '}' => {
-                depth = depth
-                    .checked_sub(1)
-                    .ok_or_else(|| "a `}` closing no group".to_owned())?;
+                depth = depth.checked_sub(1).ok_or(Refused::ClosingBrace)?;
             }
-            '&' if envs.is_empty() => return Err("`&` outside a matrix".into()),
-            '$' | '%' | '#' => return Err(format!("`{c}`")),
-            '^' if after.starts_with('^') => return Err("`^^`".into()),
-            c if c.is_control() => return Err("a control character".into()),
+            '&' if envs.is_empty() => return Err(Refused::Ampersand),
+            '$' | '%' | '#' => return Err(Refused::Special(c)),
+            '^' if after.starts_with('^') => return Err(Refused::Caret),
+            c if c.is_control() => return Err(Refused::Control),
             _ => {}
         }
         rest = after;
     }
     if depth != 0 {
-        return Err("a `{` never closed".into());
+        return Err(Refused::OpenBrace);
     }
     if let Some(env) = envs.last() {
-        return Err(format!("`\\begin{{{env}}}` never ended"));
+        return Err(Refused::UnendedBegin((*env).to_owned()));
     }
     Ok(())
 }

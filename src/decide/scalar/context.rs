@@ -226,7 +226,7 @@ impl Context<'_> {
         &self,
         e: &Expression,
         point: &BTreeMap<Var, Rational>,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, crate::decide::reverify::NoValue> {
         let point = self.complete(point);
         crate::decide::reverify::interpret_scalar(
             self.decls, self.check, &self.env, &point, &e.node,

@@ -37,10 +37,29 @@ pub(crate) fn golden_max(
     Ok(if fm >= fc { (mid, fm) } else { (c, fc) })
 }
 
+/// Why a function has no real value at its argument.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub(crate) enum Undefined {
+    #[error("{function}(…) of {what} ({at})")]
+    Outside {
+        function: &'static str,
+        what: &'static str,
+        at: f64,
+    },
+    #[error("{base}^({exponent}): a real power needs a positive base")]
+    Power { base: f64, exponent: f64 },
+}
+
 /// A scalar function of a number (`f64` or num-dual), or why it is undefined there: the
 /// one definition the interpreter and the compiled tapes share.
-pub(crate) fn elementary<T: DualNum<Primitive = f64>>(f: Func, x: T) -> Result<T, String> {
-    let outside = |what: &str| Err(format!("{}(…) of {} ({})", f.name(), what, x.re()));
+pub(crate) fn elementary<T: DualNum<Primitive = f64>>(f: Func, x: T) -> Result<T, Undefined> {
+    let outside = |what: &'static str| {
+        Err(Undefined::Outside {
+            function: f.name(),
+            what,
+            at: x.re(),
+        })
+    };
     Ok(match f {
         Func::Sqrt if x.re() < 0.0 => return outside("a negative number"),
         Func::Sqrt => x.sqrt(),
@@ -63,7 +82,11 @@ pub(crate) fn elementary<T: DualNum<Primitive = f64>>(f: Func, x: T) -> Result<T
 
 /// A function of two numbers, or why it is undefined there (shared with the tapes).
 /// `min` and `max` pick an argument by value, so their derivative is the picked one's.
-pub(crate) fn elementary2<T: DualNum<Primitive = f64>>(f: Func2, x: T, y: T) -> Result<T, String> {
+pub(crate) fn elementary2<T: DualNum<Primitive = f64>>(
+    f: Func2,
+    x: T,
+    y: T,
+) -> Result<T, Undefined> {
     Ok(match f {
         Func2::Atan2 => x.atan2(y),
         Func2::Min => {
@@ -83,11 +106,10 @@ pub(crate) fn elementary2<T: DualNum<Primitive = f64>>(f: Func2, x: T, y: T) -> 
         Func2::Pow if x.re() > 0.0 => x.powd(y),
         Func2::Pow if x.re() == 0.0 && y.re() > 0.0 => x * T::zero(),
         Func2::Pow => {
-            return Err(format!(
-                "{}^({}): a real power needs a positive base",
-                x.re(),
-                y.re()
-            ))
+            return Err(Undefined::Power {
+                base: x.re(),
+                exponent: y.re(),
+            })
         }
     })
 }

@@ -3,7 +3,8 @@
 use crate::lang::{Node, Span};
 
 /// An evaluation error located in the expression's text.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{message}")]
 pub struct RealError {
     pub span: Span,
     pub message: String,

@@ -140,11 +140,11 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     }
 
     fn apply(&mut self, f: Func, x: T, node: &Node) -> Result<T, RealError> {
-        elementary(f, x).map_err(|m| undefined(node.span, m))
+        elementary(f, x).map_err(|e| undefined(node.span, e.to_string()))
     }
 
     fn apply2(&mut self, f: Func2, x: T, y: T, node: &Node) -> Result<T, RealError> {
-        elementary2(f, x, y).map_err(|m| undefined(node.span, m))
+        elementary2(f, x, y).map_err(|e| undefined(node.span, e.to_string()))
     }
 
     fn pi(&mut self, _node: &Node) -> Result<T, RealError> {
