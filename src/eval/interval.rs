@@ -28,7 +28,7 @@
 //! rounding, never confirm one.
 
 use super::state::State;
-use super::walk::{self, Ring};
+use super::walk::{self, Calculus, Normals, Ring};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::Tensor;
 use crate::derivation::parametrisation::{product_value, Parametrisation};
@@ -516,12 +516,15 @@ impl Arithmetic for &IntervalEnv<'_> {
     fn zero(&mut self) -> Interval {
         Interval::point(0.0)
     }
+
     fn one(&mut self) -> Interval {
         Interval::point(1.0)
     }
+
     fn mul(&mut self, a: Interval, b: &Interval) -> R<Interval> {
         Ok(a.mul(*b))
     }
+
     fn add(&mut self, a: Interval, b: Interval) -> R<Interval> {
         Ok(a.add(b))
     }
@@ -540,19 +543,6 @@ impl Ring for &IntervalEnv<'_> {
 
     fn neg(&mut self, x: Interval) -> Interval {
         x.neg()
-    }
-
-    /// The state's normal is a unit vector to rounding: its exact direction n/|n| is
-    /// enclosed.
-    fn normal(&mut self, n: &[f64]) -> Tensor<Interval> {
-        let d = self.decls.dim;
-        let norm2 = n
-            .iter()
-            .map(|&x| Interval::point(x).powi(2))
-            .fold(Interval::point(0.0), Interval::add);
-        // |n| is about 1: neither the root nor the quotient leaves the domain.
-        let enclosed = |x: f64| Interval::point(x).div(norm2.sqrt().0).0;
-        Tensor::from_fn(d, 1, |i| enclosed(n.get(i[0]).copied().unwrap_or(0.0)))
     }
 
     fn symbol(&mut self, name: &str, _node: &Node) -> R<Tensor<Interval>> {
@@ -627,6 +617,35 @@ impl Ring for &IntervalEnv<'_> {
 
     fn pi(&mut self, _node: &Node) -> R<Interval> {
         Ok(Interval::new(PI, PI, 1))
+    }
+
+    fn not_scalar(&mut self, _node: &Node) -> Enclosure {
+        Enclosure("expected a scalar".into())
+    }
+
+    /// Only a determinant that is exactly 0 is singular; one whose enclosure merely
+    /// contains 0 is divided by, on the domain.
+    fn vanishes(&self, det: &Interval) -> bool {
+        *det == Interval::point(0.0)
+    }
+
+    fn singular(&mut self, _node: &Node) -> Enclosure {
+        Enclosure("a singular matrix".into())
+    }
+}
+
+impl Normals for &IntervalEnv<'_> {
+    /// The state's normal is a unit vector to rounding: its exact direction n/|n| is
+    /// enclosed.
+    fn normal(&mut self, n: &[f64]) -> Tensor<Interval> {
+        let d = self.decls.dim;
+        let norm2 = n
+            .iter()
+            .map(|&x| Interval::point(x).powi(2))
+            .fold(Interval::point(0.0), Interval::add);
+        // |n| is about 1: neither the root nor the quotient leaves the domain.
+        let enclosed = |x: f64| Interval::point(x).div(norm2.sqrt().0).0;
+        Tensor::from_fn(d, 1, |i| enclosed(n.get(i[0]).copied().unwrap_or(0.0)))
     }
 
     /// A polynomial in n of degree ≤ 40 by the rule exact for its degree, at nodes and
@@ -704,7 +723,9 @@ impl Ring for &IntervalEnv<'_> {
             hi: high.max(v.hi),
         })
     }
+}
 
+impl Calculus for &IntervalEnv<'_> {
     fn derivatives(&mut self, _a: &Node, _node: &Node, _n: &[f64]) -> R<Tensor<Interval>> {
         unsupported("a derivative along the position")
     }
@@ -727,20 +748,6 @@ impl Ring for &IntervalEnv<'_> {
         _n: &[f64],
     ) -> R<Tensor<Interval>> {
         unsupported("grad(…)")
-    }
-
-    fn not_scalar(&mut self, _node: &Node) -> Enclosure {
-        Enclosure("expected a scalar".into())
-    }
-
-    /// Only a determinant that is exactly 0 is singular; one whose enclosure merely
-    /// contains 0 is divided by, on the domain.
-    fn vanishes(&self, det: &Interval) -> bool {
-        *det == Interval::point(0.0)
-    }
-
-    fn singular(&mut self, _node: &Node) -> Enclosure {
-        Enclosure("a singular matrix".into())
     }
 }
 

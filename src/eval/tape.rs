@@ -19,7 +19,7 @@
 
 use super::quadrature::Quadrature;
 use super::real::{RealError, MAXN_GRID};
-use super::walk::{self, Ring};
+use super::walk::{self, Calculus, Normals, Ring};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::Definition;
@@ -974,12 +974,15 @@ impl Arithmetic for Compiler<'_> {
     fn zero(&mut self) -> usize {
         self.c(0.0)
     }
+
     fn one(&mut self) -> usize {
         self.c(1.0)
     }
+
     fn mul(&mut self, a: usize, b: &usize) -> Result<usize, Unsupported> {
         Ok(Compiler::mul(self, a, *b))
     }
+
     fn add(&mut self, a: usize, b: usize) -> Result<usize, Unsupported> {
         Ok(Compiler::add(self, a, b))
     }
@@ -999,10 +1002,6 @@ impl Ring for Compiler<'_> {
 
     fn neg(&mut self, x: usize) -> usize {
         Compiler::neg(self, x)
-    }
-
-    fn normal(&mut self, n: &[usize]) -> Tensor<usize> {
-        Tensor::from_fn(self.decls.dim, 1, |i| n[i[0]])
     }
 
     fn symbol(&mut self, name: &str, _node: &Node) -> Result<Tensor<usize>, Unsupported> {
@@ -1063,6 +1062,32 @@ impl Ring for Compiler<'_> {
         Ok(self.c(std::f64::consts::PI))
     }
 
+    fn enter(&mut self, _node: &Node) -> Result<(), Unsupported> {
+        if self.budget == 0 {
+            return Err(Unsupported("the tape grew beyond its size limit".into()));
+        }
+        Ok(())
+    }
+
+    fn not_scalar(&mut self, _node: &Node) -> Unsupported {
+        Unsupported("expected a scalar".into())
+    }
+
+    /// A determinant that folded to the constant 0: singular at every point.
+    fn vanishes(&self, det: &usize) -> bool {
+        self.folded(*det) == Some(0.0)
+    }
+
+    fn singular(&mut self, _node: &Node) -> Unsupported {
+        Unsupported("a singular matrix".into())
+    }
+}
+
+impl Normals for Compiler<'_> {
+    fn normal(&mut self, n: &[usize]) -> Tensor<usize> {
+        Tensor::from_fn(self.decls.dim, 1, |i| n[i[0]])
+    }
+
     fn average(
         &mut self,
         a: &Node,
@@ -1103,6 +1128,21 @@ impl Ring for Compiler<'_> {
         acc.ok_or_else(|| Unsupported("empty quadrature rule".into()))
     }
 
+    fn maximum(&mut self, a: &Node, node: &Node) -> Result<usize, Unsupported> {
+        if self.decls.dim == 3 && !self.decls.normal_in_plane {
+            return Err(Unsupported("maxn needs an in-plane normal".into()));
+        }
+        let sub = self.sub_tape(a)?;
+        if sub.outputs.rank() != 0 {
+            return Err(Unsupported("maxn of a tensor".into()));
+        }
+        self.maxn.push(sub);
+        let k = self.maxn.len() - 1;
+        Ok(self.push(Op::MaxN(k, node.span)))
+    }
+}
+
+impl Calculus for Compiler<'_> {
     fn derivatives(
         &mut self,
         _a: &Node,
@@ -1131,39 +1171,6 @@ impl Ring for Compiler<'_> {
         _n: &[usize],
     ) -> Result<Tensor<usize>, Unsupported> {
         Err(Unsupported("gradients with respect to a symbol".into()))
-    }
-
-    fn maximum(&mut self, a: &Node, node: &Node) -> Result<usize, Unsupported> {
-        if self.decls.dim == 3 && !self.decls.normal_in_plane {
-            return Err(Unsupported("maxn needs an in-plane normal".into()));
-        }
-        let sub = self.sub_tape(a)?;
-        if sub.outputs.rank() != 0 {
-            return Err(Unsupported("maxn of a tensor".into()));
-        }
-        self.maxn.push(sub);
-        let k = self.maxn.len() - 1;
-        Ok(self.push(Op::MaxN(k, node.span)))
-    }
-
-    fn enter(&mut self, _node: &Node) -> Result<(), Unsupported> {
-        if self.budget == 0 {
-            return Err(Unsupported("the tape grew beyond its size limit".into()));
-        }
-        Ok(())
-    }
-
-    fn not_scalar(&mut self, _node: &Node) -> Unsupported {
-        Unsupported("expected a scalar".into())
-    }
-
-    /// A determinant that folded to the constant 0: singular at every point.
-    fn vanishes(&self, det: &usize) -> bool {
-        self.folded(*det) == Some(0.0)
-    }
-
-    fn singular(&mut self, _node: &Node) -> Unsupported {
-        Unsupported("a singular matrix".into())
     }
 }
 

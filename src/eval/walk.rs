@@ -1,14 +1,16 @@
 //! The one tree walk every route evaluates expressions with, generic over the ring it
-//! computes in ([`Ring`]): canonical polynomials under a work budget (the exact
-//! strategy, `exact_ring.rs`), `f64` and num-dual numbers (the interpreter, `real/`), and
-//! op ids of the tape compiler (`tape.rs`), as SymEngine's single visitor does it.
+//! computes in: canonical polynomials under a work budget (`exact/`), `f64` and num-dual
+//! numbers (the interpreter, `real/`), op ids of the tape compiler (`tape.rs`) and
+//! enclosures (`interval.rs`), as SymEngine's single visitor does it.
 //!
 //! The walk owns what the routes have in common — free-index labels, contraction by
-//! [`einsum`], sums, scalar arguments — and asks the ring for what is its own:
-//! the values of symbols and definitions, division, powers, functions, and the two
-//! operations over the normal (`avg`, by exact moments, by quadrature or as a sub-tape;
-//! `maxn`). Independence between routes therefore comes from their methods (canonical
-//! forms against sampling, moments against quadrature), not from copies of this code.
+//! [`einsum`], sums, scalar arguments, matrices — and asks the ring for what is its own,
+//! by capability: [`Ring`] (constants, symbols and definitions, division, powers,
+//! functions), [`Normals`] (the normal and the two operations over it: `avg`, by exact
+//! moments, by quadrature or as a sub-tape; `maxn`) and [`Calculus`] (derivatives along
+//! the position, variations, gradients). Independence between routes therefore comes
+//! from their methods (canonical forms against sampling, moments against quadrature),
+//! not from copies of this code.
 //!
 //! Every value is a tensor whose slots are the node's free letters in sorted order
 //! ([`Node::free_letters`]).
@@ -23,8 +25,11 @@ use crate::lang::parser::{Func, Func2, Wrt};
 use crate::lang::{Node, NodeKind, Target};
 use rustc_hash::FxHashMap as HashMap;
 
-/// What a route computes in. `Normal` is how the walk hands it the normal vector n:
-/// numbers, op ids, or nothing at all when n is a polynomial variable.
+/// What a route computes in: constants, symbols, definitions, quotients, powers and
+/// functions, and what the walk needs to locate an error. `Normal` is how the walk hands
+/// it the normal vector n: numbers, op ids, or nothing at all when n is a polynomial
+/// variable. The operations over n and the derivatives are capabilities of their own
+/// ([`Normals`], [`Calculus`]).
 pub trait Ring: Arithmetic {
     type Normal: ?Sized;
 
@@ -32,7 +37,7 @@ pub trait Ring: Arithmetic {
     fn dim(&self) -> usize;
     fn constant(&mut self, q: &Rational) -> Self::Value;
     fn neg(&mut self, x: Self::Value) -> Self::Value;
-    /// δ_ij, ε_ijk and n_i.
+    /// δ_ij and ε_ijk.
     fn delta(&mut self) -> Tensor<Self::Value> {
         let (zero, one) = (self.zero(), self.one());
         Tensor::from_fn(self.dim(), 2, |i| {
@@ -43,12 +48,13 @@ pub trait Ring: Arithmetic {
             }
         })
     }
+
     fn epsilon(&mut self) -> Tensor<Self::Value> {
         let e = Tensor::<i64>::levi_civita(self.dim());
         let values = [-1, 0, 1].map(|k| self.constant(&Rational::int(k)));
         e.map(|&v| values[(v + 1) as usize].clone())
     }
-    fn normal(&mut self, n: &Self::Normal) -> Tensor<Self::Value>;
+
     /// A declared symbol's components.
     fn symbol(&mut self, name: &str, node: &Node) -> Result<Tensor<Self::Value>, Self::Error>;
     /// A definition's value, slots in its formal order (memoised as the ring sees fit).
@@ -77,6 +83,42 @@ pub trait Ring: Arithmetic {
     ) -> Result<Self::Value, Self::Error>;
     /// π (`node` locates a refusal: it is not rational).
     fn pi(&mut self, node: &Node) -> Result<Self::Value, Self::Error>;
+    /// Called before a node is evaluated (a budget on the walk).
+    fn enter(&mut self, _node: &Node) -> Result<(), Self::Error> {
+        Ok(())
+    }
+
+    /// Called on every node's value (a size limit).
+    fn leave(
+        &mut self,
+        _node: &Node,
+        value: Tensor<Self::Value>,
+    ) -> Result<Tensor<Self::Value>, Self::Error> {
+        Ok(value)
+    }
+
+    /// Locates an error of the contraction at `node`.
+    fn at(&mut self, e: Self::Error, _node: &Node) -> Self::Error {
+        e
+    }
+
+    /// An argument that should be a scalar is not.
+    fn not_scalar(&mut self, node: &Node) -> Self::Error;
+    /// Whether a determinant is zero, so that `inv(A)` or `solve(A, b)` is refused as
+    /// singular ([`Ring::singular`]) rather than divided by: identically zero in exact
+    /// arithmetic, zero at the point in floating point.
+    fn vanishes(&self, det: &Self::Value) -> bool {
+        self.is_exact_zero(det)
+    }
+
+    /// `inv(A)` or `solve(A, b)` of a matrix whose determinant [`Ring::vanishes`].
+    fn singular(&mut self, node: &Node) -> Self::Error;
+}
+
+/// The unit normal and the operations over it: `avg` (by exact moments, by quadrature
+/// or as a sub-tape) and `maxn`.
+pub trait Normals: Ring {
+    fn normal(&mut self, n: &Self::Normal) -> Tensor<Self::Value>;
     /// `avg(arg)` over the unit normal.
     fn average(
         &mut self,
@@ -86,6 +128,12 @@ pub trait Ring: Arithmetic {
     ) -> Result<Tensor<Self::Value>, Self::Error>;
     /// `maxn(arg)` over the in-plane orientation of the normal.
     fn maximum(&mut self, arg: &Node, node: &Node) -> Result<Self::Value, Self::Error>;
+}
+
+/// Derivatives: along the position (of fields), variational, and with respect to a
+/// declared symbol. The tape and the enclosures take none of them and refuse each; the
+/// exact, jet and real rings take all three.
+pub trait Calculus: Ring {
     /// The derivatives of `arg` with respect to every coordinate of the position: a
     /// tensor with `arg`'s slots (its free letters, sorted) and one more, last, for the
     /// coordinate.
@@ -115,33 +163,12 @@ pub trait Ring: Arithmetic {
         node: &Node,
         n: &Self::Normal,
     ) -> Result<Tensor<Self::Value>, Self::Error>;
-    /// Called before a node is evaluated (a budget on the walk).
-    fn enter(&mut self, _node: &Node) -> Result<(), Self::Error> {
-        Ok(())
-    }
-    /// Called on every node's value (a size limit).
-    fn leave(
-        &mut self,
-        _node: &Node,
-        value: Tensor<Self::Value>,
-    ) -> Result<Tensor<Self::Value>, Self::Error> {
-        Ok(value)
-    }
-    /// Locates an error of the contraction at `node`.
-    fn at(&mut self, e: Self::Error, _node: &Node) -> Self::Error {
-        e
-    }
-    /// An argument that should be a scalar is not.
-    fn not_scalar(&mut self, node: &Node) -> Self::Error;
-    /// Whether a determinant is zero, so that `inv(A)` or `solve(A, b)` is refused as
-    /// singular ([`Ring::singular`]) rather than divided by: identically zero in exact
-    /// arithmetic, zero at the point in floating point.
-    fn vanishes(&self, det: &Self::Value) -> bool {
-        self.is_exact_zero(det)
-    }
-    /// `inv(A)` or `solve(A, b)` of a matrix whose determinant [`Ring::vanishes`].
-    fn singular(&mut self, node: &Node) -> Self::Error;
 }
+
+/// A ring the walk evaluates every construct in.
+pub trait Evaluator: Normals + Calculus {}
+
+impl<R: Normals + Calculus> Evaluator for R {}
 
 /// Every ring negates, so the kernel's determinants run in every ring.
 impl<R: Ring> Signed for R {
@@ -151,7 +178,7 @@ impl<R: Ring> Signed for R {
 }
 
 /// The value of `node` in `ring`, with the normal `n` (outside `avg` and `maxn`).
-pub fn walk<R: Ring>(
+pub fn walk<R: Evaluator>(
     ring: &mut R,
     node: &Node,
     n: &R::Normal,
@@ -305,7 +332,7 @@ pub fn walk<R: Ring>(
 }
 
 /// The value of a matrix-valued node (see [`crate::lang::matrix`]).
-pub fn matrix<R: Ring>(
+pub fn matrix<R: Evaluator>(
     ring: &mut R,
     node: &Node,
     n: &R::Normal,
@@ -422,7 +449,11 @@ pub fn matrix<R: Ring>(
 }
 
 /// The value of a node that must be a scalar.
-pub fn scalar<R: Ring>(ring: &mut R, node: &Node, n: &R::Normal) -> Result<R::Value, R::Error> {
+pub fn scalar<R: Evaluator>(
+    ring: &mut R,
+    node: &Node,
+    n: &R::Normal,
+) -> Result<R::Value, R::Error> {
     let t = walk(ring, node, n)?;
     match t.into_scalar() {
         Some(x) => Ok(x),
@@ -512,7 +543,7 @@ pub fn normal_degree(
 }
 
 /// A definition's body walked and reordered into the definition's formal slots.
-pub fn in_formal_order<R: Ring>(
+pub fn in_formal_order<R: Evaluator>(
     ring: &mut R,
     body: &Node,
     formal: &[char],
@@ -535,7 +566,7 @@ pub fn in_formal_order<R: Ring>(
 pub type Lettered<T> = (Tensor<T>, Vec<char>);
 
 /// The values of a product's factors, each with its free letters.
-pub fn factor_values<R: Ring>(
+pub fn factor_values<R: Evaluator>(
     ring: &mut R,
     fs: &[Node],
     n: &R::Normal,

@@ -18,7 +18,7 @@
 use super::env::{conditions_of, ExactRing, Failure, Jet};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::{Quotient, Tensor};
-use crate::eval::walk::{self, Ring};
+use crate::eval::walk::{self, Calculus, Normals, Ring};
 use crate::kernel::{Poly, Rational};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::Node;
@@ -125,12 +125,15 @@ impl Arithmetic for Jets<'_, '_, '_> {
     fn zero(&mut self) -> Jet {
         Jet::default()
     }
+
     fn one(&mut self) -> Jet {
         Jet::constant(Quotient::from(Poly::one()))
     }
+
     fn is_exact_zero(&self, x: &Jet) -> bool {
         x.value.is_exact_zero() && x.is_constant()
     }
+
     /// (ab)' = a'b + ab'.
     fn mul(&mut self, a: Jet, b: &Jet) -> Result<Jet, Failure> {
         let partials = self.partials(&a.partials, &b.partials, |r, da, db| {
@@ -143,6 +146,7 @@ impl Arithmetic for Jets<'_, '_, '_> {
             partials,
         })
     }
+
     fn add(&mut self, a: Jet, b: Jet) -> Result<Jet, Failure> {
         let partials = self.partials(&a.partials, &b.partials, |r, da, db| {
             plus(r, da.cloned(), db.cloned())
@@ -170,10 +174,6 @@ impl Ring for Jets<'_, '_, '_> {
             value: -x.value,
             partials: x.partials.into_iter().map(|p| -p).collect(),
         }
-    }
-
-    fn normal(&mut self, n: &()) -> Tensor<Jet> {
-        self.base.normal(n).map(|q| Jet::constant(q.clone()))
     }
 
     /// The symbol's components seed one partial each; every other symbol is fixed.
@@ -305,6 +305,38 @@ impl Ring for Jets<'_, '_, '_> {
         self.base.pi(node).map(Jet::constant)
     }
 
+    fn leave(&mut self, node: &Node, value: Tensor<Jet>) -> Result<Tensor<Jet>, Failure> {
+        let all = value
+            .components()
+            .iter()
+            .flat_map(|j| std::iter::once(&j.value).chain(&j.partials));
+        self.base.within_limits(node, all)?;
+        Ok(value)
+    }
+
+    fn at(&mut self, e: Failure, node: &Node) -> Failure {
+        self.base.at(e, node)
+    }
+
+    fn not_scalar(&mut self, node: &Node) -> Failure {
+        self.base.not_scalar(node)
+    }
+
+    /// A matrix is singular where its determinant's value is, whatever its partials.
+    fn vanishes(&self, det: &Jet) -> bool {
+        det.value.is_zero()
+    }
+
+    fn singular(&mut self, node: &Node) -> Failure {
+        self.base.singular(node)
+    }
+}
+
+impl Normals for Jets<'_, '_, '_> {
+    fn normal(&mut self, n: &()) -> Tensor<Jet> {
+        self.base.normal(n).map(|q| Jet::constant(q.clone()))
+    }
+
     /// Averaging is linear: the value and every partial are averaged.
     fn average(&mut self, a: &Node, node: &Node, _n: &()) -> Result<Tensor<Jet>, Failure> {
         let v = walk::walk(self, a, &())?;
@@ -319,7 +351,9 @@ impl Ring for Jets<'_, '_, '_> {
     fn maximum(&mut self, a: &Node, node: &Node) -> Result<Jet, Failure> {
         self.base.maximum(a, node).map(Jet::constant)
     }
+}
 
+impl Calculus for Jets<'_, '_, '_> {
     /// D_k commutes with ∂/∂σ (the symbol does not vary with position): both the
     /// value and every partial get the total derivative.
     fn derivatives(&mut self, a: &Node, _node: &Node, _n: &()) -> Result<Tensor<Jet>, Failure> {
@@ -362,31 +396,5 @@ impl Ring for Jets<'_, '_, '_> {
         _n: &(),
     ) -> Result<Tensor<Jet>, Failure> {
         Err(self.refuse(node, "a gradient"))
-    }
-
-    fn leave(&mut self, node: &Node, value: Tensor<Jet>) -> Result<Tensor<Jet>, Failure> {
-        let all = value
-            .components()
-            .iter()
-            .flat_map(|j| std::iter::once(&j.value).chain(&j.partials));
-        self.base.within_limits(node, all)?;
-        Ok(value)
-    }
-
-    fn at(&mut self, e: Failure, node: &Node) -> Failure {
-        self.base.at(e, node)
-    }
-
-    fn not_scalar(&mut self, node: &Node) -> Failure {
-        self.base.not_scalar(node)
-    }
-
-    /// A matrix is singular where its determinant's value is, whatever its partials.
-    fn vanishes(&self, det: &Jet) -> bool {
-        det.value.is_zero()
-    }
-
-    fn singular(&mut self, node: &Node) -> Failure {
-        self.base.singular(node)
     }
 }

@@ -8,7 +8,7 @@ use super::env::{
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::quotient::DivideError;
 use crate::algebra::{assignments, Quotient, Tensor};
-use crate::eval::walk::{self, Ring};
+use crate::eval::walk::{self, Calculus, Normals, Ring};
 use crate::kernel::{Poly, PolyError, Rational, Var};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Node, NodeKind};
@@ -28,14 +28,6 @@ impl Ring for ExactRing<'_, '_> {
 
     fn neg(&mut self, x: Quotient) -> Quotient {
         -x
-    }
-
-    fn normal(&mut self, _n: &()) -> Tensor<Quotient> {
-        // An in-plane normal has no third component: n_3 = 0.
-        let normal = &self.env.normal;
-        Tensor::from_fn(self.env.decls.dim, 1, |i| {
-            Quotient::from(normal.get(i[0]).map_or_else(Poly::zero, |&v| Poly::var(v)))
-        })
     }
 
     fn symbol(&mut self, name: &str, _node: &Node) -> Result<Tensor<Quotient>, Failure> {
@@ -222,6 +214,40 @@ impl Ring for ExactRing<'_, '_> {
         }
     }
 
+    fn leave(&mut self, node: &Node, value: Tensor<Quotient>) -> Result<Tensor<Quotient>, Failure> {
+        self.within_limits(node, value.components())?;
+        Ok(value)
+    }
+
+    fn at(&mut self, e: Failure, node: &Node) -> Failure {
+        match e {
+            Failure::OverBudget => Failure::Limit(too_much(self.origin, node)),
+            located => located,
+        }
+    }
+
+    fn not_scalar(&mut self, node: &Node) -> Failure {
+        Failure::Located(self.origin.diagnostic(node.span, "expected a scalar"))
+    }
+
+    fn singular(&mut self, node: &Node) -> Failure {
+        self.error(
+            node,
+            "this system is singular: the determinant of its matrix is identically zero",
+            "a singular matrix has no inverse and the system no unique solution; check the matrix, or solve a reduced system",
+        )
+    }
+}
+
+impl Normals for ExactRing<'_, '_> {
+    fn normal(&mut self, _n: &()) -> Tensor<Quotient> {
+        // An in-plane normal has no third component: n_3 = 0.
+        let normal = &self.env.normal;
+        Tensor::from_fn(self.env.decls.dim, 1, |i| {
+            Quotient::from(normal.get(i[0]).map_or_else(Poly::zero, |&v| Poly::var(v)))
+        })
+    }
+
     /// The average acts on the numerator: no divisor contains the normal.
     fn average(&mut self, a: &Node, node: &Node, _n: &()) -> Result<Tensor<Quotient>, Failure> {
         if let NodeKind::Product(fs) = &a.kind {
@@ -240,7 +266,9 @@ impl Ring for ExactRing<'_, '_> {
             "decide this claim with strategy = \"numeric\"",
         ))
     }
+}
 
+impl Calculus for ExactRing<'_, '_> {
     /// The total derivative D_k p = Σ_v ∂p/∂v · ∂v/∂x_k over the variables of p
     /// (the chain rule on jet variables), for every component and every k. No divisor
     /// varies with position, so the derivative acts on the numerator alone.
@@ -337,29 +365,5 @@ impl Ring for ExactRing<'_, '_> {
         _n: &(),
     ) -> Result<Tensor<Quotient>, Failure> {
         super::jets::gradients(self, body, symbol)
-    }
-
-    fn leave(&mut self, node: &Node, value: Tensor<Quotient>) -> Result<Tensor<Quotient>, Failure> {
-        self.within_limits(node, value.components())?;
-        Ok(value)
-    }
-
-    fn at(&mut self, e: Failure, node: &Node) -> Failure {
-        match e {
-            Failure::OverBudget => Failure::Limit(too_much(self.origin, node)),
-            located => located,
-        }
-    }
-
-    fn not_scalar(&mut self, node: &Node) -> Failure {
-        Failure::Located(self.origin.diagnostic(node.span, "expected a scalar"))
-    }
-
-    fn singular(&mut self, node: &Node) -> Failure {
-        self.error(
-            node,
-            "this system is singular: the determinant of its matrix is identically zero",
-            "a singular matrix has no inverse and the system no unique solution; check the matrix, or solve a reduced system",
-        )
     }
 }

@@ -8,7 +8,7 @@ use super::variation;
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::Tensor;
 use crate::eval::quadrature::Quadrature;
-use crate::eval::walk::{self, Ring};
+use crate::eval::walk::{self, Calculus, Normals, Ring};
 use crate::kernel::Rational;
 use crate::lang::parser::{Func, Func2};
 use crate::lang::Node;
@@ -23,12 +23,15 @@ impl<T: DualNum<Primitive = f64>> Arithmetic for &RealEnv<'_, T> {
     fn zero(&mut self) -> T {
         T::zero()
     }
+
     fn one(&mut self) -> T {
         T::one()
     }
+
     fn mul(&mut self, a: T, b: &T) -> Result<T, RealError> {
         Ok(a * b.clone())
     }
+
     fn add(&mut self, a: T, b: T) -> Result<T, RealError> {
         Ok(a + b)
     }
@@ -50,10 +53,6 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
 
     fn neg(&mut self, x: T) -> T {
         -x
-    }
-
-    fn normal(&mut self, n: &[f64]) -> Tensor<T> {
-        Tensor::from_fn(self.decls.dim, 1, |i| T::from(n[i[0]]))
     }
 
     fn symbol(&mut self, name: &str, node: &Node) -> Result<Tensor<T>, RealError> {
@@ -151,6 +150,24 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
         Ok(T::from(std::f64::consts::PI))
     }
 
+    fn not_scalar(&mut self, node: &Node) -> RealError {
+        err(node, "expected a scalar")
+    }
+
+    fn vanishes(&self, det: &T) -> bool {
+        det.re() == 0.0
+    }
+
+    fn singular(&mut self, node: &Node) -> RealError {
+        undefined(node.span, "singular matrix: its determinant is 0 here")
+    }
+}
+
+impl<T: DualNum<Primitive = f64>> Normals for &RealEnv<'_, T> {
+    fn normal(&mut self, n: &[f64]) -> Tensor<T> {
+        Tensor::from_fn(self.decls.dim, 1, |i| T::from(n[i[0]]))
+    }
+
     fn average(&mut self, a: &Node, node: &Node, _n: &[f64]) -> Result<Tensor<T>, RealError> {
         let env: &RealEnv<'_, T> = self;
         let d = env.decls.dim;
@@ -179,7 +196,9 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
     fn maximum(&mut self, a: &Node, node: &Node) -> Result<T, RealError> {
         self.max_over_angle(node, a)
     }
+}
 
+impl<T: DualNum<Primitive = f64>> Calculus for &RealEnv<'_, T> {
     /// Central differences of `a`'s values at positions moved along each coordinate
     /// (see [`crate::eval::taylor`]): only where the fields are explicit functions.
     fn derivatives(&mut self, a: &Node, node: &Node, n: &[f64]) -> Result<Tensor<T>, RealError> {
@@ -296,17 +315,5 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
             value.rank() + wrt.rank(),
             |_| it.next().expect("one derivative per component and seed"),
         ))
-    }
-
-    fn not_scalar(&mut self, node: &Node) -> RealError {
-        err(node, "expected a scalar")
-    }
-
-    fn vanishes(&self, det: &T) -> bool {
-        det.re() == 0.0
-    }
-
-    fn singular(&mut self, node: &Node) -> RealError {
-        undefined(node.span, "singular matrix: its determinant is 0 here")
     }
 }
