@@ -137,7 +137,7 @@ fn the_shear_traction_magnitude_matches_a_brute_force_reference() {
         )]);
         let env = RealEnv::new(&claim.decls, &claim.check.defs, symbols);
         let n = vec![1.0; dim];
-        let by_interpreter = env.eval(node, &n).unwrap().1.into_scalar().unwrap();
+        let by_interpreter = env.eval(node, &n).unwrap().tensor.into_scalar().unwrap();
         assert!(env.quadrature.used());
         let tape = Tape::compile(&claim.decls, &claim.check.defs, node).unwrap();
         let inputs: Vec<f64> = tape.inputs.iter().map(|(_, i)| sigma[i[0]][i[1]]).collect();
@@ -145,7 +145,7 @@ fn the_shear_traction_magnitude_matches_a_brute_force_reference() {
         let by_tape = tape
             .eval(&inputs, &n, &quad)
             .unwrap()
-            .1
+            .tensor
             .into_scalar()
             .unwrap();
         let want = reference(dim, &sigma);

@@ -86,9 +86,9 @@ fn the_tape_agrees_with_the_interpreter_on_every_sampled_expression() {
                 let by_tree = env.eval(node, &n);
                 let by_tape = tape.eval(&inputs, &n, &fine());
                 match (by_tree, by_tape) {
-                    (Ok((la, a)), Ok((lb, b))) => {
-                        assert_eq!(la, lb, "{}: labels", claim.id);
-                        for (x, y) in a.components().iter().zip(b.components()) {
+                    (Ok(a), Ok(b)) => {
+                        assert_eq!(a.labels, b.labels, "{}: labels", claim.id);
+                        for (x, y) in a.tensor.components().iter().zip(b.tensor.components()) {
                             assert!(close(*x, *y), "{}: interpreter {x}, tape {y}", claim.id);
                         }
                     }
@@ -109,8 +109,8 @@ fn the_tape_agrees_with_the_interpreter_on_every_sampled_expression() {
                 }
                 let tree = RealEnv::new(decls, defs, seeded).eval(node, &n);
                 let taped = tape.eval(&dual_inputs, &n, &fine());
-                if let (Ok((_, a)), Ok((_, b))) = (tree, taped) {
-                    for (x, y) in a.components().iter().zip(b.components()) {
+                if let (Ok(a), Ok(b)) = (tree, taped) {
+                    for (x, y) in a.tensor.components().iter().zip(b.tensor.components()) {
                         assert!(
                             close(x.eps, y.eps),
                             "{}: derivative {} vs {}",
@@ -223,8 +223,8 @@ fn a_maxn_tape_agrees_with_the_interpreter_in_values_and_errors() {
             let env = RealEnv::new(&claim.decls, &claim.check.defs, values.clone());
             let n = [1.0, 0.0];
             match (tape.eval(&inputs, &n, &fine()), env.eval(node, &n)) {
-                (Ok((_, t)), Ok((_, r))) => {
-                    let (t, r) = (*t.get(&[]), *r.get(&[]));
+                (Ok(t), Ok(r)) => {
+                    let (t, r) = (*t.tensor.get(&[]), *r.tensor.get(&[]));
                     assert_eq!(t.to_bits(), r.to_bits(), "{}: {t} vs {r}", claim.id);
                 }
                 (Err(t), Err(r)) => {
@@ -281,8 +281,8 @@ fn an_average_reports_the_error_its_first_point_gives() {
     let err = tape.eval(&[0.5], &n, &fine()).unwrap_err();
     assert!(err.message.contains("division by zero"), "{}", err.message);
     assert_eq!(err, env.eval(node, &n).unwrap_err());
-    let (_, by_tape) = fine_side.0.eval(&[0.5], &n, &fine()).unwrap();
-    let (_, by_tree) = env.eval(fine_side.1, &n).unwrap();
+    let by_tape = fine_side.0.eval(&[0.5], &n, &fine()).unwrap().tensor;
+    let by_tree = env.eval(fine_side.1, &n).unwrap().tensor;
     let (x, y) = (*by_tape.get(&[]), *by_tree.get(&[]));
     assert!(close(x, y), "tape {x}, interpreter {y}");
 }

@@ -3,7 +3,8 @@
 //! in floating point can be told from rounding before it becomes a counterexample.
 
 use super::sampler::Sampler;
-use crate::eval::interval::{Enclosure, Interval, IntervalEnv, Lettered, R};
+use crate::eval::interval::{Enclosure, Interval, IntervalEnv, R};
+use crate::eval::labeled::Labeled;
 use crate::eval::state::State;
 use rustc_hash::FxHashMap as HashMap;
 
@@ -13,7 +14,7 @@ pub(crate) struct Enclosures<'s, 'a> {
     sampler: &'s Sampler<'a>,
     state: &'s State,
     env: Option<R<IntervalEnv<'a>>>,
-    sides: HashMap<(usize, usize), R<Lettered>>,
+    sides: HashMap<(usize, usize), R<Labeled<Interval>>>,
 }
 
 impl<'s, 'a> Enclosures<'s, 'a> {
@@ -57,12 +58,7 @@ impl<'s, 'a> Enclosures<'s, 'a> {
                     Err(e) => Err(Enclosure(e.message.clone())),
                 }
             });
-            let (letters, t) = value.as_ref().map_err(Clone::clone)?;
-            let idx: Vec<usize> = letters
-                .iter()
-                .map(|c| at.iter().find(|(l, _)| l == c).map_or(0, |&(_, v)| v))
-                .collect();
-            Ok(*t.get(&idx))
+            Ok(*value.as_ref().map_err(Clone::clone)?.at(at))
         };
         let (l, r) = (side(k)?, side(k + 1)?);
         Ok((l, r, env.loose()))

@@ -52,7 +52,7 @@ fn expansion(
     decls: &Decls,
     (chain, side): (usize, usize),
     text: &str,
-    value: Result<&Labeled, Unexpanded>,
+    value: Result<&Labeled<Quotient>, Unexpanded>,
 ) -> Expansion {
     let (components, more) = match value {
         Err(why) => (Err(why), false),
@@ -621,7 +621,7 @@ fn index_values(assignment: &[(char, usize)]) -> BTreeMap<String, usize> {
 
 /// `factor · q`.
 /// Whether every component of `side` is zero (modulo n·n = 1).
-fn zero_everywhere(normal: &[Var], side: &Labeled, labels: &[char], dim: usize) -> bool {
+fn zero_everywhere(normal: &[Var], side: &Labeled<Quotient>, labels: &[char], dim: usize) -> bool {
     let zero = Quotient::default();
     let mut ids = Identities::new(normal);
     for a in assignments(dim, labels.len()) {
@@ -641,7 +641,7 @@ fn zero_factor(
     decls: &Decls,
     check: &Check,
     found: &Reference,
-    (l, r): (&Labeled, &Labeled),
+    (l, r): (&Labeled<Quotient>, &Labeled<Quotient>),
 ) -> Result<Outcome, Diagnostic> {
     let chain = &check.chains[0];
     satisfies_assumptions(env, &found.point, &chain[0].origin)?;
@@ -701,7 +701,7 @@ fn union(a: &[char], b: &[char]) -> Vec<char> {
     u
 }
 
-fn mismatch(l: &Labeled, r: &Labeled) -> String {
+fn mismatch(l: &Labeled<Quotient>, r: &Labeled<Quotient>) -> String {
     format!(
         "the sides have different free indices ({} on the left, {} on the right); read as an identity for all values of {}",
         letters(&l.labels),

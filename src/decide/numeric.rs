@@ -29,7 +29,7 @@ use crate::derivation::{Check, Expression, GradientConvention, Relation, Samplin
 use crate::digits::{self, significant};
 use crate::eval::exact::env::component_name;
 use crate::eval::quadrature::{self, Level};
-use crate::eval::real::component_pairs;
+use crate::eval::real::{component_pairs, Labeled};
 use crate::eval::state::State;
 use crate::lang::{Decls, Diagnostic};
 pub use crate::tolerance::SINGULAR_EPS;
@@ -96,7 +96,7 @@ fn check_state(
                     // A value that is not finite (an overflow, inf − inf) is no value
                     // of the expression in floating point: the state is stepped off like
                     // one where the side is undefined, never a counterexample.
-                    Ok(v) if v.1.components().iter().any(|x: &f64| !x.is_finite()) => {
+                    Ok(v) if v.tensor.components().iter().any(|x: &f64| !x.is_finite()) => {
                         return Ok(Err(s.origin.diagnostic(node.span, OVERFLOW)))
                     }
                     Ok(v) => values.push(v),
@@ -922,7 +922,7 @@ fn eval_at<T: DualNum<Primitive = f64>>(
             }
         }
         return match tape.eval(&inputs, &state.n, &sampler.fine) {
-            Ok((_, t)) => t.into_scalar().unwrap_or_else(|| T::from(f64::NAN)),
+            Ok(v) => v.tensor.into_scalar().unwrap_or_else(|| T::from(f64::NAN)),
             Err(_) => T::from(f64::NAN),
         };
     }
@@ -937,7 +937,7 @@ fn eval_at<T: DualNum<Primitive = f64>>(
         }
     }
     match sampler.eval(&symbols, &function.node, &state.n) {
-        Ok((_, t)) => t.into_scalar().unwrap_or_else(|| T::from(f64::NAN)),
+        Ok(v) => v.tensor.into_scalar().unwrap_or_else(|| T::from(f64::NAN)),
         Err(_) => T::from(f64::NAN),
     }
 }
@@ -1017,15 +1017,20 @@ pub fn decide_gradient(
             .map(|(s, e)| {
                 sampler
                     .eval(&state.symbols, &e.node, &state.n)
-                    .map(|(ls, t)| {
-                        // Closed forms are written with the indices i, j, … in order.
-                        let perm: Vec<usize> = "ijklmn"
-                            .chars()
-                            .take(ls.len())
-                            .map(|c| ls.iter().position(|x| *x == c).unwrap_or(0))
-                            .collect();
-                        (s.as_str(), t.permuted(&perm))
-                    })
+                    .map(
+                        |Labeled {
+                             labels: ls,
+                             tensor: t,
+                         }| {
+                            // Closed forms are written with the indices i, j, … in order.
+                            let perm: Vec<usize> = "ijklmn"
+                                .chars()
+                                .take(ls.len())
+                                .map(|c| ls.iter().position(|x| *x == c).unwrap_or(0))
+                                .collect();
+                            (s.as_str(), t.permuted(&perm))
+                        },
+                    )
                     .map_err(|r| (e, r))
             })
             .collect::<Result<_, _>>();

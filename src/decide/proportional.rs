@@ -58,7 +58,7 @@ impl Reference {
         &self,
         env: &ExactEnv<'_>,
         point: &BTreeMap<Var, Rational>,
-        (l, r): (&Labeled, &Labeled),
+        (l, r): (&Labeled<Quotient>, &Labeled<Quotient>),
     ) -> Option<Reference> {
         let mut moved = self.point.clone();
         for v in env.parameter_vars() {
@@ -114,7 +114,10 @@ impl Reference {
 /// Whether either side reads a parameter (a declared scalar that is not a field): only
 /// then may the factor depend on parameters, and must a refutation compare two
 /// evaluations at the same parameter values.
-pub fn reads_parameters(env: &ExactEnv<'_>, (l, r): (&Labeled, &Labeled)) -> bool {
+pub fn reads_parameters(
+    env: &ExactEnv<'_>,
+    (l, r): (&Labeled<Quotient>, &Labeled<Quotient>),
+) -> bool {
     let parameters = env.parameter_vars();
     !parameters.is_empty()
         && [l, r]
@@ -141,7 +144,7 @@ pub enum NoReference {
 pub fn reference(
     env: &ExactEnv<'_>,
     dim: usize,
-    (l, r): (&Labeled, &Labeled),
+    (l, r): (&Labeled<Quotient>, &Labeled<Quotient>),
     labels: &[char],
 ) -> Result<Option<Reference>, NoReference> {
     let normal = env.normal_vars();

@@ -180,8 +180,8 @@ pub(crate) fn interpret_with(
     absent: f64,
 ) -> Result<f64, NoValue> {
     let (real, n) = interpreter_at(decls, check, env, point, absent)?;
-    let (_, v) = real.eval(node, &n).map_err(NoValue::Eval)?;
-    v.into_scalar().ok_or(NoValue::NotScalar)
+    let v = real.eval(node, &n).map_err(NoValue::Eval)?;
+    v.tensor.into_scalar().ok_or(NoValue::NotScalar)
 }
 
 /// The interpreter's environment at `point`, the variables it leaves out set to
@@ -297,13 +297,15 @@ fn exactly(
     let check = sampler.check;
     let mut env = ExactEnv::new(sampler.decls, &check.defs, &check.assumptions).ok()?;
     let chain = &check.chains[cx.chain - 1];
-    let mut side = |k: usize| -> Option<Labeled> {
+    let mut side = |k: usize| -> Option<Labeled<Quotient>> {
         let s = &chain[k];
         env.eval(s.node.as_ref().ok()?, &s.origin).ok()
     };
     let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
-    let mut poly = |e: &Expression| -> Option<Labeled> { env.eval(&e.node, &e.origin).ok() };
-    let scalar = |e: &Expression, poly: &mut dyn FnMut(&Expression) -> Option<Labeled>| {
+    let mut poly =
+        |e: &Expression| -> Option<Labeled<Quotient>> { env.eval(&e.node, &e.origin).ok() };
+    let scalar = |e: &Expression,
+                  poly: &mut dyn FnMut(&Expression) -> Option<Labeled<Quotient>>| {
         poly(e).and_then(|v| v.tensor.into_scalar())
     };
     let mut hypotheses: Vec<(Relation, Quotient, Quotient)> = Vec::new();
@@ -361,7 +363,7 @@ fn exactly(
 /// budget).
 struct ExactSides<'a> {
     env: Option<ExactEnv<'a>>,
-    sides: HashMap<(usize, usize), Option<Labeled>>,
+    sides: HashMap<(usize, usize), Option<Labeled<Quotient>>>,
 }
 
 /// [`ExactSides`] of one claim, built when first needed.

@@ -261,7 +261,11 @@ impl<'a> Sampler<'a> {
         let mut ok = p.residual(value) <= TOL;
         for sub in p.substituted(&self.check.assumptions) {
             let (symbol, formal) = (sub.symbol, sub.formal);
-            let Ok((ls, t)) = self.eval(&state.symbols, sub.body, &state.n) else {
+            let Ok(Labeled {
+                labels: ls,
+                tensor: t,
+            }) = self.eval(&state.symbols, sub.body, &state.n)
+            else {
                 ok = false;
                 continue;
             };
@@ -289,7 +293,7 @@ impl<'a> Sampler<'a> {
         let v = self
             .eval(&state.symbols, &e.node, &state.n)
             .map_err(|r| located(e, r))?;
-        Ok(v.1.into_scalar().unwrap_or(f64::NAN))
+        Ok(v.tensor.into_scalar().unwrap_or(f64::NAN))
     }
 
     /// Whether the state satisfies every constraint. A constraint evaluated through

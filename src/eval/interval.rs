@@ -27,6 +27,7 @@
 //! sections of the interpreter) are evaluated loosely: they may dismiss a violation as
 //! rounding, never confirm one.
 
+use super::labeled::Labeled;
 use super::state::State;
 use super::walk::{self, Calculus, Normals, Ring};
 use crate::algebra::einsum::Arithmetic;
@@ -62,9 +63,6 @@ pub struct Interval {
 pub struct Enclosure(pub String);
 
 pub(crate) type R<T> = Result<T, Enclosure>;
-
-/// A value's free letters (sorted) and its enclosure.
-pub(crate) type Lettered = (Vec<char>, Tensor<Interval>);
 
 /// An enclosure valid on the function's domain, and whether it needed the assumption
 /// that the exact argument lies there (rounding alone could not decide it).
@@ -471,9 +469,12 @@ impl<'a> IntervalEnv<'a> {
         Ok(env)
     }
 
-    /// `node`'s enclosure: its free letters (sorted) and the tensor.
-    pub fn eval(&self, node: &Node) -> R<Lettered> {
-        Ok((node.free_letters(), walk::walk(&mut &*self, node, &self.n)?))
+    /// `node`'s enclosure, labelled by its free letters.
+    pub fn eval(&self, node: &Node) -> R<Labeled<Interval>> {
+        Ok(Labeled::new(
+            node.free_letters(),
+            walk::walk(&mut &*self, node, &self.n)?,
+        ))
     }
 
     /// Whether some value so far is loose (see [`IntervalEnv::loose`]).

@@ -14,6 +14,7 @@
 pub mod assume;
 pub mod exact;
 pub mod interval;
+pub mod labeled;
 pub mod quadrature;
 pub mod real;
 pub mod state;

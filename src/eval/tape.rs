@@ -17,6 +17,7 @@
 //! plain evaluation. Errors keep the interpreter's messages and spans (division by
 //! zero, square root of a negative number).
 
+use super::labeled::Labeled;
 use super::quadrature::Quadrature;
 use super::real::{RealError, MAXN_GRID};
 use super::walk::{self, Calculus, Normals, Ring};
@@ -261,9 +262,12 @@ impl Tape {
         inputs: &[T],
         n: &[f64],
         quad: &Quadrature,
-    ) -> Result<(Vec<char>, Tensor<T>), RealError> {
+    ) -> Result<Labeled<T>, RealError> {
         let vals = self.run(inputs, n, &[], quad)?;
-        Ok((self.labels.clone(), self.outputs.map(|&k| vals[k].clone())))
+        Ok(Labeled::new(
+            self.labels.clone(),
+            self.outputs.map(|&k| vals[k].clone()),
+        ))
     }
 
     fn run<T: DualNum<Primitive = f64>>(

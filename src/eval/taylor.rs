@@ -1,6 +1,6 @@
 //! Fields as explicit functions of the position, for the second route of a claim about
 //! derivatives. The exact route treats a field's derivatives at a point as independent
-//! jet variables and differentiates symbolically (`eval.rs`); this route builds, from
+//! jet variables and differentiates symbolically (`exact/env.rs`); this route builds, from
 //! the same jet values, the Taylor polynomial of each field component about the point,
 //! and differentiates the *expression* numerically by central differences of its
 //! values at nearby positions. The two share no differentiation code.

@@ -19,6 +19,7 @@ use crate::algebra::einsum::{einsum, Arithmetic, Slot};
 use crate::algebra::matrix::{self as linear, Matrix, Signed};
 use crate::algebra::Tensor;
 use crate::derivation::Definition;
+use crate::eval::labeled::Labeled;
 use crate::kernel::Rational;
 use crate::lang::matrix::{MatrixOp, MatrixRead, Order};
 use crate::lang::parser::{Func, Func2, Wrt};
@@ -562,27 +563,27 @@ pub fn in_formal_order<R: Evaluator>(
     Ok(t.permuted(&perm))
 }
 
-/// A factor's value with its free letters (its slots).
-pub type Lettered<T> = (Tensor<T>, Vec<char>);
-
 /// The values of a product's factors, each with its free letters.
 pub fn factor_values<R: Evaluator>(
     ring: &mut R,
     fs: &[Node],
     n: &R::Normal,
-) -> Result<Vec<Lettered<R::Value>>, R::Error> {
+) -> Result<Vec<Labeled<R::Value>>, R::Error> {
     let mut values = Vec::with_capacity(fs.len());
     for f in fs {
-        values.push((walk(ring, f, n)?, f.free_letters()));
+        values.push(Labeled::new(f.free_letters(), walk(ring, f, n)?));
     }
     Ok(values)
 }
 
 /// A product's factors for [`einsum`]: each value indexed by its free letters.
-pub fn as_factors<T>(values: &[Lettered<T>]) -> Vec<(&Tensor<T>, Vec<Slot>)> {
+pub fn as_factors<T>(values: &[Labeled<T>]) -> Vec<(&Tensor<T>, Vec<Slot>)> {
     values
         .iter()
-        .map(|(t, ls)| (t, ls.iter().map(|&c| Slot::Letter(c)).collect()))
+        .map(|v| {
+            let slots = v.labels.iter().map(|&c| Slot::Letter(c)).collect();
+            (&v.tensor, slots)
+        })
         .collect()
 }
 

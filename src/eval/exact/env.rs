@@ -19,6 +19,7 @@ use crate::algebra::sign::Interval;
 use crate::algebra::{assignments, Quotient, Tensor};
 use crate::derivation::parametrisation::{product_value, Component, Parametrisation};
 use crate::derivation::{Assumption, Definition, ParamBox};
+pub use crate::eval::labeled::Labeled;
 use crate::eval::walk::{self, Ring};
 pub use crate::kernel::eval::jet_name;
 pub use crate::kernel::term::component_name;
@@ -47,30 +48,6 @@ pub const MAX_ROOT_TERMS: usize = 2_000;
 
 /// Largest exponent a power may produce.
 pub const MAX_EXPONENT: i64 = 10_000;
-
-/// A tensor whose slots are labelled by index letters, sorted.
-#[derive(Clone, Debug)]
-pub struct Labeled {
-    pub labels: Vec<char>,
-    pub tensor: Tensor<Quotient>,
-}
-
-impl Labeled {
-    /// The component for the given values of (a superset of) its labels.
-    pub fn at(&self, assignment: &[(char, usize)]) -> &Quotient {
-        let idx: Vec<usize> = self
-            .labels
-            .iter()
-            .map(|c| {
-                assignment
-                    .iter()
-                    .find(|(d, _)| d == c)
-                    .map_or(0, |&(_, v)| v)
-            })
-            .collect();
-        self.tensor.get(&idx)
-    }
-}
 
 /// What a polynomial variable stands for where a derivative acts on it: a coordinate
 /// of the position, or one derivative of a field component at the point (a jet
@@ -383,7 +360,7 @@ impl<'a> ExactEnv<'a> {
     /// Evaluates a checked node; `origin` locates errors in its text. Refuses (with a
     /// located error) any component that grows past [`MAX_TERMS`] terms, and an
     /// expansion that takes more than [`MAX_WORK`] term products in all.
-    pub fn eval(&mut self, node: &Node, origin: &Origin) -> Result<Labeled, Refusal> {
+    pub fn eval(&mut self, node: &Node, origin: &Origin) -> Result<Labeled<Quotient>, Refusal> {
         let mut ring = ExactRing { env: self, origin };
         match walk::walk(&mut ring, node, &()) {
             Ok(tensor) => Ok(Labeled {
@@ -601,20 +578,23 @@ impl ExactRing<'_, '_> {
                         .all(|(v, e)| *e >= 0 || !normal.contains(v))
                 })
         };
-        let fused = values.iter().all(|(t, _)| t.components().iter().all(plain)) && {
-            let counts: Vec<Tensor<usize>> = values
-                .iter()
-                .map(|(t, _)| t.map(|q| q.numerator().num_terms()))
-                .collect();
-            let count_factors: Vec<_> = counts
-                .iter()
-                .zip(&factors)
-                .map(|(c, (_, slots))| (c, slots.clone()))
-                .collect();
-            let bound = einsum(&mut TermCounts, d, &count_factors, &labels)
-                .unwrap_or_else(|never| match never {});
-            bound.components().iter().all(|&b| b <= MAX_TERMS)
-        };
+        let fused = values
+            .iter()
+            .all(|v| v.tensor.components().iter().all(plain))
+            && {
+                let counts: Vec<Tensor<usize>> = values
+                    .iter()
+                    .map(|v| v.tensor.map(|q| q.numerator().num_terms()))
+                    .collect();
+                let count_factors: Vec<_> = counts
+                    .iter()
+                    .zip(&factors)
+                    .map(|(c, (_, slots))| (c, slots.clone()))
+                    .collect();
+                let bound = einsum(&mut TermCounts, d, &count_factors, &labels)
+                    .unwrap_or_else(|never| match never {});
+                bound.components().iter().all(|&b| b <= MAX_TERMS)
+            };
         if !fused {
             let v = walk::contract(self, &factors, &labels, product)?;
             let v = self.leave(product, v)?;
@@ -718,7 +698,7 @@ pub(crate) fn too_much(origin: &Origin, node: &Node) -> Diagnostic {
 }
 
 /// Reorders a sorted-label tensor into a definition's formal index order.
-fn to_formal_order(value: &Labeled, formal: &[char]) -> Tensor<Quotient> {
+fn to_formal_order(value: &Labeled<Quotient>, formal: &[char]) -> Tensor<Quotient> {
     let perm: Vec<usize> = formal
         .iter()
         .map(|c| {

@@ -28,8 +28,7 @@ pub const MAXN_GRID: usize = 360;
 /// differentiates any order symbolically).
 pub const MAX_NESTED_DIFFERENCES: usize = 4;
 
-/// Free-index labels (sorted) and the tensor.
-pub type Labeled<T> = (Vec<char>, Tensor<T>);
+pub use crate::eval::labeled::Labeled;
 
 /// Quadrature nodes and weights.
 pub(super) type Rule = Vec<(Vec<f64>, f64)>;
@@ -174,7 +173,10 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
 
     /// Evaluates `node` with the normal `n` (used outside `avg`/`maxn`).
     pub fn eval(&self, node: &Node, n: &[f64]) -> Result<Labeled<T>, RealError> {
-        Ok((node.free_letters(), walk::walk(&mut &*self, node, n)?))
+        Ok(Labeled::new(
+            node.free_letters(),
+            walk::walk(&mut &*self, node, n)?,
+        ))
     }
 
     /// max over θ of `a` at n = (cos θ, sin θ[, 0]): grid, then golden section around
@@ -296,7 +298,7 @@ pub fn component_pairs(
     left: &Labeled<f64>,
     right: &Labeled<f64>,
 ) -> (Vec<char>, Vec<ComponentPair>) {
-    let ((la, ta), (lb, tb)) = (left, right);
+    let (la, ta, lb, tb) = (&left.labels, &left.tensor, &right.labels, &right.tensor);
     let mut labels: Vec<char> = la.iter().chain(lb).copied().collect();
     labels.sort_unstable();
     labels.dedup();

@@ -294,7 +294,7 @@ impl<T: DualNum<Primitive = f64>> Calculus for &RealEnv<'_, T> {
         let mut inner = RealEnv::new(self.decls, self.defs, symbols);
         inner.quadrature = Quadrature::new(self.quadrature.level);
         inner.in_gradient = true;
-        let (_, value) = inner.eval(body, n)?;
+        let value = inner.eval(body, n)?.tensor;
         self.quadrature.absorb(&inner.quadrature);
         let mut values = Vec::with_capacity(value.components().len() * size);
         for c in value.components() {
