@@ -618,3 +618,28 @@ sides = ["x", "x"]
     );
     assert!(got[0].2);
 }
+
+#[test]
+fn a_correction_inherits_the_defines_of_its_claim() {
+    let f = file(
+        r#"[[claim]]
+id = "defined"
+printed = 'S = \sigma_{kk} - 1 = s_{kk}'
+defines = ['S']
+expect = "fails"
+reason = "a test"
+sides = ["sigma_kk - 1", "s_kk"]
+correction = { printed = 'S = s_{kk} = 0', sides = ["s_kk", "0"], reason = "a test", expect = "holds" }
+"#,
+    );
+    let rows = decide_all(std::slice::from_ref(&f), None).unwrap();
+    let corrected = rows[0]
+        .correction_transcription
+        .as_ref()
+        .expect("a correction");
+    assert!(
+        matches!(corrected.status, Status::MachineRead { .. }),
+        "{:?}",
+        corrected.status
+    );
+}

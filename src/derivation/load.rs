@@ -1369,11 +1369,13 @@ impl Loader {
                 let mut assumptions = check.assumptions.clone();
                 assumptions.append(&mut inner.assumptions);
                 inner.assumptions = assumptions;
+                // The claim's `defines` hold for its correction too, with its own.
+                let defines: Vec<S> = c.defines.iter().chain(&r.defines).cloned().collect();
                 let input = Printed {
                     printed: &r.printed,
                     prose: c.prose,
                     table: &r.notation,
-                    defines: &r.defines,
+                    defines: &defines,
                     declared: &r.differs_from_printed,
                 };
                 let transcript = self.transcript(
@@ -1588,7 +1590,14 @@ pub(super) fn entrywise(
             out.push(chain);
             continue;
         };
-        if let Some(k) = shapes.iter().position(|s| *s != Some(shape)) {
+        // The literal 0 stands for the zero matrix of the chain's shape (`A - A^T = 0`).
+        let zero = |k: usize| {
+            chain[k]
+                .node
+                .as_ref()
+                .is_ok_and(|n| n.is_literal_zero())
+        };
+        if let Some(k) = (0..chain.len()).find(|&k| shapes[k] != Some(shape) && !zero(k)) {
             let side = &chain[k];
             let what = shapes[k].map_or_else(|| "a scalar or tensor".to_owned(), shape_words);
             return Err(side
@@ -1604,7 +1613,11 @@ pub(super) fn entrywise(
             let node = side
                 .node
                 .as_ref()
-                .expect("a side with a shape is well-formed");
+                .expect("a side with a shape, or the literal 0, is well-formed");
+            if zero(si) {
+                matrices.push(None);
+                continue;
+            }
             let reference = match &node.kind {
                 NodeKind::Matrix {
                     op: MatrixOp::Def(_),
@@ -1635,7 +1648,7 @@ pub(super) fn entrywise(
                     }
                 }
             };
-            matrices.push(reference);
+            matrices.push(Some(reference));
         }
         for i in 0..shape.0 {
             for j in 0..shape.1 {
@@ -1648,6 +1661,13 @@ pub(super) fn entrywise(
                     .iter()
                     .zip(&matrices)
                     .map(|(side, m)| {
+                        let Some(m) = m else {
+                            // Every entry of the zero matrix is the literal 0.
+                            return Side {
+                                entry: Some((i, j)),
+                                ..side.clone()
+                            };
+                        };
                         let text = side.text.trim();
                         let plain = text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
                         Side {
