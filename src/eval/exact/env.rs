@@ -7,10 +7,9 @@
 //! routes share (`walk.rs`), in canonical polynomials under a work budget.
 //!
 //! A value is a [`Quotient`]: a polynomial, or one over a product of divisors when the
-//! statement divides by a sum of scalar parameters (`E / (2*(1 + nu))`). Divisors
-//! with the normal, a tensor component or a field in them are refused: the reduction
-//! on the unit sphere and the derivatives of fields assume a polynomial denominator
-//! free of them.
+//! statement divides by a sum (`E / (2*(1 + nu))`, `1 / det(A)`). Divisors with the
+//! normal or a field in them are refused: the reduction on the unit sphere and the
+//! derivatives of fields assume a polynomial denominator free of them.
 
 use crate::algebra::certificate::Certificate;
 use crate::algebra::einsum::{einsum, einsum_closing, Arithmetic, Polynomials};
@@ -74,8 +73,6 @@ pub struct ExactEnv<'a> {
     pub vars: VarTable,
     /// The variables a derivative acts on (see [`Varying`]).
     pub(crate) varying: HashMap<Var, Varying>,
-    /// Components of symbols of rank one or more: not allowed in a divisor.
-    pub(crate) tensor_components: HashSet<Var>,
     pub(crate) normal: Vec<Var>,
     pub(crate) symbols: HashMap<String, Tensor<Quotient>>,
     pub(crate) cache: HashMap<String, Tensor<Quotient>>,
@@ -172,7 +169,6 @@ impl<'a> ExactEnv<'a> {
             defs: &[],
             vars,
             varying: HashMap::default(),
-            tensor_components: HashSet::default(),
             normal,
             symbols: HashMap::default(),
             cache: HashMap::default(),
@@ -238,9 +234,6 @@ impl<'a> ExactEnv<'a> {
     /// field or the position.
     pub(crate) fn component_var(&mut self, symbol: &str, idx: &[usize]) -> Var {
         let v = self.vars.intern(&component_name(symbol, idx));
-        if !idx.is_empty() {
-            self.tensor_components.insert(v);
-        }
         if self.decls.fields.contains_key(symbol) {
             self.varying.entry(v).or_insert_with(|| Varying::Jet {
                 field: symbol.to_owned(),

@@ -68,7 +68,8 @@ impl Ring for ExactRing<'_, '_> {
     }
 
     /// A single-term divisor (3, V, 2*R_g) divides the numerator as before; a sum must
-    /// be a polynomial in scalar parameters, and joins the denominator. A divisor
+    /// be a polynomial in scalar parameters and components of tensors that do not vary
+    /// with position, and joins the denominator. A divisor
     /// written as a product of scalars or a power, `(1 + nu) (1 - 2 nu)`, is divided
     /// by one factor at a time, so that the factors stay apart in the denominator and
     /// in the conditions where the statement holds.
@@ -100,23 +101,17 @@ impl Ring for ExactRing<'_, '_> {
             .variables()
             .into_iter()
             .filter(|_| !single_term)
-            .find(|v| {
-                env.normal.contains(v)
-                    || env.varying.contains_key(v)
-                    || env.tensor_components.contains(v)
-            });
+            .find(|v| env.normal.contains(v) || env.varying.contains_key(v));
         if let Some(v) = offending {
             let name = env.vars.name(v);
             let what = if env.normal.contains(&v) {
                 format!("`{name}` is a component of the normal")
-            } else if env.varying.contains_key(&v) {
-                format!("`{name}` varies with position")
             } else {
-                format!("`{name}` is a component of a tensor")
+                format!("`{name}` varies with position")
             };
             return Err(self.error(
                 divisor,
-                format!("exact mode divides by a sum only when it is a polynomial in scalar parameters; {what}"),
+                format!("exact mode divides by a sum only when it is free of the normal and of fields; {what}"),
                 "decide this claim with strategy = \"numeric\", or multiply the statement out",
             ));
         }
