@@ -13,7 +13,7 @@ pub mod decide;
 pub mod derivation;
 pub mod digits;
 pub mod eval;
-pub mod kernel;
+pub use cosserat_kernel as kernel;
 pub mod lang;
 /// Mutants of a statement, for the unit tests of the index canonicaliser (the sweep
 /// over the paper is `tests/mutants.rs`); test-only, so it lives with the tests.

@@ -1,7 +1,8 @@
 //! The one-way structure of `src/`: no file imports, directly or through others, a file
 //! that imports it back; the top-level folders depend only downwards, in the order data
-//! flows (kernel, algebra, lang, derivation, eval, decide, check, report, then the command line);
-//! and the trusted kernel names nothing outside itself.
+//! flows (kernel, algebra, lang, derivation, eval, decide, check, report, then the
+//! command line); and the trusted kernel, a crate of its own in `src/kernel`, names
+//! nothing outside itself (the compiler holds it to that too).
 //!
 //! An import is any path that starts with `crate::`, `super::` or `self::` outside
 //! comments and test modules (a `use`, a call, a type), and in a `mod.rs` a path that
@@ -173,6 +174,10 @@ fn imports(src: &Path) -> BTreeMap<Module, BTreeSet<Module>> {
         let mut deps = BTreeSet::new();
         for path in paths(text, &["crate", "super", "self"]) {
             let (mut base, rest): (Module, &[String]) = match path[0].as_str() {
+                // The kernel is a crate of its own: there `crate::` is the kernel.
+                "crate" if m.first().is_some_and(|f| f == "kernel") => {
+                    (vec!["kernel".to_owned()], &path[1..])
+                }
                 "crate" => (Vec::new(), &path[1..]),
                 "self" => (m.clone(), &path[1..]),
                 _ => {
@@ -293,7 +298,7 @@ fn folders_depend_only_downwards_and_the_kernel_on_nothing_else() {
 
 /// The checks above can fail: in a small tree written for the purpose, a circle through
 /// a `{…}` group and a call, and a kernel file that calls into `report` (the same call
-/// in a comment does not count), are found.
+/// in a comment does not count), are found; `crate::` in the kernel names the kernel.
 #[test]
 fn a_circle_and_an_upward_import_are_found() {
     let dir = std::env::temp_dir().join(format!("cc-layers-{}", std::process::id()));
@@ -303,7 +308,7 @@ fn a_circle_and_an_upward_import_are_found() {
     write("lib.rs", "pub mod kernel;\npub mod report;\n");
     write(
         "kernel/mod.rs",
-        "pub mod a;\npub mod b;\npub mod c;\npub mod d;\npub use c::{k};\n",
+        "pub mod a;\npub mod b;\npub mod c;\npub mod d;\npub mod e;\npub use c::{k};\n",
     );
     write("kernel/a.rs", "use super::b::{f, G};\n");
     write(
@@ -311,9 +316,10 @@ fn a_circle_and_an_upward_import_are_found() {
         "use super::{a::{g, h}, d};\npub fn f() { super::a::g(); }\n",
     );
     write("kernel/d.rs", "pub fn e() {}\n");
+    write("kernel/e.rs", "pub fn f() { crate::d::e(); }\n");
     write(
         "kernel/c.rs",
-        "use super::{a};\n// crate::report::h();\npub fn k() { crate::report::h(); }\n",
+        "use super::{a};\n// super::super::report::h();\npub fn k() { super::super::report::h(); }\n",
     );
     write(
         "report.rs",
@@ -326,6 +332,8 @@ fn a_circle_and_an_upward_import_are_found() {
     assert!(graph[&m("kernel")].contains(&m("kernel/c")));
     assert!(graph[&m("kernel/c")].contains(&m("kernel/a")));
     assert!(!graph[&m("kernel/c")].contains(&m("kernel")));
+    // In the kernel, a crate of its own, `crate::` is the kernel.
+    assert!(graph[&m("kernel/e")].contains(&m("kernel/d")));
     // A nested group belongs to its item.
     assert!(graph[&m("kernel/b")].contains(&m("kernel/d")));
     assert!(!graph[&m("kernel/b")].contains(&m("kernel")));

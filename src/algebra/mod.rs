@@ -21,6 +21,8 @@ pub mod residue;
 pub mod sign;
 pub mod sturm;
 pub mod tensor;
+#[cfg(test)]
+mod testing;
 
 pub use quotient::Quotient;
 pub use ratfunc::RatFunc;

@@ -170,7 +170,7 @@ pub fn rational_latex(q: &Rational) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::poly::testing::{below, q, vars};
+    use crate::algebra::testing::{below, q, vars};
     use num_traits::{One, Zero};
 
     #[test]

@@ -1591,12 +1591,7 @@ pub(super) fn entrywise(
             continue;
         };
         // The literal 0 stands for the zero matrix of the chain's shape (`A - A^T = 0`).
-        let zero = |k: usize| {
-            chain[k]
-                .node
-                .as_ref()
-                .is_ok_and(|n| n.is_literal_zero())
-        };
+        let zero = |k: usize| chain[k].node.as_ref().is_ok_and(|n| n.is_literal_zero());
         if let Some(k) = (0..chain.len()).find(|&k| shapes[k] != Some(shape) && !zero(k)) {
             let side = &chain[k];
             let what = shapes[k].map_or_else(|| "a scalar or tensor".to_owned(), shape_words);

@@ -10,7 +10,7 @@
 //! statement and fact, and `recheck` runs `check` on them again.
 //!
 //! ```compile_fail
-//! use cosserat_check::kernel::check::{Proof, Conclusion};
+//! use cosserat_kernel::check::{Proof, Conclusion};
 //! let forged = Proof { conclusion: Conclusion::Holds };
 //! ```
 

@@ -396,7 +396,7 @@ fn over_common(a: &[(Poly, u32)], b: &[(Poly, u32)]) -> Common {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::VarTable;
+    use crate::VarTable;
 
     fn setup() -> (Poly, Poly) {
         let mut names = VarTable::new();

@@ -1,4 +1,5 @@
-//! The trusted kernel: everything a proof depends on, and nothing that searches.
+//! The trusted kernel of cosserat-check: everything a proof depends on, and nothing
+//! that searches.
 //!
 //! - numbers and polynomials: exact rationals ([`rational`]), canonical sparse
 //!   polynomials with checked exponents ([`poly`]), fractions kept over their divisors
@@ -12,8 +13,9 @@
 //!   coefficients ([`sign`]); [`interrupt`] lets a claim's time limit stop a long
 //!   computation, which then proves nothing.
 //!
-//! The kernel imports nothing from the rest of the crate (`tests/layers.rs` checks it):
-//! a bug outside can make a claim `undecided`, never a proof. Its size and what it
+//! The kernel is a crate of its own (`cosserat-kernel`, re-exported by the checker as
+//! `kernel`): it cannot import the search, and a bug outside can make a claim
+//! `undecided`, never a proof. Its size and what it
 //! checks are stated in `docs/guide.md` ("How verdicts are reached, and why to trust
 //! them"); unit tests here, cross-checks in `tests/`.
 

@@ -30,7 +30,7 @@ fn odd_double_factorial_below(a: u32) -> Rational {
 /// ⟨n_1^{α_1} … n_d^{α_d}⟩ for n uniform on the unit sphere S^{d−1}, exactly.
 ///
 /// ```
-/// use cosserat_check::kernel::{monomial_moment, Rational};
+/// use cosserat_kernel::{monomial_moment, Rational};
 /// assert_eq!(monomial_moment(3, &[4, 0, 0]), Rational::ratio(1, 5).unwrap()); // ⟨n_1⁴⟩
 /// assert_eq!(monomial_moment(3, &[2, 2, 0]), Rational::ratio(1, 15).unwrap()); // eq. (26)
 /// ```

@@ -259,7 +259,7 @@ pub enum PolyError {
 /// A sparse Laurent polynomial with exact rational coefficients, in canonical form.
 ///
 /// ```
-/// use cosserat_check::kernel::{Poly, VarTable};
+/// use cosserat_kernel::{Poly, VarTable};
 /// let mut names = VarTable::new();
 /// let x = Poly::var(names.intern("x"));
 /// let y = Poly::var(names.intern("y"));
@@ -884,7 +884,7 @@ impl Neg for Poly {
     }
 }
 
-/// Helpers of the unit tests of polynomials, here and in `algebra`.
+/// Helpers of the unit tests of polynomials.
 #[cfg(test)]
 pub(crate) mod testing {
     use super::{Poly, Rational, VarTable};

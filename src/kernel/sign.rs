@@ -255,7 +255,7 @@ pub fn by_coefficients(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::VarTable;
+    use crate::VarTable;
 
     fn q(n: i64, d: i64) -> Rational {
         Rational::ratio(n, d).unwrap()
