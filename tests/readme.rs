@@ -1,4 +1,4 @@
-//! The README and the guide (`docs/guide.md`) match the program: every example command in their `sh`
+//! The README and the guide (`docs/src`, an mdBook) match the program: every example command in their `sh`
 //! blocks runs with the exit status its comment gives, the derivation-file example
 //! verifies, and every field of the JSON contract is in the JSON output.
 
@@ -8,7 +8,17 @@ use std::process::Command;
 const README: &str = concat!(
     include_str!("../README.md"),
     "\n",
-    include_str!("../docs/guide.md")
+    include_str!("../docs/src/introduction.md"),
+    "\n",
+    include_str!("../docs/src/table.md"),
+    "\n",
+    include_str!("../docs/src/commands.md"),
+    "\n",
+    include_str!("../docs/src/files.md"),
+    "\n",
+    include_str!("../docs/src/reading.md"),
+    "\n",
+    include_str!("../docs/src/trust.md")
 );
 
 /// The contents of every fenced block of `lang`.
@@ -124,6 +134,44 @@ fn every_field_of_the_json_contract_is_in_the_output() {
         assert!(
             actual["summary"].get(key).is_some(),
             "summary `{key}` missing"
+        );
+    }
+}
+
+/// The guide is an mdBook: its summary lists every chapter in `docs/src` once, in the
+/// order `cosserat-check guide` prints them, and the examples above are read from the
+/// same chapters.
+#[test]
+fn the_book_summary_lists_the_chapters_the_guide_prints() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/src");
+    let summary = std::fs::read_to_string(src.join("SUMMARY.md")).unwrap();
+    let linked: Vec<String> = summary
+        .lines()
+        .filter_map(|l| l.split_once("](").map(|(_, rest)| rest))
+        .filter_map(|rest| rest.split_once(')').map(|(file, _)| file.to_owned()))
+        .collect();
+    let mut files: Vec<String> = std::fs::read_dir(&src)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".md") && n != "SUMMARY.md")
+        .collect();
+    files.sort();
+    let mut sorted = linked.clone();
+    sorted.sort();
+    assert_eq!(sorted, files, "every chapter once in SUMMARY.md");
+    let printed: Vec<String> = linked
+        .iter()
+        .map(|f| std::fs::read_to_string(src.join(f)).unwrap())
+        .collect();
+    assert_eq!(
+        printed,
+        cosserat_check::cli::GUIDE,
+        "the guide prints the chapters in order"
+    );
+    for chapter in &printed {
+        assert!(
+            README.contains(chapter.as_str()),
+            "the examples read every chapter"
         );
     }
 }

@@ -15,9 +15,8 @@
 //!
 //! The kernel is a crate of its own (`cosserat-kernel`, re-exported by the checker as
 //! `kernel`): it cannot import the search, and a bug outside can make a claim
-//! `undecided`, never a proof. Its size and what it
-//! checks are stated in `docs/guide.md` ("How verdicts are reached, and why to trust
-//! them"); unit tests here, cross-checks in `tests/`.
+//! `undecided`, never a proof. Its size and what it checks are stated in the guide
+//! (`docs/src/trust.md`); unit tests here, cross-checks in `tests/`.
 
 pub mod check;
 pub mod differentiate;

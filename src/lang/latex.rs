@@ -13,7 +13,7 @@
 //! `\quad`, `\;`, `\text{…}` and `\Rightarrow`.
 //!
 //! Everything else is refused with its position in the LaTeX: the reader never skips
-//! or guesses. Two readings are fixed conventions, stated here and in the guide (docs/guide.md):
+//! or guesses. Two readings are fixed conventions, stated here and in the guide (docs/src/reading.md):
 //! `a b/c d` is `(a b)/(c d)` (a slash divides the whole product on its left by the
 //! whole product on its right, as in `2R_g S/3V`), and a symbol written against a
 //! parenthesised single symbol, `w(y)`, is refused as a possible function application.
