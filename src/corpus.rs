@@ -63,6 +63,10 @@ pub const EXAMPLES: &[(&str, &str)] = &[
         include_str!("../derivations/examples/fields.toml"),
     ),
     (
+        "derivations/examples/inverse.toml",
+        include_str!("../derivations/examples/inverse.toml"),
+    ),
+    (
         "derivations/examples/matrices.toml",
         include_str!("../derivations/examples/matrices.toml"),
     ),

@@ -4,6 +4,7 @@
 //! polynomials in scalar parameters are refused where they stand.
 
 use cosserat_check::cli::decide_all;
+use cosserat_check::decide::Strength;
 use cosserat_check::derivation::load_str;
 use cosserat_check::derivation::Verdict;
 use cosserat_check::kernel::check::Checked;
@@ -99,4 +100,7 @@ fn a_divisor_that_is_a_single_term_works_as_before() {
 #[test]
 fn the_worked_example_decides_as_declared() {
     common::assert_as_declared("derivations/examples/moduli.toml", 5, |_| {});
+    common::assert_as_declared("derivations/examples/inverse.toml", 5, |rows| {
+        assert!(rows.iter().all(|r| r.outcome.strength() == Strength::Proof));
+    });
 }
