@@ -178,7 +178,7 @@ impl Loader {
                 .diag(s.span(), format!("`{name}` is not a scalar parameter"))
                 .with_help("scalar claims are about declared scalars: scalars = [\"f_r\"]")),
             None => Err(self
-                .diag(s.span(), format!("`{name}` is not declared"))
+                .diag(s.span(), format!("`{name}` is not a declared scalar"))
                 .with_help("declare it: scalars = [\"…\"]")),
         }
     }
@@ -260,7 +260,15 @@ impl Loader {
                 }
                 _ => return Err(bad("one or two comparisons, in one direction")),
             };
-            let name = self.parameter(&toml::Spanned::new(g.span(), symbol.to_owned()), decls)?;
+            let name = self
+                .parameter(&toml::Spanned::new(g.span(), symbol.to_owned()), decls)
+                .map_err(|d| {
+                    d.with_help(
+                        "`given` of an exact or scalar claim bounds declared scalars (`given = [\"f_r > 0\"]`); \
+                         a bound on a definition or on any other expression is a hypothesis of \
+                         strategy = \"numeric\"",
+                    )
+                })?;
             let new = Interval {
                 lo: interval.0,
                 hi: interval.1,
