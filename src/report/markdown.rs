@@ -6,15 +6,35 @@ use super::summary::Summary;
 use crate::check::Decided;
 use std::fmt::Write as _;
 
-/// Makes text safe inside a Markdown table cell: one line, `|` escaped, and no `<`
+/// Makes text safe inside a Markdown table cell: one line, `|` escaped, no `<`
 /// directly before a letter, `/`, `!` or `?` (where HTML would start a tag or comment,
-/// a space is put after it).
+/// a space is put after it), and outside code spans and `$…$` no `[` or `]` that could
+/// make a link or an image (`[text](javascript:…)`, `![](https://…)`): they are escaped.
 pub fn cell(s: &str) -> String {
+    escaped(s, true)
+}
+
+/// [`cell`], with the brackets of links escaped only where `prose` (not inside `$…$`,
+/// where they are LaTeX's).
+fn escaped(s: &str, prose: bool) -> String {
     let line = s.split_whitespace().collect::<Vec<_>>().join(" ");
     let mut out = String::with_capacity(line.len());
     let mut chars = line.chars().peekable();
+    let (mut in_code, mut in_math) = (false, false);
     while let Some(c) = chars.next() {
         match c {
+            '`' => {
+                in_code = !in_code;
+                out.push(c);
+            }
+            '$' if !in_code => {
+                in_math = !in_math;
+                out.push(c);
+            }
+            '[' | ']' if prose && !in_code && !in_math => {
+                out.push('\\');
+                out.push(c);
+            }
             '|' => out.push_str("\\|"),
             '<' if chars
                 .peek()
@@ -41,8 +61,9 @@ pub fn line(s: &str) -> String {
     }
 }
 
+/// Inline LaTeX, `$…$`, safe in a table cell as [`cell`] makes text, its brackets kept.
 pub fn math(s: &str) -> String {
-    format!("${}$", cell(s))
+    format!("${}$", escaped(s, false))
 }
 
 /// Renders the whole table with its summary line.
@@ -90,5 +111,25 @@ pub fn statement(c: &crate::derivation::Claim) -> String {
         format!("“{}”", cell(&c.statement))
     } else {
         math(&c.statement)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn links_and_images_from_a_file_are_text_in_a_cell() {
+        assert_eq!(
+            cell("see [click](javascript:alert(1)) and ![x](http://e.example/p.png)"),
+            "see \\[click\\](javascript:alert(1)) and !\\[x\\](http://e.example/p.png)"
+        );
+        // Code spans and LaTeX keep their brackets: there they are not Markdown.
+        assert_eq!(
+            cell("`[[a, b]]` and $\\left[ x \\right]$"),
+            "`[[a, b]]` and $\\left[ x \\right]$"
+        );
+        assert_eq!(math("\\left[ x \\right]"), "$\\left[ x \\right]$");
+        assert_eq!(cell("a | b <script>"), "a \\| b < script>");
     }
 }
