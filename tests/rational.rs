@@ -13,7 +13,7 @@ use crate::common;
 
 #[test]
 fn identities_hold_where_their_divisors_do_not_vanish_and_twins_fail() {
-    common::assert_as_declared("tests/soundness/rational.toml", 24, |rows| {
+    common::assert_as_declared("tests/soundness/rational.toml", 26, |rows| {
         for r in rows {
             let o = &r.outcome;
             match o.verdict() {

@@ -273,10 +273,10 @@ fn decide_recording(
                 let compared = match identities.compare(lp, rp) {
                     Ok(c) => c,
                     // A size, not a property of the statement: undecided.
-                    Err(PolyError::TooLarge) => {
+                    Err(e @ (PolyError::TooLarge | PolyError::TooManyProducts)) => {
                         let d = chain[k]
                             .origin
-                            .diagnostic(Default::default(), PolyError::TooLarge.to_string());
+                            .diagnostic(Default::default(), e.to_string());
                         return Ok(Outcome::undecided(Method::Exact, identities.components())
                             .with_finding(Finding::ResourceLimit {
                                 what: d.message.clone(),

@@ -1,5 +1,5 @@
-//! A state at which the real rings evaluate: every symbol's components, after the
-//! assumptions, and the unit normal, as floating-point numbers.
+//! A sampled state, at which the real and interval rings evaluate: every symbol's
+//! components, after the assumptions, and the unit normal, as floating-point numbers.
 
 use crate::algebra::Tensor;
 use rustc_hash::FxHashMap as HashMap;

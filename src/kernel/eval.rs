@@ -706,8 +706,14 @@ impl<'c> Env<'c> {
                 // The numerator first: variables are numbered in the order they are
                 // met, and the evidence writes polynomials in that order.
                 let numerator = self.eval(a)?;
+                // A product of scalars divides one factor at a time; a product that
+                // contracts an index between its factors (`v_k v_k`) is one divisor.
+                let scalars = |fs: &[Term]| {
+                    fs.iter()
+                        .all(|f| f.letters(&*self).is_ok_and(|l| l.free.is_empty()))
+                };
                 let parts: Vec<(&Term, u32)> = match &**b {
-                    Term::Product(fs) => fs.iter().map(|f| (f, 1)).collect(),
+                    Term::Product(fs) if scalars(fs) => fs.iter().map(|f| (f, 1)).collect(),
                     Term::Pow(base, k) => vec![(&**base, *k)],
                     other => vec![(other, 1)],
                 };

@@ -254,7 +254,14 @@ pub enum PolyError {
     TooLarge,
     #[error("an exponent would exceed 2^40")]
     ExponentTooLarge,
+    #[error("a product of polynomials would take more than 4194304 term products")]
+    TooManyProducts,
 }
+
+/// The most term products one multiplication of polynomials may form (each is kept
+/// until the terms are merged): past it, a product is a resource limit, not a process
+/// that runs out of memory.
+pub const MAX_PRODUCTS: usize = 1 << 22;
 
 /// A sparse Laurent polynomial with exact rational coefficients, in canonical form.
 ///
@@ -407,7 +414,8 @@ impl Poly {
     }
 
     pub fn pow(&self, e: u32) -> Poly {
-        self.checked_pow(e).expect("exponent within MAX_EXPONENT")
+        self.checked_pow(e)
+            .expect("exponent within MAX_EXPONENT, products within MAX_PRODUCTS")
     }
 
     /// `self^e` by repeated squaring, or an error when an exponent would leave
@@ -431,7 +439,8 @@ impl Poly {
         Ok(acc)
     }
 
-    /// The product, or an error when an exponent would leave [`MAX_EXPONENT`].
+    /// The product, or an error when an exponent would leave [`MAX_EXPONENT`] or the
+    /// product would form more than [`MAX_PRODUCTS`] term products.
     pub fn checked_mul(&self, rhs: &Poly) -> Result<Poly, PolyError> {
         // A constant factor (δ and ε components, the 1 a product starts from) scales
         // every coefficient and keeps the order: no sort.
@@ -441,7 +450,11 @@ impl Poly {
             (_, [(m, c)]) if m.is_one() => return Ok(self.scaled(c)),
             _ => {}
         }
-        let mut products = Vec::with_capacity(self.terms.len().saturating_mul(rhs.terms.len()));
+        let count = self.terms.len().saturating_mul(rhs.terms.len());
+        if count > MAX_PRODUCTS {
+            return Err(PolyError::TooManyProducts);
+        }
+        let mut products = Vec::with_capacity(count);
         for (m1, c1) in &self.terms {
             // A row can be long (thousands of terms with coefficients of thousands of
             // digits): the claim's time limit may stop it here.
@@ -840,7 +853,8 @@ impl Sub<&Poly> for &Poly {
 impl Mul<&Poly> for &Poly {
     type Output = Poly;
     fn mul(self, rhs: &Poly) -> Poly {
-        self.checked_mul(rhs).expect("exponent within MAX_EXPONENT")
+        self.checked_mul(rhs)
+            .expect("exponent within MAX_EXPONENT, products within MAX_PRODUCTS")
     }
 }
 

@@ -100,7 +100,9 @@ pub(crate) fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnost
             "exact mode divides only by a single term such as 3, V or 2*R_g"
         }
         PolyError::NegativeNormalPower => "keep components of the normal out of divisors",
-        PolyError::TooLarge => "split the statement with definitions, or decide it numerically",
+        PolyError::TooLarge | PolyError::TooManyProducts => {
+            "split the statement with definitions, or decide it numerically"
+        }
         PolyError::ExponentTooLarge => "exponents up to 2^40 are supported exactly",
     };
     origin.diagnostic(node.span, e.to_string()).with_help(help)
