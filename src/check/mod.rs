@@ -1,4 +1,4 @@
-//! Checking a derivation: [`dispatch`] sends each claim to its decision under a time
+//! Checking a derivation: `dispatch` sends each claim to its decision under a time
 //! limit and with panic isolation ([`isolate`]); [`transcription`] compares the printed
 //! LaTeX with the claim's sides; [`inherit`] re-decides a failure with the claims it
 //! uses taken as given, to tell a root error from an inherited one; [`probe`] evaluates

@@ -4,10 +4,10 @@
 //! a proved `holds` is made only from a fact the kernel checked.
 //!
 //! The claim kinds: [`identity`] (exact, component by component, with the
-//! symbolic-index route of [`indices`] and [`proportional`] claims), [`numeric`] (sampled
+//! symbolic-index route of `indices` and `proportional` claims), [`numeric`] (sampled
 //! relations, gradients and convexity, with the [`sampler`], the adversarial [`search`]
-//! and one random generator, [`random`]), [`scalar`] (sign, monotonicity, limits,
-//! roots) and [`witness`]; [`reverify`] confirms a counterexample by a second method
+//! and one random generator, [`random`]), `scalar` (sign, monotonicity, limits,
+//! roots) and [`witness`]; `reverify` confirms a counterexample by a second method
 //! before it is printed. [`finding`] holds what a decision found, as data; [`watch`]
 //! is the per-claim time limit the decisions poll.
 

@@ -145,7 +145,7 @@ pub trait Calculus: Ring {
         n: &Self::Normal,
     ) -> Result<Tensor<Self::Value>, Self::Error>;
     /// The variational derivatives of the density `body` with respect to every
-    /// component of `field` (see [`NodeKind::Variation`]): a tensor with `body`'s
+    /// component of `field` (see `variation(…)` in the guide): a tensor with `body`'s
     /// slots (its free letters, sorted) followed by the field's slots.
     fn variations(
         &mut self,
