@@ -8,36 +8,33 @@ use std::fmt::Write as _;
 
 /// Makes text safe inside a Markdown table cell: one line, `|` escaped, no `<`
 /// directly before a letter, `/`, `!` or `?` (where HTML would start a tag or comment,
-/// a space is put after it), and outside code spans and `$…$` no `[` or `]` that could
-/// make a link or an image (`[text](javascript:…)`, `![](https://…)`): they are escaped.
+/// a space is put after it), and outside code spans no `[` or `]` that could make a
+/// link or an image (`[text](javascript:…)`, `![](https://…)`): they are escaped, in
+/// `$…$` too (a file decides where its dollars are).
 pub fn cell(s: &str) -> String {
     escaped(s, true)
 }
 
-/// [`cell`], with the brackets of links escaped only where `prose` (not inside `$…$`,
-/// where they are LaTeX's).
+/// [`cell`], with the brackets of links escaped only where `prose` (a printed formula
+/// that [`math`] puts inside `$…$` keeps LaTeX's brackets).
 fn escaped(s: &str, prose: bool) -> String {
-    let line = s.split_whitespace().collect::<Vec<_>>().join(" ");
+    let line: Vec<char> = s
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .chars()
+        .collect();
+    let code = code_spans(&line);
     let mut out = String::with_capacity(line.len());
-    let mut chars = line.chars().peekable();
-    let (mut in_code, mut in_math) = (false, false);
-    while let Some(c) = chars.next() {
+    for (k, &c) in line.iter().enumerate() {
         match c {
-            '`' => {
-                in_code = !in_code;
-                out.push(c);
-            }
-            '$' if !in_code => {
-                in_math = !in_math;
-                out.push(c);
-            }
-            '[' | ']' if prose && !in_code && !in_math => {
+            '[' | ']' if prose && !code[k] => {
                 out.push('\\');
                 out.push(c);
             }
             '|' => out.push_str("\\|"),
-            '<' if chars
-                .peek()
+            '<' if line
+                .get(k + 1)
                 .is_some_and(|n| n.is_ascii_alphabetic() || "/!?".contains(*n)) =>
             {
                 out.push_str("< ");
@@ -46,6 +43,43 @@ fn escaped(s: &str, prose: bool) -> String {
         }
     }
     out
+}
+
+/// Which characters lie inside a code span, as CommonMark reads them: a run of n
+/// backticks opens a span that the next run of exactly n backticks closes; a run
+/// without its closer is literal text.
+fn code_spans(line: &[char]) -> Vec<bool> {
+    let run_at = |k: usize| line[k..].iter().take_while(|&&c| c == '`').count();
+    let mut inside = vec![false; line.len()];
+    let mut k = 0;
+    while k < line.len() {
+        if line[k] != '`' {
+            k += 1;
+            continue;
+        }
+        let n = run_at(k);
+        let mut j = k + n;
+        let close = loop {
+            match line[j..].iter().position(|&c| c == '`') {
+                None => break None,
+                Some(p) => {
+                    let m = run_at(j + p);
+                    if m == n {
+                        break Some(j + p);
+                    }
+                    j += p + m;
+                }
+            }
+        };
+        match close {
+            Some(c) => {
+                inside[k + n..c].iter_mut().for_each(|x| *x = true);
+                k = c + n;
+            }
+            None => k += n,
+        }
+    }
+    inside
 }
 
 /// A line of text outside the table (the paper's name): a [`cell`] that cannot start
@@ -124,11 +158,11 @@ mod tests {
             cell("see [click](javascript:alert(1)) and ![x](http://e.example/p.png)"),
             "see \\[click\\](javascript:alert(1)) and !\\[x\\](http://e.example/p.png)"
         );
-        // Code spans and LaTeX keep their brackets: there they are not Markdown.
-        assert_eq!(
-            cell("`[[a, b]]` and $\\left[ x \\right]$"),
-            "`[[a, b]]` and $\\left[ x \\right]$"
-        );
+        // Code spans keep their brackets: there they are not Markdown.
+        assert_eq!(cell("`[[a, b]]` and ``[`x`]``"), "`[[a, b]]` and ``[`x`]``");
+        // A backtick run without its closer, or a dollar, opens nothing: links stay text.
+        assert_eq!(cell("` [a](javascript:1) ``"), "` \\[a\\](javascript:1) ``");
+        assert_eq!(cell("$ [a](x) $"), "$ \\[a\\](x) $");
         assert_eq!(math("\\left[ x \\right]"), "$\\left[ x \\right]$");
         assert_eq!(cell("a | b <script>"), "a \\| b < script>");
     }
