@@ -97,7 +97,9 @@ pub fn line(s: &str) -> String {
 
 /// Inline LaTeX, `$…$`, safe in a table cell as [`cell`] makes text, its brackets kept.
 pub fn math(s: &str) -> String {
-    format!("${}$", escaped(s, false))
+    // A dollar of the file's own would end the mathematics early: then its brackets
+    // are escaped like prose.
+    format!("${}$", escaped(s, s.contains('$')))
 }
 
 /// Renders the whole table with its summary line.
@@ -164,6 +166,7 @@ mod tests {
         assert_eq!(cell("` [a](javascript:1) ``"), "` \\[a\\](javascript:1) ``");
         assert_eq!(cell("$ [a](x) $"), "$ \\[a\\](x) $");
         assert_eq!(math("\\left[ x \\right]"), "$\\left[ x \\right]$");
+        assert_eq!(math("x$ [a](b) $y"), "$x$ \\[a\\](b) $y$");
         assert_eq!(cell("a | b <script>"), "a \\| b < script>");
     }
 }
