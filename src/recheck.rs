@@ -50,6 +50,8 @@ enum Refused {
     Conclusion { said: &'static str, written: String },
     #[error("the recorded summary is not what the kernel checked")]
     Summary,
+    #[error("the recorded certificate is not what the kernel checked")]
+    Certificate,
     #[error("the proofs do not conclude the verdict `{0}`")]
     Verdict(String),
 }
@@ -133,7 +135,11 @@ fn one(row: &serde_json::Value) -> Result<Option<String>, Refused> {
         .and_then(|p| p.as_array())
         .cloned()
         .unwrap_or_default();
+    let certificate = row.get("certificate").filter(|c| !c.is_null());
     if strength != "proof" {
+        if certificate.is_some() {
+            return Err(Refused::NotOfStrengthProof(shown(strength)));
+        }
         return if written.is_empty() {
             Ok(None)
         } else {
@@ -145,6 +151,7 @@ fn one(row: &serde_json::Value) -> Result<Option<String>, Refused> {
     }
     let mut conclusions = Vec::new();
     let mut items = 0;
+    let mut facts = Vec::new();
     for w in written {
         let w: Written = serde_json::from_value(w).map_err(Refused::IllWritten)?;
         let proof = check(w.statement, w.fact)?;
@@ -163,7 +170,12 @@ fn one(row: &serde_json::Value) -> Result<Option<String>, Refused> {
             return Err(Refused::Summary);
         }
         items += summary.len();
+        facts.extend(summary);
         conclusions.push(proof.conclusion());
+    }
+    // The certificate a reader sees first is the proofs' summaries, and nothing else.
+    if certificate != Some(&serde_json::json!({ "facts": facts })) {
+        return Err(Refused::Certificate);
     }
     let agrees = match verdict {
         "holds" => conclusions == [Conclusion::Holds],

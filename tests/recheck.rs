@@ -114,6 +114,25 @@ fn an_edited_proof_statement_conclusion_or_verdict_is_refused() {
         let row = with_fact(r, "identity");
         row["proofs"][0]["summary"][0]["components"] = Value::from(99);
     });
+    // The certificate a reader sees first, reworded or removed, or one added to a
+    // verdict that is not a proof.
+    refused(&|r| {
+        let row = with_fact(r, "identity");
+        row["certificate"]["facts"][0]["components"] = Value::from(99);
+    });
+    refused(&|r| {
+        let row = with_fact(r, "refutation");
+        row["certificate"] = Value::Null;
+    });
+    let mut r = base.clone();
+    let sampled = r["claims"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|c| c["strength"] == "sampled")
+        .expect("a sampled verdict");
+    sampled["certificate"] = serde_json::json!({"facts": [{"kind": "identity"}]});
+    assert_eq!(rechecked(&r), (accepted, 1));
 }
 
 #[test]

@@ -59,7 +59,7 @@ fn strict_signs_broken_on_a_thin_set_fail_with_an_exact_point() {
 
 #[test]
 fn a_law_times_a_factor_of_the_parameters_is_the_same_law() {
-    assert_eq!(as_declared_for_every_seed("proportional-factors"), 8);
+    assert_eq!(as_declared_for_every_seed("proportional-factors"), 10);
 }
 
 #[test]

@@ -156,12 +156,18 @@ pub fn reference(
         if zero_there {
             continue;
         }
-        // Nonzero as a function, so a point where it is nonzero exists; the search
-        // tries a fixed number of candidates and may miss it.
-        let (point, rhs, _) =
-            point_where_differ(normal, rp, &zero, env.domain()).ok_or(NoReference::NoPoint)?;
-        let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        // Nonzero as a function, so a point where it is nonzero and the left side
+        // defined exists (the left side's divisors are nonzero polynomials): the search
+        // looks for one with them as conditions, among a fixed number of candidates,
+        // and may miss it.
         let lp = l.at(&assignment);
+        let divisors: Vec<_> = (lp.factors().iter().map(|(f, _)| f.clone()))
+            .chain(lp.conditions().iter().cloned())
+            .collect();
+        let target = rp.clone().with_conditions(&divisors);
+        let (point, rhs, _) = point_where_differ(normal, &target, &zero, env.domain())
+            .ok_or(NoReference::NoPoint)?;
+        let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
         let lhs = lp.eval(&at).ok_or(NoReference::NoPoint)?;
         // λ with every variable but the parameters fixed at the point.
         let parameters = env.parameter_vars();
