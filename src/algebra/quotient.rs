@@ -17,7 +17,7 @@ use super::einsum::{Arithmetic, OverBudget};
 use super::gcd::{canonical_scale, clear_denominator_monomial, divide_exact, monomial_content};
 use super::ratfunc::RatFunc;
 use super::residue;
-use crate::kernel::poly::{Monomial, Poly, Var, VarTable};
+use crate::kernel::poly::{beyond, Monomial, Poly, PolyError, Var, VarTable};
 use crate::kernel::rational::Rational;
 use num_traits::One;
 use std::sync::Arc;
@@ -256,7 +256,12 @@ impl Quotient {
             num: self.num.pow(k),
             den: (self.factors().iter())
                 .filter(|_| k > 0)
-                .map(|(f, m)| (f.clone(), m * k))
+                .map(|(f, m)| {
+                    let m = m
+                        .checked_mul(k)
+                        .unwrap_or_else(|| beyond(PolyError::ExponentTooLarge));
+                    (f.clone(), m)
+                })
                 .collect(),
             conditions: self.conditions().to_vec(),
         }

@@ -18,7 +18,7 @@ pub fn decide_claim(claim: &Claim) -> Result<Decided<'_>, Diagnostic> {
 }
 
 fn decide_claim_keeping(claim: &Claim, keep: bool) -> Result<Decided<'_>, Diagnostic> {
-    let outcome = isolate::isolated(method_of(&claim.check), || {
+    let outcome = isolate::isolated(method_of(&claim.check), &claim.check.location(), || {
         isolate::test_hook(&claim.id);
         decide_unisolated(&claim.decls, &claim.check, keep)
     })?;

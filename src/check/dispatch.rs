@@ -18,7 +18,9 @@ pub(crate) fn decide_keeping(
     check: &crate::derivation::Check,
     keep: bool,
 ) -> Result<Outcome, Diagnostic> {
-    isolate::isolated(method_of(check), || decide_unisolated(decls, check, keep))
+    isolate::isolated(method_of(check), &check.location(), || {
+        decide_unisolated(decls, check, keep)
+    })
 }
 
 /// The method a check's strategy decides with.

@@ -10,6 +10,7 @@
 
 use crate::decide::finding::Finding;
 use crate::decide::{Method, Outcome};
+use crate::kernel::PolyError;
 use std::cell::{Cell, RefCell};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Once;
@@ -45,28 +46,49 @@ fn install_hook() {
     });
 }
 
-/// Runs `f`; a panic in it comes back as its message and where in the checker it
-/// happened.
-pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, (String, String)> {
+/// What unwound out of an isolated call.
+pub enum Unwound {
+    /// A polynomial operator passed a limit ([`crate::kernel::poly::beyond`]).
+    Limit(PolyError),
+    /// A panic: its message and where in the checker it happened.
+    Panic(String, String),
+}
+
+/// Runs `f`; what unwinds out of it comes back as [`Unwound`].
+pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, Unwound> {
     install_hook();
     DEPTH.with(|d| d.set(d.get() + 1));
     let result = catch_unwind(AssertUnwindSafe(f));
     DEPTH.with(|d| d.set(d.get() - 1));
-    result.map_err(|_| {
-        CAUGHT
-            .with(|c| c.borrow_mut().take())
-            .unwrap_or_else(|| ("a panic".to_owned(), "an unknown place".to_owned()))
+    result.map_err(|payload| match payload.downcast::<PolyError>() {
+        Ok(e) => Unwound::Limit(*e),
+        Err(_) => {
+            let (message, at) = CAUGHT
+                .with(|c| c.borrow_mut().take())
+                .unwrap_or_else(|| ("a panic".to_owned(), "an unknown place".to_owned()));
+            Unwound::Panic(message, at)
+        }
     })
 }
 
-/// Runs one decision; a panic in it becomes `undecided (internal error)` with
-/// `method`, its message and where in the checker it happened.
+/// Runs one decision; a polynomial past its limits makes it `undecided (resource
+/// limit)`, a panic `undecided (internal error)` with `method`, its message and where
+/// in the checker it happened.
 pub fn isolated<E>(
     method: Method,
+    at: &str,
     decide: impl FnOnce() -> Result<Outcome, E>,
 ) -> Result<Outcome, E> {
-    caught(decide).unwrap_or_else(|(message, at)| {
-        Ok(Outcome::undecided(method, 0).with_finding(Finding::InternalError { message, at }))
+    caught(decide).unwrap_or_else(|unwound| {
+        let finding = match unwound {
+            Unwound::Limit(e) => Finding::ResourceLimit {
+                what: e.to_string(),
+                at: at.to_owned(),
+                help: "split the statement with definitions, or decide it numerically".to_owned(),
+            },
+            Unwound::Panic(message, at) => Finding::InternalError { message, at },
+        };
+        Ok(Outcome::undecided(method, 0).with_finding(finding))
     })
 }
 
@@ -107,7 +129,7 @@ mod tests {
     #[test]
     fn a_panic_is_the_decisions_internal_error_and_later_panics_are_reported_alike() {
         for round in 0..2 {
-            let o: Result<Outcome, ()> = isolated(Method::Exact, || {
+            let o: Result<Outcome, ()> = isolated(Method::Exact, "", || {
                 let v: Vec<u8> = Vec::new();
                 let _ = v[round + 3];
                 unreachable!()
@@ -123,6 +145,29 @@ mod tests {
         }
         // Outside an isolated call nothing is caught or kept.
         assert!(std::panic::catch_unwind(|| panic!("plain")).is_err());
+        assert!(CAUGHT.with(|c| c.borrow().is_none()));
+    }
+
+    #[test]
+    fn a_polynomial_past_its_limits_in_an_operator_is_a_resource_limit() {
+        use crate::kernel::{Poly, VarTable};
+        let mut names = VarTable::new();
+        let x = Poly::var(names.intern("x"));
+        let y = Poly::var(names.intern("y"));
+        let o: Result<Outcome, ()> = isolated(Method::Exact, "f.toml:3:9", || {
+            // (x + y)^4096 times itself forms more term products than allowed.
+            let big = (&x + &y).pow(4096);
+            let _ = &big * &big;
+            unreachable!()
+        });
+        let o = o.unwrap();
+        assert_eq!(o.verdict(), crate::derivation::Verdict::Undecided);
+        let Some(Finding::ResourceLimit { what, at, .. }) = &o.finding else {
+            panic!("{:?}", o.finding)
+        };
+        assert!(what.contains("term products"), "{what}");
+        assert_eq!(at, "f.toml:3:9");
+        assert!(!is_internal_error(&o));
         assert!(CAUGHT.with(|c| c.borrow().is_none()));
     }
 }

@@ -162,10 +162,19 @@ pub fn transcribe_isolated(
         super::isolate::transcription_test_hook(id);
         transcribe(decls, check, transcript)
     };
-    super::isolate::caught(compare).unwrap_or_else(|(message, at)| Transcription {
-        status: Status::Hand {
-            reason: Hand::InternalError { message, at },
-        },
+    use super::isolate::Unwound;
+    super::isolate::caught(compare).unwrap_or_else(|unwound| {
+        let (message, at) = match unwound {
+            // Reading a printed statement is not a decision: a limit there is the
+            // checker's to raise, reported like a defect.
+            Unwound::Limit(e) => (e.to_string(), "a polynomial operation".to_owned()),
+            Unwound::Panic(message, at) => (message, at),
+        };
+        Transcription {
+            status: Status::Hand {
+                reason: Hand::InternalError { message, at },
+            },
+        }
     })
 }
 

@@ -230,6 +230,19 @@ pub struct Check {
     pub strategy: Strategy,
 }
 
+impl Check {
+    /// Where the statement is written (file:line:col of its first side).
+    pub fn location(&self) -> String {
+        self.chains
+            .iter()
+            .flatten()
+            .next()
+            .map_or_else(String::new, |s| {
+                s.origin.diagnostic(Default::default(), "").location()
+            })
+    }
+}
+
 /// The relation between consecutive sides of a chain.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Relation {

@@ -119,7 +119,7 @@ impl Monomial {
     /// [`MAX_EXPONENT`]; [`Monomial::checked_mul`] says `None` instead.
     pub fn mul(&self, other: &Monomial) -> Monomial {
         self.checked_mul(other)
-            .expect("exponent within MAX_EXPONENT")
+            .unwrap_or_else(|| beyond(PolyError::ExponentTooLarge))
     }
 
     /// The product of two monomials (a linear merge of sorted lists), or `None` when an
@@ -256,6 +256,14 @@ pub enum PolyError {
     ExponentTooLarge,
     #[error("a product of polynomials would take more than 4194304 term products")]
     TooManyProducts,
+}
+
+/// Where an operator without a `Result` (`*`, [`Poly::pow`], [`Monomial::mul`]) passes
+/// a limit: it unwinds with the [`PolyError`] itself as the payload (the panic hook
+/// does not run), and the checker's isolation of each claim reads it as a resource
+/// limit, `undecided`. It never wraps and never returns a value.
+pub fn beyond(e: PolyError) -> ! {
+    std::panic::resume_unwind(Box::new(e))
 }
 
 /// The most term products one multiplication of polynomials may form (each is kept
@@ -413,9 +421,9 @@ impl Poly {
         }))
     }
 
+    /// `self^e`; past a limit it unwinds like the product ([`beyond`]).
     pub fn pow(&self, e: u32) -> Poly {
-        self.checked_pow(e)
-            .expect("exponent within MAX_EXPONENT, products within MAX_PRODUCTS")
+        self.checked_pow(e).unwrap_or_else(|e| beyond(e))
     }
 
     /// `self^e` by repeated squaring, or an error when an exponent would leave
@@ -853,8 +861,7 @@ impl Sub<&Poly> for &Poly {
 impl Mul<&Poly> for &Poly {
     type Output = Poly;
     fn mul(self, rhs: &Poly) -> Poly {
-        self.checked_mul(rhs)
-            .expect("exponent within MAX_EXPONENT, products within MAX_PRODUCTS")
+        self.checked_mul(rhs).unwrap_or_else(|e| beyond(e))
     }
 }
 
