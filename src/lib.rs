@@ -5,7 +5,7 @@
 //! file under `derivations/`; the checker decides each claim and reports a verdict
 //! with its evidence. Data flows one way: file → parse/validate → decide → report.
 
-pub mod algebra;
+pub use cosserat_algebra as algebra;
 pub mod check;
 pub mod cli;
 pub mod corpus;
@@ -14,7 +14,7 @@ pub mod derivation;
 pub mod digits;
 pub mod eval;
 pub use cosserat_kernel as kernel;
-pub mod lang;
+pub use cosserat_lang as lang;
 /// Mutants of a statement, for the unit tests of the index canonicaliser (the sweep
 /// over the paper is `tests/mutants.rs`); test-only, so it lives with the tests.
 #[cfg(test)]

@@ -2,7 +2,8 @@
 //! that imports it back; the top-level folders depend only downwards, in the order data
 //! flows (kernel, algebra, lang, derivation, eval, decide, check, report, then the
 //! command line); and the trusted kernel, a crate of its own in `src/kernel`, names
-//! nothing outside itself (the compiler holds it to that too).
+//! nothing outside itself (the compiler holds it to that too). The algebra and the
+//! language are crates of their own as well (`src/algebra`, `src/lang`).
 //!
 //! An import is any path that starts with `crate::`, `super::` or `self::` outside
 //! comments and test modules (a `use`, a call, a type), and in a `mod.rs` a path that
@@ -13,6 +14,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 type Module = Vec<String>;
+
+/// The folders of `src/` that are crates of their own (`src/kernel/Cargo.toml`, …).
+const CRATES: &[&str] = &["kernel", "algebra", "lang"];
 
 /// The top-level modules in the order data flows: a module may use only modules of its
 /// own rank or lower.
@@ -174,9 +178,16 @@ fn imports(src: &Path) -> BTreeMap<Module, BTreeSet<Module>> {
         let mut deps = BTreeSet::new();
         for path in paths(text, &["crate", "super", "self"]) {
             let (mut base, rest): (Module, &[String]) = match path[0].as_str() {
-                // The kernel is a crate of its own: there `crate::` is the kernel.
-                "crate" if m.first().is_some_and(|f| f == "kernel") => {
-                    (vec!["kernel".to_owned()], &path[1..])
+                // The kernel, the algebra and the language are crates of their own:
+                // there `crate::` is the crate, except the names they give the crates
+                // below them (`crate::kernel`, `crate::algebra`).
+                "crate"
+                    if m.first().is_some_and(|f| CRATES.contains(&f.as_str()))
+                        && path
+                            .get(1)
+                            .is_none_or(|p| !CRATES.contains(&p.as_str()) || p == &m[0]) =>
+                {
+                    (vec![m[0].clone()], &path[1..])
                 }
                 "crate" => (Vec::new(), &path[1..]),
                 "self" => (m.clone(), &path[1..]),
@@ -346,4 +357,19 @@ fn a_circle_and_an_upward_import_are_found() {
         ],
         "report → kernel/c is in a test module, kernel/c → report against the order"
     );
+}
+
+#[test]
+fn the_folders_read_as_crates_are_the_crates() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut crates: Vec<String> = std::fs::read_dir(&src)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("Cargo.toml").is_file())
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    crates.sort();
+    let mut expected: Vec<&str> = CRATES.to_vec();
+    expected.sort();
+    assert_eq!(crates, expected);
 }

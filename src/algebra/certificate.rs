@@ -79,7 +79,7 @@ pub enum Fact {
 /// functions that verify it:
 ///
 /// ```compile_fail
-/// use cosserat_check::algebra::certificate::{Certificate, Fact};
+/// use cosserat_algebra::certificate::{Certificate, Fact};
 /// let forged = Certificate { facts: vec![Fact::RationalFunctionIdentity] };
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -351,9 +351,9 @@ impl Difference {
 /// certificate lists the factors that must not vanish.
 ///
 /// ```
-/// use cosserat_check::algebra::certificate::Identities;
-/// use cosserat_check::kernel::{Poly, Rational, VarTable};
-/// use cosserat_check::algebra::Quotient;
+/// use cosserat_algebra::certificate::Identities;
+/// use cosserat_kernel::{Poly, Rational, VarTable};
+/// use cosserat_algebra::Quotient;
 /// let mut names = VarTable::new();
 /// let x = Quotient::from(Poly::var(names.intern("x")));
 /// let two_x = Quotient::from(&Poly::constant(Rational::int(2)) * x.numerator());
@@ -505,10 +505,10 @@ mod tests {
             .divide(&Quotient::from(&c(2) * &(&l + &g)))
             .unwrap();
         let mut work = 10_000;
-        let mut ring = crate::algebra::quotient::Quotients {
+        let mut ring = crate::quotient::Quotients {
             work_left: &mut work,
         };
-        use crate::algebra::einsum::Arithmetic;
+        use crate::einsum::Arithmetic;
         let one_plus_nu = ring.add(Quotient::from(c(1)), nu).unwrap();
         let two = Quotient::from(c(2));
         let g_again = e.divide(&ring.mul(two, &one_plus_nu).unwrap()).unwrap();

@@ -194,8 +194,8 @@ fn content_and_primitive(p: &Poly, v: Var) -> (Poly, Poly) {
 /// leading coefficient); `gcd(0, 0) = 0`.
 ///
 /// ```
-/// use cosserat_check::kernel::{Poly, VarTable};
-/// use cosserat_check::algebra::gcd;
+/// use cosserat_kernel::{Poly, VarTable};
+/// use cosserat_algebra::gcd;
 /// let mut names = VarTable::new();
 /// let x = Poly::var(names.intern("x"));
 /// let y = Poly::var(names.intern("y"));

@@ -190,8 +190,8 @@ pub fn adjugate<A: Signed>(ar: &mut A, a: &Matrix<A::Value>) -> Result<Matrix<A:
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::permutation_sign;
     use crate::kernel::Rational;
+    use crate::permutation_sign;
     use itertools::Itertools;
     use std::convert::Infallible;
 

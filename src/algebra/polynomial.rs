@@ -23,8 +23,8 @@ use rustc_hash::FxHashMap as HashMap;
 /// that `p` is not a square, and the division stops.
 ///
 /// ```
-/// use cosserat_check::algebra::polynomial::sqrt;
-/// use cosserat_check::kernel::{Poly, Rational, VarTable};
+/// use cosserat_algebra::polynomial::sqrt;
+/// use cosserat_kernel::{Poly, Rational, VarTable};
 /// let mut names = VarTable::new();
 /// let (x, y) = (Poly::var(names.intern("x")), Poly::var(names.intern("y")));
 /// let r = &(&x * &Poly::constant(Rational::int(2))) - &y;
@@ -170,7 +170,7 @@ pub fn rational_latex(q: &Rational) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::testing::{below, q, vars};
+    use crate::testing::{below, q, vars};
     use num_traits::{One, Zero};
 
     #[test]

@@ -28,10 +28,10 @@ use std::sync::Arc;
 /// structurally.
 ///
 /// ```
-/// use cosserat_check::algebra::quotient::Quotients;
-/// use cosserat_check::kernel::{Poly, Rational, VarTable};
-/// use cosserat_check::algebra::Quotient;
-/// use cosserat_check::algebra::einsum::Arithmetic;
+/// use cosserat_algebra::quotient::Quotients;
+/// use cosserat_kernel::{Poly, Rational, VarTable};
+/// use cosserat_algebra::Quotient;
+/// use cosserat_algebra::einsum::Arithmetic;
 /// let mut names = VarTable::new();
 /// let (l, g) = (Poly::var(names.intern("lambda")), Poly::var(names.intern("G")));
 /// let three = Poly::constant(Rational::int(3));

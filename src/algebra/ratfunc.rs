@@ -17,8 +17,8 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 /// A reduced rational function `num / den`.
 ///
 /// ```
-/// use cosserat_check::kernel::VarTable;
-/// use cosserat_check::algebra::RatFunc;
+/// use cosserat_kernel::VarTable;
+/// use cosserat_algebra::RatFunc;
 /// use num_traits::One;
 /// let mut names = VarTable::new();
 /// let x = RatFunc::var(names.intern("x"));

@@ -50,7 +50,7 @@ pub fn simplest_between(a: &Rational, b: &Rational) -> Rational {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::testing::q;
+    use crate::testing::q;
     use num_traits::ToPrimitive;
 
     #[test]

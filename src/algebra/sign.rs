@@ -13,7 +13,6 @@ use super::sturm::{count_roots, isolate_roots, Bound, UniPoly};
 use crate::kernel::poly::{Poly, Var, VarTable};
 use crate::kernel::rational::Rational;
 use num_traits::Zero;
-use std::fmt;
 
 pub use crate::kernel::statement::{End, Interval, Sign};
 
@@ -30,27 +29,6 @@ impl Real {
         match self {
             Real::Exact(x) => x.to_f64(),
             Real::Isolated { lo, hi } => 0.5 * (lo.to_f64() + hi.to_f64()),
-        }
-    }
-}
-
-impl Real {
-    /// "name = x" for an exact number, "name ≈ x" for an isolated irrational one.
-    pub fn equated(&self, name: &str) -> String {
-        match self {
-            Real::Exact(x) => format!("{name} = {x}"),
-            Real::Isolated { .. } => format!("{name} {self}"),
-        }
-    }
-}
-
-impl fmt::Display for Real {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Real::Exact(x) => write!(f, "{x}"),
-            Real::Isolated { .. } => {
-                write!(f, "≈ {}", crate::digits::significant(self.approx(), 10))
-            }
         }
     }
 }
@@ -162,7 +140,7 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
             if lo == hi {
                 return (lo, hi);
             }
-            let s = crate::algebra::rational::simplest_between(&lo, &hi);
+            let s = crate::rational::simplest_between(&lo, &hi);
             if inner.eval(&s).is_zero() {
                 (s.clone(), s)
             } else {
@@ -202,7 +180,7 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
             Some(Real::Isolated { lo, .. }) => (lo.clone(), true),
         };
         let sample = if left < right {
-            crate::algebra::rational::simplest_between(&left, &right)
+            crate::rational::simplest_between(&left, &right)
         } else {
             // Two isolating intervals that share an end: that end is inside.
             debug_assert!(left == right && left_in && right_in);
@@ -352,9 +330,9 @@ pub fn coefficient_sign(p: &Poly, closed: &[Var]) -> Option<CoefficientSign> {
 pub fn inner_point(i: &Interval) -> Rational {
     match (i.lo.value(), i.hi.value()) {
         (Some(a), Some(b)) if a == b => a.clone(),
-        (Some(a), Some(b)) => crate::algebra::rational::simplest_between(a, b),
-        (Some(a), None) => crate::algebra::rational::simplest_between(a, &(a + &Rational::int(2))),
-        (None, Some(b)) => crate::algebra::rational::simplest_between(&(b - &Rational::int(2)), b),
+        (Some(a), Some(b)) => crate::rational::simplest_between(a, b),
+        (Some(a), None) => crate::rational::simplest_between(a, &(a + &Rational::int(2))),
+        (None, Some(b)) => crate::rational::simplest_between(&(b - &Rational::int(2)), b),
         (None, None) => Rational::zero(),
     }
 }

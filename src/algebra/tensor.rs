@@ -76,7 +76,7 @@ pub fn for_each_assignment(dim: usize, rank: usize, mut f: impl FnMut(&[usize]))
 /// A dense tensor of the given rank over `0..dim` in every slot, stored row-major.
 ///
 /// ```
-/// use cosserat_check::algebra::Tensor;
+/// use cosserat_algebra::Tensor;
 /// // ε_ijk ε_ijk = 6 in 3D.
 /// let e = Tensor::<i64>::levi_civita(3);
 /// let full = e.outer(&e).contract(0, 3).contract(0, 2).contract(0, 1);

@@ -171,10 +171,36 @@ pub trait Evaluator: Normals + Calculus {}
 
 impl<R: Normals + Calculus> Evaluator for R {}
 
-/// Every ring negates, so the kernel's determinants run in every ring.
-impl<R: Ring> Signed for R {
-    fn negate(&mut self, x: Self::Value) -> Self::Value {
-        self.neg(x)
+/// A ring seen by the determinants and adjugates of `algebra::matrix`, which need its
+/// arithmetic and its negation only.
+struct Signing<'r, R>(&'r mut R);
+
+impl<R: Ring> Arithmetic for Signing<'_, R> {
+    type Value = R::Value;
+    type Error = R::Error;
+    fn zero(&mut self) -> R::Value {
+        self.0.zero()
+    }
+    fn one(&mut self) -> R::Value {
+        self.0.one()
+    }
+    fn is_exact_zero(&self, x: &R::Value) -> bool {
+        self.0.is_exact_zero(x)
+    }
+    fn mul(&mut self, a: R::Value, b: &R::Value) -> Result<R::Value, R::Error> {
+        self.0.mul(a, b)
+    }
+    fn add(&mut self, a: R::Value, b: R::Value) -> Result<R::Value, R::Error> {
+        self.0.add(a, b)
+    }
+    fn first(&mut self, x: &R::Value) -> Result<R::Value, R::Error> {
+        self.0.first(x)
+    }
+}
+
+impl<R: Ring> Signed for Signing<'_, R> {
+    fn negate(&mut self, x: R::Value) -> R::Value {
+        self.0.neg(x)
     }
 }
 
@@ -291,7 +317,7 @@ pub fn walk<R: Evaluator>(
         NodeKind::Read(read, a) => {
             let m = matrix(ring, a, n)?;
             match read {
-                MatrixRead::Det => Tensor::scalar(d, linear::determinant(ring, &m)?),
+                MatrixRead::Det => Tensor::scalar(d, linear::determinant(&mut Signing(ring), &m)?),
                 MatrixRead::Trace => {
                     let mut acc = ring.zero();
                     for k in 0..m.rows() {
@@ -395,15 +421,15 @@ pub fn matrix<R: Evaluator>(
         MatrixOp::Transpose(a) => matrix(ring, a, n)?.transpose().into_entries(),
         MatrixOp::Adjugate(a) => {
             let a = matrix(ring, a, n)?;
-            linear::adjugate(ring, &a)?.into_entries()
+            linear::adjugate(&mut Signing(ring), &a)?.into_entries()
         }
         MatrixOp::Inverse(a) | MatrixOp::Solve(a, _) => {
             let am = matrix(ring, a, n)?;
-            let det = linear::determinant(ring, &am)?;
+            let det = linear::determinant(&mut Signing(ring), &am)?;
             if ring.vanishes(&det) {
                 return Err(ring.singular(node));
             }
-            let mut adj = linear::adjugate(ring, &am)?;
+            let mut adj = linear::adjugate(&mut Signing(ring), &am)?;
             if let MatrixOp::Solve(_, b) = op {
                 let b = matrix(ring, b, n)?;
                 adj = linear::product(ring, &adj, &b)?;

@@ -1096,7 +1096,7 @@ fn wrap(inner: Node, span: Span, f: impl FnOnce(Node) -> NodeKind) -> Node {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::parser::parse_expr;
+    use crate::parser::parse_expr;
 
     fn decls() -> Decls {
         Decls {

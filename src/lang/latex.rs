@@ -1,5 +1,5 @@
 //! The reader of printed LaTeX: turns the statement of a claim, as the paper prints it,
-//! into a tree that [`crate::derivation::notation`] translates into the index-notation
+//! into a tree that the checker's notation table (`derivation::notation`) translates into the index-notation
 //! language, so that the transcription in `sides` can be checked against what is
 //! printed.
 //!

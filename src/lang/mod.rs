@@ -3,6 +3,11 @@
 //! that point at file, line and column ([`diag`]); the matrix language is typed in
 //! [`matrix`]. The reader of the printed LaTeX of statements is [`latex`].
 
+// The kernel and the algebra under their names in the checker, so that paths read the
+// same on every side.
+use cosserat_algebra as algebra;
+use cosserat_kernel as kernel;
+
 pub mod check;
 pub mod diag;
 pub mod latex;

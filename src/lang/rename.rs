@@ -89,8 +89,8 @@ fn same(a: &Node, b: &Node, r: &mut Renaming) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lang::check::{Decls, DefSig, Scope};
-    use crate::lang::parser::parse_expr;
+    use crate::check::{Decls, DefSig, Scope};
+    use crate::parser::parse_expr;
 
     fn node(src: &str) -> Node {
         let decls = Decls {

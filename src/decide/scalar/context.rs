@@ -300,3 +300,21 @@ pub(super) fn readable(x: &Rational) -> String {
         format!("≈ {}", crate::digits::significant(x.to_f64(), 10))
     }
 }
+
+/// A real number as evidence writes it: exactly when rational, `≈ x` to ten
+/// significant digits when an isolated irrational root.
+pub(super) fn shown_real(x: &crate::algebra::sign::Real) -> String {
+    use crate::algebra::sign::Real;
+    match x {
+        Real::Exact(q) => q.to_string(),
+        Real::Isolated { .. } => format!("≈ {}", crate::digits::significant(x.approx(), 10)),
+    }
+}
+
+/// "name = x" for an exact number, "name ≈ x" for an isolated irrational one.
+pub(super) fn equated(x: &crate::algebra::sign::Real, name: &str) -> String {
+    match x {
+        crate::algebra::sign::Real::Exact(q) => format!("{name} = {q}"),
+        crate::algebra::sign::Real::Isolated { .. } => format!("{name} {}", shown_real(x)),
+    }
+}

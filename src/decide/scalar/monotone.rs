@@ -99,12 +99,12 @@ pub(super) fn decide(
         .cuts
         .iter()
         .filter(|c| !c.pole)
-        .map(|c| format!("d/d{name} = 0 at {}", c.at.equated(&name)))
+        .map(|c| format!("d/d{name} = 0 at {}", super::context::equated(&c.at, &name)))
         .chain(
             of_f.cuts
                 .iter()
                 .filter(|c| c.pole)
-                .map(|c| format!("pole at {}", c.at.equated(&name))),
+                .map(|c| format!("pole at {}", super::context::equated(&c.at, &name))),
         )
         .collect();
     let runs = runs(&chart, &of_f, want);
@@ -256,7 +256,7 @@ impl Run {
                 End::Open(a) => format!("{a} < "),
                 End::Closed(a) => format!("{a} ≤ "),
             },
-            Some(c) => format!("{} {} ", c.at, relation(c)),
+            Some(c) => format!("{} {} ", super::context::shown_real(&c.at), relation(c)),
         };
         let hi = match chart.cuts.get(self.last) {
             None => match &i.hi {
@@ -264,7 +264,7 @@ impl Run {
                 End::Open(b) => format!(" < {b}"),
                 End::Closed(b) => format!(" ≤ {b}"),
             },
-            Some(c) => format!(" {} {}", relation(c), c.at),
+            Some(c) => format!(" {} {}", relation(c), super::context::shown_real(&c.at)),
         };
         format!("{lo}{name}{hi}")
     }

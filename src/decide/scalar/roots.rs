@@ -77,7 +77,7 @@ pub(super) fn decide(
     let name = cx.name(v);
     evidence.points = zeros
         .iter()
-        .map(|z| format!("root at {}", z.equated(&name)))
+        .map(|z| format!("root at {}", super::context::equated(z, &name)))
         .collect();
     if zeros.is_empty() {
         evidence.points.push(format!(
@@ -135,7 +135,7 @@ pub(super) fn decide(
                 cx,
                 function,
                 &name,
-                format!("{z} (a root not stated)"),
+                format!("{} (a root not stated)", super::context::shown_real(z)),
                 "0".to_owned(),
                 Reverified::Exact,
             ),

@@ -106,7 +106,10 @@ pub(super) fn decide_function(
                 .iter()
                 .map(|c| {
                     let what = if c.pole { "pole" } else { "zero" };
-                    format!("{what} at {}", c.at.equated(names.name(v)))
+                    format!(
+                        "{what} at {}",
+                        super::context::equated(&c.at, names.name(v))
+                    )
                 })
                 .collect();
         }
@@ -333,7 +336,10 @@ fn at_root(
         rhs: right.text.clone(),
         point: BTreeMap::from([(
             cx.name(var),
-            format!("{root} (the zero of left − right in ({lo}, {hi}))"),
+            format!(
+                "{} (the zero of left − right in ({lo}, {hi}))",
+                super::context::shown_real(&root)
+            ),
         )]),
         lhs_value: Some(crate::digits::significant(a, crate::digits::VALUE)),
         rhs_value: Some(crate::digits::significant(b, crate::digits::VALUE)),
