@@ -686,7 +686,7 @@ impl Loader {
                 .diagnostic(Span::new(0, text.len()), "a definition needs `=`")
                 .with_help("write it as name_ij = expression, e.g. t_i = sigma_ki n_k"));
         };
-        let (name, formal, name_span) = self.lhs_name(&origin, text, eq, Some(decls))?;
+        let (name, formal, name_span) = self.lhs_name(&origin, text, eq, Some(decls), false)?;
         if RESERVED.contains(&name.as_str())
             || decls.symbols.contains_key(&name)
             || decls.normal.as_ref() == Some(&name)
@@ -772,13 +772,15 @@ impl Loader {
     }
 
     /// The left side of `name_ij = …`: a name with distinct letter indices, or the
-    /// whole name of a declared scalar such as `f_g` (when `decls` is given).
+    /// whole name of a declared scalar such as `f_g` (when `decls` is given), in a
+    /// definition or (`assuming`) an assumption.
     fn lhs_name(
         &self,
         origin: &Origin,
         text: &str,
         eq: usize,
         decls: Option<&Decls>,
+        assuming: bool,
     ) -> Result<(String, Vec<char>, Span), Diagnostic> {
         let lhs = &text[..eq];
         let sub = sub_origin(origin, 0..eq);
@@ -812,9 +814,18 @@ impl Loader {
             .len()
             == indices.len();
         if !letters_only || !distinct {
-            return Err(sub
-                .diagnostic(e.span, "a defined name carries distinct index letters")
-                .with_help("e.g. t_i or mu_ij; fixed components cannot be defined one by one"));
+            // `sigma_kk = 0` in `assume`: the trace condition has its own form.
+            let help = if letters_only && indices.len() == 2 && assuming {
+                format!("a trace that vanishes is written `traceless({base})`; otherwise a left side is a name with distinct index letters (`C_ijkl = C_klij`) or one component (`sigma_13 = 0`)")
+            } else {
+                "e.g. t_i or mu_ij; fixed components cannot be defined one by one".to_owned()
+            };
+            let what = if assuming {
+                "an assumed name carries distinct index letters"
+            } else {
+                "a defined name carries distinct index letters"
+            };
+            return Err(sub.diagnostic(e.span, what).with_help(help));
         }
         Ok((base, indices.iter().map(|t| t.ch).collect(), e.span))
     }
@@ -930,7 +941,7 @@ impl Loader {
             if let Some(component) = self.component_assumption(origin, text, eq, decls)? {
                 return Ok(component);
             }
-            let (name, formal, span) = self.lhs_name(origin, text, eq, Some(decls))?;
+            let (name, formal, span) = self.lhs_name(origin, text, eq, Some(decls), true)?;
             match decls.symbols.get(&name) {
                 Some(&rank) if rank == formal.len() => {}
                 Some(&rank) => {
