@@ -236,6 +236,11 @@ const FORGED: &[(&str, &str, &str)] = &[
         "G b_i = G · b_i on the box G = 0, where no nonzero factor exists",
     ),
     (
+        "a-factor-per-equality",
+        "one-factor-per-equality",
+        "2 b_i ∝ b_i and b_i ∝ b_i read with a factor per equality (2, then 1): a proportionality has one factor",
+    ),
+    (
         "factor-reads-a-field",
         "heat-conduction-times-the-field",
         "-k T_,ii = λ T T_,ii with λ = -k/T: a factor that reads the field T",

@@ -1134,6 +1134,15 @@ impl Loader {
             }
             _ => return Ok(()),
         };
+        // Matrix sides are compared entry by entry, one chain per entry.
+        if check.chains.iter().flatten().any(|s| s.entry.is_some()) {
+            return Err(self
+                .diag(
+                    help.0.span(),
+                    format!("{} compares two sides in index notation, not matrices", help.1),
+                )
+                .with_help("decide the matrix equation with the factor written out (the default strategy), or declare the matrices as tensors and write the sides in index notation"));
+        }
         Err(self
             .diag(
                 help.0.span(),

@@ -239,24 +239,31 @@ fn identities(
     let (mut components, mut modulo_unit_normal) = (0, 0);
     let mut nonzero: Vec<Poly> = Vec::new();
     let mut factor_nonzero: Vec<Poly> = Vec::new();
-    let mut k = 0;
+    // A proportionality has one factor, the same in every equality (a matrix's
+    // entries are one chain each) and in every component; each chain is one equality.
+    let factor = match factors {
+        None => None,
+        Some([f]) => {
+            if chains.iter().any(|c| c.len() != 2) {
+                return Err(Rejection::Mismatch(
+                    "a proportionality compares two sides".into(),
+                ));
+            }
+            let (f, zeros) = factor_of(&mut env, &st.context, f)?;
+            factor_nonzero.extend(zeros);
+            Some(f)
+        }
+        Some(_) => {
+            return Err(Rejection::Mismatch(
+                "a proportionality has one factor".into(),
+            ))
+        }
+    };
     for chain in chains {
         if chain.len() < 2 {
             return Err(Rejection::Mismatch("a chain of one side".into()));
         }
         for pair in chain.windows(2) {
-            let factor = match factors {
-                None => None,
-                Some(f) => {
-                    let f = f
-                        .get(k)
-                        .ok_or_else(|| Rejection::Mismatch("a factor per equality".into()))?;
-                    let (f, zeros) = factor_of(&mut env, &st.context, f)?;
-                    factor_nonzero.extend(zeros);
-                    Some(f)
-                }
-            };
-            k += 1;
             let (a, b) = (env.eval(&pair[0])?, env.eval(&pair[1])?);
             for (x, y) in pairs_of(&a, &b, env.ctx_dim())? {
                 let y = match &factor {

@@ -44,7 +44,8 @@ pub enum Fact {
     /// Every equality holds for every value of the free indices, wherever its
     /// divisors are nonzero (modulo n·n = 1 when a normal is declared).
     Identity { roots: Vec<FracData> },
-    /// Each equality's left side is its factor (nonzero) times the right.
+    /// Each equality's left side is the factor (nonzero) times the right: one factor,
+    /// written as a list of one, the same in every equality and component.
     Proportional {
         factors: Vec<Factor>,
         roots: Vec<FracData>,

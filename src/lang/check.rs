@@ -787,6 +787,16 @@ impl Scope<'_> {
                 return Ok(leaf(Target::Def(full.into()), vec![], vec![], span));
             }
         }
+        if let Some((rows, cols)) = def(base).and_then(|d| d.shape) {
+            return Err(LangError::new(
+                ErrorKind::Index,
+                span,
+                format!("`{base}` is a {rows}×{cols} matrix and takes no index letters"),
+            )
+            .help(format!(
+                "read an entry as {base}[1,2], or use it whole ({base}^T, det({base}), {base} b)"
+            )));
+        }
         let (target, rank) = match base {
             "delta" => (Target::Delta, 2),
             "pi" => (Target::Pi, 0),
