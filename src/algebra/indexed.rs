@@ -290,11 +290,14 @@ pub fn first_difference(
     dim: usize,
 ) -> Option<Option<(usize, Vec<usize>, Rational, Rational)>> {
     let difference = constant_difference(a, b, labels)?;
-    let values = dim.checked_pow(labels.len() as u32)?;
-    if values.checked_mul(difference.len())? > EVALUATION_BUDGET {
-        return None;
-    }
+    // Charged as the values are visited: a difference at the first index values (a
+    // wrong constant) is found at once, whatever the rank.
+    let mut spent = 0usize;
     for (ordinal, x) in super::tensor::assignments(dim, labels.len()).enumerate() {
+        spent = spent.saturating_add(difference.len().max(1));
+        if spent > EVALUATION_BUDGET {
+            return None;
+        }
         if !constant_value(&difference, &x).is_zero() {
             // Terms the forms share may still have symbols: then the sides' values are
             // not numbers, and nothing is returned.
