@@ -222,6 +222,11 @@ pub struct VerifyArgs {
     /// Derivation files to check, in this order.
     #[arg(required = true, value_name = "FILE")]
     pub files: Vec<PathBuf>,
+    /// Read a claim without `expect` as expecting `holds`: its failure is then an
+    /// unexpected verdict, marked as such. Without it such a claim is reported as
+    /// found (the exit status is still 1 when it fails).
+    #[arg(long)]
+    pub strict: bool,
     #[command(flatten)]
     pub output: OutputArgs,
 }
@@ -293,7 +298,10 @@ impl Status {
         });
         if internal {
             Status::InternalError
-        } else if rows.iter().all(Decided::as_expected) {
+        } else if rows
+            .iter()
+            .all(|r| r.as_expected() && !r.fails_undeclared())
+        {
             Status::AsExpected
         } else {
             Status::Unexpected
@@ -608,7 +616,11 @@ fn render(
         Format::Markdown
     });
     match (format, errata) {
-        (Format::Compact, _) => report::compact::render(
+        (Format::Compact, _) => (if errata {
+            report::compact::errata
+        } else {
+            report::compact::render
+        })(
             &rows,
             &paper,
             args.color.colours(terminal && args.out.is_none()),
@@ -839,7 +851,12 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
         }
         Command::Verify(a) => {
             let explain = explain_hint(None, &a.files);
-            let read = read(None, &a.files, a.output.only.as_deref())?;
+            let mut read = read(None, &a.files, a.output.only.as_deref())?;
+            if a.strict {
+                for claim in read.files.iter_mut().flat_map(|f| f.claims.iter_mut()) {
+                    claim.declared = true;
+                }
+            }
             table(read, &a.output, (false, &explain), out)
         }
         Command::Plot(a) => plot(&a, out),

@@ -131,6 +131,46 @@ fn an_unexpected_verdict_exits_1() {
 }
 
 #[test]
+fn a_claim_without_expect_is_reported_as_found_and_strict_reads_it_as_holds() {
+    let claim = |id: &str, right: &str| {
+        format!(
+            "[[claim]]\nid = \"{id}\"\nprinted = 'x'\nsides = [\"avg(n_i n_j)\", \"{right}\"]\n"
+        )
+    };
+    let holds = dir_with(
+        "found-holds",
+        &format!("{HEADER}{}", claim("right", "1/3 delta_ij")),
+    );
+    let file = |d: &PathBuf| d.join("claims.toml").to_str().unwrap().to_owned();
+    let out = run(&["verify", &file(&holds)]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("| right | t |"), "{stdout}");
+    assert!(
+        stdout.contains("0 unexpected (1 without a declared verdict, reported as found)."),
+        "{stdout}"
+    );
+    let fails = dir_with(
+        "found-fails",
+        &format!("{HEADER}{}", claim("wrong", "1/2 delta_ij")),
+    );
+    let out = run(&["verify", &file(&fails)]);
+    // Reported as found, never as unexpected; the exit status still says it fails.
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("| **fails** |"), "{stdout}");
+    assert!(!stdout.contains("✗"), "{stdout}");
+    let json = text(&run(&["verify", &file(&fails), "--format", "json"]).stdout);
+    let report: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert!(report["claims"][0]["expected"].is_null());
+    let out = run(&["verify", "--strict", &file(&fails)]);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("**fails ✗ (declared: holds)**"), "{stdout}");
+    assert!(stdout.contains("1 unexpected."), "{stdout}");
+}
+
+#[test]
 fn malformed_input_exits_2_with_a_located_caret() {
     let dir = dir_with(
         "malformed",

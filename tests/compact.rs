@@ -75,3 +75,27 @@ fn out_writes_markdown_even_from_a_terminal() {
     assert!(written.starts_with("# Derivation table"), "{written}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn compact_errata_put_each_inherited_failure_beneath_its_root_error() {
+    let text = output(
+        &["errata", "--format", "compact", "--color", "never"],
+        false,
+    );
+    let ids: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("claim "))
+        .skip(1)
+        .take_while(|l| !l.is_empty())
+        .map(|l| l.split("  3.").next().unwrap().trim_end())
+        .collect();
+    let at = |id: &str| {
+        ids.iter()
+            .position(|l| *l == id)
+            .unwrap_or_else(|| panic!("{id}: {ids:?}"))
+    };
+    // eq23 and eq24 inherit their failure from eq21's transport law.
+    assert_eq!(at("  ↳ eq23"), at("eq21") + 1, "{text}");
+    assert_eq!(at("  ↳ eq24"), at("eq21") + 2, "{text}");
+    assert_eq!(ids.iter().filter(|l| l.contains('↳')).count(), 2, "{text}");
+}

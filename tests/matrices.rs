@@ -77,7 +77,7 @@ fn malformed_matrix_statements_are_located_errors() {
         (claim("sides = [\"inv([[1, 2], [2, 4]])\", \"A\"]"), "this system is singular: the determinant of its matrix is identically zero"),
         (claim("sides = [\"solve([[x, x], [1, 1]], v)\", \"v\"]"), "this system is singular"),
         (claim("sides = [\"A\", \"A\"]\nassume = [\"x = [[1, 2], [3, 4]]\"]"), "an assumption takes a scalar or a tensor, but this is a 2×2 matrix"),
-        (claim("strategy = \"sign\"\nsides = [\"A\", \"A\"]\nrelation = \">\""), "compares exactly two sides"),
+        (claim("strategy = \"sign\"\nsides = [\"A\", \"A\"]\nrelation = \">\""), "compares two sides that are not matrices"),
         (claim("strategy = \"monotone\"\nfunction = \"A\"\nin = \"x\"\ndirection = \"increasing\""), "this field takes a scalar or a tensor, but this is a 2×2 matrix"),
         (claim("sides = [\"x\", \"x\"]").replace("\"12\", \"21\"", "\"12\", \"3\""), "`3` is not a position of 2 components in 1..=2"),
         (claim("sides = [\"x\", \"x\"]").replace("\"12\", \"21\"", "\"12\", \"12\""), "position `12` occurs twice in the order `voigt`"),

@@ -21,6 +21,16 @@ pub struct Decided<'c> {
 }
 
 impl Decided<'_> {
+    /// Whether a claim that declares no verdict fails (or holds only on a domain): the
+    /// run's exit status says so, as it does for an unexpected verdict.
+    pub fn fails_undeclared(&self) -> bool {
+        !self.claim.declared
+            && matches!(
+                self.outcome.verdict(),
+                crate::derivation::Verdict::Fails | crate::derivation::Verdict::Conditional
+            )
+    }
+
     /// Whether every verdict equals its declared expectation, and every transcription
     /// that differs from the printed statement is declared to.
     pub fn as_expected(&self) -> bool {
@@ -32,9 +42,10 @@ impl Decided<'_> {
             && self.verdict_as_expected()
     }
 
-    /// Whether every verdict equals its declared expectation.
+    /// Whether every verdict equals its declared expectation (a claim that declares
+    /// none is as found).
     pub fn verdict_as_expected(&self) -> bool {
-        self.outcome.verdict() == self.claim.expect
+        (!self.claim.declared || self.outcome.verdict() == self.claim.expect)
             && match (&self.claim.correction, &self.correction) {
                 (Some(c), Some(o)) => o.verdict() == c.expect,
                 _ => true,

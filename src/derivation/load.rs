@@ -1136,12 +1136,17 @@ impl Loader {
         };
         // Matrix sides are compared entry by entry, one chain per entry.
         if check.chains.iter().flatten().any(|s| s.entry.is_some()) {
+            let instead = if matches!(check.strategy, Strategy::Proportional { .. }) {
+                "decide the matrix equation with the factor written out (the default strategy), or declare the matrices as tensors and write the sides in index notation"
+            } else {
+                "compare one entry (A[1,2]) or a scalar of the matrices (det(A), trace(A))"
+            };
             return Err(self
                 .diag(
                     help.0.span(),
-                    format!("{} compares two sides in index notation, not matrices", help.1),
+                    format!("{} compares two sides that are not matrices", help.1),
                 )
-                .with_help("decide the matrix equation with the factor written out (the default strategy), or declare the matrices as tensors and write the sides in index notation"));
+                .with_help(instead));
         }
         Err(self
             .diag(
@@ -1333,10 +1338,16 @@ impl Loader {
         defs: &[Definition],
         notation: &Notation,
     ) -> Result<Claim, Diagnostic> {
-        let expect = self.verdict(&c.expect)?;
-        if expect != Verdict::Holds && c.reason.is_none() {
+        let expect = match &c.expect {
+            Some(e) => Some((self.verdict(e)?, e.span())),
+            None => None,
+        };
+        if let Some((expect, span)) = expect
+            .clone()
+            .filter(|(e, _)| *e != Verdict::Holds && c.reason.is_none())
+        {
             return Err(self
-                .diag(c.expect.span(), format!("a claim expected to be `{expect}` needs a `reason`"))
+                .diag(span, format!("a claim expected to be `{expect}` needs a `reason`"))
                 .with_help("add reason = \"…\": one sentence saying why the printed statement does not hold"));
         }
         let needs_sides = c.strategy.as_ref().is_none_or(|s| {
@@ -1436,7 +1447,8 @@ impl Loader {
             section: c.section.as_ref().unwrap_or(&raw.section).get_ref().clone(),
             statement: c.printed.get_ref().clone(),
             prose: c.prose,
-            expect,
+            declared: expect.is_some(),
+            expect: expect.map_or(Verdict::Holds, |(e, _)| e),
             reason: c.reason.as_ref().map(|r| r.get_ref().clone()),
             note: c.note.as_ref().map(|r| r.get_ref().clone()),
             decls: decls.clone(),

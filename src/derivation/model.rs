@@ -610,7 +610,11 @@ pub struct Claim {
     pub statement: String,
     /// The statement is a sentence of the paper's prose rather than a formula.
     pub prose: bool,
+    /// The verdict the file declares; `holds` when it declares none.
     pub expect: Verdict,
+    /// Whether the file declares `expect`: a claim without it is reported as found
+    /// (its verdict is never "unexpected"), unless the run is `--strict`.
+    pub declared: bool,
     /// Why the expected verdict is not `holds` (required then).
     pub reason: Option<String>,
     /// Conventions, readings and second routes behind the verdict.

@@ -125,7 +125,8 @@ pub struct RawClaim {
     pub differs_from_printed: Option<S>,
     #[serde(default)]
     pub prose: bool,
-    pub expect: S,
+    /// The verdict declared; without one the claim is reported as found.
+    pub expect: Option<S>,
     pub reason: Option<S>,
     pub note: Option<S>,
     #[serde(default)]

@@ -29,14 +29,50 @@ pub fn render(
     explain: &str,
     columns: Option<usize>,
 ) -> String {
+    let plain: Vec<(&Decided<'_>, bool)> = rows.iter().map(|&r| (r, false)).collect();
+    table(&plain, paper, color, explain, columns)
+}
+
+/// The errata as [`render`] shows claims: each root error, then beneath it (`↳`) the
+/// failures inherited from it, then those whose origin cannot be told.
+pub fn errata(
+    rows: &[&Decided<'_>],
+    paper: &str,
+    color: bool,
+    explain: &str,
+    columns: Option<usize>,
+) -> String {
+    let grouped: Vec<(&Decided<'_>, bool)> = super::graph::grouped(rows)
+        .into_iter()
+        .flat_map(|(root, inherited)| {
+            std::iter::once((root, false)).chain(inherited.into_iter().map(|r| (r, true)))
+        })
+        .collect();
+    table(&grouped, paper, color, explain, columns)
+}
+
+/// The table of `rows`, each marked when it sits beneath the root error it inherits
+/// from.
+fn table(
+    marked: &[(&Decided<'_>, bool)],
+    paper: &str,
+    color: bool,
+    explain: &str,
+    columns: Option<usize>,
+) -> String {
+    let rows: Vec<&Decided<'_>> = marked.iter().map(|(r, _)| *r).collect();
     let header = [
         "claim", "§", "verdict", "strength", "method", "read", "evidence",
     ];
-    let lines: Vec<[String; 7]> = rows
+    let lines: Vec<[String; 7]> = marked
         .iter()
-        .map(|r| {
+        .map(|&(r, beneath)| {
             [
-                inert(&r.claim.id),
+                if beneath {
+                    format!("  ↳ {}", inert(&r.claim.id))
+                } else {
+                    inert(&r.claim.id)
+                },
                 inert(&r.claim.section),
                 verdict(r),
                 match r.outcome.strength() {
@@ -99,7 +135,7 @@ pub fn render(
         let cells = [&l[0], &l[1], &l[2], &l[3], &l[4], &l[5], &l[6]].map(String::as_str);
         let _ = writeln!(out, "{}", row(cells, paint));
     }
-    let summary = Summary::of(rows);
+    let summary = Summary::of(&rows);
     let _ = writeln!(out, "\n{}", summary.sentence(rows.len()));
     let origin = summary.origin_sentence();
     if !origin.is_empty() {

@@ -231,10 +231,14 @@ pub fn render(r: &Decided<'_>) -> String {
     let c = r.claim;
     let mut out = format!("# {} (Section {})\n\n", c.id, c.section);
     let _ = writeln!(out, "As printed: {}", c.statement);
+    let declared = if c.declared {
+        c.expect.to_string()
+    } else {
+        "nothing (reported as found)".to_owned()
+    };
     let _ = writeln!(
         out,
-        "Declared: {}; decided: {} ({})",
-        c.expect,
+        "Declared: {declared}; decided: {} ({})",
         r.outcome.verdict(),
         r.outcome.method.as_str()
     );

@@ -34,7 +34,8 @@ struct ClaimRow<'a> {
     verdict: &'static str,
     method: Method,
     strength: Strength,
-    expected: &'static str,
+    /// The declared verdict; null when the file declares none.
+    expected: Option<&'static str>,
     checks: usize,
     certificate: Option<serde_json::Value>,
     proofs: Vec<Box<RawValue>>,
@@ -146,7 +147,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
                     verdict: r.outcome.verdict().as_str(),
                     method: r.outcome.method,
                     strength: r.outcome.strength(),
-                    expected: c.expect.as_str(),
+                    expected: c.declared.then(|| c.expect.as_str()),
                     checks: r.outcome.checks,
                     certificate: certificate(&r.outcome),
                     proofs: proofs(&r.outcome),

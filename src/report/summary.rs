@@ -34,6 +34,8 @@ pub struct Summary {
     /// derivation file declares, or whose sides differ from the printed statement
     /// where the claim does not declare why.
     pub unexpected: usize,
+    /// Claims whose file declares no verdict (`expect`): reported as found.
+    pub undeclared: usize,
     /// Formula claims whose sides were decided to say what the printed LaTeX says.
     pub machine_read: usize,
     /// Formula claims whose sides differ from the printed LaTeX (declared or not).
@@ -59,8 +61,12 @@ impl Summary {
         } else {
             String::new()
         };
+        let undeclared = match self.undeclared {
+            0 => String::new(),
+            k => format!(" ({k} without a declared verdict, reported as found)"),
+        };
         format!(
-            "{n} claim{}: {} hold, {} fail, {} conditional{undecided}; {} unexpected.",
+            "{n} claim{}: {} hold, {} fail, {} conditional{undecided}; {} unexpected{undeclared}.",
             if n == 1 { "" } else { "s" },
             self.holds,
             self.fails,
@@ -80,6 +86,9 @@ impl Summary {
             }
             if !r.as_expected() {
                 s.unexpected += 1;
+            }
+            if !r.claim.declared {
+                s.undeclared += 1;
             }
             match r.attribution.as_ref().map(|a| a.label()) {
                 Some("root") => s.root_errors += 1,
