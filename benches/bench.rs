@@ -40,40 +40,16 @@ fn corpus() -> Vec<DerivationFile> {
     load_dir(&Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations")).expect("derivations load")
 }
 
+#[path = "../tests/support/pairings.rs"]
+mod pairings;
+use pairings::delta_products;
+
 /// An isotropic-moment identity of even rank `rank` in dimension `dim` and a wrong
 /// version of it, as a file.
 fn moment_identity(dim: usize, rank: usize) -> String {
     let letters: Vec<char> = "ijklmpqr".chars().take(rank).collect();
     let ns: Vec<String> = letters.iter().map(|c| format!("n_{c}")).collect();
-    // All pairings of the indices (3 for rank 4, 15 for rank 6).
-    fn pairings(ls: &[char]) -> Vec<Vec<(char, char)>> {
-        if ls.is_empty() {
-            return vec![vec![]];
-        }
-        let mut out = Vec::new();
-        for k in 1..ls.len() {
-            let rest: Vec<char> = ls[1..]
-                .iter()
-                .enumerate()
-                .filter(|(j, _)| j + 1 != k)
-                .map(|(_, c)| *c)
-                .collect();
-            for mut p in pairings(&rest) {
-                p.insert(0, (ls[0], ls[k]));
-                out.push(p);
-            }
-        }
-        out
-    }
-    let terms: Vec<String> = pairings(&letters)
-        .iter()
-        .map(|p| {
-            p.iter()
-                .map(|(a, b)| format!("delta_{a}{b}"))
-                .collect::<Vec<_>>()
-                .join(" ")
-        })
-        .collect();
+    let terms: Vec<String> = delta_products(&letters);
     let denom: usize = (0..rank / 2).map(|m| dim + 2 * m).product();
     let claim = |id: &str, expect: &str, terms: &[String]| {
         format!(

@@ -616,18 +616,17 @@ fn render(
         Format::Markdown
     });
     match (format, errata) {
-        (Format::Compact, _) => (if errata {
-            report::compact::errata
-        } else {
-            report::compact::render
-        })(
+        (Format::Compact, _) => report::compact::render(
             &rows,
             &paper,
-            args.color.colours(terminal && args.out.is_none()),
+            (
+                args.color.colours(terminal && args.out.is_none()),
+                (terminal && args.out.is_none())
+                    .then(terminal_columns)
+                    .flatten(),
+            ),
             explain,
-            (terminal && args.out.is_none())
-                .then(terminal_columns)
-                .flatten(),
+            errata,
         ),
         (Format::Markdown, false) => report::markdown::render(&rows, &paper),
         (Format::Markdown, true) => report::errata::markdown(&rows, &paper),

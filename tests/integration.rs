@@ -7,6 +7,7 @@ mod common;
 mod support {
     pub mod float;
     pub mod mutate;
+    pub mod pairings;
 }
 use cosserat_check::lang;
 

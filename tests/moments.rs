@@ -120,34 +120,10 @@ fn tensor_moments_are_isotropic_forms() {
 /// pairings of δ products, as a file whose right side is split into definitions (a
 /// side holds at most 1000 tokens), with the constant's denominator `den`.
 fn rank_ten_moment(den: u32) -> String {
-    fn pairings(ls: &[char]) -> Vec<Vec<(char, char)>> {
-        if ls.is_empty() {
-            return vec![vec![]];
-        }
-        let mut out = Vec::new();
-        for k in 1..ls.len() {
-            let rest: Vec<char> = (ls[1..].iter().enumerate())
-                .filter(|(j, _)| j + 1 != k)
-                .map(|(_, c)| *c)
-                .collect();
-            for mut p in pairings(&rest) {
-                p.insert(0, (ls[0], ls[k]));
-                out.push(p);
-            }
-        }
-        out
-    }
+    use crate::support::pairings::delta_products;
     let letters: Vec<char> = "ijklmpqrst".chars().collect();
     let free: String = letters.iter().collect();
-    let terms: Vec<String> = pairings(&letters)
-        .iter()
-        .map(|p| {
-            p.iter()
-                .map(|(a, b)| format!("delta_{a}{b}"))
-                .collect::<Vec<_>>()
-                .join(" ")
-        })
-        .collect();
+    let terms: Vec<String> = delta_products(&letters);
     assert_eq!(terms.len(), 945);
     let defs: Vec<String> = terms
         .chunks(35)

@@ -21,34 +21,27 @@ const EVIDENCE_MIN: usize = 24;
 /// How the table marks failures: `color` adds ANSI colours (bold red for `fails`,
 /// yellow for `conditional` and `undecided`) to the words, which say it without them.
 /// `columns`, the terminal's width when known: the evidence then fills what the other
-/// columns leave (never less than a short phrase).
+/// columns leave (never less than a short phrase). For the `errata`, each root error
+/// comes with the failures inherited from it beneath it (`↳`), then those whose origin
+/// cannot be told.
 pub fn render(
     rows: &[&Decided<'_>],
     paper: &str,
-    color: bool,
+    (color, columns): (bool, Option<usize>),
     explain: &str,
-    columns: Option<usize>,
+    errata: bool,
 ) -> String {
-    let plain: Vec<(&Decided<'_>, bool)> = rows.iter().map(|&r| (r, false)).collect();
-    table(&plain, paper, color, explain, columns)
-}
-
-/// The errata as [`render`] shows claims: each root error, then beneath it (`↳`) the
-/// failures inherited from it, then those whose origin cannot be told.
-pub fn errata(
-    rows: &[&Decided<'_>],
-    paper: &str,
-    color: bool,
-    explain: &str,
-    columns: Option<usize>,
-) -> String {
-    let grouped: Vec<(&Decided<'_>, bool)> = super::graph::grouped(rows)
-        .into_iter()
-        .flat_map(|(root, inherited)| {
-            std::iter::once((root, false)).chain(inherited.into_iter().map(|r| (r, true)))
-        })
-        .collect();
-    table(&grouped, paper, color, explain, columns)
+    let marked: Vec<(&Decided<'_>, bool)> = if errata {
+        super::graph::grouped(rows)
+            .into_iter()
+            .flat_map(|(root, inherited)| {
+                std::iter::once((root, false)).chain(inherited.into_iter().map(|r| (r, true)))
+            })
+            .collect()
+    } else {
+        rows.iter().map(|&r| (r, false)).collect()
+    };
+    table(&marked, paper, color, explain, columns)
 }
 
 /// The table of `rows`, each marked when it sits beneath the root error it inherits
