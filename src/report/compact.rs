@@ -152,7 +152,7 @@ fn verdict(r: &Decided<'_>) -> String {
         Verdict::Fails => "FAILS".to_owned(),
         _ => v.as_str().to_owned(),
     };
-    if !r.as_expected() {
+    if !r.verdict_as_expected() {
         let _ = write!(text, " ✗ (declared {})", r.claim.expect);
     }
     text

@@ -464,7 +464,7 @@ fn verdict_cell(r: &Decided<'_>) -> String {
         Some(_) => cell.push_str("; origin undetermined"),
         None => {}
     }
-    if !r.as_expected() {
+    if !r.verdict_as_expected() {
         let _ = write!(cell, " \\textbf{{(declared {})}}", r.claim.expect);
     }
     cell

@@ -6,49 +6,66 @@ use super::summary::Summary;
 use crate::check::Decided;
 use std::fmt::Write as _;
 
-/// Makes text safe inside a Markdown table cell: one line, `|` escaped, no `<`
-/// directly before a letter, `/`, `!` or `?` (where HTML would start a tag or comment,
-/// a space is put after it), and outside code spans nothing that renders as markup:
-/// no `[` or `]` that could make a link or an image (`[text](javascript:…)`,
-/// `![](https://…)`), escaped in `$…$` too (a file decides where its dollars are); no
-/// bare address that GitHub would link (`https://…`, `www.…`, `a@b.example`); and
-/// outside `$…$` no emphasis (`*`, `_`, `~`).
+/// Makes text from a file safe inside a Markdown table cell, as plain text: one line,
+/// `|` escaped, no `<` directly before a letter, `/`, `!` or `?` (where HTML would start
+/// a tag or comment, a space is put after it), and outside code spans nothing that
+/// renders as markup: `[`, `]` (links, images), `*`, `_`, `~` (emphasis) and `$`
+/// (mathematics) are escaped, a backslash of the file's own before punctuation is
+/// doubled (it cannot undo an escape or hide a backtick), and a bare address that
+/// GitHub would link (`https://…`, `www.…`, `a@b.example`) is broken.
 pub fn cell(s: &str) -> String {
-    escaped(s, Dollars::Paired)
+    escaped(s.trim(), Reading::Text)
 }
 
-/// Where a text's mathematics is.
-#[derive(Clone, Copy, PartialEq)]
-enum Dollars {
-    /// Between the text's own pairs of dollars: a table cell.
-    Paired,
-    /// All of it, inside dollars [`math`] adds; its own dollars are escaped.
-    Inside,
-}
-
-/// How a character is read.
+/// How the characters outside code spans are read.
 #[derive(Clone, Copy, PartialEq)]
 enum Reading {
-    Code,
-    Math,
+    /// Markdown text: everything that would be markup is escaped.
     Text,
+    /// The content of [`math`]: LaTeX, kept as written except where it could be
+    /// Markdown in a renderer without mathematics (brackets, dollars, addresses).
+    Math,
 }
 
-/// [`cell`], or the content of [`math`] (where LaTeX's brackets are kept unless the
-/// file wrote a dollar of its own, and every character is mathematics).
-fn escaped(s: &str, dollars: Dollars) -> String {
-    let line: Vec<char> = s
-        .split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ")
-        .chars()
-        .collect();
-    let readings = readings(&line, dollars);
-    let brackets = dollars == Dollars::Paired || line.contains(&'$');
+/// `s` on one line, each run of white space one space (leading and trailing ones
+/// kept as one).
+fn one_line(s: &str) -> Vec<char> {
+    let mut out: Vec<char> = Vec::with_capacity(s.len());
+    for c in s.chars() {
+        if c.is_whitespace() {
+            if out.last() != Some(&' ') {
+                out.push(' ');
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// [`cell`], or the content of [`math`].
+fn escaped(s: &str, reading: Reading) -> String {
+    let line = one_line(s);
+    let code = code_spans(&line);
     let mut out = String::with_capacity(line.len());
     for (k, &c) in line.iter().enumerate() {
-        let reading = readings[k];
         let rest = &line[k + 1..];
+        if c == '|' {
+            out.push_str("\\|");
+            continue;
+        }
+        if c == '<'
+            && rest
+                .first()
+                .is_some_and(|n| n.is_ascii_alphabetic() || "/!?".contains(*n))
+        {
+            out.push_str("< ");
+            continue;
+        }
+        if code[k] {
+            out.push(c);
+            continue;
+        }
         // A bare address would be linked: its `://`, `www.` or `@` is broken, by a
         // Markdown escape in text and by a LaTeX group in mathematics.
         let address = match c {
@@ -57,69 +74,28 @@ fn escaped(s: &str, dollars: Dollars) -> String {
             '@' => true,
             _ => false,
         };
-        match (c, reading) {
-            ('|', _) => out.push_str("\\|"),
-            ('<', _)
-                if rest
-                    .first()
-                    .is_some_and(|n| n.is_ascii_alphabetic() || "/!?".contains(*n)) =>
-            {
-                out.push_str("< ");
-            }
-            (_, Reading::Code) => out.push(c),
-            ('$', Reading::Math) if dollars == Dollars::Inside => {
-                let backslashes = out.chars().rev().take_while(|&b| b == '\\').count();
-                if backslashes % 2 == 0 {
+        match reading {
+            Reading::Text => {
+                let punctuation = rest.first().is_some_and(char::is_ascii_punctuation);
+                if (c == '\\' && punctuation) || "[]*_~$".contains(c) || address {
                     out.push('\\');
                 }
-                out.push('$');
-            }
-            ('[' | ']', _) if brackets => {
-                out.push('\\');
                 out.push(c);
             }
-            (_, Reading::Math) if address => {
-                out.push('{');
-                out.push(c);
-                out.push('}');
-            }
-            ('*' | '_' | '~', Reading::Text) => {
-                out.push('\\');
-                out.push(c);
-            }
-            (_, Reading::Text) if address => {
-                out.push('\\');
-                out.push(c);
-            }
-            _ => out.push(c),
-        }
-    }
-    out
-}
-
-/// How each character of a line is read: in a code span, in mathematics (between a
-/// dollar and the next, outside code; a last dollar without its closer is text), or
-/// as text.
-fn readings(line: &[char], dollars: Dollars) -> Vec<Reading> {
-    let code = code_spans(line);
-    let mut out: Vec<Reading> = code
-        .iter()
-        .map(|&c| match (c, dollars) {
-            (true, _) => Reading::Code,
-            (false, Dollars::Inside) => Reading::Math,
-            (false, Dollars::Paired) => Reading::Text,
-        })
-        .collect();
-    if dollars == Dollars::Paired {
-        let signs: Vec<usize> = (0..line.len())
-            .filter(|&k| line[k] == '$' && !code[k] && (k == 0 || line[k - 1] != '\\'))
-            .collect();
-        for pair in signs.chunks_exact(2) {
-            for k in pair[0]..=pair[1] {
-                if !code[k] {
-                    out[k] = Reading::Math;
+            Reading::Math => match c {
+                // LaTeX's own names for the brackets: no `[` for a link to start from.
+                '[' => out.push_str("\\lbrack "),
+                ']' => out.push_str("\\rbrack "),
+                // A backslash before a dollar would let it close the mathematics.
+                '\\' if rest.first() == Some(&'$') => out.push_str("\\\\"),
+                '$' => out.push_str("\\$"),
+                _ if address => {
+                    out.push('{');
+                    out.push(c);
+                    out.push('}');
                 }
-            }
+                _ => out.push(c),
+            },
         }
     }
     out
@@ -175,9 +151,52 @@ pub fn line(s: &str) -> String {
     }
 }
 
-/// Inline LaTeX, `$…$`, safe in a table cell as [`cell`] makes text, its brackets kept.
+/// Inline LaTeX, `$…$`, safe in a table cell as [`cell`] makes text: its brackets
+/// become `\lbrack`, `\rbrack` (the same brackets to LaTeX, no link to Markdown), its
+/// dollars are escaped.
 pub fn math(s: &str) -> String {
-    format!("${}$", escaped(s, Dollars::Inside))
+    format!("${}$", escaped(s.trim(), Reading::Math))
+}
+
+/// Marks where [`evidence_cell`] puts a statement back, around its number.
+const MARK: char = '\u{E000}';
+
+/// The full evidence of a row as a cell: its words escaped as [`cell`] escapes text,
+/// each statement it quotes as [`math`]. The statements are taken out (marked by
+/// number) while the words are escaped, then put back. A file that writes the mark
+/// itself can at most repeat one of the row's statements, which are safe.
+fn evidence_cell(r: &Decided<'_>) -> String {
+    let maths = std::cell::RefCell::new(Vec::new());
+    let words = full_evidence(r, &|s| {
+        let mut m = maths.borrow_mut();
+        m.push(math(s));
+        format!("{MARK}{}{MARK}", m.len() - 1)
+    });
+    let maths = maths.into_inner();
+    let escaped = cell(&words);
+    let parts: Vec<&str> = escaped.split(MARK).collect();
+    let mut out = String::with_capacity(escaped.len());
+    out.push_str(parts[0]);
+    let mut k = 1;
+    while k < parts.len() {
+        let statement = (k + 1 < parts.len())
+            .then(|| parts[k].parse::<usize>().ok())
+            .flatten()
+            .and_then(|i| maths.get(i));
+        match statement {
+            Some(m) => {
+                out.push_str(m);
+                out.push_str(parts[k + 1]);
+                k += 2;
+            }
+            None => {
+                out.push(MARK);
+                out.push_str(parts[k]);
+                k += 1;
+            }
+        }
+    }
+    out
 }
 
 /// Renders the whole table with its summary line.
@@ -196,7 +215,6 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
             crate::derivation::Verdict::Holds => verdict_label(r),
             _ => format!("**{}**", verdict_label(r)),
         };
-        let ev = full_evidence(r, &|s| math(s));
         let _ = writeln!(
             out,
             "| {} | {} | {} | {} | {} | {} | {} |",
@@ -206,7 +224,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
             verdict,
             super::row::read_label(r),
             r.outcome.method.as_str(),
-            cell(&ev)
+            evidence_cell(r)
         );
     }
     let summary = Summary::of(rows);
@@ -222,10 +240,50 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
 /// A statement as it appears in a table cell: inline math, or quoted prose.
 pub fn statement(c: &crate::derivation::Claim) -> String {
     if c.prose {
-        format!("“{}”", cell(&c.statement))
+        format!("“{}”", prose(&c.statement))
     } else {
         math(&c.statement)
     }
+}
+
+/// A sentence of the paper with its inline mathematics: each pair of dollars as
+/// pandoc and GitHub pair them (an opening `$` not followed by a space, a closing one
+/// not after a space nor before a digit) is [`math`], the rest is [`cell`] text.
+fn prose(s: &str) -> String {
+    let line = one_line(s.trim());
+    let dollar = |k: usize| line[k] == '$' && (k == 0 || line[k - 1] != '\\');
+    let mut out = String::new();
+    let (mut text, mut k) = (0, 0);
+    while k < line.len() {
+        let opens = dollar(k)
+            && line
+                .get(k + 1)
+                .is_some_and(|c| !c.is_whitespace() && *c != '$');
+        let close = opens
+            .then(|| {
+                (k + 2..line.len()).find(|&j| {
+                    dollar(j)
+                        && !line[j - 1].is_whitespace()
+                        && !line.get(j + 1).is_some_and(char::is_ascii_digit)
+                })
+            })
+            .flatten();
+        match close {
+            Some(j) => {
+                let piece = |a: usize, b: usize| line[a..b].iter().collect::<String>();
+                out.push_str(&escaped(&piece(text, k), Reading::Text));
+                out.push_str(&format!("${}$", escaped(&piece(k + 1, j), Reading::Math)));
+                text = j + 1;
+                k = j + 1;
+            }
+            None => k += 1,
+        }
+    }
+    out.push_str(&escaped(
+        &line[text..].iter().collect::<String>(),
+        Reading::Text,
+    ));
+    out
 }
 
 #[cfg(test)]
@@ -242,25 +300,64 @@ mod tests {
         assert_eq!(cell("`[[a, b]]` and ``[`x`]``"), "`[[a, b]]` and ``[`x`]``");
         // A backtick run without its closer, or a dollar, opens nothing: links stay text.
         assert_eq!(cell("` [a](javascript:1) ``"), "` \\[a\\](javascript:1) ``");
-        assert_eq!(cell("$ [a](x) $"), "$ \\[a\\](x) $");
-        assert_eq!(math("\\left[ x \\right]"), "$\\left[ x \\right]$");
-        assert_eq!(math("x$ [a](b) $y"), "$x\\$ \\[a\\](b) \\$y$");
-        assert_eq!(math("x\\$ y"), "$x\\$ y$");
+        assert_eq!(cell("$ [a](x) $"), "\\$ \\[a\\](x) \\$");
         assert_eq!(cell("a | b <script>"), "a \\| b < script>");
     }
 
     #[test]
-    fn emphasis_and_bare_addresses_from_a_file_are_text() {
+    fn a_backslash_of_the_files_cannot_undo_an_escape_or_hide_a_backtick() {
+        // `\*` of the file would make `\\*`: a backslash, then a live `*`.
+        assert_eq!(cell(r"\*a\* \[x\](y)"), r"\\\*a\\\* \\\[x\\\](y)");
+        // `\`` is a literal backtick to CommonMark: doubled, the backslash is text and
+        // the backtick opens the span it is read as.
+        assert_eq!(cell(r"\`*a*`"), r"\\`*a*`");
+        // Before a letter a backslash escapes nothing and stays as it is.
+        assert_eq!(cell(r"\alpha"), r"\alpha");
+    }
+
+    #[test]
+    fn emphasis_dollars_and_bare_addresses_from_a_file_are_text() {
         assert_eq!(cell("*a* _b_ ~~c~~"), "\\*a\\* \\_b\\_ \\~\\~c\\~\\~");
-        // Inside mathematics a subscript stays a subscript.
-        assert_eq!(cell("at $h_{cr} = 1$, h_cr"), "at $h_{cr} = 1$, h\\_cr");
-        // A dollar without its closer opens nothing.
-        assert_eq!(cell("$ *a*"), "$ \\*a\\*");
+        // A file's dollars are text: what they enclose is escaped like the rest.
+        assert_eq!(
+            cell("price $5 *bold* and $6"),
+            "price \\$5 \\*bold\\* and \\$6"
+        );
         assert_eq!(
             cell("see https://e.example and WWW.e.example or me@e.example"),
             "see https\\://e.example and WWW\\.e.example or me\\@e.example"
         );
-        assert_eq!(math("http://e.example"), "$http{:}//e.example$");
         assert_eq!(cell("`https://e.example`"), "`https://e.example`");
+    }
+
+    #[test]
+    fn a_sentence_keeps_its_mathematics_and_nothing_else_renders() {
+        assert_eq!(
+            prose("if $f_r \\leq f_s$ then *F_2* [a](b)"),
+            "if $f_r \\leq f_s$ then \\*F\\_2\\* \\[a\\](b)"
+        );
+        // Dollars that pandoc and GitHub do not pair are text.
+        assert_eq!(
+            prose("price $5 *bold* and $6"),
+            "price \\$5 \\*bold\\* and \\$6"
+        );
+        assert_eq!(prose("$ a $"), "\\$ a \\$");
+        assert_eq!(prose("$[x](y)$"), "$\\lbrack x\\rbrack (y)$");
+    }
+
+    #[test]
+    fn mathematics_keeps_its_latex_without_links_or_early_dollars() {
+        assert_eq!(math("h_{cr} = 1"), "$h_{cr} = 1$");
+        assert_eq!(
+            math("\\left[ x \\right]"),
+            "$\\left\\lbrack  x \\right\\rbrack $"
+        );
+        assert_eq!(
+            math("[a](javascript:b)"),
+            "$\\lbrack a\\rbrack (javascript:b)$"
+        );
+        assert_eq!(math("x$ y"), "$x\\$ y$");
+        assert_eq!(math("x\\$ y"), "$x\\\\\\$ y$");
+        assert_eq!(math("http://e.example"), "$http{:}//e.example$");
     }
 }

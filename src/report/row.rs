@@ -41,7 +41,7 @@ pub fn verdict_label(r: &Decided<'_>) -> String {
     if let Some(from) = graph::inherited_label(r) {
         text = format!("{text} ({from})");
     }
-    if r.as_expected() {
+    if r.verdict_as_expected() {
         text
     } else {
         format!("{text} ✗ (declared: {})", r.claim.expect)
