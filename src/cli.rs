@@ -867,14 +867,23 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
                 .map_err(|e| RunError::Input(format!("error: {path}: {e}")))?;
             let mut text = r.lines.join("\n");
             text.push_str(&format!(
-                "\n\n{} proved verdict{} checked again by the kernel: {} accepted, {} refused.\n",
+                "\n\n{} proved verdict{} checked again by the kernel: {} accepted, {} refused. {} verdict{} of strength sampled, or undecided, {} nothing for the kernel to check: `verify` decides {} again.\n",
                 r.accepted + r.refused,
                 if r.accepted + r.refused == 1 { "" } else { "s" },
                 r.accepted,
-                r.refused
+                r.refused,
+                r.not_proofs,
+                if r.not_proofs == 1 { "" } else { "s" },
+                if r.not_proofs == 1 { "has" } else { "have" },
+                if r.not_proofs == 1 { "it" } else { "them" },
             ));
+            if r.summary_refused > 0 {
+                text.push_str(
+                    "The report's summary does not count its claims' verdicts: refused.\n",
+                );
+            }
             emit(&text, &None, &[], out.stream)?;
-            Ok(if r.refused == 0 {
+            Ok(if r.refused == 0 && r.summary_refused == 0 {
                 Status::AsExpected
             } else {
                 Status::Unexpected

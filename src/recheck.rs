@@ -64,6 +64,11 @@ pub struct Rechecked {
     pub accepted: usize,
     /// Proofs, or verdicts, refused.
     pub refused: usize,
+    /// Counts of the report's summary that are not the counts of its rows' verdicts.
+    pub summary_refused: usize,
+    /// Verdicts (of claims and corrections) that are not proofs: sampled or undecided,
+    /// which the kernel has nothing to check for; `verify` decides them again.
+    pub not_proofs: usize,
 }
 
 /// Text from the report, safe to print: control characters (terminal escapes) shown
@@ -101,7 +106,31 @@ fn recheck_here(text: &str) -> Result<Rechecked, NotAReport> {
         lines: Vec::new(),
         accepted: 0,
         refused: 0,
+        summary_refused: 0,
+        not_proofs: 0,
     };
+    // The summary a reader sees first counts the claims' verdicts as the rows give them.
+    if let Some(summary) = report.get("summary") {
+        let count = |v: &str| {
+            claims
+                .iter()
+                .filter(|c| c.get("verdict").and_then(|x| x.as_str()) == Some(v))
+                .count()
+        };
+        for (key, verdict) in [
+            ("holds", "holds"),
+            ("fails", "fails"),
+            ("conditional", "conditional"),
+            ("undecided", "undecided"),
+        ] {
+            if summary.get(key).and_then(|x| x.as_u64()) != Some(count(verdict) as u64) {
+                out.summary_refused += 1;
+                out.lines.push(format!(
+                    "summary: REFUSED: `{key}` is not the number of claims whose verdict is `{verdict}`"
+                ));
+            }
+        }
+    }
     for claim in claims {
         let id = claim.get("id").and_then(|v| v.as_str()).unwrap_or("?");
         let mut rows = vec![(shown(id), claim)];
@@ -110,7 +139,7 @@ fn recheck_here(text: &str) -> Result<Rechecked, NotAReport> {
         }
         for (name, row) in rows {
             match one(row) {
-                Ok(None) => {}
+                Ok(None) => out.not_proofs += 1,
                 Ok(Some(line)) => {
                     out.accepted += 1;
                     out.lines.push(format!("{name}: {line}"));

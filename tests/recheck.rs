@@ -133,6 +133,17 @@ fn an_edited_proof_statement_conclusion_or_verdict_is_refused() {
         .expect("a sampled verdict");
     sampled["certificate"] = serde_json::json!({"facts": [{"kind": "identity"}]});
     assert_eq!(rechecked(&r), (accepted, 1));
+    // A summary that does not count the rows' verdicts; the genuine one is accepted.
+    let genuine = recheck(&base.to_string()).unwrap();
+    assert_eq!(genuine.summary_refused, 0);
+    assert!(genuine.not_proofs > 0);
+    let mut r = base.clone();
+    r["summary"]["fails"] = Value::from(0);
+    let edited = recheck(&r.to_string()).unwrap();
+    assert_eq!(
+        (edited.accepted, edited.refused, edited.summary_refused),
+        (accepted, 0, 1)
+    );
 }
 
 #[test]
