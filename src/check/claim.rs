@@ -18,7 +18,13 @@ pub fn decide_claim(claim: &Claim) -> Result<Decided<'_>, Diagnostic> {
 }
 
 fn decide_claim_keeping(claim: &Claim, keep: bool) -> Result<Decided<'_>, Diagnostic> {
-    let outcome = isolate::isolated(method_of(&claim.check), &claim.check.location(), || {
+    // Where a limit is reported: the statement's first side, or the claim itself (a
+    // claim about a function has no sides).
+    let at = match claim.check.location() {
+        at if at.is_empty() => claim.origin.diagnostic(Default::default(), "").location(),
+        at => at,
+    };
+    let outcome = isolate::isolated(method_of(&claim.check), &at, || {
         isolate::test_hook(&claim.id);
         decide_unisolated(&claim.decls, &claim.check, keep)
     })?;

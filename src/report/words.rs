@@ -9,6 +9,9 @@ use crate::digits;
 pub fn finding(f: &Finding) -> String {
     match f {
         Finding::NothingCompared => "no component was compared, so nothing was proved".into(),
+        Finding::ResourceLimit { what, at, help } if at.is_empty() => {
+            format!("undecided (resource limit): {what}; {help}")
+        }
         Finding::ResourceLimit { what, at, help } => format!(
             "undecided (resource limit): {what} (at {at}); {help}"
         ),
