@@ -86,8 +86,10 @@ fn escaped(s: &str, reading: Reading) -> String {
                 // LaTeX's own names for the brackets: no `[` for a link to start from.
                 '[' => out.push_str("\\lbrack "),
                 ']' => out.push_str("\\rbrack "),
-                // A backslash before a dollar would let it close the mathematics.
-                '\\' if rest.first() == Some(&'$') => out.push_str("\\\\"),
+                // A backslash of the file's would escape what follows to Markdown: a
+                // dollar (which then closes the mathematics), a backtick (which then
+                // opens no code span where one is read), a pipe. Doubled, it is text.
+                '\\' if matches!(rest.first(), Some('$' | '`' | '|')) => out.push_str("\\\\"),
                 '$' => out.push_str("\\$"),
                 _ if address => {
                     out.push('{');
@@ -359,5 +361,9 @@ mod tests {
         assert_eq!(math("x$ y"), "$x\\$ y$");
         assert_eq!(math("x\\$ y"), "$x\\\\\\$ y$");
         assert_eq!(math("http://e.example"), "$http{:}//e.example$");
+        // An escaped backtick would open no code span: doubled, the backslash is text
+        // and the span is where it is read to be.
+        assert_eq!(math("\\`[a](b)`"), "$\\\\`[a](b)`$");
+        assert_eq!(math("\\|x\\|"), "$\\\\\\|x\\\\\\|$");
     }
 }
