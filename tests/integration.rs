@@ -33,6 +33,7 @@ mod kernel;
 mod latex;
 mod layers;
 mod literal_zero;
+mod markdown_safety;
 mod matrices;
 mod moments;
 mod mutants;
