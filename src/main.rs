@@ -22,7 +22,18 @@ fn main() -> ExitCode {
         .stack_size(cosserat_check::parallel::STACK)
         .spawn(move || checked(cli))
     {
-        Ok(run) => run.join().unwrap_or_else(|e| std::panic::resume_unwind(e)),
+        // A polynomial operator past its limits unwinds with the limit (`kernel::poly::
+        // beyond`); inside a claim's decision it makes the claim undecided, and one that
+        // reaches here was outside every decision: a defect of the checker.
+        Ok(run) => run.join().unwrap_or_else(|payload| {
+            match payload.downcast::<cosserat_check::kernel::PolyError>() {
+                Ok(e) => {
+                    eprintln!("internal error of the checker: {e}, outside any claim's decision; please report it");
+                    ExitCode::from(3)
+                }
+                Err(payload) => std::panic::resume_unwind(payload),
+            }
+        }),
         Err(e) => {
             eprintln!("internal error: the checking thread could not start: {e}");
             ExitCode::from(3)
