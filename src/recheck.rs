@@ -117,16 +117,11 @@ fn recheck_here(text: &str) -> Result<Rechecked, NotAReport> {
                 .filter(|c| c.get("verdict").and_then(|x| x.as_str()) == Some(v))
                 .count()
         };
-        for (key, verdict) in [
-            ("holds", "holds"),
-            ("fails", "fails"),
-            ("conditional", "conditional"),
-            ("undecided", "undecided"),
-        ] {
-            if summary.get(key).and_then(|x| x.as_u64()) != Some(count(verdict) as u64) {
+        for verdict in ["holds", "fails", "conditional", "undecided"] {
+            if summary.get(verdict).and_then(|x| x.as_u64()) != Some(count(verdict) as u64) {
                 out.summary_refused += 1;
                 out.lines.push(format!(
-                    "summary: REFUSED: `{key}` is not the number of claims whose verdict is `{verdict}`"
+                    "summary: REFUSED: `{verdict}` is not the number of claims whose verdict is `{verdict}`"
                 ));
             }
         }
