@@ -92,6 +92,11 @@ pub struct RecheckArgs {
     /// The JSON report (as `check --format json` or `verify --format json` writes it).
     #[arg(value_name = "REPORT")]
     pub report: PathBuf,
+    /// The derivation files the report was made from (repeat for several): each proof
+    /// must then be about the statement its claim's file gives, so that a true proof
+    /// moved onto another claim, or a statement edited in the report, is refused.
+    #[arg(long = "file", value_name = "FILE")]
+    pub files: Vec<PathBuf>,
 }
 
 #[derive(Debug, Clone, clap::Args)]
@@ -863,7 +868,21 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             let path = a.report.display().to_string();
             let text = read_bounded(&a.report, crate::recheck::MAX_REPORT_BYTES)
                 .map_err(|e| RunError::Input(format!("error: cannot read {path}: {e}")))?;
-            let r = crate::recheck::recheck(&text)
+            let statements = if a.files.is_empty() {
+                None
+            } else {
+                let files = crate::derivation::load_files(&a.files)?;
+                Some(
+                    crate::recheck::statements_of(&files)
+                        .map_err(|d| RunError::Input(d.to_string()))?,
+                )
+            };
+            let lookup = |id: &str, correction: bool| {
+                statements
+                    .as_ref()
+                    .and_then(|s| s.get(&(id.to_owned(), correction)).cloned())
+            };
+            let r = crate::recheck::recheck(&text, statements.is_some().then_some(&lookup))
                 .map_err(|e| RunError::Input(format!("error: {path}: {e}")))?;
             let mut text = r.lines.join("\n");
             text.push_str(&format!(

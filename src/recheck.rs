@@ -52,6 +52,10 @@ enum Refused {
     Summary,
     #[error("the recorded certificate is not what the kernel checked")]
     Certificate,
+    #[error("the files given have no claim of this id")]
+    NotInTheFiles,
+    #[error("the proof is about another statement than the one its claim's file gives")]
+    NotItsStatement,
     #[error("the proofs do not conclude the verdict `{0}`")]
     Verdict(String),
 }
@@ -82,18 +86,41 @@ fn shown(s: &str) -> String {
     out
 }
 
-/// Re-checks every proof of the report `text`; `Err` when it is not a report.
-pub fn recheck(text: &str) -> Result<Rechecked, NotAReport> {
+/// The statements a claim's proofs may be about, by claim id (and whether it is the
+/// correction), rebuilt from the derivation files: `None` when the files have no such
+/// claim.
+pub type Statements<'a> = dyn Fn(&str, bool) -> Option<Vec<Statement>> + Sync + 'a;
+
+/// Re-checks every proof of the report `text`; `Err` when it is not a report. With
+/// `files`, each proof must also be about the statement its claim's file gives (so that
+/// a true proof moved onto another claim, or an edited statement, is refused).
+pub fn recheck(text: &str, files: Option<&Statements<'_>>) -> Result<Rechecked, NotAReport> {
     // On a thread of its own: a statement may nest definitions as deep as the kernel's
     // bound, deeper than the caller's stack allows.
     std::thread::scope(|scope| {
-        crate::parallel::spawn_scoped(scope, || recheck_here(text))
+        crate::parallel::spawn_scoped(scope, || recheck_here(text, files))
             .join()
             .unwrap_or_else(|e| std::panic::resume_unwind(e))
     })
 }
 
-fn recheck_here(text: &str) -> Result<Rechecked, NotAReport> {
+/// The statements of every claim of `files` that a proof may be about, for [`recheck`].
+pub fn statements_of(
+    files: &[crate::derivation::DerivationFile],
+) -> Result<std::collections::BTreeMap<(String, bool), Vec<Statement>>, crate::lang::Diagnostic> {
+    let mut out = std::collections::BTreeMap::new();
+    for claim in files.iter().flat_map(|f| &f.claims) {
+        let own = crate::check::proof_statements(&claim.decls, &claim.check)?;
+        out.insert((claim.id.clone(), false), own);
+        if let Some(c) = &claim.correction {
+            let corrected = crate::check::proof_statements(&claim.decls, &c.check)?;
+            out.insert((claim.id.clone(), true), corrected);
+        }
+    }
+    Ok(out)
+}
+
+fn recheck_here(text: &str, files: Option<&Statements<'_>>) -> Result<Rechecked, NotAReport> {
     if text.len() > MAX_REPORT_BYTES {
         return Err(NotAReport::TooLarge);
     }
@@ -128,12 +155,13 @@ fn recheck_here(text: &str) -> Result<Rechecked, NotAReport> {
     }
     for claim in claims {
         let id = claim.get("id").and_then(|v| v.as_str()).unwrap_or("?");
-        let mut rows = vec![(shown(id), claim)];
+        let mut rows = vec![(shown(id), claim, false)];
         if let Some(c) = claim.get("correction").filter(|c| !c.is_null()) {
-            rows.push((format!("{} (correction)", shown(id)), c));
+            rows.push((format!("{} (correction)", shown(id)), c, true));
         }
-        for (name, row) in rows {
-            match one(row) {
+        for (name, row, correction) in rows {
+            let expected = files.map(|f| f(id, correction));
+            match one(row, expected) {
                 Ok(None) => out.not_proofs += 1,
                 Ok(Some(line)) => {
                     out.accepted += 1;
@@ -149,9 +177,26 @@ fn recheck_here(text: &str) -> Result<Rechecked, NotAReport> {
     Ok(out)
 }
 
+/// Whether a proof's statement is the one its file gives: equal, except that the part
+/// of a `conditional` claim about a function that holds is proved on the domain the
+/// decision found, a sub-box of the file's (its box is then not compared).
+fn about(proved: &Statement, file: &Statement, conditional: bool) -> bool {
+    use crate::kernel::statement::Claim;
+    let scalar = !matches!(file.claim, Claim::Equal { .. } | Claim::Proportional { .. });
+    let mut proved = proved.clone();
+    if scalar && conditional {
+        proved.context.given.clone_from(&file.context.given);
+    }
+    &proved == file
+}
+
 /// One claim's (or correction's) proofs: `None` when its verdict is not of strength
-/// `proof`.
-fn one(row: &serde_json::Value) -> Result<Option<String>, Refused> {
+/// `proof`. `expected`, when the files were given: the statements its file gives
+/// (`None` inside when the files have no such claim).
+fn one(
+    row: &serde_json::Value,
+    expected: Option<Option<Vec<Statement>>>,
+) -> Result<Option<String>, Refused> {
     let text = |k: &str| row.get(k).and_then(|v| v.as_str()).unwrap_or("");
     let (verdict, strength) = (text("verdict"), text("strength"));
     let written = row
@@ -178,6 +223,18 @@ fn one(row: &serde_json::Value) -> Result<Option<String>, Refused> {
     let mut facts = Vec::new();
     for w in written {
         let w: Written = serde_json::from_value(w).map_err(Refused::IllWritten)?;
+        match &expected {
+            None => {}
+            Some(None) => return Err(Refused::NotInTheFiles),
+            Some(Some(statements))
+                if !statements
+                    .iter()
+                    .any(|s| about(&w.statement, s, verdict == "conditional")) =>
+            {
+                return Err(Refused::NotItsStatement)
+            }
+            Some(Some(_)) => {}
+        }
         let proof = check(w.statement, w.fact)?;
         let said = match proof.conclusion() {
             Conclusion::Holds => "holds",

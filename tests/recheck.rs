@@ -24,7 +24,7 @@ fn paper_report() -> Value {
 
 /// The number of accepted and refused proofs of a (possibly edited) report.
 fn rechecked(report: &Value) -> (usize, usize) {
-    let r = recheck(&report.to_string()).unwrap();
+    let r = recheck(&report.to_string(), None).unwrap();
     (r.accepted, r.refused)
 }
 
@@ -134,12 +134,12 @@ fn an_edited_proof_statement_conclusion_or_verdict_is_refused() {
     sampled["certificate"] = serde_json::json!({"facts": [{"kind": "identity"}]});
     assert_eq!(rechecked(&r), (accepted, 1));
     // A summary that does not count the rows' verdicts; the genuine one is accepted.
-    let genuine = recheck(&base.to_string()).unwrap();
+    let genuine = recheck(&base.to_string(), None).unwrap();
     assert_eq!(genuine.summary_refused, 0);
     assert!(genuine.not_proofs > 0);
     let mut r = base.clone();
     r["summary"]["fails"] = Value::from(0);
-    let edited = recheck(&r.to_string()).unwrap();
+    let edited = recheck(&r.to_string(), None).unwrap();
     assert_eq!(
         (edited.accepted, edited.refused, edited.summary_refused),
         (accepted, 0, 1)
@@ -148,22 +148,22 @@ fn an_edited_proof_statement_conclusion_or_verdict_is_refused() {
 
 #[test]
 fn a_file_that_is_not_a_report_is_refused_with_its_reason() {
-    assert!(recheck("not json")
+    assert!(recheck("not json", None)
         .unwrap_err()
         .to_string()
         .contains("not a JSON report"));
-    assert!(recheck("{}")
+    assert!(recheck("{}", None)
         .unwrap_err()
         .to_string()
         .contains("no `claims`"));
     // A proof that is not well written.
     let r = serde_json::json!({"claims": [{"id": "x", "verdict": "holds", "strength": "proof", "proofs": [{"conclusion": "holds"}]}]});
-    let out = recheck(&r.to_string()).unwrap();
+    let out = recheck(&r.to_string(), None).unwrap();
     assert_eq!((out.accepted, out.refused), (0, 1));
     assert!(out.lines[0].contains("not well written"), "{:?}", out.lines);
     // An id with a terminal escape is shown inert.
     let r = serde_json::json!({"claims": [{"id": "\u{1b}[2Jx", "verdict": "holds", "strength": "proof", "proofs": []}]});
-    let out = recheck(&r.to_string()).unwrap();
+    let out = recheck(&r.to_string(), None).unwrap();
     assert!(!out.lines[0].contains('\u{1b}'), "{:?}", out.lines);
 }
 
@@ -281,7 +281,7 @@ fn forged_proofs_are_refused_and_genuine_ones_beside_them_accepted() {
             .iter()
             .filter(|c| c["strength"] == "proof")
             .count();
-        let out = recheck(&text).unwrap();
+        let out = recheck(&text, None).unwrap();
         assert_eq!(
             (out.accepted, out.refused),
             (proved - 1, 1),
@@ -322,7 +322,57 @@ fn a_definition_chain_twenty_thousand_deep_is_refused_not_a_crash() {
                 {"neg": leaf(serde_json::json!({"symbol": "x"}))}]]}}},
             "fact": {"kind": "identity", "roots": []},
             "summary": [{"kind": "polynomial-identity", "components": 1, "modulo_unit_normal": 0}]}]}]});
-    let out = recheck(&report.to_string()).unwrap();
+    let out = recheck(&report.to_string(), None).unwrap();
     assert_eq!((out.accepted, out.refused), (0, 1), "{:?}", out.lines);
     assert!(out.lines[0].contains("bound"), "{:?}", out.lines);
+}
+
+#[test]
+fn with_the_files_a_proof_moved_onto_another_claim_or_an_edited_statement_is_refused() {
+    let files = cosserat_check::corpus::load().unwrap();
+    let statements = cosserat_check::recheck::statements_of(&files).unwrap();
+    let lookup = |id: &str, correction: bool| statements.get(&(id.to_owned(), correction)).cloned();
+    let base = paper_report();
+    let bound = |report: &Value| {
+        let r = recheck(&report.to_string(), Some(&lookup)).unwrap();
+        (r.accepted, r.refused)
+    };
+    // Every proof of the paper is about the statement its file gives.
+    let (accepted, refused) = bound(&base);
+    assert_eq!(refused, 0);
+    assert_eq!((accepted, 0), rechecked(&base));
+    // A true proof (with its certificate) moved onto a claim that fails: alone, the
+    // report is consistent; with the files, it is refused.
+    let mut r = base.clone();
+    let claims = r["claims"].as_array_mut().unwrap();
+    let from = claims
+        .iter()
+        .position(|c| c["strength"] == "proof" && c["verdict"] == "holds")
+        .unwrap();
+    let to = claims
+        .iter()
+        .position(|c| {
+            c["strength"] == "proof" && c["verdict"] == "fails" && c["correction"].is_null()
+        })
+        .unwrap();
+    let (proofs, certificate) = (
+        claims[from]["proofs"].clone(),
+        claims[from]["certificate"].clone(),
+    );
+    claims[to]["proofs"] = proofs;
+    claims[to]["certificate"] = certificate;
+    claims[to]["verdict"] = Value::from("holds");
+    let summary = &mut r["summary"];
+    summary["holds"] = Value::from(summary["holds"].as_u64().unwrap() + 1);
+    summary["fails"] = Value::from(summary["fails"].as_u64().unwrap() - 1);
+    assert_eq!(
+        rechecked(&r),
+        (accepted, 0),
+        "without the files the move is not seen"
+    );
+    assert_eq!(bound(&r), (accepted - 1, 1));
+    // A claim the files do not have.
+    let mut r = base.clone();
+    r["claims"][from]["id"] = Value::from("no-such-claim");
+    assert_eq!(bound(&r), (accepted - 1, 1));
 }

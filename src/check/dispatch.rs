@@ -88,3 +88,27 @@ pub(crate) fn decide_unisolated(
     }
     Ok(outcome)
 }
+
+/// The statements a proof of `check` may be about, rebuilt from its file as a decision
+/// builds them for the kernel: the equalities of an exact or proportional claim, a
+/// scalar claim on its box, a locus; none for the sampled strategies, which prove
+/// nothing. (A scalar claim's proof may also be on a sub-box of its domain: the box is
+/// the one part of the statement this does not fix.)
+pub fn proof_statements(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+) -> Result<Vec<crate::kernel::statement::Statement>, Diagnostic> {
+    use crate::derivation::{statement, Strategy};
+    Ok(match &check.strategy {
+        Strategy::Exact { .. } | Strategy::Proportional { .. } => {
+            vec![statement::equalities(decls, check)?]
+        }
+        Strategy::Scalar { domain, .. } => vec![statement::scalar(decls, check, domain)?],
+        Strategy::NotCircle { x, y } => {
+            vec![statement::not_circle(decls, check, &x.node, &y.node)?]
+        }
+        Strategy::Numeric { .. } | Strategy::Gradient { .. } | Strategy::Convex { .. } => {
+            Vec::new()
+        }
+    })
+}
