@@ -153,7 +153,8 @@ pub enum FigureFormat {
 #[derive(Debug, Clone, clap::Args, Default)]
 pub struct OutputArgs {
     /// Output format [default: compact when standard output is a terminal and there
-    /// is no --out, else markdown]. Piped output is always byte-identical.
+    /// is no --out, else markdown]. The same files, options and seed give byte-identical
+    /// output, run after run.
     #[arg(long, value_enum)]
     pub format: Option<Format>,
     /// With --format latex: a complete document instead of a table fragment.
