@@ -3,7 +3,7 @@
 //! roots decisions share.
 
 use crate::algebra::certificate::Certificate;
-use crate::algebra::sign::{Interval, Sign};
+use crate::algebra::sign::{Interval, Real, Sign};
 use crate::algebra::{Quotient, RatFunc};
 use crate::decide::finding::{Finding, RationalEvidence};
 use crate::decide::outcome::{Method, Outcome};
@@ -303,8 +303,7 @@ pub(super) fn readable(x: &Rational) -> String {
 
 /// A real number as evidence writes it: exactly when rational, `≈ x` to ten
 /// significant digits when an isolated irrational root.
-pub(super) fn shown_real(x: &crate::algebra::sign::Real) -> String {
-    use crate::algebra::sign::Real;
+pub(super) fn shown_real(x: &Real) -> String {
     match x {
         Real::Exact(q) => q.to_string(),
         Real::Isolated { .. } => format!("≈ {}", crate::digits::significant(x.approx(), 10)),
@@ -312,9 +311,11 @@ pub(super) fn shown_real(x: &crate::algebra::sign::Real) -> String {
 }
 
 /// "name = x" for an exact number, "name ≈ x" for an isolated irrational one.
-pub(super) fn equated(x: &crate::algebra::sign::Real, name: &str) -> String {
-    match x {
-        crate::algebra::sign::Real::Exact(q) => format!("{name} = {q}"),
-        crate::algebra::sign::Real::Isolated { .. } => format!("{name} {}", shown_real(x)),
-    }
+pub(super) fn equated(x: &Real, name: &str) -> String {
+    let equals = if matches!(x, Real::Exact(_)) {
+        "= "
+    } else {
+        ""
+    };
+    format!("{name} {equals}{}", shown_real(x))
 }
