@@ -254,6 +254,15 @@ pub fn statement(c: &crate::derivation::Claim) -> String {
 fn prose(s: &str) -> String {
     let line = one_line(s.trim());
     let dollar = |k: usize| line[k] == '$' && (k == 0 || line[k - 1] != '\\');
+    // Where a dollar may close, found once: an opening dollar takes the first of them
+    // past it (a search from each opening dollar takes quadratic time on a line of them).
+    let closers: Vec<usize> = (1..line.len())
+        .filter(|&j| {
+            dollar(j)
+                && !line[j - 1].is_whitespace()
+                && !line.get(j + 1).is_some_and(char::is_ascii_digit)
+        })
+        .collect();
     let mut out = String::new();
     let (mut text, mut k) = (0, 0);
     while k < line.len() {
@@ -263,11 +272,9 @@ fn prose(s: &str) -> String {
                 .is_some_and(|c| !c.is_whitespace() && *c != '$');
         let close = opens
             .then(|| {
-                (k + 2..line.len()).find(|&j| {
-                    dollar(j)
-                        && !line[j - 1].is_whitespace()
-                        && !line.get(j + 1).is_some_and(char::is_ascii_digit)
-                })
+                closers
+                    .get(closers.partition_point(|&j| j < k + 2))
+                    .copied()
             })
             .flatten();
         match close {
