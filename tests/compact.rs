@@ -2,23 +2,10 @@
 //! evidence per claim and failures highlighted when standard output is a terminal;
 //! piped output stays the Markdown table, byte for byte.
 
-use clap::Parser;
-use cosserat_check::cli::{run, Cli, Output};
 use cosserat_check::report::compact::EVIDENCE_WIDTH;
 
 fn output(args: &[&str], terminal: bool) -> String {
-    let cli =
-        Cli::try_parse_from(std::iter::once("cosserat-check").chain(args.iter().copied())).unwrap();
-    let mut out = Vec::new();
-    run(
-        cli,
-        &mut Output {
-            stream: &mut out,
-            terminal,
-        },
-    )
-    .unwrap();
-    String::from_utf8(out).unwrap()
+    crate::common::run_cli(args, terminal).1
 }
 
 const FILE: &str = "tests/user/irrelevant-symbols.toml";

@@ -4,8 +4,6 @@
 //! cells, and with mathematics no emphasis or strikethrough either. (Bare addresses, which pulldown-cmark does not
 //! link, are unit-tested in `report::markdown`.)
 
-use clap::Parser;
-use cosserat_check::cli::{run, Cli, Output};
 use pulldown_cmark::{Event, Options, Parser as Markdown, Tag};
 
 /// Every text field of a file, written to break out: escapes undone by a backslash, a
@@ -46,29 +44,12 @@ fn markdown(errata: bool) -> String {
     let file = dir.join("hostile.toml");
     std::fs::write(&file, HOSTILE).unwrap();
     let (dir, file) = (dir.to_str().unwrap(), file.to_str().unwrap());
-    let argv = if errata {
-        vec![
-            "cosserat-check",
-            "errata",
-            "--format",
-            "markdown",
-            "--dir",
-            dir,
-        ]
+    let args = if errata {
+        vec!["errata", "--format", "markdown", "--dir", dir]
     } else {
-        vec!["cosserat-check", "verify", "--format", "markdown", file]
+        vec!["verify", "--format", "markdown", file]
     };
-    let cli = Cli::try_parse_from(argv).unwrap();
-    let mut out = Vec::new();
-    let _ = run(
-        cli,
-        &mut Output {
-            stream: &mut out,
-            terminal: false,
-        },
-    )
-    .unwrap();
-    String::from_utf8(out).unwrap()
+    crate::common::run_cli(&args, false).1
 }
 
 /// The markup a parse of `text` finds that a file could have put there: links, images

@@ -2,24 +2,14 @@
 //! from the statement the report records, and a report whose proof, statement,
 //! conclusion or verdict was edited is refused.
 
-use clap::Parser;
-use cosserat_check::cli::{run, Cli, Output, Status};
+use cosserat_check::cli::Status;
 use cosserat_check::recheck::recheck;
 use serde_json::Value;
 
 fn paper_report() -> Value {
-    let cli = Cli::try_parse_from(["cosserat-check", "check", "--format", "json"]).unwrap();
-    let mut bytes = Vec::new();
-    let status = run(
-        cli,
-        &mut Output {
-            stream: &mut bytes,
-            terminal: false,
-        },
-    )
-    .unwrap();
+    let (status, text) = crate::common::run_cli(&["check", "--format", "json"], false);
     assert_eq!(status, Status::AsExpected);
-    serde_json::from_slice(&bytes).unwrap()
+    serde_json::from_str(&text).unwrap()
 }
 
 /// The number of accepted and refused proofs of a (possibly edited) report.

@@ -62,3 +62,22 @@ pub fn outcomes_of(text: &str) -> Vec<cosserat_check::decide::Outcome> {
         .map(|r| r.outcome)
         .collect()
 }
+
+/// Runs the command line `args` (without the program's name) in process, as if
+/// standard output were a terminal or not: its status and what it wrote.
+pub fn run_cli(args: &[&str], terminal: bool) -> (cosserat_check::cli::Status, String) {
+    use clap::Parser;
+    use cosserat_check::cli::{run, Cli, Output};
+    let cli =
+        Cli::try_parse_from(std::iter::once("cosserat-check").chain(args.iter().copied())).unwrap();
+    let mut out = Vec::new();
+    let status = run(
+        cli,
+        &mut Output {
+            stream: &mut out,
+            terminal,
+        },
+    )
+    .unwrap();
+    (status, String::from_utf8(out).unwrap())
+}
