@@ -27,10 +27,7 @@ fn matrix_claims_and_their_twins_are_decided_as_declared() {
                 v => panic!("{id}: {v:?}"),
             }
         }
-        let evidence = |id: &str| {
-            let r = rows.iter().find(|r| r.claim.id == id).unwrap();
-            cosserat_check::report::evidence(&r.outcome)
-        };
+        let evidence = |id: &str| common::evidence_of(rows, id);
         // An inverse holds where the determinant does not vanish, and says so.
         assert!(evidence("inverse-left").contains("holds where a*d - b*c ≠ 0"));
         // A matrix identity is checked in every entry; the failing entry is named.
@@ -46,48 +43,103 @@ fn the_worked_example_is_decided_as_declared() {
     common::assert_as_declared("derivations/examples/matrices.toml", 8, |_| {});
 }
 
-fn file(body: &str) -> String {
-    format!(
-        "section = \"t\"\ntitle = \"t\"\ndimension = 2\nscalars = [\"x\", \"a\"]\ntensors = [\"s_ij\"]\norders = {{ voigt = [\"11\", \"22\", \"12\", \"21\"] }}\ndefine = [\"A = [[1, a], [a, x]]\", \"v = [1, x]\"]\n{body}\n"
-    )
-}
+const HEADER: &str = "dimension = 2\nscalars = [\"x\", \"a\"]\ntensors = [\"s_ij\"]\norders = { voigt = [\"11\", \"22\", \"12\", \"21\"] }\ndefine = [\"A = [[1, a], [a, x]]\", \"v = [1, x]\"]";
 
-fn claim(sides: &str) -> String {
-    file(&format!(
-        "[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\n{sides}"
-    ))
+fn claim(rest: &str) -> String {
+    common::one_claim(HEADER, rest)
 }
 
 #[test]
 fn malformed_matrix_statements_are_located_errors() {
     let cases = [
-        (claim("sides = [\"A + v\", \"A\"]"), "this term is a column vector of 2, the others a 2×2 matrix"),
-        (claim("sides = [\"v A\", \"A\"]"), "the columns of the first (1) must match the rows of the second (2)"),
-        (claim("sides = [\"inv(v)\", \"v\"]"), "inv(…) needs a square matrix, but this is a column vector of 2"),
-        (claim("sides = [\"A\", \"x\"]"), "this side is a scalar or tensor, and the first matrix side a 2×2 matrix"),
-        (claim("sides = [\"s_ij A\", \"A\"]"), "a tensor with free index i multiplies a matrix"),
-        (claim("sides = [\"x / A\", \"x\"]"), "a divisor takes a scalar or a tensor, but this is a 2×2 matrix"),
-        (claim("sides = [\"sqrt(A)\", \"x\"]"), "sqrt takes a scalar or a tensor, but this is a 2×2 matrix"),
-        (claim("sides = [\"A[3,1]\", \"x\"]"), "entry (3, 1) is outside a 2×2 matrix"),
-        (claim("sides = [\"vector(s_ij, mandel_ij)\", \"v\"]"), "`mandel` is not a declared order"),
-        (claim("sides = [\"vector(s_ij, voigt_i)\", \"v\"]"), "the positions of `voigt` have 2 components, so it binds 2 indices"),
-        (claim("sides = [\"vector(s_ik, voigt_ij)\", \"v\"]"), "the orders bind the indices i, j, and the tensor has free indices i, k"),
-        (claim("sides = [\"tensor(A, voigt_ij)\", \"s_ij\"]"), "the orders give a column vector of 4, and this is a 2×2 matrix"),
-        (claim("sides = [\"det(s_ij)\", \"x\"]"), "det(…) takes a matrix, but this is a tensor"),
-        (claim("sides = [\"inv([[1, 2], [2, 4]])\", \"A\"]"), "this system is singular: the determinant of its matrix is identically zero"),
-        (claim("sides = [\"solve([[x, x], [1, 1]], v)\", \"v\"]"), "this system is singular"),
-        (claim("sides = [\"A\", \"A\"]\nassume = [\"x = [[1, 2], [3, 4]]\"]"), "an assumption takes a scalar or a tensor, but this is a 2×2 matrix"),
-        (claim("strategy = \"sign\"\nsides = [\"A\", \"A\"]\nrelation = \">\""), "compares two sides that are not matrices"),
-        (claim("strategy = \"monotone\"\nfunction = \"A\"\nin = \"x\"\ndirection = \"increasing\""), "this field takes a scalar or a tensor, but this is a 2×2 matrix"),
-        (claim("sides = [\"x\", \"x\"]").replace("\"12\", \"21\"", "\"12\", \"3\""), "`3` is not a position of 2 components in 1..=2"),
-        (claim("sides = [\"x\", \"x\"]").replace("\"12\", \"21\"", "\"12\", \"12\""), "position `12` occurs twice in the order `voigt`"),
-        (file("[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nsides = [\"x\", \"x\"]\ndefine = [\"B = identity(13)\"]"), "a matrix side of 13 is more than the 12 the checker accepts"),
+        (
+            claim("sides = [\"A + v\", \"A\"]"),
+            "this term is a column vector of 2, the others a 2×2 matrix",
+        ),
+        (
+            claim("sides = [\"v A\", \"A\"]"),
+            "the columns of the first (1) must match the rows of the second (2)",
+        ),
+        (
+            claim("sides = [\"inv(v)\", \"v\"]"),
+            "inv(…) needs a square matrix, but this is a column vector of 2",
+        ),
+        (
+            claim("sides = [\"A\", \"x\"]"),
+            "this side is a scalar or tensor, and the first matrix side a 2×2 matrix",
+        ),
+        (
+            claim("sides = [\"s_ij A\", \"A\"]"),
+            "a tensor with free index i multiplies a matrix",
+        ),
+        (
+            claim("sides = [\"x / A\", \"x\"]"),
+            "a divisor takes a scalar or a tensor, but this is a 2×2 matrix",
+        ),
+        (
+            claim("sides = [\"sqrt(A)\", \"x\"]"),
+            "sqrt takes a scalar or a tensor, but this is a 2×2 matrix",
+        ),
+        (
+            claim("sides = [\"A[3,1]\", \"x\"]"),
+            "entry (3, 1) is outside a 2×2 matrix",
+        ),
+        (
+            claim("sides = [\"vector(s_ij, mandel_ij)\", \"v\"]"),
+            "`mandel` is not a declared order",
+        ),
+        (
+            claim("sides = [\"vector(s_ij, voigt_i)\", \"v\"]"),
+            "the positions of `voigt` have 2 components, so it binds 2 indices",
+        ),
+        (
+            claim("sides = [\"vector(s_ik, voigt_ij)\", \"v\"]"),
+            "the orders bind the indices i, j, and the tensor has free indices i, k",
+        ),
+        (
+            claim("sides = [\"tensor(A, voigt_ij)\", \"s_ij\"]"),
+            "the orders give a column vector of 4, and this is a 2×2 matrix",
+        ),
+        (
+            claim("sides = [\"det(s_ij)\", \"x\"]"),
+            "det(…) takes a matrix, but this is a tensor",
+        ),
+        (
+            claim("sides = [\"inv([[1, 2], [2, 4]])\", \"A\"]"),
+            "this system is singular: the determinant of its matrix is identically zero",
+        ),
+        (
+            claim("sides = [\"solve([[x, x], [1, 1]], v)\", \"v\"]"),
+            "this system is singular",
+        ),
+        (
+            claim("sides = [\"A\", \"A\"]\nassume = [\"x = [[1, 2], [3, 4]]\"]"),
+            "an assumption takes a scalar or a tensor, but this is a 2×2 matrix",
+        ),
+        (
+            claim("strategy = \"sign\"\nsides = [\"A\", \"A\"]\nrelation = \">\""),
+            "compares two sides that are not matrices",
+        ),
+        (
+            claim(
+                "strategy = \"monotone\"\nfunction = \"A\"\nin = \"x\"\ndirection = \"increasing\"",
+            ),
+            "this field takes a scalar or a tensor, but this is a 2×2 matrix",
+        ),
+        (
+            claim("sides = [\"x\", \"x\"]").replace("\"12\", \"21\"", "\"12\", \"3\""),
+            "`3` is not a position of 2 components in 1..=2",
+        ),
+        (
+            claim("sides = [\"x\", \"x\"]").replace("\"12\", \"21\"", "\"12\", \"12\""),
+            "position `12` occurs twice in the order `voigt`",
+        ),
+        (
+            claim("sides = [\"x\", \"x\"]\ndefine = [\"B = identity(13)\"]"),
+            "a matrix side of 13 is more than the 12 the checker accepts",
+        ),
     ];
-    for (text, want) in cases {
-        let e = common::error_of(&text);
-        assert!(e.contains(want), "{text}\n→ {e}");
-        assert!(e.contains("f.toml:"), "located: {e}");
-    }
+    common::assert_located_errors(&cases);
 }
 
 /// Products whose rows and columns collapse to scalars midway, and sums that mix

@@ -78,8 +78,9 @@ fn the_worked_example_is_decided_as_declared() {
 }
 
 fn claim(body: &str) -> String {
-    format!(
-        "section = \"t\"\ntitle = \"t\"\ndimension = 2\nscalars = [\"x\", \"a\"]\ntensors = [\"s_ij\"]\n[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\n{body}\n"
+    common::one_claim(
+        "dimension = 2\nscalars = [\"x\", \"a\"]\ntensors = [\"s_ij\"]",
+        body,
     )
 }
 
@@ -101,11 +102,8 @@ fn malformed_scalar_claims_are_located_errors() {
         ("strategy = \"roots\"\nfunction = \"x - a\"\nin = \"x\"\nroots = [\"a\"]", "must be a rational number"),
         ("strategy = \"limit\"\nfunction = \"x\"\nin = \"x\"\ntends_to = \"0\"\nlimit = \"0\"\ndirection = \"increasing\"", "`direction` does not apply"),
     ];
-    for (body, want) in cases {
-        let e = common::error_of(&claim(body));
-        assert!(e.contains(want), "{body}\n→ {e}");
-        assert!(e.contains("f.toml:"), "located: {e}");
-    }
+    let cases = cases.map(|(body, want)| (claim(body), want));
+    common::assert_located_errors(&cases);
 }
 
 #[test]

@@ -36,10 +36,7 @@ fn gradients_at_states_and_their_twins_are_decided_as_declared() {
                 v => panic!("{id}: {v:?}"),
             }
         }
-        let evidence = |id: &str| {
-            let r = rows.iter().find(|r| r.claim.id == id).unwrap();
-            cosserat_check::report::evidence(&r.outcome)
-        };
+        let evidence = |id: &str| common::evidence_of(rows, id);
         // The root and the box its sign was certified on are part of the proof.
         let e = evidence("mises-uniaxial");
         assert!(e.contains("sqrt(Y^2) = Y on 0 < Y"), "{e}");
@@ -54,16 +51,14 @@ fn the_worked_example_is_decided_as_declared() {
     common::assert_as_declared("derivations/examples/states.toml", 7, |_| {});
 }
 
+const HEADER: &str = "dimension = 2\nscalars = [\"x\", \"y\"]\ntensors = [\"s_ij\"]\nposition = \"p\"\nfields = [\"u_i\"]";
+
 fn file(body: &str) -> String {
-    format!(
-        "section = \"t\"\ntitle = \"t\"\ndimension = 2\nscalars = [\"x\", \"y\"]\ntensors = [\"s_ij\"]\nposition = \"p\"\nfields = [\"u_i\"]\n{body}\n"
-    )
+    format!("section = \"t\"\ntitle = \"t\"\n{HEADER}\n{body}\n")
 }
 
 fn claim(rest: &str) -> String {
-    file(&format!(
-        "[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\n{rest}"
-    ))
+    common::one_claim(HEADER, rest)
 }
 
 #[test]
@@ -85,11 +80,7 @@ fn malformed_gradients_are_located_errors() {
         (claim("strategy = \"gradient\"\nfunction = \"grad(x^2 s_kk, x)\"\ngradient = { s = \"2 x delta_ij\" }"), "differentiates this function, which takes grad(…) or variation(…) itself"),
         (file("define = [\"g = grad(x^3, x)\"]\n[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"convex\"\nfunction = \"g\"\nwrt = [\"s\"]"), "differentiates this function, which takes grad(…) or variation(…) itself"),
     ];
-    for (text, want) in cases {
-        let e = common::error_of(&text);
-        assert!(e.contains(want), "{text}\n→ {e}");
-        assert!(e.contains("f.toml:"), "located: {e}");
-    }
+    common::assert_located_errors(&cases);
 }
 
 /// With the set where it does not exist excluded, the same gradient holds; without,

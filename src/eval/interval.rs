@@ -29,7 +29,7 @@
 
 use super::labeled::Labeled;
 use super::state::State;
-use super::walk::{self, Calculus, Normals, Ring};
+use super::walk::{self, Derivative, DynCalculus, Normals, Ring};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::Tensor;
 use crate::derivation::parametrisation::{product_value, Parametrisation};
@@ -633,6 +633,11 @@ impl Ring for &IntervalEnv<'_> {
     fn singular(&mut self, _node: &Node) -> Enclosure {
         Enclosure("a singular matrix".into())
     }
+
+    /// Derivatives have no enclosure here.
+    fn calculus(&mut self, what: Derivative, _node: &Node) -> R<&mut DynCalculus<'_, Self>> {
+        unsupported(&what.to_string())
+    }
 }
 
 impl Normals for &IntervalEnv<'_> {
@@ -723,32 +728,6 @@ impl Normals for &IntervalEnv<'_> {
             lo: low.max(v.lo),
             hi: high.max(v.hi),
         })
-    }
-}
-
-impl Calculus for &IntervalEnv<'_> {
-    fn derivatives(&mut self, _a: &Node, _node: &Node, _n: &[f64]) -> R<Tensor<Interval>> {
-        unsupported("a derivative along the position")
-    }
-
-    fn variations(
-        &mut self,
-        _body: &Node,
-        _field: &str,
-        _node: &Node,
-        _n: &[f64],
-    ) -> R<Tensor<Interval>> {
-        unsupported("a variational derivative")
-    }
-
-    fn gradients(
-        &mut self,
-        _body: &Node,
-        _symbol: &str,
-        _node: &Node,
-        _n: &[f64],
-    ) -> R<Tensor<Interval>> {
-        unsupported("grad(…)")
     }
 }
 

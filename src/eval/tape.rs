@@ -20,7 +20,7 @@
 use super::labeled::Labeled;
 use super::quadrature::Quadrature;
 use super::real::{RealError, MAXN_GRID};
-use super::walk::{self, Calculus, Normals, Ring};
+use super::walk::{self, Derivative, DynCalculus, Normals, Ring};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::Definition;
@@ -1085,6 +1085,15 @@ impl Ring for Compiler<'_> {
     fn singular(&mut self, _node: &Node) -> Unsupported {
         Unsupported("a singular matrix".into())
     }
+
+    /// The tape takes no derivatives: the interpreter takes gradients with dual numbers.
+    fn calculus(
+        &mut self,
+        what: Derivative,
+        _node: &Node,
+    ) -> Result<&mut DynCalculus<'_, Self>, Unsupported> {
+        Err(Unsupported(what.to_string()))
+    }
 }
 
 impl Normals for Compiler<'_> {
@@ -1143,38 +1152,6 @@ impl Normals for Compiler<'_> {
         self.maxn.push(sub);
         let k = self.maxn.len() - 1;
         Ok(self.push(Op::MaxN(k, node.span)))
-    }
-}
-
-impl Calculus for Compiler<'_> {
-    fn derivatives(
-        &mut self,
-        _a: &Node,
-        _node: &Node,
-        _n: &[usize],
-    ) -> Result<Tensor<usize>, Unsupported> {
-        Err(Unsupported("derivatives of fields".into()))
-    }
-
-    fn variations(
-        &mut self,
-        _body: &Node,
-        _field: &str,
-        _node: &Node,
-        _n: &[usize],
-    ) -> Result<Tensor<usize>, Unsupported> {
-        Err(Unsupported("variations of fields".into()))
-    }
-
-    /// The interpreter takes gradients with dual numbers.
-    fn gradients(
-        &mut self,
-        _body: &Node,
-        _symbol: &str,
-        _node: &Node,
-        _n: &[usize],
-    ) -> Result<Tensor<usize>, Unsupported> {
-        Err(Unsupported("gradients with respect to a symbol".into()))
     }
 }
 

@@ -114,7 +114,44 @@ pub trait Ring: Arithmetic {
 
     /// `inv(A)` or `solve(A, b)` of a matrix whose determinant [`Ring::vanishes`].
     fn singular(&mut self, node: &Node) -> Self::Error;
+
+    /// The ring's derivatives ([`Calculus`]), or why it takes none (`what` is the
+    /// derivative asked for, `node` where): the exact, jet and real rings take them, the
+    /// tape and the enclosures do not.
+    fn calculus(
+        &mut self,
+        what: Derivative,
+        node: &Node,
+    ) -> Result<&mut DynCalculus<'_, Self>, Self::Error>;
 }
+
+/// The derivative a node asks for, to say which one a ring does not take.
+#[derive(Clone, Copy, Debug)]
+pub enum Derivative {
+    /// `u_i,k`: along the position.
+    Position,
+    /// `variation(…)`.
+    Variation,
+    /// `grad(…)`.
+    Gradient,
+}
+
+impl std::fmt::Display for Derivative {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Derivative::Position => "a derivative along the position",
+            Derivative::Variation => "a variational derivative",
+            Derivative::Gradient => "grad(…)",
+        })
+    }
+}
+
+/// A ring's [`Calculus`], seen through its values, errors and normal.
+pub type DynCalculus<'r, R> = dyn Calculus<
+        Normal = <R as Ring>::Normal,
+        Value = <R as Arithmetic>::Value,
+        Error = <R as Arithmetic>::Error,
+    > + 'r;
 
 /// The unit normal and the operations over it: `avg` (by exact moments, by quadrature
 /// or as a sub-tape) and `maxn`.
@@ -132,8 +169,8 @@ pub trait Normals: Ring {
 }
 
 /// Derivatives: along the position (of fields), variational, and with respect to a
-/// declared symbol. The tape and the enclosures take none of them and refuse each; the
-/// exact, jet and real rings take all three.
+/// declared symbol. A ring hands them to the walk through [`Ring::calculus`]; the exact,
+/// jet and real rings take all three.
 pub trait Calculus: Ring {
     /// The derivatives of `arg` with respect to every coordinate of the position: a
     /// tensor with `arg`'s slots (its free letters, sorted) and one more, last, for the
@@ -166,10 +203,10 @@ pub trait Calculus: Ring {
     ) -> Result<Tensor<Self::Value>, Self::Error>;
 }
 
-/// A ring the walk evaluates every construct in.
-pub trait Evaluator: Normals + Calculus {}
+/// A ring the walk evaluates every construct in (derivatives where it takes them).
+pub trait Evaluator: Normals {}
 
-impl<R: Normals + Calculus> Evaluator for R {}
+impl<R: Normals> Evaluator for R {}
 
 /// A ring seen by the determinants and adjugates of `algebra::matrix`, which need its
 /// arithmetic and its negation only.
@@ -287,7 +324,9 @@ pub fn walk<R: Evaluator>(
         NodeKind::Avg(a) => ring.average(a, node, n)?,
         NodeKind::MaxN(a) => Tensor::scalar(d, ring.maximum(a, node)?),
         NodeKind::Deriv(a, slot) => {
-            let t = ring.derivatives(a, node, n)?;
+            let t = ring
+                .calculus(Derivative::Position, node)?
+                .derivatives(a, node, n)?;
             let mut slots: Vec<Slot> = a.free_letters().into_iter().map(Slot::Letter).collect();
             slots.push(*slot);
             contract(ring, &[(&t, slots)], &labels, node)?
@@ -299,8 +338,12 @@ pub fn walk<R: Evaluator>(
             slots: field_slots,
         } => {
             let t = match op {
-                Wrt::Variation => ring.variations(body, symbol, node, n)?,
-                Wrt::Grad => ring.gradients(body, symbol, node, n)?,
+                Wrt::Variation => ring
+                    .calculus(Derivative::Variation, node)?
+                    .variations(body, symbol, node, n)?,
+                Wrt::Grad => ring
+                    .calculus(Derivative::Gradient, node)?
+                    .gradients(body, symbol, node, n)?,
             };
             let mut slots: Vec<Slot> = body.free_letters().into_iter().map(Slot::Letter).collect();
             slots.extend(field_slots.iter().copied());

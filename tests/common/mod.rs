@@ -53,6 +53,28 @@ pub fn error_of(text: &str) -> String {
     }
 }
 
+/// A file with `header` (its declarations) and one claim `c`, declared to hold, whose
+/// other fields are `rest`.
+pub fn one_claim(header: &str, rest: &str) -> String {
+    format!("section = \"t\"\ntitle = \"t\"\n{header}\n[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\n{rest}\n")
+}
+
+/// Each file is refused with an error located in it (`f.toml:`) whose message says
+/// what its case expects.
+pub fn assert_located_errors<T: AsRef<str>>(cases: &[(T, &str)]) {
+    for (text, want) in cases {
+        let e = error_of(text.as_ref());
+        assert!(e.contains(want), "{}\n→ {e}", text.as_ref());
+        assert!(e.contains("f.toml:"), "located: {e}");
+    }
+}
+
+/// The evidence written for claim `id` among `rows`.
+pub fn evidence_of(rows: &[Decided<'_>], id: &str) -> String {
+    let r = rows.iter().find(|r| r.claim.id == id).expect(id);
+    cosserat_check::report::evidence(&r.outcome)
+}
+
 /// The outcome of every claim of the file `text` (named f.toml in diagnostics).
 pub fn outcomes_of(text: &str) -> Vec<cosserat_check::decide::Outcome> {
     let f = cosserat_check::derivation::load_str("f.toml", text).expect("loads");

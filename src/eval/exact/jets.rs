@@ -18,7 +18,7 @@
 use super::env::{conditions_of, ExactRing, Failure, Jet};
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::{Quotient, Tensor};
-use crate::eval::walk::{self, Calculus, Normals, Ring};
+use crate::eval::walk::{self, Calculus, Derivative, DynCalculus, Normals, Ring};
 use crate::kernel::{Poly, Rational};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::Node;
@@ -329,6 +329,14 @@ impl Ring for Jets<'_, '_, '_> {
 
     fn singular(&mut self, node: &Node) -> Failure {
         self.base.singular(node)
+    }
+
+    fn calculus(
+        &mut self,
+        _what: Derivative,
+        _node: &Node,
+    ) -> Result<&mut DynCalculus<'_, Self>, Failure> {
+        Ok(self)
     }
 }
 

@@ -8,7 +8,7 @@ use super::env::{
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::quotient::DivideError;
 use crate::algebra::{assignments, Quotient, Tensor};
-use crate::eval::walk::{self, Calculus, Normals, Ring};
+use crate::eval::walk::{self, Calculus, Derivative, DynCalculus, Normals, Ring};
 use crate::kernel::{Poly, PolyError, Rational, Var};
 use crate::lang::parser::{Func, Func2};
 use crate::lang::{Node, NodeKind};
@@ -231,6 +231,14 @@ impl Ring for ExactRing<'_, '_> {
             "this system is singular: the determinant of its matrix is identically zero",
             "a singular matrix has no inverse and the system no unique solution; check the matrix, or solve a reduced system",
         )
+    }
+
+    fn calculus(
+        &mut self,
+        _what: Derivative,
+        _node: &Node,
+    ) -> Result<&mut DynCalculus<'_, Self>, Failure> {
+        Ok(self)
     }
 }
 

@@ -8,7 +8,7 @@ use super::variation;
 use crate::algebra::einsum::Arithmetic;
 use crate::algebra::Tensor;
 use crate::eval::quadrature::Quadrature;
-use crate::eval::walk::{self, Calculus, Normals, Ring};
+use crate::eval::walk::{self, Calculus, DynCalculus, Normals, Ring};
 use crate::kernel::Rational;
 use crate::lang::parser::{Func, Func2};
 use crate::lang::Node;
@@ -160,6 +160,14 @@ impl<T: DualNum<Primitive = f64>> Ring for &RealEnv<'_, T> {
 
     fn singular(&mut self, node: &Node) -> RealError {
         undefined(node.span, "singular matrix: its determinant is 0 here")
+    }
+
+    fn calculus(
+        &mut self,
+        _what: walk::Derivative,
+        _node: &Node,
+    ) -> Result<&mut DynCalculus<'_, Self>, RealError> {
+        Ok(self)
     }
 }
 
