@@ -88,14 +88,11 @@ const TIGHT_VARS: usize = 12;
 /// A polynomial of the tight loop: packed monomials and integer numerators over 6.
 type Packed = Vec<(u64, i64)>;
 
-/// A deterministic pseudo-random stream (xorshift): each call gives a number below `m`.
-fn xorshift(mut state: u64) -> impl FnMut(u64) -> u64 {
-    move |m| {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state % m
-    }
+/// A deterministic stream from the checker's one generator: each call gives a number
+/// below `m`.
+fn stream(seed: u64) -> impl FnMut(u64) -> u64 {
+    let mut rng = cosserat_check::decide::random::Rng::new(seed);
+    move |m| rng.below(m as usize) as u64
 }
 
 /// `GCD_PAIRS` pairs `(g·a, g·b)` with a common factor `g`: random polynomials in
@@ -105,7 +102,7 @@ fn xorshift(mut state: u64) -> impl FnMut(u64) -> u64 {
 fn gcd_pairs() -> Vec<(Poly, Poly, Poly)> {
     use cosserat_check::kernel::rational::Rational;
     use cosserat_check::kernel::Monomial;
-    let mut next = xorshift(0x2545_f491_4f6c_dd1d);
+    let mut next = stream(0x2545_f491_4f6c_dd1d);
     let mut random = || {
         (0..4).fold(Poly::constant(Rational::int(3)), |p, _| {
             let factors: Vec<(u32, i64)> = (0..3)
@@ -135,7 +132,7 @@ fn product_operands() -> (Poly, Poly, Packed, Packed) {
     use cosserat_check::kernel::rational::Rational;
     use cosserat_check::kernel::Monomial;
     use std::collections::HashMap;
-    let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
+    let mut next = stream(0x9e37_79b9_7f4a_7c15);
     // Two polynomials of TIGHT_TERMS terms, exponents 0..=3, coefficients k/6 (the
     // paper's denominators are small).
     let mut factor = || -> Vec<([u32; TIGHT_VARS], i64)> {

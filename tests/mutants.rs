@@ -285,7 +285,7 @@ const FLOORS: &[(&str, &str, usize, f64)] = &[
     ("mutation_report", "convex", 20, 0.99),
     ("mutation_report", "exact", 3231, 0.99),
     ("mutation_report", "gradient", 387, 0.95),
-    ("mutation_report", "numeric", 316, 0.99),
+    ("mutation_report", "numeric", 326, 0.99),
     ("mutation_report", "proportional", 43, 0.99),
     ("mutation_report", "rational-function", 212, 0.9),
     ("mutation_report_balance", "exact", 151, 0.99),

@@ -204,6 +204,18 @@ fn nan_and_division_by_zero_never_pass() {
     );
 }
 
+/// Undefined on part of the box and false on the rest: a violation where both sides
+/// are defined is a counterexample, whichever the draws meet first, for every seed.
+#[test]
+fn a_violation_where_defined_is_found_whatever_is_undefined_before_it() {
+    for seed in 1..=20 {
+        let (verdict, _, ev) = decide(&format!(
+            "expect = \"holds\"\nstrategy = \"numeric\"\nseed = {seed}\nsides = [\"sqrt(f_s) + f_s\", \"f_s\"]\nranges = {{ f_s = [-1.0, 1.0] }}"
+        ));
+        assert_eq!(verdict, Verdict::Fails, "seed {seed}: {ev}");
+    }
+}
+
 #[test]
 fn too_few_samples_are_refused() {
     let text = format!(

@@ -345,6 +345,10 @@ fn sample_and_search(
     let mut random_rounding: (usize, Option<Point>) = (0, None);
     // The exact route at sampled states (polynomial sides), built when first needed.
     let exact = ExactCache::new(sampler.decls, sampler.check);
+    // The first state where a side is undefined on a set of positive measure: the
+    // claim is not decided there, but a violation at a later sample, where both sides
+    // are defined, is a counterexample all the same (whichever the draws meet first).
+    let mut undefined_at = None;
     for _ in 0..sampler.sampling.samples {
         let mut state = sampler.next(extra, &mut tally.excluded)?;
         let mut margin = f64::NEG_INFINITY;
@@ -384,7 +388,8 @@ fn sample_and_search(
                 }
             }
             let Some((near, j, m)) = moved else {
-                return Ok((Found::Undefined(why, sampler.describe(&state)), None));
+                undefined_at.get_or_insert_with(|| (why, sampler.describe(&state)));
+                continue;
             };
             tally.undefined += 1;
             (state, judged, margin) = (near, j, m);
@@ -396,6 +401,9 @@ fn sample_and_search(
             Judged::Unresolved(why, at) => return Ok((Found::Unresolved(why, at), None)),
             Judged::Undefined(_) => unreachable!("stepped off above"),
         }
+    }
+    if let Some((why, at)) = undefined_at {
+        return Ok((Found::Undefined(why, at), None));
     }
     let check = sampler.check;
     let nodes = check

@@ -1,35 +1,12 @@
 //! Exact rational points: where two sides of an equality differ (sparse points first,
-//! the normal on the unit sphere by stereographic projection), from one deterministic
-//! generator so that the same sides always get the same point.
+//! the normal on the unit sphere by stereographic projection), from the one seeded
+//! generator ([`crate::decide::random`]) so that the same sides always get the same point.
 
 use crate::algebra::sign::{inner_point, End, Interval};
 use crate::algebra::{residue, Quotient};
+use crate::decide::random::Rng;
 use crate::kernel::{Rational, Var, VarTable};
 use std::collections::BTreeMap;
-
-/// A deterministic generator (SplitMix64) for exact points: the same claim always gets
-/// the same point (counterexample points here, samples of `scalar`).
-pub(crate) struct SplitMix(pub(crate) u64);
-
-impl SplitMix {
-    pub(crate) fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// A nonzero integer in −4..=4.
-    fn small(&mut self) -> i64 {
-        let k = (self.next() % 8) as i64;
-        if k < 4 {
-            k - 4
-        } else {
-            k - 3
-        }
-    }
-}
 
 /// The point of the unit circle (one parameter u) or sphere (two, u and v) by the
 /// stereographic projection: ((1 − u²), 2u)/(1 + u²), or
@@ -55,9 +32,11 @@ pub(crate) fn stereographic(params: &[Rational], flip: bool) -> Vec<Rational> {
 }
 
 /// A rational point of the unit circle or sphere, its parameters drawn from `rng`.
-pub(crate) fn sphere_point(rng: &mut SplitMix, dim: usize) -> Vec<Rational> {
-    let u = Rational::ratio(rng.small(), 1 + (rng.next() % 3) as i64).expect("nonzero denominator");
-    let v = Rational::ratio(rng.small(), 1 + (rng.next() % 3) as i64).expect("nonzero denominator");
+pub(crate) fn sphere_point(rng: &mut Rng, dim: usize) -> Vec<Rational> {
+    let u =
+        Rational::ratio(rng.small(), 1 + (rng.next_u64() % 3) as i64).expect("nonzero denominator");
+    let v =
+        Rational::ratio(rng.small(), 1 + (rng.next_u64() % 3) as i64).expect("nonzero denominator");
     if dim == 2 {
         return stereographic(&[u], false);
     }
@@ -137,7 +116,7 @@ pub fn point_where_differ(
     used.extend(domain.iter().map(|(v, _)| *v));
     used.sort_unstable();
     used.dedup();
-    let mut rng = SplitMix(0x05EE_DC05_E4A7);
+    let mut rng = Rng::new(0x05EE_DC05_E4A7);
     let others: Vec<Var> = used
         .iter()
         .copied()

@@ -337,7 +337,7 @@ fn exactly(
                 what: format!("hypothesis `{}`", sampler.sampling.given[k].text),
             }));
         };
-        if !holds_exactly(*rel, &a, &b) {
+        if !rel.holds(&a, &b) {
             return Some(Err(Rejection::HypothesisFails {
                 hypothesis: sampler.sampling.given[k].text.clone(),
             }));
@@ -348,7 +348,7 @@ fn exactly(
             return Some(Err(Rejection::OnSingularSet));
         }
     }
-    Some(if holds_exactly(relation, &lv, &rv) {
+    Some(if relation.holds(&lv, &rv) {
         Err(Rejection::Rounding {
             lhs: lv.to_string(),
             rhs: rv.to_string(),
@@ -422,16 +422,7 @@ impl<'a> ExactSides<'a> {
         let (l, r) = (side(k)?, side(k + 1)?);
         let point = exact_point(env, state)?;
         let value = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
-        Some(holds_exactly(relation, &l.eval(&value)?, &r.eval(&value)?))
-    }
-}
-
-fn holds_exactly(relation: Relation, l: &Rational, r: &Rational) -> bool {
-    let diff = l - r;
-    match relation {
-        Relation::Eq => diff.is_zero(),
-        Relation::Le => diff.is_zero() || diff.is_negative(),
-        Relation::Ge => !diff.is_negative(),
+        Some(relation.holds(&l.eval(&value)?, &r.eval(&value)?))
     }
 }
 

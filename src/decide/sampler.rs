@@ -412,12 +412,7 @@ pub(crate) fn relation_holds(rel: Relation, l: f64, r: f64) -> (bool, f64) {
     if !l.is_finite() || !r.is_finite() {
         return (false, f64::INFINITY);
     }
-    let scale = 1.0 + l.abs() + r.abs();
-    let residual = match rel {
-        Relation::Eq => (l - r).abs() / scale,
-        Relation::Le => (l - r) / scale,
-        Relation::Ge => (r - l) / scale,
-    };
+    let residual = rel.violation(l, r) / (1.0 + l.abs() + r.abs());
     (residual <= TOL, residual)
 }
 

@@ -268,6 +268,26 @@ impl Relation {
             Relation::Ge => "≥",
         }
     }
+
+    /// Whether `l rel r` holds, in any ordered numbers: exact rationals, or the ends of
+    /// two enclosures (see `eval::interval`).
+    pub fn holds<T: PartialOrd>(self, l: &T, r: &T) -> bool {
+        match self {
+            Relation::Eq => l == r,
+            Relation::Le => l <= r,
+            Relation::Ge => l >= r,
+        }
+    }
+
+    /// How far `l rel r` is from holding (≤ 0 where an inequality holds; for `=`, the
+    /// size of the difference).
+    pub fn violation(self, l: f64, r: f64) -> f64 {
+        match self {
+            Relation::Eq => (l - r).abs(),
+            Relation::Le => l - r,
+            Relation::Ge => r - l,
+        }
+    }
 }
 
 /// A checked scalar expression with its text, e.g. a function to differentiate.

@@ -394,10 +394,12 @@ impl Interval {
     /// Whether the exact values enclosed in `self` (left) and `right` may satisfy
     /// `relation`.
     pub fn may_satisfy(&self, relation: Relation, right: &Interval) -> bool {
+        let below = Relation::Le.holds(&self.lo, &right.hi);
+        let above = Relation::Ge.holds(&self.hi, &right.lo);
         match relation {
-            Relation::Eq => self.lo <= right.hi && right.lo <= self.hi,
-            Relation::Le => self.lo <= right.hi,
-            Relation::Ge => right.lo <= self.hi,
+            Relation::Eq => below && above,
+            Relation::Le => below,
+            Relation::Ge => above,
         }
     }
 }

@@ -15,8 +15,9 @@ use cosserat_check::derivation::parametrisation::Parametrisation;
 use cosserat_check::derivation::{Check, Strategy, Verdict};
 use cosserat_check::eval::real::{component_pairs, RealEnv};
 use cosserat_check::eval::taylor::TaylorFields;
-use cosserat_check::lang::Decls;
-use cosserat_check::tolerance::{TAYLOR_AGREEMENT, TOL};
+use cosserat_check::lang::parser::Wrt;
+use cosserat_check::lang::{Decls, Node, NodeKind, Target};
+use cosserat_check::tolerance::{TAYLOR_AGREEMENT, TAYLOR_STEP, TOL};
 
 /// Degree of the random polynomial fields: derivatives up to this order are random,
 /// higher ones zero (a statement with fifth derivatives is not distinguished from one
@@ -24,7 +25,7 @@ use cosserat_check::tolerance::{TAYLOR_AGREEMENT, TOL};
 pub const FIELD_DEGREE: u32 = 4;
 
 /// The float route's verdict on a check: `holds` when every equality agrees within
-/// [`TOL`] (with field derivatives, [`TAYLOR_AGREEMENT`]) at `samples` seeded random
+/// [`TOL`] (with field derivatives, [`taylor_agreement`]) at `samples` seeded random
 /// points, else `fails`. `Ok(None)` when the check
 /// has an ill-formed (verbatim) side or averages an argument that is not a polynomial
 /// in n, which this route does not judge.
@@ -44,7 +45,7 @@ pub fn decide(
     // differences, to the stencil's accuracy.
     let differentiates = check.reads().differentiates;
     let tol = if differentiates {
-        TAYLOR_AGREEMENT
+        taylor_agreement(check)
     } else {
         TOL
     };
@@ -114,6 +115,46 @@ pub fn decide(
         }
     }
     Ok(Some(Verdict::Holds))
+}
+
+/// The agreement of central differences nested as deeply as `check` nests them.
+/// [`TAYLOR_AGREEMENT`] covers three levels; each further level multiplies the
+/// rounding by about 1.5/h (see [`TAYLOR_STEP`]).
+fn taylor_agreement(check: &Check) -> f64 {
+    let defs = |name: &str| {
+        check
+            .defs
+            .iter()
+            .find(|d| d.sig.name == name)
+            .map(|d| &d.body)
+    };
+    let depth = check
+        .chains
+        .iter()
+        .flatten()
+        .filter_map(|s| s.node.as_ref().ok());
+    let depth = depth.map(|n| nesting(n, &defs)).max().unwrap_or(0);
+    let levels = i32::try_from(depth.saturating_sub(3)).unwrap_or(i32::MAX);
+    TAYLOR_AGREEMENT * (1.5 / TAYLOR_STEP).powi(levels)
+}
+
+/// How many central differences `node` nests: one per comma derivative, and for a
+/// variation, the derivatives of its Euler–Lagrange terms on top of its body's.
+fn nesting<'a>(node: &'a Node, defs: &dyn Fn(&str) -> Option<&'a Node>) -> usize {
+    let inner = |n: &'a Node| nesting(n, defs);
+    match &node.kind {
+        NodeKind::Deriv(a, _) => 1 + inner(a),
+        NodeKind::Wrt {
+            op: Wrt::Variation,
+            body,
+            ..
+        } => 2 * inner(body),
+        NodeKind::Leaf {
+            target: Target::Def(name),
+            ..
+        } => defs(name).map_or(0, inner),
+        _ => node.children().into_iter().map(inner).max().unwrap_or(0),
+    }
 }
 
 /// A value of the interval for a uniform draw `u` in [−1, 1], off its ends.

@@ -149,7 +149,7 @@ fn refutation(
     // differ. Small integers first (they read best; distinct for distinct parameters),
     // then seeded random rationals: a nonzero polynomial difference vanishes at almost
     // none of those.
-    let mut rng = super::sample::Rng::new(cx.seed, 0x11_3175);
+    let mut rng = crate::decide::random::Rng::salted(cx.seed, 0x11_3175);
     for k in 0..SIMPLE_POINTS + RANDOM_POINTS {
         let point: BTreeMap<Var, Rational> = others
             .iter()

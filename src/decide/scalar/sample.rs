@@ -5,10 +5,10 @@
 //! is sampled evidence, never a proof.
 
 use super::context::{Context, Exact};
-use crate::algebra::sign::{chart, sign_of, End, Interval, Sign, Violation};
+use crate::algebra::sign::{chart, sign_of, Interval, Sign, Violation};
 use crate::algebra::sturm::UniPoly;
 use crate::decide::finding::SampledSign;
-use crate::decide::points::SplitMix;
+use crate::decide::random::Rng;
 use crate::decide::watch::{self, TimeUp};
 use crate::kernel::{Rational, Var};
 use std::collections::BTreeMap;
@@ -23,59 +23,6 @@ pub(super) enum Sampled {
         point: BTreeMap<Var, Rational>,
     },
     Holds(SampledSign),
-}
-
-/// Exact sample points from the exact route's generator: the same seed, the same points.
-pub(super) struct Rng(SplitMix);
-
-impl Rng {
-    /// The generator of a claim's `seed`, for the purpose `salt`.
-    pub(super) fn new(seed: u64, salt: u64) -> Self {
-        Rng(SplitMix(seed ^ salt))
-    }
-
-    fn next(&mut self) -> u64 {
-        self.0.next()
-    }
-
-    /// A dyadic rational strictly inside (0, 1).
-    fn unit(&mut self) -> Rational {
-        let k = (self.next() >> 44) as i64; // 20 bits
-        Rational::ratio(2 * k + 1, 1 << 21).expect("nonzero")
-    }
-
-    /// A positive dyadic spread over scales 2⁻⁶ … 2⁶.
-    fn spread(&mut self) -> Rational {
-        let scale = (self.next() % 13) as i32 - 6;
-        &self.unit() * &Rational::int(2).pow(i64::from(scale)).expect("nonzero")
-    }
-
-    /// A rational point of `i`; one time in sixteen a closed end itself.
-    pub(super) fn draw(&mut self, i: &Interval) -> Rational {
-        if self.next().is_multiple_of(16) {
-            let ends: Vec<&Rational> = [&i.lo, &i.hi]
-                .into_iter()
-                .filter_map(|e| match e {
-                    End::Closed(x) => Some(x),
-                    _ => None,
-                })
-                .collect();
-            if let Some(x) = ends.get((self.next() % 2) as usize).or(ends.first()) {
-                return (*x).clone();
-            }
-        }
-        let value = |e: &End| match e {
-            End::Unbounded => None,
-            End::Open(x) | End::Closed(x) => Some(x.clone()),
-        };
-        match (value(&i.lo), value(&i.hi)) {
-            (Some(a), Some(b)) => &a + &(&(&b - &a) * &self.unit()),
-            (Some(a), None) => &a + &self.spread(),
-            (None, Some(b)) => &b - &self.spread(),
-            (None, None) if self.next().is_multiple_of(2) => self.spread(),
-            (None, None) => -self.spread(),
-        }
-    }
 }
 
 /// How far `value` is from breaking `want` (negative: broken).
@@ -96,7 +43,7 @@ pub(super) fn search(
     want: Sign,
 ) -> Result<Sampled, TimeUp> {
     let bx = cx.box_on(vars);
-    let mut rng = Rng::new(cx.seed, 0x5CA1_AB1E);
+    let mut rng = Rng::salted(cx.seed, 0x5CA1_AB1E);
     let mut excluded = 0;
     let mut kept: Vec<(Rational, BTreeMap<Var, Rational>, Rational)> = Vec::new();
     // Simple points first (small integers and halves inside the box, every
