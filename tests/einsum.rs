@@ -5,10 +5,13 @@
 //! of total rank up to 6, in 2D and 3D, in exact rationals and in polynomials under
 //! the work budget.
 
+use crate::support::products::Products;
+use approx::assert_relative_eq;
 use cosserat_check::algebra::einsum::{einsum, Plain, Polynomials, Slot};
 use cosserat_check::algebra::Tensor;
 use cosserat_check::decide::random::Rng;
 use cosserat_check::kernel::{Poly, Rational, VarTable};
+use num_dual::Dual64;
 use num_traits::Zero;
 
 /// One random contraction: factor ranks, their slots and the output letters. Every
@@ -220,4 +223,55 @@ fn a_wrong_contraction_is_detected_by_the_reference() {
     let wrong = Plain::einsum(3, &[(&a, vec![i, j])], &['i', 'j']);
     assert_ne!(right, wrong, "the transpose must differ from the tensor");
     assert_eq!(right, Plain::einsum(3, &[(&a, vec![i, j])], &['j', 'i']));
+}
+
+#[test]
+fn epsilon_delta_identity_in_3d() {
+    // ε_ijk ε_imn = δ_jm δ_kn − δ_jn δ_km, checked over all 81 components.
+    let e = Tensor::<i64>::levi_civita(3);
+    let d = Tensor::<i64>::delta(3);
+    let lhs = e.outer(&e).contract(0, 3);
+    let rhs = Tensor::from_fn(3, 4, |x| {
+        d.get(&[x[0], x[2]]) * d.get(&[x[1], x[3]]) - d.get(&[x[0], x[3]]) * d.get(&[x[1], x[2]])
+    });
+    assert_eq!(lhs, rhs);
+    // Contracting once more: ε_ijk ε_ijn = 2 δ_kn.
+    assert_eq!(lhs.contract(0, 2), d.map(|x| 2 * x));
+}
+
+#[test]
+fn rank_six_outer_products_and_contractions() {
+    // δ_ij δ_kl δ_mn contracted as (i,j), (k,l), (m,n): 3·3·3 = 27 in 3D, 8 in 2D.
+    for (dim, want) in [(3usize, 27i64), (2, 8)] {
+        let d = Tensor::<i64>::delta(dim);
+        let t = d.outer(&d).outer(&d);
+        assert_eq!(t.rank(), 6);
+        assert_eq!(t.components().len(), dim.pow(6));
+        let s = t.contract(4, 5).contract(2, 3).contract(0, 1);
+        assert_eq!(s.into_scalar(), Some(want));
+    }
+}
+
+#[test]
+fn generic_over_rationals_polynomials_and_floats() {
+    let d = Tensor::<Rational>::delta(3);
+    assert_eq!(d.contract(0, 1).into_scalar(), Some(Rational::int(3)));
+    let dp = Tensor::<Poly>::delta(2);
+    assert_eq!(
+        dp.contract(0, 1).into_scalar(),
+        Some(Poly::constant(Rational::int(2)))
+    );
+    let v = Tensor::from_fn(3, 1, |i| (i[0] + 1) as f64);
+    let norm2 = v.outer(&v).contract(0, 1).into_scalar().unwrap();
+    assert_relative_eq!(norm2, 14.0, epsilon = 1e-15);
+}
+
+#[test]
+fn generic_over_dual_numbers_carries_derivatives() {
+    // |v|² with v = (x, 2x, 3x): d/dx at x = 1 is 2·14·x = 28.
+    let x = Dual64::from(1.0).derivative();
+    let v = Tensor::from_fn(3, 1, |i| x * ((i[0] + 1) as f64));
+    let norm2 = v.outer(&v).contract(0, 1).into_scalar().unwrap();
+    assert_relative_eq!(norm2.re, 14.0, epsilon = 1e-15);
+    assert_relative_eq!(norm2.eps, 28.0, epsilon = 1e-12);
 }

@@ -8,8 +8,9 @@ mod support {
     pub mod float;
     pub mod mutate;
     pub mod pairings;
+    pub mod products;
 }
-use cosserat_check::lang;
+use cosserat_check::{derivation, lang};
 
 mod adversarial;
 mod appendix;

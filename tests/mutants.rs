@@ -22,12 +22,12 @@
 //! snapshot-tested, so a new survivor shows up as a diff to review.
 
 use crate::support::float;
-use crate::support::mutate::{mutants, MutantKind};
+use crate::support::mutate::{mutants, parse_checked, Edited, MutantKind};
 use cosserat_check::check::decide;
 use cosserat_check::derivation::{
-    load_dir, load_files, Check, Claim, DerivationFile, Strategy, Verdict,
+    load_dir, load_files, Check, Claim, Definition, DerivationFile, Strategy, Verdict,
 };
-use cosserat_check::lang::Decls;
+use cosserat_check::lang::{Decls, DefSig, ErrorKind, LangError};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -196,7 +196,7 @@ fn sweep(claim: &Claim, check: &Check, expected: Verdict) -> Vec<Swept> {
             let f = fate(
                 &claim.decls,
                 expected,
-                check.with_definition_body(&claim.decls, d, &m.text),
+                with_definition_body(check, &claim.decls, d, &m.text),
             );
             out.push((
                 m.kind,
@@ -462,4 +462,33 @@ fn sweep_files(files: &[DerivationFile], kinds: &[MutantKind]) -> String {
         );
     }
     report
+}
+
+/// A copy with the body of definition `index` replaced by `body`, which must keep
+/// the definition's free indices.
+fn with_definition_body(
+    check: &Check,
+    decls: &Decls,
+    index: usize,
+    body: &str,
+) -> Result<Check, LangError> {
+    let sigs: Vec<DefSig> = check.defs[..index].iter().map(|d| d.sig.clone()).collect();
+    let (node, origin) = parse_checked(decls, &sigs, body)?;
+    let def = &check.defs[index];
+    if node.free_letters() != def.body.free_letters() || node.shape() != def.body.shape() {
+        return Err(LangError::new(
+            ErrorKind::Index,
+            node.span,
+            "free indices changed",
+        ));
+    }
+    let mut out = check.clone();
+    out.defs[index] = Definition::new(
+        def.sig.clone(),
+        node,
+        origin,
+        format!("{} = {body}", def.sig.name),
+        &check.defs[..index],
+    );
+    Ok(out)
 }

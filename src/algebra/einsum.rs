@@ -7,7 +7,7 @@
 //! The exact route and the sampled routes thus contract with the same code; what makes
 //! them independent is the *method* (canonical forms against sampling), not a second
 //! copy of these lines. `tests/einsum.rs` checks this function against outer products
-//! followed by pairwise traces ([`Tensor::outer`], [`Tensor::contract`]).
+//! followed by pairwise traces, built another way (`tests/support/products.rs`).
 
 use super::tensor::{assignments, for_each_assignment, Tensor};
 use num_traits::{One, Zero};

@@ -8,7 +8,7 @@ use super::indices::{decide, Symbolic};
 use crate::algebra::certificate::Fact;
 use crate::derivation::{load_dir, load_str, Check, Strategy, Verdict};
 use crate::lang::Decls;
-use crate::mutate::{mutants, MutantKind};
+use crate::mutate::{mutants, Edited, MutantKind};
 use std::path::Path;
 
 /// A file with one claim `lhs = rhs` in dimension `dim`, with the unit normal `n`,

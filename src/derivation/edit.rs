@@ -1,81 +1,16 @@
-//! Edited copies of a checked statement, for mutation testing: one side or one
-//! definition body replaced by new text, re-checked by the same validator as the
-//! original. The original claim is never modified.
+//! A check's context applied to new text: the equation `left = right` between a
+//! printed statement's reading and a side as written, re-checked by the same validator
+//! as the claim. The original claim is never modified.
 
-use super::model::{Check, Definition, Side};
+use super::model::{Check, Side};
+use crate::lang::Node;
 use crate::lang::{parse_expr, Decls, DefSig, LangError, Origin, Scope, SourceFile};
-use crate::lang::{ErrorKind, Node};
 
 fn parse_checked(decls: &Decls, sigs: &[DefSig], text: &str) -> Result<(Node, Origin), LangError> {
     let origin = Origin::whole(SourceFile::new("<edited>", text));
     let e = parse_expr(text)?;
     let node = Scope { decls, defs: sigs }.check(&e)?;
     Ok((node, origin))
-}
-
-impl Check {
-    /// A copy with side `side` of chain `chain` replaced by `text`. The new side must
-    /// be well-formed and keep the free indices of the side it replaces (unless one of
-    /// them is the literal 0).
-    pub fn with_side(
-        &self,
-        decls: &Decls,
-        chain: usize,
-        side: usize,
-        text: &str,
-    ) -> Result<Check, LangError> {
-        let sigs: Vec<DefSig> = self.defs.iter().map(|d| d.sig.clone()).collect();
-        let (node, origin) = parse_checked(decls, &sigs, text)?;
-        let old = &self.chains[chain][side];
-        if let Ok(old_node) = &old.node {
-            if old_node.shape() != node.shape()
-                || (!self.verbatim && !old_node.matches_free_indices(&node))
-            {
-                return Err(LangError::new(
-                    ErrorKind::Index,
-                    node.span,
-                    "free indices changed",
-                ));
-            }
-        }
-        let mut out = self.clone();
-        out.chains[chain][side] = Side {
-            text: text.to_owned(),
-            origin,
-            node: Ok(node),
-            entry: old.entry,
-        };
-        Ok(out)
-    }
-
-    /// A copy with the body of definition `index` replaced by `body`, which must keep
-    /// the definition's free indices.
-    pub fn with_definition_body(
-        &self,
-        decls: &Decls,
-        index: usize,
-        body: &str,
-    ) -> Result<Check, LangError> {
-        let sigs: Vec<DefSig> = self.defs[..index].iter().map(|d| d.sig.clone()).collect();
-        let (node, origin) = parse_checked(decls, &sigs, body)?;
-        let def = &self.defs[index];
-        if node.free_letters() != def.body.free_letters() || node.shape() != def.body.shape() {
-            return Err(LangError::new(
-                ErrorKind::Index,
-                node.span,
-                "free indices changed",
-            ));
-        }
-        let mut out = self.clone();
-        out.defs[index] = Definition::new(
-            def.sig.clone(),
-            node,
-            origin,
-            format!("{} = {body}", def.sig.name),
-            &self.defs[..index],
-        );
-        Ok(out)
-    }
 }
 
 /// Why two texts could not be compared as the sides of one equation.

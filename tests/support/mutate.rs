@@ -4,8 +4,11 @@
 //! the parser's spans, so it goes through exactly the same reader and checker as the
 //! original.
 
-use crate::lang::parse_expr;
+use crate::derivation::{Check, Side};
 use crate::lang::parser::{Expr, ExprKind, Func, Func2, IndexTok, MatFunc, Wrt};
+use crate::lang::{
+    parse_expr, Decls, DefSig, ErrorKind, LangError, Node, Origin, Scope, SourceFile,
+};
 use std::fmt;
 
 /// The kind of slip a mutant makes.
@@ -279,6 +282,70 @@ fn flatten<'e>(e: &'e Expr, out: &mut Vec<&'e Expr>) {
             flatten(b, out);
         }
         _ => out.push(e),
+    }
+}
+
+/// Edited copies of a checked statement, the mutants' carriers: one side or one
+/// definition body replaced by new text, re-checked by the same validator as the
+/// original. The original claim is never modified.
+pub trait Edited: Sized {
+    /// A copy with side `side` of chain `chain` replaced by `text`. The new side must
+    /// be well-formed and keep the free indices of the side it replaces (unless one of
+    /// them is the literal 0).
+    fn with_side(
+        &self,
+        decls: &Decls,
+        chain: usize,
+        side: usize,
+        text: &str,
+    ) -> Result<Self, LangError>;
+}
+
+/// `text` read and checked in the context of `decls` and the definitions `sigs`.
+pub fn parse_checked(
+    decls: &Decls,
+    sigs: &[DefSig],
+    text: &str,
+) -> Result<(Node, Origin), LangError> {
+    let origin = Origin::whole(SourceFile::new("<edited>", text));
+    let e = parse_expr(text)?;
+    let node = Scope { decls, defs: sigs }.check(&e)?;
+    Ok((node, origin))
+}
+
+impl Edited for Check {
+    /// A copy with side `side` of chain `chain` replaced by `text`. The new side must
+    /// be well-formed and keep the free indices of the side it replaces (unless one of
+    /// them is the literal 0).
+    fn with_side(
+        &self,
+        decls: &Decls,
+        chain: usize,
+        side: usize,
+        text: &str,
+    ) -> Result<Check, LangError> {
+        let sigs: Vec<DefSig> = self.defs.iter().map(|d| d.sig.clone()).collect();
+        let (node, origin) = parse_checked(decls, &sigs, text)?;
+        let old = &self.chains[chain][side];
+        if let Ok(old_node) = &old.node {
+            if old_node.shape() != node.shape()
+                || (!self.verbatim && !old_node.matches_free_indices(&node))
+            {
+                return Err(LangError::new(
+                    ErrorKind::Index,
+                    node.span,
+                    "free indices changed",
+                ));
+            }
+        }
+        let mut out = self.clone();
+        out.chains[chain][side] = Side {
+            text: text.to_owned(),
+            origin,
+            node: Ok(node),
+            entry: old.entry,
+        };
+        Ok(out)
     }
 }
 
