@@ -1,6 +1,7 @@
 //! `cosserat-check`: checks the paper's derivations and prints the derivation table.
-//! All logic lives in the library (`cosserat_check::cli`); this only maps the result
-//! to an exit code.
+//! All logic lives in the library (`cosserat_check::cli`); this sets the allocator and
+//! the deep stack the checker runs on, and maps the result (or an escaped resource
+//! limit) to an exit code.
 
 use clap::{CommandFactory, FromArgMatches};
 use cosserat_check::cli::{about, run, Cli, Output, RunError, Status};

@@ -70,7 +70,7 @@ pub const QUADRATURE_MAX: f64 = 1e-5;
 pub const TAYLOR_STEP: f64 = 1e-3;
 
 /// Relative agreement required between an exact value involving derivatives and the
-/// difference quotients' value: the stencil's error at [`STEP`], nested up to three
+/// difference quotients' value: the stencil's error at [`TAYLOR_STEP`], nested up to three
 /// derivatives deep (ε/h³ ≈ 2e-7), with a margin.
 pub const TAYLOR_AGREEMENT: f64 = 1e-5;
 

@@ -138,9 +138,8 @@ fn chromium(browser: &Path, profile: &Path, args: &[&str]) -> std::process::Outp
 #[test]
 fn in_a_real_browser_the_page_renders_mathml_and_a_click_scrolls_to_the_claim() {
     let Some(browser) = browser() else {
-        eprintln!(
-            "skipped: no Chromium found (/usr/bin/chromium, or set CHROMIUM); \
-             `apt-get install chromium` runs this test (.ci/run installs it)"
+        crate::common::tool_missing(
+            "Chromium (/usr/bin/chromium, or set CHROMIUM; `apt-get install chromium`)",
         );
         return;
     };
@@ -273,7 +272,7 @@ fn markup_from_a_hostile_file_stays_text() {
 #[test]
 fn in_a_real_browser_a_hostile_page_runs_nothing_fetches_nothing_and_shows_every_failure() {
     let Some(browser) = browser() else {
-        eprintln!("skipped: no Chromium found (see the test above)");
+        crate::common::tool_missing("Chromium (see the test above)");
         return;
     };
     // A server that answers every request at once (so that a page that does make one

@@ -1,14 +1,15 @@
 //! The LaTeX table and errata compile with pdflatex in a plain `article` (portrait, the
 //! default margins) with no overfull box: statements are scaled to their column when
 //! wider, long evidence sits in a second table, and sums break at their signs. Skipped,
-//! saying so, when pdflatex is not installed (`.ci/run` installs it).
+//! saying so, when pdflatex is not installed, unless `COSSERAT_REQUIRE_TOOLS` is set
+//! (`.ci/run` installs it and sets it).
 
 use std::path::Path;
 use std::process::Command;
 
 fn compile(args: &[&str], name: &str) {
     if Command::new("pdflatex").arg("--version").output().is_err() {
-        eprintln!("skipped: pdflatex is not installed (apt-get install texlive-latex-base)");
+        crate::common::tool_missing("pdflatex (apt-get install texlive-latex-base)");
         return;
     }
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/latex-test");
@@ -39,6 +40,69 @@ fn compile(args: &[&str], name: &str) {
     let overfull: Vec<&str> = log.lines().filter(|l| l.starts_with("Overfull")).collect();
     assert!(overfull.is_empty(), "{name}: {overfull:#?}");
     assert!(dir.join(format!("{name}.pdf")).is_file());
+    // What a reader sees names no macro, except one the report quotes on purpose as
+    // code (`\texttt{\textbackslash overline}` in a reading's reason): every other
+    // command was typeset, none printed.
+    if Command::new("pdftotext").arg("-v").output().is_err() {
+        crate::common::tool_missing("pdftotext (apt-get install poppler-utils)");
+        return;
+    }
+    let txt = Command::new("pdftotext")
+        .args([&format!("{name}.pdf"), "-"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let txt = String::from_utf8_lossy(&txt.stdout);
+    let quoted = quoted_macros(&String::from_utf8_lossy(&out.stdout));
+    let leaked: Vec<String> = macro_names(&txt)
+        .into_iter()
+        .filter(|m| !quoted.contains(m))
+        .collect();
+    assert!(
+        leaked.is_empty(),
+        "{name}: macro names in the text: {leaked:?}"
+    );
+}
+
+/// The names after a backslash in `text` (`\overline` gives `overline`).
+fn macro_names(text: &str) -> Vec<String> {
+    text.split('\\')
+        .skip(1)
+        .map(|rest| {
+            rest.chars()
+                .take_while(char::is_ascii_alphabetic)
+                .collect::<String>()
+        })
+        .filter(|n| !n.is_empty())
+        .collect()
+}
+
+/// The macro names a `.tex` source quotes as code: `\textbackslash NAME` inside
+/// `\texttt{…}`.
+fn quoted_macros(tex: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for part in tex.split("\\texttt{").skip(1) {
+        let mut depth = 1;
+        let end = part
+            .char_indices()
+            .find(|&(_, c)| {
+                depth += match c {
+                    '{' => 1,
+                    '}' => -1,
+                    _ => 0,
+                };
+                depth == 0
+            })
+            .map_or(part.len(), |(i, _)| i);
+        for q in part[..end].split("\\textbackslash").skip(1) {
+            let q = q.trim_start_matches("{}").trim_start();
+            let n: String = q.chars().take_while(char::is_ascii_alphabetic).collect();
+            if !n.is_empty() {
+                out.push(n);
+            }
+        }
+    }
+    out
 }
 
 #[test]
@@ -59,7 +123,7 @@ fn the_errata_fit_a_portrait_page() {
 #[test]
 fn a_hostile_report_reads_and_writes_nothing_and_shows_every_claim() {
     if Command::new("pdflatex").arg("--version").output().is_err() {
-        eprintln!("skipped: pdflatex is not installed (apt-get install texlive-latex-base)");
+        crate::common::tool_missing("pdflatex (apt-get install texlive-latex-base)");
         return;
     }
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/latex-hostile");
@@ -112,7 +176,7 @@ fn a_hostile_report_reads_and_writes_nothing_and_shows_every_claim() {
             String::from_utf8_lossy(&compiled.stdout)
         );
         if Command::new("pdftotext").arg("-v").output().is_err() {
-            eprintln!("note: pdftotext is not installed; the PDF's text is not checked");
+            crate::common::tool_missing("pdftotext (apt-get install poppler-utils)");
             continue;
         }
         let txt = Command::new("pdftotext")

@@ -13,8 +13,8 @@
 //! [`super::modular`], whose candidates are accepted only when they divide both inputs
 //! and the cofactors are proved coprime (`confirmed`). The remainder sequence is left
 //! for what the modular route cannot take (more than 16 variables, a degree above 64,
-//! its budget of points or primes spent); it is the kernel's one computation without a
-//! work bound, so it stops when the claim's time limit asks it to
+//! its budget of points or primes spent); it is the one computation of a decision
+//! without a work bound, so it stops when the claim's time limit asks it to
 //! ([`crate::kernel::interrupt`]).
 //!
 //! Only ordinary polynomials (no negative exponents) are accepted: a Laurent

@@ -2,7 +2,7 @@
 //! numerator over a product of polynomial factors, each factor a divisor the statement
 //! divided by (`3*lambda + 2*G`), kept apart and never multiplied out.
 //!
-//! Unlike [`RatFunc`](super::RatFunc), a quotient is not reduced after every operation
+//! Unlike [`RatFunc`], a quotient is not reduced after every operation
 //! (no gcd): a product concatenates the factor lists, a sum brings both terms over the
 //! least common multiple of the two lists, matched structurally. Equality is therefore
 //! not structural; it is decided by [`Identities::compare`](super::certificate::Identities::compare),

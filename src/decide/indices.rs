@@ -1,5 +1,5 @@
 //! The exact strategy's route through symbolic indices: both sides of each equality are
-//! read into the kernel's index algebra ([`crate::algebra::indexed`]) and reduced to
+//! read into the (untrusted) index algebra ([`crate::algebra::indexed`]) and reduced to
 //! canonical forms. Equal forms prove the equality for every value of the free indices
 //! without expanding a component; anything else (a construct outside the algebra,
 //! the term budget, forms that differ) proves nothing, and the component route decides.

@@ -2,7 +2,7 @@
 //! inequalities, with a domain search for conditional claims), num-dual gradients
 //! against closed forms and central differences, and num-dual Hessians for convexity.
 //!
-//! Tolerances live here, in one place:
+//! The tolerances (defined in [`crate::tolerance`]) are applied as follows:
 //! - equality: |l − r| ≤ [`TOL`]·(1 + |l| + |r|); inequality l ≤ r: l − r ≤ TOL·(1 + |l| + |r|);
 //! - num-dual gradient vs closed form: [`TOL`] relative, per component; vs a central
 //!   difference along a direction v with v_k = ±(½ to 1)·(1 + |x_k|) and step

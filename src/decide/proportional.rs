@@ -11,8 +11,9 @@
 //! The factor is fixed where the right side is first nonzero: at the first component
 //! that is not identically zero, a rational point where it is nonzero gives
 //! λ = left/right with the other variables fixed there and the parameters kept. Any
-//! factor that works must equal that ratio, so the kernel then compares `left` with
-//! `λ · right` in every component ([`Identities::proportional`]). A difference refutes
+//! factor that works must equal that ratio, so the search then compares `left` with
+//! `λ · right` in every component ([`Identities::proportional`]) and the kernel checks
+//! the fact it hands in. A difference refutes
 //! every factor at once: the reference, moved to the parameter values of the
 //! difference's point, fixes λ there, and the difference's point shows that λ does not
 //! work at the same parameter values. Both points are re-evaluated by the interpreter

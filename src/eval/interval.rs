@@ -59,7 +59,8 @@ pub struct Interval {
 }
 
 /// Why an enclosure was not computed: a construct this evaluation does not enclose.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("no enclosure: {0}")]
 pub struct Enclosure(pub String);
 
 pub(crate) type R<T> = Result<T, Enclosure>;

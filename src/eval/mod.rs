@@ -2,7 +2,7 @@
 //! [`walk::Ring`], and the rings it runs on, each in its own module:
 //!
 //! - [`exact`]: polynomials and quotients over ℚ, for the exact routes (identities,
-//!   scalar claims, the statement the kernel re-checks), with [`exact::jets`] for fields;
+//!   scalar claims, the statement the kernel re-checks), with [`exact::jets`] for `grad`;
 //! - [`real`]: `f64` and num-dual numbers for sampling, gradients and searches, with
 //!   [`taylor`] expansions of fields and adaptive [`quadrature`] for averages;
 //! - [`tape`]: a compiled form of the real walk for expressions evaluated at many states;

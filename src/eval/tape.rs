@@ -11,7 +11,7 @@
 //! subexpressions are shared, and evaluation is one pass over a `Vec` generic over the
 //! scalar (`f64` or num-dual numbers).
 //!
-//! Contraction is the one [`einsum`] over op ids, the same code the interpreter runs
+//! Contraction is the one [`einsum`](crate::algebra::einsum) over op ids, the same code the interpreter runs
 //! over numbers; `tests/tape.rs` holds the tape to the interpreter on every sampled claim
 //! of the paper, so the compiler's folding, sharing and unrolling are checked against
 //! plain evaluation. Errors keep the interpreter's messages and spans (division by
@@ -128,7 +128,8 @@ impl Maxima {
 }
 
 /// Why an expression was not compiled (the caller falls back to the interpreter).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("not compiled: {0}")]
 pub struct Unsupported(pub String);
 
 struct Compiler<'a> {

@@ -116,7 +116,7 @@ pub trait Ring: Arithmetic {
     fn singular(&mut self, node: &Node) -> Self::Error;
 
     /// The ring's derivatives ([`Calculus`]), or why it takes none (`what` is the
-    /// derivative asked for, `node` where): the exact, jet and real rings take them, the
+    /// derivative asked for, `node` where): the exact, jet and real rings have them, the
     /// tape and the enclosures do not.
     fn calculus(
         &mut self,
@@ -169,8 +169,9 @@ pub trait Normals: Ring {
 }
 
 /// Derivatives: along the position (of fields), variational, and with respect to a
-/// declared symbol. A ring hands them to the walk through [`Ring::calculus`]; the exact,
-/// jet and real rings take all three.
+/// declared symbol. A ring hands them to the walk through [`Ring::calculus`]; the exact
+/// and real rings take all three, the jet ring of `grad` only derivatives along the
+/// position (a variation or a gradient inside `grad(…)` it refuses, with where).
 pub trait Calculus: Ring {
     /// The derivatives of `arg` with respect to every coordinate of the position: a
     /// tensor with `arg`'s slots (its free letters, sorted) and one more, last, for the

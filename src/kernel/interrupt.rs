@@ -4,8 +4,9 @@
 //! the kernel because the kernel's products tick too; a stop never makes a verdict:
 //! whatever was being computed is abandoned, and the claim is `undecided`.
 //!
-//! Every other kernel computation is bounded by the size of its input or by a budget
-//! of terms, points or bisections. The pseudo-remainder sequence over ℚ is not: its
+//! Every other computation a decision runs is bounded by the size of its input or by a
+//! budget of terms, points or bisections. The algebra's pseudo-remainder sequence over ℚ
+//! is not: its
 //! coefficients can swell for minutes on inputs of a few dozen terms. So a decision
 //! runs the kernel [`under`] a stop condition (the claim's time limit, from
 //! `decide::watch`), and the remainder sequence asks [`requested`] between steps.

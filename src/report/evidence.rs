@@ -1,5 +1,5 @@
-//! The evidence of an outcome in words: the only place where what a decision recorded
-//! becomes a sentence.
+//! The evidence of an outcome in words, assembled from [`super::words`] (where what a
+//! decision recorded becomes a sentence).
 
 use super::words;
 use crate::decide::{Counterexample, Outcome};

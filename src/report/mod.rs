@@ -1,4 +1,5 @@
-//! Reports: the derivation table in Markdown and JSON. Rendering only; every verdict
+//! Reports: the derivation table (compact, Markdown, JSON, HTML, CSV, LaTeX), errata,
+//! the graph, `explain` and plots. Rendering only; every verdict
 //! has been decided before anything here runs.
 
 pub mod compact;

@@ -3,7 +3,7 @@
 //! is compiled, `\openout` and `\write` write one, `$}` and `\end{document}` close the
 //! table early, `%` hides the rest of a line, and `^^5c` spells a backslash. A formula
 //! passes only when every token is on an allowlist of mathematical notation
-//! ([`COMMANDS`], [`ENVIRONMENTS`]), its braces balance, and `&` and `\\` appear only
+//! (`COMMANDS`, `ENVIRONMENTS`), its braces balance, and `&` and `\\` appear only
 //! inside a matrix-like environment; anything else is shown as text, escaped.
 
 /// Control words a formula may use besides those the LaTeX reader knows (its Greek

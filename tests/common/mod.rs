@@ -75,6 +75,16 @@ pub fn evidence_of(rows: &[Decided<'_>], id: &str) -> String {
     cosserat_check::report::evidence(&r.outcome)
 }
 
+/// A test's external tool is missing: it says it is skipped, or fails where the tools
+/// are required (`COSSERAT_REQUIRE_TOOLS` set, as `.ci/run` does after installing them).
+pub fn tool_missing(what: &str) {
+    assert!(
+        std::env::var_os("COSSERAT_REQUIRE_TOOLS").is_none(),
+        "{what} is missing, and COSSERAT_REQUIRE_TOOLS requires it"
+    );
+    eprintln!("skipped: {what} is missing");
+}
+
 /// The outcome of every claim of the file `text` (named f.toml in diagnostics).
 pub fn outcomes_of(text: &str) -> Vec<cosserat_check::decide::Outcome> {
     let f = cosserat_check::derivation::load_str("f.toml", text).expect("loads");

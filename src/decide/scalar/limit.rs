@@ -1,7 +1,8 @@
 //! `strategy = "limit"`: a function tends to a stated value (or to ±∞) as one
 //! parameter tends to a point or to ±∞, the other parameters kept as symbols.
 //!
-//! The kernel reads the limit off the lowest orders (`kernel::limit`); the sign of an
+//! The search reads the limit off the lowest orders (`algebra::limit`) and the kernel
+//! checks it (`kernel::scalar`); the sign of an
 //! infinite limit is a sign claim on the box. A refuted limit is confirmed by the
 //! interpreter: near the point, the function must be closer to the limit found than
 //! to the one stated.

@@ -2,9 +2,9 @@
 //! and `roots` (see [`ScalarClaim`]).
 //!
 //! Every expression is evaluated exactly to a reduced rational function of the
-//! parameters it uses. With one parameter, the kernel decides it completely: Sturm
-//! sequences give the sign chart (`kernel::sign`), lowest orders give limits
-//! (`kernel::limit`). With several, a certificate is tried first (coefficients of one
+//! parameters it uses. With one parameter, it is decided completely: Sturm sequences
+//! give the sign chart (`algebra::sign`), lowest orders give limits (`algebra::limit`),
+//! and the kernel checks each as a fact (`kernel::scalar`). With several, a certificate is tried first (coefficients of one
 //! sign after moving every parameter onto t ≥ 0); without one, the function is
 //! evaluated exactly at seeded rational points of the box and an adversarial search
 //! looks for the smallest margin, so that a `holds` is labelled sampled and a `fails`

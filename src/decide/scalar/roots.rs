@@ -1,7 +1,7 @@
 //! `strategy = "roots"`: the real roots of a function of one parameter on its interval
-//! are exactly the stated rationals. The kernel isolates every real root of the
-//! numerator (Sturm), so a root left out is found as surely as a stated one that is
-//! not a root.
+//! are exactly the stated rationals. The search isolates every real root of the
+//! numerator (Sturm, `algebra::sturm`) and the kernel checks the count between rational
+//! cuts, so a root left out is found as surely as a stated one that is not a root.
 
 use super::context::{Context, Stop};
 use crate::algebra::certificate::Certificate;

@@ -9,7 +9,7 @@
 //! variable and every other symbol held fixed. The chain rule acts node by node:
 //! products, quotients, powers, contractions, averages over the normal, derivatives
 //! along fields, matrices; `sqrt` where the state makes its radicand the square of a
-//! rational function (the exact route's [`ExactRing`] certifies the root's sign).
+//! rational function (the exact route's `ExactRing` certifies the root's sign).
 //! The walk is the one every route uses (`walk.rs`); this is only a ring.
 //!
 //! The sampled route takes the same derivatives with num-dual numbers
