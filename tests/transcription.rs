@@ -6,7 +6,7 @@ use crate::support::mutate::mutants;
 use cosserat_check::check::transcription::{transcribe, Hand, Status, Why};
 use cosserat_check::check::{decide, Decided};
 use cosserat_check::cli::decide_all;
-use cosserat_check::derivation::{load_dir, load_str, Strategy, Transcript};
+use cosserat_check::derivation::{load_dir, load_str, Strategy, Transcript, Verdict};
 use cosserat_check::lang::latex::{read, Connective, MathKind, ReadOptions, Rel};
 use std::path::Path;
 
@@ -546,6 +546,59 @@ reason = "The factor is 1/15."
         .as_ref()
         .expect("a counterexample");
     assert_eq!(cx.lhs_value.as_deref(), Some("1/5"));
+}
+
+/// A correction without `sides` is decided on its reading too, with the claim's
+/// `defines`: the wrong printed step fails, the corrected one holds, and a wrong
+/// correction fails as well (it is checked, not believed).
+#[test]
+fn a_correction_without_sides_is_decided_on_its_reading() {
+    let claim = |corrected: &str, expect: &str| {
+        format!(
+            r#"[[claim]]
+id = "trace"
+printed = 'P = \sigma_{{kk}} = 2 \sigma_{{11}}'
+defines = ['P']
+expect = "fails"
+reason = "a typo: the trace has three terms"
+[claim.correction]
+printed = '{corrected}'
+reason = "the trace"
+expect = "{expect}"
+"#
+        )
+    };
+    for (corrected, verdict) in [
+        (
+            r"P = \sigma_{kk} = \sigma_{11} + \sigma_{22} + \sigma_{33}",
+            Verdict::Holds,
+        ),
+        (
+            r"P = \sigma_{kk} = \sigma_{11} + \sigma_{22}",
+            Verdict::Fails,
+        ),
+    ] {
+        let expect = if verdict == Verdict::Holds {
+            "holds"
+        } else {
+            "fails"
+        };
+        let f = file(&claim(corrected, expect));
+        let rows = decide_all(std::slice::from_ref(&f), None).unwrap();
+        assert_eq!(rows[0].outcome.verdict(), Verdict::Fails);
+        let c = rows[0]
+            .correction
+            .as_ref()
+            .expect("the correction is decided");
+        assert_eq!(c.verdict(), verdict, "{corrected}");
+        let words = cosserat_check::report::evidence(c);
+        let want = if verdict == Verdict::Holds {
+            "every difference identically 0"
+        } else {
+            "left − right = `sigma_33`"
+        };
+        assert!(words.contains(want), "{words}");
+    }
 }
 
 /// Sides typeset as LaTeX, for a reader to compare with the printed statement.

@@ -1207,29 +1207,33 @@ impl Loader {
         }
     }
 
-    /// The chains of a claim without `sides`: its printed statement as read, every
-    /// reading of every chain. Conditions and inequalities need explicit sides.
+    /// The chains of a statement without `sides` (a claim's, or its correction's): its
+    /// printed statement as read, every reading of every chain, in the context of its
+    /// own `define` and `assume` (`context`) after `defs`. Conditions and inequalities
+    /// need explicit sides.
     fn chains_from_reading(
         &self,
-        c: &RawClaim,
+        input: Printed<'_>,
+        context: (&S, &[S], &[S], bool),
         decls: &Decls,
         defs: &[Definition],
         file: &Notation,
     ) -> Result<Vec<Vec<S>>, Diagnostic> {
+        let (anchor, define, assume, verbatim) = context;
         let probe = self.check(
-            &c.id, decls, defs, &c.define, &c.assume, &None, &None, c.verbatim, false,
+            anchor, decls, defs, define, assume, &None, &None, verbatim, false,
         )?;
         let input = Printed {
             prose: false,
             declared: &None,
-            ..Printed::of_claim(c)
+            ..input
         };
         let t = self.transcript(&input, file, decls, &probe, Vec::new(), Vec::new())?;
         let help = "give sides = [\"left\", \"right\"] in index notation, or make the printed statement readable (`cosserat-check guide`, \"Reading the printed statement\")";
         let reading = t.reading.map_err(|u| {
-            let col = crate::lang::latex::column(c.printed.get_ref(), u.span.start);
+            let col = crate::lang::latex::column(input.printed.get_ref(), u.span.start);
             self.diag(
-                c.printed.span(),
+                input.printed.span(),
                 format!(
                     "this statement has no `sides`, and its printed LaTeX cannot be read at column {col}: {}",
                     u.message
@@ -1247,7 +1251,7 @@ impl Loader {
             {
                 return Err(self
                     .diag(
-                        c.printed.span(),
+                        input.printed.span(),
                         format!(
                             "this statement has no `sides`, and `{}` is a condition or an inequality, which need explicit sides and hypotheses",
                             part.latex
@@ -1259,7 +1263,7 @@ impl Loader {
                 chains.push(
                     route
                         .iter()
-                        .map(|m| Spanned::new(c.printed.span(), m.text.clone()))
+                        .map(|m| Spanned::new(input.printed.span(), m.text.clone()))
                         .collect(),
                 );
             }
@@ -1359,7 +1363,8 @@ impl Loader {
         // Without sides, a statement whose printed LaTeX can be read is decided on the
         // reading itself.
         let read_chains = if needs_sides && !c.prose && c.sides.is_none() && c.chains.is_none() {
-            Some(self.chains_from_reading(c, decls, defs, notation)?)
+            let context = (&c.id, &c.define[..], &c.assume[..], c.verbatim);
+            Some(self.chains_from_reading(Printed::of_claim(c), context, decls, defs, notation)?)
         } else {
             None
         };
@@ -1382,24 +1387,6 @@ impl Loader {
             None => None,
             Some(r) => {
                 let expect = self.verdict(&r.expect)?;
-                // The correction sees the claim's definitions and assumptions too.
-                let mut inner = self.check(
-                    &r.printed,
-                    decls,
-                    &check.defs,
-                    &r.define,
-                    &r.assume,
-                    &r.sides,
-                    &r.chains,
-                    r.verbatim,
-                    needs_sides,
-                )?;
-                inner.strategy = check.strategy.clone();
-                self.corrected_function(r, &mut inner, decls)?;
-                self.one_pair_if_needed(c, &inner)?;
-                let mut assumptions = check.assumptions.clone();
-                assumptions.append(&mut inner.assumptions);
-                inner.assumptions = assumptions;
                 // The claim's `defines` hold for its correction too, with its own.
                 let defines: Vec<S> = c.defines.iter().chain(&r.defines).cloned().collect();
                 let input = Printed {
@@ -1409,15 +1396,50 @@ impl Loader {
                     defines: &defines,
                     declared: &r.differs_from_printed,
                 };
+                // The correction's own entries, then the claim's, then the file's.
+                let table = self.notation(&c.notation, notation)?.then(notation);
+                // Without sides, a correction is decided on its reading, as a claim is.
+                let read_chains = (needs_sides
+                    && !c.prose
+                    && r.sides.is_none()
+                    && r.chains.is_none()
+                    && r.function.is_none())
+                .then(|| {
+                    let context = (&r.printed, &r.define[..], &r.assume[..], r.verbatim);
+                    self.chains_from_reading(input, context, decls, &check.defs, &table)
+                })
+                .transpose()?;
+                let chains = read_chains.clone().or_else(|| r.chains.clone());
+                // The correction sees the claim's definitions and assumptions too.
+                let mut inner = self.check(
+                    &r.printed,
+                    decls,
+                    &check.defs,
+                    &r.define,
+                    &r.assume,
+                    &r.sides,
+                    &chains,
+                    r.verbatim,
+                    needs_sides,
+                )?;
+                inner.strategy = check.strategy.clone();
+                self.corrected_function(r, &mut inner, decls)?;
+                self.one_pair_if_needed(c, &inner)?;
+                let mut assumptions = check.assumptions.clone();
+                assumptions.append(&mut inner.assumptions);
+                inner.assumptions = assumptions;
                 let transcript = self.transcript(
                     &input,
-                    // The correction's own entries, then the claim's, then the file's.
-                    &self.notation(&c.notation, notation)?.then(notation),
+                    &table,
                     decls,
                     &inner,
                     written(&r.sides, &r.chains),
                     conditions(c),
                 )?;
+                let transcript = Transcript {
+                    from_reading: read_chains.is_some(),
+                    ..transcript
+                };
                 Some(Correction {
                     statement: r.printed.get_ref().clone(),
                     reason: r.reason.get_ref().clone(),
