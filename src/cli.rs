@@ -6,8 +6,10 @@ use crate::check::{decide_claim, decide_claim_recorded, inherit, Decided};
 use crate::decide::watch::{self, Watch};
 use crate::derivation::only::Reading;
 use crate::derivation::{load_files, DerivationFile, LoadError, Strategy};
+use crate::lang::Diagnostic;
 use crate::report;
 use clap::{Parser, Subcommand, ValueEnum};
+use std::collections::BTreeMap;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -71,6 +73,33 @@ pub enum Command {
     /// Print the user guide (Markdown): the derivation-file format, every strategy,
     /// the reports and the JSON contract.
     Guide,
+    /// Write a derivation file from a paper's LaTeX (or Markdown with `$$…$$` displays):
+    /// one claim per numbered displayed equation, decided on its reading, with the
+    /// declarations, definitions and notation the equations imply; what cannot be read
+    /// is kept as a commented claim under "To complete", with its line and reason.
+    /// `verify` accepts the file unchanged
+    Draft(DraftArgs),
+}
+
+#[derive(Debug, Clone, clap::Args)]
+pub struct DraftArgs {
+    /// The paper: LaTeX (`equation`, `align`, `gather`, `multline`, `\[…\]` with
+    /// `\tag`) or Markdown with `$$…$$` displays ending in `(N)`; `-` reads standard
+    /// input.
+    #[arg(value_name = "PAPER")]
+    pub paper: PathBuf,
+    /// The index range 1..=N; without it, a sentence of the paper such as "indices
+    /// ranging from 1 to 3" sets it, else 3.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(2..=3))]
+    pub dimension: Option<u8>,
+    /// The paper's unit normal (a letter such as `n`), which `\langle … \rangle`
+    /// averages over.
+    #[arg(long, value_name = "NAME")]
+    pub normal: Option<String>,
+    /// Write the file here (replaced atomically, never the paper) instead of standard
+    /// output; `-` is standard output.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, clap::Args)]
@@ -460,6 +489,22 @@ fn decide_claims<'f>(
     run: Run,
     progress: &mut Progress,
 ) -> Result<Vec<Decided<'f>>, RunError> {
+    decide_each(claims, run, progress)
+        .into_iter()
+        .map(|r| match r {
+            Some(r) => r.map_err(|d| RunError::Input(d.to_string())),
+            None => Err(RunError::Internal("a worker stopped".into())),
+        })
+        .collect()
+}
+
+/// Decides each claim under its time limit: its decision or its located error, in claim
+/// order (`None`: its worker stopped).
+fn decide_each<'f>(
+    claims: Vec<&'f crate::derivation::Claim>,
+    run: Run,
+    progress: &mut Progress,
+) -> Vec<Option<Result<Decided<'f>, Diagnostic>>> {
     let n = claims.len();
     // Claims are independent: the workers take the next claim as they finish one, and
     // the results are put back in claim order, so the output and the first error
@@ -470,7 +515,7 @@ fn decide_claims<'f>(
     let watches: Vec<Mutex<Option<Arc<Watch>>>> = (0..crate::parallel::workers(n))
         .map(|_| Mutex::new(None))
         .collect();
-    let mut slots: Vec<Option<Result<Decided<'f>, RunError>>> = (0..n).map(|_| None).collect();
+    let mut slots: Vec<Option<Result<Decided<'f>, Diagnostic>>> = (0..n).map(|_| None).collect();
     let mut done = 0;
     let decide = |k: usize, worker: usize| {
         let c = claims[k];
@@ -483,8 +528,7 @@ fn decide_claims<'f>(
             } else {
                 decide_claim(c)
             }
-        })
-        .map_err(|d| RunError::Input(d.to_string()));
+        });
         *slot.lock().unwrap_or_else(|e| e.into_inner()) = None;
         r
     };
@@ -507,9 +551,6 @@ fn decide_claims<'f>(
         progress.show(done, n, &working);
     });
     slots
-        .into_iter()
-        .map(|r| r.unwrap_or_else(|| Err(RunError::Internal("a worker stopped".into()))))
-        .collect()
 }
 
 /// A rough relative cost of deciding a claim and its correction, for scheduling only:
@@ -932,6 +973,7 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             out.stream.write_all(&bytes)?;
             Ok(Status::AsExpected)
         }
+        Command::Draft(a) => draft(&a, out),
         Command::Guide => {
             out.stream.write_all(GUIDE.join("\n").as_bytes())?;
             Ok(Status::AsExpected)
@@ -1006,6 +1048,103 @@ fn write_examples(dir: &Path) -> Result<usize, RunError> {
     }
     Ok(todo.len())
 }
+
+/// `draft`: the derivation file on standard output (or `--out`), what it holds on
+/// standard error.
+fn draft(a: &DraftArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
+    let label = if crate::derivation::load::is_stdin(&a.paper) {
+        "<stdin>".to_owned()
+    } else {
+        a.paper.display().to_string()
+    };
+    let bytes = crate::derivation::load::read_bounded(&a.paper)?;
+    let source = String::from_utf8(bytes).map_err(|e| {
+        let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
+        let col = 1 + good.iter().rev().take_while(|&&b| b != b'\n').count();
+        RunError::Input(report::words::inert(&format!(
+            "error: {label}:{line}:{col}: not UTF-8 text"
+        )))
+    })?;
+    if let Some(n) = &a.normal {
+        if n.is_empty() || !n.chars().all(|c| c.is_ascii_alphabetic()) || n.len() > 32 {
+            return Err(RunError::Input(format!(
+                "error: --normal {}: a letter or a Greek letter's name, such as n",
+                report::words::inert(n)
+            )));
+        }
+    }
+    let options = crate::derivation::draft::Options {
+        dimension: a.dimension.map(usize::from),
+        normal: a.normal.clone(),
+    };
+    let d = draft_decided(&label, &source, &options)?;
+    let inputs = [label.as_str()];
+    emit(&d.toml, &a.out, &inputs, out.stream)?;
+    let next = match &a.out {
+        Some(p) if p.as_os_str() != "-" => format!("cosserat-check verify {}", p.display()),
+        _ => "save it, then cosserat-check verify FILE".to_owned(),
+    };
+    eprintln!(
+        "{}",
+        report::words::inert(&format!(
+            "drafted {} of {} numbered equations as claims ({} to complete, listed at the top of the file); next: {next}",
+            d.claims,
+            d.equations,
+            d.equations - d.claims
+        ))
+    );
+    Ok(Status::AsExpected)
+}
+
+/// A draft whose every claim is decided without an input error: a claim (or the
+/// definition it states) that the decision refuses goes under "To complete" with the
+/// reason, and the draft is written again.
+fn draft_decided(
+    label: &str,
+    source: &str,
+    options: &crate::derivation::draft::Options,
+) -> Result<crate::derivation::draft::Draft, RunError> {
+    use crate::derivation::draft;
+    let mut refused: BTreeMap<String, String> = BTreeMap::new();
+    // Past it, claims are undecided (time limit), never refused: the draft ends.
+    let deadline = Instant::now() + DRAFT_RUN_LIMIT;
+    loop {
+        let drafted = draft::draft(label, source, options, &refused);
+        let file = crate::derivation::load_str("draft.toml", &drafted.toml)
+            .map_err(|e| RunError::Internal(format!("a draft was refused: {e}")))?;
+        let run = Run {
+            keep: false,
+            limit: DRAFT_CLAIM_LIMIT,
+            deadline: Some(deadline),
+        };
+        let claims: Vec<_> = file.claims.iter().collect();
+        let before = refused.len();
+        for (claim, r) in
+            claims
+                .iter()
+                .zip(decide_each(claims.clone(), run, &mut Progress::quiet()))
+        {
+            let (id, why) = match r {
+                Some(Ok(_)) => continue,
+                Some(Err(e)) => (
+                    draft::owner(&drafted.toml, e.line).unwrap_or_else(|| claim.id.clone()),
+                    e.message,
+                ),
+                None => (claim.id.clone(), "its decision stopped".to_owned()),
+            };
+            refused.entry(id).or_insert(why);
+        }
+        if refused.len() == before {
+            return Ok(drafted);
+        }
+    }
+}
+
+/// The time limit of each claim while a draft is checked.
+const DRAFT_CLAIM_LIMIT: Duration = Duration::from_secs(10);
+/// The time limit of checking a draft, all rounds together.
+const DRAFT_RUN_LIMIT: Duration = Duration::from_secs(300);
 
 /// A file's text, refused past `limit` bytes before it is read whole.
 fn read_bounded(path: &Path, limit: usize) -> std::io::Result<String> {

@@ -23,6 +23,7 @@ mod cli;
 mod compact;
 mod corpus;
 mod counterexamples;
+mod draft;
 mod einsum;
 mod explain;
 mod fields;

@@ -162,7 +162,7 @@ pub const MAX_ID_CHARS: usize = 100;
 
 /// The bytes of a derivation file: a regular file (never a device such as /dev/zero,
 /// a FIFO that could block forever, or a directory) of at most [`MAX_FILE_BYTES`].
-pub(super) fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
+pub fn read_bounded(path: &Path) -> Result<Vec<u8>, LoadError> {
     use std::io::Read;
     let label = path.display().to_string();
     let io = |message: String| LoadError::Io {

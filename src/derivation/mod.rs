@@ -4,6 +4,7 @@
 //! file's notation table, for the transcription check.
 
 mod control;
+pub mod draft;
 pub mod edit;
 mod fields;
 pub mod load;

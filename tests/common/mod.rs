@@ -98,6 +98,25 @@ pub fn outcomes_of(text: &str) -> Vec<cosserat_check::decide::Outcome> {
 /// Runs the command line `args` (without the program's name) in process, as if
 /// standard output were a terminal or not: its status and what it wrote.
 pub fn run_cli(args: &[&str], terminal: bool) -> (cosserat_check::cli::Status, String) {
+    let (status, out) = try_cli(args, terminal);
+    (status.unwrap_or_else(|e| panic!("{e}")), out)
+}
+
+/// The error the command line `args` ends with (as its message on standard error).
+pub fn cli_error(args: &[&str]) -> cosserat_check::cli::RunError {
+    match try_cli(args, false).0 {
+        Err(e) => e,
+        Ok(s) => panic!("{args:?} succeeded: {s:?}"),
+    }
+}
+
+fn try_cli(
+    args: &[&str],
+    terminal: bool,
+) -> (
+    Result<cosserat_check::cli::Status, cosserat_check::cli::RunError>,
+    String,
+) {
     use clap::Parser;
     use cosserat_check::cli::{run, Cli, Output};
     let cli =
@@ -109,7 +128,6 @@ pub fn run_cli(args: &[&str], terminal: bool) -> (cosserat_check::cli::Status, S
             stream: &mut out,
             terminal,
         },
-    )
-    .unwrap();
+    );
     (status, String::from_utf8(out).unwrap())
 }

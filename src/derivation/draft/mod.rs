@@ -1,0 +1,790 @@
+//! `draft`: a derivation file written from a paper's LaTeX (or Markdown with `$$…$$`
+//! displays), which `verify` accepts unchanged.
+//!
+//! One claim per numbered displayed equation ([`displays`]), with id `eqN` by the number
+//! LaTeX would print and `printed` as in the source (alignment marks removed), decided
+//! on its reading (no `sides`). Declarations come from the printed symbols
+//! ([`symbols`]); a symbol seen for the first time alone on the left of an equation is
+//! a definition (its body is the equation's next member, read through the draft's
+//! notation), and the claim that states it is a use of every later claim that reads
+//! it. A symbol with a label, an accent or primes gets a notation entry with a
+//! readable name.
+//!
+//! An equation the draft cannot read, or whose claim the loader refuses, is kept in the
+//! file as a commented claim under "To complete", with its line in the source and the
+//! reason: nothing is dropped silently. The draft is deterministic: the same source and
+//! options give the same bytes.
+
+mod displays;
+mod symbols;
+
+use super::notation::{self, Notation};
+use crate::lang::latex::{self, MathKind, ReadOptions};
+use crate::lang::{Decls, DefSig};
+use std::collections::{BTreeMap, BTreeSet};
+use symbols::{Key, Symbol};
+
+/// What the command line sets.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// The index range 1..=d; without it, a sentence of the source such as "indices
+    /// ranging from 1 to 3" sets it, else 3.
+    pub dimension: Option<usize>,
+    /// The unit normal that `\langle … \rangle` averages over.
+    pub normal: Option<String>,
+}
+
+/// A draft: the file's text and what it says about the source.
+#[derive(Clone, Debug)]
+pub struct Draft {
+    pub toml: String,
+    /// Numbered equations found.
+    pub equations: usize,
+    /// Of them, claims in the file (the rest are to complete).
+    pub claims: usize,
+    /// Displays without a number (not drafted).
+    pub unnumbered: usize,
+}
+
+/// The most equations one draft takes.
+pub const MAX_EQUATIONS: usize = 500;
+
+/// One numbered equation on its way into the file.
+struct Equation {
+    id: String,
+    number: String,
+    line: usize,
+    latex: String,
+    /// Why it is not a claim, if it is not.
+    unread: Option<String>,
+    /// The symbols it reads (identities).
+    reads: BTreeSet<Key>,
+    /// The symbols it defines: (identity, index letters, the definition's text).
+    defines: Vec<(Key, String)>,
+}
+
+/// Drafts a derivation file from `source` (named `label` in the file's header); the
+/// claims `refused` names (id → why) are left to complete.
+pub fn draft(
+    label: &str,
+    source: &str,
+    options: &Options,
+    refused: &BTreeMap<String, String>,
+) -> Draft {
+    let (found, unnumbered) = displays::numbered(source);
+    let dimension = options
+        .dimension
+        .or_else(|| dimension_in(source))
+        .unwrap_or(3);
+    let normal = options.normal.as_deref();
+    let mut seen_ids = BTreeSet::new();
+    let mut equations: Vec<Equation> = found
+        .into_iter()
+        .take(MAX_EQUATIONS)
+        .map(|d| {
+            let mut id = format!(
+                "eq{}",
+                d.number
+                    .chars()
+                    .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+                    .collect::<String>()
+            );
+            let mut unread = (!seen_ids.insert(id.clone())).then(|| {
+                id = format!("{id}-line{}", d.line);
+                format!("the number ({}) occurs twice", d.number)
+            });
+            if let Some(why) = refused.get(&id) {
+                unread.get_or_insert_with(|| why.clone());
+            }
+            Equation {
+                id,
+                number: d.number,
+                line: d.line,
+                latex: d.latex,
+                unread,
+                reads: BTreeSet::new(),
+                defines: Vec::new(),
+            }
+        })
+        .collect();
+    // Refused claims move to "To complete", and the file is written again, until the
+    // loader accepts it (each round moves at least one claim).
+    for _ in 0..=2 * equations.len() + 2 {
+        let Some(toml) = write(label, &mut equations, dimension, normal, unnumbered) else {
+            continue;
+        };
+        match super::load::load_str("draft.toml", &toml) {
+            Ok(_) => {
+                let claims = equations.iter().filter(|e| e.unread.is_none()).count();
+                return Draft {
+                    toml,
+                    equations: equations.len(),
+                    claims,
+                    unnumbered,
+                };
+            }
+            Err(e) => {
+                if !refuse_claims(&toml, &e, &mut equations) {
+                    break;
+                }
+            }
+        }
+    }
+    // Nothing the loader refused could be traced to one claim: every claim is left to
+    // complete, which the loader always accepts.
+    for e in &mut equations {
+        e.unread
+            .get_or_insert_with(|| "the drafted file was refused as a whole".to_owned());
+    }
+    let toml = write(label, &mut equations, dimension, normal, unnumbered)
+        .expect("with every claim to complete, nothing is read");
+    Draft {
+        toml,
+        equations: equations.len(),
+        claims: 0,
+        unnumbered,
+    }
+}
+
+/// Marks the claims the loader's diagnostics point into as to complete; `false` when
+/// none of them is a claim's.
+fn refuse_claims(toml: &str, e: &super::LoadError, equations: &mut [Equation]) -> bool {
+    let super::LoadError::Invalid(ds) = e else {
+        return false;
+    };
+    let owners = line_owners(toml);
+    let mut moved = false;
+    for d in ds {
+        let Some(id) = owners.get(&d.line) else {
+            continue;
+        };
+        if let Some(eq) = equations
+            .iter_mut()
+            .find(|q| &q.id == id && q.unread.is_none())
+        {
+            eq.unread = Some(d.message.clone());
+            moved = true;
+        }
+    }
+    moved
+}
+
+/// The claim line `line` of a drafted file belongs to: its `[[claim]]` table, or a
+/// definition it states.
+pub fn owner(toml: &str, line: usize) -> Option<String> {
+    line_owners(toml).remove(&line)
+}
+
+/// Which claim each line of a drafted file belongs to: its `[[claim]]` table, and the
+/// definitions it states (marked `# from eqN`).
+fn line_owners(toml: &str) -> BTreeMap<usize, String> {
+    let mut out = BTreeMap::new();
+    let mut current: Option<String> = None;
+    for (k, line) in toml.lines().enumerate() {
+        let n = k + 1;
+        if line.starts_with("[[claim]]") {
+            current = None;
+        }
+        if let Some(id) = line
+            .strip_prefix("id = \"")
+            .and_then(|r| r.strip_suffix('"'))
+        {
+            current = Some(id.to_owned());
+            // The table's first line belongs to it too.
+            out.insert(n - 1, id.to_owned());
+        }
+        if let Some(id) = line.rsplit_once("# from ").map(|(_, id)| id.trim()) {
+            out.insert(n, id.to_owned());
+        } else if let Some(id) = &current {
+            out.insert(n, id.clone());
+        }
+    }
+    out
+}
+
+/// The symbol a chain's first member defines, if it is one symbol (or the square of
+/// one without a label, which becomes a symbol of its own, `T^2` → `T2`): its identity,
+/// and the new symbol of a square. `symbol` is the chain's first symbol as read in the
+/// whole chain (whose letters decide what is an index).
+fn defined_symbol(
+    first: &latex::Math,
+    symbol: Option<&(Key, Symbol)>,
+) -> Option<(Key, Option<Symbol>)> {
+    let (key, s) = symbol?;
+    match &first.kind {
+        MathKind::Atom(_) => Some((key.clone(), None)),
+        MathKind::Power(base, exponent)
+            if matches!(&exponent.kind, MathKind::Number(n) if n == "2")
+                && matches!(&base.kind, MathKind::Atom(a) if a.sup.is_none()) =>
+        {
+            let (printed, letters) = s.key.clone();
+            let square = Symbol {
+                name: format!("{}2", s.name.split('_').next().unwrap_or(&s.name)),
+                rank: s.rank,
+                field: false,
+                key: (format!("{printed}^2"), letters),
+                entry: true,
+                component: false,
+                derivatives: BTreeSet::new(),
+            };
+            Some((format!("{key}^2"), Some(square)))
+        }
+        _ => None,
+    }
+}
+
+/// The index letters of a defined symbol as its defining member writes them.
+fn formal_of(member: &latex::Math, rank: usize) -> Vec<char> {
+    let atom = match &member.kind {
+        MathKind::Atom(a) => Some(a),
+        MathKind::Power(b, _) => match &b.kind {
+            MathKind::Atom(a) => Some(a),
+            _ => None,
+        },
+        _ => None,
+    };
+    if rank == 0 {
+        return Vec::new();
+    }
+    atom.and_then(|a| a.sub.as_ref())
+        .map(|t| t.text.chars().filter(char::is_ascii_alphabetic).collect())
+        .unwrap_or_default()
+}
+
+/// Whether `body` reads `key`, directly or through the definitions `chosen`.
+fn leads_to(
+    body: &BTreeSet<Key>,
+    key: &Key,
+    chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+) -> bool {
+    let mut stack: Vec<&Key> = body.iter().collect();
+    let mut visited: BTreeSet<&Key> = BTreeSet::new();
+    while let Some(k) = stack.pop() {
+        if k == key {
+            return true;
+        }
+        if visited.insert(k) {
+            if let Some((_, b)) = chosen.get(k) {
+                stack.extend(b.iter());
+            }
+        }
+    }
+    false
+}
+
+/// "indices ranging from 1 to 3", "i = 1, 2, 3", "i, j = 1, 2": the index range the
+/// source states, if it states one.
+fn dimension_in(source: &str) -> Option<usize> {
+    let lower = source.to_lowercase();
+    for (phrase, digit_after) in [
+        ("from 1 to ", true),
+        ("= 1, 2, 3", false),
+        ("= 1,2,3", false),
+    ] {
+        if let Some(at) = lower.find(phrase) {
+            if !digit_after {
+                return Some(3);
+            }
+            return match lower[at + phrase.len()..].chars().next() {
+                Some('2') => Some(2),
+                Some('3') => Some(3),
+                _ => None,
+            };
+        }
+    }
+    None
+}
+
+/// Writes the file for the equations as they stand, reading each one (which sets what
+/// it reads and defines, or why it is to complete); `None` when a definition could not
+/// be read, which changes what the others read: write again.
+fn write(
+    label: &str,
+    equations: &mut [Equation],
+    dimension: usize,
+    normal: Option<&str>,
+    unnumbered: usize,
+) -> Option<String> {
+    // Pass 1: the symbols each equation reads, and the candidates for definitions: a
+    // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
+    let mut symbols: BTreeMap<Key, Symbol> = BTreeMap::new();
+    let mut order: Vec<Key> = Vec::new();
+    let mut candidates: Vec<(usize, Key, BTreeSet<Key>)> = Vec::new();
+    let options = ReadOptions::default();
+    for (q, eq) in equations.iter_mut().enumerate() {
+        eq.reads.clear();
+        eq.defines.clear();
+        if eq.unread.is_some() {
+            continue;
+        }
+        let printed = match latex::read(&eq.latex, &options) {
+            Ok(p) => p,
+            Err(e) => {
+                let col = latex::column(&eq.latex, e.span.start);
+                eq.unread = Some(format!("cannot read column {col}: {}", e.message));
+                continue;
+            }
+        };
+        for part in &printed.parts {
+            let members: Vec<&latex::Math> = part.members.iter().collect();
+            let found = symbols::occurrences(&members, normal);
+            for (key, s) in found.iter().cloned() {
+                eq.reads.insert(key.clone());
+                let entry = symbols.entry(key.clone()).or_insert_with(|| {
+                    order.push(key.clone());
+                    s.clone()
+                });
+                entry.field |= s.field;
+                entry.derivatives.extend(s.derivatives.iter().cloned());
+            }
+            if part.relations.first() != Some(&latex::Rel::Eq) || members.len() < 2 {
+                continue;
+            }
+            let Some((key, square)) = defined_symbol(members[0], found.first()) else {
+                continue;
+            };
+            let body: BTreeSet<Key> = symbols::occurrences(&members[1..], normal)
+                .into_iter()
+                .map(|(k, _)| k)
+                .collect();
+            if body.contains(&key) {
+                continue;
+            }
+            if let Some(s) = square {
+                symbols.entry(key.clone()).or_insert_with(|| {
+                    order.push(key.clone());
+                    s
+                });
+            }
+            candidates.push((q, key, body));
+        }
+    }
+    // The first candidate of each symbol defines it, unless its body leads back to it
+    // through the definitions chosen before.
+    let mut chosen: BTreeMap<Key, (usize, BTreeSet<Key>)> = BTreeMap::new();
+    for (q, key, body) in candidates {
+        if chosen.contains_key(&key) || leads_to(&body, &key, &chosen) {
+            continue;
+        }
+        chosen.insert(key, (q, body));
+    }
+    let mut defined: BTreeMap<Key, String> = BTreeMap::new();
+    for (key, (q, _)) in &chosen {
+        let eq = &mut equations[*q];
+        eq.defines.push((key.clone(), String::new()));
+        defined.insert(key.clone(), eq.id.clone());
+    }
+    let defined_keys: BTreeSet<Key> = defined.keys().cloned().collect();
+    symbols::unique_names(&mut symbols, &order, &defined_keys);
+    let letters = |rank: usize| -> String { "ijklpqrsabcdefgh".chars().take(rank).collect() };
+    let with_slots = |s: &Symbol| {
+        if s.rank == 0 {
+            s.name.clone()
+        } else {
+            format!("{}_{}", s.name, letters(s.rank))
+        }
+    };
+    let any_field = symbols.values().any(|s| s.field);
+    let position = any_field.then(|| {
+        ["x", "X", "y"]
+            .into_iter()
+            .find(|p| symbols.values().all(|s| s.name != *p))
+            .unwrap_or("xpos")
+            .to_owned()
+    });
+    // The declarations and the notation the reading needs.
+    let mut decls = Decls {
+        dim: dimension,
+        normal: normal.map(str::to_owned),
+        normal_in_plane: false,
+        symbols: BTreeMap::new(),
+        fields: BTreeMap::new(),
+        position: position.clone(),
+        orders: BTreeMap::new(),
+    };
+    let mut table = Notation::default();
+    let mut entries: Vec<(String, String)> = Vec::new();
+    for k in &order {
+        let s = &symbols[k];
+        if s.component {
+            continue;
+        }
+        if !defined.contains_key(k) {
+            decls.symbols.insert(s.name.clone(), s.rank);
+            if s.field {
+                decls.fields.insert(s.name.clone(), vec![true; dimension]);
+            }
+        }
+        if s.entry {
+            let (key, key_letters) = &s.key;
+            let value = if key_letters.is_empty() {
+                s.name.clone()
+            } else {
+                format!("{}_{}", s.name, key_letters.iter().collect::<String>())
+            };
+            if table.add(key, vec![value.clone()]).is_ok() {
+                entries.push((key.clone(), value));
+            }
+            for (key, value) in &s.derivatives {
+                // The derivative's reading names the symbol by its final name.
+                let value = match value.split_once('_') {
+                    Some((_, rest)) => format!("{}_{rest}", s.name),
+                    None => value.clone(),
+                };
+                if table.add(key, vec![value.clone()]).is_ok() {
+                    entries.push((key.clone(), value));
+                }
+            }
+        }
+    }
+    if let Some(p) = &position {
+        decls.symbols.insert(p.clone(), 1);
+    }
+    // Pass 2: each definition's body, read through that notation, every definition's
+    // signature known (a body may use a definition stated further on).
+    let defining = |eq: &Equation| -> Vec<(Key, latex::Math)> {
+        let Ok(printed) = latex::read(&eq.latex, &options) else {
+            return Vec::new();
+        };
+        printed
+            .parts
+            .iter()
+            .filter_map(|part| {
+                let members: Vec<&latex::Math> = part.members.iter().collect();
+                let found = symbols::occurrences(&members, normal);
+                let first = part.members.first()?;
+                let (k, _) = defined_symbol(first, found.first())?;
+                eq.defines
+                    .iter()
+                    .any(|(d, _)| *d == k)
+                    .then(|| (k, first.clone()))
+            })
+            .collect()
+    };
+    let mut sigs: Vec<DefSig> = Vec::new();
+    for eq in equations.iter().filter(|e| e.unread.is_none()) {
+        for (key, member) in defining(eq) {
+            let Some(s) = symbols.get(&key) else { continue };
+            if sigs.iter().any(|g| g.name == s.name) {
+                continue;
+            }
+            sigs.push(DefSig {
+                name: s.name.clone(),
+                formal: formal_of(&member, s.rank),
+                shape: None,
+            });
+        }
+    }
+    let mut texts: BTreeMap<Key, (String, String)> = BTreeMap::new();
+    for eq in equations.iter_mut() {
+        if eq.unread.is_some() || eq.defines.is_empty() {
+            continue;
+        }
+        let members = defining(eq);
+        let patterns: Vec<latex::Math> = members.iter().map(|(_, m)| m.clone()).collect();
+        let reading = match notation::read(&eq.latex, &table, &patterns, &decls, &sigs) {
+            Ok(r) => r,
+            Err(u) => {
+                let col = latex::column(&eq.latex, u.span.start);
+                eq.unread = Some(format!("cannot read column {col}: {}", u.message));
+                return None;
+            }
+        };
+        // Each defining chain, read from its body on, in the order of `members`.
+        let bodies: Vec<String> = reading
+            .parts
+            .iter()
+            .filter(|p| p.defines.is_some())
+            .filter_map(|p| p.routes.first()?.first().map(|m| m.text.clone()))
+            .collect();
+        if bodies.len() != members.len() {
+            eq.unread = Some("a definition of this equation cannot be read".to_owned());
+            return None;
+        }
+        for ((key, member), body) in members.iter().zip(bodies) {
+            let Some(s) = symbols.get(key) else { continue };
+            let formal: String = formal_of(member, s.rank).into_iter().collect();
+            let head = if formal.is_empty() {
+                s.name.clone()
+            } else {
+                format!("{}_{formal}", s.name)
+            };
+            texts.insert(key.clone(), (format!("{head} = {body}"), eq.id.clone()));
+        }
+    }
+    // In an order where each definition uses only those above it.
+    let mut define_lines: Vec<(String, String)> = Vec::new();
+    let mut placed: BTreeSet<Key> = BTreeSet::new();
+    fn place(
+        key: &Key,
+        chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+        texts: &BTreeMap<Key, (String, String)>,
+        placed: &mut BTreeSet<Key>,
+        out: &mut Vec<(String, String)>,
+    ) {
+        if !placed.insert(key.clone()) {
+            return;
+        }
+        if let Some((_, body)) = chosen.get(key) {
+            for k in body {
+                place(k, chosen, texts, placed, out);
+            }
+        }
+        if let Some(t) = texts.get(key) {
+            out.push(t.clone());
+        }
+    }
+    for key in texts.keys() {
+        place(key, &chosen, &texts, &mut placed, &mut define_lines);
+    }
+    Some(render(Render {
+        label,
+        equations,
+        symbols: &symbols,
+        order: &order,
+        defined: &defined,
+        entries: &entries,
+        define_lines: &define_lines,
+        dimension,
+        normal,
+        position: position.as_deref(),
+        unnumbered,
+        with_slots: &with_slots,
+    }))
+}
+
+struct Render<'a> {
+    label: &'a str,
+    equations: &'a [Equation],
+    symbols: &'a BTreeMap<Key, Symbol>,
+    order: &'a [Key],
+    defined: &'a BTreeMap<Key, String>,
+    entries: &'a [(String, String)],
+    define_lines: &'a [(String, String)],
+    dimension: usize,
+    normal: Option<&'a str>,
+    position: Option<&'a str>,
+    unnumbered: usize,
+    with_slots: &'a dyn Fn(&Symbol) -> String,
+}
+
+/// The file's text.
+fn render(r: Render<'_>) -> String {
+    let mut out = String::new();
+    let todo: Vec<&Equation> = r.equations.iter().filter(|e| e.unread.is_some()).collect();
+    out.push_str(&format!(
+        "# Drafted by `cosserat-check draft` from {}.\n",
+        comment(r.label)
+    ));
+    out.push_str(&format!(
+        "# {} numbered equations: {} claims, {} to complete (below); {} displays without a number not drafted.\n",
+        r.equations.len(),
+        r.equations.len() - todo.len(),
+        todo.len(),
+        r.unnumbered
+    ));
+    out.push_str(
+        "# Conventions of the draft: a subscript of two or more characters, or a letter that\n",
+    );
+    out.push_str(
+        "# occurs more than once in an equation's subscripts, holds index slots; a one-letter\n",
+    );
+    out.push_str(
+        "# subscript met once completes a scalar's name (R_g); a symbol first seen alone on the\n",
+    );
+    out.push_str(
+        "# left of an equation is defined by it. Check each reading before trusting a verdict.\n",
+    );
+    if !todo.is_empty() {
+        out.push_str("#\n# To complete:\n");
+        for e in &todo {
+            out.push_str(&format!(
+                "# - {} (line {}): {}\n",
+                e.id,
+                e.line,
+                comment(e.unread.as_deref().unwrap_or(""))
+            ));
+        }
+    }
+    out.push_str(&format!("section = \"{}\"\n", "1"));
+    out.push_str(&format!(
+        "title = {}\n",
+        toml_string(&format!("drafted from {}", r.label))
+    ));
+    out.push_str(&format!("dimension = {}\n", r.dimension));
+    if let Some(n) = r.normal {
+        out.push_str(&format!("normal = {}\n", toml_string(n)));
+    }
+    if let Some(p) = r.position {
+        out.push_str(&format!("position = {}\n", toml_string(p)));
+    }
+    let declared: Vec<&Symbol> = r
+        .order
+        .iter()
+        .filter(|k| !r.defined.contains_key(*k))
+        .map(|k| &r.symbols[k])
+        .filter(|s| !s.component)
+        .collect();
+    let list = |items: Vec<String>| {
+        items
+            .iter()
+            .map(|s| toml_string(s))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let fields: Vec<String> = declared
+        .iter()
+        .filter(|s| s.field)
+        .map(|s| (r.with_slots)(s))
+        .collect();
+    let tensors: Vec<String> = declared
+        .iter()
+        .filter(|s| !s.field && s.rank > 0)
+        .map(|s| (r.with_slots)(s))
+        .collect();
+    let scalars: Vec<String> = declared
+        .iter()
+        .filter(|s| !s.field && s.rank == 0)
+        .map(|s| s.name.clone())
+        .collect();
+    if !fields.is_empty() {
+        out.push_str(&format!("fields = [{}]\n", list(fields)));
+    }
+    if !tensors.is_empty() {
+        out.push_str(&format!("tensors = [{}]\n", list(tensors)));
+    }
+    if !scalars.is_empty() {
+        out.push_str(&format!("scalars = [{}]\n", list(scalars)));
+    }
+    if !r.define_lines.is_empty() {
+        out.push_str("define = [\n");
+        for (text, id) in r.define_lines {
+            out.push_str(&format!("  {},  # from {id}\n", toml_string(text)));
+        }
+        out.push_str("]\n");
+    }
+    if !r.entries.is_empty() {
+        out.push_str("\n[notation]\n");
+        for (key, value) in r.entries {
+            out.push_str(&format!("{} = {}\n", toml_string(key), toml_string(value)));
+        }
+    }
+    // Which claim defines each symbol, for `uses`.
+    let mut definer: BTreeMap<&Key, &str> = BTreeMap::new();
+    for e in r.equations.iter().filter(|e| e.unread.is_none()) {
+        for (k, _) in &e.defines {
+            definer.insert(k, &e.id);
+        }
+    }
+    for e in r.equations {
+        out.push('\n');
+        let mut table = format!(
+            "[[claim]]\nid = \"{}\"\nprinted = {}\n",
+            e.id,
+            toml_string(&e.latex)
+        );
+        let uses: BTreeSet<&str> = e
+            .reads
+            .iter()
+            .filter_map(|k| definer.get(k).copied())
+            .filter(|id| *id != e.id)
+            .collect();
+        if !uses.is_empty() {
+            table.push_str(&format!(
+                "uses = [{}]\n",
+                uses.iter()
+                    .map(|u| format!("\"{u}\""))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        if e.unread.is_some() {
+            out.push_str(&format!(
+                "# To complete: equation ({}), line {}.\n",
+                comment(&e.number),
+                e.line
+            ));
+            for line in table.lines() {
+                out.push_str(&format!("# {line}\n"));
+            }
+        } else {
+            out.push_str(&table);
+        }
+    }
+    out
+}
+
+/// `text` as a TOML string: literal when it can be, else basic with escapes.
+fn toml_string(text: &str) -> String {
+    if !text.contains('\'') && !text.chars().any(char::is_control) {
+        return format!("'{text}'");
+    }
+    let mut out = String::from("\"");
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if c.is_control() => out.push_str(&format!("\\u{:04X}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// `text` on one comment line: control characters (a newline would end the comment)
+/// shown as spaces.
+fn comment(text: &str) -> String {
+    text.chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_definition_and_an_identity_from_markdown() {
+        let source = "$$P = \\sigma_{ij}\\Gamma_{ij} + \\mu_{ij}K_{ij} \\quad (3)$$\n\nText.\n\n$$P = \\Gamma_{ij}\\sigma_{ij} + K_{ij}\\mu_{ij} \\quad (4)$$\n";
+        let d = draft("paper.md", source, &Options::default(), &BTreeMap::new());
+        assert_eq!((d.equations, d.claims), (2, 2), "{}", d.toml);
+        assert!(
+            d.toml
+                .contains("'P = sigma_ij Gamma_ij + mu_ij K_ij',  # from eq3"),
+            "{}",
+            d.toml
+        );
+        assert!(d.toml.contains("uses = [\"eq3\"]"), "{}", d.toml);
+        let f = crate::derivation::load_str("d.toml", &d.toml).unwrap();
+        assert_eq!(f.claims.len(), 2);
+    }
+
+    #[test]
+    fn what_cannot_be_read_is_kept_to_complete() {
+        let source = "$$a = \\frobnicate{b} \\quad (1)$$\n$$x' = \\text{broken (2)$$";
+        let d = draft("p.tex", source, &Options::default(), &BTreeMap::new());
+        assert_eq!(d.equations, 2);
+        assert_eq!(d.claims, 0, "{}", d.toml);
+        assert!(d.toml.contains("# - eq1 (line 1): "), "{}", d.toml);
+        assert!(d.toml.contains("# [[claim]]\n# id = \"eq1\""), "{}", d.toml);
+        crate::derivation::load_str("d.toml", &d.toml).unwrap();
+    }
+
+    #[test]
+    fn hostile_text_stays_inside_its_strings_and_comments() {
+        let source = "$$a = b \\quad (1)$$\n$$x = '''\n[[claim]]\nid = \"evil\" \\quad (2)$$";
+        let d = draft(
+            "p\nwith [[claim]] newline.tex",
+            source,
+            &Options::default(),
+            &BTreeMap::new(),
+        );
+        let f = crate::derivation::load_str("d.toml", &d.toml).unwrap();
+        assert!(f.claims.iter().all(|c| c.id != "evil"), "{}", d.toml);
+        // The label's newline is a space in the header comment.
+        assert!(d.toml.starts_with(
+            "# Drafted by `cosserat-check draft` from p with [[claim]] newline.tex.\n"
+        ));
+    }
+}

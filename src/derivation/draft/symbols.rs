@@ -1,0 +1,284 @@
+//! What the printed symbols of a paper are: from every occurrence, the declarations a
+//! draft needs (tensors with their index slots, scalars, fields where a comma
+//! derivative appears) and, for a symbol with a label, an accent or primes, a readable
+//! name for its notation entry (`v_i^{(2,1)c}` → `v21c`, `\dot{\Gamma}` → `Gammadot`).
+//!
+//! Conventions of the draft, stated in the file it writes:
+//! - a subscript of two or more characters, or of one letter that occurs more than once
+//!   in the equation's subscripts, holds index slots (`\sigma_{ij}`, `n_i` in
+//!   `\ell_i = R_g n_i`); digits are components (`\sigma_{12}`);
+//! - a one-letter subscript that occurs once completes a scalar's name (`R_g`, `f_r`);
+//! - δ_{ij}, e_{ijk} and ε_{ijk} are Kronecker's and Levi-Civita's symbols.
+
+use crate::lang::latex::{Atom, Math, MathKind};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// One printed symbol, as a draft declares it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Symbol {
+    /// The name in the language (`sigma`, `v21c`, `R_g`).
+    pub name: String,
+    /// Index slots (0 for a scalar).
+    pub rank: usize,
+    /// A comma derivative of it occurs: a field of the position.
+    pub field: bool,
+    /// The printed symbol as a notation key, with its first occurrence's index letters.
+    pub key: (String, Vec<char>),
+    /// Whether it needs a notation entry: it cannot be read as written (a label, an
+    /// accent, primes, or a name the draft had to change).
+    pub entry: bool,
+    /// A component of a vector the paper declares (`u_1` beside `u_i`): read as written,
+    /// never declared.
+    pub component: bool,
+    /// Its comma derivatives as printed (`w_{i,m}^{c}`), each a notation key with its
+    /// reading (`wc_i,m`), for a symbol that needs an entry.
+    pub derivatives: BTreeSet<(String, String)>,
+}
+
+/// The identity of a printed symbol: everything but its index letters.
+pub type Key = String;
+
+/// Every symbol occurrence of one equation: (identity, the symbol), built-ins left out.
+pub fn occurrences(members: &[&Math], normal: Option<&str>) -> Vec<(Key, Symbol)> {
+    // A subscript letter is an index where two symbols share it (`n_i` in
+    // `\ell_i = R_g n_i`) or one side repeats it (`u_i u_i`).
+    let mut indices: BTreeSet<char> = BTreeSet::new();
+    let mut bases: BTreeMap<char, BTreeSet<String>> = BTreeMap::new();
+    let mut atoms = Vec::new();
+    for m in members {
+        let mut own = Vec::new();
+        atoms_of(m, &mut own);
+        let mut in_member: BTreeMap<char, usize> = BTreeMap::new();
+        for a in &own {
+            if let Some(sub) = &a.sub {
+                for c in sub.text.chars().filter(char::is_ascii_alphabetic) {
+                    bases.entry(c).or_default().insert(a.base.clone());
+                    *in_member.entry(c).or_default() += 1;
+                }
+            }
+        }
+        indices.extend(
+            in_member
+                .into_iter()
+                .filter(|&(_, n)| n > 1)
+                .map(|(c, _)| c),
+        );
+        atoms.extend(own);
+    }
+    indices.extend(
+        bases
+            .into_iter()
+            .filter(|(_, b)| b.len() > 1)
+            .map(|(c, _)| c),
+    );
+    atoms
+        .into_iter()
+        .filter_map(|a| symbol(a, &indices, normal))
+        .collect()
+}
+
+/// The atoms of `m`, in reading order.
+fn atoms_of<'m>(m: &'m Math, out: &mut Vec<&'m Atom>) {
+    match &m.kind {
+        MathKind::Number(_) => {}
+        MathKind::Atom(a) => out.push(a),
+        MathKind::Sum(terms) => terms.iter().for_each(|(_, t)| atoms_of(t, out)),
+        MathKind::Product(fs) | MathKind::Tuple(fs) => fs.iter().for_each(|f| atoms_of(f, out)),
+        MathKind::Quotient(a, b) | MathKind::Power(a, b) => {
+            atoms_of(a, out);
+            atoms_of(b, out);
+        }
+        MathKind::Partial { of, by } => {
+            atoms_of(of, out);
+            atoms_of(by, out);
+        }
+        MathKind::Sqrt(a) | MathKind::Average(a) | MathKind::Abs(a) | MathKind::Apply(_, a) => {
+            atoms_of(a, out)
+        }
+        MathKind::Matrix(rows) => rows.iter().flatten().for_each(|c| atoms_of(c, out)),
+    }
+}
+
+/// The symbol an atom is, or `None` for δ, ε and the normal.
+fn symbol(a: &Atom, indices: &BTreeSet<char>, normal: Option<&str>) -> Option<(Key, Symbol)> {
+    let base = a.base.trim_start_matches('\\');
+    let sub = a.sub.as_ref().map(|s| s.text.as_str()).unwrap_or("");
+    let (slots, derivative) = match sub.split_once(',') {
+        Some((s, d)) => (s, !d.is_empty()),
+        None => (sub, false),
+    };
+    let plain = a.accent.is_none() && a.sup.is_none() && a.primes == 0;
+    let slot_count = slots.chars().filter(|c| c.is_ascii_alphanumeric()).count();
+    if plain
+        && ((base == "delta" && slot_count == 2)
+            || (matches!(base, "e" | "varepsilon" | "epsilon") && slot_count == 3)
+            || normal == Some(base))
+    {
+        return None;
+    }
+    // A one-letter subscript met once completes the name (R_g), and so does one digit
+    // (J_2: a component `u_1` where the paper has a vector `u`, see `unique_names`);
+    // any other subscript holds index slots.
+    let one_letter = slots.len() == 1 && slots.chars().all(|c| c.is_ascii_alphanumeric());
+    let suffix = one_letter && !derivative && !slots.chars().any(|c| indices.contains(&c));
+    let mut name = String::from(base);
+    if let Some(acc) = &a.accent {
+        name.push_str(match acc.trim_start_matches('\\') {
+            "dot" => "dot",
+            "ddot" => "ddot",
+            "hat" | "widehat" => "hat",
+            "bar" | "overline" => "bar",
+            "tilde" | "widetilde" => "tilde",
+            "vec" => "vec",
+            _ => "bf",
+        });
+    }
+    if let Some(sup) = &a.sup {
+        name.extend(sup.text.chars().filter(char::is_ascii_alphanumeric));
+    }
+    name.push_str(&"p".repeat(a.primes));
+    let (rank, key_letters) = if suffix {
+        name = format!("{name}_{slots}");
+        (0, Vec::new())
+    } else {
+        (
+            slot_count,
+            slots.chars().filter(char::is_ascii_alphanumeric).collect(),
+        )
+    };
+    // Symbols of one name with different numbers of slots are different symbols.
+    let identity = format!(
+        "{}|{}|{}|{}|{}|{rank}",
+        a.accent.as_deref().unwrap_or(""),
+        a.base,
+        a.sup.as_ref().map(|s| s.text.as_str()).unwrap_or(""),
+        a.primes,
+        if suffix { slots } else { "" }
+    );
+    let key = (printed_key(a, suffix.then_some(slots)), key_letters.clone());
+    let mut derivatives = BTreeSet::new();
+    if derivative && !plain {
+        let whole = sub.replace(' ', "");
+        let mut k = printed_key(a, None);
+        k = k.replacen(&format!("_{{{}}}", slots), &format!("_{{{whole}}}"), 1);
+        let (own, by): (String, String) = match whole.split_once(',') {
+            Some((s, d)) => (s.to_owned(), d.to_owned()),
+            None => (whole.clone(), String::new()),
+        };
+        derivatives.insert((k, format!("{name}_{own},{by}")));
+    }
+    Some((
+        identity,
+        Symbol {
+            name,
+            rank,
+            field: derivative,
+            key,
+            entry: !plain,
+            component: false,
+            derivatives,
+        },
+    ))
+}
+
+/// The printed symbol without its derivative letters, as a notation key:
+/// `\dot{\Gamma}_{ij}^{(1)}'`.
+fn printed_key(a: &Atom, suffix: Option<&str>) -> String {
+    let mut s = match &a.accent {
+        Some(acc) => format!("{acc}{{{}}}", a.base),
+        None => a.base.clone(),
+    };
+    let slots = a
+        .sub
+        .as_ref()
+        .map(|sub| sub.text.split(',').next().unwrap_or("").to_owned())
+        .filter(|t| !t.is_empty());
+    if let Some(t) = suffix.map(str::to_owned).or(slots) {
+        s.push_str(&format!("_{{{t}}}"));
+    }
+    if let Some(sup) = &a.sup {
+        s.push_str(&format!("^{{{}}}", sup.text));
+    }
+    s.push_str(&"'".repeat(a.primes));
+    s
+}
+
+/// Names the language reserves: built-in symbols and functions.
+pub const RESERVED: &[&str] = &[
+    "delta",
+    "eps",
+    "avg",
+    "maxn",
+    "sqrt",
+    "abs",
+    "exp",
+    "log",
+    "sin",
+    "cos",
+    "tan",
+    "atan2",
+    "min",
+    "max",
+    "grad",
+    "variation",
+    "det",
+    "trace",
+    "inv",
+    "adj",
+    "solve",
+    "transpose",
+    "identity",
+    "vector",
+    "tensor",
+    "pi",
+    "d",
+];
+
+/// Makes every symbol's name unique and unreserved: a second symbol that would take a
+/// name gets a number after it. A `defined` symbol's name has no `_` (a definition's
+/// subscript is its index letters): `J_2 = …` defines `J2`, read through an entry.
+pub fn unique_names(symbols: &mut BTreeMap<Key, Symbol>, order: &[Key], defined: &BTreeSet<Key>) {
+    let mut taken: BTreeSet<String> = RESERVED.iter().map(|s| (*s).to_owned()).collect();
+    // `R_g` is read as `R` with index g where a tensor `R` is declared: such a scalar
+    // takes the name `Rg`, through a notation entry.
+    let tensors: BTreeSet<String> = symbols
+        .values()
+        .filter(|s| s.rank > 0)
+        .map(|s| s.name.clone())
+        .collect();
+    let vectors: BTreeSet<String> = symbols
+        .values()
+        .filter(|s| s.rank == 1)
+        .map(|s| s.name.clone())
+        .collect();
+    for (k, s) in symbols.iter_mut() {
+        if let Some((stem, sub)) = s.name.split_once('_') {
+            let digits = sub.chars().all(|c| c.is_ascii_digit());
+            if s.rank == 0 && digits && vectors.contains(stem) && !s.entry {
+                s.component = true;
+            } else if s.rank == 0 && (digits || tensors.contains(stem) || defined.contains(k)) {
+                // A scalar's name never ends in `_` and digits (that spells a
+                // component): `h_2` is `h2`.
+                s.name = format!("{stem}{sub}");
+                s.entry = true;
+            }
+        }
+    }
+    for k in order {
+        let Some(s) = symbols.get_mut(k) else {
+            continue;
+        };
+        let mut name = s.name.clone();
+        let mut n = 2;
+        while taken.contains(&name) {
+            // Before a name's subscript: `R_g` becomes `R2_g`, never `R_g2`.
+            name = match s.name.split_once('_') {
+                Some((stem, sub)) => format!("{stem}{n}_{sub}"),
+                None => format!("{}{n}", s.name),
+            };
+            n += 1;
+        }
+        taken.insert(name.clone());
+        s.name = name;
+    }
+}

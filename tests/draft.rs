@@ -1,0 +1,112 @@
+//! `draft`: a derivation file from a paper's LaTeX that `verify` accepts unchanged. On a
+//! textbook derivation with planted errors, every true equation holds and every planted
+//! error fails with no edit; on the paper's own Markdown, every drafted claim is decided
+//! without an input error, and what cannot be read is kept, commented, with its reason.
+
+use crate::common::{cli_error, run_cli};
+use cosserat_check::cli::{decide_all, RunError, Status};
+use cosserat_check::derivation::{load_str, Verdict};
+
+const PAPER: &str = "../shared/paper/sliding-and-rolling-dissipation-in-cosserat-plasticity.md";
+
+/// The draft of `args` (standard output), and what `verify` decides on it.
+fn drafted(args: &[&str]) -> (String, Vec<(String, Verdict)>) {
+    let mut all = vec!["draft"];
+    all.extend_from_slice(args);
+    let (status, toml) = run_cli(&all, false);
+    assert_eq!(status, Status::AsExpected, "{toml}");
+    let f = load_str("draft.toml", &toml).unwrap_or_else(|e| panic!("{e}\n{toml}"));
+    let rows = decide_all(std::slice::from_ref(&f), None).unwrap_or_else(|e| panic!("{e}"));
+    let verdicts = rows
+        .iter()
+        .map(|r| (r.claim.id.clone(), r.outcome.verdict()))
+        .collect();
+    (toml, verdicts)
+}
+
+#[test]
+fn a_textbook_derivation_is_right_with_no_edit_and_every_planted_error_fails() {
+    let (toml, verdicts) = drafted(&["tests/drafts/textbook.tex", "--normal", "n"]);
+    assert!(
+        toml.contains("# 14 numbered equations: 14 claims, 0 to complete"),
+        "{toml}"
+    );
+    assert!(
+        toml.contains("1 displays without a number not drafted"),
+        "{toml}"
+    );
+    let planted = ["eq5a", "eqE2", "eq8", "eq11"];
+    assert_eq!(verdicts.len(), 14);
+    for (id, v) in &verdicts {
+        let want = if planted.contains(&id.as_str()) {
+            Verdict::Fails
+        } else {
+            Verdict::Holds
+        };
+        assert_eq!(*v, want, "{id}\n{toml}");
+    }
+    // Definitions from equations, in an order the loader reads.
+    assert!(
+        toml.contains("'p = (1 / 3) sigma_kk',  # from eq1"),
+        "{toml}"
+    );
+    assert!(
+        toml.contains("'J2 = (1 / 2) s_ij s_ij',  # from eq4"),
+        "{toml}"
+    );
+    assert!(toml.contains("'J_{2}' = 'J2'"), "{toml}");
+}
+
+#[test]
+fn the_papers_markdown_drafts_into_a_file_verify_accepts() {
+    let (toml, verdicts) = drafted(&[PAPER, "--normal", "n"]);
+    // A floor, as for mutation kills: fewer drafted claims is a regression.
+    assert!(verdicts.len() >= 40, "{} claims\n{toml}", verdicts.len());
+    assert!(toml.contains("# 62 numbered equations: "), "{toml}");
+    // The printed error of (26) is flagged.
+    assert!(verdicts.contains(&("eq26".to_owned(), Verdict::Fails)));
+    // What is not drafted is kept, commented, with its line and reason.
+    assert!(
+        toml.contains(
+            "# - eq4 (line 88): cannot read column 30: a subscript on a bracketed expression"
+        ),
+        "{toml}"
+    );
+    assert!(toml.contains("# [[claim]]\n# id = \"eq4\""), "{toml}");
+    // Deterministic.
+    let (again, _) = drafted(&[PAPER, "--normal", "n"]);
+    assert_eq!(toml, again);
+}
+
+#[test]
+fn hostile_latex_stays_data_and_bad_input_is_located() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/draft-test");
+    std::fs::create_dir_all(&dir).unwrap();
+    // Quotes, a TOML table header, a newline and a control character inside displays;
+    // unclosed environments at the end.
+    let hostile = dir.join("hostile.tex");
+    std::fs::write(
+        &hostile,
+        "$$a = b''' \\quad (1)$$\n\\begin{equation}\nx = \"y\\\"\n[[claim]]\nid = \"evil\"\n\\end{equation}\n$$\u{7}c = d (3)$$\n\\begin{align} q &= \\input{/etc/passwd} \\\\",
+    )
+    .unwrap();
+    let path = hostile.to_str().unwrap();
+    let (status, toml) = run_cli(&["draft", path], false);
+    assert_eq!(status, Status::AsExpected);
+    let f = load_str("d.toml", &toml).unwrap_or_else(|e| panic!("{e}\n{toml}"));
+    assert!(f.claims.iter().all(|c| c.id != "evil"), "{toml}");
+    assert!(toml.lines().all(|l| !l.contains('\u{7}')), "{toml}");
+    // `--out` never replaces the paper, and a non-UTF-8 paper is located.
+    let before = std::fs::read(&hostile).unwrap();
+    let e = cli_error(&["draft", path, "--out", path]);
+    assert!(matches!(e, RunError::Input(_)), "{e}");
+    assert_eq!(std::fs::read(&hostile).unwrap(), before);
+    let latin1 = dir.join("latin1.tex");
+    std::fs::write(&latin1, b"$$a = b (1)$$\n\n$$c = \xe9 (2)$$").unwrap();
+    let e = cli_error(&["draft", latin1.to_str().unwrap()]).to_string();
+    assert!(e.contains("latin1.tex:3:7: not UTF-8 text"), "{e}");
+    let e = cli_error(&["draft", path, "--normal", "\\n"]);
+    assert!(matches!(e, RunError::Input(_)), "{e}");
+    let e = cli_error(&["draft", "/dev/zero"]);
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+}
