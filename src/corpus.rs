@@ -51,9 +51,14 @@ pub const FILES: &[(&str, &str)] = &[
     ),
 ];
 
-/// The examples of the guide (`derivations/examples/*.toml`), embedded so that
-/// `cosserat-check examples --out DIR` can write them from an installed binary.
+/// The examples of the guide (`derivations/examples/*.toml`, and the LaTeX that `draft`
+/// is shown on), embedded so that `cosserat-check examples --out DIR` can write them
+/// from an installed binary.
 pub const EXAMPLES: &[(&str, &str)] = &[
+    (
+        "derivations/examples/stress-invariants.tex",
+        include_str!("../derivations/examples/stress-invariants.tex"),
+    ),
     (
         "derivations/examples/balance.toml",
         include_str!("../derivations/examples/balance.toml"),

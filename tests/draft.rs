@@ -26,7 +26,11 @@ fn drafted(args: &[&str]) -> (String, Vec<(String, Verdict)>) {
 
 #[test]
 fn a_textbook_derivation_is_right_with_no_edit_and_every_planted_error_fails() {
-    let (toml, verdicts) = drafted(&["tests/drafts/textbook.tex", "--normal", "n"]);
+    let (toml, verdicts) = drafted(&[
+        "derivations/examples/stress-invariants.tex",
+        "--normal",
+        "n",
+    ]);
     assert!(
         toml.contains("# 14 numbered equations: 14 claims, 0 to complete"),
         "{toml}"

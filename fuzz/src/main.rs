@@ -1,6 +1,6 @@
 //! A mutational fuzzer for cosserat-check's input side: the derivation-file reader, the
-//! expression parser, the index validator, and the exact decision (the strategies that
-//! run in bounded time per input). No nightly toolchain or sanitizer runtime is needed.
+//! expression parser, the index validator, the exact decision (the strategies that
+//! run in bounded time per input), and `draft`, whose file must always load. No nightly toolchain or sanitizer runtime is needed.
 //!
 //! Usage: `cargo run --release -- SECONDS [SEED]` from `fuzz/`. Seeds are every derivation
 //! file of the repository (the paper, the examples, the bad-input corpus). Each input is
@@ -9,7 +9,8 @@
 //! more than `SLOW` seconds is a hang candidate (written to `slow/`). The run prints its
 //! statistics and exits 1 when it found anything.
 
-use cosserat_check::derivation::{load_str, Strategy};
+use cosserat_check::decide::random::Rng;
+use cosserat_check::derivation::{draft, load_str, Strategy};
 use cosserat_check::check::decide;
 use cosserat_check::decide::finding::Finding;
 use cosserat_check::check::probe::curve_values;
@@ -200,27 +201,19 @@ const DICTIONARY: &[&str] = &[
     "given = [\"tau > 0\", \"s < 0\"]\n",
     "given = [\"x >= 0\"]\n",
     "assume = [\"sigma_ij = s delta_ij - f_r s (delta_i1 delta_j2 + delta_i2 delta_j1)\"]\n",
+    "$$",
+    " \\quad (1)$$\n",
+    "\\begin{equation}",
+    "\\end{equation}",
+    "\\begin{align}",
+    "\\end{align}",
+    "\\tag{",
+    "\\nonumber",
+    " &= ",
+    "\\[",
+    "\\]",
+    "%",
 ];
-
-/// xorshift64*: deterministic given the seed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        if n == 0 {
-            0
-        } else {
-            (self.next() % n as u64) as usize
-        }
-    }
-}
 
 fn seeds(root: &Path) -> Vec<Vec<u8>> {
     let mut out = Vec::new();
@@ -235,7 +228,7 @@ fn seeds(root: &Path) -> Vec<Vec<u8>> {
                 entries.filter_map(Result::ok).map(|e| e.path()).collect();
             paths.sort();
             for p in paths {
-                if p.extension().is_some_and(|x| x == "toml") {
+                if p.extension().is_some_and(|x| x == "toml" || x == "tex") {
                     if let Ok(b) = std::fs::read(&p) {
                         out.push(b);
                     }
@@ -253,7 +246,7 @@ fn mutate(rng: &mut Rng, seeds: &[Vec<u8>]) -> Vec<u8> {
         match rng.below(6) {
             0 if !data.is_empty() => {
                 let k = rng.below(data.len());
-                data[k] = rng.next() as u8;
+                data[k] = rng.next_u64() as u8;
             }
             1 if !data.is_empty() => {
                 let len = 1 + rng.below(16.min(data.len()));
@@ -292,6 +285,16 @@ fn exercise(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
+    // A draft of any text loads (the promise of `draft`; its claims' decisions are the
+    // command line's loop).
+    let options = draft::Options {
+        dimension: None,
+        normal: Some("n".to_owned()),
+    };
+    let d = draft::draft("fuzz.tex", text, &options, &Default::default());
+    if let Err(e) = load_str("draft.toml", &d.toml) {
+        panic!("a draft does not load: {e}");
+    }
     let Ok(file) = load_str("fuzz.toml", text) else {
         return;
     };
@@ -357,7 +360,7 @@ fn main() {
     std::panic::set_hook(Box::new(|_| {}));
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     let (crashes, slow) = (here.join("crashes"), here.join("slow"));
-    let mut rng = Rng(seed.max(1));
+    let mut rng = Rng::new(seed);
     let started = Instant::now();
     let (mut runs, mut loaded, mut found) = (0u64, 0u64, 0u64);
     let mut last_report = Instant::now();
