@@ -9,14 +9,14 @@
 //! more than `SLOW` seconds is a hang candidate (written to `slow/`). The run prints its
 //! statistics and exits 1 when it found anything.
 
+use cosserat_check::check::decide;
+use cosserat_check::check::probe::curve_values;
+use cosserat_check::check::transcription::transcribe;
+use cosserat_check::decide::finding::Finding;
 use cosserat_check::decide::random::Rng;
 use cosserat_check::derivation::{draft, load_str, Strategy};
-use cosserat_check::check::decide;
-use cosserat_check::decide::finding::Finding;
-use cosserat_check::check::probe::curve_values;
 use cosserat_check::eval::quadrature::{Level, Quadrature};
 use cosserat_check::eval::tape::Tape;
-use cosserat_check::check::transcription::transcribe;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -318,7 +318,10 @@ fn exercise(data: &[u8]) {
                 }
                 // Every proof the decision made is checked again from its statement.
                 for p in o.proofs() {
-                    let again = cosserat_check::kernel::check::check(p.statement().clone(), p.fact().clone());
+                    let again = cosserat_check::kernel::check::check(
+                        p.statement().clone(),
+                        p.fact().clone(),
+                    );
                     assert!(again.is_ok(), "a proof the kernel does not accept again");
                 }
             }

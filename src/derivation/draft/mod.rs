@@ -71,7 +71,11 @@ pub fn draft(
     options: &Options,
     refused: &BTreeMap<String, String>,
 ) -> Draft {
-    let (found, unnumbered) = displays::numbered(source);
+    let (mut found, unnumbered) = displays::numbered(source);
+    // Past the most a draft takes, equations are counted in the header, not drafted.
+    let beyond = found.len().saturating_sub(MAX_EQUATIONS);
+    found.truncate(MAX_EQUATIONS);
+    let unnumbered = (unnumbered, beyond);
     let dimension = options
         .dimension
         .or_else(|| dimension_in(source))
@@ -80,7 +84,6 @@ pub fn draft(
     let mut seen_ids = BTreeSet::new();
     let mut equations: Vec<Equation> = found
         .into_iter()
-        .take(MAX_EQUATIONS)
         .map(|d| {
             let mut id = format!(
                 "eq{}",
@@ -120,7 +123,7 @@ pub fn draft(
                     toml,
                     equations: equations.len(),
                     claims,
-                    unnumbered,
+                    unnumbered: unnumbered.0,
                 };
             }
             Err(e) => {
@@ -142,7 +145,7 @@ pub fn draft(
         toml,
         equations: equations.len(),
         claims: 0,
-        unnumbered,
+        unnumbered: unnumbered.0,
     }
 }
 
@@ -193,7 +196,14 @@ fn line_owners(toml: &str) -> BTreeMap<usize, String> {
             // The table's first line belongs to it too.
             out.insert(n - 1, id.to_owned());
         }
-        if let Some(id) = line.rsplit_once("# from ").map(|(_, id)| id.trim()) {
+        // A definition's line (`  'X = …',  # from eqN`); a printed string that says
+        // "# from" is not one.
+        let definition = line.starts_with("  ") && !line.starts_with("  #");
+        if let Some(id) = line
+            .rsplit_once("# from ")
+            .filter(|_| definition)
+            .map(|(_, id)| id.trim())
+        {
             out.insert(n, id.to_owned());
         } else if let Some(id) = &current {
             out.insert(n, id.clone());
@@ -303,7 +313,7 @@ fn write(
     equations: &mut [Equation],
     dimension: usize,
     normal: Option<&str>,
-    unnumbered: usize,
+    unnumbered: (usize, usize),
 ) -> Option<String> {
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
@@ -564,7 +574,8 @@ struct Render<'a> {
     dimension: usize,
     normal: Option<&'a str>,
     position: Option<&'a str>,
-    unnumbered: usize,
+    /// Displays without a number, and numbered equations past [`MAX_EQUATIONS`].
+    unnumbered: (usize, usize),
     with_slots: &'a dyn Fn(&Symbol) -> String,
 }
 
@@ -581,8 +592,14 @@ fn render(r: Render<'_>) -> String {
         r.equations.len(),
         r.equations.len() - todo.len(),
         todo.len(),
-        r.unnumbered
+        r.unnumbered.0
     ));
+    if r.unnumbered.1 > 0 {
+        out.push_str(&format!(
+            "# {} numbered equations after the first {MAX_EQUATIONS} not drafted (the most one draft takes).\n",
+            r.unnumbered.1
+        ));
+    }
     out.push_str(
         "# Conventions of the draft: a subscript of two or more characters, or a letter that\n",
     );
