@@ -1097,9 +1097,11 @@ fn draft(a: &DraftArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
     Ok(Status::AsExpected)
 }
 
-/// A draft whose every claim is decided without an input error: a claim (or the
-/// definition it states) that the decision refuses goes under "To complete" with the
-/// reason, and the draft is written again.
+/// A draft whose every claim is decided without an input error: a claim whose exact
+/// decision asks for sampling (a square root of 2, π, `|…|`, a cosine) is decided with
+/// `strategy = "numeric"`; a claim (or the definition it states) that the decision
+/// refuses otherwise goes under "To complete" with the reason, and the draft is written
+/// again.
 fn draft_decided(
     label: &str,
     source: &str,
@@ -1107,10 +1109,11 @@ fn draft_decided(
 ) -> Result<crate::derivation::draft::Draft, RunError> {
     use crate::derivation::draft;
     let mut refused: BTreeMap<String, String> = BTreeMap::new();
+    let mut numeric: std::collections::BTreeSet<String> = std::collections::BTreeSet::new();
     // Past it, claims are undecided (time limit), never refused: the draft ends.
     let deadline = Instant::now() + DRAFT_RUN_LIMIT;
     loop {
-        let drafted = draft::draft(label, source, options, &refused);
+        let drafted = draft::draft(label, source, options, (&refused, &numeric));
         let file = crate::derivation::load_str("draft.toml", &drafted.toml)
             .map_err(|e| RunError::Internal(format!("a draft was refused: {e}")))?;
         let run = Run {
@@ -1119,7 +1122,7 @@ fn draft_decided(
             deadline: Some(deadline),
         };
         let claims: Vec<_> = file.claims.iter().collect();
-        let before = refused.len();
+        let before = (refused.len(), numeric.len());
         for (claim, r) in
             claims
                 .iter()
@@ -1127,6 +1130,14 @@ fn draft_decided(
         {
             let (id, why) = match r {
                 Some(Ok(_)) => continue,
+                Some(Err(e))
+                    if e.help
+                        .as_deref()
+                        .is_some_and(|h| h.contains("strategy = \"numeric\""))
+                        && numeric.insert(claim.id.clone()) =>
+                {
+                    continue
+                }
                 Some(Err(e)) => (
                     draft::owner(&drafted.toml, e.line).unwrap_or_else(|| claim.id.clone()),
                     e.message,
@@ -1135,7 +1146,7 @@ fn draft_decided(
             };
             refused.entry(id).or_insert(why);
         }
-        if refused.len() == before {
+        if (refused.len(), numeric.len()) == before {
             return Ok(drafted);
         }
     }

@@ -291,7 +291,8 @@ fn exercise(data: &[u8]) {
         dimension: None,
         normal: Some("n".to_owned()),
     };
-    let d = draft::draft("fuzz.tex", text, &options, &Default::default());
+    let none = (&Default::default(), &Default::default());
+    let d = draft::draft("fuzz.tex", text, &options, none);
     if let Err(e) = load_str("draft.toml", &d.toml) {
         panic!("a draft does not load: {e}");
     }

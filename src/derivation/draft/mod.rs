@@ -57,6 +57,8 @@ struct Equation {
     latex: String,
     /// Why it is not a claim, if it is not.
     unread: Option<String>,
+    /// Decided by sampling (its exact decision asked for it).
+    numeric: bool,
     /// The symbols it reads (identities).
     reads: BTreeSet<Key>,
     /// The symbols it defines: (identity, index letters, the definition's text).
@@ -64,12 +66,13 @@ struct Equation {
 }
 
 /// Drafts a derivation file from `source` (named `label` in the file's header); the
-/// claims `refused` names (id → why) are left to complete.
+/// claims `refused` names (id → why) are left to complete, and those `numeric` names are
+/// decided by sampling.
 pub fn draft(
     label: &str,
     source: &str,
     options: &Options,
-    refused: &BTreeMap<String, String>,
+    (refused, numeric): (&BTreeMap<String, String>, &BTreeSet<String>),
 ) -> Draft {
     let (mut found, unnumbered) = displays::numbered(source);
     // Past the most a draft takes, equations are counted in the header, not drafted.
@@ -100,6 +103,7 @@ pub fn draft(
                 unread.get_or_insert_with(|| why.clone());
             }
             Equation {
+                numeric: numeric.contains(&id),
                 id,
                 number: d.number,
                 line: d.line,
@@ -700,6 +704,9 @@ fn render(r: Render<'_>) -> String {
             e.id,
             toml_string(&e.latex)
         );
+        if e.numeric {
+            table.push_str("strategy = \"numeric\"\n");
+        }
         let uses: BTreeSet<&str> = e
             .reads
             .iter()
@@ -764,7 +771,12 @@ mod tests {
     #[test]
     fn a_definition_and_an_identity_from_markdown() {
         let source = "$$P = \\sigma_{ij}\\Gamma_{ij} + \\mu_{ij}K_{ij} \\quad (3)$$\n\nText.\n\n$$P = \\Gamma_{ij}\\sigma_{ij} + K_{ij}\\mu_{ij} \\quad (4)$$\n";
-        let d = draft("paper.md", source, &Options::default(), &BTreeMap::new());
+        let d = draft(
+            "paper.md",
+            source,
+            &Options::default(),
+            (&BTreeMap::new(), &BTreeSet::new()),
+        );
         assert_eq!((d.equations, d.claims), (2, 2), "{}", d.toml);
         assert!(
             d.toml
@@ -780,7 +792,12 @@ mod tests {
     #[test]
     fn what_cannot_be_read_is_kept_to_complete() {
         let source = "$$a = \\frobnicate{b} \\quad (1)$$\n$$x' = \\text{broken (2)$$";
-        let d = draft("p.tex", source, &Options::default(), &BTreeMap::new());
+        let d = draft(
+            "p.tex",
+            source,
+            &Options::default(),
+            (&BTreeMap::new(), &BTreeSet::new()),
+        );
         assert_eq!(d.equations, 2);
         assert_eq!(d.claims, 0, "{}", d.toml);
         assert!(d.toml.contains("# - eq1 (line 1): "), "{}", d.toml);
@@ -795,7 +812,7 @@ mod tests {
             "p\nwith [[claim]] newline.tex",
             source,
             &Options::default(),
-            &BTreeMap::new(),
+            (&BTreeMap::new(), &BTreeSet::new()),
         );
         let f = crate::derivation::load_str("d.toml", &d.toml).unwrap();
         assert!(f.claims.iter().all(|c| c.id != "evil"), "{}", d.toml);
