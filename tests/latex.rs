@@ -43,16 +43,9 @@ fn compile(args: &[&str], name: &str) {
     // What a reader sees names no macro, except one the report quotes on purpose as
     // code (`\texttt{\textbackslash overline}` in a reading's reason): every other
     // command was typeset, none printed.
-    if Command::new("pdftotext").arg("-v").output().is_err() {
-        crate::common::tool_missing("pdftotext (apt-get install poppler-utils)");
+    let Some(txt) = pdf_text(&dir, name) else {
         return;
-    }
-    let txt = Command::new("pdftotext")
-        .args([&format!("{name}.pdf"), "-"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    let txt = String::from_utf8_lossy(&txt.stdout);
+    };
     let quoted = quoted_macros(&String::from_utf8_lossy(&out.stdout));
     let leaked: Vec<String> = macro_names(&txt)
         .into_iter()
@@ -62,6 +55,21 @@ fn compile(args: &[&str], name: &str) {
         leaked.is_empty(),
         "{name}: macro names in the text: {leaked:?}"
     );
+}
+
+/// The text of `dir/name.pdf` as a reader sees it (`pdftotext`), or `None`, said, when
+/// the tool is missing.
+fn pdf_text(dir: &Path, name: &str) -> Option<String> {
+    if Command::new("pdftotext").arg("-v").output().is_err() {
+        crate::common::tool_missing("pdftotext (apt-get install poppler-utils)");
+        return None;
+    }
+    let txt = Command::new("pdftotext")
+        .args([&format!("{name}.pdf"), "-"])
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    Some(String::from_utf8_lossy(&txt.stdout).into_owned())
 }
 
 /// The names after a backslash in `text` (`\overline` gives `overline`).
@@ -175,16 +183,9 @@ fn a_hostile_report_reads_and_writes_nothing_and_shows_every_claim() {
             "{name}: {}",
             String::from_utf8_lossy(&compiled.stdout)
         );
-        if Command::new("pdftotext").arg("-v").output().is_err() {
-            crate::common::tool_missing("pdftotext (apt-get install poppler-utils)");
+        let Some(txt) = pdf_text(&dir, name) else {
             continue;
-        }
-        let txt = Command::new("pdftotext")
-            .args([&format!("{name}.pdf"), "-"])
-            .current_dir(&dir)
-            .output()
-            .unwrap();
-        let txt = String::from_utf8_lossy(&txt.stdout);
+        };
         assert!(
             !txt.contains("root:"),
             "{name}: the password file is in the PDF"

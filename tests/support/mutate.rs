@@ -314,9 +314,6 @@ pub fn parse_checked(
 }
 
 impl Edited for Check {
-    /// A copy with side `side` of chain `chain` replaced by `text`. The new side must
-    /// be well-formed and keep the free indices of the side it replaces (unless one of
-    /// them is the literal 0).
     fn with_side(
         &self,
         decls: &Decls,
