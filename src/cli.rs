@@ -1058,6 +1058,13 @@ fn draft(a: &DraftArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
         a.paper.display().to_string()
     };
     let bytes = crate::derivation::load::read_bounded(&a.paper)?;
+    if bytes.len() > crate::derivation::draft::MAX_SOURCE_BYTES {
+        return Err(RunError::Input(report::words::inert(&format!(
+            "error: cannot read {label}: larger than the {} MiB a draft reads (its file must stay within the {} MiB of a derivation file)",
+            crate::derivation::draft::MAX_SOURCE_BYTES >> 20,
+            crate::derivation::load::MAX_FILE_BYTES >> 20
+        ))));
+    }
     let source = String::from_utf8(bytes).map_err(|e| {
         let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
@@ -1067,9 +1074,11 @@ fn draft(a: &DraftArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
         )))
     })?;
     if let Some(n) = &a.normal {
-        if n.is_empty() || !n.chars().all(|c| c.is_ascii_alphabetic()) || n.len() > 32 {
+        let letter = n.len() == 1 && n.chars().all(|c| c.is_ascii_alphabetic());
+        let reserved = crate::derivation::draft::RESERVED.contains(&n.as_str());
+        if reserved || (!letter && !crate::lang::latex::GREEK.contains(&n.as_str())) {
             return Err(RunError::Input(format!(
-                "error: --normal {}: a letter or a Greek letter's name, such as n",
+                "error: --normal {}: a letter or a Greek letter's name, such as n, that the language does not reserve",
                 report::words::inert(n)
             )));
         }
@@ -1079,8 +1088,14 @@ fn draft(a: &DraftArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
         normal: a.normal.clone(),
     };
     let d = draft_decided(&label, &source, &options)?;
-    let inputs = [label.as_str()];
-    emit(&d.toml, &a.out, &inputs, out.stream)?;
+    // Standard input may be the file `--out` names (`draft - --out p.tex < p.tex`).
+    let inputs = [label.as_str(), "/dev/stdin"];
+    let inputs = if crate::derivation::load::is_stdin(&a.paper) {
+        &inputs[..]
+    } else {
+        &inputs[..1]
+    };
+    emit(&d.toml, &a.out, inputs, out.stream)?;
     let next = match &a.out {
         Some(p) if p.as_os_str() != "-" => format!("cosserat-check verify {}", p.display()),
         _ => "save it, then cosserat-check verify FILE".to_owned(),

@@ -24,20 +24,39 @@ pub struct Display {
 const ENVIRONMENTS: &[(&str, bool)] = &[
     ("equation", false),
     ("align", true),
+    ("flalign", true),
+    ("alignat", true),
     ("gather", true),
     ("multline", false),
     ("eqnarray", true),
 ];
 
+/// Regions that are not the paper's text: their displays are neither drafted nor
+/// counted (TeX comments are removed line by line as well).
+const DEAD: &[(&str, &str)] = &[
+    ("\\iffalse", "\\fi"),
+    ("\\begin{comment}", "\\end{comment}"),
+    ("\\begin{verbatim}", "\\end{verbatim}"),
+    ("\\begin{lstlisting}", "\\end{lstlisting}"),
+    ("\\begin{minted}", "\\end{minted}"),
+    ("<!--", "-->"),
+    ("```", "```"),
+    ("~~~", "~~~"),
+];
+
 /// Every numbered display of `text`, and how many displays carry no number.
 pub fn numbered(text: &str) -> (Vec<Display>, usize) {
-    let text = without_comments(text);
+    let text = live(text);
     let mut out = Vec::new();
     let mut unnumbered = 0;
     let mut counter = 0usize;
     let mut at = 0;
-    while let Some((start, kind)) = next_display(&text, at) {
-        let line = 1 + text[..start].matches('\n').count();
+    let mut scan = Scan::new(&text);
+    // Lines counted as the scan goes (from the start each time would be quadratic).
+    let (mut counted_to, mut line) = (0, 1);
+    while let Some((start, kind)) = scan.next(&text, at) {
+        line += text[counted_to..start].matches('\n').count();
+        counted_to = start;
         match kind {
             Kind::Dollars | Kind::Brackets => {
                 let (open, close) = if kind == Kind::Dollars {
@@ -73,7 +92,11 @@ pub fn numbered(text: &str) -> (Vec<Display>, usize) {
                 };
                 let open = format!("\\begin{{{full}}}");
                 let close = format!("\\end{{{full}}}");
-                let body_start = start + open.len();
+                let mut body_start = start + open.len();
+                // `alignat{2}`: the number of columns is no part of a row.
+                if name == "alignat" && text[body_start..].starts_with('{') {
+                    body_start += text[body_start..].find('}').map_or(0, |k| k + 1);
+                }
                 let Some(len) = text[body_start..].find(&close) else {
                     break;
                 };
@@ -114,7 +137,7 @@ pub fn numbered(text: &str) -> (Vec<Display>, usize) {
                     }
                     match pending.as_mut() {
                         Some(p) if starts_with_relation(&flat) => {
-                            p.latex = format!("{} {}", p.latex, flat.trim());
+                            p.latex = format!("{} {}", p.latex, without_spacing(&flat));
                             if number.is_some() {
                                 p.number = number.unwrap_or_default();
                             }
@@ -155,33 +178,65 @@ enum Kind {
     Environment(&'static str, bool),
 }
 
-/// The next display at or after `at`: where it starts, and what opens it.
-fn next_display(text: &str, at: usize) -> Option<(usize, Kind)> {
-    let mut best: Option<(usize, Kind)> = None;
-    let mut consider = |pos: Option<usize>, kind: Kind| {
-        if let Some(p) = pos {
-            if best.is_none_or(|(b, _)| p < b) {
-                best = Some((p, kind));
+/// The openings of displays, each found once and again only when the scan passes it
+/// (a search per opening and display would be quadratic in the number of displays).
+struct Scan {
+    openings: Vec<(String, Kind)>,
+    next: Vec<Option<usize>>,
+}
+
+impl Scan {
+    fn new(text: &str) -> Self {
+        let mut openings = vec![
+            ("$$".to_owned(), Kind::Dollars),
+            ("\\[".to_owned(), Kind::Brackets),
+        ];
+        for &(name, _) in ENVIRONMENTS {
+            openings.push((format!("\\begin{{{name}}}"), Kind::Environment(name, false)));
+            openings.push((format!("\\begin{{{name}*}}"), Kind::Environment(name, true)));
+        }
+        let next = openings
+            .iter()
+            .map(|(o, _)| text.find(o.as_str()))
+            .collect();
+        Scan { openings, next }
+    }
+
+    /// The next display at or after `at`: where it starts, and what opens it.
+    fn next(&mut self, text: &str, at: usize) -> Option<(usize, Kind)> {
+        let mut best: Option<(usize, Kind)> = None;
+        for (k, (open, kind)) in self.openings.iter().enumerate() {
+            if self.next[k].is_some_and(|p| p < at) {
+                self.next[k] = text[at..].find(open.as_str()).map(|q| q + at);
+            }
+            if let Some(p) = self.next[k] {
+                if best.is_none_or(|(b, _)| p < b) {
+                    best = Some((p, *kind));
+                }
             }
         }
-    };
-    let rest = &text[at..];
-    consider(rest.find("$$").map(|p| p + at), Kind::Dollars);
-    consider(rest.find("\\[").map(|p| p + at), Kind::Brackets);
-    for &(name, _) in ENVIRONMENTS {
-        for starred in [false, true] {
-            let open = if starred {
-                format!("\\begin{{{name}*}}")
-            } else {
-                format!("\\begin{{{name}}}")
-            };
-            consider(
-                rest.find(&open).map(|p| p + at),
-                Kind::Environment(name, starred),
-            );
-        }
+        best
     }
-    best
+}
+
+/// `text` without what is not the paper's text ([`DEAD`], TeX comments), line breaks
+/// kept so that lines are counted as in the source.
+pub fn live(text: &str) -> String {
+    let mut text = without_comments(text);
+    for (open, close) in DEAD {
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text.as_str();
+        while let Some(a) = rest.find(open) {
+            out.push_str(&rest[..a]);
+            let after = &rest[a + open.len()..];
+            let end = after.find(close).map_or(after.len(), |b| b + close.len());
+            out.extend(rest[a..a + open.len() + end].chars().filter(|&c| c == '\n'));
+            rest = &after[end..];
+        }
+        out.push_str(rest);
+        text = out;
+    }
+    text
 }
 
 /// `text` without its TeX comments (`%` to the end of the line, `\%` kept).
@@ -245,10 +300,12 @@ fn rows_of(body: &str) -> Vec<(usize, &str)> {
 
 /// A statement with its `\tag{N}` removed, and N.
 fn take_tag(body: &str) -> (String, Option<String>) {
-    let Some(start) = body.find("\\tag{") else {
-        return (body.to_owned(), None);
+    let (start, open) = match (body.find("\\tag{"), body.find("\\tag*{")) {
+        (Some(a), _) => (a, 5),
+        (None, Some(b)) => (b, 6),
+        (None, None) => return (body.to_owned(), None),
     };
-    let after = &body[start + 5..];
+    let after = &body[start + open..];
     let Some(end) = after.find('}') else {
         return (body.to_owned(), None);
     };
@@ -278,6 +335,15 @@ fn take_trailing_number(body: &str) -> (String, Option<String>) {
         return (body.to_owned(), None);
     }
     let mut before = inner[..open].trim_end();
+    // `a = 2 \cdot (3)`: after an operator, a bracketed number is a factor.
+    if [
+        "\\cdot", "\\times", "+", "-", "=", "/", "^", "_", "{", "(", "\\left", "\\frac",
+    ]
+    .iter()
+    .any(|op| before.ends_with(op))
+    {
+        return (body.to_owned(), None);
+    }
     // The spacing that separates the number from the statement.
     loop {
         let shorter = ["\\qquad", "\\quad", "\\;", "\\,", "~", "\\hfill"]
@@ -291,9 +357,13 @@ fn take_trailing_number(body: &str) -> (String, Option<String>) {
     (before.to_owned(), Some(number.to_owned()))
 }
 
-/// The statement without alignment marks, on one line.
+/// The statement without alignment marks and labels, on one line.
 fn flatten(body: &str) -> String {
     let mut s = body.to_owned();
+    while let Some(a) = s.find("\\label{") {
+        let end = s[a..].find('}').map_or(s.len(), |b| a + b + 1);
+        s.replace_range(a..end, " ");
+    }
     for env in ["aligned", "split", "gathered"] {
         s = s
             .replace(&format!("\\begin{{{env}}}"), " ")
@@ -317,10 +387,25 @@ fn flatten(body: &str) -> String {
     s.to_owned()
 }
 
+/// `s` without the spacing it starts with (`\quad + 1` → `+ 1`).
+fn without_spacing(s: &str) -> &str {
+    let mut s = s.trim_start();
+    while let Some(rest) = ["\\qquad", "\\quad", "\\;", "\\,", "\\!", "~"]
+        .iter()
+        .find_map(|sp| s.strip_prefix(sp))
+    {
+        s = rest.trim_start();
+    }
+    s
+}
+
+/// A row that continues the statement above it: it starts (after spacing) with a
+/// relation or a binary operator.
 fn starts_with_relation(s: &str) -> bool {
-    let s = s.trim_start();
+    let s = without_spacing(s);
     [
-        "=", "<", ">", "\\le", "\\ge", "\\leq", "\\geq", "\\approx", "\\equiv",
+        "=", "<", ">", "+", "-", "\\le", "\\ge", "\\leq", "\\geq", "\\approx", "\\equiv", "\\cdot",
+        "\\times", "\\pm", "\\mp",
     ]
     .iter()
     .any(|r| s.starts_with(r))

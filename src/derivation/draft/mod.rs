@@ -22,6 +22,7 @@ use super::notation::{self, Notation};
 use crate::lang::latex::{self, MathKind, ReadOptions};
 use crate::lang::{Decls, DefSig};
 use std::collections::{BTreeMap, BTreeSet};
+pub use symbols::RESERVED;
 use symbols::{Key, Symbol};
 
 /// What the command line sets.
@@ -46,6 +47,10 @@ pub struct Draft {
     pub unnumbered: usize,
 }
 
+/// The largest source a draft reads, in bytes: its file stays well within a derivation
+/// file's limit.
+pub const MAX_SOURCE_BYTES: usize = 1 << 20;
+
 /// The most equations one draft takes.
 pub const MAX_EQUATIONS: usize = 500;
 
@@ -61,6 +66,8 @@ struct Equation {
     numeric: bool,
     /// The symbols it reads (identities).
     reads: BTreeSet<Key>,
+    /// Their names in the file.
+    names: BTreeSet<String>,
     /// The symbols it defines: (identity, index letters, the definition's text).
     defines: Vec<(Key, String)>,
 }
@@ -110,6 +117,7 @@ pub fn draft(
                 latex: d.latex,
                 unread,
                 reads: BTreeSet::new(),
+                names: BTreeSet::new(),
                 defines: Vec::new(),
             }
         })
@@ -163,6 +171,17 @@ fn refuse_claims(toml: &str, e: &super::LoadError, equations: &mut [Equation]) -
     let mut moved = false;
     for d in ds {
         let Some(id) = owners.get(&d.line) else {
+            // A declaration the loader refuses (`'c_abcdefghijk'`): the claims that read
+            // the symbol it declares.
+            let Some(names) = declared_at(toml, d.line, d.col) else {
+                continue;
+            };
+            for eq in equations.iter_mut().filter(|q| q.unread.is_none()) {
+                if names.iter().any(|n| eq.names.contains(n)) {
+                    eq.unread = Some(d.message.clone());
+                    moved = true;
+                }
+            }
             continue;
         };
         if let Some(eq) = equations
@@ -174,6 +193,19 @@ fn refuse_claims(toml: &str, e: &super::LoadError, equations: &mut [Equation]) -
         }
     }
     moved
+}
+
+/// The names the quoted declaration at `line`:`col` (1-based) of a drafted file may
+/// declare: `'c_abcd'` declares `c`, `'R_g'` itself.
+fn declared_at(toml: &str, line: usize, col: usize) -> Option<Vec<String>> {
+    let text = toml.lines().nth(line.checked_sub(1)?)?;
+    let chars: Vec<char> = text.chars().collect();
+    let at = col.checked_sub(1)?.min(chars.len().checked_sub(1)?);
+    let start = chars[..=at].iter().rposition(|&c| c == '\'')?;
+    let end = start + 1 + chars[start + 1..].iter().position(|&c| c == '\'')?;
+    let token: String = chars[start + 1..end].iter().collect();
+    let stem = token.split('_').next().unwrap_or("").to_owned();
+    Some(vec![token, stem])
 }
 
 /// The claim line `line` of a drafted file belongs to: its `[[claim]]` table, or a
@@ -239,6 +271,7 @@ fn defined_symbol(
                 key: (format!("{printed}^2"), letters),
                 entry: true,
                 component: false,
+                squared: false,
                 derivatives: BTreeSet::new(),
             };
             Some((format!("{key}^2"), Some(square)))
@@ -265,6 +298,17 @@ fn formal_of(member: &latex::Math, rank: usize) -> Vec<char> {
         .unwrap_or_default()
 }
 
+/// Whether `latex` has the printed symbol `symbol` as a token of its own (`a` in
+/// `a = b`, not in `\frac` or `ab`).
+fn mentions(latex: &str, symbol: &str) -> bool {
+    let word = |c: Option<char>| c.is_some_and(|c| c.is_ascii_alphanumeric() || c == '\\');
+    !symbol.is_empty()
+        && latex.match_indices(symbol).any(|(at, _)| {
+            !word(latex[..at].chars().next_back())
+                && !word(latex[at + symbol.len()..].chars().next())
+        })
+}
+
 /// Whether `body` reads `key`, directly or through the definitions `chosen`.
 fn leads_to(
     body: &BTreeSet<Key>,
@@ -287,26 +331,33 @@ fn leads_to(
 }
 
 /// "indices ranging from 1 to 3", "i = 1, 2, 3", "i, j = 1, 2": the index range the
-/// source states, if it states one.
+/// source's text states (comments and other dead text left out), if it states one and
+/// only one.
 fn dimension_in(source: &str) -> Option<usize> {
-    let lower = source.to_lowercase();
-    for (phrase, digit_after) in [
-        ("from 1 to ", true),
-        ("= 1, 2, 3", false),
-        ("= 1,2,3", false),
-    ] {
-        if let Some(at) = lower.find(phrase) {
-            if !digit_after {
-                return Some(3);
+    let lower = displays::live(source).to_lowercase();
+    let mut found = BTreeSet::new();
+    for phrase in ["from 1 to ", "= 1, 2, ", "= 1,2,"] {
+        for (at, _) in lower.match_indices(phrase) {
+            match lower[at + phrase.len()..].chars().next() {
+                Some('2') if !phrase.starts_with('=') => {
+                    found.insert(2);
+                }
+                Some('3') => {
+                    found.insert(3);
+                }
+                _ => {}
             }
-            return match lower[at + phrase.len()..].chars().next() {
-                Some('2') => Some(2),
-                Some('3') => Some(3),
-                _ => None,
-            };
         }
     }
-    None
+    for phrase in ["= 1, 2$", "= 1,2$", "= 1, 2 ", "= 1,2 "] {
+        if lower.contains(phrase) {
+            found.insert(2);
+        }
+    }
+    match found.len() {
+        1 => found.into_iter().next(),
+        _ => None,
+    }
 }
 
 /// Writes the file for the equations as they stand, reading each one (which sets what
@@ -323,17 +374,45 @@ fn write(
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
     let mut symbols: BTreeMap<Key, Symbol> = BTreeMap::new();
     let mut order: Vec<Key> = Vec::new();
-    let mut candidates: Vec<(usize, Key, BTreeSet<Key>)> = Vec::new();
+    let mut candidates: Vec<(usize, Key, BTreeSet<Key>, String)> = Vec::new();
+    // Equations left to complete that the reader cannot read: what they define is
+    // unknown, so a symbol they mention is defined by no later equation.
+    let mut opaque: Vec<(usize, String)> = Vec::new();
     let options = ReadOptions::default();
+    // Symbols that an equation left to complete has alone on a left side: it may define
+    // them, so no later equation does. Symbols met other than squared (`T`, not `T^2`):
+    // their squares are no symbols of their own.
+    let mut blocked: BTreeMap<Key, usize> = BTreeMap::new();
+    let mut plain: BTreeSet<Key> = BTreeSet::new();
     for (q, eq) in equations.iter_mut().enumerate() {
         eq.reads.clear();
         eq.defines.clear();
         if eq.unread.is_some() {
+            if let Ok(p) = latex::read(&eq.latex, &options) {
+                for part in &p.parts {
+                    let members: Vec<&latex::Math> = part.members.iter().collect();
+                    let found = symbols::occurrences(&members, normal);
+                    plain.extend(
+                        found
+                            .iter()
+                            .filter(|(_, s)| !s.squared)
+                            .map(|(k, _)| k.clone()),
+                    );
+                    if let Some(first) = members.first() {
+                        if let Some((k, _)) = defined_symbol(first, found.first()) {
+                            blocked.entry(k).or_insert(q);
+                        }
+                    }
+                }
+            } else {
+                opaque.push((q, eq.latex.clone()));
+            }
             continue;
         }
         let printed = match latex::read(&eq.latex, &options) {
             Ok(p) => p,
             Err(e) => {
+                opaque.push((q, eq.latex.clone()));
                 let col = latex::column(&eq.latex, e.span.start);
                 eq.unread = Some(format!("cannot read column {col}: {}", e.message));
                 continue;
@@ -344,6 +423,9 @@ fn write(
             let found = symbols::occurrences(&members, normal);
             for (key, s) in found.iter().cloned() {
                 eq.reads.insert(key.clone());
+                if !s.squared {
+                    plain.insert(key.clone());
+                }
                 let entry = symbols.entry(key.clone()).or_insert_with(|| {
                     order.push(key.clone());
                     s.clone()
@@ -370,14 +452,32 @@ fn write(
                     s
                 });
             }
-            candidates.push((q, key, body));
+            let text = eq
+                .latex
+                .get(members[0].span.start..members[0].span.end)
+                .unwrap_or("")
+                .trim()
+                .to_owned();
+            candidates.push((q, key, body, text));
         }
     }
     // The first candidate of each symbol defines it, unless its body leads back to it
     // through the definitions chosen before.
     let mut chosen: BTreeMap<Key, (usize, BTreeSet<Key>)> = BTreeMap::new();
-    for (q, key, body) in candidates {
-        if chosen.contains_key(&key) || leads_to(&body, &key, &chosen) {
+    for (q, key, body, text) in candidates {
+        let before = |k: &str| {
+            blocked.get(k).is_some_and(|&b| b < q)
+                || opaque
+                    .iter()
+                    .any(|(o, latex)| *o < q && mentions(latex, &text))
+        };
+        let base = key.strip_suffix("^2");
+        let square_of_plain = base.is_some_and(|b| plain.contains(b) || before(b));
+        if chosen.contains_key(&key)
+            || before(&key)
+            || square_of_plain
+            || leads_to(&body, &key, &chosen)
+        {
             continue;
         }
         chosen.insert(key, (q, body));
@@ -390,6 +490,14 @@ fn write(
     }
     let defined_keys: BTreeSet<Key> = defined.keys().cloned().collect();
     symbols::unique_names(&mut symbols, &order, &defined_keys);
+    for eq in equations.iter_mut() {
+        eq.names = eq
+            .reads
+            .iter()
+            .filter_map(|k| symbols.get(k))
+            .map(|s| s.name.clone())
+            .collect();
+    }
     let letters = |rank: usize| -> String { "ijklpqrsabcdefgh".chars().take(rank).collect() };
     let with_slots = |s: &Symbol| {
         if s.rank == 0 {
@@ -697,6 +805,22 @@ fn render(r: Render<'_>) -> String {
             definer.insert(k, &e.id);
         }
     }
+    // `uses` without a cycle: an edge that would close one (a definition stated after
+    // the claim that reads it, which reads back) is left out.
+    let mut graph: BTreeMap<&str, BTreeSet<&str>> = BTreeMap::new();
+    let reaches = |graph: &BTreeMap<&str, BTreeSet<&str>>, from: &str, to: &str| {
+        let mut stack = vec![from];
+        let mut seen = BTreeSet::new();
+        while let Some(n) = stack.pop() {
+            if n == to {
+                return true;
+            }
+            if seen.insert(n) {
+                stack.extend(graph.get(n).into_iter().flatten().copied());
+            }
+        }
+        false
+    };
     for e in r.equations {
         out.push('\n');
         let mut table = format!(
@@ -707,12 +831,13 @@ fn render(r: Render<'_>) -> String {
         if e.numeric {
             table.push_str("strategy = \"numeric\"\n");
         }
-        let uses: BTreeSet<&str> = e
-            .reads
-            .iter()
-            .filter_map(|k| definer.get(k).copied())
-            .filter(|id| *id != e.id)
-            .collect();
+        let mut uses: BTreeSet<&str> = BTreeSet::new();
+        for target in e.reads.iter().filter_map(|k| definer.get(k).copied()) {
+            if target != e.id && e.unread.is_none() && !reaches(&graph, target, &e.id) {
+                graph.entry(e.id.as_str()).or_default().insert(target);
+                uses.insert(target);
+            }
+        }
         if !uses.is_empty() {
             table.push_str(&format!(
                 "uses = [{}]\n",
@@ -757,10 +882,11 @@ fn toml_string(text: &str) -> String {
 }
 
 /// `text` on one comment line: control characters (a newline would end the comment)
-/// shown as spaces.
+/// and the bidirectional controls (which reorder what a reader sees) shown as spaces.
 fn comment(text: &str) -> String {
+    let bidi = |c: char| matches!(c, '\u{200E}' | '\u{200F}' | '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}');
     text.chars()
-        .map(|c| if c.is_control() { ' ' } else { c })
+        .map(|c| if c.is_control() || bidi(c) { ' ' } else { c })
         .collect()
 }
 

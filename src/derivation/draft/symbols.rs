@@ -30,6 +30,8 @@ pub struct Symbol {
     /// A component of a vector the paper declares (`u_1` beside `u_i`): read as written,
     /// never declared.
     pub component: bool,
+    /// This occurrence is the base of a square (`T` in `T^2`).
+    pub squared: bool,
     /// Its comma derivatives as printed (`w_{i,m}^{c}`), each a notation key with its
     /// reading (`wc_i,m`), for a symbol that needs an entry.
     pub derivatives: BTreeSet<(String, String)>,
@@ -47,9 +49,9 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>) -> Vec<(Key, Symbol)
     let mut atoms = Vec::new();
     for m in members {
         let mut own = Vec::new();
-        atoms_of(m, &mut own);
+        atoms_of(m, false, &mut own);
         let mut in_member: BTreeMap<char, usize> = BTreeMap::new();
-        for a in &own {
+        for (a, _) in &own {
             if let Some(sub) = &a.sub {
                 for c in sub.text.chars().filter(char::is_ascii_alphabetic) {
                     bases.entry(c).or_default().insert(a.base.clone());
@@ -73,29 +75,40 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>) -> Vec<(Key, Symbol)
     );
     atoms
         .into_iter()
-        .filter_map(|a| symbol(a, &indices, normal))
+        .filter_map(|(a, squared)| {
+            let (k, mut s) = symbol(a, &indices, normal)?;
+            s.squared = squared;
+            Some((k, s))
+        })
         .collect()
 }
 
-/// The atoms of `m`, in reading order.
-fn atoms_of<'m>(m: &'m Math, out: &mut Vec<&'m Atom>) {
+/// The atoms of `m`, in reading order, each with whether it is the base of a square
+/// (`squared` says so of `m` itself).
+fn atoms_of<'m>(m: &'m Math, squared: bool, out: &mut Vec<(&'m Atom, bool)>) {
+    let mut go = |x: &'m Math| atoms_of(x, false, out);
     match &m.kind {
         MathKind::Number(_) => {}
-        MathKind::Atom(a) => out.push(a),
-        MathKind::Sum(terms) => terms.iter().for_each(|(_, t)| atoms_of(t, out)),
-        MathKind::Product(fs) | MathKind::Tuple(fs) => fs.iter().for_each(|f| atoms_of(f, out)),
-        MathKind::Quotient(a, b) | MathKind::Power(a, b) => {
-            atoms_of(a, out);
-            atoms_of(b, out);
+        MathKind::Atom(a) => out.push((a, squared)),
+        MathKind::Sum(terms) => terms.iter().for_each(|(_, t)| go(t)),
+        MathKind::Product(fs) | MathKind::Tuple(fs) => fs.iter().for_each(go),
+        MathKind::Power(a, b) => {
+            let square = matches!(&b.kind, MathKind::Number(n) if n == "2");
+            atoms_of(a, square, out);
+            atoms_of(b, false, out);
+        }
+        MathKind::Quotient(a, b) => {
+            go(a);
+            go(b);
         }
         MathKind::Partial { of, by } => {
-            atoms_of(of, out);
-            atoms_of(by, out);
+            go(of);
+            go(by);
         }
         MathKind::Sqrt(a) | MathKind::Average(a) | MathKind::Abs(a) | MathKind::Apply(_, a) => {
-            atoms_of(a, out)
+            go(a)
         }
-        MathKind::Matrix(rows) => rows.iter().flatten().for_each(|c| atoms_of(c, out)),
+        MathKind::Matrix(rows) => rows.iter().flatten().for_each(go),
     }
 }
 
@@ -176,6 +189,7 @@ fn symbol(a: &Atom, indices: &BTreeSet<char>, normal: Option<&str>) -> Option<(K
             key,
             entry: !plain,
             component: false,
+            squared: false,
             derivatives,
         },
     ))
