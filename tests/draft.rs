@@ -144,6 +144,14 @@ fn a_false_equation_never_holds_as_drafted() {
         ("cycle.md", "$$a = c \\quad (1)$$\n$$c = 1, \\quad a = 1 \\quad (2)$$", vec![holds("eq1"), holds("eq2")]),
         ("dead.tex", "\\iffalse\n\\begin{equation} a = 2 \\end{equation}\n\\fi\n\\begin{comment}\n$$a = 3 \\quad (7)$$\n\\end{comment}\n\\begin{equation} a = 1 \\label{eq:a} \\end{equation}\n\\begin{equation} a + 1 = 2 \\end{equation}", vec![holds("eq1"), holds("eq2")]),
         ("dead.md", "```\n$$a = 2 \\quad (1)$$\n```\n<!-- $$a = 5 \\quad (1)$$ -->\n$$a = 1 \\quad (1)$$\n$$a + 1 = 2 \\quad (2)$$", vec![holds("eq1"), holds("eq2")]),
+        ("pi.md", "$$\\pi^2 = 9 \\quad (1)$$", vec![fails("eq1")]),
+        ("thin.md", "$$x = 2 \\quad (1)$$\n$$x^{\\,2} = 9 \\quad (2)$$", vec![holds("eq1")]),
+        ("euler.md", "$$e^{i\\pi} = 1 \\quad (1)$$\n$$e^{x} = 1 + x \\quad (2)$$", vec![]),
+        ("aligned.tex", "\\begin{equation}\\begin{aligned} a &= 1 \\\\ b &= 3 \\end{aligned}\\end{equation}\n\\begin{equation} a = b \\end{equation}", vec![holds("eq1"), fails("eq2")]),
+        ("nested.tex", "\\iffalse \\iffalse \\fi indices ranging from 1 to 2 \\fi\n\\begin{equation} \\delta_{kk} = 2 \\end{equation}", vec![fails("eq1")]),
+        ("enddoc.tex", "\\begin{equation} \\delta_{kk} = 2 \\end{equation}\n\\end{document}\nindices ranging from 1 to 2\n\\begin{equation} a = 1 \\end{equation}", vec![fails("eq1")]),
+        ("html-in-tex.tex", "<!--\n\\begin{equation} a = 1 \\end{equation}\n-->\n\\begin{equation} a = 2 \\end{equation}", vec![holds("eq1"), fails("eq2")]),
+        ("iffalse-in-md.md", "Text \\iffalse here.\n$$a = 1 \\quad (1)$$\nText \\fi there.\n$$a = 2 \\quad (2)$$", vec![holds("eq1"), fails("eq2")]),
     ];
     for (name, source, want) in cases {
         assert_eq!(verdicts_of(name, source), want, "{name}");

@@ -31,22 +31,24 @@ const ENVIRONMENTS: &[(&str, bool)] = &[
     ("eqnarray", true),
 ];
 
-/// Regions that are not the paper's text: their displays are neither drafted nor
-/// counted (TeX comments are removed line by line as well).
-const DEAD: &[(&str, &str)] = &[
-    ("\\iffalse", "\\fi"),
+/// Regions of a LaTeX source that are not the paper's text: their displays are neither
+/// drafted nor counted (TeX comments are removed line by line as well; `\iffalse` is
+/// matched to its `\fi` by nesting, and nothing after `\end{document}` counts).
+const DEAD_TEX: &[(&str, &str)] = &[
     ("\\begin{comment}", "\\end{comment}"),
     ("\\begin{verbatim}", "\\end{verbatim}"),
+    ("\\begin{verbatim*}", "\\end{verbatim*}"),
     ("\\begin{lstlisting}", "\\end{lstlisting}"),
     ("\\begin{minted}", "\\end{minted}"),
-    ("<!--", "-->"),
-    ("```", "```"),
-    ("~~~", "~~~"),
 ];
 
-/// Every numbered display of `text`, and how many displays carry no number.
-pub fn numbered(text: &str) -> (Vec<Display>, usize) {
-    let text = live(text);
+/// Regions of a Markdown source that are not shown as mathematics.
+const DEAD_MARKDOWN: &[(&str, &str)] = &[("<!--", "-->"), ("```", "```"), ("~~~", "~~~")];
+
+/// Every numbered display of `text` (Markdown when `markdown`, else LaTeX), and how
+/// many displays carry no number.
+pub fn numbered(text: &str, markdown: bool) -> (Vec<Display>, usize) {
+    let text = live(text, markdown);
     let mut out = Vec::new();
     let mut unnumbered = 0;
     let mut counter = 0usize;
@@ -219,11 +221,21 @@ impl Scan {
     }
 }
 
-/// `text` without what is not the paper's text ([`DEAD`], TeX comments), line breaks
-/// kept so that lines are counted as in the source.
-pub fn live(text: &str) -> String {
-    let mut text = without_comments(text);
-    for (open, close) in DEAD {
+/// `text` without what is not the paper's text (see [`DEAD_TEX`], [`DEAD_MARKDOWN`]),
+/// line breaks kept so that lines are counted as in the source.
+pub fn live(text: &str, markdown: bool) -> String {
+    let mut text = if markdown {
+        text.to_owned()
+    } else {
+        let text = without_comments(text);
+        let text = match text.find("\\end{document}") {
+            // Line breaks after it kept, for nothing; the text after it is gone.
+            Some(end) => text[..end].to_owned(),
+            None => text,
+        };
+        without_iffalse(&text)
+    };
+    for (open, close) in if markdown { DEAD_MARKDOWN } else { DEAD_TEX } {
         let mut out = String::with_capacity(text.len());
         let mut rest = text.as_str();
         while let Some(a) = rest.find(open) {
@@ -237,6 +249,38 @@ pub fn live(text: &str) -> String {
         text = out;
     }
     text
+}
+
+/// `text` without its `\iffalse … \fi` blocks, each ended by the `\fi` that matches it
+/// (every `\if…` inside opens one more); line breaks kept.
+fn without_iffalse(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(a) = rest.find("\\iffalse") {
+        out.push_str(&rest[..a]);
+        let mut depth = 0usize;
+        let mut end = rest.len();
+        let mut k = a;
+        while let Some(b) = rest[k..].find('\\') {
+            let at = k + b;
+            let tail = &rest[at..];
+            if tail.starts_with("\\fi") && !tail[3..].starts_with(|c: char| c.is_ascii_alphabetic())
+            {
+                depth = depth.saturating_sub(1);
+                if depth == 0 {
+                    end = at + 3;
+                    break;
+                }
+            } else if tail.starts_with("\\if") {
+                depth += 1;
+            }
+            k = at + 1;
+        }
+        out.extend(rest[a..end].chars().filter(|&c| c == '\n'));
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// `text` without its TeX comments (`%` to the end of the line, `\%` kept).
@@ -369,8 +413,22 @@ fn flatten(body: &str) -> String {
             .replace(&format!("\\begin{{{env}}}"), " ")
             .replace(&format!("\\end{{{env}}}"), " ");
     }
-    let s = s.replace("\\\\", " ").replace('&', " ");
-    let s = s.split_whitespace().collect::<Vec<_>>().join(" ");
+    // Rows of an `aligned` block: one that starts with a relation or an operator
+    // continues the row above; any other is a statement of its own, after a separator.
+    let mut joined = String::new();
+    for (_, row) in rows_of(&s) {
+        let row = row.replace('&', " ");
+        if !joined.trim().is_empty() && !row.trim().is_empty() {
+            if starts_with_relation(&row) {
+                joined.push(' ');
+                joined.push_str(without_spacing(&row));
+                continue;
+            }
+            joined.push_str(", \\quad ");
+        }
+        joined.push_str(&row);
+    }
+    let s = joined.split_whitespace().collect::<Vec<_>>().join(" ");
     // The punctuation of the sentence the display ends (`s_{kk} = 0 ,`).
     let mut s = s.as_str();
     loop {
@@ -416,7 +474,7 @@ mod tests {
     use super::*;
 
     fn numbers(text: &str) -> Vec<(String, String)> {
-        numbered(text)
+        numbered(text, text.contains("$$"))
             .0
             .into_iter()
             .map(|d| (d.number, d.latex))
@@ -426,7 +484,7 @@ mod tests {
     #[test]
     fn markdown_displays_carry_their_numbers() {
         let text = "intro\n$$P = a + b \\quad (3)$$\n$$x = y$$\ntext\n$$\\begin{aligned} Q &= a \\\\ &= b \\end{aligned} \\quad (4)$$";
-        let (found, unnumbered) = numbered(text);
+        let (found, unnumbered) = numbered(text, true);
         assert_eq!(unnumbered, 1);
         assert_eq!(found[0].line, 2);
         assert_eq!(
@@ -461,8 +519,11 @@ mod tests {
             "$$$",
             "\\begin{equation}",
         ] {
-            let _ = numbered(text);
+            let _ = numbered(text, false);
         }
-        assert!(numbered("$$ (1) $$").0.iter().all(|d| d.latex.is_empty()));
+        assert!(numbered("$$ (1) $$", true)
+            .0
+            .iter()
+            .all(|d| d.latex.is_empty()));
     }
 }

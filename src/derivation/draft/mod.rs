@@ -81,14 +81,17 @@ pub fn draft(
     options: &Options,
     (refused, numeric): (&BTreeMap<String, String>, &BTreeSet<String>),
 ) -> Draft {
-    let (mut found, unnumbered) = displays::numbered(source);
+    // A Markdown rendering (`.md`) hides HTML comments and code; LaTeX its comments,
+    // `\iffalse` and what follows `\end{document}`.
+    let markdown = label.ends_with(".md") || label.ends_with(".markdown");
+    let (mut found, unnumbered) = displays::numbered(source, markdown);
     // Past the most a draft takes, equations are counted in the header, not drafted.
     let beyond = found.len().saturating_sub(MAX_EQUATIONS);
     found.truncate(MAX_EQUATIONS);
     let unnumbered = (unnumbered, beyond);
     let dimension = options
         .dimension
-        .or_else(|| dimension_in(source))
+        .or_else(|| dimension_in(source, markdown))
         .unwrap_or(3);
     let normal = options.normal.as_deref();
     let mut seen_ids = BTreeSet::new();
@@ -257,6 +260,12 @@ fn defined_symbol(
     symbol: Option<&(Key, Symbol)>,
 ) -> Option<(Key, Option<Symbol>)> {
     let (key, s) = symbol?;
+    // The chain's first symbol must be the first member's own (a constant such as π is
+    // no symbol, and the first symbol is then a later member's).
+    let own = symbols::occurrences(&[first], None);
+    if own.first().map(|(_, o)| &o.key.0) != Some(&s.key.0) {
+        return None;
+    }
     match &first.kind {
         MathKind::Atom(_) => Some((key.clone(), None)),
         MathKind::Power(base, exponent)
@@ -272,6 +281,7 @@ fn defined_symbol(
                 entry: true,
                 component: false,
                 squared: false,
+                doubt: None,
                 derivatives: BTreeSet::new(),
             };
             Some((format!("{key}^2"), Some(square)))
@@ -333,8 +343,8 @@ fn leads_to(
 /// "indices ranging from 1 to 3", "i = 1, 2, 3", "i, j = 1, 2": the index range the
 /// source's text states (comments and other dead text left out), if it states one and
 /// only one.
-fn dimension_in(source: &str) -> Option<usize> {
-    let lower = displays::live(source).to_lowercase();
+fn dimension_in(source: &str, markdown: bool) -> Option<usize> {
+    let lower = displays::live(source, markdown).to_lowercase();
     let mut found = BTreeSet::new();
     for phrase in ["from 1 to ", "= 1, 2, ", "= 1,2,"] {
         for (at, _) in lower.match_indices(phrase) {
@@ -418,6 +428,17 @@ fn write(
                 continue;
             }
         };
+        let doubt = printed.parts.iter().find_map(|part| {
+            let members: Vec<&latex::Math> = part.members.iter().collect();
+            symbols::occurrences(&members, normal)
+                .into_iter()
+                .find_map(|(_, s)| s.doubt)
+        });
+        if let Some(why) = doubt {
+            eq.unread = Some(why);
+            opaque.push((q, eq.latex.clone()));
+            continue;
+        }
         for part in &printed.parts {
             let members: Vec<&latex::Math> = part.members.iter().collect();
             let found = symbols::occurrences(&members, normal);

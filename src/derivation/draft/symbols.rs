@@ -32,6 +32,9 @@ pub struct Symbol {
     pub component: bool,
     /// This occurrence is the base of a square (`T` in `T^2`).
     pub squared: bool,
+    /// Why this occurrence is read as a symbol the paper may not mean: a superscript
+    /// that looks like an exponent (`x^{\,2}`, `e^{x}`, `\pi^{2}`) is read as a label.
+    pub doubt: Option<String>,
     /// Its comma derivatives as printed (`w_{i,m}^{c}`), each a notation key with its
     /// reading (`wc_i,m`), for a symbol that needs an entry.
     pub derivatives: BTreeSet<(String, String)>,
@@ -125,10 +128,27 @@ fn symbol(a: &Atom, indices: &BTreeSet<char>, normal: Option<&str>) -> Option<(K
     if plain
         && ((base == "delta" && slot_count == 2)
             || (matches!(base, "e" | "varepsilon" | "epsilon") && slot_count == 3)
+            || (base == "pi" && sub.is_empty())
             || normal == Some(base))
     {
         return None;
     }
+    // A label that may be an exponent: spacing or commands in it, digits only, or on
+    // e or π (the exponential, a power of π).
+    let doubt = a.sup.as_ref().and_then(|sup| {
+        let t = sup.text.as_str();
+        let exponent_like = t.contains('\\')
+            || t.contains(char::is_whitespace)
+            || t.contains('~')
+            || t.chars().all(|c| c.is_ascii_digit() || c == '.' || c == ',')
+            || (matches!(base, "e" | "pi") && sub.is_empty());
+        exponent_like.then(|| {
+            format!(
+                "the superscript `{t}` of `{}` reads as a label, not an exponent; write a power as `^{{2}}`, the exponential as `\\exp(…)`, or add a notation entry",
+                a.base
+            )
+        })
+    });
     // A one-letter subscript met once completes the name (R_g), and so does one digit
     // (J_2: a component `u_1` where the paper has a vector `u`, see `unique_names`);
     // any other subscript holds index slots.
@@ -190,6 +210,7 @@ fn symbol(a: &Atom, indices: &BTreeSet<char>, normal: Option<&str>) -> Option<(K
             entry: !plain,
             component: false,
             squared: false,
+            doubt,
             derivatives,
         },
     ))
