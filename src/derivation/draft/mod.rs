@@ -83,7 +83,11 @@ pub fn draft(
 ) -> Draft {
     // A Markdown rendering (`.md`) hides HTML comments and code; LaTeX its comments,
     // `\iffalse` and what follows `\end{document}`.
-    let markdown = label.ends_with(".md") || label.ends_with(".markdown");
+    // Standard input has no extension: `$$` displays and no `\begin{document}` are taken
+    // for Markdown.
+    let markdown = label.ends_with(".md")
+        || label.ends_with(".markdown")
+        || (!label.contains('.') && source.contains("$$") && !source.contains("\\begin{document}"));
     let (mut found, unnumbered) = displays::numbered(source, markdown);
     // Past the most a draft takes, equations are counted in the header, not drafted.
     let beyond = found.len().saturating_sub(MAX_EQUATIONS);
