@@ -919,15 +919,20 @@ fn comment(text: &str) -> String {
 mod tests {
     use super::*;
 
-    #[test]
-    fn a_definition_and_an_identity_from_markdown() {
-        let source = "$$P = \\sigma_{ij}\\Gamma_{ij} + \\mu_{ij}K_{ij} \\quad (3)$$\n\nText.\n\n$$P = \\Gamma_{ij}\\sigma_{ij} + K_{ij}\\mu_{ij} \\quad (4)$$\n";
-        let d = draft(
-            "paper.md",
+    /// The draft of `source` with the default options, nothing refused or sampled.
+    fn plain_draft(label: &str, source: &str) -> Draft {
+        draft(
+            label,
             source,
             &Options::default(),
             (&BTreeMap::new(), &BTreeSet::new()),
-        );
+        )
+    }
+
+    #[test]
+    fn a_definition_and_an_identity_from_markdown() {
+        let source = "$$P = \\sigma_{ij}\\Gamma_{ij} + \\mu_{ij}K_{ij} \\quad (3)$$\n\nText.\n\n$$P = \\Gamma_{ij}\\sigma_{ij} + K_{ij}\\mu_{ij} \\quad (4)$$\n";
+        let d = plain_draft("paper.md", source);
         assert_eq!((d.equations, d.claims), (2, 2), "{}", d.toml);
         assert!(
             d.toml
@@ -943,12 +948,7 @@ mod tests {
     #[test]
     fn what_cannot_be_read_is_kept_to_complete() {
         let source = "$$a = \\frobnicate{b} \\quad (1)$$\n$$x' = \\text{broken (2)$$";
-        let d = draft(
-            "p.tex",
-            source,
-            &Options::default(),
-            (&BTreeMap::new(), &BTreeSet::new()),
-        );
+        let d = plain_draft("p.tex", source);
         assert_eq!(d.equations, 2);
         assert_eq!(d.claims, 0, "{}", d.toml);
         assert!(d.toml.contains("# - eq1 (line 1): "), "{}", d.toml);
@@ -959,12 +959,7 @@ mod tests {
     #[test]
     fn hostile_text_stays_inside_its_strings_and_comments() {
         let source = "$$a = b \\quad (1)$$\n$$x = '''\n[[claim]]\nid = \"evil\" \\quad (2)$$";
-        let d = draft(
-            "p\nwith [[claim]] newline.tex",
-            source,
-            &Options::default(),
-            (&BTreeMap::new(), &BTreeSet::new()),
-        );
+        let d = plain_draft("p\nwith [[claim]] newline.tex", source);
         let f = crate::derivation::load_str("d.toml", &d.toml).unwrap();
         assert!(f.claims.iter().all(|c| c.id != "evil"), "{}", d.toml);
         // The label's newline is a space in the header comment.
