@@ -84,6 +84,10 @@ pub const EXAMPLES: &[(&str, &str)] = &[
         include_str!("../derivations/examples/rational-functions.toml"),
     ),
     (
+        "derivations/examples/radial-return.toml",
+        include_str!("../derivations/examples/radial-return.toml"),
+    ),
+    (
         "derivations/examples/states.toml",
         include_str!("../derivations/examples/states.toml"),
     ),

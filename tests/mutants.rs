@@ -277,6 +277,17 @@ fn every_mutant_of_every_gradient_at_a_state_is_refuted() {
     assert_swept(&files, &all, "mutation_report_states");
 }
 
+/// Mutants of second derivatives (`tests/soundness/second-derivatives.toml`): the
+/// functions differentiated twice and the closed forms, through nested jets and
+/// nested num-dual numbers.
+#[test]
+fn every_mutant_of_every_second_derivative_is_refuted() {
+    let files = load_files(&["tests/soundness/second-derivatives.toml"]).expect("loads");
+    let mut all = ALGEBRAIC.to_vec();
+    all.push(MutantKind::Function);
+    assert_swept(&files, &all, "mutation_report_second");
+}
+
 /// The least number of refuted mutants (refuted or refuted on resampling) per sweep and
 /// strategy, and the least share of them among the mutants that are neither
 /// equivalent nor rejected as ill-formed. A drop below either fails here, whatever
@@ -295,6 +306,8 @@ const FLOORS: &[(&str, &str, usize, f64)] = &[
     ("mutation_report_matrices", "numeric", 12, 0.99),
     ("mutation_report_matrices", "rational-function", 33, 0.99),
     ("mutation_report_rational", "exact", 297, 0.99),
+    ("mutation_report_second", "exact", 161, 0.99),
+    ("mutation_report_second", "numeric", 104, 0.99),
     ("mutation_report_states", "exact", 190, 0.99),
     ("mutation_report_states", "numeric", 36, 0.99),
 ];

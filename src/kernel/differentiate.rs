@@ -4,8 +4,8 @@
 //! the state like any term, so that the assumptions apply after differentiating.
 //!
 //! ∂σ_ab/∂σ_c = δ_{a c_1} δ_{b c_2}; sums, products, quotients, powers, square roots
-//! (d√x = dx / (2√x)), averages, derivatives along the position and the matrix
-//! operations follow their rules; a definition's derivative is a new definition,
+//! (d√x = dx / (2√x)), averages, derivatives along the position, `grad` (derivatives
+//! commute) and the matrix operations follow their rules; a definition's derivative is a new definition,
 //! named `∂name/∂σ_c`, made once. A term that does not read σ has derivative 0.
 
 use super::rational::Rational;
@@ -94,9 +94,20 @@ pub fn differentiate(t: &Term, symbol: &str, c: &[usize], env: &mut dyn Definiti
         ),
         Term::Avg(a) => Term::Avg(b(d(a, env)?)),
         Term::Deriv(a, s) => Term::Deriv(b(d(a, env)?), *s),
-        Term::Grad { .. } | Term::Variation { .. } => {
+        // Partial derivatives by symbols commute (the terms are rational functions
+        // and roots, smooth where defined): ∂/∂σ_c ∂F/∂τ_k = ∂/∂τ_k ∂F/∂σ_c.
+        Term::Grad {
+            body,
+            symbol: inner,
+            slots,
+        } => Term::Grad {
+            body: b(d(body, env)?),
+            symbol: inner.clone(),
+            slots: slots.clone(),
+        },
+        Term::Variation { .. } => {
             return Err(EvalError::Unsupported(
-                "a derivative by a symbol inside grad(…)".into(),
+                "a variational derivative inside grad(…)".into(),
             ))
         }
         Term::Mat { rows, cols, op } => {

@@ -346,8 +346,19 @@ impl Node {
 }
 
 /// Whether a variation or a gradient occurs in `node` (not looking into definitions).
-fn contains_wrt(node: &Node) -> bool {
-    matches!(node.kind, NodeKind::Wrt { .. }) || node.children().into_iter().any(contains_wrt)
+/// How deeply gradients nest in `node` (0: none), and how many variations it holds.
+fn nested_wrt(node: &Node) -> (usize, usize) {
+    let (mut depth, mut variations) = (0, 0);
+    for child in node.children() {
+        let (d, v) = nested_wrt(child);
+        depth = depth.max(d);
+        variations += v;
+    }
+    match &node.kind {
+        NodeKind::Wrt { op: Wrt::Grad, .. } => (depth + 1, variations),
+        NodeKind::Wrt { .. } => (depth, variations + 1),
+        _ => (depth, variations),
+    }
 }
 
 /// Formats a list of index letters for messages: `i, l` or `none`.
@@ -639,18 +650,25 @@ impl Scope<'_> {
         let name = op.name();
         let body = self.check(body)?;
         self.not_matrix(&body, &format!("{name}(…)"))?;
-        if contains_wrt(&body) {
+        // A gradient may hold one gradient (second derivatives); nothing else nests.
+        let (gradients, variations) = nested_wrt(&body);
+        if variations > 0 || (op == Wrt::Variation && gradients > 0) || gradients > 1 {
+            let what = if variations > 0 || op == Wrt::Variation {
+                "a variation or gradient"
+            } else {
+                "a third derivative (a gradient inside two)"
+            };
             return Err(LangError::new(
                 ErrorKind::Syntax,
                 body.span,
-                format!("a variation or gradient inside {name}(…) is not supported"),
+                format!("{what} inside {name}(…) is not supported"),
             )
             .help(match op {
                 Wrt::Variation => {
                     "name the inner one with a definition and vary that definition's density"
                 }
                 Wrt::Grad => {
-                    "take one derivative with respect to a symbol at a time, in separate claims"
+                    "grad(…) nests once, for second derivatives: grad(grad(F, a_ij), b_kl)"
                 }
             }));
         }

@@ -89,8 +89,9 @@ pub struct ExactEnv<'a> {
     pub(crate) roots: Vec<Certificate>,
     /// Their values, offered to the kernel when it re-checks a proof.
     root_values: Vec<Quotient>,
-    /// Definitions with their derivatives by a symbol (`grad`), by (symbol, name).
-    pub(crate) jet_cache: HashMap<(String, String), Tensor<Jet>>,
+    /// Definitions with their derivatives by symbols (`grad`), by (the symbols of each
+    /// level, name).
+    pub(crate) jet_cache: HashMap<(String, String), Tensor<super::jet::Jet>>,
 }
 
 pub(crate) fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
@@ -455,10 +456,6 @@ impl ExactRing<'_, '_> {
 }
 
 impl ExactRing<'_, '_> {
-    pub(crate) fn env_dim(&self) -> usize {
-        self.env.decls.dim
-    }
-
     /// The rank of a declared symbol.
     pub(crate) fn rank_of(&self, symbol: &str) -> usize {
         self.env.decls.symbols.get(symbol).copied().unwrap_or(0)
@@ -705,25 +702,4 @@ fn to_formal_order(value: &Labeled<Quotient>, formal: &[char]) -> Tensor<Quotien
         })
         .collect();
     value.tensor.permuted(&perm)
-}
-
-/// A value at the state and its partial derivatives by each component of the
-/// symbol (in the symbol's component order); no derivatives at all means zero ones.
-#[derive(Clone, Debug, Default)]
-pub struct Jet {
-    pub(crate) value: Quotient,
-    pub(crate) partials: Vec<Quotient>,
-}
-
-impl Jet {
-    pub(crate) fn constant(value: Quotient) -> Self {
-        Jet {
-            value,
-            partials: Vec::new(),
-        }
-    }
-
-    pub(crate) fn is_constant(&self) -> bool {
-        self.partials.iter().all(Quotient::is_exact_zero)
-    }
 }

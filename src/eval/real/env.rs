@@ -69,9 +69,16 @@ pub struct RealEnv<'a, T> {
     /// fields in use: evaluated from that expression wherever the position is.
     pub(super) defined_fields: HashMap<String, (Vec<char>, Node, Vec<f64>)>,
     /// This environment evaluates the body of a `grad(…)`: its values are dual
-    /// numbers seeded from real ones, so a gradient inside is refused.
+    /// numbers seeded from real ones.
     pub(super) in_gradient: bool,
+    /// How a `grad(…)` inside that body is taken (second derivatives, through the
+    /// values' second dual part); `None`: it is refused.
+    pub(super) nested: Option<NestedGradient<'a, T>>,
 }
+
+/// A `grad(…)` taken inside the body of another: see [`super::ring`].
+pub(super) type NestedGradient<'a, T> =
+    fn(&RealEnv<'a, T>, &Node, &str, &Node, &[f64]) -> Result<Tensor<T>, RealError>;
 
 impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
     /// An environment with the given symbol values (any map or list of them).
@@ -95,6 +102,7 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             differences: Cell::new(0),
             defined_fields: HashMap::default(),
             in_gradient: false,
+            nested: None,
         }
     }
 

@@ -13,7 +13,7 @@ use crate::kernel::Rational;
 use crate::lang::parser::{Func, Func2};
 use crate::lang::Node;
 use nalgebra::{Dyn, U1};
-use num_dual::{Derivative, DualDVec64, DualNum};
+use num_dual::{Derivative, DualNum, HyperDualDVec64};
 use rustc_hash::FxHashMap as HashMap;
 
 /// Numbers: plain arithmetic in `T`.
@@ -261,10 +261,11 @@ impl<T: DualNum<Primitive = f64>> Calculus for &RealEnv<'_, T> {
 
     /// ∂body/∂symbol by forward-mode dual numbers (num-dual), every component of the
     /// symbol seeded in one pass and every other value held at the sample: the
-    /// derivative at the state (see [`crate::lang::NodeKind::Wrt`]). The values
-    /// enter as real parts, so this is a first derivative only: the reader refuses a
-    /// gradient inside a function that a `gradient` or `convex` claim differentiates
-    /// again, and a gradient inside a gradient.
+    /// derivative at the state (see [`crate::lang::NodeKind::Wrt`]). The values enter
+    /// as real parts of hyper-dual numbers whose first part carries this derivative;
+    /// a `grad(…)` inside the body seeds the second part ([`nested_gradients`]), which
+    /// gives second derivatives. The reader refuses a gradient inside a function that
+    /// a `gradient` or `convex` claim differentiates again.
     fn gradients(
         &mut self,
         body: &Node,
@@ -279,22 +280,27 @@ impl<T: DualNum<Primitive = f64>> Calculus for &RealEnv<'_, T> {
             ));
         }
         if self.in_gradient {
-            return Err(err(node, "a gradient inside grad(…) is not supported"));
+            return match self.nested {
+                Some(nested) => nested(self, body, symbol, node, n),
+                None => Err(err(
+                    node,
+                    "a third derivative inside grad(…) is not supported",
+                )),
+            };
         }
         let Some(wrt) = self.symbols.get(symbol) else {
             return Err(err(node, format!("`{symbol}` has no value here")));
         };
         let size = wrt.components().len();
-        let lift = |x: &T| DualDVec64::from_re(x.re());
-        let mut symbols: HashMap<String, Tensor<DualDVec64>> = self
+        let lift = |x: &T| HyperDualDVec64::from_re(x.re());
+        let mut symbols: HashMap<String, Tensor<HyperDualDVec64>> = self
             .symbols
             .iter()
             .map(|(k, t)| (k.clone(), t.map(lift)))
             .collect();
         let mut k = 0;
         let seeded = wrt.map(|x| {
-            let mut v = lift(x);
-            v.eps = Derivative::derivative_generic(Dyn(size), U1, k);
+            let v = lift(x).derivative1(size, k);
             k += 1;
             v
         });
@@ -302,11 +308,12 @@ impl<T: DualNum<Primitive = f64>> Calculus for &RealEnv<'_, T> {
         let mut inner = RealEnv::new(self.decls, self.defs, symbols);
         inner.quadrature = Quadrature::new(self.quadrature.level);
         inner.in_gradient = true;
+        inner.nested = Some(nested_gradients);
         let value = inner.eval(body, n)?.tensor;
         self.quadrature.absorb(&inner.quadrature);
         let mut values = Vec::with_capacity(value.components().len() * size);
         for c in value.components() {
-            let g = c.eps.clone().unwrap_generic(Dyn(size), U1);
+            let g = c.eps1.clone().unwrap_generic(Dyn(size), U1);
             // A derivative that is not finite does not exist here (√ at 0, a kink): an
             // error at this sample, never a value that a comparison could call false.
             if c.re.is_finite() && g.iter().any(|x| !x.is_finite()) {
@@ -324,4 +331,53 @@ impl<T: DualNum<Primitive = f64>> Calculus for &RealEnv<'_, T> {
             |_| it.next().expect("one derivative per component and seed"),
         ))
     }
+}
+
+/// A `grad(…)` inside the body of another, whose values carry the outer derivative
+/// in their first dual part: the inner symbol's components seed the second part, and
+/// the result's value is the inner derivative (the second part) with, as its first
+/// part, the mixed second derivative (the cross part). A third level is refused.
+fn nested_gradients<'a>(
+    env: &RealEnv<'a, HyperDualDVec64>,
+    body: &Node,
+    symbol: &str,
+    node: &Node,
+    n: &[f64],
+) -> Result<Tensor<HyperDualDVec64>, RealError> {
+    let Some(wrt) = env.symbols.get(symbol) else {
+        return Err(err(node, format!("`{symbol}` has no value here")));
+    };
+    let size = wrt.components().len();
+    let mut k = 0;
+    let seeded = wrt.map(|x| {
+        let v = x.clone().derivative2(size, k);
+        k += 1;
+        v
+    });
+    let mut symbols = env.symbols.clone();
+    symbols.insert(symbol.to_owned(), seeded);
+    let mut inner = RealEnv::new(env.decls, env.defs, symbols);
+    inner.quadrature = Quadrature::new(env.quadrature.level);
+    inner.in_gradient = true;
+    let value = inner.eval(body, n)?.tensor;
+    env.quadrature.absorb(&inner.quadrature);
+    let mut values = Vec::with_capacity(value.components().len() * size);
+    for c in value.components() {
+        let first = c.eps2.clone().unwrap_generic(U1, Dyn(size));
+        for j in 0..size {
+            let cross = c.eps1eps2.0.as_ref().map(|m| m.column(j).into_owned());
+            values.push(HyperDualDVec64::new(
+                first[j],
+                Derivative::new(cross),
+                Derivative::none(),
+                Derivative::none(),
+            ));
+        }
+    }
+    let mut it = values.into_iter();
+    Ok(Tensor::from_fn(
+        env.decls.dim,
+        value.rank() + wrt.rank(),
+        |_| it.next().expect("one derivative per component and seed"),
+    ))
 }
