@@ -306,7 +306,7 @@ const FLOORS: &[(&str, &str, usize, f64)] = &[
     ("mutation_report_matrices", "numeric", 12, 0.99),
     ("mutation_report_matrices", "rational-function", 33, 0.99),
     ("mutation_report_rational", "exact", 297, 0.99),
-    ("mutation_report_second", "exact", 161, 0.99),
+    ("mutation_report_second", "exact", 207, 0.99),
     ("mutation_report_second", "numeric", 104, 0.99),
     ("mutation_report_states", "exact", 190, 0.99),
     ("mutation_report_states", "numeric", 36, 0.99),

@@ -421,6 +421,9 @@ impl Tape {
         span: Span,
         quad: &Quadrature,
     ) -> Result<T, RealError> {
+        if T::NDERIV > 0 {
+            return Err(super::real::maxn_not_differentiated(span));
+        }
         let re: Vec<f64> = inputs.iter().map(|x| x.re()).collect();
         let mut fixed = vec![0.0; self.ops.len()];
         self.fill(&mut fixed, self.invariant(), &re, n, &[], quad)?;

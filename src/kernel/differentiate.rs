@@ -162,8 +162,37 @@ pub fn differentiate(t: &Term, symbol: &str, c: &[usize], env: &mut dyn Definiti
                     };
                     MatOp::Solve(x.clone(), b(rhs))
                 }
-                MatOp::Adjugate(_) => {
-                    return Err(EvalError::Unsupported("a derivative of an adjugate".into()))
+                // adj(M)_ij = (−1)^(i+j) det(M without row j and column i): the
+                // derivative of each cofactor is a determinant's.
+                MatOp::Adjugate(x) => {
+                    let n = *rows;
+                    let mut entries = Vec::with_capacity(n * n);
+                    for (i, j) in (0..n).flat_map(|i| (0..n).map(move |j| (i, j))) {
+                        let minor = (0..n)
+                            .filter(|&r| r != j)
+                            .flat_map(|r| (0..n).filter(move |&c| c != i).map(move |c| (r, c)))
+                            .map(|(r, c)| Term::Read(MatRead::Entry(r, c), x.clone()))
+                            .collect::<Vec<_>>();
+                        let cofactor = if n == 1 {
+                            Term::int(1)
+                        } else {
+                            let det = Term::Read(
+                                MatRead::Det,
+                                b(Term::Mat {
+                                    rows: n - 1,
+                                    cols: n - 1,
+                                    op: MatOp::Literal(minor),
+                                }),
+                            );
+                            if (i + j) % 2 == 0 {
+                                det
+                            } else {
+                                Term::Neg(b(det))
+                            }
+                        };
+                        entries.push(d(&cofactor, env)?);
+                    }
+                    MatOp::Literal(entries)
                 }
                 MatOp::View {
                     tensor,

@@ -733,6 +733,15 @@ impl Scope<'_> {
             )
             .help("write grad(F, sigma_ij) and pick a component of the result, e.g. with a definition Q_ij = grad(F, sigma_ij), then Q_12"));
         }
+        if let Some(&c) = symbol_node.bound.first() {
+            // `sigma_ii` would be a trace, not a symbol to differentiate by.
+            return Err(LangError::new(
+                ErrorKind::Index,
+                symbol.span,
+                format!("index `{c}` repeats in the symbol of {name}(…): it takes one letter per slot, each once"),
+            )
+            .help(format!("write {name}(…, sigma_ij) with distinct letters and contract the result afterwards")));
+        }
         let mut occurrences = body.free.clone();
         for &(c, s) in &symbol_node.free {
             if body.bound.contains(&c) || occurrences.iter().any(|&(d, _)| d == c) {

@@ -2,7 +2,7 @@
 //! over a scalar `T` (`f64` or num-dual), and its errors.
 
 use super::elementary::golden_max;
-use super::error::{err, undefined, RealError};
+use super::error::{err, maxn_not_differentiated, undefined, RealError};
 use crate::algebra::{assignments, Tensor};
 use crate::derivation::parametrisation::{product_value, Component, Parametrisation};
 use crate::derivation::{Assumption, Definition};
@@ -191,6 +191,9 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
     /// the best grid point; the value (with its derivatives, by the envelope theorem)
     /// is `a` evaluated at the maximiser.
     pub(super) fn max_over_angle(&self, node: &Node, a: &Node) -> Result<T, RealError> {
+        if T::NDERIV > 0 {
+            return Err(maxn_not_differentiated(node.span));
+        }
         let d = self.decls.dim;
         if d == 3 && !self.decls.normal_in_plane {
             return Err(err(node, "maxn(…) maximises over the normal in a plane: use dimension = 2 or normal_in_plane = true"));

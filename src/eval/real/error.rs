@@ -30,3 +30,16 @@ pub(crate) fn undefined(span: Span, message: impl Into<String>) -> RealError {
         pointwise: true,
     }
 }
+
+/// `maxn(…)` where its argument carries derivatives: by the envelope theorem a first
+/// derivative at the maximising angle is right only to the angle's accuracy (about
+/// 1e-8), and a second derivative misses the angle's own motion, so none is taken.
+pub(crate) fn maxn_not_differentiated(span: Span) -> RealError {
+    RealError {
+        span,
+        message:
+            "maxn(…) is not differentiated: its maximising angle moves with what is differentiated"
+                .into(),
+        pointwise: false,
+    }
+}

@@ -22,5 +22,5 @@ pub(crate) use elementary::{elementary, elementary2, golden_max};
 pub use env::{
     component_pairs, ComponentPair, Labeled, RealEnv, MAXN_GRID, MAX_NESTED_DIFFERENCES,
 };
-pub(crate) use error::undefined;
 pub use error::RealError;
+pub(crate) use error::{maxn_not_differentiated, undefined};
