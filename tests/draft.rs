@@ -157,3 +157,23 @@ fn a_false_equation_never_holds_as_drafted() {
         assert_eq!(verdicts_of(name, source), want, "{name}");
     }
 }
+
+/// An equation that reads a symbol which an earlier equation left to complete may
+/// define is left to complete too: read with the symbol independent, a true equation
+/// of the paper would come out `fails`. Equations that read nothing unknown are still
+/// decided.
+#[test]
+fn a_true_equation_never_fails_on_what_an_unread_one_defines() {
+    let fails = |id: &str| (id.to_owned(), Verdict::Fails);
+    let holds = |id: &str| (id.to_owned(), Verdict::Holds);
+    type Case = (&'static str, &'static str, Vec<(String, Verdict)>);
+    // Without --normal, (1) cannot be read (its average needs a contact normal), yet it
+    // defines t^(n); through a definition that reads it, (3) depends on it as well.
+    let cases: Vec<Case> = vec![
+        ("unread-definition.md", "$$t_i^{(n)} = \\langle \\sigma_{ij} n_j \\rangle \\quad (1)$$\n$$t_i^{(n)} t_i^{(n)} = 1 \\quad (2)$$\n$$a = 1 \\quad (3)$$\n$$a + 1 = 2 \\quad (4)$$\n$$a = 3 \\quad (5)$$", vec![holds("eq3"), holds("eq4"), fails("eq5")]),
+        ("through-a-definition.md", "$$t_i^{(n)} = \\langle \\sigma_{ij} n_j \\rangle \\quad (1)$$\n$$b = t_i^{(n)} t_i^{(n)} \\quad (2)$$\n$$b = 1 \\quad (3)$$", vec![]),
+    ];
+    for (name, source, want) in cases {
+        assert_eq!(verdicts_of(name, source), want, "{name}");
+    }
+}

@@ -513,6 +513,53 @@ fn write(
         eq.defines.push((key.clone(), String::new()));
         defined.insert(key.clone(), eq.id.clone());
     }
+    // A symbol that an equation left to complete may define, and that no equation
+    // read defines, is unknown after that equation: so is every definition stated
+    // after it whose body reads one. An equation further on that reads an unknown is
+    // left to complete as well, or its verdict would be about an independent symbol
+    // that the paper ties down where it was not read.
+    let mut unknown: BTreeMap<Key, usize> = blocked
+        .iter()
+        .filter(|(k, _)| !defined.contains_key(*k))
+        .map(|(k, &q)| (k.clone(), q))
+        .collect();
+    loop {
+        let before = unknown.len();
+        for (k, (q, body)) in &chosen {
+            let root = body
+                .iter()
+                .filter_map(|b| unknown.get(b))
+                .find(|&&b| b < *q);
+            if let Some(&b) = root {
+                unknown.entry(k.clone()).or_insert(b);
+            }
+        }
+        if unknown.len() == before {
+            break;
+        }
+    }
+    let ids: Vec<String> = equations.iter().map(|e| e.id.clone()).collect();
+    let mut left = false;
+    for (q, eq) in equations.iter_mut().enumerate() {
+        if eq.unread.is_some() {
+            continue;
+        }
+        let first = eq
+            .reads
+            .iter()
+            .find_map(|k| unknown.get(k).filter(|&&b| b < q).map(|&b| (k, b)));
+        if let Some((k, b)) = first {
+            let printed = symbols.get(k).map_or(k.as_str(), |s| s.key.0.as_str());
+            eq.unread = Some(format!(
+                "it reads `{printed}`, which {} may define, and that is still to complete",
+                ids[b]
+            ));
+            left = true;
+        }
+    }
+    if left {
+        return None;
+    }
     let defined_keys: BTreeSet<Key> = defined.keys().cloned().collect();
     symbols::unique_names(&mut symbols, &order, &defined_keys);
     for eq in equations.iter_mut() {
@@ -747,8 +794,12 @@ fn render(r: Render<'_>) -> String {
         "# subscript met once completes a scalar's name (R_g); a symbol first seen alone on the\n",
     );
     out.push_str(
-        "# left of an equation is defined by it. Check each reading before trusting a verdict.\n",
+        "# left of an equation is defined by it; an equation that reads a symbol an earlier\n",
     );
+    out.push_str(
+        "# equation left to complete may define is left to complete too. Check each reading\n",
+    );
+    out.push_str("# before trusting a verdict.\n");
     if !todo.is_empty() {
         out.push_str("#\n# To complete:\n");
         for e in &todo {
