@@ -82,7 +82,8 @@ fn a_component_assumption_must_be_a_polynomial() {
     let text = format!("{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\nassume = [\"eta_11 = eta_22 eta_33\"]\nsides = [\"eta_11\", \"eta_22 eta_33\"]\n");
     let file = load_str("t.toml", &text).unwrap();
     let claim = &file.claims[0];
-    let p = Parametrisation::new(&claim.decls, &claim.check.assumptions).unwrap();
+    let p =
+        Parametrisation::new(&claim.decls, &claim.check.defs, &claim.check.assumptions).unwrap();
     assert_eq!(p.constrained("eta", &[0, 0]), Constrained::Dependent);
     assert_eq!(p.constrained("eta", &[1, 1]), Constrained::Free);
     assert_eq!(decide_claim(claim).unwrap().outcome.verdict(), claim.expect);
@@ -96,7 +97,8 @@ fn elasticity_tensor_symmetries_leave_21_and_6_independent_components() {
         );
         let file = load_str("t.toml", &text).unwrap();
         let claim = &file.claims[0];
-        let p = Parametrisation::new(&claim.decls, &claim.check.assumptions).unwrap();
+        let p = Parametrisation::new(&claim.decls, &claim.check.defs, &claim.check.assumptions)
+            .unwrap();
         let components = cosserat_check::algebra::assignments(dim, 4)
             .filter(|idx| p.constrained("C", idx) == Constrained::Free)
             .count();
@@ -121,11 +123,49 @@ fn the_parametrisation_itself_does_not_depend_on_the_order() {
         );
         let file = load_str("t.toml", &text).unwrap();
         let claim = &file.claims[0];
-        let p = Parametrisation::new(&claim.decls, &claim.check.assumptions).unwrap();
+        let p = Parametrisation::new(&claim.decls, &claim.check.defs, &claim.check.assumptions)
+            .unwrap();
         let shown = format!("{:?}", p.dependents().collect::<Vec<_>>());
         match &seen {
             None => seen = Some(shown),
             Some(first) => assert_eq!(&shown, first, "{list:?}"),
         }
     }
+}
+
+/// Assumptions that read definitions (`tests/soundness/assumptions-with-definitions.toml`):
+/// each true claim is proved (or sampled, under `strategy = "numeric"`) and its wrong
+/// twin fails; a substitution that reads a definition waits for the substitutions the
+/// definition depends on, whatever the order written.
+#[test]
+fn assumptions_that_read_definitions_and_their_twins_are_decided_as_declared() {
+    use cosserat_check::decide::Strength;
+    let files = load_files(&[soundness_file("assumptions-with-definitions.toml")]).unwrap();
+    let mut decided = 0;
+    for claim in files.iter().flat_map(|f| &f.claims) {
+        let d = decide_claim(claim).unwrap_or_else(|e| panic!("{}: {e}", claim.id));
+        assert_eq!(d.outcome.verdict(), claim.expect, "{}", claim.id);
+        if !claim.id.contains("sampled") {
+            assert_eq!(d.outcome.strength(), Strength::Proof, "{}", claim.id);
+        }
+        decided += 1;
+    }
+    assert_eq!(decided, 10);
+}
+
+/// A definition that an assumption reads is in the assumption's scope: a cycle through
+/// it is located, and a file-wide assumption does not see a claim's definitions.
+#[test]
+fn definitions_in_assumptions_are_scoped_and_never_cycle() {
+    let cycle =
+        error_of("define = [\"D = S^2 + 1\"]\nassume = [\"S = D\"]\nsides = [\"S\", \"1\"]");
+    assert!(
+        cycle.contains("substitutions refer to each other in a cycle: S → S"),
+        "{cycle}"
+    );
+    let text = "section = \"t\"\ntitle = \"t\"\ndimension = 2\nscalars = [\"a\", \"b\"]\n\
+                assume = [\"a = mine\"]\n[[claim]]\nid = \"c\"\nprinted = 'x'\n\
+                expect = \"holds\"\ndefine = [\"mine = b\"]\nsides = [\"a\", \"b\"]\n";
+    let e = load_str("t.toml", text).unwrap_err().to_string();
+    assert!(e.contains("unknown name `mine`"), "{e}");
 }

@@ -75,7 +75,8 @@ fn the_tape_agrees_with_the_interpreter_on_every_sampled_expression() {
                 }
                 let n = rng.unit_normal(decls);
                 let mut env = RealEnv::new(decls, defs, symbols);
-                let p = Parametrisation::new(decls, &claim.check.assumptions).unwrap();
+                let p = Parametrisation::new(decls, &claim.check.defs, &claim.check.assumptions)
+                    .unwrap();
                 env.assume(&p, &claim.check.assumptions, &n).unwrap();
                 let symbols = env.symbols.clone();
                 let inputs: Vec<f64> = tape

@@ -86,11 +86,12 @@ impl Probe {
     }
 
     fn env(&self) -> Result<ExactEnv<'_>, Diagnostic> {
-        let mut env = ExactEnv::new(&self.decls, &self.check.defs, &self.check.assumptions)?;
-        if let Some(domain) = self.check.strategy.exact_domain() {
-            env.set_domain(domain);
-        }
-        Ok(env)
+        ExactEnv::on(
+            &self.decls,
+            &self.check.defs,
+            &self.check.assumptions,
+            self.check.strategy.exact_domain(),
+        )
     }
 
     /// The (first) expression as a reduced rational function of the parameters it
@@ -188,10 +189,12 @@ pub fn curve_values(
     curve: &Curve,
     grid: &Grid,
 ) -> Result<(Vec<Option<f64>>, Option<String>), ProbeError> {
-    let mut env = ExactEnv::new(&curve.decls, &curve.check.defs, &curve.check.assumptions)?;
-    if let Some(domain) = curve.check.strategy.exact_domain() {
-        env.set_domain(domain);
-    }
+    let mut env = ExactEnv::on(
+        &curve.decls,
+        &curve.check.defs,
+        &curve.check.assumptions,
+        curve.check.strategy.exact_domain(),
+    )?;
     let side = &curve.check.chains[0][0];
     let node = side
         .node

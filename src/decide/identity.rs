@@ -197,10 +197,12 @@ fn decide_recording(
             Symbolic::Open => {}
         }
     }
-    let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
-    if let Some(domain) = check.strategy.exact_domain() {
-        env.set_domain(domain);
-    }
+    let mut env = ExactEnv::on(
+        decls,
+        &check.defs,
+        &check.assumptions,
+        check.strategy.exact_domain(),
+    )?;
     let normal = env.normal_vars().to_vec();
     let mut identities = Identities::new(&normal);
     // A proportionality's factor (1 when the right side is zero everywhere: the left

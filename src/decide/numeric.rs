@@ -725,7 +725,7 @@ fn variables(sampler: &Sampler<'_>, wrt: &[String]) -> Result<Variables, Ambiguo
     let mut free: Vec<Component> = Vec::new();
     for symbol in wrt {
         for sub in p.substituted(&check.assumptions) {
-            if sub.symbol == symbol || sub.body.symbols().contains(symbol.as_str()) {
+            if sub.symbol == symbol || sub.assumption.reads.contains(symbol) {
                 return Err(Ambiguous::Substitution {
                     symbol: symbol.clone(),
                     assumption: sub.assumption.text.clone(),

@@ -77,7 +77,7 @@ impl<'a> Sampler<'a> {
             tapes: RefCell::new(HashMap::default()),
             rng: Rng::new(sampling.seed),
             anchor,
-            parametrisation: Parametrisation::new(decls, &check.assumptions)?,
+            parametrisation: Parametrisation::new(decls, &check.defs, &check.assumptions)?,
             fine: Quadrature::new(Level::Fine),
             coarse: Quadrature::new(Level::Coarse),
             arbiter: Quadrature::new(Level::Arbiter),

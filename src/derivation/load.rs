@@ -383,17 +383,19 @@ impl Loader {
         ))
     }
 
-    /// File-wide assumptions come first, then the check's own.
+    /// File-wide assumptions come first, then the check's own. They may read the
+    /// file's definitions (`defs`), never a claim's.
     fn file_assumptions_first(
         &self,
         raw: &RawFile,
         decls: &Decls,
+        defs: &[Definition],
         check: &mut Check,
     ) -> Result<(), Diagnostic> {
         let mut assumptions = raw
             .assume
             .iter()
-            .map(|a| self.assumption(a, decls))
+            .map(|a| self.assumption(a, decls, defs))
             .collect::<Result<Vec<_>, _>>()?;
         assumptions.append(&mut check.assumptions);
         check.assumptions = assumptions;
@@ -423,7 +425,7 @@ impl Loader {
             let sides = Some(vec![c.y.clone(), c.y.clone()]);
             let mut check =
                 self.check(&f.id, decls, defs, &[], &assume, &sides, &None, false, true)?;
-            self.file_assumptions_first(raw, decls, &mut check)?;
+            self.file_assumptions_first(raw, decls, defs, &mut check)?;
             // The range's parameter varies along the curve: an assumption that fixes it
             // would silently make the curve flat.
             if let Some(a) = check.assumptions.iter().find(|a| a.kind.symbol() == x.name) {
@@ -879,6 +881,7 @@ impl Loader {
         text: &str,
         eq: usize,
         decls: &Decls,
+        sigs: &[DefSig],
     ) -> Result<Option<AssumptionKind>, Diagnostic> {
         let sub = sub_origin(origin, 0..eq);
         let Ok(e) = parse_expr(&text[..eq]) else {
@@ -906,7 +909,7 @@ impl Loader {
             }
             index.push(d - 1);
         }
-        let body = self.rhs(origin, text, eq, decls, &[], &[])?;
+        let body = self.rhs(origin, text, eq, decls, sigs, &[])?;
         no_matrix(origin, &body, "an assumption")?;
         if !body.free.is_empty() {
             return Err(origin.diagnostic(
@@ -921,13 +924,32 @@ impl Loader {
         }))
     }
 
-    fn assumption(&self, s: &S, decls: &Decls) -> Result<Assumption, Diagnostic> {
+    /// One assumption; its right side may read the definitions in scope.
+    fn assumption(
+        &self,
+        s: &S,
+        decls: &Decls,
+        defs: &[Definition],
+    ) -> Result<Assumption, Diagnostic> {
         let origin = self.origin(s);
-        let kind = self.assumption_kind(&origin, s.get_ref(), decls)?;
+        let sigs: Vec<DefSig> = defs.iter().map(|d| d.sig.clone()).collect();
+        let kind = self.assumption_kind(&origin, s.get_ref(), decls, &sigs)?;
+        let reads = match &kind {
+            AssumptionKind::Component { body, .. } | AssumptionKind::Equals { body, .. } => {
+                super::reads::reachable(vec![body], defs)
+                    .0
+                    .into_iter()
+                    .flat_map(|n| n.symbols())
+                    .map(str::to_owned)
+                    .collect()
+            }
+            _ => Default::default(),
+        };
         Ok(Assumption {
             kind,
             text: s.get_ref().trim().to_owned(),
             origin,
+            reads,
         })
     }
 
@@ -936,9 +958,10 @@ impl Loader {
         origin: &Origin,
         text: &str,
         decls: &Decls,
+        sigs: &[DefSig],
     ) -> Result<AssumptionKind, Diagnostic> {
         if let Some(eq) = text.find('=') {
-            if let Some(component) = self.component_assumption(origin, text, eq, decls)? {
+            if let Some(component) = self.component_assumption(origin, text, eq, decls, sigs)? {
                 return Ok(component);
             }
             let (name, formal, span) = self.lhs_name(origin, text, eq, Some(decls), true)?;
@@ -958,8 +981,7 @@ impl Loader {
                         ))
                 }
             }
-            let body = self.rhs(origin, text, eq, decls, &[], &[])?;
-            no_matrix(origin, &body, "an assumption")?;
+            let body = self.rhs(origin, text, eq, decls, sigs, &[])?;
             no_matrix(origin, &body, "an assumption")?;
             let mut want = formal.clone();
             want.sort_unstable();
@@ -1034,7 +1056,7 @@ impl Loader {
         }
         let assumptions = assume
             .iter()
-            .map(|a| self.assumption(a, decls))
+            .map(|a| self.assumption(a, decls, &defs))
             .collect::<Result<Vec<_>, _>>()?;
         let raw_chains: Vec<&Vec<S>> = match (sides, chains) {
             (Some(s), None) => vec![s],
@@ -1382,7 +1404,7 @@ impl Loader {
         )?;
         check.strategy = self.strategy(c, decls, &check.defs)?;
         self.one_pair_if_needed(c, &check)?;
-        self.file_assumptions_first(raw, decls, &mut check)?;
+        self.file_assumptions_first(raw, decls, defs, &mut check)?;
         let correction = match &c.correction {
             None => None,
             Some(r) => {

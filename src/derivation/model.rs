@@ -128,6 +128,10 @@ pub struct Assumption {
     /// The assumption as written.
     pub text: String,
     pub origin: Origin,
+    /// The symbols its right side reads, directly or through the definitions it reads
+    /// (an assumption may read definitions: `sigma_12 = tau_y` with `tau_y = c + mu p`
+    /// reads `c`, `mu` and `p`).
+    pub reads: std::collections::BTreeSet<String>,
 }
 
 impl Assumption {
@@ -135,11 +139,7 @@ impl Assumption {
     /// right side.
     pub fn symbols(&self) -> Vec<String> {
         let mut out = vec![self.kind.symbol().to_owned()];
-        if let AssumptionKind::Component { body, .. } | AssumptionKind::Equals { body, .. } =
-            &self.kind
-        {
-            out.extend(body.symbols().into_iter().map(str::to_owned));
-        }
+        out.extend(self.reads.iter().cloned());
         out
     }
 

@@ -56,19 +56,30 @@ impl Check {
         reachable(roots, &self.defs)
     }
 
-    /// Indices (into `defs`) of the definitions the statement depends on, directly or
-    /// through other definitions, in definition order.
+    /// The names of the definitions the statement depends on: those its expressions
+    /// and its assumptions read, directly or through other definitions.
+    pub fn definitions_read(&self) -> BTreeSet<&str> {
+        let roots: Vec<&Node> =
+            self.assumptions
+                .iter()
+                .filter_map(|a| match &a.kind {
+                    AssumptionKind::Component { body, .. }
+                    | AssumptionKind::Equals { body, .. } => Some(body),
+                    _ => None,
+                })
+                .collect();
+        let (_, mut names) = self.reachable();
+        names.extend(reachable(roots, &self.defs).1);
+        names
+    }
+
+    /// Indices (into `defs`) of the definitions the statement depends on (see
+    /// [`Check::definitions_read`]), in definition order.
     pub fn dependencies(&self) -> Vec<usize> {
-        let (_, names) = self.reachable();
+        let names = self.definitions_read();
         (0..self.defs.len())
             .filter(|&k| names.contains(self.defs[k].sig.name.as_str()))
             .collect()
-    }
-
-    /// The names of the definitions the statement depends on, directly or through
-    /// other definitions.
-    pub fn definitions_read(&self) -> BTreeSet<&str> {
-        self.reachable().1
     }
 
     /// The symbols whose values decide the statement: those it reads, and those the
@@ -100,14 +111,14 @@ impl Check {
         loop {
             let before = out.symbols.len();
             for a in &self.assumptions {
-                let body = match &a.kind {
-                    AssumptionKind::Component { body, .. }
-                    | AssumptionKind::Equals { body, .. } => body,
-                    _ => continue,
-                };
+                if !matches!(
+                    a.kind,
+                    AssumptionKind::Component { .. } | AssumptionKind::Equals { .. }
+                ) {
+                    continue;
+                }
                 if out.symbols.contains(a.kind.symbol()) {
-                    out.symbols
-                        .extend(body.symbols().into_iter().map(str::to_owned));
+                    out.symbols.extend(a.reads.iter().cloned());
                 }
             }
             if out.symbols.len() == before {

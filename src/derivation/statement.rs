@@ -241,7 +241,7 @@ pub fn context(
     check: &Check,
     domain: Option<&ParamBox>,
 ) -> Result<Context, Diagnostic> {
-    let parametrisation = Parametrisation::new(decls, &check.assumptions)?;
+    let parametrisation = Parametrisation::new(decls, &check.defs, &check.assumptions)?;
     let substituted = parametrisation.substitutions();
     let mut equations = Vec::new();
     for (k, a) in check.assumptions.iter().enumerate() {

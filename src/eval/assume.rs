@@ -31,7 +31,7 @@ use super::exact::env::ExactEnv;
 use crate::algebra::assignments;
 use crate::algebra::linear::{self, AffineEquation};
 use crate::derivation::parametrisation::{single, Component, Parametrisation, Product};
-use crate::derivation::{Assumption, AssumptionKind};
+use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::term::component_name;
 use crate::kernel::{Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
@@ -52,8 +52,15 @@ enum Role {
 
 impl Parametrisation {
     /// Solves the assumptions of one claim.
-    pub fn new(decls: &Decls, assumptions: &[Assumption]) -> Result<Self, Diagnostic> {
+    pub fn new(
+        decls: &Decls,
+        defs: &[Definition],
+        assumptions: &[Assumption],
+    ) -> Result<Self, Diagnostic> {
+        // Definitions read by an assumption are read with every component free, as if
+        // written out in it.
         let mut env = ExactEnv::unconstrained(decls);
+        env.defs = defs;
         // Which component each variable is: needed only to read equations.
         let components = if assumptions.is_empty() {
             HashMap::default()
@@ -370,10 +377,7 @@ fn substitution_order(
                 .with_help("a substituted symbol cannot depend on itself"));
         }
         path.push(k);
-        let AssumptionKind::Equals { body, .. } = &assumptions[k].kind else {
-            unreachable!("substitutions are equations")
-        };
-        for s in body.symbols() {
+        for s in &assumptions[k].reads {
             for dep in of(s) {
                 visit(dep, assumptions, of, path, done)?;
             }

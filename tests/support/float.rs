@@ -39,7 +39,8 @@ pub fn decide(
         return Ok(None);
     }
     let d = decls.dim;
-    let parametrisation = Parametrisation::new(decls, &check.assumptions).map_err(|e| e.message)?;
+    let parametrisation =
+        Parametrisation::new(decls, &check.defs, &check.assumptions).map_err(|e| e.message)?;
     let mut rng = Rng::new(seed);
     // Derivatives of fields: random polynomial fields, differentiated by central
     // differences, to the stencil's accuracy.

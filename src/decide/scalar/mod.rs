@@ -35,9 +35,8 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     else {
         unreachable!("dispatched on the strategy")
     };
-    let mut env = ExactEnv::new(decls, &check.defs, &check.assumptions)?;
     // Square roots take their sign on the claim's box.
-    env.set_domain(domain);
+    let env = ExactEnv::on(decls, &check.defs, &check.assumptions, Some(domain))?;
     let mut cx = Context {
         env,
         decls,

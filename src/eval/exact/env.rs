@@ -92,6 +92,8 @@ pub struct ExactEnv<'a> {
     /// Definitions with their derivatives by symbols (`grad`), by (the symbols of each
     /// level, name).
     pub(crate) jet_cache: HashMap<(String, String), Tensor<super::jet::Jet>>,
+    /// The claim's box by name, while [`ExactEnv::on`] evaluates the substitutions.
+    pending: Vec<(String, Interval)>,
 }
 
 pub(crate) fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
@@ -118,7 +120,18 @@ impl<'a> ExactEnv<'a> {
         defs: &'a [Definition],
         assumptions: &[Assumption],
     ) -> Result<Self, Diagnostic> {
-        let parametrisation = Parametrisation::new(decls, assumptions)?;
+        Self::on(decls, defs, assumptions, None)
+    }
+
+    /// [`ExactEnv::new`] on the claim's box (`given`): the square roots of the
+    /// substitutions, and of the definitions they read, take their sign there.
+    pub fn on(
+        decls: &'a Decls,
+        defs: &'a [Definition],
+        assumptions: &[Assumption],
+        domain: Option<&ParamBox>,
+    ) -> Result<Self, Diagnostic> {
+        let parametrisation = Parametrisation::new(decls, defs, assumptions)?;
         let mut env = ExactEnv {
             defs,
             ..ExactEnv::unconstrained(decls)
@@ -146,10 +159,17 @@ impl<'a> ExactEnv<'a> {
             *t.get_mut(idx) = Quotient::from(value);
             env.symbols.insert(symbol.clone(), t);
         }
+        // While the substitutions are evaluated, the box is read by name, so that the
+        // variables keep the order in which they are first used.
+        env.pending = domain.map(|d| d.bounds.clone()).unwrap_or_default();
         for sub in parametrisation.substituted(assumptions) {
             let value = env.eval(sub.body, &sub.assumption.origin)?;
             let t = to_formal_order(&value, sub.formal);
             env.symbols.insert(sub.symbol.to_owned(), t);
+        }
+        env.pending.clear();
+        if let Some(domain) = domain {
+            env.set_domain(domain);
         }
         env.assumed = assumptions.iter().flat_map(Assumption::symbols).collect();
         env.parametrisation = Some(parametrisation);
@@ -182,6 +202,7 @@ impl<'a> ExactEnv<'a> {
             roots: Vec::new(),
             root_values: Vec::new(),
             jet_cache: HashMap::default(),
+            pending: Vec::new(),
         }
     }
 
@@ -516,8 +537,15 @@ impl ExactRing<'_, '_> {
             ));
         };
         let env = &mut *self.env;
+        // A bound of the pending box on a variable not used yet bounds nothing here.
+        let mut domain = env.domain.clone();
+        domain.extend(
+            env.pending
+                .iter()
+                .filter_map(|(name, i)| Some((env.vars.lookup(name)?, i.clone()))),
+        );
         for candidate in [root.clone(), -root.clone()] {
-            if let Some(c) = Certificate::square_root(p, &candidate, &env.domain, &env.vars) {
+            if let Some(c) = Certificate::square_root(p, &candidate, &domain, &env.vars) {
                 if !env.roots.contains(&c) {
                     env.roots.push(c);
                 }
