@@ -169,3 +169,32 @@ fn definitions_in_assumptions_are_scoped_and_never_cycle() {
     let e = load_str("t.toml", text).unwrap_err().to_string();
     assert!(e.contains("unknown name `mine`"), "{e}");
 }
+
+/// An assumption gives a symbol one value per state: a right side that varies with the
+/// normal (outside `avg`) or, for a symbol that is not a field, with position is a
+/// located error, also through a definition. (Read at one normal, `avg(S)` with
+/// `S = sigma_ij n_i n_j` came out equal to S, and a false claim held as sampled.)
+#[test]
+fn an_assumption_never_varies_with_the_normal_or_the_position() {
+    let normal = "section = \"t\"\ntitle = \"t\"\ndimension = 3\nnormal = \"n\"\n\
+                  tensors = [\"sigma_ij\"]\nscalars = [\"S\"]\ndefine = [\"tnn = sigma_ij n_i n_j\"]\n\
+                  [[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"numeric\"\n\
+                  assume = [\"S = tnn\"]\nsides = [\"avg(S)\", \"S\"]\n";
+    let e = load_str("t.toml", normal).unwrap_err().to_string();
+    assert!(
+        e.contains("gives `S` one value per state, but this right side varies with the normal"),
+        "{e}"
+    );
+    assert!(e.contains("t.toml:13:13"), "{e}");
+    let averaged = normal.replace("S = tnn", "S = avg(tnn)");
+    assert!(load_str("t.toml", &averaged).is_ok());
+    let position = "section = \"t\"\ntitle = \"t\"\ndimension = 3\nposition = \"x\"\n\
+                    fields = [\"v_i\"]\nscalars = [\"S\"]\ndefine = [\"Dq = v_k,k v_m,m\"]\n\
+                    [[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\n\
+                    assume = [\"S = Dq\"]\nsides = [\"d(S)/dx_1\", \"0\"]\n";
+    let e = load_str("t.toml", position).unwrap_err().to_string();
+    assert!(
+        e.contains("`S` does not vary with position, but this right side does"),
+        "{e}"
+    );
+}

@@ -64,8 +64,16 @@ fn a_textbook_derivation_is_right_with_no_edit_and_every_planted_error_fails() {
 #[test]
 fn the_papers_markdown_drafts_into_a_file_verify_accepts() {
     let (toml, verdicts) = drafted(&[PAPER, "--normal", "n"]);
-    // A floor, as for mutation kills: fewer drafted claims is a regression.
-    assert!(verdicts.len() >= 40, "{} claims\n{toml}", verdicts.len());
+    // Floors, as for mutation kills: fewer equations that hold as drafted, or fewer
+    // drafted claims, is a regression. (A claim that reads what an equation left to
+    // complete may define is left to complete too, so drafted claims that would fail as
+    // read for want of that definition are not counted: holding ones are the measure.)
+    let holding = verdicts
+        .iter()
+        .filter(|(_, v)| *v == Verdict::Holds)
+        .count();
+    assert!(holding >= 14, "{holding} hold\n{toml}");
+    assert!(verdicts.len() >= 34, "{} claims\n{toml}", verdicts.len());
     assert!(toml.contains("# 62 numbered equations: "), "{toml}");
     // The printed error of (26) is flagged.
     assert!(verdicts.contains(&("eq26".to_owned(), Verdict::Fails)));
@@ -139,7 +147,7 @@ fn a_false_equation_never_holds_as_drafted() {
         ("square-first.md", "$$T^2 = a^2 + b^2 \\quad (1)$$\n$$T = a + b \\quad (2)$$", vec![fails("eq1"), holds("eq2")]),
         ("continued.tex", "\\begin{equation} a = 1 \\end{equation}\n\\begin{align}\na &= 1 \\\\\n  &\\quad + 1 \\nonumber\n\\end{align}", vec![holds("eq1"), fails("eq2")]),
         ("factor.md", "$$a = 2 \\quad (1)$$\n$$a = 2 \\cdot (3)$$", vec![holds("eq1")]),
-        ("lost.md", "$$a = b, \\quad c = \\frobnicate \\quad (1)$$\n$$a = b + 1 \\quad (2)$$", vec![fails("eq2")]),
+        ("lost.md", "$$a = b, \\quad c = \\frobnicate \\quad (1)$$\n$$a = b + 1 \\quad (2)$$", vec![]),
         ("comment.tex", "% indices ranging from 1 to 2\n\\begin{equation} \\delta_{kk} = 2 \\end{equation}", vec![fails("eq1")]),
         ("cycle.md", "$$a = c \\quad (1)$$\n$$c = 1, \\quad a = 1 \\quad (2)$$", vec![holds("eq1"), holds("eq2")]),
         ("dead.tex", "\\iffalse\n\\begin{equation} a = 2 \\end{equation}\n\\fi\n\\begin{comment}\n$$a = 3 \\quad (7)$$\n\\end{comment}\n\\begin{equation} a = 1 \\label{eq:a} \\end{equation}\n\\begin{equation} a + 1 = 2 \\end{equation}", vec![holds("eq1"), holds("eq2")]),
@@ -152,10 +160,24 @@ fn a_false_equation_never_holds_as_drafted() {
         ("enddoc.tex", "\\begin{equation} \\delta_{kk} = 2 \\end{equation}\n\\end{document}\nindices ranging from 1 to 2\n\\begin{equation} a = 1 \\end{equation}", vec![fails("eq1")]),
         ("html-in-tex.tex", "<!--\n\\begin{equation} a = 1 \\end{equation}\n-->\n\\begin{equation} a = 2 \\end{equation}", vec![holds("eq1"), fails("eq2")]),
         ("iffalse-in-md.md", "Text \\iffalse here.\n$$a = 1 \\quad (1)$$\nText \\fi there.\n$$a = 2 \\quad (2)$$", vec![holds("eq1"), fails("eq2")]),
+        ("tensor-letter.md", "$$t_i^{(t)} = \\langle n_i n_1 \\rangle \\quad (1)$$\n$$t_k^{(t)} = 0 \\quad (2)$$", vec![]),
+        ("tensor-letter-plain.md", "$$v_i = \\langle n_i n_1 \\rangle \\quad (1)$$\n$$v_k = 0 \\quad (2)$$", vec![]),
     ];
     for (name, source, want) in cases {
         assert_eq!(verdicts_of(name, source), want, "{name}");
     }
+    // With the normal, (1) defines the vector t^(t); `t_k^{(t)}` in (2) is that vector
+    // with the index k, not a scalar named by its subscript, so (2) fails at k = 1.
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/draft-test");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tensor-letter-normal.md");
+    std::fs::write(
+        &path,
+        "$$t_i^{(t)} = \\langle n_i n_1 \\rangle \\quad (1)$$\n$$t_k^{(t)} = 0 \\quad (2)$$",
+    )
+    .unwrap();
+    let (toml, verdicts) = drafted(&[path.to_str().unwrap(), "--normal", "n"]);
+    assert_eq!(verdicts, vec![holds("eq1"), fails("eq2")], "{toml}");
 }
 
 /// An equation that reads a symbol which an earlier equation left to complete may
@@ -171,6 +193,9 @@ fn a_true_equation_never_fails_on_what_an_unread_one_defines() {
     // defines t^(n); through a definition that reads it, (3) depends on it as well.
     let cases: Vec<Case> = vec![
         ("unread-definition.md", "$$t_i^{(n)} = \\langle \\sigma_{ij} n_j \\rangle \\quad (1)$$\n$$t_i^{(n)} t_i^{(n)} = 1 \\quad (2)$$\n$$a = 1 \\quad (3)$$\n$$a + 1 = 2 \\quad (4)$$\n$$a = 3 \\quad (5)$$", vec![holds("eq3"), holds("eq4"), fails("eq5")]),
+        ("square.md", "$$T^2 = \\langle n_k n_k \\rangle \\quad (1)$$\n$$T^2 = 1 \\quad (2)$$\n$$3 T^2 = 3 \\quad (3)$$", vec![]),
+        ("unreadable.md", "$$S = \\int_0^1 x \\, dx \\quad (1)$$\n$$2 S = 1 \\quad (2)$$", vec![]),
+        ("doubted.md", "$$S = x^{\\,2} \\quad (1)$$\n$$S = x x \\quad (2)$$", vec![]),
         ("through-a-definition.md", "$$t_i^{(n)} = \\langle \\sigma_{ij} n_j \\rangle \\quad (1)$$\n$$b = t_i^{(n)} t_i^{(n)} \\quad (2)$$\n$$b = 1 \\quad (3)$$", vec![]),
     ];
     for (name, source, want) in cases {

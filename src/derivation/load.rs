@@ -945,6 +945,32 @@ impl Loader {
             }
             _ => Default::default(),
         };
+        // An assumption gives each symbol one value per state: a right side that
+        // varies with the normal (outside avg) would be read at one normal only, and
+        // one that varies with position at one point, unless the symbol is a field.
+        if let AssumptionKind::Component { symbol, body, .. }
+        | AssumptionKind::Equals { symbol, body, .. } = &kind
+        {
+            match super::reads::varies_with(body, defs, decls) {
+                Some("the normal") => {
+                    return Err(origin
+                        .diagnostic(
+                            body.span,
+                            format!("an assumption gives `{symbol}` one value per state, but this right side varies with the normal"),
+                        )
+                        .with_help(format!("define `{symbol}` instead (define = [\"…\"]), or average the right side with avg(…)")))
+                }
+                Some(_) if !decls.varies(symbol) => {
+                    return Err(origin
+                        .diagnostic(
+                            body.span,
+                            format!("`{symbol}` does not vary with position, but this right side does"),
+                        )
+                        .with_help(format!("declare `{symbol}` in `fields`, or define it instead")))
+                }
+                _ => {}
+            }
+        }
         Ok(Assumption {
             kind,
             text: s.get_ref().trim().to_owned(),

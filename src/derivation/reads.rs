@@ -4,7 +4,7 @@
 
 use super::model::{AssumptionKind, Check, Definition};
 use crate::lang::parser::Wrt;
-use crate::lang::{Node, NodeKind, Target};
+use crate::lang::{Decls, Node, NodeKind, Target};
 use std::collections::BTreeSet;
 
 /// Every node reachable from `roots`, through the bodies of the definitions (in
@@ -29,6 +29,43 @@ pub fn reachable<'a>(
         stack.extend(n.children());
     }
     (seen, names)
+}
+
+/// What makes `node` vary outside `avg` and `maxn`, through the definitions it reads
+/// (in `defs`, the innermost of a name): the normal, or a field or the position.
+pub fn varies_with(node: &Node, defs: &[Definition], decls: &Decls) -> Option<&'static str> {
+    fn walk<'a>(
+        node: &'a Node,
+        defs: &'a [Definition],
+        decls: &Decls,
+        seen: &mut BTreeSet<&'a str>,
+    ) -> Option<&'static str> {
+        match &node.kind {
+            NodeKind::Avg(_) | NodeKind::MaxN(_) => return None,
+            NodeKind::Leaf {
+                target: Target::Normal,
+                ..
+            } => return Some("the normal"),
+            NodeKind::Leaf {
+                target: Target::Symbol(s),
+                ..
+            } if decls.varies(s) => return Some("the position"),
+            _ => {}
+        }
+        if let Some(name) = node.definition() {
+            if seen.insert(name) {
+                if let Some(d) = defs.iter().rev().find(|d| d.sig.name == name) {
+                    if let Some(what) = walk(&d.body, defs, decls, seen) {
+                        return Some(what);
+                    }
+                }
+            }
+        }
+        node.children()
+            .into_iter()
+            .find_map(|c| walk(c, defs, decls, seen))
+    }
+    walk(node, defs, decls, &mut BTreeSet::new())
 }
 
 /// The symbols a statement reads, and whether it reads the normal.

@@ -5,8 +5,9 @@
 //!
 //! ∂σ_ab/∂σ_c = δ_{a c_1} δ_{b c_2}; sums, products, quotients, powers, square roots
 //! (d√x = dx / (2√x)), averages, derivatives along the position, `grad` (derivatives
-//! commute) and the matrix operations follow their rules; a definition's derivative is a new definition,
-//! named `∂name/∂σ_c`, made once. A term that does not read σ has derivative 0.
+//! commute) and the matrix operations follow their rules (an adjugate by its
+//! cofactors); a definition's derivative is a new definition, named `∂name/∂σ_c`, made
+//! once. A term that does not read σ has derivative 0.
 
 use super::rational::Rational;
 use super::statement::Definition;

@@ -345,8 +345,8 @@ impl Node {
     }
 }
 
-/// Whether a variation or a gradient occurs in `node` (not looking into definitions).
-/// How deeply gradients nest in `node` (0: none), and how many variations it holds.
+/// How deeply gradients nest in `node` (0: none), and how many variations it holds (not
+/// looking into definitions).
 fn nested_wrt(node: &Node) -> (usize, usize) {
     let (mut depth, mut variations) = (0, 0);
     for child in node.children() {

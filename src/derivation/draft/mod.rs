@@ -262,11 +262,12 @@ fn line_owners(toml: &str) -> BTreeMap<usize, String> {
 fn defined_symbol(
     first: &latex::Math,
     symbol: Option<&(Key, Symbol)>,
+    tensors: &BTreeSet<String>,
 ) -> Option<(Key, Option<Symbol>)> {
     let (key, s) = symbol?;
     // The chain's first symbol must be the first member's own (a constant such as π is
     // no symbol, and the first symbol is then a later member's).
-    let own = symbols::occurrences(&[first], None);
+    let own = symbols::occurrences(&[first], None, tensors);
     if own.first().map(|(_, o)| &o.key.0) != Some(&s.key.0) {
         return None;
     }
@@ -292,6 +293,31 @@ fn defined_symbol(
         }
         _ => None,
     }
+}
+
+/// The symbol an equation the reader cannot read may define: its text before the first
+/// `=` outside braces, when that reads as one symbol alone (or its square).
+fn left_symbol(latex_text: &str, normal: Option<&str>, tensors: &BTreeSet<String>) -> Option<Key> {
+    let mut depth = 0i32;
+    let at = latex_text.char_indices().find_map(|(i, c)| {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            '=' if depth == 0 => return Some(i),
+            _ => {}
+        }
+        None
+    })?;
+    let left = latex::read(&latex_text[..at], &ReadOptions::default()).ok()?;
+    let [part] = &left.parts[..] else { return None };
+    let [first] = &part.members[..] else {
+        return None;
+    };
+    let found = symbols::occurrences(&[first], normal, tensors);
+    if found.len() != 1 {
+        return None;
+    }
+    defined_symbol(first, found.first(), tensors).map(|(k, _)| k)
 }
 
 /// The index letters of a defined symbol as its defining member writes them.
@@ -393,6 +419,22 @@ fn write(
     // unknown, so a symbol they mention is defined by no later equation.
     let mut opaque: Vec<(usize, String)> = Vec::new();
     let options = ReadOptions::default();
+    // Pass 0: the symbols that carry index slots anywhere (read or left to complete).
+    let tensors: BTreeSet<String> = equations
+        .iter()
+        .filter_map(|eq| latex::read(&eq.latex, &options).ok())
+        .flat_map(|p| {
+            p.parts
+                .iter()
+                .flat_map(|part| {
+                    let members: Vec<&latex::Math> = part.members.iter().collect();
+                    symbols::occurrences(&members, normal, &BTreeSet::new())
+                })
+                .filter(|(_, s)| !s.component)
+                .filter_map(|(k, _)| symbols::tensor_stem(&k))
+                .collect::<Vec<_>>()
+        })
+        .collect();
     // Symbols that an equation left to complete has alone on a left side: it may define
     // them, so no later equation does. Symbols met other than squared (`T`, not `T^2`):
     // their squares are no symbols of their own.
@@ -405,7 +447,7 @@ fn write(
             if let Ok(p) = latex::read(&eq.latex, &options) {
                 for part in &p.parts {
                     let members: Vec<&latex::Math> = part.members.iter().collect();
-                    let found = symbols::occurrences(&members, normal);
+                    let found = symbols::occurrences(&members, normal, &tensors);
                     plain.extend(
                         found
                             .iter()
@@ -413,13 +455,16 @@ fn write(
                             .map(|(k, _)| k.clone()),
                     );
                     if let Some(first) = members.first() {
-                        if let Some((k, _)) = defined_symbol(first, found.first()) {
+                        if let Some((k, _)) = defined_symbol(first, found.first(), &tensors) {
                             blocked.entry(k).or_insert(q);
                         }
                     }
                 }
             } else {
                 opaque.push((q, eq.latex.clone()));
+                if let Some(k) = left_symbol(&eq.latex, normal, &tensors) {
+                    blocked.entry(k).or_insert(q);
+                }
             }
             continue;
         }
@@ -427,6 +472,9 @@ fn write(
             Ok(p) => p,
             Err(e) => {
                 opaque.push((q, eq.latex.clone()));
+                if let Some(k) = left_symbol(&eq.latex, normal, &tensors) {
+                    blocked.entry(k).or_insert(q);
+                }
                 let col = latex::column(&eq.latex, e.span.start);
                 eq.unread = Some(format!("cannot read column {col}: {}", e.message));
                 continue;
@@ -434,18 +482,21 @@ fn write(
         };
         let doubt = printed.parts.iter().find_map(|part| {
             let members: Vec<&latex::Math> = part.members.iter().collect();
-            symbols::occurrences(&members, normal)
+            symbols::occurrences(&members, normal, &tensors)
                 .into_iter()
                 .find_map(|(_, s)| s.doubt)
         });
         if let Some(why) = doubt {
             eq.unread = Some(why);
             opaque.push((q, eq.latex.clone()));
+            if let Some(k) = left_symbol(&eq.latex, normal, &tensors) {
+                blocked.entry(k).or_insert(q);
+            }
             continue;
         }
         for part in &printed.parts {
             let members: Vec<&latex::Math> = part.members.iter().collect();
-            let found = symbols::occurrences(&members, normal);
+            let found = symbols::occurrences(&members, normal, &tensors);
             for (key, s) in found.iter().cloned() {
                 eq.reads.insert(key.clone());
                 if !s.squared {
@@ -461,10 +512,10 @@ fn write(
             if part.relations.first() != Some(&latex::Rel::Eq) || members.len() < 2 {
                 continue;
             }
-            let Some((key, square)) = defined_symbol(members[0], found.first()) else {
+            let Some((key, square)) = defined_symbol(members[0], found.first(), &tensors) else {
                 continue;
             };
-            let body: BTreeSet<Key> = symbols::occurrences(&members[1..], normal)
+            let body: BTreeSet<Key> = symbols::occurrences(&members[1..], normal, &tensors)
                 .into_iter()
                 .map(|(k, _)| k)
                 .collect();
@@ -544,12 +595,15 @@ fn write(
         if eq.unread.is_some() {
             continue;
         }
-        let first = eq
-            .reads
-            .iter()
-            .find_map(|k| unknown.get(k).filter(|&&b| b < q).map(|&b| (k, b)));
+        // Reading `T` (or `T^2`) reads what defines `T^2`.
+        let first = eq.reads.iter().find_map(|k| {
+            [k.clone(), format!("{k}^2")]
+                .into_iter()
+                .find_map(|key| unknown.get_key_value(&key).filter(|(_, &b)| b < q))
+                .map(|(key, &b)| (key.clone(), b))
+        });
         if let Some((k, b)) = first {
-            let printed = symbols.get(k).map_or(k.as_str(), |s| s.key.0.as_str());
+            let printed = symbols.get(&k).map_or(k.as_str(), |s| s.key.0.as_str());
             eq.unread = Some(format!(
                 "it reads `{printed}`, which {} may define, and that is still to complete",
                 ids[b]
@@ -645,9 +699,9 @@ fn write(
             .iter()
             .filter_map(|part| {
                 let members: Vec<&latex::Math> = part.members.iter().collect();
-                let found = symbols::occurrences(&members, normal);
+                let found = symbols::occurrences(&members, normal, &tensors);
                 let first = part.members.first()?;
-                let (k, _) = defined_symbol(first, found.first())?;
+                let (k, _) = defined_symbol(first, found.first(), &tensors)?;
                 eq.defines
                     .iter()
                     .any(|(d, _)| *d == k)

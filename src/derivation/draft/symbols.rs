@@ -7,7 +7,9 @@
 //! - a subscript of two or more characters, or of one letter that occurs more than once
 //!   in the equation's subscripts, holds index slots (`\sigma_{ij}`, `n_i` in
 //!   `\ell_i = R_g n_i`); digits are components (`\sigma_{12}`);
-//! - a one-letter subscript that occurs once completes a scalar's name (`R_g`, `f_r`);
+//! - a one-letter subscript that occurs once completes a scalar's name (`R_g`, `f_r`),
+//!   unless it is one of i, j, k, l, m on a symbol written with index slots elsewhere
+//!   (`t_k` where the paper has `t_i`);
 //! - δ_{ij}, e_{ijk} and ε_{ijk} are Kronecker's and Levi-Civita's symbols.
 
 use crate::lang::latex::{Atom, Math, MathKind};
@@ -43,8 +45,24 @@ pub struct Symbol {
 /// The identity of a printed symbol: everything but its index letters.
 pub type Key = String;
 
+/// The part of a key that names a printed symbol whatever its subscript (accent, base,
+/// label, primes), when the key is of a symbol with index slots.
+pub fn tensor_stem(key: &Key) -> Option<String> {
+    let fields: Vec<&str> = key.split('|').collect();
+    let [accent, base, sup, primes, suffix, rank] = fields[..] else {
+        return None;
+    };
+    (suffix.is_empty() && rank != "0").then(|| format!("{accent}|{base}|{sup}|{primes}"))
+}
+
 /// Every symbol occurrence of one equation: (identity, the symbol), built-ins left out.
-pub fn occurrences(members: &[&Math], normal: Option<&str>) -> Vec<(Key, Symbol)> {
+/// `tensors` holds the stems ([`tensor_stem`]) of symbols that carry index slots
+/// elsewhere in the paper: a one-letter subscript on one of them is an index too.
+pub fn occurrences(
+    members: &[&Math],
+    normal: Option<&str>,
+    tensors: &BTreeSet<String>,
+) -> Vec<(Key, Symbol)> {
     // A subscript letter is an index where two symbols share it (`n_i` in
     // `\ell_i = R_g n_i`) or one side repeats it (`u_i u_i`).
     let mut indices: BTreeSet<char> = BTreeSet::new();
@@ -79,7 +97,7 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>) -> Vec<(Key, Symbol)
     atoms
         .into_iter()
         .filter_map(|(a, squared)| {
-            let (k, mut s) = symbol(a, &indices, normal)?;
+            let (k, mut s) = symbol(a, &indices, normal, tensors)?;
             s.squared = squared;
             Some((k, s))
         })
@@ -116,7 +134,12 @@ fn atoms_of<'m>(m: &'m Math, squared: bool, out: &mut Vec<(&'m Atom, bool)>) {
 }
 
 /// The symbol an atom is, or `None` for δ, ε and the normal.
-fn symbol(a: &Atom, indices: &BTreeSet<char>, normal: Option<&str>) -> Option<(Key, Symbol)> {
+fn symbol(
+    a: &Atom,
+    indices: &BTreeSet<char>,
+    normal: Option<&str>,
+    tensors: &BTreeSet<String>,
+) -> Option<(Key, Symbol)> {
     let base = a.base.trim_start_matches('\\');
     let sub = a.sub.as_ref().map(|s| s.text.as_str()).unwrap_or("");
     let (slots, derivative) = match sub.split_once(',') {
@@ -153,7 +176,19 @@ fn symbol(a: &Atom, indices: &BTreeSet<char>, normal: Option<&str>) -> Option<(K
     // (J_2: a component `u_1` where the paper has a vector `u`, see `unique_names`);
     // any other subscript holds index slots.
     let one_letter = slots.len() == 1 && slots.chars().all(|c| c.is_ascii_alphanumeric());
-    let suffix = one_letter && !derivative && !slots.chars().any(|c| indices.contains(&c));
+    let stem = format!(
+        "{}|{}|{}|{}",
+        a.accent.as_deref().unwrap_or(""),
+        a.base,
+        a.sup.as_ref().map(|s| s.text.as_str()).unwrap_or(""),
+        a.primes
+    );
+    // `t_k^{(t)}` where the paper writes `t_i^{(t)}` with an index elsewhere: one of the
+    // usual index letters on a symbol with slots is an index (`f_s` beside `f_i` stays
+    // a name: s, r, g, p, n, t label as often as they index).
+    let of_a_tensor = slots.chars().all(|c| "ijklm".contains(c)) && tensors.contains(&stem);
+    let suffix =
+        one_letter && !derivative && !of_a_tensor && !slots.chars().any(|c| indices.contains(&c));
     let mut name = String::from(base);
     if let Some(acc) = &a.accent {
         name.push_str(match acc.trim_start_matches('\\') {
