@@ -198,3 +198,23 @@ fn an_assumption_never_varies_with_the_normal_or_the_position() {
         "{e}"
     );
 }
+
+/// A root in a substitution whose sign the box does not fix leaves that claim
+/// `undecided` with the reason, as a root in a definition does; the file's other claims
+/// are decided.
+#[test]
+fn an_uncertified_root_in_a_substitution_is_undecided_not_an_input_error() {
+    use cosserat_check::derivation::Verdict;
+    let text = "section = \"t\"\ntitle = \"t\"\ndimension = 2\nscalars = [\"S\", \"T\", \"V\"]\n\
+                define = [\"root = sqrt(S^2) + 1\"]\n\
+                [[claim]]\nid = \"open\"\nprinted = 'x'\nexpect = \"holds\"\n\
+                assume = [\"T = root\", \"S = 2 V\"]\nsides = [\"T\", \"2 V + 1\"]\n\
+                [[claim]]\nid = \"boxed\"\nprinted = 'x'\nexpect = \"holds\"\ngiven = [\"V > 0\"]\n\
+                assume = [\"T = root\", \"S = 2 V\"]\nsides = [\"T\", \"2 V + 1\"]\n";
+    let file = load_str("t.toml", text).unwrap();
+    let open = decide_claim(&file.claims[0]).unwrap().outcome;
+    assert_eq!(open.verdict(), Verdict::Undecided);
+    assert!(cosserat_check::report::evidence(&open).contains("is not certified"));
+    let boxed = decide_claim(&file.claims[1]).unwrap().outcome;
+    assert_eq!(boxed.verdict(), Verdict::Holds);
+}

@@ -86,12 +86,12 @@ impl Probe {
     }
 
     fn env(&self) -> Result<ExactEnv<'_>, Diagnostic> {
-        ExactEnv::on(
+        Ok(ExactEnv::on(
             &self.decls,
             &self.check.defs,
             &self.check.assumptions,
             self.check.strategy.exact_domain(),
-        )
+        )?)
     }
 
     /// The (first) expression as a reduced rational function of the parameters it
@@ -194,7 +194,8 @@ pub fn curve_values(
         &curve.check.defs,
         &curve.check.assumptions,
         curve.check.strategy.exact_domain(),
-    )?;
+    )
+    .map_err(Diagnostic::from)?;
     let side = &curve.check.chains[0][0];
     let node = side
         .node

@@ -197,12 +197,19 @@ fn decide_recording(
             Symbolic::Open => {}
         }
     }
-    let mut env = ExactEnv::on(
+    let mut env = match ExactEnv::on(
         decls,
         &check.defs,
         &check.assumptions,
         check.strategy.exact_domain(),
-    )?;
+    ) {
+        Ok(env) => env,
+        // A substitution's value too large, or its root not certified on the box.
+        Err(r) => match Finding::of_refusal(&r) {
+            Some(f) => return Ok(Outcome::undecided(Method::Exact, 0).with_finding(f)),
+            None => return Err(r.into()),
+        },
+    };
     let normal = env.normal_vars().to_vec();
     let mut identities = Identities::new(&normal);
     // A proportionality's factor (1 when the right side is zero everywhere: the left

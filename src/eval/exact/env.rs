@@ -120,18 +120,21 @@ impl<'a> ExactEnv<'a> {
         defs: &'a [Definition],
         assumptions: &[Assumption],
     ) -> Result<Self, Diagnostic> {
-        Self::on(decls, defs, assumptions, None)
+        Ok(Self::on(decls, defs, assumptions, None)?)
     }
 
     /// [`ExactEnv::new`] on the claim's box (`given`): the square roots of the
-    /// substitutions, and of the definitions they read, take their sign there.
+    /// substitutions, and of the definitions they read, take their sign there. A
+    /// substitution whose value costs more than the limits allow, or needs a root the
+    /// box does not certify, is a refusal of that kind, not an input error.
     pub fn on(
         decls: &'a Decls,
         defs: &'a [Definition],
         assumptions: &[Assumption],
         domain: Option<&ParamBox>,
-    ) -> Result<Self, Diagnostic> {
-        let parametrisation = Parametrisation::new(decls, defs, assumptions)?;
+    ) -> Result<Self, Refusal> {
+        let parametrisation =
+            Parametrisation::new(decls, defs, assumptions).map_err(Refusal::Input)?;
         let mut env = ExactEnv {
             defs,
             ..ExactEnv::unconstrained(decls)
