@@ -201,4 +201,15 @@ fn a_true_equation_never_fails_on_what_an_unread_one_defines() {
     for (name, source, want) in cases {
         assert_eq!(verdicts_of(name, source), want, "{name}");
     }
+    // Each equation left to complete says the one edit that would let it be read.
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/draft-test");
+    let (toml, _) = drafted(&[dir.join("unread-definition.md").to_str().unwrap()]);
+    assert!(
+        toml.contains("#   edit: add `normal = \"n\"` at the top of the file"),
+        "{toml}"
+    );
+    assert!(
+        toml.contains("#   edit: complete eq1 first (or define `t_{i}^{(n)}` yourself)"),
+        "{toml}"
+    );
 }

@@ -62,6 +62,8 @@ struct Equation {
     latex: String,
     /// Why it is not a claim, if it is not.
     unread: Option<String>,
+    /// The one edit that would let it be read, where the reason says one.
+    edit: Option<String>,
     /// Decided by sampling (its exact decision asked for it).
     numeric: bool,
     /// The symbols it reads (identities).
@@ -123,6 +125,7 @@ pub fn draft(
                 line: d.line,
                 latex: d.latex,
                 unread,
+                edit: None,
                 reads: BTreeSet::new(),
                 names: BTreeSet::new(),
                 defines: Vec::new(),
@@ -186,6 +189,7 @@ fn refuse_claims(toml: &str, e: &super::LoadError, equations: &mut [Equation]) -
             for eq in equations.iter_mut().filter(|q| q.unread.is_none()) {
                 if names.iter().any(|n| eq.names.contains(n)) {
                     eq.unread = Some(d.message.clone());
+                    eq.edit.clone_from(&d.help);
                     moved = true;
                 }
             }
@@ -196,6 +200,7 @@ fn refuse_claims(toml: &str, e: &super::LoadError, equations: &mut [Equation]) -
             .find(|q| &q.id == id && q.unread.is_none())
         {
             eq.unread = Some(d.message.clone());
+            eq.edit.clone_from(&d.help);
             moved = true;
         }
     }
@@ -608,6 +613,10 @@ fn write(
                 "it reads `{printed}`, which {} may define, and that is still to complete",
                 ids[b]
             ));
+            eq.edit = Some(format!(
+                "complete {} first (or define `{printed}` yourself)",
+                ids[b]
+            ));
             left = true;
         }
     }
@@ -863,6 +872,9 @@ fn render(r: Render<'_>) -> String {
                 e.line,
                 comment(e.unread.as_deref().unwrap_or(""))
             ));
+            if let Some(edit) = &e.edit {
+                out.push_str(&format!("#   edit: {}\n", comment(edit)));
+            }
         }
     }
     out.push_str(&format!("section = \"{}\"\n", "1"));
