@@ -123,20 +123,26 @@ fn hostile_latex_stays_data_and_bad_input_is_located() {
     assert!(e.to_string().contains("not a regular file"), "{e}");
 }
 
-/// Drafts `source` (written to a file `name`) and decides it: each claim's verdict.
-fn verdicts_of(name: &str, source: &str) -> Vec<(String, Verdict)> {
+/// `source` written to the file `name` under the tests' scratch folder: its path.
+fn written(name: &str, source: &str) -> String {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/draft-test");
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, source).unwrap();
-    drafted(&[path.to_str().unwrap()]).1
+    path.to_str().unwrap().to_owned()
+}
+
+/// Drafts `source` (written to a file `name`) and decides it: each claim's verdict.
+fn verdicts_of(name: &str, source: &str) -> Vec<(String, Verdict)> {
+    drafted(&[&written(name, source)]).1
 }
 
 /// Inputs on which a false equation once came out `holds` (or `verify` refused the
 /// draft): a square of a defined symbol read as a new symbol, a continuation row lost,
 /// a bracketed factor read as an equation number, a definition of an equation left to
 /// complete taken over by a later one, a commented sentence setting the dimension,
-/// `uses` in a cycle, text that is not the paper's.
+/// `uses` in a cycle, text that is not the paper's, an index letter of a symbol with
+/// slots read as part of a name (`t_k` beside `t_i`).
 #[test]
 fn a_false_equation_never_holds_as_drafted() {
     let fails = |id: &str| (id.to_owned(), Verdict::Fails);
@@ -168,17 +174,17 @@ fn a_false_equation_never_holds_as_drafted() {
     }
     // With the normal, (1) defines the vector t^(t); `t_k^{(t)}` in (2) is that vector
     // with the index k, not a scalar named by its subscript, so (2) fails at k = 1.
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/draft-test");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("tensor-letter-normal.md");
-    std::fs::write(
-        &path,
+    let path = written(
+        "tensor-letter-normal.md",
         "$$t_i^{(t)} = \\langle n_i n_1 \\rangle \\quad (1)$$\n$$t_k^{(t)} = 0 \\quad (2)$$",
-    )
-    .unwrap();
-    let (toml, verdicts) = drafted(&[path.to_str().unwrap(), "--normal", "n"]);
+    );
+    let (toml, verdicts) = drafted(&[&path, "--normal", "n"]);
     assert_eq!(verdicts, vec![holds("eq1"), fails("eq2")], "{toml}");
 }
+
+/// Without `--normal`, (1) cannot be read (its average needs a contact normal), yet it
+/// defines t^(n).
+const UNREAD: &str = "$$t_i^{(n)} = \\langle \\sigma_{ij} n_j \\rangle \\quad (1)$$\n$$t_i^{(n)} t_i^{(n)} = 1 \\quad (2)$$\n$$a = 1 \\quad (3)$$\n$$a + 1 = 2 \\quad (4)$$\n$$a = 3 \\quad (5)$$";
 
 /// An equation that reads a symbol which an earlier equation left to complete may
 /// define is left to complete too: read with the symbol independent, a true equation
@@ -189,10 +195,9 @@ fn a_true_equation_never_fails_on_what_an_unread_one_defines() {
     let fails = |id: &str| (id.to_owned(), Verdict::Fails);
     let holds = |id: &str| (id.to_owned(), Verdict::Holds);
     type Case = (&'static str, &'static str, Vec<(String, Verdict)>);
-    // Without --normal, (1) cannot be read (its average needs a contact normal), yet it
-    // defines t^(n); through a definition that reads it, (3) depends on it as well.
+    // Through a definition that reads t^(n), (3) of the second case depends on it too.
     let cases: Vec<Case> = vec![
-        ("unread-definition.md", "$$t_i^{(n)} = \\langle \\sigma_{ij} n_j \\rangle \\quad (1)$$\n$$t_i^{(n)} t_i^{(n)} = 1 \\quad (2)$$\n$$a = 1 \\quad (3)$$\n$$a + 1 = 2 \\quad (4)$$\n$$a = 3 \\quad (5)$$", vec![holds("eq3"), holds("eq4"), fails("eq5")]),
+        ("unread-definition.md", UNREAD, vec![holds("eq3"), holds("eq4"), fails("eq5")]),
         ("square.md", "$$T^2 = \\langle n_k n_k \\rangle \\quad (1)$$\n$$T^2 = 1 \\quad (2)$$\n$$3 T^2 = 3 \\quad (3)$$", vec![]),
         ("unreadable.md", "$$S = \\int_0^1 x \\, dx \\quad (1)$$\n$$2 S = 1 \\quad (2)$$", vec![]),
         ("doubted.md", "$$S = x^{\\,2} \\quad (1)$$\n$$S = x x \\quad (2)$$", vec![]),
@@ -202,8 +207,7 @@ fn a_true_equation_never_fails_on_what_an_unread_one_defines() {
         assert_eq!(verdicts_of(name, source), want, "{name}");
     }
     // Each equation left to complete says the one edit that would let it be read.
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/draft-test");
-    let (toml, _) = drafted(&[dir.join("unread-definition.md").to_str().unwrap()]);
+    let (toml, _) = drafted(&[&written("unread-definition.md", UNREAD)]);
     assert!(
         toml.contains("#   edit: add `normal = \"n\"` at the top of the file"),
         "{toml}"
