@@ -951,8 +951,9 @@ impl Loader {
         if let AssumptionKind::Component { symbol, body, .. }
         | AssumptionKind::Equals { symbol, body, .. } = &kind
         {
-            match super::reads::varies_with(body, defs, decls) {
-                Some("the normal") => {
+            use super::reads::{varies_with, Varies};
+            match varies_with(body, defs, decls) {
+                Some(Varies::Normal) => {
                     return Err(origin
                         .diagnostic(
                             body.span,
@@ -960,7 +961,7 @@ impl Loader {
                         )
                         .with_help(format!("define `{symbol}` instead (define = [\"…\"]), or average the right side with avg(…)")))
                 }
-                Some(_) if !decls.varies(symbol) => {
+                Some(Varies::Position) if !decls.varies(symbol) => {
                     return Err(origin
                         .diagnostic(
                             body.span,

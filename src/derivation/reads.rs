@@ -31,25 +31,33 @@ pub fn reachable<'a>(
     (seen, names)
 }
 
+/// What an expression varies with besides the state's symbols.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Varies {
+    Normal,
+    /// A field or the position.
+    Position,
+}
+
 /// What makes `node` vary outside `avg` and `maxn`, through the definitions it reads
 /// (in `defs`, the innermost of a name): the normal, or a field or the position.
-pub fn varies_with(node: &Node, defs: &[Definition], decls: &Decls) -> Option<&'static str> {
+pub fn varies_with(node: &Node, defs: &[Definition], decls: &Decls) -> Option<Varies> {
     fn walk<'a>(
         node: &'a Node,
         defs: &'a [Definition],
         decls: &Decls,
         seen: &mut BTreeSet<&'a str>,
-    ) -> Option<&'static str> {
+    ) -> Option<Varies> {
         match &node.kind {
             NodeKind::Avg(_) | NodeKind::MaxN(_) => return None,
             NodeKind::Leaf {
                 target: Target::Normal,
                 ..
-            } => return Some("the normal"),
+            } => return Some(Varies::Normal),
             NodeKind::Leaf {
                 target: Target::Symbol(s),
                 ..
-            } if decls.varies(s) => return Some("the position"),
+            } if decls.varies(s) => return Some(Varies::Position),
             _ => {}
         }
         if let Some(name) = node.definition() {

@@ -405,8 +405,8 @@ impl Tape {
     }
 
     /// max over θ, as in `RealEnv::max_over_angle`: the grid, golden-section refinement
-    /// of every local maximum in `f64`, then the value (with derivatives) at the
-    /// maximiser.
+    /// of every local maximum in `f64`, then the value at the maximiser (refused for
+    /// dual numbers, as there).
     ///
     /// The ops that do not depend on θ are evaluated once; the others over all the
     /// grid's angles at once, and over every refined maximum at once (the golden

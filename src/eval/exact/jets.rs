@@ -325,7 +325,13 @@ impl Ring for Jets<'_, '_> {
     /// from one that is not), so no value is better than a wrong one.
     fn apply(&mut self, f: Func, x: Jet, node: &Node) -> Result<Jet, Failure> {
         if f != Func::Sqrt {
-            return Ok(Jet::Const(self.base.apply(f, x.state().clone(), node)?));
+            // Only a constant argument may give a constant: no rule here carries the
+            // derivatives of another function.
+            let value = self.base.apply(f, x.state().clone(), node)?;
+            return match x {
+                Jet::Const(_) => Ok(Jet::Const(value)),
+                Jet::Var { .. } => Err(self.refuse(node, &format!("{}(…)", f.name()))),
+            };
         }
         let root = self.root(x, node)?;
         if root.state().is_zero() {
@@ -338,11 +344,15 @@ impl Ring for Jets<'_, '_> {
         Ok(root)
     }
 
-    /// The exact route has no functions of two arguments: the state's refusal.
+    /// Of constants only, as [`Jets::apply`] for functions other than `sqrt`.
     fn apply2(&mut self, f: Func2, x: Jet, y: Jet, node: &Node) -> Result<Jet, Failure> {
-        self.base
-            .apply2(f, x.state().clone(), y.state().clone(), node)
-            .map(Jet::Const)
+        let value = self
+            .base
+            .apply2(f, x.state().clone(), y.state().clone(), node)?;
+        match (x, y) {
+            (Jet::Const(_), Jet::Const(_)) => Ok(Jet::Const(value)),
+            _ => Err(self.refuse(node, &format!("{}(…, …)", f.name()))),
+        }
     }
 
     fn pi(&mut self, node: &Node) -> Result<Jet, Failure> {

@@ -188,8 +188,9 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
     }
 
     /// max over θ of `a` at n = (cos θ, sin θ[, 0]): grid, then golden section around
-    /// the best grid point; the value (with its derivatives, by the envelope theorem)
-    /// is `a` evaluated at the maximiser.
+    /// the best grid point; the value is `a` evaluated at the maximiser. Refused for
+    /// dual numbers ([`maxn_not_differentiated`]): the maximiser is found to about 1e-8
+    /// and moves with what is differentiated.
     pub(super) fn max_over_angle(&self, node: &Node, a: &Node) -> Result<T, RealError> {
         if T::NDERIV > 0 {
             return Err(maxn_not_differentiated(node.span));
