@@ -444,6 +444,12 @@ fn write(
     // them, so no later equation does. Symbols met other than squared (`T`, not `T^2`):
     // their squares are no symbols of their own.
     let mut blocked: BTreeMap<Key, usize> = BTreeMap::new();
+    // An equation the reader cannot read may define its lone left side.
+    let block_left = |blocked: &mut BTreeMap<Key, usize>, q: usize, text: &str| {
+        if let Some(k) = left_symbol(text, normal, &tensors) {
+            blocked.entry(k).or_insert(q);
+        }
+    };
     let mut plain: BTreeSet<Key> = BTreeSet::new();
     for (q, eq) in equations.iter_mut().enumerate() {
         eq.reads.clear();
@@ -467,9 +473,7 @@ fn write(
                 }
             } else {
                 opaque.push((q, eq.latex.clone()));
-                if let Some(k) = left_symbol(&eq.latex, normal, &tensors) {
-                    blocked.entry(k).or_insert(q);
-                }
+                block_left(&mut blocked, q, &eq.latex);
             }
             continue;
         }
@@ -477,9 +481,7 @@ fn write(
             Ok(p) => p,
             Err(e) => {
                 opaque.push((q, eq.latex.clone()));
-                if let Some(k) = left_symbol(&eq.latex, normal, &tensors) {
-                    blocked.entry(k).or_insert(q);
-                }
+                block_left(&mut blocked, q, &eq.latex);
                 let col = latex::column(&eq.latex, e.span.start);
                 eq.unread = Some(format!("cannot read column {col}: {}", e.message));
                 continue;
@@ -494,9 +496,7 @@ fn write(
         if let Some(why) = doubt {
             eq.unread = Some(why);
             opaque.push((q, eq.latex.clone()));
-            if let Some(k) = left_symbol(&eq.latex, normal, &tensors) {
-                blocked.entry(k).or_insert(q);
-            }
+            block_left(&mut blocked, q, &eq.latex);
             continue;
         }
         for part in &printed.parts {

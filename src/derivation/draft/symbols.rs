@@ -215,14 +215,7 @@ fn symbol(
         )
     };
     // Symbols of one name with different numbers of slots are different symbols.
-    let identity = format!(
-        "{}|{}|{}|{}|{}|{rank}",
-        a.accent.as_deref().unwrap_or(""),
-        a.base,
-        a.sup.as_ref().map(|s| s.text.as_str()).unwrap_or(""),
-        a.primes,
-        if suffix { slots } else { "" }
-    );
+    let identity = format!("{stem}|{}|{rank}", if suffix { slots } else { "" });
     let key = (printed_key(a, suffix.then_some(slots)), key_letters.clone());
     let mut derivatives = BTreeSet::new();
     if derivative && !plain {
