@@ -153,6 +153,76 @@ fn assumptions_that_read_definitions_and_their_twins_are_decided_as_declared() {
     assert_eq!(decided, 10);
 }
 
+/// Polynomial constraints (`tests/soundness/polynomial-constraints.toml`): each true
+/// claim is proved by reduction modulo the constraints (or sampled on the constraint
+/// set), and its wrong twin fails at an exact point of that set, which the kernel
+/// checks against every constraint (or at a sampled one).
+#[test]
+fn polynomial_constraints_and_their_twins_are_decided_as_declared() {
+    use cosserat_check::decide::Strength;
+    let files = load_files(&[soundness_file("polynomial-constraints.toml")]).unwrap();
+    let mut decided = 0;
+    for claim in files.iter().flat_map(|f| &f.claims) {
+        let d = decide_claim(claim).unwrap_or_else(|e| panic!("{}: {e}", claim.id));
+        assert_eq!(d.outcome.verdict(), claim.expect, "{}", claim.id);
+        let want = if claim.id.contains("sampled") {
+            Strength::Sampled
+        } else {
+            Strength::Proof
+        };
+        assert_eq!(d.outcome.strength(), want, "{}", claim.id);
+        decided += 1;
+    }
+    assert_eq!(decided, 20);
+}
+
+/// A constraint is solved for a power of a variable of its own whatever the order
+/// written, and one that has none, or shares it, is a located error.
+#[test]
+fn constraints_are_solved_in_any_order_or_located() {
+    for assume in [
+        "\"s_kk = 0\", \"s_ij s_ij = 2 tau^2\"",
+        "\"s_ij s_ij = 2 tau^2\", \"s_kk = 0\"",
+        "\"s_ij s_ij = 2 tau^2\", \"symmetric(s)\", \"traceless(s)\"",
+    ] {
+        let text = format!(
+            "section = \"t\"\ntitle = \"t\"\ndimension = 3\ntensors = [\"s_ij\"]\nscalars = [\"tau\"]\n\
+             [[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nassume = [{assume}]\n\
+             sides = [\"s_ij s_ij tau^2\", \"2 tau^4\"]\n"
+        );
+        let files = [load_str("t.toml", &text).unwrap()];
+        let d = decide_claim(&files[0].claims[0]).unwrap();
+        assert_eq!(
+            d.outcome.verdict(),
+            cosserat_check::derivation::Verdict::Holds,
+            "{assume}"
+        );
+    }
+    // The second constraint reduced by the first says T = 0.
+    let text = format!(
+        "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\n\
+         assume = [\"S^2 = 1\", \"S^2 = 1 + T\"]\nsides = [\"T S\", \"0\"]\n"
+    );
+    let file = load_str("t.toml", &text).unwrap();
+    let d = decide_claim(&file.claims[0]).unwrap();
+    assert_eq!(
+        d.outcome.verdict(),
+        cosserat_check::derivation::Verdict::Holds
+    );
+    // Two constraints: the first solved for T = S², the second then reads S twice.
+    let e = error_of("assume = [\"S^2 = T\", \"T^2 = S\"]\nsides = [\"S\", \"S\"]");
+    assert!(
+        e.contains("cannot be solved for a power of one variable"),
+        "{e}"
+    );
+    // A constraint with a pure power in none of its variables (a hyperbola).
+    let e = error_of("assume = [\"S T = 1\"]\nsides = [\"S\", \"S\"]");
+    assert!(
+        e.contains("cannot be solved for a power of one variable"),
+        "{e}"
+    );
+}
+
 /// A definition that an assumption reads is in the assumption's scope: a cycle through
 /// it is located, and a file-wide assumption does not see a claim's definitions.
 #[test]

@@ -434,3 +434,97 @@ fn a_fact_for_another_claim_or_another_kind_is_refused() {
     let st = equal(&context(&[("x", 0)]), bad, num(0));
     assert!(fails(st, Fact::IllFormed { chain: 0, side: 0 }));
 }
+
+/// `t^2 = a_i a_i` (a vector of length |t|): what the kernel proves modulo it, and the
+/// facts it refuses under it.
+fn on_a_sphere_of_radius_t() -> Context {
+    let mut ctx = context(&[("a", 1), ("t", 0)]);
+    ctx.equations.push(Equation::Constraint {
+        left: Term::Pow(Box::new(sym("t", "")), 2),
+        right: prod(vec![sym("a", "i"), sym("a", "i")]),
+    });
+    ctx
+}
+
+#[test]
+fn an_identity_under_a_polynomial_constraint_holds_modulo_it_only() {
+    let ctx = on_a_sphere_of_radius_t();
+    let t = sym("t", "");
+    let aa = prod(vec![sym("a", "i"), sym("a", "i")]);
+    let t4 = Term::Pow(Box::new(t.clone()), 4);
+    // (a·a)² = t⁴ and t³ = t a·a hold; a·a = t, t² = 2 a·a and t = 1 do not.
+    assert!(holds(
+        equal(&ctx, Term::Pow(Box::new(aa.clone()), 2), t4.clone()),
+        identity()
+    ));
+    let t3 = Term::Pow(Box::new(t.clone()), 3);
+    assert!(holds(
+        equal(&ctx, t3, prod(vec![t.clone(), aa.clone()])),
+        identity()
+    ));
+    assert!(!holds(equal(&ctx, aa.clone(), t.clone()), identity()));
+    assert!(!holds(
+        equal(
+            &ctx,
+            Term::Pow(Box::new(t.clone()), 2),
+            prod(vec![num(2), aa.clone()])
+        ),
+        identity()
+    ));
+    assert!(!holds(equal(&ctx, t.clone(), num(1)), identity()));
+    // Without the constraint the first identity is false.
+    let free = context(&[("a", 1), ("t", 0)]);
+    assert!(!holds(
+        equal(&free, Term::Pow(Box::new(aa), 2), t4),
+        identity()
+    ));
+    // A divisor the constraint makes zero everywhere: nothing is proved.
+    let vanishing = Term::Div(
+        Box::new(num(1)),
+        Box::new(sum(vec![
+            Term::Pow(Box::new(t.clone()), 2),
+            neg(prod(vec![sym("a", "i"), sym("a", "i")])),
+        ])),
+    );
+    assert!(!holds(
+        equal(&ctx, vanishing.clone(), vanishing),
+        identity()
+    ));
+}
+
+#[test]
+fn a_refutation_under_a_polynomial_constraint_needs_a_point_on_it() {
+    let ctx = on_a_sphere_of_radius_t();
+    // a_1 = t is false: at a = (3, 4, 0), t = 5 the sides differ.
+    let st = equal(&ctx, sym("a", "1"), sym("t", ""));
+    let at = |t: i64, a: [i64; 3]| Fact::Refutation {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: Vec::new(),
+            point: vec![
+                ("a_1".to_owned(), q(a[0], 1)),
+                ("a_2".to_owned(), q(a[1], 1)),
+                ("a_3".to_owned(), q(a[2], 1)),
+                ("t".to_owned(), q(t, 1)),
+            ],
+        },
+        roots: Vec::new(),
+    };
+    assert!(fails(st.clone(), at(5, [3, 4, 0])));
+    assert!(fails(st.clone(), at(-5, [3, 4, 0])), "either root");
+    assert!(!fails(st.clone(), at(6, [3, 4, 0])), "off the constraint");
+    assert!(!fails(st.clone(), at(3, [3, 0, 0])), "equal there");
+    // A difference as functions proves nothing under a constraint (x² = −1 − y² has
+    // no real point at all).
+    let differs = Fact::Differs {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: Vec::new(),
+            point: Vec::new(),
+        },
+        roots: Vec::new(),
+    };
+    assert!(!fails(st, differs));
+}

@@ -303,6 +303,17 @@ fn every_mutant_of_an_assumption_through_a_definition_is_refuted() {
     assert_swept(&files, &kinds, "mutation_report_assumed_definitions");
 }
 
+/// Mutants under polynomial constraints (`tests/soundness/polynomial-constraints.toml`):
+/// the definitions and the closed forms, refuted at exact points of the constraint set
+/// or at sampled ones.
+#[test]
+fn every_mutant_under_a_polynomial_constraint_is_refuted() {
+    let files = load_files(&["tests/soundness/polynomial-constraints.toml"]).expect("loads");
+    let mut all = ALGEBRAIC.to_vec();
+    all.push(MutantKind::Function);
+    assert_swept(&files, &all, "mutation_report_constraints");
+}
+
 /// The least number of refuted mutants (refuted or refuted on resampling) per sweep and
 /// strategy, and the least share of them among the mutants that are neither
 /// equivalent nor rejected as ill-formed. A drop below either fails here, whatever
@@ -317,6 +328,8 @@ const FLOORS: &[(&str, &str, usize, f64)] = &[
     ("mutation_report", "proportional", 43, 0.99),
     ("mutation_report", "rational-function", 212, 0.9),
     ("mutation_report_balance", "exact", 151, 0.99),
+    ("mutation_report_constraints", "exact", 94, 0.99),
+    ("mutation_report_constraints", "numeric", 27, 0.99),
     ("mutation_report_balance", "proportional", 40, 0.99),
     ("mutation_report_fields", "exact", 156, 0.99),
     ("mutation_report_matrices", "exact", 405, 0.99),

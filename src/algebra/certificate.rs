@@ -371,6 +371,8 @@ pub struct Identities<'n> {
     /// Compare `lhs` with `factor · rhs` (a proportionality with this nonzero factor,
     /// a constant or a rational function of the parameters).
     factor: Option<RatFunc>,
+    /// The polynomial constraints, solved for powers: differences are reduced by them.
+    rules: Vec<crate::kernel::rules::Rule>,
 }
 
 /// `q · f` for a nonzero rational function `f`: the numerator times f's numerator,
@@ -394,7 +396,15 @@ impl<'n> Identities<'n> {
             components: 0,
             modulo_unit_normal: 0,
             factor: None,
+            rules: Vec::new(),
         }
+    }
+
+    /// The same comparison modulo polynomial constraints, solved for powers
+    /// ([`crate::kernel::rules`]).
+    pub fn with_rules(mut self, rules: &[crate::kernel::rules::Rule]) -> Self {
+        self.rules = rules.to_vec();
+        self
     }
 
     /// A comparison of `lhs` with `factor · rhs`. Which factor to try is the caller's
@@ -431,10 +441,12 @@ impl<'n> Identities<'n> {
         {
             return Err(PolyError::NegativeNormalPower);
         }
-        let diff = raw.reduce_on_sphere(self.normal)?;
+        let on_sphere = raw.reduce_on_sphere(self.normal)?;
+        let diff =
+            crate::kernel::rules::reduce(&on_sphere, &self.rules, crate::kernel::eval::RULE_STEPS)?;
         self.components += 1;
         if diff.is_zero() {
-            self.modulo_unit_normal += usize::from(!raw.is_zero());
+            self.modulo_unit_normal += usize::from(raw != on_sphere);
             Ok(None)
         } else {
             Ok(Some(Difference {

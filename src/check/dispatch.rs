@@ -36,6 +36,52 @@ pub(crate) fn method_of(check: &crate::derivation::Check) -> Method {
     }
 }
 
+/// A constraint between expressions (`s_ij s_ij = 2 tau^2`) is supported where its
+/// meaning is settled: in an identity decided exactly or by sampling, and never under a
+/// derivative by a symbol it reads (whose components it ties, in no stated way).
+fn constraints_supported(check: &crate::derivation::Check) -> Result<(), Diagnostic> {
+    use crate::derivation::{AssumptionKind, Strategy};
+    use crate::lang::parser::Wrt;
+    use crate::lang::NodeKind;
+    let Some(a) = check
+        .assumptions
+        .iter()
+        .find(|a| matches!(a.kind, AssumptionKind::Constraint { .. }))
+    else {
+        return Ok(());
+    };
+    if !matches!(
+        check.strategy,
+        Strategy::Exact { .. } | Strategy::Numeric { .. }
+    ) {
+        return Err(a
+            .diagnostic("a constraint between expressions applies to identities (sides or chains) decided exactly or numerically")
+            .with_help("drop the strategy, or write strategy = \"numeric\""));
+    }
+    let (nodes, _) = check.reachable();
+    let tied: std::collections::BTreeSet<&String> = check
+        .assumptions
+        .iter()
+        .filter(|a| matches!(a.kind, AssumptionKind::Constraint { .. }))
+        .flat_map(|a| &a.reads)
+        .collect();
+    for n in nodes {
+        if let NodeKind::Wrt { symbol, op, .. } = &n.kind {
+            if tied.contains(&symbol) {
+                let what = if *op == Wrt::Variation {
+                    "a variation"
+                } else {
+                    "a derivative"
+                };
+                return Err(a
+                    .diagnostic(format!("{what} by `{symbol}`, whose components this constraint ties together, has no stated meaning"))
+                    .with_help("differentiate in a claim without the constraint, or by a symbol it does not read"));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// [`decide_keeping`] without the panic isolation.
 pub(crate) fn decide_unisolated(
     decls: &crate::lang::Decls,
@@ -46,6 +92,7 @@ pub(crate) fn decide_unisolated(
     let sink = sampler::Sink::default();
     let states = keep.then_some(&sink);
     let method = method_of(check);
+    constraints_supported(check)?;
     if method != Method::Exact && check.reads().differentiates {
         return Ok(
             Outcome::undecided(method, 0).with_finding(finding::Finding::DerivativesNotSampled)

@@ -211,7 +211,7 @@ fn decide_recording(
         },
     };
     let normal = env.normal_vars().to_vec();
-    let mut identities = Identities::new(&normal);
+    let mut identities = Identities::new(&normal).with_rules(env.rules());
     // A proportionality's factor (1 when the right side is zero everywhere: the left
     // must then be zero, and any nonzero factor states it).
     let mut factor: Option<RatFunc> =
@@ -307,7 +307,7 @@ fn decide_recording(
                 let scaled = reference.as_ref().map(|f| scaled_by(rp, &f.function));
                 let (mut cx, point, mut values) = counterexample(
                     &env.vars,
-                    env.normal_vars(),
+                    (env.normal_vars(), env.rules()),
                     env.domain(),
                     lp,
                     scaled.as_ref().unwrap_or(rp),
@@ -333,6 +333,7 @@ fn decide_recording(
                     .numerator
                     .terms()
                     .any(|(m, _)| normal.iter().any(|&v| m.exponent(v) != 0));
+                cx.reduced_by_constraints = !env.rules().is_empty();
                 cx.equality = k + 1;
                 cx.lhs = chain[k].text.trim().to_owned();
                 cx.rhs = chain[k + 1].text.trim().to_owned();
@@ -721,7 +722,7 @@ fn mismatch(l: &Labeled<Quotient>, r: &Labeled<Quotient>) -> String {
 
 fn counterexample(
     names: &VarTable,
-    normal: &[Var],
+    (normal, rules): (&[Var], &[crate::kernel::rules::Rule]),
     domain: &[(Var, Interval)],
     lhs: &Quotient,
     rhs: &Quotient,
@@ -735,7 +736,12 @@ fn counterexample(
         difference: diff.display(names, SHOWN_TERMS),
         ..Counterexample::default()
     };
-    match point_where_differ(normal, lhs, rhs, domain) {
+    let found = if rules.is_empty() {
+        point_where_differ(normal, lhs, rhs, domain)
+    } else {
+        super::points::point_where_differ_constrained(rules, normal, lhs, rhs, domain)
+    };
+    match found {
         Some((point, l, r)) => {
             cx.point = shown_point(names, lhs, rhs, &point);
             cx.lhs_value = Some(l.to_string());

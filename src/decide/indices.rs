@@ -60,7 +60,12 @@ pub struct Difference {
 /// Decides every equality of `check` by canonical forms in symbolic indices, as far as
 /// it can.
 pub fn decide(decls: &Decls, check: &Check) -> Symbolic {
-    if decls.normal_in_plane {
+    // A polynomial constraint has no form in symbolic indices.
+    let constrained = check
+        .assumptions
+        .iter()
+        .any(|a| matches!(a.kind, crate::derivation::AssumptionKind::Constraint { .. }));
+    if decls.normal_in_plane || constrained {
         return Symbolic::Open;
     }
     let mut reader = Reader::new(decls, check);
@@ -143,7 +148,9 @@ impl<'a> Reader<'a> {
             props.normal = Some(intern(&mut ids, n));
         }
         for a in &check.assumptions {
-            let symbol = a.kind.symbol();
+            let Some(symbol) = a.kind.symbol() else {
+                continue;
+            };
             if decls.symbols.get(symbol) != Some(&2) {
                 continue;
             }

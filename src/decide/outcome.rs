@@ -78,6 +78,9 @@ pub struct Counterexample {
     /// normal (see `reduced_on_sphere`).
     pub difference: String,
     pub reduced_on_sphere: bool,
+    /// The difference is reduced by the polynomial constraints too (`assume`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub reduced_by_constraints: bool,
     /// A rational point where the sides differ, and their values there.
     pub point: BTreeMap<String, String>,
     pub lhs_value: Option<String>,

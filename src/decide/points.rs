@@ -5,6 +5,7 @@
 use crate::algebra::sign::{inner_point, End, Interval};
 use crate::algebra::{residue, Quotient};
 use crate::decide::random::Rng;
+use crate::kernel::rules::Rule;
 use crate::kernel::{Rational, Var, VarTable};
 use std::collections::BTreeMap;
 
@@ -168,4 +169,190 @@ pub fn point_where_differ(
         }
     }
     None
+}
+
+/// Tries at a point that satisfies the polynomial constraints.
+const CONSTRAINED_TRIES: usize = 128;
+
+/// Tries at a seed of a quadric, and at a line through it.
+const LINE_TRIES: usize = 64;
+
+/// [`point_where_differ`] under polynomial constraints, each solved for a power of a
+/// variable of its own (`v^d = value`, [`crate::kernel::rules`]): the other variables
+/// drawn, then each solved variable the exact root of its value there. A square whose
+/// value is no rational square takes a rational point of its quadric instead: the
+/// second intersection with a line of rational slope through a seed point found among
+/// small integers (the way [`sphere_point`] puts the normal on the sphere). `None` when
+/// no try gives a point where the sides differ.
+pub fn point_where_differ_constrained(
+    rules: &[Rule],
+    normal: &[Var],
+    lhs: &Quotient,
+    rhs: &Quotient,
+    domain: &[(Var, Interval)],
+) -> Option<(BTreeMap<Var, Rational>, Rational, Rational)> {
+    let mut used = used_variables(lhs, rhs);
+    used.extend(domain.iter().map(|(v, _)| *v));
+    for r in rules {
+        used.push(r.var);
+        used.extend(r.value.variables());
+    }
+    used.sort_unstable();
+    used.dedup();
+    let mut rng = Rng::new(0xC0_57_4A_17);
+    let interval = |v: Var| domain.iter().find(|(w, _)| *w == v).map(|(_, i)| i);
+    for _ in 0..CONSTRAINED_TRIES {
+        let n = sphere_point(&mut rng, normal.len().max(2));
+        let mut point: BTreeMap<Var, Rational> = BTreeMap::new();
+        for &v in &used {
+            if rules.iter().any(|r| r.var == v) {
+                continue;
+            }
+            let value = match normal.iter().position(|&w| w == v) {
+                Some(k) => n[k].clone(),
+                None => Rational::ratio(rng.small(), 1 + (rng.next_u64() % 3) as i64)
+                    .expect("nonzero denominator"),
+            };
+            let value = match interval(v) {
+                Some(i) => into_interval(i, value),
+                None => value,
+            };
+            point.insert(v, value);
+        }
+        if !rules
+            .iter()
+            .all(|r| solve_rule(&mut rng, r, rules, &mut point, &interval))
+        {
+            continue;
+        }
+        let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        let (Some(l), Some(r)) = (lhs.eval(&at), rhs.eval(&at)) else {
+            continue;
+        };
+        if l != r {
+            return Some((point, l, r));
+        }
+    }
+    None
+}
+
+/// Sets `rule.var` so that the rule holds at `point`, moving the variables only this
+/// rule reads when its value has no rational root there; `false` when no try works.
+fn solve_rule<'d>(
+    rng: &mut Rng,
+    rule: &Rule,
+    rules: &[Rule],
+    point: &mut BTreeMap<Var, Rational>,
+    interval: &impl Fn(Var) -> Option<&'d Interval>,
+) -> bool {
+    let inside = |v: Var, x: &Rational| interval(v).is_none_or(|i| i.contains(x));
+    let value_at = |point: &BTreeMap<Var, Rational>| {
+        rule.value
+            .eval(&|v| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0)))
+    };
+    // A root of either sign, on the box.
+    let choose = |rng: &mut Rng, root: Rational| -> Option<Rational> {
+        let mut roots = vec![root.clone()];
+        if rule.power.is_multiple_of(2) && !root.is_zero() {
+            roots.push(-root);
+        }
+        roots.retain(|x| inside(rule.var, x));
+        (!roots.is_empty()).then(|| roots.swap_remove(rng.below(roots.len())))
+    };
+    if let Some(root) = value_at(point).and_then(|q| exact_root(&q, rule.power)) {
+        if let Some(x) = choose(rng, root) {
+            point.insert(rule.var, x);
+            return true;
+        }
+    }
+    if rule.power != 2 {
+        return false;
+    }
+    // The variables only this rule reads, in which its value is at most quadratic.
+    let movable: Vec<Var> = rule
+        .value
+        .variables()
+        .into_iter()
+        .filter(|&v| {
+            !rules
+                .iter()
+                .any(|r| r.var != rule.var && r.value.variables().contains(&v))
+        })
+        .collect();
+    let quadratic = rule
+        .value
+        .terms()
+        .all(|(m, _)| movable.iter().map(|&v| m.exponent(v)).sum::<i64>() <= 2);
+    if movable.is_empty() || !quadratic {
+        return false;
+    }
+    let small = |rng: &mut Rng| Rational::int(rng.small());
+    for _ in 0..LINE_TRIES {
+        // A seed: small integers (half of them 0) at which the value is a nonzero
+        // rational square v0².
+        let mut seed = point.clone();
+        for &v in &movable {
+            let x = if rng.below(2) == 0 {
+                Rational::int(0)
+            } else {
+                small(rng)
+            };
+            seed.insert(v, x);
+        }
+        let Some(v0) = value_at(&seed)
+            .filter(|q| !q.is_zero())
+            .and_then(|q| q.sqrt_exact())
+        else {
+            continue;
+        };
+        // Along x0 + t·dx, v0 + t·m: Q(t) = Q0 + B t + C t², and (v0 + t m)² = Q(t)
+        // has the root t = 0 and t = (B − 2 v0 m)/(m² − C).
+        let dx: Vec<Rational> = movable.iter().map(|_| small(rng)).collect();
+        let m = small(rng);
+        let along = |t: &Rational| {
+            let mut p = seed.clone();
+            for (&v, d) in movable.iter().zip(&dx) {
+                let x = &seed[&v] + &(t * d);
+                p.insert(v, x);
+            }
+            p
+        };
+        let (Some(q0), Some(q1), Some(qm)) = (
+            value_at(&seed),
+            value_at(&along(&Rational::int(1))),
+            value_at(&along(&Rational::int(-1))),
+        ) else {
+            continue;
+        };
+        let half = Rational::ratio(1, 2).expect("nonzero");
+        let b = &(&q1 - &qm) * &half;
+        let c = &(&(&q1 + &qm) * &half) - &q0;
+        let Some(t) = (&b - &(&(&Rational::int(2) * &v0) * &m)).checked_div(&(&(&m * &m) - &c))
+        else {
+            continue;
+        };
+        let mut p = along(&t);
+        let v = &v0 + &(&t * &m);
+        if value_at(&p) != Some(&v * &v) || !movable.iter().all(|&w| inside(w, &p[&w])) {
+            continue;
+        }
+        let Some(v) = choose(rng, v) else { continue };
+        p.insert(rule.var, v);
+        *point = p;
+        return true;
+    }
+    false
+}
+
+/// The rational x ≥ 0 with x^power = q (any sign for an odd power), when there is one:
+/// square roots exactly, other odd powers only for 0 and ±1.
+fn exact_root(q: &Rational, power: u32) -> Option<Rational> {
+    match power {
+        0 => None,
+        1 => Some(q.clone()),
+        _ if power.is_multiple_of(2) => exact_root(&q.sqrt_exact()?, power / 2),
+        _ => [Rational::int(0), Rational::int(1), Rational::int(-1)]
+            .into_iter()
+            .find(|x| x == q),
+    }
 }

@@ -5,7 +5,7 @@
 use super::finding::SampledState;
 use super::random::Rng;
 use crate::algebra::{assignments, Tensor};
-use crate::derivation::parametrisation::Parametrisation;
+use crate::derivation::parametrisation::{product_value, Parametrisation};
 use crate::derivation::{Check, Constraint, Expression, Reads, Relation, Sampling};
 use crate::digits::{self, significant};
 use crate::eval::quadrature::{Level, Quadrature};
@@ -17,11 +17,15 @@ use crate::tolerance::{RANGE_TOL, SINGULAR_EPS, TOL};
 use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;
 use std::cell::{Cell, RefCell};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::rc::Rc;
 
 /// Draws allowed per accepted sample before the hypotheses are judged too narrow.
 const MAX_DRAWS_PER_SAMPLE: usize = 100;
+
+/// Halvings that find how far a draw may be scaled toward the origin before a
+/// constraint's even power loses its root (to 2^-40 of the draw).
+const BISECTIONS: usize = 40;
 
 pub(crate) fn located(e: &Expression, r: RealError) -> Diagnostic {
     e.origin.diagnostic(r.span, r.message)
@@ -198,6 +202,16 @@ impl<'a> Sampler<'a> {
     pub(crate) fn in_ranges(&self, state: &State) -> bool {
         use crate::derivation::parametrisation::Constrained;
         let d = self.decls.dim;
+        // A polynomial constraint whose root does not exist at the drawn values (an
+        // even power of a negative number) leaves no state.
+        if !self.parametrisation.solved().is_empty() {
+            let value = |(s, idx): &(String, Vec<usize>)| {
+                state.symbols.get(s).map_or(f64::NAN, |t| *t.get(idx))
+            };
+            if self.parametrisation.residual(value) > TOL {
+                return false;
+            }
+        }
         self.sampling.ranges.iter().all(|(name, &(lo, hi))| {
             let Some(t) = state.symbols.get(name) else {
                 return true;
@@ -222,8 +236,60 @@ impl<'a> Sampler<'a> {
                 Tensor::from_fn(d, rank, |_| lo + (hi - lo) * (rng.uniform() + 1.0) / 2.0),
             );
         }
+        self.toward_constraints(&mut symbols);
         let n = self.rng.unit_normal(self.decls);
         self.complete(symbols, n)
+    }
+
+    /// Draws that a polynomial constraint's even power cannot meet (`N_33² = 1 − …`
+    /// negative) moved toward the origin: the components its value reads are scaled by
+    /// a random fraction of the largest factor, found by bisection, at which the value is
+    /// still ≥ 0. Only free components move, so the draw stays a draw of them.
+    fn toward_constraints(&mut self, symbols: &mut HashMap<String, Tensor<f64>>) {
+        for s in self.parametrisation.solved() {
+            if s.power % 2 == 1 {
+                continue;
+            }
+            let read: BTreeSet<&(String, Vec<usize>)> = s
+                .value
+                .iter()
+                .flat_map(|(p, _)| p.iter().map(|(c, _)| c))
+                .collect();
+            let original: Vec<f64> = read
+                .iter()
+                .map(|(n, i)| symbols.get(n).map_or(f64::NAN, |t| *t.get(i)))
+                .collect();
+            let value_at = |lambda: f64| {
+                let at = |c: &(String, Vec<usize>)| {
+                    read.iter().position(|r| *r == c).map_or_else(
+                        || symbols.get(&c.0).map_or(f64::NAN, |t| *t.get(&c.1)),
+                        |k| lambda * original[k],
+                    )
+                };
+                s.value.iter().fold(0.0, |acc, (p, q)| {
+                    acc + q.to_f64() * product_value(p, 1.0, at)
+                })
+            };
+            let origin = value_at(0.0);
+            if value_at(1.0) >= 0.0 || origin.is_nan() || origin < 0.0 {
+                continue;
+            }
+            let (mut inside, mut outside) = (0.0, 1.0);
+            for _ in 0..BISECTIONS {
+                let mid = 0.5 * (inside + outside);
+                if value_at(mid) >= 0.0 {
+                    inside = mid;
+                } else {
+                    outside = mid;
+                }
+            }
+            let lambda = inside * (self.rng.uniform() + 1.0) / 2.0;
+            for (k, (n, i)) in read.iter().enumerate() {
+                if let Some(t) = symbols.get_mut(n) {
+                    *t.get_mut(i) = lambda * original[k];
+                }
+            }
+        }
     }
 
     /// A state from values of the symbols (only the free components matter) and a

@@ -90,7 +90,7 @@ fn coordinates(
     let substituted: BTreeSet<&str> = p
         .substitutions()
         .iter()
-        .map(|&k| sampler.check.assumptions[k].kind.symbol())
+        .filter_map(|&k| sampler.check.assumptions[k].kind.symbol())
         .collect();
     let mut out = Vec::new();
     for (name, &rank) in &sampler.decls.symbols {

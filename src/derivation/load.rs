@@ -18,7 +18,7 @@ use crate::lang::{
     parse_expr, Decls, DefSig, Diagnostic, ErrorKind, LangError, Origin, Scope, SourceFile, Span,
 };
 use crate::lang::{Node, NodeKind};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -428,7 +428,10 @@ impl Loader {
             self.file_assumptions_first(raw, decls, defs, &mut check)?;
             // The range's parameter varies along the curve: an assumption that fixes it
             // would silently make the curve flat.
-            if let Some(a) = check.assumptions.iter().find(|a| a.kind.symbol() == x.name) {
+            if let Some(a) = check.assumptions.iter().find(|a| match a.kind.symbol() {
+                Some(s) => s == x.name,
+                None => a.reads.contains(&x.name),
+            }) {
                 return Err(a
                     .origin
                     .diagnostic(
@@ -924,6 +927,55 @@ impl Loader {
         }))
     }
 
+    /// `left = right` whose left side is no single name (`s_kk = 0`,
+    /// `s_ij s_ij = 2 tau^2`): a constraint between expressions, for every value of
+    /// their free indices. `None` when the left side is a name to be assumed.
+    fn expression_constraint(
+        &self,
+        origin: &Origin,
+        text: &str,
+        eq: usize,
+        decls: &Decls,
+        sigs: &[DefSig],
+    ) -> Result<Option<AssumptionKind>, Diagnostic> {
+        let sub = sub_origin(origin, 0..eq);
+        let Ok(e) = parse_expr(&text[..eq]) else {
+            return Ok(None);
+        };
+        match &e.kind {
+            // A derivative on the left has its own message (`lhs_name`).
+            ExprKind::Deriv { .. } => return Ok(None),
+            // A name with distinct letters, or a declared scalar, is assumed itself.
+            ExprKind::Name { full, indices, .. } => {
+                let letters: BTreeSet<char> = indices.iter().map(|t| t.ch).collect();
+                let distinct = letters.len() == indices.len()
+                    && indices.iter().all(|t| t.ch.is_ascii_alphabetic());
+                if distinct || decls.symbols.get(full) == Some(&0) {
+                    return Ok(None);
+                }
+            }
+            _ => {}
+        }
+        let left = Scope { decls, defs: sigs }
+            .check(&e)
+            .map_err(|e| self.lang(&sub, e))?;
+        let right = self.rhs(origin, text, eq, decls, sigs, &[])?;
+        no_matrix(&sub, &left, "a constraint")?;
+        no_matrix(origin, &right, "a constraint")?;
+        if left.free_letters() != right.free_letters() {
+            return Err(origin.diagnostic(
+                Span::new(0, text.len()),
+                format!(
+                    "the sides of this constraint have free indices {} and {}",
+                    letters(&left.free_letters()),
+                    letters(&right.free_letters())
+                ),
+            )
+            .with_help("both sides take the same free indices: the constraint holds for every value of them"));
+        }
+        Ok(Some(AssumptionKind::Constraint { left, right }))
+    }
+
     /// One assumption; its right side may read the definitions in scope.
     fn assumption(
         &self,
@@ -934,17 +986,12 @@ impl Loader {
         let origin = self.origin(s);
         let sigs: Vec<DefSig> = defs.iter().map(|d| d.sig.clone()).collect();
         let kind = self.assumption_kind(&origin, s.get_ref(), decls, &sigs)?;
-        let reads = match &kind {
-            AssumptionKind::Component { body, .. } | AssumptionKind::Equals { body, .. } => {
-                super::reads::reachable(vec![body], defs)
-                    .0
-                    .into_iter()
-                    .flat_map(|n| n.symbols())
-                    .map(str::to_owned)
-                    .collect()
-            }
-            _ => Default::default(),
-        };
+        let reads = super::reads::reachable(kind.bodies(), defs)
+            .0
+            .into_iter()
+            .flat_map(|n| n.symbols())
+            .map(str::to_owned)
+            .collect();
         // An assumption gives each symbol one value per state: a right side that
         // varies with the normal (outside avg) would be read at one normal only, and
         // one that varies with position at one point, unless the symbol is a field.
@@ -972,6 +1019,19 @@ impl Loader {
                 _ => {}
             }
         }
+        if let AssumptionKind::Constraint { left, right } = &kind {
+            use super::reads::{varies_with, Varies};
+            for side in [left, right] {
+                let what = match varies_with(side, defs, decls) {
+                    Some(Varies::Normal) => "the normal",
+                    Some(Varies::Position) => "position",
+                    None => continue,
+                };
+                return Err(origin
+                    .diagnostic(side.span, format!("a constraint between expressions relates values of one state, but this side varies with {what}"))
+                    .with_help("constrain symbols that are not fields and do not read the normal; relate a field with X = expression"));
+            }
+        }
         Ok(Assumption {
             kind,
             text: s.get_ref().trim().to_owned(),
@@ -990,6 +1050,9 @@ impl Loader {
         if let Some(eq) = text.find('=') {
             if let Some(component) = self.component_assumption(origin, text, eq, decls, sigs)? {
                 return Ok(component);
+            }
+            if let Some(constraint) = self.expression_constraint(origin, text, eq, decls, sigs)? {
+                return Ok(constraint);
             }
             let (name, formal, span) = self.lhs_name(origin, text, eq, Some(decls), true)?;
             match decls.symbols.get(&name) {

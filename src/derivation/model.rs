@@ -138,7 +138,7 @@ impl Assumption {
     /// Every symbol the assumption mentions: the one it is about and those in its
     /// right side.
     pub fn symbols(&self) -> Vec<String> {
-        let mut out = vec![self.kind.symbol().to_owned()];
+        let mut out: Vec<String> = self.kind.symbol().map(str::to_owned).into_iter().collect();
         out.extend(self.reads.iter().cloned());
         out
     }
@@ -175,17 +175,36 @@ pub enum AssumptionKind {
         formal: Vec<char>,
         body: Node,
     },
+    /// `left = right` between expressions, for every value of their free indices: a
+    /// relation that is no single symbol's value (`s_kk = 0`, `s_ij s_ij = 2 tau^2`,
+    /// `N_ij N_ij = 1`). Affine ones join the linear system; a polynomial one is solved
+    /// for a variable that occurs in it only as a power of its own (`eval::assume`).
+    Constraint { left: Node, right: Node },
 }
 
 impl AssumptionKind {
-    /// The symbol the assumption is about (its left side).
-    pub fn symbol(&self) -> &str {
+    /// The symbol the assumption is about (its left side); `None` for a constraint
+    /// between expressions.
+    pub fn symbol(&self) -> Option<&str> {
         match self {
             AssumptionKind::Traceless { symbol }
             | AssumptionKind::Symmetric { symbol }
             | AssumptionKind::Antisymmetric { symbol }
             | AssumptionKind::Component { symbol, .. }
-            | AssumptionKind::Equals { symbol, .. } => symbol,
+            | AssumptionKind::Equals { symbol, .. } => Some(symbol),
+            AssumptionKind::Constraint { .. } => None,
+        }
+    }
+
+    /// The expressions the assumption reads: a right side, or both sides of a
+    /// constraint.
+    pub fn bodies(&self) -> Vec<&Node> {
+        match self {
+            AssumptionKind::Component { body, .. } | AssumptionKind::Equals { body, .. } => {
+                vec![body]
+            }
+            AssumptionKind::Constraint { left, right } => vec![left, right],
+            _ => Vec::new(),
         }
     }
 }

@@ -13,6 +13,20 @@ pub type Component = (String, Vec<usize>);
 /// product of itself alone, to the power 1; a product of parameters is one column.
 pub type Product = Vec<(Component, u32)>;
 
+/// A polynomial in components: its terms, each a product with a coefficient (the empty
+/// product is the constant term).
+pub type Polynomial = Vec<(Product, Rational)>;
+
+/// A polynomial constraint solved for a power of one component:
+/// `component^power = value`, the value a polynomial in components that are free
+/// (neither solved for by a constraint nor determined by the linear system).
+#[derive(Clone, Debug)]
+pub struct Solved {
+    pub component: Component,
+    pub power: u32,
+    pub value: Polynomial,
+}
+
 /// The value of a product at a state, from the value of each component.
 pub fn product_value<T: Clone + std::ops::Mul<Output = T>>(
     product: &Product,
@@ -54,6 +68,11 @@ pub struct Parametrisation {
     /// Indices into the assumptions of the whole-symbol substitutions, each after the
     /// substitutions its right side refers to.
     pub(crate) substitutions: Vec<usize>,
+    /// The polynomial constraints, solved in order (see [`Solved`]).
+    pub(crate) solved: Vec<Solved>,
+    /// The polynomial constraints as assumed (every term on one side), for re-checking
+    /// states.
+    pub(crate) constraints: Vec<Polynomial>,
 }
 
 /// How a component is constrained.
@@ -63,7 +82,8 @@ pub enum Constrained {
     Free,
     /// Set to a constant.
     Fixed(Rational),
-    /// An affine function of free components (and of products of parameters).
+    /// An affine function of free components (and of products of parameters), or a
+    /// root of a polynomial constraint ([`Solved`]).
     Dependent,
 }
 
@@ -126,8 +146,21 @@ impl Parametrisation {
         })
     }
 
+    /// The polynomial constraints, each solved for a power of a component of its own,
+    /// in the order to evaluate them.
+    pub fn solved(&self) -> &[Solved] {
+        &self.solved
+    }
+
     /// How the assumptions constrain one component (substitutions aside).
     pub fn constrained(&self, symbol: &str, index: &[usize]) -> Constrained {
+        if self
+            .solved
+            .iter()
+            .any(|s| s.component.0 == symbol && s.component.1 == index)
+        {
+            return Constrained::Dependent;
+        }
         let Some(k) = self
             .columns
             .iter()
@@ -157,6 +190,15 @@ impl Parametrisation {
     /// The largest relative residual of the assumed equations at a state (0 when every
     /// one holds exactly): a state that violates them is never reported.
     pub fn residual(&self, value: impl Fn(&Component) -> f64) -> f64 {
+        let constraints = self.constraints.iter().map(|p| {
+            let (mut sum, mut scale) = (0.0, 0.0);
+            for (product, q) in p {
+                let term = q.to_f64() * product_value(product, 1.0, &value);
+                sum += term;
+                scale += term.abs();
+            }
+            sum.abs() / (1.0 + scale)
+        });
         self.equations
             .iter()
             .map(|e| {
@@ -169,7 +211,12 @@ impl Parametrisation {
                 }
                 sum.abs() / (1.0 + scale)
             })
-            .fold(0.0, f64::max)
+            .chain(constraints)
+            // A NaN (a root of a negative number) is no state: it fails the bound.
+            .fold(
+                0.0,
+                |a: f64, b| if b.is_nan() { f64::INFINITY } else { a.max(b) },
+            )
     }
 
     /// Whether every assumed equation holds exactly when the free components take the
@@ -179,11 +226,24 @@ impl Parametrisation {
         let values = self
             .solution
             .complete(|k| product_value(&self.columns[k], Rational::int(1), &free));
-        self.equations.iter().all(|e| {
+        let linear = self.equations.iter().all(|e| {
             e.coeffs
                 .iter()
                 .fold(e.constant.clone(), |acc, (c, q)| &acc + &(q * &values[*c]))
                 .is_zero()
-        })
+        });
+        // The constraints, at every component's value: a column's from the solution.
+        let value = |c: &Component| match self.columns.iter().position(|p| single(p) == Some(c)) {
+            Some(k) => values[k].clone(),
+            None => free(c),
+        };
+        linear
+            && self.constraints.iter().all(|p| {
+                p.iter()
+                    .fold(Rational::int(0), |acc, (product, q)| {
+                        &acc + &(q * &product_value(product, Rational::int(1), &value))
+                    })
+                    .is_zero()
+            })
     }
 }

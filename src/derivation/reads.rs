@@ -90,7 +90,7 @@ impl Check {
     /// (function, closed forms, hypotheses, domain, singular set) and the bodies of
     /// the definitions they use, directly or through other definitions. The second
     /// value names those definitions.
-    fn reachable(&self) -> (Vec<&Node>, BTreeSet<&str>) {
+    pub(crate) fn reachable(&self) -> (Vec<&Node>, BTreeSet<&str>) {
         let mut roots: Vec<&Node> = self
             .chains
             .iter()
@@ -104,15 +104,11 @@ impl Check {
     /// The names of the definitions the statement depends on: those its expressions
     /// and its assumptions read, directly or through other definitions.
     pub fn definitions_read(&self) -> BTreeSet<&str> {
-        let roots: Vec<&Node> =
-            self.assumptions
-                .iter()
-                .filter_map(|a| match &a.kind {
-                    AssumptionKind::Component { body, .. }
-                    | AssumptionKind::Equals { body, .. } => Some(body),
-                    _ => None,
-                })
-                .collect();
+        let roots: Vec<&Node> = self
+            .assumptions
+            .iter()
+            .flat_map(|a| a.kind.bodies())
+            .collect();
         let (_, mut names) = self.reachable();
         names.extend(reachable(roots, &self.defs).1);
         names
@@ -156,13 +152,17 @@ impl Check {
         loop {
             let before = out.symbols.len();
             for a in &self.assumptions {
-                if !matches!(
-                    a.kind,
-                    AssumptionKind::Component { .. } | AssumptionKind::Equals { .. }
-                ) {
-                    continue;
-                }
-                if out.symbols.contains(a.kind.symbol()) {
+                // A constraint ties every symbol it reads to every other.
+                let tied = match (&a.kind, a.kind.symbol()) {
+                    (AssumptionKind::Component { .. } | AssumptionKind::Equals { .. }, Some(s)) => {
+                        out.symbols.contains(s)
+                    }
+                    (AssumptionKind::Constraint { .. }, _) => {
+                        a.reads.iter().any(|s| out.symbols.contains(s))
+                    }
+                    _ => false,
+                };
+                if tied {
                     out.symbols.extend(a.reads.iter().cloned());
                 }
             }

@@ -270,6 +270,10 @@ pub fn context(
                 formal: formal.clone(),
                 value: term(body),
             },
+            AssumptionKind::Constraint { left, right } => Equation::Constraint {
+                left: term(left),
+                right: term(right),
+            },
         });
     }
     let substitutions = substituted

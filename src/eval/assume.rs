@@ -30,23 +30,29 @@
 use super::exact::env::ExactEnv;
 use crate::algebra::assignments;
 use crate::algebra::linear::{self, AffineEquation};
-use crate::derivation::parametrisation::{single, Component, Parametrisation, Product};
+use crate::derivation::parametrisation::{
+    product_value, single, Component, Parametrisation, Polynomial, Product, Solved,
+};
 use crate::derivation::{Assumption, AssumptionKind, Definition};
+use crate::kernel::eval::{substitute, RULE_STEPS};
+use crate::kernel::rules::{self, Rule};
 use crate::kernel::term::component_name;
 use crate::kernel::{Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
-use num_traits::Zero;
+use num_traits::{One, Zero};
 use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Reverse;
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// Largest number of component equations one claim may assume (a rank-4 tensor in 3D
 /// with minor and major symmetries needs a few hundred).
 pub const MAX_EQUATIONS: usize = 20_000;
 
-/// How an assumption enters: equations in the system, or a substitution.
+/// How an assumption enters: equations in the system, polynomial constraints solved
+/// after it, or a substitution.
 enum Role {
     Linear(Vec<Poly>),
+    Polynomial(Vec<Poly>),
     Substitution,
 }
 
@@ -85,15 +91,16 @@ impl Parametrisation {
         loop {
             let mut changed = false;
             for (a, r) in assumptions.iter().zip(roles.iter_mut()) {
-                let demote = match r {
-                    Role::Substitution => {
-                        changed |= substituted.insert(a.kind.symbol().to_owned());
+                let demote = match (&*r, a.kind.symbol()) {
+                    (Role::Substitution, Some(symbol)) => {
+                        changed |= substituted.insert(symbol.to_owned());
                         false
                     }
-                    Role::Linear(polys) => {
+                    (Role::Linear(polys), _) => {
                         matches!(a.kind, AssumptionKind::Equals { .. })
                             && !symbols_of(polys).is_disjoint(&substituted)
                     }
+                    _ => false,
                 };
                 if demote {
                     *r = Role::Substitution;
@@ -105,6 +112,16 @@ impl Parametrisation {
             }
         }
         let substitutions = substitution_order(assumptions, &roles)?;
+        for (a, r) in assumptions.iter().zip(&roles) {
+            let Role::Polynomial(polys) = r else { continue };
+            if let Some(s) = symbols_of(polys).intersection(&substituted).next() {
+                return Err(a
+                    .diagnostic(format!(
+                        "`{s}` is replaced by a substitution, so it cannot also be constrained"
+                    ))
+                    .with_help("constrain the symbols of the substitution's right side instead"));
+            }
+        }
         // The unknowns: every component in an equation, explicit left sides first; a
         // component in a product or a power is a parameter.
         let mut explicit: BTreeSet<&Component> = BTreeSet::new();
@@ -240,23 +257,110 @@ impl Parametrisation {
                 ))
                 .with_help("fix or relate parameters by whole-symbol equations (t = …), not through components"));
         }
-        Ok(Parametrisation {
+        let mut p = Parametrisation {
             columns,
             solution,
             equations,
             substitutions,
-        })
+            solved: Vec::new(),
+            constraints: Vec::new(),
+        };
+        p.solve_constraints(&mut env, &components, assumptions, &roles)?;
+        Ok(p)
+    }
+
+    /// Each polynomial constraint, with the solution of the linear system substituted
+    /// and reduced by those solved before it, solved for a power of a variable of its
+    /// own ([`crate::kernel::rules`], the rule the kernel applies too): a scalar first,
+    /// then by name from the highest index down.
+    fn solve_constraints(
+        &mut self,
+        env: &mut ExactEnv<'_>,
+        components: &HashMap<Var, Component>,
+        assumptions: &[Assumption],
+        roles: &[Role],
+    ) -> Result<(), Diagnostic> {
+        let mut values: BTreeMap<Var, Poly> = BTreeMap::new();
+        for d in self.dependents() {
+            let linear = d.terms.iter().map(|(c, q)| (vec![((*c).clone(), 1)], *q));
+            let products = d.products.iter().map(|(p, q)| ((*p).clone(), *q));
+            let value =
+                linear
+                    .chain(products)
+                    .fold(Poly::constant(d.constant.clone()), |acc, (p, q)| {
+                        let x = product_value(&p, Poly::one(), |(s, i)| env.component(s, i));
+                        &acc + &(&x * &Poly::constant(q.clone()))
+                    });
+            let (s, i) = d.component;
+            values.insert(env.component_var(s, i), value);
+        }
+        let as_polynomial = |p: &Poly| -> Polynomial {
+            p.terms()
+                .map(|(m, q)| {
+                    let product = m
+                        .factors()
+                        .iter()
+                        .map(|(v, e)| (components[v].clone(), u32::try_from(*e).unwrap_or(0)))
+                        .collect();
+                    (product, q.clone())
+                })
+                .collect()
+        };
+        let mut rules: Vec<Rule> = Vec::new();
+        for (a, r) in assumptions.iter().zip(roles) {
+            let Role::Polynomial(polys) = r else { continue };
+            for g in polys {
+                self.constraints.push(as_polynomial(g));
+                let reduced = substitute(g, &values)
+                    .ok()
+                    .and_then(|g| rules::reduce(&g, &rules, RULE_STEPS).ok())
+                    .ok_or_else(|| {
+                        a.diagnostic("this constraint is too large to solve exactly")
+                            .with_help("constrain fewer or smaller tensors")
+                    })?;
+                if reduced.is_zero() {
+                    continue;
+                }
+                let decls = env.decls;
+                let names = &env.vars;
+                let rule = Rule::solve(
+                    &reduced,
+                    &rules,
+                    |v| components.contains_key(&v) && !values.contains_key(&v),
+                    |v, d| {
+                        let name = names.name(v);
+                        (d, decls.symbols.get(name) != Some(&0), Reverse(name.to_owned()))
+                    },
+                )
+                .ok_or_else(|| {
+                    a.diagnostic(
+                        "this constraint cannot be solved for a power of one variable: no component or scalar occurs in it once, alone, as a power of its own that no other constraint reads",
+                    )
+                    .with_help("write it so that one symbol occurs only as a pure power (tau^2 = s_ij s_ij / 2, N_ij N_ij = 1); two constraints cannot be solved for, or read, the same variable")
+                })?;
+                self.solved.push(Solved {
+                    component: components[&rule.var].clone(),
+                    power: rule.power,
+                    value: as_polynomial(&rule.value),
+                });
+                rules.push(rule);
+            }
+        }
+        Ok(())
     }
 }
 
 /// The equations an assumption contributes, or that it substitutes a whole symbol.
 fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, Diagnostic> {
     let d = decls.dim;
-    if decls.position.as_deref() == Some(a.kind.symbol()) {
+    if let Some(symbol) = a
+        .kind
+        .symbol()
+        .filter(|s| decls.position.as_deref() == Some(*s))
+    {
         return Err(a
             .diagnostic(format!(
-                "`{}` is the position: its coordinates are the independent variables of every derivative",
-                a.kind.symbol()
+                "`{symbol}` is the position: its coordinates are the independent variables of every derivative"
             ))
             .with_help("constrain the fields instead (u_i = A_ij x_j), or use a scalar"));
     }
@@ -301,6 +405,35 @@ fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, D
             }
             Role::Linear(vec![&var(env, symbol, index) - value.numerator()])
         }
+        AssumptionKind::Constraint { left, right } => {
+            let not_polynomial = || {
+                a.diagnostic("a constraint must be a polynomial in the components, with rational coefficients")
+                    .with_help("divide by nothing but numbers; keep the normal and fields out of it")
+            };
+            let (l, r) = (
+                env.eval(left, &a.origin).map_err(|_| not_polynomial())?,
+                env.eval(right, &a.origin).map_err(|_| not_polynomial())?,
+            );
+            let letters = left.free_letters();
+            let mut out = Vec::new();
+            for idx in assignments(d, letters.len()) {
+                let assignment: Vec<(char, usize)> =
+                    letters.iter().copied().zip(idx.iter().copied()).collect();
+                let (x, y) = (l.at(&assignment), r.at(&assignment));
+                if !env.is_polynomial(x) || !env.is_polynomial(y) {
+                    return Err(not_polynomial());
+                }
+                out.push(x.numerator() - y.numerator());
+            }
+            if out
+                .iter()
+                .all(|p| env.is_affine(&crate::algebra::Quotient::from(p.clone())))
+            {
+                Role::Linear(out)
+            } else {
+                Role::Polynomial(out)
+            }
+        }
         AssumptionKind::Equals {
             symbol,
             formal,
@@ -333,19 +466,21 @@ fn substitution_order(
     let subs: Vec<usize> = (0..assumptions.len())
         .filter(|&k| matches!(roles[k], Role::Substitution))
         .collect();
+    // A substitution is an `X = …`: it has a symbol.
+    let symbol_of = |k: usize| assumptions[k].kind.symbol().unwrap_or_default();
     let of = |symbol: &str| -> Vec<usize> {
         subs.iter()
             .copied()
-            .filter(|&k| assumptions[k].kind.symbol() == symbol)
+            .filter(|&k| symbol_of(k) == symbol)
             .collect()
     };
     for &k in &subs {
-        if let [first, second, ..] = of(assumptions[k].kind.symbol())[..] {
+        if let [first, second, ..] = of(symbol_of(k))[..] {
             let a = &assumptions[second];
             return Err(a
                 .diagnostic(format!(
                     "`{}` is already replaced by `{}`",
-                    a.kind.symbol(),
+                    symbol_of(second),
                     assumptions[first].text
                 ))
                 .with_help("a symbol can be substituted once"));
@@ -367,7 +502,7 @@ fn substitution_order(
             let cycle: Vec<&str> = path[at..]
                 .iter()
                 .chain([&k])
-                .map(|&p| assumptions[p].kind.symbol())
+                .map(|&p| assumptions[p].kind.symbol().unwrap_or_default())
                 .collect();
             return Err(a
                 .diagnostic(format!(

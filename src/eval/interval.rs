@@ -444,6 +444,35 @@ impl<'a> IntervalEnv<'a> {
             n: state.n.clone(),
             loose: Cell::new(false),
         };
+        // A component solved for by a polynomial constraint: the enclosure of its root
+        // on the branch of the state's value (the whole line for a power above 2).
+        for s in parametrisation.solved() {
+            let at = |(s, i): &(String, Vec<usize>)| {
+                env.symbols
+                    .get(s)
+                    .map_or_else(Interval::entire, |t| *t.get(i))
+            };
+            let value = s.value.iter().fold(Interval::point(0.0), |acc, (p, q)| {
+                acc.add(product_value(p, Interval::point(1.0), at).mul(rational(q)))
+            });
+            let (symbol, idx) = &s.component;
+            if let Some(t) = env.symbols.get_mut(symbol) {
+                let x = t.get_mut(idx);
+                *x = match s.power {
+                    1 => value,
+                    2 => {
+                        let (root, assumed) = value.sqrt();
+                        env.loose.set(env.loose.get() || assumed);
+                        if x.hi < 0.0 {
+                            root.neg()
+                        } else {
+                            root
+                        }
+                    }
+                    _ => Interval::entire(),
+                };
+            }
+        }
         for d in parametrisation.dependents() {
             let at = |(s, i): &(String, Vec<usize>)| {
                 env.symbols

@@ -14,7 +14,7 @@
 //! let forged = Proof { conclusion: Conclusion::Holds };
 //! ```
 
-use super::eval::{Env, EvalError, Value};
+use super::eval::{Env, EvalError, Value, RULE_STEPS};
 pub use super::fact::{Checked, Conclusion, Evaluation, Fact, Factor, Reduced, Rejection, Summary};
 use super::frac::Frac;
 use super::poly::{Poly, Var};
@@ -67,6 +67,20 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
     };
     let proportional = matches!(st.claim, Claim::Proportional { .. });
     let mismatch = || Rejection::Mismatch("this fact is about another kind of claim".into());
+    // Under polynomial constraints only two facts are checked: an identity modulo
+    // them, and a refutation at a point that satisfies them. (A difference modulo the
+    // constraints need not be a difference at any real point.)
+    let constrained = st
+        .context
+        .equations
+        .iter()
+        .any(|e| matches!(e, super::statement::Equation::Constraint { .. }));
+    if constrained && !matches!(fact, Fact::Identity { .. } | Fact::Refutation { .. }) {
+        return Err(Rejection::Mismatch(
+            "under polynomial constraints only an identity or a refutation at a point is checked"
+                .into(),
+        ));
+    }
     match fact {
         Fact::Identity { roots } if !proportional => Ok((
             Conclusion::Holds,
@@ -236,7 +250,7 @@ fn identities(
 ) -> R<Summary> {
     let mut env = Env::new(&st.context, roots)?;
     let normal = env.normal_vars().to_vec();
-    let (mut components, mut modulo_unit_normal) = (0, 0);
+    let (mut components, mut modulo_unit_normal, mut modulo_rules) = (0, 0, 0);
     let mut nonzero: Vec<Poly> = Vec::new();
     let mut factor_nonzero: Vec<Poly> = Vec::new();
     // A proportionality has one factor, the same in every equality (a matrix's
@@ -271,9 +285,12 @@ fn identities(
                     None => y.clone(),
                 };
                 let raw = x.cleared_difference(&y).map_err(EvalError::from)?;
-                let reduced = raw
+                let on_sphere = raw
                     .reduce_on_sphere(&normal)
                     .map_err(|e| Rejection::Eval(EvalError::Unsupported(e.to_string())))?;
+                let reduced = super::rules::reduce(&on_sphere, &env.rules, RULE_STEPS)
+                    .map_err(|_| EvalError::Limit)?;
+                modulo_rules += usize::from(!on_sphere.is_zero());
                 if !reduced.is_zero() {
                     return Err(Rejection::False(format!(
                         "the sides differ in component {}",
@@ -281,10 +298,20 @@ fn identities(
                     )));
                 }
                 components += 1;
-                modulo_unit_normal += usize::from(!raw.is_zero());
+                modulo_unit_normal += usize::from(raw != on_sphere);
                 defined_on_sphere(&x, &normal)?;
                 defined_on_sphere(&y, &normal)?;
                 for c in x.conditions().iter().chain(y.conditions()) {
+                    // A divisor that the constraints make zero leaves no point where
+                    // the claim is defined: a proof there would be vacuous.
+                    if super::rules::reduce(c, &env.rules, RULE_STEPS)
+                        .map_err(|_| EvalError::Limit)?
+                        .is_zero()
+                    {
+                        return Err(Rejection::False(
+                            "a divisor is zero wherever the constraints hold".into(),
+                        ));
+                    }
                     if c.num_terms() > 1 && !nonzero.contains(c) {
                         nonzero.push(c.clone());
                     }
@@ -302,6 +329,25 @@ fn identities(
         modulo_unit_normal,
         nonzero,
     }];
+    if !env.rules.is_empty() {
+        let rules = env
+            .rules
+            .iter()
+            .map(|r| {
+                let name = env.vars.name(r.var);
+                let power = if r.power == 1 {
+                    name.to_owned()
+                } else {
+                    format!("{name}^{}", r.power)
+                };
+                format!("{power} = {}", r.value.display(&env.vars))
+            })
+            .collect();
+        out.push(Checked::Constraints {
+            rules,
+            reduced: modulo_rules,
+        });
+    }
     if let Some([f]) = factors {
         let factor = match f {
             Factor::Constant(q) => q.to_string(),

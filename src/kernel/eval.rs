@@ -17,6 +17,7 @@ use super::differentiate::{differentiate, Definitions};
 use super::frac::Frac;
 use super::poly::{Poly, Var, VarTable};
 use super::rational::Rational;
+use super::rules::Rule;
 use super::statement::{Context, Definition, Equation, FracData, PolyData};
 pub use super::term::{children, component_name, EvalError};
 use super::term::{Leaf, Letters, MatOp, MatRead, Order, Ranks, Slot, Term};
@@ -25,6 +26,9 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 /// Term products one statement may spend in all.
 pub const WORK: usize = 50_000_000;
+
+/// Most terms one reduction by the polynomial constraints may replace.
+pub const RULE_STEPS: usize = 1_000_000;
 
 /// The deepest [`Env::eval`] may recurse, through terms and the definitions they read:
 /// more than any file the loader accepts, few enough for the evaluating thread's stack
@@ -203,6 +207,15 @@ pub fn show(f: &Frac, names: &VarTable) -> String {
     format!("({num}) / {}", den.join(" "))
 }
 
+/// Whether `v` is a component of a declared symbol that an assumption may eliminate:
+/// not the normal, not a coordinate of the position (the independent variable of every
+/// derivative), not a derivative of a field.
+fn is_free_component(env: &Env<'_>, v: Var) -> bool {
+    !env.normal.contains(&v)
+        && !matches!(env.varying.get(&v), Some(Varying::Coordinate(_)))
+        && !matches!(env.varying.get(&v), Some(Varying::Jet { orders, .. }) if !orders.is_empty())
+}
+
 /// One statement's evaluation environment.
 pub struct Env<'c> {
     ctx: &'c Context,
@@ -220,6 +233,8 @@ pub struct Env<'c> {
     roots: Vec<Frac>,
     /// The eliminated components, each with its value in the free ones.
     pivots: BTreeMap<Var, Poly>,
+    /// The polynomial constraints, each solved for a power of a variable of its own.
+    pub rules: Vec<Rule>,
     /// The square roots accepted, as the evidence states them.
     pub roots_taken: Vec<RootTaken>,
     /// Square roots accepted so far, by radicand.
@@ -272,6 +287,7 @@ impl<'c> Env<'c> {
             assumed: BTreeSet::new(),
             roots: Vec::new(),
             pivots: BTreeMap::new(),
+            rules: Vec::new(),
             certified: Vec::new(),
             roots_taken: Vec::new(),
             work: WORK,
@@ -431,10 +447,27 @@ impl<'c> Env<'c> {
         // first: then a parameter such as Y in `sigma_11 = Y` stays free, with the box
         // it is given on.
         let mut explicit: BTreeSet<Var> = BTreeSet::new();
+        // The polynomial constraints, solved after the linear equations.
+        let mut polynomial: Vec<Poly> = Vec::new();
         for e in &equations {
             let symbol = match e {
                 Equation::Symmetric(s) | Equation::Antisymmetric(s) | Equation::Traceless(s) => s,
                 Equation::Component { symbol, .. } | Equation::Equals { symbol, .. } => symbol,
+                Equation::Constraint { left, right } => {
+                    for g in self.constraint_rows(left, right)? {
+                        let affine = g.terms().all(|(m, _)| match m.factors() {
+                            [] => true,
+                            [(v, 1)] => is_free_component(self, *v),
+                            _ => false,
+                        });
+                        if affine {
+                            rows.push(g);
+                        } else {
+                            polynomial.push(g);
+                        }
+                    }
+                    continue;
+                }
             };
             if self.ctx.position.as_deref() == Some(symbol.as_str()) {
                 return Err(EvalError::IllFormed(
@@ -493,17 +526,11 @@ impl<'c> Env<'c> {
                         rows.push(&var(self, &idx) - &values[at]);
                     }
                 }
+                Equation::Constraint { .. } => {}
             }
         }
         self.mentions_of_equations(&equations)?;
-        // Components are the variables that are components of declared symbols.
-        // A coordinate of the position is never eliminated: it is the independent
-        // variable of every derivative.
-        let is_component = |env: &Self, v: Var| {
-            !env.normal.contains(&v)
-                && !matches!(env.varying.get(&v), Some(Varying::Coordinate(_)))
-                && !matches!(env.varying.get(&v), Some(Varying::Jet { orders, .. }) if !orders.is_empty())
-        };
+        let is_component = is_free_component;
         let mut values: BTreeMap<Var, Poly> = BTreeMap::new();
         for row in rows {
             // Reduce by the pivots found so far.
@@ -543,6 +570,39 @@ impl<'c> Env<'c> {
             }
             values.insert(v, value);
         }
+        // Each polynomial constraint, with the pivots substituted and reduced by the
+        // rules so far, is solved for a power of a variable of its own: a scalar
+        // first, then by name from the highest index down (as the search does).
+        for g in polynomial {
+            let g = substitute(&g, &values)?;
+            let g =
+                super::rules::reduce(&g, &self.rules, RULE_STEPS).map_err(|_| EvalError::Limit)?;
+            if g.is_zero() {
+                continue;
+            }
+            let ctx = self.ctx;
+            let names = &self.vars;
+            let rule = Rule::solve(
+                &g,
+                &self.rules,
+                |v| is_component(self, v) && !values.contains_key(&v),
+                |v, d| {
+                    let name = names.name(v);
+                    (
+                        d,
+                        ctx.symbols.get(name) != Some(&0),
+                        std::cmp::Reverse(name.to_owned()),
+                    )
+                },
+            )
+            .ok_or_else(|| {
+                EvalError::IllFormed(
+                    "a polynomial constraint is not solved for a power of a variable of its own"
+                        .into(),
+                )
+            })?;
+            self.rules.push(rule);
+        }
         self.pivots = values;
         // Symbols read while the equations were formed are read again with the pivots.
         self.symbols.clear();
@@ -553,12 +613,44 @@ impl<'c> Env<'c> {
     fn mentions_of_equations(&mut self, equations: &[Equation]) -> R<()> {
         let mut mentioned = BTreeSet::new();
         for e in equations {
-            if let Equation::Component { value, .. } | Equation::Equals { value, .. } = e {
-                self.mentions(value, &mut mentioned)?;
+            match e {
+                Equation::Component { value, .. } | Equation::Equals { value, .. } => {
+                    self.mentions(value, &mut mentioned)?;
+                }
+                Equation::Constraint { left, right } => {
+                    self.mentions(left, &mut mentioned)?;
+                    self.mentions(right, &mut mentioned)?;
+                }
+                _ => {}
             }
         }
         self.assumed.extend(mentioned);
         Ok(())
+    }
+
+    /// `left − right` for every value of their free letters, as polynomials in the
+    /// components with every symbol unconstrained.
+    fn constraint_rows(&mut self, left: &Term, right: &Term) -> R<Vec<Poly>> {
+        let letters = Term::letters(left, self)?.free;
+        if Term::letters(right, self)?.free != letters {
+            return Err(EvalError::IllFormed(
+                "the sides of a constraint have different free indices".into(),
+            ));
+        }
+        let (l, r) = (self.eval(left)?, self.eval(right)?);
+        let (l, r) = (self.in_order(l, &letters)?, self.in_order(r, &letters)?);
+        self.cache.clear();
+        l.iter()
+            .zip(&r)
+            .map(|(a, b)| {
+                let d = a.sub(b)?;
+                if d.denominator().is_empty() && d.conditions().is_empty() {
+                    Ok(d.numerator().clone())
+                } else {
+                    Err(EvalError::IllFormed("a constraint divides by a sum".into()))
+                }
+            })
+            .collect()
     }
 
     /// The components of `value` with every symbol unconstrained: polynomials, for an

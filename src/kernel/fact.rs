@@ -187,6 +187,10 @@ pub enum Checked {
         #[serde(skip_serializing_if = "Vec::is_empty")]
         nonzero: Vec<String>,
     },
+    /// The polynomial constraints, each solved for a power of a variable of its own
+    /// (`rules`, as `v^d = value`), and how many components were identical only after
+    /// the reduction by them: the sides agree wherever the constraints hold.
+    Constraints { rules: Vec<String>, reduced: usize },
     /// The left side is `factor` (nonzero) times the right, where each polynomial of
     /// `nonzero` (the factor's numerator and denominator) is nonzero.
     Proportional {
@@ -289,6 +293,12 @@ impl Env<'_> {
             }
         }
         let at = |v: Var| point.get(&v).cloned();
+        let zero = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        if !self.rules.iter().all(|r| r.holds_at(&zero)) {
+            return Err(Rejection::False(
+                "the point does not satisfy the polynomial constraints".into(),
+            ));
+        }
         for (v, value) in self.eliminated() {
             if let Some(x) = point.get(&v) {
                 let should = Frac::from(value).eval(&at);

@@ -4,7 +4,8 @@
 //! - numbers and polynomials: exact rationals ([`rational`]), canonical sparse
 //!   polynomials with checked exponents ([`poly`]), fractions kept over their divisors
 //!   ([`frac`]), polynomials in one variable with Sturm counts ([`univariate`]), the
-//!   exact isotropic moments of a unit vector ([`moments`]);
+//!   exact isotropic moments of a unit vector ([`moments`]), polynomial constraints as
+//!   rewrite rules ([`rules`]);
 //! - statements: the terms of index notation and their free letters ([`term`]), the
 //!   context that gives them meaning ([`statement`]), and their evaluator ([`eval`],
 //!   with [`differentiate`] for `grad`), written to be read rather than to be fast;
@@ -27,6 +28,7 @@ pub mod interrupt;
 pub mod moments;
 pub mod poly;
 pub mod rational;
+pub mod rules;
 pub mod scalar;
 pub mod sign;
 pub mod statement;

@@ -156,6 +156,12 @@ pub enum Equation {
         formal: Vec<char>,
         value: Term,
     },
+    /// `left = right` for every value of their free letters: a polynomial constraint
+    /// between expressions, solved for a power of one variable ([`super::rules`]).
+    Constraint {
+        left: Term,
+        right: Term,
+    },
 }
 
 /// `symbol_formal := value`: the whole symbol replaced, after the equations, in order.

@@ -71,10 +71,11 @@ pub fn evidence(o: &Outcome) -> String {
                 ""
             };
             parts.push(format!(
-                "{} component check{}{}, every difference identically 0{unit}{}{}",
+                "{} component check{}{}, every difference identically 0{unit}{}{}{}",
                 o.checks,
                 if o.checks == 1 { "" } else { "s" },
                 factor(o),
+                constraints(o),
                 domain(o),
                 roots(o)
             ));
@@ -90,6 +91,20 @@ pub fn evidence(o: &Outcome) -> String {
 /// stated as a counterexample).
 fn checked(o: &Outcome) -> impl Iterator<Item = &Checked> {
     o.proofs().iter().take(1).flat_map(|p| p.summary())
+}
+
+/// The polynomial constraints an exact proof reduced by, as the rules it solved them
+/// into.
+fn constraints(o: &Outcome) -> String {
+    checked(o)
+        .filter_map(|c| match c {
+            Checked::Constraints { rules, .. } => Some(format!(
+                " modulo the constraints, solved as {}",
+                rules.join(", ")
+            )),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The square roots an exact proof took, with where their signs were certified.
@@ -195,10 +210,11 @@ fn counterexample_text(cx: &Counterexample) -> String {
     }
     if !cx.difference.is_empty() {
         let at = at_indices(&cx.indices);
-        let modulo = if cx.reduced_on_sphere {
-            " (mod n·n = 1)"
-        } else {
-            ""
+        let modulo = match (cx.reduced_on_sphere, cx.reduced_by_constraints) {
+            (true, true) => " (mod n·n = 1 and the constraints)",
+            (true, false) => " (mod n·n = 1)",
+            (false, true) => " (mod the constraints)",
+            (false, false) => "",
         };
         let chain = if cx.chain > 1 {
             format!("chain {}, ", cx.chain)
@@ -272,6 +288,13 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
                         holds_where(nonzero)
                     )
                 }
+            }
+            Checked::Constraints { rules, reduced } => {
+                let s = if *reduced == 1 { "" } else { "s" };
+                format!(
+                    "{reduced} component{s} identical only modulo the constraints, solved as {}",
+                    rules.join(", ")
+                )
             }
             Checked::Proportional { factor, nonzero } if nonzero.is_empty() => {
                 format!("one polynomial is {factor} times the other")

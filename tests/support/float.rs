@@ -53,7 +53,14 @@ pub fn decide(
     let proportional = matches!(check.strategy, Strategy::Proportional { .. });
     let domain = check.strategy.exact_domain();
     let mut factor: Option<f64> = None;
-    for _ in 0..samples {
+    // A draw where a polynomial constraint's even power has no real root is no state:
+    // drawn again, a bounded number of times.
+    let (mut kept, mut drawn) = (0, 0);
+    while kept < samples {
+        drawn += 1;
+        if drawn > 50 * samples {
+            return Ok(None);
+        }
         let mut symbols: Vec<(String, Tensor<f64>)> = Vec::new();
         for (name, &rank) in &decls.symbols {
             let mut t = Tensor::from_fn(d, rank, |_| rng.uniform());
@@ -73,6 +80,12 @@ pub fn decide(
         let n = rng.unit_normal(decls);
         env.assume(&parametrisation, &check.assumptions, &n)
             .map_err(|e| e.message)?;
+        let value =
+            |(s, idx): &(String, Vec<usize>)| env.symbols.get(s).map_or(f64::NAN, |t| *t.get(idx));
+        if !parametrisation.solved().is_empty() && parametrisation.residual(value) > TOL {
+            continue;
+        }
+        kept += 1;
         for chain in &check.chains {
             let values = chain
                 .iter()

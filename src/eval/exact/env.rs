@@ -94,6 +94,8 @@ pub struct ExactEnv<'a> {
     pub(crate) jet_cache: HashMap<(String, String), Tensor<super::jet::Jet>>,
     /// The claim's box by name, while [`ExactEnv::on`] evaluates the substitutions.
     pending: Vec<(String, Interval)>,
+    /// The polynomial constraints, each solved for a power of a variable of its own.
+    rules: Vec<crate::kernel::rules::Rule>,
 }
 
 pub(crate) fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
@@ -143,8 +145,18 @@ impl<'a> ExactEnv<'a> {
         // points list them in that order: the symbols of the assumptions come first, in
         // the order they are written.
         for (k, a) in assumptions.iter().enumerate() {
-            if !parametrisation.substitutions().contains(&k) {
-                env.symbol(a.kind.symbol());
+            if parametrisation.substitutions().contains(&k) {
+                continue;
+            }
+            match a.kind.symbol() {
+                Some(s) => {
+                    env.symbol(s);
+                }
+                None => {
+                    for s in &a.reads {
+                        env.symbol(s);
+                    }
+                }
             }
         }
         for d in parametrisation.dependents() {
@@ -161,6 +173,18 @@ impl<'a> ExactEnv<'a> {
             let mut t = env.symbol(symbol);
             *t.get_mut(idx) = Quotient::from(value);
             env.symbols.insert(symbol.clone(), t);
+        }
+        for s in parametrisation.solved() {
+            let value = s.value.iter().fold(Poly::zero(), |acc, (p, q)| {
+                let x = product_value(p, Poly::one(), |(s, i)| env.component(s, i));
+                &acc + &(&x * &Poly::constant(q.clone()))
+            });
+            let var = env.component_var(&s.component.0, &s.component.1);
+            env.rules.push(crate::kernel::rules::Rule {
+                var,
+                power: s.power,
+                value,
+            });
         }
         // While the substitutions are evaluated, the box is read by name, so that the
         // variables keep the order in which they are first used.
@@ -206,6 +230,7 @@ impl<'a> ExactEnv<'a> {
             root_values: Vec::new(),
             jet_cache: HashMap::default(),
             pending: Vec::new(),
+            rules: Vec::new(),
         }
     }
 
@@ -245,6 +270,11 @@ impl<'a> ExactEnv<'a> {
     /// The normal's component variables (empty when the file declares no normal).
     pub fn normal_vars(&self) -> &[Var] {
         &self.normal
+    }
+
+    /// The polynomial constraints, solved for powers (see [`crate::kernel::rules`]).
+    pub fn rules(&self) -> &[crate::kernel::rules::Rule] {
+        &self.rules
     }
 
     /// The solved assumptions (`None` for an unconstrained environment).

@@ -264,6 +264,23 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
                 }
             }
         }
+        // A component solved for by a polynomial constraint: the real root of its power
+        // on the branch its drawn value's sign picks (NaN where there is none).
+        for s in parametrisation.solved() {
+            let at = |(s, i): &Component| {
+                self.symbols
+                    .get(s)
+                    .map_or_else(|| T::from(f64::NAN), |t| t.get(i).clone())
+            };
+            let value = s.value.iter().fold(T::from(0.0), |acc, (p, q)| {
+                acc + product_value(p, T::from(1.0), at) * q.to_f64()
+            });
+            let (symbol, idx) = &s.component;
+            if let Some(t) = self.symbols.get_mut(symbol) {
+                let x = t.get_mut(idx);
+                *x = real_root(value, s.power, x.re() < 0.0);
+            }
+        }
         for d in parametrisation.dependents() {
             let at = |(s, i): &Component| {
                 self.symbols
@@ -297,6 +314,25 @@ impl<'a, T: DualNum<Primitive = f64>> RealEnv<'a, T> {
             self.memo.borrow_mut().clear();
         }
         Ok(())
+    }
+}
+
+/// The real x with x^power = value, negative when `negative` and the power is even; NaN
+/// when an even power would need a negative value.
+pub(crate) fn real_root<T: DualNum<Primitive = f64>>(value: T, power: u32, negative: bool) -> T {
+    let root = match power {
+        0 => return T::from(f64::NAN),
+        1 => return value,
+        // The root of |value| carries the derivative of the root of value.
+        _ if power % 2 == 1 && value.re() < 0.0 => -(-value).powf(1.0 / f64::from(power)),
+        _ if value.re() < 0.0 => return T::from(f64::NAN),
+        2 => value.sqrt(),
+        _ => value.powf(1.0 / f64::from(power)),
+    };
+    if negative && power.is_multiple_of(2) {
+        -root
+    } else {
+        root
     }
 }
 

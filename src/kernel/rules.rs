@@ -1,0 +1,202 @@
+//! Polynomial constraints, each solved for a power of a variable of its own: the
+//! rewrite rules `v^d → value` that reduce a claim's difference.
+//!
+//! A constraint g = 0 in which a variable v occurs in one term only, as c·v^d with a
+//! constant c, says v^d = −(g − c·v^d)/c. Rewriting a monomial divisible by v^d
+//! subtracts a multiple of g, so a difference that reduces to 0 vanishes wherever every
+//! constraint holds: the reduction is sound whatever the rules are. It is complete as
+//! well when no rule's variable occurs in any rule but its own (which [`Rule::solve`]
+//! demands): the leading monomials v^d are then pairwise coprime in an elimination
+//! order, so the constraints form a Gröbner basis, and a polynomial in their ideal is
+//! the only kind that reduces to 0.
+
+use super::poly::{Monomial, Poly, PolyError, Var};
+use super::rational::Rational;
+
+/// `var^power = value`: a constraint solved for a power of one variable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rule {
+    pub var: Var,
+    pub power: u32,
+    pub value: Poly,
+}
+
+impl Rule {
+    /// `g = 0` solved for a power of the candidate that comes first by `key`, among
+    /// those that occur in `g` once, alone, as c·v^d with a rational c. `None` when
+    /// there is none, when `g` has a negative power, or when the rules would not stay
+    /// triangular: `g` reads a variable of an earlier rule, or the candidate occurs in
+    /// an earlier rule.
+    pub fn solve<K: Ord>(
+        g: &Poly,
+        earlier: &[Rule],
+        candidate: impl Fn(Var) -> bool,
+        key: impl Fn(Var, u32) -> K,
+    ) -> Option<Rule> {
+        let reads = |p: &Poly, v: Var| p.terms().any(|(m, _)| m.exponent(v) != 0);
+        if g.terms()
+            .any(|(m, _)| m.factors().iter().any(|&(_, e)| e < 0))
+            || earlier.iter().any(|r| reads(g, r.var))
+        {
+            return None;
+        }
+        let occurrences = |v: Var| g.terms().filter(|(m, _)| m.exponent(v) != 0).count();
+        let (var, power, c) = g
+            .terms()
+            .filter_map(|(m, c)| match m.factors() {
+                [(v, d)] => Some((*v, u32::try_from(*d).ok()?, c.clone())),
+                _ => None,
+            })
+            .filter(|&(v, _, _)| {
+                candidate(v)
+                    && occurrences(v) == 1
+                    && !earlier.iter().any(|r| r.var == v || reads(&r.value, v))
+            })
+            .min_by_key(|&(v, d, _)| key(v, d))?;
+        let term = Poly::term(Monomial::var(var, i64::from(power)), c.clone());
+        let scale = Poly::constant(-&c.recip()?);
+        let value = (g - &term).checked_mul(&scale).ok()?;
+        Some(Rule { var, power, value })
+    }
+
+    /// Whether the rule holds at a point (variables it leaves out are 0).
+    pub fn holds_at(&self, value: &dyn Fn(Var) -> Rational) -> bool {
+        let power = value(self.var).pow(i64::from(self.power));
+        power.is_some() && power == self.value.eval(value)
+    }
+}
+
+/// `p` reduced by the rules: no monomial left that a rule's `var^power` divides. Each
+/// step replaces one term; more than `steps` of them is [`PolyError::TooLarge`].
+///
+/// A division by a single term (`s_ij / (2 tau)`) leaves negative powers, which no
+/// rule divides: `p` is first multiplied by the monomial that clears them, nonzero
+/// wherever `p` is defined, so that the result is zero exactly where `p` is.
+pub fn reduce(p: &Poly, rules: &[Rule], steps: usize) -> Result<Poly, PolyError> {
+    if rules.is_empty() {
+        return Ok(p.clone());
+    }
+    let mut lowest: Vec<(Var, i64)> = Vec::new();
+    for (m, _) in p.terms() {
+        for &(v, e) in m.factors() {
+            match lowest.iter_mut().find(|(w, _)| *w == v) {
+                Some((_, l)) => *l = (*l).min(e),
+                None => lowest.push((v, e)),
+            }
+        }
+    }
+    let clearing = Monomial::checked_from_factors(
+        lowest
+            .into_iter()
+            .filter(|&(_, e)| e < 0)
+            .map(|(v, e)| (v, -e))
+            .collect(),
+    )
+    .ok_or(PolyError::ExponentTooLarge)?;
+    let p = p.checked_mul(&Poly::term(clearing, Rational::int(1)))?;
+    let mut left = steps;
+    let mut out = Vec::with_capacity(p.num_terms());
+    let mut stack: Vec<(Monomial, Rational)> =
+        p.terms().map(|(m, c)| (m.clone(), c.clone())).collect();
+    // The clearing made every exponent ≥ 0, and the rules' values have none below 0.
+    while let Some((m, c)) = stack.pop() {
+        let Some(rule) = rules
+            .iter()
+            .find(|r| m.exponent(r.var) >= i64::from(r.power))
+        else {
+            out.push((m, c));
+            continue;
+        };
+        let lowered = m
+            .checked_mul(&Monomial::var(rule.var, -i64::from(rule.power)))
+            .ok_or(PolyError::ExponentTooLarge)?;
+        for (n, q) in rule.value.terms() {
+            left = left.checked_sub(1).ok_or(PolyError::TooLarge)?;
+            let product = lowered.checked_mul(n).ok_or(PolyError::ExponentTooLarge)?;
+            stack.push((product, &c * q));
+        }
+    }
+    Ok(Poly::from_terms(out))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::poly::VarTable;
+
+    fn q(n: i64) -> Rational {
+        Rational::int(n)
+    }
+
+    #[test]
+    fn a_deviator_of_given_intensity() {
+        // s1² + s2² + (s1 + s2)² = 2 t²: solved for t², the only pure power.
+        let mut names = VarTable::new();
+        let (s1, s2, t) = (names.intern("s1"), names.intern("s2"), names.intern("t"));
+        let (a, b, c) = (Poly::var(s1), Poly::var(s2), Poly::var(t));
+        let g = &(&(&(&a * &a) + &(&b * &b)) + &(&(&a + &b) * &(&a + &b)))
+            - &(&(&c * &c) * &Poly::constant(q(2)));
+        let rule = Rule::solve(&g, &[], |_| true, |v, d| (d, v)).unwrap();
+        let rules = std::slice::from_ref(&rule);
+        assert_eq!((rule.var, rule.power), (t, 2));
+        // J2 − t² reduces to 0; t alone and t³ − t·J2 do not, and t³ becomes t·J2.
+        let j2 = &(&g + &(&(&c * &c) * &Poly::constant(q(2))))
+            * &Poly::constant(Rational::ratio(1, 2).unwrap());
+        let zero = reduce(&(&j2 - &(&c * &c)), rules, 1000).unwrap();
+        assert!(zero.is_zero());
+        assert_eq!(reduce(&c, rules, 1000).unwrap(), c);
+        let cubed = reduce(&(&(&c * &c) * &c), rules, 1000).unwrap();
+        assert_eq!(cubed, (&c * &j2));
+        // J2/t² − 1 (a division by a single term) is cleared, then reduced to 0.
+        let over = Poly::term(Monomial::var(t, -2), q(1));
+        let ratio = &(&j2 * &over) - &Poly::constant(q(1));
+        assert!(reduce(&ratio, rules, 1000).unwrap().is_zero());
+        // Too few steps is a limit, not a remainder.
+        assert_eq!(
+            reduce(&(&c * &c).pow(4), rules, 3),
+            Err(PolyError::TooLarge)
+        );
+    }
+
+    #[test]
+    fn only_a_pure_power_of_its_own_is_solved_for() {
+        let mut names = VarTable::new();
+        let (x, y) = (names.intern("x"), names.intern("y"));
+        let (a, b) = (Poly::var(x), Poly::var(y));
+        // x·y = 1 has no pure power; x² + x·y = 1 has none either (x occurs twice).
+        let one = Poly::constant(q(1));
+        assert!(Rule::solve(&(&(&a * &b) - &one), &[], |_| true, |v, d| (d, v)).is_none());
+        let g = &(&(&a * &a) + &(&a * &b)) - &one;
+        assert!(Rule::solve(&g, &[], |_| true, |v, d| (d, v)).is_none());
+        // y² = x solves for y (x occurs once too, but to the first power: preferred).
+        let g = &(&b * &b) - &a;
+        let r = Rule::solve(&g, &[], |_| true, |v, d| (d, v)).unwrap();
+        assert_eq!((r.var, r.power), (x, 1));
+        // A second rule may not read the first one's variable.
+        assert!(Rule::solve(
+            &(&a - &one),
+            std::slice::from_ref(&r),
+            |_| true,
+            |v, d| (d, v)
+        )
+        .is_none());
+        // Nor be solved for a variable the first one's value reads.
+        let g2 = &(&b * &b).pow(2) - &one;
+        assert!(Rule::solve(&g2, &[r], |_| true, |v, d| (d, v)).is_none());
+    }
+
+    #[test]
+    fn a_rule_is_checked_at_a_point() {
+        let mut names = VarTable::new();
+        let (x, y) = (names.intern("x"), names.intern("y"));
+        let rule = Rule {
+            var: x,
+            power: 2,
+            value: &Poly::var(y) + &Poly::constant(q(1)),
+        };
+        let at = |x0: i64, y0: i64| move |v: Var| q(if v == x { x0 } else { y0 });
+        assert!(rule.holds_at(&at(3, 8)));
+        assert!(rule.holds_at(&at(-3, 8)));
+        assert!(!rule.holds_at(&at(3, 7)));
+    }
+}
