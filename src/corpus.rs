@@ -88,6 +88,10 @@ pub const EXAMPLES: &[(&str, &str)] = &[
         include_str!("../derivations/examples/radial-return.toml"),
     ),
     (
+        "derivations/examples/rudnicki-rice.toml",
+        include_str!("../derivations/examples/rudnicki-rice.toml"),
+    ),
+    (
         "derivations/examples/states.toml",
         include_str!("../derivations/examples/states.toml"),
     ),

@@ -176,6 +176,24 @@ fn polynomial_constraints_and_their_twins_are_decided_as_declared() {
     assert_eq!(decided, 20);
 }
 
+/// The Rudnicki–Rice example: the denominator of the elastic-plastic modulus, the
+/// inverse of the elastic acoustic tensor and the band at the critical hardening
+/// modulus are proved at every deviatoric state of every intensity and every band
+/// normal (both as polynomial constraints); the planted errors fail at exact points.
+#[test]
+fn the_rudnicki_rice_example_is_decided_as_declared_with_proofs() {
+    use cosserat_check::decide::Strength;
+    let files = load_files(&["derivations/examples/rudnicki-rice.toml"]).unwrap();
+    let mut decided = 0;
+    for claim in files.iter().flat_map(|f| &f.claims) {
+        let d = decide_claim(claim).unwrap_or_else(|e| panic!("{}: {e}", claim.id));
+        assert_eq!(d.outcome.verdict(), claim.expect, "{}", claim.id);
+        assert_eq!(d.outcome.strength(), Strength::Proof, "{}", claim.id);
+        decided += 1;
+    }
+    assert_eq!(decided, 6);
+}
+
 /// A constraint is solved for a power of a variable of its own whatever the order
 /// written, and one that has none, or shares it, is a located error.
 #[test]
@@ -215,6 +233,21 @@ fn constraints_are_solved_in_any_order_or_located() {
         e.contains("cannot be solved for a power of one variable"),
         "{e}"
     );
+    // A constraint set with no real point: a difference modulo it is no refutation.
+    let text = format!(
+        "{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"holds\"\n\
+         assume = [\"S^2 + T^2 = -1\"]\nsides = [\"S\", \"0\"]\n"
+    );
+    let file = load_str("t.toml", &text).unwrap();
+    let d = decide_claim(&file.claims[0]).unwrap();
+    assert_eq!(
+        d.outcome.verdict(),
+        cosserat_check::derivation::Verdict::Undecided
+    );
+    assert!(matches!(
+        d.outcome.finding,
+        Some(cosserat_check::decide::finding::Finding::NoConstrainedPoint { .. })
+    ));
     // A constraint with a pure power in none of its variables (a hyperbola).
     let e = error_of("assume = [\"S T = 1\"]\nsides = [\"S\", \"S\"]");
     assert!(

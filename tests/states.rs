@@ -92,9 +92,6 @@ fn a_third_derivative_is_a_located_refusal() {
     assert!(e.contains("f.toml:"), "located: {e}");
 }
 
-/// The radial-return example: the consistent tangent and the fourth-order Hessian it
-/// holds are proved at an exact state and sampled at random strains; the continuum
-/// tangent, planted in its place, fails.
 /// `maxn` is not differentiated: its maximising angle is found to about 1e-8 and moves
 /// with the variable, so a derivative through it is refused (`grad`), or left
 /// undecided (the `gradient` strategy), never a verdict.
@@ -125,6 +122,9 @@ fn a_derivative_through_maxn_is_never_a_verdict() {
     assert_eq!(outcome.verdict(), Verdict::Undecided);
 }
 
+/// The radial-return example: the consistent tangent and the fourth-order Hessian it
+/// holds are proved at an exact state and sampled at random strains; the continuum
+/// tangent, planted in its place, fails.
 #[test]
 fn the_radial_return_example_is_decided_as_declared() {
     common::assert_as_declared("derivations/examples/radial-return.toml", 6, |rows| {

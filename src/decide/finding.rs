@@ -52,6 +52,10 @@ pub enum Finding {
         #[serde(skip_serializing_if = "std::ops::Not::not")]
         overflow: bool,
     },
+    /// The sides differ modulo the polynomial constraints (the remainder `difference`),
+    /// but no exact point of the constraint set where they differ was found in `tries`
+    /// tries: the set may have no real point there, so nothing is decided.
+    NoConstrainedPoint { difference: String, tries: usize },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.
     Unconfirmed { difference: String, why: Rejection },

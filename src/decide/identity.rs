@@ -313,6 +313,15 @@ fn decide_recording(
                     scaled.as_ref().unwrap_or(rp),
                     &diff,
                 );
+                // Under polynomial constraints a difference modulo them is no
+                // refutation without a point of the constraint set.
+                if values.is_none() && !env.rules().is_empty() {
+                    return Ok(Outcome::undecided(Method::Exact, identities.components())
+                        .with_finding(Finding::NoConstrainedPoint {
+                            difference: cx.difference.clone(),
+                            tries: super::points::CONSTRAINED_TRIES,
+                        }));
+                }
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
                 // A factor of the parameters is fixed again at the parameter values of
                 // the difference's point: both evaluations must share them.

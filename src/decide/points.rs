@@ -172,7 +172,7 @@ pub fn point_where_differ(
 }
 
 /// Tries at a point that satisfies the polynomial constraints.
-const CONSTRAINED_TRIES: usize = 128;
+pub const CONSTRAINED_TRIES: usize = 128;
 
 /// Tries at a seed of a quadric, and at a line through it.
 const LINE_TRIES: usize = 64;

@@ -691,7 +691,7 @@ impl Loader {
                 .diagnostic(Span::new(0, text.len()), "a definition needs `=`")
                 .with_help("write it as name_ij = expression, e.g. t_i = sigma_ki n_k"));
         };
-        let (name, formal, name_span) = self.lhs_name(&origin, text, eq, Some(decls), false)?;
+        let (name, formal, name_span) = self.lhs_name(&origin, text, eq, Some(decls))?;
         if RESERVED.contains(&name.as_str())
             || decls.symbols.contains_key(&name)
             || decls.normal.as_ref() == Some(&name)
@@ -778,14 +778,13 @@ impl Loader {
 
     /// The left side of `name_ij = …`: a name with distinct letter indices, or the
     /// whole name of a declared scalar such as `f_g` (when `decls` is given), in a
-    /// definition or (`assuming`) an assumption.
+    /// definition or an assumption.
     fn lhs_name(
         &self,
         origin: &Origin,
         text: &str,
         eq: usize,
         decls: Option<&Decls>,
-        assuming: bool,
     ) -> Result<(String, Vec<char>, Span), Diagnostic> {
         let lhs = &text[..eq];
         let sub = sub_origin(origin, 0..eq);
@@ -818,19 +817,11 @@ impl Loader {
             .collect::<std::collections::BTreeSet<_>>()
             .len()
             == indices.len();
+        // (An assumption whose left side is no such name is a constraint.)
         if !letters_only || !distinct {
-            // `sigma_kk = 0` in `assume`: the trace condition has its own form.
-            let help = if letters_only && indices.len() == 2 && assuming {
-                format!("a trace that vanishes is written `traceless({base})`; otherwise a left side is a name with distinct index letters (`C_ijkl = C_klij`) or one component (`sigma_13 = 0`)")
-            } else {
-                "e.g. t_i or mu_ij; fixed components cannot be defined one by one".to_owned()
-            };
-            let what = if assuming {
-                "an assumed name carries distinct index letters"
-            } else {
-                "a defined name carries distinct index letters"
-            };
-            return Err(sub.diagnostic(e.span, what).with_help(help));
+            return Err(sub
+                .diagnostic(e.span, "a defined name carries distinct index letters")
+                .with_help("e.g. t_i or mu_ij; fixed components cannot be defined one by one"));
         }
         Ok((base, indices.iter().map(|t| t.ch).collect(), e.span))
     }
@@ -1054,7 +1045,7 @@ impl Loader {
             if let Some(constraint) = self.expression_constraint(origin, text, eq, decls, sigs)? {
                 return Ok(constraint);
             }
-            let (name, formal, span) = self.lhs_name(origin, text, eq, Some(decls), true)?;
+            let (name, formal, span) = self.lhs_name(origin, text, eq, Some(decls))?;
             match decls.symbols.get(&name) {
                 Some(&rank) if rank == formal.len() => {}
                 Some(&rank) => {

@@ -329,7 +329,8 @@ fn identities(
         modulo_unit_normal,
         nonzero,
     }];
-    if !env.rules.is_empty() {
+    // The constraints are evidence only where a comparison needed them.
+    if modulo_rules > 0 {
         let rules = env
             .rules
             .iter()

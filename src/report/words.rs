@@ -79,6 +79,11 @@ pub fn finding(f: &Finding) -> String {
              from the centre runs over the whole circle; checked as an identity in the state \
              and the normal)"
         ),
+        Finding::NoConstrainedPoint { difference, tries } => format!(
+            "undecided: the sides differ modulo the constraints by {difference}, but no exact \
+             point of the constraint set where they differ was found in {tries} tries (the set \
+             may have no real point there); this is not a counterexample"
+        ),
         Finding::NoWitness { attempts } => format!(
             "undecided: no witness among {attempts} rational states (every four points tried were \
              concyclic); this is not a counterexample"
