@@ -256,6 +256,38 @@ fn constraints_are_solved_in_any_order_or_located() {
     );
 }
 
+/// What an adversary found under constraints, each now right: a rounded root is no
+/// exact point (sampling cannot tell, never `fails`); a derivative by a symbol tied to
+/// a constraint through a linear assumption is refused; a definition only a constraint
+/// reads is in the kernel's statement; a first power solved before a square is set
+/// again after the square moves its variables; a counterexample shows every coordinate.
+#[test]
+fn constraints_under_attack() {
+    use cosserat_check::derivation::Verdict;
+    let decide = |claim: &str| {
+        let text = format!(
+            "{HEADER}\ndefine = [\"Q = eta_ij eta_ij / 2\"]\n[[claim]]\nid = \"x\"\nprinted = 'x'\n{claim}\n"
+        );
+        let file = load_str("t.toml", &text).unwrap();
+        decide_claim(&file.claims[0]).unwrap().outcome
+    };
+    let o = decide(
+        "strategy = \"numeric\"\nranges = { S = [-10000, 10000] }\n\
+         assume = [\"T^2 = S^2 + 1\"]\nsides = [\"T^2 - S^2\", \"1\"]",
+    );
+    assert_ne!(o.verdict(), Verdict::Fails, "{o:?}");
+    let e = error_of("assume = [\"S = V\", \"S^3 = T\"]\nsides = [\"grad(T, V)\", \"3 V^2\"]");
+    assert!(e.contains("a derivative by `V`"), "{e}");
+    let o = decide("assume = [\"2 Q = 2 T^2\"]\nsides = [\"eta_ij eta_ij\", \"2 T^2\"]");
+    assert_eq!(o.verdict(), Verdict::Holds, "{o:?}");
+    let o = decide("assume = [\"S^2 = T + 1\", \"V^2 = T\"]\nsides = [\"S^2 + V^2\", \"1\"]");
+    assert_eq!(o.verdict(), Verdict::Fails, "{o:?}");
+    let cx = o.counterexample.expect("a counterexample");
+    for name in ["S", "T", "V"] {
+        assert!(cx.point.contains_key(name), "{name} in {:?}", cx.point);
+    }
+}
+
 /// A definition that an assumption reads is in the assumption's scope: a cycle through
 /// it is located, and a file-wide assumption does not see a claim's definitions.
 #[test]

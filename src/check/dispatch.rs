@@ -59,15 +59,34 @@ fn constraints_supported(check: &crate::derivation::Check) -> Result<(), Diagnos
             .with_help("drop the strategy, or write strategy = \"numeric\""));
     }
     let (nodes, _) = check.reachable();
-    let tied: std::collections::BTreeSet<&String> = check
+    // The symbols a constraint reads, and every symbol another assumption relates to
+    // one of them (`x = w` with `x^3 = y` ties w too).
+    let mut tied: std::collections::BTreeSet<&str> = check
         .assumptions
         .iter()
         .filter(|a| matches!(a.kind, AssumptionKind::Constraint { .. }))
-        .flat_map(|a| &a.reads)
+        .flat_map(|a| a.reads.iter().map(String::as_str))
         .collect();
+    loop {
+        let before = tied.len();
+        for a in &check.assumptions {
+            let symbols: Vec<&str> = a
+                .kind
+                .symbol()
+                .into_iter()
+                .chain(a.reads.iter().map(String::as_str))
+                .collect();
+            if symbols.iter().any(|s| tied.contains(s)) {
+                tied.extend(symbols);
+            }
+        }
+        if tied.len() == before {
+            break;
+        }
+    }
     for n in nodes {
         if let NodeKind::Wrt { symbol, op, .. } = &n.kind {
-            if tied.contains(&symbol) {
+            if tied.contains(symbol.as_str()) {
                 let what = if *op == Wrt::Variation {
                     "a variation"
                 } else {

@@ -753,6 +753,16 @@ fn counterexample(
     match found {
         Some((point, l, r)) => {
             cx.point = shown_point(names, lhs, rhs, &point);
+            // Under constraints the point's other coordinates are not 0: every one is
+            // shown (the normal aside), so that the point can be checked against them.
+            if !rules.is_empty() {
+                cx.point.extend(
+                    point
+                        .iter()
+                        .filter(|(v, _)| !normal.contains(v))
+                        .map(|(&v, q)| (names.name(v).to_owned(), q.to_string())),
+                );
+            }
             cx.lhs_value = Some(l.to_string());
             cx.rhs_value = Some(r.to_string());
             (cx, point, Some((l, r)))

@@ -225,6 +225,17 @@ pub fn point_where_differ_constrained(
         {
             continue;
         }
+        // A first power is a value, not a root: set again after a later square moved
+        // the variables it reads.
+        for r in rules.iter().filter(|r| r.power == 1) {
+            let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+            match r.value.eval(&at) {
+                Some(x) => {
+                    point.insert(r.var, x);
+                }
+                None => continue,
+            }
+        }
         let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
         let (Some(l), Some(r)) = (lhs.eval(&at), rhs.eval(&at)) else {
             continue;
@@ -268,7 +279,8 @@ fn solve_rule<'d>(
     if rule.power != 2 {
         return false;
     }
-    // The variables only this rule reads, in which its value is at most quadratic.
+    // The variables no other root reads (a first power is set again afterwards), in
+    // which the value is at most quadratic.
     let movable: Vec<Var> = rule
         .value
         .variables()
@@ -276,7 +288,7 @@ fn solve_rule<'d>(
         .filter(|&v| {
             !rules
                 .iter()
-                .any(|r| r.var != rule.var && r.value.variables().contains(&v))
+                .any(|r| r.var != rule.var && r.power > 1 && r.value.variables().contains(&v))
         })
         .collect();
     let quadratic = rule
@@ -288,8 +300,8 @@ fn solve_rule<'d>(
     }
     let small = |rng: &mut Rng| Rational::int(rng.small());
     for _ in 0..LINE_TRIES {
-        // A seed: small integers (half of them 0) at which the value is a nonzero
-        // rational square v0².
+        // A seed: small integers (half of them 0) at which the value is a rational
+        // square v0² (a seed at 0 where the quadric is singular gives itself back).
         let mut seed = point.clone();
         for &v in &movable {
             let x = if rng.below(2) == 0 {
@@ -299,10 +311,7 @@ fn solve_rule<'d>(
             };
             seed.insert(v, x);
         }
-        let Some(v0) = value_at(&seed)
-            .filter(|q| !q.is_zero())
-            .and_then(|q| q.sqrt_exact())
-        else {
+        let Some(v0) = value_at(&seed).and_then(|q| q.sqrt_exact()) else {
             continue;
         };
         // Along x0 + t·dx, v0 + t·m: Q(t) = Q0 + B t + C t², and (v0 + t m)² = Q(t)

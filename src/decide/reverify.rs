@@ -439,6 +439,12 @@ fn exact_point(env: &mut ExactEnv<'_>, state: &State) -> Option<HashMap<Var, Rat
         let n = on_unit_sphere(&state.n[..normal.len()])?;
         point.extend(normal.into_iter().zip(n));
     }
+    // A component solved for by a polynomial constraint is a rounded root: unless the
+    // rounded values satisfy every constraint exactly, the state denotes no exact point.
+    let value = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+    if !env.rules().iter().all(|r| r.holds_at(&value)) {
+        return None;
+    }
     Some(point)
 }
 

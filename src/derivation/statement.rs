@@ -357,8 +357,15 @@ fn keep_read<'t>(context: &mut Context, terms: impl Iterator<Item = &'t Term>) {
         names(t, &mut pending);
     }
     for e in &context.equations {
-        if let Equation::Component { value, .. } | Equation::Equals { value, .. } = e {
-            names(value, &mut pending);
+        match e {
+            Equation::Component { value, .. } | Equation::Equals { value, .. } => {
+                names(value, &mut pending);
+            }
+            Equation::Constraint { left, right } => {
+                names(left, &mut pending);
+                names(right, &mut pending);
+            }
+            _ => {}
         }
     }
     for s in &context.substitutions {

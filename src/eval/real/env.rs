@@ -329,7 +329,8 @@ pub(crate) fn real_root<T: DualNum<Primitive = f64>>(value: T, power: u32, negat
         2 => value.sqrt(),
         _ => value.powf(1.0 / f64::from(power)),
     };
-    if negative && power.is_multiple_of(2) {
+    // A zero root is +0: a −0 would pick the other branch of atan2 and its kind.
+    if negative && power.is_multiple_of(2) && root.re() != 0.0 {
         -root
     } else {
         root
