@@ -176,6 +176,26 @@ fn polynomial_constraints_and_their_twins_are_decided_as_declared() {
     assert_eq!(decided, 20);
 }
 
+/// Square roots of polynomials that are no squares (`tests/soundness/square-roots.toml`):
+/// proved modulo their squares, refuted at exact points where every root is rational
+/// and ≥ 0, and undecided (never a verdict) where no such point exists.
+#[test]
+fn square_roots_as_variables_and_their_twins_are_decided_as_declared() {
+    use cosserat_check::decide::Strength;
+    use cosserat_check::derivation::Verdict;
+    let files = load_files(&[soundness_file("square-roots.toml")]).unwrap();
+    let mut decided = 0;
+    for claim in files.iter().flat_map(|f| &f.claims) {
+        let d = decide_claim(claim).unwrap_or_else(|e| panic!("{}: {e}", claim.id));
+        assert_eq!(d.outcome.verdict(), claim.expect, "{}", claim.id);
+        if claim.expect != Verdict::Undecided {
+            assert_eq!(d.outcome.strength(), Strength::Proof, "{}", claim.id);
+        }
+        decided += 1;
+    }
+    assert_eq!(decided, 12);
+}
+
 /// The Rudnicki–Rice example: the denominator of the elastic-plastic modulus, the
 /// inverse of the elastic acoustic tensor and the band at the critical hardening
 /// modulus are proved at every deviatoric state of every intensity and every band

@@ -528,3 +528,54 @@ fn a_refutation_under_a_polynomial_constraint_needs_a_point_on_it() {
     };
     assert!(!fails(st, differs));
 }
+
+#[test]
+fn a_square_root_of_a_polynomial_is_a_variable_only_where_a_rule_is_checked() {
+    let ctx = context(&[("x", 0), ("y", 0)]);
+    let (x, y) = (sym("x", ""), sym("y", ""));
+    let radicand = sum(vec![
+        Term::Pow(Box::new(x.clone()), 2),
+        Term::Pow(Box::new(y.clone()), 2),
+    ]);
+    let root = Term::Sqrt(Box::new(radicand.clone()));
+    // √(x² + y²)² = x² + y² holds modulo the square; √ = x + y does not.
+    assert!(holds(
+        equal(&ctx, Term::Pow(Box::new(root.clone()), 2), radicand.clone()),
+        identity()
+    ));
+    assert!(!holds(
+        equal(&ctx, root.clone(), sum(vec![x.clone(), y.clone()])),
+        identity()
+    ));
+    // √(x² + y²) = −√(x² + y²): refuted only on the branch ≥ 0.
+    let st = equal(&ctx, root.clone(), neg(root.clone()));
+    let name = "√(x^2 + y^2)";
+    let at = |r: i64| Fact::Refutation {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: Vec::new(),
+            point: vec![
+                ("x".to_owned(), q(3, 1)),
+                ("y".to_owned(), q(4, 1)),
+                (name.to_owned(), q(r, 1)),
+            ],
+        },
+        roots: Vec::new(),
+    };
+    assert!(fails(st.clone(), at(5)));
+    assert!(!fails(st.clone(), at(-5)), "the other branch");
+    assert!(!fails(st, at(6)), "not the root");
+    // A proportionality evaluates no such root: refused, not proved.
+    let prop = Statement {
+        context: ctx.clone(),
+        claim: Claim::Proportional {
+            chains: vec![vec![Term::Pow(Box::new(root), 2), radicand]],
+        },
+    };
+    let factor = Fact::Proportional {
+        factors: vec![cosserat_check::kernel::check::Factor::Constant(q(1, 1))],
+        roots: Vec::new(),
+    };
+    assert!(!holds(prop, factor));
+}

@@ -403,8 +403,16 @@ impl<'n> Identities<'n> {
     /// The same comparison modulo polynomial constraints, solved for powers
     /// ([`crate::kernel::rules`]).
     pub fn with_rules(mut self, rules: &[crate::kernel::rules::Rule]) -> Self {
-        self.rules = rules.to_vec();
+        self.set_rules(rules);
         self
+    }
+
+    /// The rules to reduce by from now on (square roots taken as variables join them
+    /// while the sides are evaluated).
+    pub fn set_rules(&mut self, rules: &[crate::kernel::rules::Rule]) {
+        if self.rules.len() != rules.len() {
+            self.rules = rules.to_vec();
+        }
     }
 
     /// A comparison of `lhs` with `factor · rhs`. Which factor to try is the caller's

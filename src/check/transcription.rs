@@ -706,9 +706,21 @@ impl Comparer<'_> {
                 }
             }
         }
+        // Not decided exactly for a reason other than a size (no rational point of a
+        // square root taken as a variable of its own, a construct the exact route does
+        // not take, such as maxn after such a root): sampled instead, as where the
+        // exact route refuses the statement outright.
+        let sample = |o: &Outcome| {
+            use crate::decide::finding::Finding;
+            o.verdict() == Verdict::Undecided
+                && !matches!(
+                    o.finding,
+                    Some(Finding::ResourceLimit { .. } | Finding::TimeLimit { .. })
+                )
+        };
         match decide(self.decls, &c) {
-            Ok(o) => verdict_of(&o),
-            Err(_) => {
+            Ok(o) if !sample(&o) => verdict_of(&o),
+            _ => {
                 let sampled = Strategy::Numeric {
                     sampling: self.sampling(),
                     relation: Relation::Eq,

@@ -52,9 +52,10 @@ pub enum Finding {
         #[serde(skip_serializing_if = "std::ops::Not::not")]
         overflow: bool,
     },
-    /// The sides differ modulo the polynomial constraints (the remainder `difference`),
-    /// but no exact point of the constraint set where they differ was found in `tries`
-    /// tries: the set may have no real point there, so nothing is decided.
+    /// The sides differ modulo the polynomial constraints and the squares of the roots
+    /// taken as variables (the remainder `difference`), but no exact point where they
+    /// hold and the sides differ was found in `tries` tries: there may be no real one,
+    /// so nothing is decided.
     NoConstrainedPoint { difference: String, tries: usize },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.

@@ -211,6 +211,11 @@ fn decide_recording(
         },
     };
     let normal = env.normal_vars().to_vec();
+    // An identity (not a proportionality) takes the square root of a polynomial that
+    // is no square as a variable of its own, compared modulo its square.
+    if matches!(check.strategy, Strategy::Exact { .. }) {
+        env.allow_algebraic_roots();
+    }
     let mut identities = Identities::new(&normal).with_rules(env.rules());
     // A proportionality's factor (1 when the right side is zero everywhere: the left
     // must then be zero, and any nonzero factor states it).
@@ -235,6 +240,7 @@ fn decide_recording(
             }
             values.push(value);
         }
+        identities.set_rules(env.rules());
         for k in 0..chain.len() - 1 {
             let (l, r) = (&values[k], &values[k + 1]);
             let labels = union(&l.labels, &r.labels);

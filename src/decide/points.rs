@@ -267,7 +267,7 @@ fn solve_rule<'d>(
         if rule.power.is_multiple_of(2) && !root.is_zero() {
             roots.push(-root);
         }
-        roots.retain(|x| inside(rule.var, x));
+        roots.retain(|x| inside(rule.var, x) && !(rule.nonnegative && x.is_negative()));
         (!roots.is_empty()).then(|| roots.swap_remove(rng.below(roots.len())))
     };
     if let Some(root) = value_at(point).and_then(|q| exact_root(&q, rule.power)) {

@@ -92,6 +92,7 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
         )),
         Fact::Refutation { at, roots } if !proportional => {
             let mut env = Env::new(&st.context, roots)?;
+            env.algebraic_roots = true;
             let (l, r) = values_at(&mut env, chains.ok_or_else(mismatch)?, at)?;
             if l == r {
                 return Err(Rejection::False("the sides are equal there".into()));
@@ -249,6 +250,7 @@ fn identities(
     factors: Option<&[Factor]>,
 ) -> R<Summary> {
     let mut env = Env::new(&st.context, roots)?;
+    env.algebraic_roots = factors.is_none();
     let normal = env.normal_vars().to_vec();
     let (mut components, mut modulo_unit_normal, mut modulo_rules) = (0, 0, 0);
     let mut nonzero: Vec<Poly> = Vec::new();

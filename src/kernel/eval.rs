@@ -233,8 +233,13 @@ pub struct Env<'c> {
     roots: Vec<Frac>,
     /// The eliminated components, each with its value in the free ones.
     pivots: BTreeMap<Var, Poly>,
-    /// The polynomial constraints, each solved for a power of a variable of its own.
+    /// The polynomial constraints, each solved for a power of a variable of its own,
+    /// then the square roots taken as variables of their own.
     pub rules: Vec<Rule>,
+    /// Whether a square root of a polynomial that is no square becomes a variable of
+    /// its own (`r² = radicand`, `r ≥ 0`): only where the facts checked reduce by the
+    /// rules (an identity, a refutation at a point).
+    pub algebraic_roots: bool,
     /// The square roots accepted, as the evidence states them.
     pub roots_taken: Vec<RootTaken>,
     /// Square roots accepted so far, by radicand.
@@ -288,6 +293,7 @@ impl<'c> Env<'c> {
             roots: Vec::new(),
             pivots: BTreeMap::new(),
             rules: Vec::new(),
+            algebraic_roots: false,
             certified: Vec::new(),
             roots_taken: Vec::new(),
             work: WORK,
@@ -1300,9 +1306,40 @@ impl<'c> Env<'c> {
                 return Ok(r);
             }
         }
+        if self.algebraic_roots {
+            if let Some(r) = self.algebraic_root(x)? {
+                return Ok(r);
+            }
+        }
         Err(EvalError::Unsupported(
             "a square root whose value and sign on the box are not certified".into(),
         ))
+    }
+
+    /// √x as a variable r with the rule r² = x, r ≥ 0, for a polynomial x that is not
+    /// constant, has no negative power and reads no component of the normal and no
+    /// derivative of a field; `None` for any other x.
+    fn algebraic_root(&mut self, x: &Frac) -> R<Option<Frac>> {
+        let p = x.numerator();
+        let plain = x.denominator().is_empty()
+            && x.conditions().is_empty()
+            && p.as_constant().is_none()
+            && p.terms().all(|(m, _)| {
+                m.factors().iter().all(|&(v, e)| {
+                    e > 0 && !self.normal.contains(&v) && !self.varying.contains_key(&v)
+                })
+            });
+        if !plain {
+            return Ok(None);
+        }
+        let radicand =
+            super::rules::reduce(p, &self.rules, RULE_STEPS).map_err(|_| EvalError::Limit)?;
+        let rule = Rule::square_root(radicand, &mut self.vars);
+        let r = Frac::from(Poly::var(rule.var));
+        if !self.rules.iter().any(|s| s.var == rule.var) {
+            self.rules.push(rule);
+        }
+        Ok(Some(r))
     }
 
     /// The box `given` over the variables it names.

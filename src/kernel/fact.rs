@@ -187,9 +187,10 @@ pub enum Checked {
         #[serde(skip_serializing_if = "Vec::is_empty")]
         nonzero: Vec<String>,
     },
-    /// The polynomial constraints, each solved for a power of a variable of its own
-    /// (`rules`, as `v^d = value`), and how many components were identical only after
-    /// the reduction by them: the sides agree wherever the constraints hold.
+    /// The polynomial constraints, each solved for a power of a variable of its own,
+    /// and the square roots taken as variables (`rules`, as `v^d = value`), and how many
+    /// components were identical only after the reduction by them: the sides agree
+    /// wherever the constraints hold, on every branch of the roots.
     Constraints { rules: Vec<String>, reduced: usize },
     /// The left side is `factor` (nonzero) times the right, where each polynomial of
     /// `nonzero` (the factor's numerator and denominator) is nonzero.

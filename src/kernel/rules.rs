@@ -10,15 +10,19 @@
 //! order, so the constraints form a Gröbner basis, and a polynomial in their ideal is
 //! the only kind that reduces to 0.
 
-use super::poly::{Monomial, Poly, PolyError, Var};
+use super::poly::{Monomial, Poly, PolyError, Var, VarTable};
 use super::rational::Rational;
 
-/// `var^power = value`: a constraint solved for a power of one variable.
+/// `var^power = value`: a constraint solved for a power of one variable, or the
+/// square root of `value` (`nonnegative`: a point must take the root ≥ 0). An identity
+/// proved modulo `r² = x` holds on both branches, so the root's sign matters only to a
+/// refutation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rule {
     pub var: Var,
     pub power: u32,
     pub value: Poly,
+    pub nonnegative: bool,
 }
 
 impl Rule {
@@ -56,14 +60,73 @@ impl Rule {
         let term = Poly::term(Monomial::var(var, i64::from(power)), c.clone());
         let scale = Poly::constant(-&c.recip()?);
         let value = (g - &term).checked_mul(&scale).ok()?;
-        Some(Rule { var, power, value })
+        Some(Rule {
+            var,
+            power,
+            value,
+            nonnegative: false,
+        })
+    }
+
+    /// The square root of a polynomial `radicand` (no negative power, reduced by the
+    /// earlier rules) as a variable of its own, named by [`root_name`].
+    pub fn square_root(radicand: Poly, names: &mut VarTable) -> Rule {
+        let var = names.intern(&root_name(&radicand, names));
+        Rule {
+            var,
+            power: 2,
+            value: radicand,
+            nonnegative: true,
+        }
     }
 
     /// Whether the rule holds at a point (variables it leaves out are 0).
     pub fn holds_at(&self, value: &dyn Fn(Var) -> Rational) -> bool {
-        let power = value(self.var).pow(i64::from(self.power));
-        power.is_some() && power == self.value.eval(value)
+        let x = value(self.var);
+        let power = x.pow(i64::from(self.power));
+        power.is_some() && power == self.value.eval(value) && !(self.nonnegative && x.is_negative())
     }
+}
+
+/// The name of the variable that stands for √radicand: the same whatever the numbering
+/// of the variables (its terms written with their factors by name and sorted), so that
+/// the kernel and the search name one root alike.
+pub fn root_name(radicand: &Poly, names: &VarTable) -> String {
+    let mut terms: Vec<(String, Rational)> = radicand
+        .terms()
+        .map(|(m, c)| {
+            let mut factors: Vec<String> = m
+                .factors()
+                .iter()
+                .map(|&(v, e)| match e {
+                    1 => names.name(v).to_owned(),
+                    _ => format!("{}^{e}", names.name(v)),
+                })
+                .collect();
+            factors.sort();
+            (factors.join("*"), c.clone())
+        })
+        .collect();
+    terms.sort_by(|a, b| a.0.cmp(&b.0));
+    let mut out = String::new();
+    for (k, (factors, c)) in terms.iter().enumerate() {
+        let (sign, size) = if c.is_negative() {
+            ("-", -c)
+        } else {
+            ("+", c.clone())
+        };
+        match (k, sign) {
+            (0, "-") => out.push('-'),
+            (0, _) => {}
+            _ => out.push_str(&format!(" {sign} ")),
+        }
+        out.push_str(&match (factors.is_empty(), size.is_one()) {
+            (true, _) => size.to_string(),
+            (false, true) => factors.clone(),
+            (false, false) => format!("{size}*{factors}"),
+        });
+    }
+    format!("√({out})")
 }
 
 /// `p` reduced by the rules: no monomial left that a rule's `var^power` divides. Each
@@ -193,10 +256,31 @@ mod tests {
             var: x,
             power: 2,
             value: &Poly::var(y) + &Poly::constant(q(1)),
+            nonnegative: false,
         };
         let at = |x0: i64, y0: i64| move |v: Var| q(if v == x { x0 } else { y0 });
         assert!(rule.holds_at(&at(3, 8)));
         assert!(rule.holds_at(&at(-3, 8)));
         assert!(!rule.holds_at(&at(3, 7)));
+        // A square root takes the branch ≥ 0 only.
+        let root = Rule {
+            nonnegative: true,
+            ..rule
+        };
+        assert!(root.holds_at(&at(3, 8)));
+        assert!(!root.holds_at(&at(-3, 8)));
+    }
+
+    #[test]
+    fn a_root_is_named_alike_whatever_the_numbering() {
+        let (mut a, mut b) = (VarTable::new(), VarTable::new());
+        let (x, y) = (a.intern("x"), a.intern("y"));
+        let (y2, x2) = (b.intern("y"), b.intern("x"));
+        let p = &(&Poly::var(x) * &Poly::var(x)) + &(&Poly::var(y) * &Poly::constant(q(3)));
+        let r = &(&Poly::var(x2) * &Poly::var(x2)) + &(&Poly::var(y2) * &Poly::constant(q(3)));
+        assert_eq!(root_name(&p, &a), root_name(&r, &b));
+        assert_eq!(root_name(&p, &a), "√(x^2 + 3*y)");
+        let m = &Poly::constant(q(1)) - &(&Poly::var(y) * &Poly::constant(q(2)));
+        assert_eq!(root_name(&m, &a), "√(1 - 2*y)");
     }
 }

@@ -93,15 +93,12 @@ fn checked(o: &Outcome) -> impl Iterator<Item = &Checked> {
     o.proofs().iter().take(1).flat_map(|p| p.summary())
 }
 
-/// The polynomial constraints an exact proof reduced by, as the rules it solved them
-/// into.
+/// The rules an exact proof reduced by: the polynomial constraints solved for a power,
+/// the squares of the roots taken as variables.
 fn constraints(o: &Outcome) -> String {
     checked(o)
         .filter_map(|c| match c {
-            Checked::Constraints { rules, .. } => Some(format!(
-                " modulo the constraints, solved as {}",
-                rules.join(", ")
-            )),
+            Checked::Constraints { rules, .. } => Some(format!(" modulo {}", rules.join(", "))),
             _ => None,
         })
         .collect()
@@ -292,7 +289,7 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
             Checked::Constraints { rules, reduced } => {
                 let s = if *reduced == 1 { "" } else { "s" };
                 format!(
-                    "{reduced} component{s} identical only modulo the constraints, solved as {}",
+                    "{reduced} component{s} identical only after reduction by {} (constraints solved for a power, squares of roots)",
                     rules.join(", ")
                 )
             }

@@ -80,9 +80,10 @@ pub fn finding(f: &Finding) -> String {
              and the normal)"
         ),
         Finding::NoConstrainedPoint { difference, tries } => format!(
-            "undecided: the sides differ modulo the constraints by {difference}, but no exact \
-             point of the constraint set where they differ was found in {tries} tries (the set \
-             may have no real point there); this is not a counterexample"
+            "undecided: the sides differ modulo the constraints and the squares of the roots \
+             by {difference}, but no exact point where they hold, every root is rational and \
+             the sides differ was found in {tries} tries (there may be no real one); this is \
+             not a counterexample"
         ),
         Finding::NoWitness { attempts } => format!(
             "undecided: no witness among {attempts} rational states (every four points tried were \

@@ -85,13 +85,25 @@ pub fn decide(
         if !parametrisation.solved().is_empty() && parametrisation.residual(value) > TOL {
             continue;
         }
+        // Sides undefined at this draw only (a square root of a negative number, which
+        // the exact route takes as a variable of its own): another draw.
+        let evaluated: Result<Vec<Vec<_>>, _> = check
+            .chains
+            .iter()
+            .map(|chain| {
+                chain
+                    .iter()
+                    .map(|s| env.eval(s.node.as_ref().expect("checked above"), &n))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+            .collect();
+        let evaluated = match evaluated {
+            Ok(v) => v,
+            Err(e) if e.pointwise => continue,
+            Err(e) => return Err(e.message),
+        };
         kept += 1;
-        for chain in &check.chains {
-            let values = chain
-                .iter()
-                .map(|s| env.eval(s.node.as_ref().expect("checked above"), &n))
-                .collect::<Result<Vec<_>, _>>()
-                .map_err(|e| e.message)?;
+        for values in evaluated {
             if env.quadrature.used() {
                 // Adaptive averages carry an error this route does not account for.
                 return Ok(None);

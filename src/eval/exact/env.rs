@@ -94,8 +94,12 @@ pub struct ExactEnv<'a> {
     pub(crate) jet_cache: HashMap<(String, String), Tensor<super::jet::Jet>>,
     /// The claim's box by name, while [`ExactEnv::on`] evaluates the substitutions.
     pending: Vec<(String, Interval)>,
-    /// The polynomial constraints, each solved for a power of a variable of its own.
+    /// The polynomial constraints, each solved for a power of a variable of its own,
+    /// then the square roots taken as variables of their own.
     rules: Vec<crate::kernel::rules::Rule>,
+    /// Whether a square root of a polynomial that is no square becomes a variable of
+    /// its own (see [`ExactEnv::allow_algebraic_roots`]).
+    algebraic_roots: bool,
 }
 
 pub(crate) fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
@@ -184,6 +188,7 @@ impl<'a> ExactEnv<'a> {
                 var,
                 power: s.power,
                 value,
+                nonnegative: false,
             });
         }
         // While the substitutions are evaluated, the box is read by name, so that the
@@ -231,6 +236,7 @@ impl<'a> ExactEnv<'a> {
             jet_cache: HashMap::default(),
             pending: Vec::new(),
             rules: Vec::new(),
+            algebraic_roots: false,
         }
     }
 
@@ -272,9 +278,20 @@ impl<'a> ExactEnv<'a> {
         &self.normal
     }
 
-    /// The polynomial constraints, solved for powers (see [`crate::kernel::rules`]).
+    /// The polynomial constraints, solved for powers, and the square roots taken as
+    /// variables (see [`crate::kernel::rules`]).
     pub fn rules(&self) -> &[crate::kernel::rules::Rule] {
         &self.rules
+    }
+
+    /// From now on, √x of a polynomial x that is no square (and reads neither the
+    /// normal nor a field) is a variable r of its own with r² = x and r ≥ 0, as the
+    /// kernel reads it where it checks an identity or a refutation: an identity then
+    /// holds modulo r² = x (on both branches), and a refutation needs a point where x is
+    /// a rational square. Only a caller that compares modulo [`ExactEnv::rules`] may
+    /// allow it.
+    pub fn allow_algebraic_roots(&mut self) {
+        self.algebraic_roots = true;
     }
 
     /// The solved assumptions (`None` for an unconstrained environment).
@@ -563,10 +580,13 @@ impl ExactRing<'_, '_> {
                 });
         }
         let Some(root) = p.sqrt_exact(MAX_ROOT_TERMS) else {
+            if let Some(r) = self.algebraic_root(p) {
+                return Ok(r);
+            }
             return Err(self.error(
                 node,
                 "sqrt(…) of this expression has no exact value: it is not the square of a rational function here",
-                "exact mode takes square roots of squares (such as sqrt(tau^2) with given = [\"tau > 0\"]); decide this claim with strategy = \"numeric\" to sample it",
+                "exact mode takes square roots of squares (such as sqrt(tau^2) with given = [\"tau > 0\"]) and, in an identity, of other polynomials as variables of their own, but not of a constant times a square (irrational wherever it is not 0); decide this claim with strategy = \"numeric\" to sample it",
             ));
         };
         let env = &mut *self.env;
@@ -591,6 +611,11 @@ impl ExactRing<'_, '_> {
                 return Ok(candidate.with_conditions(p.conditions()));
             }
         }
+        // In an identity the root may still be a variable of its own (r² = p, r ≥ 0):
+        // then the sign matters only to a refutation, which takes r ≥ 0.
+        if let Some(r) = self.algebraic_root(p) {
+            return Ok(r);
+        }
         // The statement may well hold; without the sign it is not decided.
         let shown = root.display_truncated(&self.env.vars, 8);
         Err(Failure::Uncertified(
@@ -601,6 +626,42 @@ impl ExactRing<'_, '_> {
                 )
                 .with_help("bound the parameters with given (such as given = [\"f_r > 0\", \"sigma < 0\"]) so that the root has one sign there"),
         ))
+    }
+
+    /// √p as a variable of its own, as the kernel takes it (`kernel::eval`): for a
+    /// polynomial p, not constant, with no negative power, reading neither the normal
+    /// nor a field, reduced by the rules so far; `None` otherwise, or when not allowed.
+    fn algebraic_root(&mut self, p: &Quotient) -> Option<Quotient> {
+        let env = &mut *self.env;
+        let n = p.numerator();
+        let plain = env.algebraic_roots
+            && p.factors().is_empty()
+            && p.conditions().is_empty()
+            && n.as_constant().is_none()
+            && n.terms().all(|(m, _)| {
+                m.factors().iter().all(|&(v, e)| {
+                    e > 0 && !env.normal.contains(&v) && !env.varying.contains_key(&v)
+                })
+            });
+        if !plain {
+            return None;
+        }
+        // A constant that is no square times a square (3 Y²) has an irrational root at
+        // every rational point where it is not 0: no exact refutation could exist, so
+        // it stays refused.
+        let (_, lead) = n.leading()?;
+        let unit = Quotient::from(n * &Poly::constant(lead.recip()?));
+        if lead.sqrt_exact().is_none() && unit.sqrt_exact(MAX_ROOT_TERMS).is_some() {
+            return None;
+        }
+        let radicand =
+            crate::kernel::rules::reduce(n, &env.rules, crate::kernel::eval::RULE_STEPS).ok()?;
+        let rule = crate::kernel::rules::Rule::square_root(radicand, &mut env.vars);
+        let r = Quotient::from(Poly::var(rule.var));
+        if !env.rules.iter().any(|s| s.var == rule.var) {
+            env.rules.push(rule);
+        }
+        Some(r)
     }
 
     /// `avg(product)` (eqs. (33), (36), (38)): the product evaluated as the walk does it
