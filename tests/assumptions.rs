@@ -193,7 +193,7 @@ fn square_roots_as_variables_and_their_twins_are_decided_as_declared() {
         }
         decided += 1;
     }
-    assert_eq!(decided, 12);
+    assert_eq!(decided, 13);
 }
 
 /// The Rudnicki–Rice example: the denominator of the elastic-plastic modulus, the

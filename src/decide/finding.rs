@@ -52,6 +52,13 @@ pub enum Finding {
         #[serde(skip_serializing_if = "std::ops::Not::not")]
         overflow: bool,
     },
+    /// An identity modulo the squares of its roots, but no point tried makes every
+    /// radicand positive at once: the sides may be defined nowhere, and the identity
+    /// would hold only vacuously, so nothing is decided.
+    NowhereDefined {
+        radicands: Vec<String>,
+        tries: usize,
+    },
     /// The sides differ modulo the polynomial constraints and the squares of the roots
     /// taken as variables (the remainder `difference`), but no exact point where they
     /// hold and the sides differ was found in `tries` tries: there may be no real one,

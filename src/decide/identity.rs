@@ -459,6 +459,14 @@ fn decide_recording(
         }
     }
     let (checks, used_unit) = (identities.components(), identities.used_unit_normal());
+    if let Some(radicands) = nowhere_defined(&env) {
+        return Ok(Outcome::undecided(Method::Exact, checks).with_finding(
+            Finding::NowhereDefined {
+                radicands,
+                tries: DEFINED_TRIES,
+            },
+        ));
+    }
     if checks == 0 {
         return Ok(Outcome::undecided(Method::Exact, checks).with_finding(Finding::NothingCompared));
     }
@@ -481,6 +489,44 @@ fn decide_recording(
     by_kernel(decls, check, fact, (Method::Exact, checks), |o| {
         o.using_unit_normal(used_unit)
     })
+}
+
+/// Points tried for one where every square root taken as a variable is defined.
+const DEFINED_TRIES: usize = 256;
+
+/// The radicands of the square roots taken as variables when no point tried (small
+/// rationals, from the one seeded generator) makes all of them positive at once: an
+/// identity modulo their squares would then hold only vacuously. `None` when there is
+/// no such root, or a point is found.
+fn nowhere_defined(env: &ExactEnv<'_>) -> Option<Vec<String>> {
+    let roots: Vec<&crate::kernel::rules::Rule> =
+        env.rules().iter().filter(|r| r.nonnegative).collect();
+    if roots.is_empty() {
+        return None;
+    }
+    let mut vars: Vec<Var> = roots.iter().flat_map(|r| r.value.variables()).collect();
+    vars.sort_unstable();
+    vars.dedup();
+    let mut rng = super::random::Rng::new(0xDEF1_4ED);
+    for _ in 0..DEFINED_TRIES {
+        let point: BTreeMap<Var, Rational> = vars
+            .iter()
+            .map(|&v| {
+                let q = Rational::ratio(rng.small(), 1 + (rng.next_u64() % 4) as i64)
+                    .expect("nonzero denominator");
+                (v, q)
+            })
+            .collect();
+        let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
+        if roots.iter().all(|r| {
+            r.value
+                .eval(&at)
+                .is_some_and(|x| !x.is_negative() && !x.is_zero())
+        }) {
+            return None;
+        }
+    }
+    Some(roots.iter().map(|r| r.value.display(&env.vars)).collect())
 }
 
 /// The outcome of the kernel's check of `fact` against the statement of `check`: the

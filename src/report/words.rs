@@ -79,6 +79,12 @@ pub fn finding(f: &Finding) -> String {
              from the centre runs over the whole circle; checked as an identity in the state \
              and the normal)"
         ),
+        Finding::NowhereDefined { radicands, tries } => format!(
+            "undecided: the sides are identical modulo the squares of their roots, but at none \
+             of {tries} points tried is every radicand positive ({}): the sides may be defined \
+             nowhere, and the identity would hold only vacuously",
+            radicands.join(", ")
+        ),
         Finding::NoConstrainedPoint { difference, tries } => format!(
             "undecided: the sides differ modulo the constraints and the squares of the roots \
              by {difference}, but no exact point where they hold, every root is rational and \
