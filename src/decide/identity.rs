@@ -507,7 +507,7 @@ fn nowhere_defined(env: &ExactEnv<'_>) -> Option<Vec<String>> {
     let mut vars: Vec<Var> = roots.iter().flat_map(|r| r.value.variables()).collect();
     vars.sort_unstable();
     vars.dedup();
-    let mut rng = super::random::Rng::new(0xDEF1_4ED);
+    let mut rng = super::random::Rng::new(0x0DEF_14ED);
     for _ in 0..DEFINED_TRIES {
         let point: BTreeMap<Var, Rational> = vars
             .iter()

@@ -31,7 +31,7 @@ use super::exact::env::ExactEnv;
 use crate::algebra::assignments;
 use crate::algebra::linear::{self, AffineEquation};
 use crate::derivation::parametrisation::{
-    product_value, single, Component, Parametrisation, Polynomial, Product, Solved,
+    single, Component, Parametrisation, Polynomial, Product, Solved,
 };
 use crate::derivation::{Assumption, AssumptionKind, Definition};
 use crate::kernel::eval::{substitute, RULE_STEPS};
@@ -39,7 +39,7 @@ use crate::kernel::rules::{self, Rule};
 use crate::kernel::term::component_name;
 use crate::kernel::{Poly, Rational, Var};
 use crate::lang::{Decls, Diagnostic};
-use num_traits::{One, Zero};
+use num_traits::Zero;
 use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BTreeSet};
@@ -282,15 +282,7 @@ impl Parametrisation {
     ) -> Result<(), Diagnostic> {
         let mut values: BTreeMap<Var, Poly> = BTreeMap::new();
         for d in self.dependents() {
-            let linear = d.terms.iter().map(|(c, q)| (vec![((*c).clone(), 1)], *q));
-            let products = d.products.iter().map(|(p, q)| ((*p).clone(), *q));
-            let value =
-                linear
-                    .chain(products)
-                    .fold(Poly::constant(d.constant.clone()), |acc, (p, q)| {
-                        let x = product_value(&p, Poly::one(), |(s, i)| env.component(s, i));
-                        &acc + &(&x * &Poly::constant(q.clone()))
-                    });
+            let value = env.dependent_value(&d);
             let (s, i) = d.component;
             values.insert(env.component_var(s, i), value);
         }

@@ -165,15 +165,7 @@ impl<'a> ExactEnv<'a> {
         }
         for d in parametrisation.dependents() {
             let (symbol, idx) = d.component;
-            let linear = d.terms.iter().map(|(c, q)| (vec![((*c).clone(), 1)], *q));
-            let products = d.products.iter().map(|(p, q)| ((*p).clone(), *q));
-            let value =
-                linear
-                    .chain(products)
-                    .fold(Poly::constant(d.constant.clone()), |acc, (p, q)| {
-                        let x = product_value(&p, Poly::one(), |(s, i)| env.component(s, i));
-                        &acc + &(&x * &Poly::constant(q.clone()))
-                    });
+            let value = env.dependent_value(&d);
             let mut t = env.symbol(symbol);
             *t.get_mut(idx) = Quotient::from(value);
             env.symbols.insert(symbol.clone(), t);
@@ -297,6 +289,22 @@ impl<'a> ExactEnv<'a> {
     /// The solved assumptions (`None` for an unconstrained environment).
     pub fn parametrisation(&self) -> Option<&Parametrisation> {
         self.parametrisation.as_ref()
+    }
+
+    /// A component the linear assumptions determine, as a polynomial in the variables
+    /// of the free ones (and of the products of parameters).
+    pub(crate) fn dependent_value(
+        &mut self,
+        d: &crate::derivation::parametrisation::Dependent<'_>,
+    ) -> Poly {
+        let linear = d.terms.iter().map(|(c, q)| (vec![((*c).clone(), 1)], *q));
+        let products = d.products.iter().map(|(p, q)| ((*p).clone(), *q));
+        linear
+            .chain(products)
+            .fold(Poly::constant(d.constant.clone()), |acc, (p, q)| {
+                let x = product_value(&p, Poly::one(), |(s, i)| self.component(s, i));
+                &acc + &(&x * &Poly::constant(q.clone()))
+            })
     }
 
     /// The variable of one component before any assumption, as a polynomial.
