@@ -196,6 +196,37 @@ fn square_roots_as_variables_and_their_twins_are_decided_as_declared() {
     assert_eq!(decided, 13);
 }
 
+/// What an adversary found with square roots, each now right: a point must make every
+/// side of every chain defined (x + √(x²) is 0 on a half-line), nested roots keep
+/// short names (a name once doubled at every level), a high power of a root is reduced
+/// by powers of its radicand, and the origin is tried first.
+#[test]
+fn square_roots_under_attack() {
+    use cosserat_check::derivation::Verdict;
+    let decide = |claim: &str| {
+        let text = format!("{HEADER}\n[[claim]]\nid = \"x\"\nprinted = 'x'\n{claim}\n");
+        let file = load_str("t.toml", &text).unwrap();
+        decide_claim(&file.claims[0]).unwrap().outcome
+    };
+    for sides in [
+        "sides = [\"sqrt(S^2)\", \"S\", \"2 S^2/(S + sqrt(S^2))\"]",
+        "chains = [[\"sqrt(S^2)\", \"S\"], [\"sqrt(S)\", \"sqrt(S)\"]]",
+    ] {
+        let o = decide(sides);
+        assert_ne!(o.verdict(), Verdict::Fails, "{sides}: {o:?}");
+    }
+    let mut nested = "S^2 + 1".to_owned();
+    for _ in 0..10 {
+        nested = format!("sqrt({nested})^3 + 1");
+    }
+    let o = decide(&format!("sides = [\"{nested}\", \"0\"]"));
+    assert_ne!(o.verdict(), Verdict::Holds);
+    let o = decide("sides = [\"sqrt(S^2 + 1)^40\", \"(S^2 + 1)^20\"]");
+    assert_eq!(o.verdict(), Verdict::Holds, "{o:?}");
+    let o = decide("sides = [\"sqrt(T S^2 + 1)\", \"0\"]");
+    assert_eq!(o.verdict(), Verdict::Fails, "{o:?}");
+}
+
 /// The Rudnicki–Rice example: the denominator of the elastic-plastic modulus, the
 /// inverse of the elastic acoustic tensor and the band at the critical hardening
 /// modulus are proved at every deviatoric state of every intensity and every band

@@ -311,9 +311,16 @@ fn decide_recording(
                     continue;
                 };
                 let scaled = reference.as_ref().map(|f| scaled_by(rp, &f.function));
+                // Under constraints or square roots a side may be undefined on a whole
+                // region: the point must make every side of every chain defined.
+                let everywhere = if env.rules().is_empty() {
+                    Vec::new()
+                } else {
+                    every_component(&mut env, check)
+                };
                 let (mut cx, point, mut values) = counterexample(
                     &env.vars,
-                    (env.normal_vars(), env.rules()),
+                    (env.normal_vars(), env.rules(), &everywhere),
                     env.domain(),
                     lp,
                     scaled.as_ref().unwrap_or(rp),
@@ -489,6 +496,20 @@ fn decide_recording(
     by_kernel(decls, check, fact, (Method::Exact, checks), |o| {
         o.using_unit_normal(used_unit)
     })
+}
+
+/// Every component of every side of every chain (those that can be evaluated): a
+/// point under constraints or square roots must make all of them defined.
+fn every_component(env: &mut ExactEnv<'_>, check: &Check) -> Vec<Quotient> {
+    let mut out = Vec::new();
+    for side in check.chains.iter().flatten() {
+        if let Ok(node) = &side.node {
+            if let Ok(v) = env.eval(node, &side.origin) {
+                out.extend(v.tensor.components().iter().cloned());
+            }
+        }
+    }
+    out
 }
 
 /// Points tried for one where every square root taken as a variable is defined.
@@ -783,7 +804,7 @@ fn mismatch(l: &Labeled<Quotient>, r: &Labeled<Quotient>) -> String {
 
 fn counterexample(
     names: &VarTable,
-    (normal, rules): (&[Var], &[crate::kernel::rules::Rule]),
+    (normal, rules, everywhere): (&[Var], &[crate::kernel::rules::Rule], &[Quotient]),
     domain: &[(Var, Interval)],
     lhs: &Quotient,
     rhs: &Quotient,
@@ -800,7 +821,7 @@ fn counterexample(
     let found = if rules.is_empty() {
         point_where_differ(normal, lhs, rhs, domain)
     } else {
-        super::points::point_where_differ_constrained(rules, normal, lhs, rhs, domain)
+        super::points::point_where_differ_constrained(rules, normal, (lhs, rhs, everywhere), domain)
     };
     match found {
         Some((point, l, r)) => {

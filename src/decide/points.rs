@@ -187,12 +187,12 @@ const LINE_TRIES: usize = 64;
 pub fn point_where_differ_constrained(
     rules: &[Rule],
     normal: &[Var],
-    lhs: &Quotient,
-    rhs: &Quotient,
+    (lhs, rhs, everywhere): (&Quotient, &Quotient, &[Quotient]),
     domain: &[(Var, Interval)],
 ) -> Option<(BTreeMap<Var, Rational>, Rational, Rational)> {
     let mut used = used_variables(lhs, rhs);
     used.extend(domain.iter().map(|(v, _)| *v));
+    used.extend(everywhere.iter().flat_map(Quotient::variables));
     for r in rules {
         used.push(r.var);
         used.extend(r.value.variables());
@@ -201,16 +201,31 @@ pub fn point_where_differ_constrained(
     used.dedup();
     let mut rng = Rng::new(0xC0_57_4A_17);
     let interval = |v: Var| domain.iter().find(|(w, _)| *w == v).map(|(_, i)| i);
-    for _ in 0..CONSTRAINED_TRIES {
+    // Variables some side divides by (a negative power, a divisor's variable).
+    let mut divisors: Vec<Var> = Vec::new();
+    for q in everywhere.iter().chain([lhs, rhs]) {
+        for (m, _) in q.numerator().terms() {
+            divisors.extend(m.factors().iter().filter(|&&(_, e)| e < 0).map(|&(v, _)| v));
+        }
+        for (f, _) in q.factors() {
+            divisors.extend(f.variables());
+        }
+    }
+    for attempt in 0..CONSTRAINED_TRIES {
         let n = sphere_point(&mut rng, normal.len().max(2));
         let mut point: BTreeMap<Var, Rational> = BTreeMap::new();
         for &v in &used {
             if rules.iter().any(|r| r.var == v) {
                 continue;
             }
-            let value = match normal.iter().position(|&w| w == v) {
-                Some(k) => n[k].clone(),
-                None => Rational::ratio(rng.small(), 1 + (rng.next_u64() % 3) as i64)
+            // The point of ones first, then the origin of the variables that no side
+            // divides by (a radicand is often a square there: 1 + x^2 at 0).
+            let value = match (normal.iter().position(|&w| w == v), attempt) {
+                (Some(k), _) => n[k].clone(),
+                (None, 0) => Rational::int(1),
+                (None, 1) if !divisors.contains(&v) => Rational::int(0),
+                (None, 1) => Rational::int(1),
+                (None, _) => Rational::ratio(rng.small(), 1 + (rng.next_u64() % 3) as i64)
                     .expect("nonzero denominator"),
             };
             let value = match interval(v) {
@@ -240,7 +255,7 @@ pub fn point_where_differ_constrained(
         let (Some(l), Some(r)) = (lhs.eval(&at), rhs.eval(&at)) else {
             continue;
         };
-        if l != r {
+        if l != r && everywhere.iter().all(|q| q.eval(&at).is_some()) {
             return Some((point, l, r));
         }
     }

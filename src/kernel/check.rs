@@ -93,9 +93,31 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
         Fact::Refutation { at, roots } if !proportional => {
             let mut env = Env::new(&st.context, roots)?;
             env.algebraic_roots = true;
-            let (l, r) = values_at(&mut env, chains.ok_or_else(mismatch)?, at)?;
+            let chains = chains.ok_or_else(mismatch)?;
+            let (l, r) = values_at(&mut env, chains, at)?;
             if l == r {
                 return Err(Rejection::False("the sides are equal there".into()));
+            }
+            // Under constraints or square roots a side may be undefined on a whole
+            // region: the claim says nothing there, so every side of every chain must
+            // be defined at the point (their own roots join the rules it satisfies).
+            if !env.rules.is_empty() {
+                let sides = chains
+                    .iter()
+                    .flatten()
+                    .map(|t| env.eval(t))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let point = env.point(&at.point)?;
+                let value = |v: Var| point.get(&v).cloned();
+                if sides
+                    .iter()
+                    .flat_map(Value::comps)
+                    .any(|f| f.eval(&value).is_none())
+                {
+                    return Err(Rejection::False(
+                        "a side of the claim is undefined at the point".into(),
+                    ));
+                }
             }
             Ok((Conclusion::Fails, refuted(&[(l, r)], &env)))
         }

@@ -1334,6 +1334,12 @@ impl<'c> Env<'c> {
         }
         let radicand =
             super::rules::reduce(p, &self.rules, RULE_STEPS).map_err(|_| EvalError::Limit)?;
+        // Reduced by the constraints to a constant: its root is rational, or refused.
+        if let Some(c) = radicand.as_constant() {
+            return Ok(c
+                .sqrt_exact()
+                .map(|r| Frac::constant(r).with_conditions_of(x)));
+        }
         let rule = Rule::square_root(radicand, &mut self.vars);
         let r = Frac::from(Poly::var(rule.var));
         if !self.rules.iter().any(|s| s.var == rule.var) {

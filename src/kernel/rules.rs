@@ -126,8 +126,20 @@ pub fn root_name(radicand: &Poly, names: &VarTable) -> String {
             (false, false) => format!("{size}*{factors}"),
         });
     }
-    format!("√({out})")
+    // A root's name is read inside the name of a root of a radicand that holds it:
+    // past a length, a digest keeps every name short (and still the same for both).
+    if out.chars().count() <= MAX_NAME {
+        format!("√({out})")
+    } else {
+        let digest = out.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+        });
+        format!("√#{digest:016x}")
+    }
 }
+
+/// The longest radicand written out in a root's name (see [`root_name`]).
+const MAX_NAME: usize = 120;
 
 /// `p` reduced by the rules: no monomial left that a rule's `var^power` divides. Each
 /// step replaces one term; more than `steps` of them is [`PolyError::TooLarge`].
@@ -156,30 +168,57 @@ pub fn reduce(p: &Poly, rules: &[Rule], steps: usize) -> Result<Poly, PolyError>
             .collect(),
     )
     .ok_or(PolyError::ExponentTooLarge)?;
-    let p = p.checked_mul(&Poly::term(clearing, Rational::int(1)))?;
-    let mut left = steps;
-    let mut out = Vec::with_capacity(p.num_terms());
-    let mut stack: Vec<(Monomial, Rational)> =
-        p.terms().map(|(m, c)| (m.clone(), c.clone())).collect();
+    let mut p = p.checked_mul(&Poly::term(clearing, Rational::int(1)))?;
     // The clearing made every exponent ≥ 0, and the rules' values have none below 0.
-    while let Some((m, c)) = stack.pop() {
-        let Some(rule) = rules
-            .iter()
-            .find(|r| m.exponent(r.var) >= i64::from(r.power))
-        else {
-            out.push((m, c));
-            continue;
-        };
-        let lowered = m
-            .checked_mul(&Monomial::var(rule.var, -i64::from(rule.power)))
-            .ok_or(PolyError::ExponentTooLarge)?;
-        for (n, q) in rule.value.terms() {
-            left = left.checked_sub(1).ok_or(PolyError::TooLarge)?;
-            let product = lowered.checked_mul(n).ok_or(PolyError::ExponentTooLarge)?;
-            stack.push((product, &c * q));
+    // A term with v^e, e ≥ d, becomes (the term without v^(d·⌊e/d⌋)) · value^⌊e/d⌋,
+    // summed (equal monomials merged) pass by pass until no rule applies; a value's
+    // powers are kept, and every term formed counts against `steps`.
+    let mut left = steps;
+    let mut powers: Vec<Vec<Poly>> = rules.iter().map(|r| vec![r.value.clone()]).collect();
+    loop {
+        let mut changed = false;
+        let mut out: Vec<(Monomial, Rational)> = Vec::with_capacity(p.num_terms());
+        let mut sums: Vec<Poly> = Vec::new();
+        for (m, c) in p.terms() {
+            let Some(k) = rules
+                .iter()
+                .position(|r| m.exponent(r.var) >= i64::from(r.power))
+            else {
+                out.push((m.clone(), c.clone()));
+                continue;
+            };
+            changed = true;
+            let (rule, e) = (&rules[k], m.exponent(rules[k].var));
+            let d = i64::from(rule.power);
+            let q = usize::try_from(e / d).map_err(|_| PolyError::ExponentTooLarge)?;
+            while powers[k].len() < q {
+                let next = powers[k]
+                    .last()
+                    .expect("the first power")
+                    .checked_mul(&rule.value)?;
+                left = left
+                    .checked_sub(next.num_terms())
+                    .ok_or(PolyError::TooLarge)?;
+                powers[k].push(next);
+            }
+            let rest = m
+                .checked_mul(&Monomial::var(rule.var, -(e / d) * d))
+                .ok_or(PolyError::ExponentTooLarge)?;
+            let term = Poly::term(rest, c.clone()).checked_mul(&powers[k][q - 1])?;
+            left = left
+                .checked_sub(term.num_terms())
+                .ok_or(PolyError::TooLarge)?;
+            sums.push(term);
         }
+        if !changed {
+            return Ok(p);
+        }
+        let mut next = Poly::from_terms(out);
+        for t in sums {
+            next += &t;
+        }
+        p = next;
     }
-    Ok(Poly::from_terms(out))
 }
 
 #[cfg(test)]

@@ -664,6 +664,13 @@ impl ExactRing<'_, '_> {
         }
         let radicand =
             crate::kernel::rules::reduce(n, &env.rules, crate::kernel::eval::RULE_STEPS).ok()?;
+        // Reduced by the constraints to a constant: its root is rational, or refused
+        // (as the kernel does).
+        if let Some(c) = radicand.as_constant() {
+            return c
+                .sqrt_exact()
+                .map(|r| Quotient::from(Poly::constant(r)).with_conditions(p.conditions()));
+        }
         let rule = crate::kernel::rules::Rule::square_root(radicand, &mut env.vars);
         let r = Quotient::from(Poly::var(rule.var));
         if !env.rules.iter().any(|s| s.var == rule.var) {
