@@ -139,7 +139,7 @@ pub fn root_name(radicand: &Poly, names: &VarTable) -> String {
 }
 
 /// The longest radicand written out in a root's name (see [`root_name`]).
-const MAX_NAME: usize = 120;
+const MAX_NAME: usize = 300;
 
 /// `p` reduced by the rules: no monomial left that a rule's `var^power` divides. Each
 /// step replaces one term; more than `steps` of them is [`PolyError::TooLarge`].
