@@ -61,6 +61,7 @@ fn transliterate(c: char) -> Option<&'static str> {
         '∞' => "$\\infty$",
         '∈' => "$\\in$",
         '√' => "$\\surd$",
+        '‖' => "$\\|$",
         '→' => "$\\to$",
         '⟨' => "$\\langle$",
         '⟩' => "$\\rangle$",
