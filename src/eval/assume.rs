@@ -286,15 +286,20 @@ impl Parametrisation {
             let (s, i) = d.component;
             values.insert(env.component_var(s, i), value);
         }
-        let as_polynomial = |p: &Poly| -> Polynomial {
+        // Exponents are positive and bounded by the exact evaluation's limit; one that
+        // did not fit would be an error, never a silent 0.
+        let as_polynomial = |p: &Poly, a: &Assumption| -> Result<Polynomial, Diagnostic> {
             p.terms()
                 .map(|(m, q)| {
                     let product = m
                         .factors()
                         .iter()
-                        .map(|(v, e)| (components[v].clone(), u32::try_from(*e).unwrap_or(0)))
-                        .collect();
-                    (product, q.clone())
+                        .map(|(v, e)| Some((components[v].clone(), u32::try_from(*e).ok()?)))
+                        .collect::<Option<Product>>()
+                        .ok_or_else(|| {
+                            a.diagnostic("an exponent of this constraint is out of range")
+                        })?;
+                    Ok((product, q.clone()))
                 })
                 .collect()
         };
@@ -302,7 +307,7 @@ impl Parametrisation {
         for (a, r) in assumptions.iter().zip(roles) {
             let Role::Polynomial(polys) = r else { continue };
             for g in polys {
-                self.constraints.push(as_polynomial(g));
+                self.constraints.push(as_polynomial(g, a)?);
                 let reduced = substitute(g, &values)
                     .ok()
                     .and_then(|g| rules::reduce(&g, &rules, RULE_STEPS).ok())
@@ -333,7 +338,7 @@ impl Parametrisation {
                 self.solved.push(Solved {
                     component: components[&rule.var].clone(),
                     power: rule.power,
-                    value: as_polynomial(&rule.value),
+                    value: as_polynomial(&rule.value, a)?,
                 });
                 rules.push(rule);
             }
