@@ -221,19 +221,21 @@ fn one(
     let mut conclusions = Vec::new();
     let mut items = 0;
     let mut facts = Vec::new();
+    // Which of the file's statements a proof is about: a `holds` proved in parts
+    // (a sign on exactly a set) needs every part proved.
+    let mut covered = Vec::new();
     for w in written {
         let w: Written = serde_json::from_value(w).map_err(Refused::IllWritten)?;
         match &expected {
             None => {}
             Some(None) => return Err(Refused::NotInTheFiles),
-            Some(Some(statements))
-                if !statements
+            Some(Some(statements)) => {
+                let k = statements
                     .iter()
-                    .any(|s| about(&w.statement, s, verdict == "conditional")) =>
-            {
-                return Err(Refused::NotItsStatement)
+                    .position(|s| about(&w.statement, s, verdict == "conditional"))
+                    .ok_or(Refused::NotItsStatement)?;
+                covered.push(k);
             }
-            Some(Some(_)) => {}
         }
         let proof = check(w.statement, w.fact)?;
         let said = match proof.conclusion() {
@@ -258,8 +260,21 @@ fn one(
     if certificate != Some(&serde_json::json!({ "facts": facts })) {
         return Err(Refused::Certificate);
     }
+    covered.sort_unstable();
+    covered.dedup();
+    // With the files, a `holds` has one proof for each statement they give.
+    let every_part = match &expected {
+        Some(Some(statements)) => {
+            covered.len() == statements.len() && conclusions.len() == covered.len()
+        }
+        _ => true,
+    };
     let agrees = match verdict {
-        "holds" => conclusions == [Conclusion::Holds],
+        "holds" => {
+            every_part
+                && !conclusions.is_empty()
+                && conclusions.iter().all(|c| *c == Conclusion::Holds)
+        }
         "fails" => conclusions == [Conclusion::Fails],
         "conditional" => conclusions == [Conclusion::Holds, Conclusion::Fails],
         _ => false,

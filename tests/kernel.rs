@@ -311,20 +311,29 @@ fn sturm_counts_certify_only_true_signs_and_root_lists() {
         on_interval(&[q(1, 1)])
     ));
     // Roots: x² − x has exactly 0 and 1; x² − 2 has two (irrational) zeros, not none.
-    let roots = |f: Term, listed: Vec<Term>| Statement {
+    let counted = |f: Term, listed: Vec<Term>, count: Option<usize>| Statement {
         context: ctx.clone(),
         claim: Claim::Roots {
             function: f,
             variable: "x".to_owned(),
             roots: listed,
+            count,
         },
     };
+    let roots = |f: Term, listed: Vec<Term>| counted(f, listed, None);
     let h = sum(vec![Term::Pow(Box::new(x.clone()), 2), neg(x.clone())]);
     let none = Fact::Roots { roots: Vec::new() };
     assert!(holds(roots(h.clone(), vec![num(0), num(1)]), none.clone()));
     assert!(fails(roots(h.clone(), vec![num(0)]), none.clone()));
     assert!(fails(roots(h, vec![num(0), num(1), num(2)]), none.clone()));
-    assert!(fails(roots(f, vec![]), none));
+    assert!(fails(roots(f.clone(), vec![]), none.clone()));
+    // A count: the kernel counts the zeros itself, rational or not, and a count with
+    // roots listed as well is refused (no statement says both).
+    assert!(holds(counted(f.clone(), vec![], Some(2)), none.clone()));
+    for wrong in [0, 1, 3] {
+        assert!(fails(counted(f.clone(), vec![], Some(wrong)), none.clone()));
+    }
+    assert!(check(counted(f, vec![num(0)], Some(1)), none).is_err());
 }
 
 fn differs() -> Fact {

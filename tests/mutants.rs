@@ -324,6 +324,21 @@ fn every_mutant_of_a_square_root_of_a_polynomial_is_refuted() {
     assert_swept(&files, &all, "mutation_report_square_roots");
 }
 
+/// Mutants of signs on exactly a set and of root counts
+/// (`tests/soundness/sets-and-counts.toml`): the sides, and the definitions of the
+/// functions whose roots are counted.
+#[test]
+fn every_mutant_of_a_sign_on_a_set_or_a_root_count_is_refuted() {
+    let files = load_files(&["tests/soundness/sets-and-counts.toml"]).expect("loads");
+    // Scalars only: no index to swap, no function to replace.
+    let kinds = [
+        MutantKind::Coefficient,
+        MutantKind::FlipSign,
+        MutantKind::DropTerm,
+    ];
+    assert_swept(&files, &kinds, "mutation_report_sets_and_counts");
+}
+
 /// The least number of refuted mutants (refuted or refuted on resampling) per sweep and
 /// strategy, and the least share of them among the mutants that are neither
 /// equivalent nor rejected as ill-formed. A drop below either fails here, whatever
@@ -352,6 +367,12 @@ const FLOORS: &[(&str, &str, usize, f64)] = &[
     // negative everywhere has no real point: those mutants stay undecided, never wrong.
     ("mutation_report_square_roots", "exact", 158, 0.9),
     ("mutation_report_second", "numeric", 104, 0.99),
+    (
+        "mutation_report_sets_and_counts",
+        "rational-function",
+        98,
+        0.99,
+    ),
     ("mutation_report_states", "exact", 196, 0.99),
     ("mutation_report_states", "numeric", 36, 0.99),
 ];

@@ -73,6 +73,92 @@ fn scalar_claims_and_their_twins_are_decided_as_declared() {
 }
 
 #[test]
+fn signs_on_exactly_a_set_and_root_counts_are_decided_as_declared() {
+    common::assert_as_declared("tests/soundness/sets-and-counts.toml", 21, |rows| {
+        for r in rows {
+            let (o, id) = (&r.outcome, r.claim.id.as_str());
+            // Every verdict here is a proof: Sturm counts, sign charts, certificates.
+            assert_eq!(o.strength(), Strength::Proof, "{id}");
+            match o.verdict() {
+                // A sign on exactly a set: the set and each box of the rest proved.
+                Verdict::Holds if id.starts_with("iff-") => {
+                    assert_eq!(o.proofs().len(), 3, "{id}")
+                }
+                Verdict::Holds => assert_eq!(o.proofs().len(), 1, "{id}"),
+                _ => {
+                    let cx = o.counterexample.as_ref().expect(id);
+                    assert!(cx.reverified.is_some(), "{id}: confirmed by a second route");
+                }
+            }
+        }
+        let evidence = |id: &str| {
+            let r = rows.iter().find(|r| r.claim.id == id).unwrap();
+            cosserat_check::report::evidence(&r.outcome)
+        };
+        // Which part failed, in words: inside the set, or outside it.
+        assert!(evidence("iff-isotropic-moduli-set-too-large")
+            .contains("(the part inside the set it is claimed on) on 0 < E, -1 < nu < 1"));
+        assert!(evidence("iff-isotropic-moduli-set-too-small")
+            .contains("(a part outside the set it is claimed on, where its negation is claimed) on 0 < E, nu ≤ 0"));
+        assert!(evidence("iff-isotropic-moduli").contains(
+            "left − right > 0 where 0 < E, -1 < nu < 1/2, left − right ≤ 0 where 0 < E, nu ≤ -1, \
+             left − right ≤ 0 where 0 < E, 1/2 ≤ nu"
+        ));
+        // An irrational root, isolated; a count that is off, with the roots found.
+        assert!(evidence("count-rayleigh-root").contains("root at x ≈ 0.8452994616"));
+        assert!(evidence("count-rayleigh-root").contains("exactly 1 real root for 0 < x < 1"));
+        assert!(
+            evidence("count-distinct-multiplicity-twin").contains("left 2, right 3 at x=-2 and 1")
+        );
+        assert!(evidence("count-open-ends-twin").contains("at x=no real root"));
+    });
+}
+
+#[test]
+fn a_part_of_a_sign_on_exactly_a_set_is_rechecked_with_the_others() {
+    use cosserat_check::derivation::load_files;
+    let path = "tests/soundness/sets-and-counts.toml";
+    let (_, text) = common::run_cli(&["verify", path, "--format", "json"], false);
+    let report: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let files = load_files(&[path]).unwrap();
+    let statements = cosserat_check::recheck::statements_of(&files).unwrap();
+    let lookup = |id: &str, c: bool| statements.get(&(id.to_owned(), c)).cloned();
+    let bound = |r: &serde_json::Value| {
+        let r = cosserat_check::recheck::recheck(&r.to_string(), Some(&lookup)).unwrap();
+        (r.accepted, r.refused)
+    };
+    assert_eq!(bound(&report), (21, 0));
+    let k = report["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|c| c["id"] == "iff-isotropic-moduli")
+        .unwrap();
+    // A part left out, or one part's proof given for all three: refused.
+    for edit in [
+        |p: &mut Vec<serde_json::Value>| {
+            p.pop();
+        },
+        |p: &mut Vec<serde_json::Value>| {
+            let first = p[0].clone();
+            p.iter_mut().for_each(|x| *x = first.clone());
+        },
+    ] {
+        let mut r = report.clone();
+        let c = &mut r["claims"][k];
+        let mut proofs = c["proofs"].as_array().unwrap().clone();
+        edit(&mut proofs);
+        let facts: Vec<serde_json::Value> = proofs
+            .iter()
+            .flat_map(|p| p["summary"].as_array().unwrap().clone())
+            .collect();
+        c["proofs"] = serde_json::Value::Array(proofs);
+        c["certificate"] = serde_json::json!({ "facts": facts });
+        assert_eq!(bound(&r), (20, 1));
+    }
+}
+
+#[test]
 fn the_worked_example_is_decided_as_declared() {
     common::assert_as_declared("derivations/examples/rational-functions.toml", 8, |_| {});
 }
@@ -101,6 +187,16 @@ fn malformed_scalar_claims_are_located_errors() {
         ("strategy = \"roots\"\nfunction = \"x\"\nin = \"x\"", "needs `roots`"),
         ("strategy = \"roots\"\nfunction = \"x - a\"\nin = \"x\"\nroots = [\"a\"]", "must be a rational number"),
         ("strategy = \"limit\"\nfunction = \"x\"\nin = \"x\"\ntends_to = \"0\"\nlimit = \"0\"\ndirection = \"increasing\"", "`direction` does not apply"),
+        ("strategy = \"roots\"\nfunction = \"x\"\nin = \"x\"\nroots = []\ncount = 1", "not both"),
+        ("strategy = \"roots\"\nfunction = \"x\"\nin = \"x\"\ncount = -1", "count must be between 0 and 100000"),
+        ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\ncount = 1", "`count` does not apply to strategy = \"sign\""),
+        ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\nroots = []", "`roots` does not apply to strategy = \"sign\""),
+        ("strategy = \"roots\"\nfunction = \"x\"\nin = \"x\"\ncount = 1\nexactly_when = [\"x > 0\"]", "`exactly_when` does not apply to strategy = \"roots\""),
+        ("sides = [\"x\", \"x\"]\nexactly_when = [\"x > 0\"]", "`exactly_when` does not apply to strategy = \"exact\""),
+        ("sides = [\"x\", \"x\"]\nin = \"x\"", "`in` does not apply to strategy = \"exact\""),
+        ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\nexactly_when = []", "needs at least one bound"),
+        ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\nexactly_when = [\"x > a\"]", "cannot read `x > a` as a bound"),
+        ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\nexactly_when = [\"s > 0\"]", "`s` is not a scalar parameter"),
     ];
     let cases = cases.map(|(body, want)| (claim(body), want));
     common::assert_located_errors(&cases);

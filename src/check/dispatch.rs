@@ -169,7 +169,16 @@ pub fn proof_statements(
         Strategy::Exact { .. } | Strategy::Proportional { .. } => {
             vec![statement::equalities(decls, check)?]
         }
-        Strategy::Scalar { domain, .. } => vec![statement::scalar(decls, check, domain)?],
+        Strategy::Scalar { domain, .. } => match crate::derivation::exact_part_checks(check) {
+            Some(parts) => parts
+                .iter()
+                .map(|part| match &part.strategy {
+                    Strategy::Scalar { domain, .. } => statement::scalar(decls, part, domain),
+                    _ => unreachable!("a part is a sign claim"),
+                })
+                .collect::<Result<_, _>>()?,
+            None => vec![statement::scalar(decls, check, domain)?],
+        },
         Strategy::NotCircle { x, y } => {
             vec![statement::not_circle(decls, check, &x.node, &y.node)?]
         }

@@ -315,6 +315,7 @@ impl Comparer<'_> {
             Strategy::NotCircle { .. } => Some("a witness that a locus is not a circle"),
             Strategy::Scalar { claim, .. } => match &**claim {
                 ScalarClaim::Sign(_) => None,
+                ScalarClaim::SignExactly(..) => Some("a sign on exactly a set"),
                 ScalarClaim::Monotone { .. } => Some("monotonicity"),
                 ScalarClaim::Limit { .. } => Some("a limit"),
                 ScalarClaim::Roots { .. } => Some("the roots of a function"),

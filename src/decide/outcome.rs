@@ -189,6 +189,18 @@ impl Outcome {
         o
     }
 
+    /// `holds`, strength `proof`, from kernel proofs of the parts a statement is
+    /// decided in (a sign on a set and its negation on each box of the rest); `None`
+    /// unless there is one and every one concludes `holds`.
+    pub fn proved_parts(method: Method, checks: usize, proofs: Vec<Arc<Proof>>) -> Option<Self> {
+        if proofs.is_empty() || proofs.iter().any(|p| p.conclusion() != Conclusion::Holds) {
+            return None;
+        }
+        let mut o = Outcome::new(Verdict::Holds, Strength::Proof, method, checks);
+        o.proofs = proofs;
+        Some(o)
+    }
+
     /// `fails` on sampled evidence: a counterexample found and confirmed in floating
     /// point.
     pub fn fails_sampled(method: Method, checks: usize) -> Self {

@@ -1227,7 +1227,8 @@ impl Loader {
                 "left = λ · right for one nonzero factor λ",
             ),
             (Strategy::Scalar { claim, .. }, Some(at))
-                if !pair && matches!(**claim, ScalarClaim::Sign(_)) =>
+                if !pair
+                    && matches!(**claim, ScalarClaim::Sign(_) | ScalarClaim::SignExactly(..)) =>
             {
                 (
                     at,
@@ -1276,7 +1277,7 @@ impl Loader {
                 ScalarClaim::Monotone { function, .. }
                 | ScalarClaim::Limit { function, .. }
                 | ScalarClaim::Roots { function, .. } => Some(function),
-                ScalarClaim::Sign(_) => None,
+                ScalarClaim::Sign(_) | ScalarClaim::SignExactly(..) => None,
             },
             _ => None,
         };

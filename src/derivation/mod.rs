@@ -27,4 +27,5 @@ pub use model::{
     Sampling, ScalarClaim, Side, Stated, Strategy, Transcript, Use, Verdict,
 };
 pub use reads::Reads;
+pub use scalar::{exact_part_checks, exact_parts};
 pub use spec::DEFAULT_SAMPLES;

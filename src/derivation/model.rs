@@ -425,7 +425,7 @@ impl Strategy {
                 out.push(y);
             }
             Strategy::Scalar { claim, .. } => match &**claim {
-                ScalarClaim::Sign(_) => {}
+                ScalarClaim::Sign(_) | ScalarClaim::SignExactly(..) => {}
                 ScalarClaim::Monotone { function, .. } => out.push(function),
                 ScalarClaim::Limit {
                     function, value, ..
@@ -507,6 +507,11 @@ pub enum ScalarClaim {
     /// `left − right` has this sign (`strategy = "sign"`; the claim's one pair of sides
     /// and its `relation`).
     Sign(Sign),
+    /// `left − right` has this sign exactly where the parameters lie in the box
+    /// (`exactly_when`), within the domain: the sign there, and the opposite relation
+    /// (its negation) everywhere else, wherever both sides are defined. Decided part by
+    /// part (see [`crate::derivation::exact_parts`]).
+    SignExactly(Sign, ParamBox),
     /// `function` increases (or decreases) in `variable`: its derivative is ≥ 0 (≤ 0)
     /// wherever defined, and it has no pole in the domain (`strategy = "monotone"`).
     Monotone {
@@ -521,12 +526,14 @@ pub enum ScalarClaim {
         to: Approach,
         value: LimitValue,
     },
-    /// The real roots of `function` in `variable` on the domain are exactly `roots`
-    /// (`strategy = "roots"`).
+    /// The real roots of `function` in `variable` on the domain are exactly `roots`, or
+    /// with `count` (and no roots listed) exactly that many distinct reals, rational or
+    /// not (`strategy = "roots"`).
     Roots {
         function: Expression,
         variable: String,
         roots: Vec<Expression>,
+        count: Option<usize>,
     },
 }
 
@@ -535,7 +542,7 @@ impl ScalarClaim {
     /// function is the difference of its sides).
     pub fn function(&self) -> Option<(&Expression, &str)> {
         match self {
-            ScalarClaim::Sign(_) => None,
+            ScalarClaim::Sign(_) | ScalarClaim::SignExactly(..) => None,
             ScalarClaim::Monotone {
                 function, variable, ..
             }

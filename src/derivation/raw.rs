@@ -175,6 +175,10 @@ pub struct RawClaim {
     pub limit: Option<S>,
     /// Every real root in the domain, exactly (strategy = "roots").
     pub roots: Option<Vec<S>>,
+    /// How many distinct real roots the domain holds, instead of `roots`.
+    pub count: Option<Spanned<i64>>,
+    /// The set on which a sign claim holds exactly: bounds on scalars, as `given`.
+    pub exactly_when: Option<Spanned<Vec<S>>>,
 }
 
 #[derive(Deserialize)]

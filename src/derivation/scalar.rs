@@ -14,6 +14,9 @@ use crate::lang::{Decls, DefSig, Diagnostic};
 /// The comparison operators of a bound, longest first so that `<=` is not read as `<`.
 const OPERATORS: [&str; 6] = ["<=", ">=", "≤", "≥", "<", ">"];
 
+/// The largest root count a claim may state (more than any degree the kernel expands).
+const MAX_ROOT_COUNT: usize = 100_000;
+
 impl Loader {
     /// The strategy of a scalar claim of kind `name`.
     pub(super) fn scalar_strategy(
@@ -59,7 +62,18 @@ impl Loader {
                             .with_help("relation is one of \">\", \">=\", \"<\", \"<=\": left − right has that sign"))
                     }
                 };
-                ScalarClaim::Sign(want)
+                match &c.exactly_when {
+                    Some(when) => {
+                        let set = self.param_box(when.get_ref(), decls)?;
+                        if set.bounds.is_empty() {
+                            return Err(self
+                                .diag(when.span(), "`exactly_when` needs at least one bound")
+                                .with_help("exactly_when = [\"-1 < nu < 1/2\"]: the sign holds there and nowhere else in the domain"));
+                        }
+                        ScalarClaim::SignExactly(want, set)
+                    }
+                    None => ScalarClaim::Sign(want),
+                }
             }
             "monotone" => {
                 let d = need(&c.direction, "direction", "direction = \"increasing\"")?;
@@ -94,34 +108,56 @@ impl Loader {
                 }
             }
             "roots" => {
-                let Some(roots) = &c.roots else {
-                    return Err(self
-                        .diag(anchor.span(), "strategy = \"roots\" needs `roots`")
-                        .with_help("roots = [\"1/2\", \"-3\"]: every real root in the domain (roots = [] for none)"));
+                let (roots, count) = match (&c.roots, &c.count) {
+                    (Some(roots), None) => (roots.iter().map(scalar).collect::<Result<_, _>>()?, None),
+                    (None, Some(n)) => match usize::try_from(*n.get_ref()) {
+                        Ok(k) if k <= MAX_ROOT_COUNT => (Vec::new(), Some(k)),
+                        _ => {
+                            return Err(self
+                                .diag(n.span(), format!("count must be between 0 and {MAX_ROOT_COUNT}"))
+                                .with_help("count = 1: the domain holds exactly one real root"))
+                        }
+                    },
+                    (Some(_), Some(n)) => {
+                        return Err(self
+                            .diag(n.span(), "a roots claim lists its `roots` or gives their `count`, not both")
+                            .with_help("roots = [\"1\", \"-3\"] when every root is rational; count = 2 otherwise"))
+                    }
+                    (None, None) => {
+                        return Err(self
+                            .diag(anchor.span(), "strategy = \"roots\" needs `roots` or `count`")
+                            .with_help("roots = [\"1/2\", \"-3\"]: every real root in the domain (roots = [] for none); count = 1: exactly one, rational or not"))
+                    }
                 };
                 ScalarClaim::Roots {
                     function: function()?,
                     variable: variable(c)?,
-                    roots: roots.iter().map(scalar).collect::<Result<_, _>>()?,
+                    roots,
+                    count,
                 }
             }
             _ => unreachable!("called for the scalar kinds only"),
         };
-        for (field, key) in [
-            (&c.variable, "in"),
-            (&c.direction, "direction"),
-            (&c.tends_to, "tends_to"),
-            (&c.limit, "limit"),
+        for (at, key) in [
+            (c.variable.as_ref().map(|s| s.span()), "in"),
+            (c.direction.as_ref().map(|s| s.span()), "direction"),
+            (c.tends_to.as_ref().map(|s| s.span()), "tends_to"),
+            (c.limit.as_ref().map(|s| s.span()), "limit"),
+            (c.roots.as_ref().map(|_| anchor.span()), "roots"),
+            (c.count.as_ref().map(|s| s.span()), "count"),
+            (c.exactly_when.as_ref().map(|s| s.span()), "exactly_when"),
         ] {
             let used = match key {
                 "in" => claim.function().is_some(),
                 "direction" => matches!(claim, ScalarClaim::Monotone { .. }),
+                "roots" | "count" => matches!(claim, ScalarClaim::Roots { .. }),
+                "exactly_when" => matches!(claim, ScalarClaim::SignExactly(..)),
                 _ => matches!(claim, ScalarClaim::Limit { .. }),
             };
-            if let (Some(at), false) = (field, used) {
+            if let (Some(at), false) = (at, used) {
                 return Err(self
                     .diag(
-                        at.span(),
+                        at,
                         format!("`{key}` does not apply to strategy = \"{name}\""),
                     )
                     .with_help(
@@ -129,7 +165,9 @@ impl Loader {
                     ));
             }
         }
-        if let (Some(f), ScalarClaim::Sign(_)) = (&c.function, &claim) {
+        if let (Some(f), ScalarClaim::Sign(_) | ScalarClaim::SignExactly(..)) =
+            (&c.function, &claim)
+        {
             return Err(self
                 .diag(
                     f.span(),
@@ -307,6 +345,97 @@ fn rational(text: &str) -> Option<Rational> {
 }
 
 /// The intersection of two intervals.
+/// The parts a sign claim that holds exactly on `set` within `domain` is decided in:
+/// the sign `want` on their intersection, and the negated sign on each box of the rest
+/// of the domain (for the k-th bounded scalar: the scalars before it in the set, this
+/// one below or above it, the others anywhere in the domain). Empty boxes are left out;
+/// together the boxes cover the domain once.
+pub fn exact_parts(want: Sign, set: &ParamBox, domain: &ParamBox) -> Vec<(Sign, ParamBox)> {
+    let within = |name: &str, i: &Interval| intersect(&domain.interval(name), i);
+    let with = |bounds: Vec<(String, Interval)>| {
+        let mut b = domain.clone();
+        for (name, i) in bounds {
+            match b.bounds.iter_mut().find(|(s, _)| *s == name) {
+                Some(slot) => slot.1 = i,
+                None => b.bounds.push((name, i)),
+            }
+        }
+        b
+    };
+    let flip = |e: &End| match e {
+        End::Unbounded => None,
+        End::Open(x) => Some(End::Closed(x.clone())),
+        End::Closed(x) => Some(End::Open(x.clone())),
+    };
+    let inside: Vec<(String, Interval)> = set
+        .bounds
+        .iter()
+        .map(|(name, i)| (name.clone(), within(name, i)))
+        .collect();
+    let mut out = Vec::new();
+    if inside.iter().all(|(_, i)| !i.is_empty()) {
+        out.push((want, with(inside.clone())));
+    }
+    let negated = match want {
+        Sign::Positive => Sign::NonPositive,
+        Sign::NonNegative => Sign::Negative,
+        Sign::Negative => Sign::NonNegative,
+        Sign::NonPositive => Sign::Positive,
+    };
+    for (k, (name, i)) in set.bounds.iter().enumerate() {
+        if inside[..k].iter().any(|(_, i)| i.is_empty()) {
+            break;
+        }
+        let below = flip(&i.lo).map(|hi| Interval {
+            lo: End::Unbounded,
+            hi,
+        });
+        let above = flip(&i.hi).map(|lo| Interval {
+            lo,
+            hi: End::Unbounded,
+        });
+        for rest in [below, above].into_iter().flatten() {
+            let rest = within(name, &rest);
+            if !rest.is_empty() {
+                let mut bounds = inside[..k].to_vec();
+                bounds.push((name.clone(), rest));
+                out.push((negated, with(bounds)));
+            }
+        }
+    }
+    out
+}
+
+/// The checks a claim with `exactly_when` is decided as: one sign claim per part of
+/// [`exact_parts`], each on its own box (`None` for any other claim).
+pub fn exact_part_checks(check: &super::model::Check) -> Option<Vec<super::model::Check>> {
+    let Strategy::Scalar {
+        claim,
+        domain,
+        samples,
+        seed,
+    } = &check.strategy
+    else {
+        return None;
+    };
+    let ScalarClaim::SignExactly(want, set) = &**claim else {
+        return None;
+    };
+    let parts = exact_parts(*want, set, domain)
+        .into_iter()
+        .map(|(sign, part)| {
+            let mut c = check.clone();
+            c.strategy = Strategy::Scalar {
+                claim: Box::new(ScalarClaim::Sign(sign)),
+                domain: part,
+                samples: *samples,
+                seed: *seed,
+            };
+            c
+        });
+    Some(parts.collect())
+}
+
 fn intersect(a: &Interval, b: &Interval) -> Interval {
     let pick = |x: &End, y: &End, lower: bool| -> End {
         let v = |e: &End| match e {

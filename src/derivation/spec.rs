@@ -53,6 +53,22 @@ impl Loader {
                     "exact and proportional claims compare their sides as equations; remove it, or use strategy = \"numeric\"",
                 ));
         }
+        let scalar_only = [
+            c.variable.as_ref().map(|s| ("in", s.span())),
+            c.direction.as_ref().map(|s| ("direction", s.span())),
+            c.tends_to.as_ref().map(|s| ("tends_to", s.span())),
+            c.limit.as_ref().map(|s| ("limit", s.span())),
+            c.count.as_ref().map(|s| ("count", s.span())),
+            c.exactly_when.as_ref().map(|s| ("exactly_when", s.span())),
+            c.roots.as_ref().map(|_| ("roots", anchor.span())),
+        ];
+        let scalar_kind = matches!(name, "sign" | "monotone" | "limit" | "roots");
+        if let (Some((field, at)), false) = (scalar_only.into_iter().flatten().next(), scalar_kind)
+        {
+            return Err(self
+                .diag(at, format!("`{field}` does not apply to strategy = \"{name}\""))
+                .with_help("it belongs to the claims about rational functions (strategy = \"sign\", \"monotone\", \"limit\" or \"roots\")"));
+        }
         if let (Some(text), false) = (&c.convention, name == "gradient") {
             return Err(self
                 .diag(

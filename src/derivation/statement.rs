@@ -391,6 +391,9 @@ pub fn scalar(decls: &Decls, check: &Check, domain: &ParamBox) -> Result<Stateme
         unreachable!("a scalar strategy")
     };
     let claim = match &**claim {
+        ScalarClaim::SignExactly(..) => {
+            unreachable!("decided part by part, each a sign claim (exact_part_checks)")
+        }
         ScalarClaim::Sign(sign) => {
             let sides = chain_terms(&check.chains[0], decls, &check.defs);
             Claim::Sign {
@@ -427,10 +430,12 @@ pub fn scalar(decls: &Decls, check: &Check, domain: &ParamBox) -> Result<Stateme
             function,
             variable,
             roots,
+            count,
         } => Claim::Roots {
             function: term(&function.node),
             variable: variable.clone(),
             roots: roots.iter().map(|r| term(&r.node)).collect(),
+            count: *count,
         },
     };
     let mut context = context(decls, check, Some(domain))?;

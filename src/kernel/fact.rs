@@ -250,7 +250,10 @@ pub enum Checked {
         interval: String,
         roots: Vec<String>,
         zeros: usize,
-        /// Whether the zeros are exactly the roots stated.
+        /// The number of zeros stated, for a claim that counts them.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        count: Option<usize>,
+        /// Whether the zeros are exactly the roots stated (or as many as `count`).
         exactly: bool,
     },
     /// Four points on no common circle or line.

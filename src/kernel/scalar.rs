@@ -831,6 +831,7 @@ fn roots(
         function,
         variable,
         roots,
+        count: stated_count,
     } = claim
     else {
         return Err(Rejection::Mismatch("not a roots claim".into()));
@@ -867,11 +868,15 @@ fn roots(
     let all_zeros = listed
         .iter()
         .all(|x| i.contains(x) && n.eval(x).is_zero() && !undefined.eval(x).is_zero());
-    let exactly = all_zeros && zeros == listed.len();
+    if stated_count.is_some() && !listed.is_empty() {
+        return Err(Rejection::Mismatch("a count with roots listed".into()));
+    }
+    let exactly = all_zeros && zeros == stated_count.unwrap_or(listed.len());
     let said = Checked::Roots {
         interval: i.describe(variable),
         roots: listed.iter().map(|x| x.to_string()).collect(),
         zeros,
+        count: *stated_count,
         exactly,
     };
     Ok(if exactly {

@@ -260,11 +260,14 @@ pub enum Claim {
         to: Approach,
         value: LimitValue,
     },
-    /// The zeros of `function` in `variable` on the box are exactly `roots`.
+    /// The zeros of `function` in `variable` on the box are exactly `roots`, or, with
+    /// `count` (and no roots listed), exactly `count` distinct real numbers.
     Roots {
         function: Term,
         variable: String,
         roots: Vec<Term>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        count: Option<usize>,
     },
     /// The points (x, y) over the unit normal in a plane lie on no common circle or
     /// line.

@@ -86,11 +86,16 @@ pub fn evidence(o: &Outcome) -> String {
     parts.join("; ")
 }
 
-/// What the kernel checked behind an outcome's proof, item by item: for a
+/// What the kernel checked behind an outcome's proofs, item by item: for a
 /// conditional, the proof that it holds on its domain (its counterexample outside is
-/// stated as a counterexample).
+/// stated as a counterexample); for a sign on exactly a set, every part's.
 fn checked(o: &Outcome) -> impl Iterator<Item = &Checked> {
-    o.proofs().iter().take(1).flat_map(|p| p.summary())
+    let parts = if o.verdict() == crate::derivation::Verdict::Conditional {
+        1
+    } else {
+        usize::MAX
+    };
+    o.proofs().iter().take(parts).flat_map(|p| p.summary())
 }
 
 /// The rules an exact proof reduced by: the polynomial constraints solved for a power,
@@ -345,7 +350,15 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
                     format!("{limit}; {}", holds_where(nonzero))
                 }
             }
-            Checked::Roots { interval, roots, zeros, exactly: false } => {
+            Checked::Roots { interval, zeros, count: Some(n), exactly, .. } => {
+                let s = if *zeros == 1 { "" } else { "s" };
+                if *exactly {
+                    format!("exactly {zeros} real root{s} for {interval} (Sturm count)")
+                } else {
+                    format!("{zeros} real root{s} for {interval}, not {n} (Sturm count)")
+                }
+            }
+            Checked::Roots { interval, roots, zeros, exactly: false, .. } => {
                 let s = if *zeros == 1 { "" } else { "s" };
                 format!(
                     "the real roots for {interval} are not exactly [{}]: {zeros} zero{s} in all (Sturm counts)",

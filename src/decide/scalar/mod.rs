@@ -12,6 +12,7 @@
 //! floating-point interpreter on the expression tree before it is printed.
 
 mod context;
+mod exactly;
 mod limit;
 mod monotone;
 mod roots;
@@ -35,6 +36,9 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     else {
         unreachable!("dispatched on the strategy")
     };
+    if let ScalarClaim::SignExactly(..) = &**claim {
+        return exactly::decide(decls, check);
+    }
     // Square roots take their sign on the claim's box.
     let env = ExactEnv::on(decls, &check.defs, &check.assumptions, Some(domain))?;
     let mut cx = Context {
@@ -47,6 +51,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     };
     let decided = match &**claim {
         ScalarClaim::Sign(want) => sign::decide(&mut cx, *want),
+        ScalarClaim::SignExactly(..) => unreachable!("decided part by part"),
         ScalarClaim::Monotone {
             function,
             variable,
@@ -62,7 +67,11 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
             function,
             variable,
             roots,
-        } => roots::decide(&mut cx, function, variable, roots),
+            count,
+        } => match count {
+            Some(n) => roots::count(&mut cx, function, variable, *n),
+            None => roots::decide(&mut cx, function, variable, roots),
+        },
     };
     match decided {
         Ok(o) => Ok(o),

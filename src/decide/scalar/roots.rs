@@ -6,7 +6,7 @@
 use super::context::{Context, Stop};
 use crate::algebra::certificate::Certificate;
 use crate::algebra::sign::Real;
-use crate::decide::finding::Finding;
+use crate::decide::finding::{Finding, RationalEvidence};
 use crate::decide::outcome::{Counterexample, Method, Outcome, Reverified};
 use crate::derivation::Expression;
 use crate::kernel::check::Fact;
@@ -38,23 +38,13 @@ pub(super) fn decide(
             }
         }
     }
-    let others: Vec<_> = f.variables().into_iter().filter(|w| *w != v).collect();
-    // Other parameters only in a factor of one strict sign on the box (μ in
-    // μ (x² − 1), μ > 0): the roots are those of the rest.
-    let (num, den) =
-        match (others.is_empty(), cx.cleared_in(f.cleared(), v)) {
-            (true, _) => f.cleared(),
-            (false, Some(nd)) => nd,
-            _ => {
-                evidence.points.push(format!(
-                "the function also depends on {}, not only through a factor of one sign; roots \
-                 are decided for functions of one parameter only",
-                others.iter().map(|w| cx.name(*w)).collect::<Vec<_>>().join(", ")
-            ));
-                return Ok(Outcome::undecided(Method::RationalFunction, 0)
-                    .with_finding(Finding::RationalFunction(evidence)));
-            }
-        };
+    let (num, den) = match of_one(cx, &f, v, &mut evidence) {
+        Some(nd) => nd,
+        None => {
+            return Ok(Outcome::undecided(Method::RationalFunction, 0)
+                .with_finding(Finding::RationalFunction(evidence)))
+        }
+    };
     let i = cx.interval(v);
     let names = &cx.env.vars;
     let zeros = match Certificate::roots_exactly((&num, &den), v, &i, &stated, names) {
@@ -144,6 +134,114 @@ pub(super) fn decide(
         None => Outcome::undecided(Method::RationalFunction, 0)
             .with_finding(Finding::RationalFunction(evidence)),
     })
+}
+
+/// Numerator and denominator of a function of `v`, its other parameters (if any) only
+/// in a factor of one strict sign on the box (μ in μ (x² − 1), μ > 0), which the roots
+/// are those of the rest; `None`, with the reason in the evidence, otherwise.
+fn of_one(
+    cx: &Context<'_>,
+    f: &super::context::Exact,
+    v: crate::kernel::Var,
+    evidence: &mut RationalEvidence,
+) -> Option<(crate::kernel::Poly, crate::kernel::Poly)> {
+    let others: Vec<_> = f.variables().into_iter().filter(|w| *w != v).collect();
+    if others.is_empty() {
+        return Some(f.cleared());
+    }
+    let nd = cx.cleared_in(f.cleared(), v);
+    if nd.is_none() {
+        evidence.points.push(format!(
+            "the function also depends on {}, not only through a factor of one sign; roots are \
+             decided for functions of one parameter only",
+            others
+                .iter()
+                .map(|w| cx.name(*w))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    nd
+}
+
+/// `count = n`: the function has exactly n distinct real roots on its interval,
+/// rational or not. The kernel counts them itself (Sturm sequences); the search
+/// isolates them for the evidence, each exact or between two close rationals.
+pub(super) fn count(
+    cx: &mut Context<'_>,
+    function: &Expression,
+    variable: &str,
+    stated: usize,
+) -> Result<Outcome, Stop> {
+    let f = cx.exact(function)?;
+    let v = cx
+        .var(variable)
+        .unwrap_or_else(|| cx.env.vars.intern(variable));
+    let mut evidence = cx.evidence(&f.f);
+    evidence.decided = format!("{} = {}", function.text, evidence.decided);
+    let Some((num, den)) = of_one(cx, &f, v, &mut evidence) else {
+        return Ok(Outcome::undecided(Method::RationalFunction, 0)
+            .with_finding(Finding::RationalFunction(evidence)));
+    };
+    let i = cx.interval(v);
+    let name = cx.name(v);
+    let zeros = match Certificate::roots_exactly((&num, &den), v, &i, &[], &cx.env.vars) {
+        Ok(_) => Vec::new(),
+        Err(Some(zeros)) => zeros,
+        Err(None) => {
+            evidence.points.push(format!(
+                "the roots on {} could not be isolated within {} bisections",
+                i.describe(&name),
+                crate::algebra::sturm::MAX_BISECTIONS
+            ));
+            return Ok(Outcome::undecided(Method::RationalFunction, 0)
+                .with_finding(Finding::RationalFunction(evidence)));
+        }
+    };
+    evidence.points = zeros
+        .iter()
+        .map(|z| format!("root at {}", super::context::equated(z, &name)))
+        .collect();
+    if zeros.is_empty() {
+        evidence.points.push(format!(
+            "no real root (Sturm isolation on {})",
+            i.describe(&name)
+        ));
+    }
+    let o = cx.by_kernel(Fact::Roots { roots: cx.roots() }, None);
+    let counted = o.proofs().first().and_then(|p| {
+        p.summary().iter().find_map(|c| match c {
+            crate::kernel::check::Checked::Roots { zeros, .. } => Some(*zeros),
+            _ => None,
+        })
+    });
+    let o = match (o.verdict(), counted) {
+        (crate::derivation::Verdict::Fails, Some(n)) => o.with_counterexample(Counterexample {
+            chain: 1,
+            equality: 1,
+            lhs: format!("the number of real roots of {}", function.text),
+            rhs: stated.to_string(),
+            // The roots found stand where a point would: none is a counterexample alone.
+            point: BTreeMap::from([(
+                name.clone(),
+                if zeros.is_empty() {
+                    "no real root".to_owned()
+                } else {
+                    zeros
+                        .iter()
+                        .map(super::context::shown_real)
+                        .collect::<Vec<_>>()
+                        .join(" and ")
+                },
+            )]),
+            lhs_value: Some(n.to_string()),
+            rhs_value: Some(stated.to_string()),
+            reverified: Some(Reverified::Exact),
+            ..Counterexample::default()
+        }),
+        _ => o,
+    };
+    Ok(super::sign::with_evidence(o, evidence))
 }
 
 /// `fails`, as the kernel concludes it from its own count of the zeros; the
