@@ -588,3 +588,82 @@ fn a_square_root_of_a_polynomial_is_a_variable_only_where_a_rule_is_checked() {
     };
     assert!(!holds(prop, factor));
 }
+
+#[test]
+fn roots_of_parameters_are_proved_only_when_they_divide_the_numerator_and_nothing_else_vanishes() {
+    let mut ctx = context(&[("h", 0), ("a", 0), ("b", 0)]);
+    let (h, a, b) = (sym("h", ""), sym("a", ""), sym("b", ""));
+    let roots = |ctx: &Context, f: &Term, listed: Vec<Term>| Statement {
+        context: ctx.clone(),
+        claim: Claim::Roots {
+            function: f.clone(),
+            variable: "h".to_owned(),
+            roots: listed,
+            count: None,
+        },
+    };
+    let by = |m: Vec<u32>| Fact::RootsOfParameters {
+        multiplicities: m,
+        roots: Vec::new(),
+    };
+    let div = |x: &Term, y: &Term| Term::Div(Box::new(x.clone()), Box::new(y.clone()));
+    let square = |x: Term| Term::Pow(Box::new(x), 2);
+    // a h − b = 0 exactly at h = b/a, for a > 0; with a free, a = 0 breaks it.
+    let f = sum(vec![prod(vec![a.clone(), h.clone()]), neg(b.clone())]);
+    let positive = (
+        "a".to_owned(),
+        Interval {
+            lo: End::Open(q(0, 1)),
+            hi: End::Unbounded,
+        },
+    );
+    ctx.given = vec![positive.clone()];
+    assert!(holds(roots(&ctx, &f, vec![div(&b, &a)]), by(vec![1])));
+    assert!(check(roots(&ctx, &f, vec![div(&a, &b)]), by(vec![1])).is_err());
+    assert!(check(roots(&ctx, &f, vec![div(&b, &a)]), by(vec![2])).is_err());
+    assert!(check(roots(&ctx, &f, vec![div(&b, &a)]), by(vec![])).is_err());
+    let free = context(&[("h", 0), ("a", 0), ("b", 0)]);
+    assert!(check(roots(&free, &f, vec![div(&b, &a)]), by(vec![1])).is_err());
+    // h² + 1 has no real root: 0 twice would leave h⁻² in the quotient.
+    let g = sum(vec![square(h.clone()), num(1)]);
+    assert!(holds(roots(&free, &g, vec![]), by(vec![])));
+    for m in [1, 2] {
+        assert!(check(roots(&free, &g, vec![num(0)]), by(vec![m])).is_err());
+    }
+    // a h² + 1 with a > 0 has none either; (h − a)² listed once leaves h − a, of
+    // both signs; (h − a)/(h − b) has no zero where b = a.
+    let g = sum(vec![prod(vec![a.clone(), square(h.clone())]), num(1)]);
+    assert!(holds(roots(&ctx, &g, vec![]), by(vec![])));
+    assert!(check(roots(&ctx, &g, vec![num(0)]), by(vec![2])).is_err());
+    let shifted = sum(vec![h.clone(), neg(a.clone())]);
+    let twice = square(shifted.clone());
+    assert!(holds(roots(&free, &twice, vec![a.clone()]), by(vec![2])));
+    assert!(check(roots(&free, &twice, vec![a.clone()]), by(vec![1])).is_err());
+    let pole = div(&shifted, &sum(vec![h.clone(), neg(b.clone())]));
+    assert!(check(roots(&free, &pole, vec![a.clone()]), by(vec![1])).is_err());
+    // A refutation at a point of the parameters, only where the zeros differ.
+    let at = |point: &[(&str, i64)]| Fact::RootsAt {
+        point: point
+            .iter()
+            .map(|(n, x)| ((*n).to_owned(), q(*x, 1)))
+            .collect(),
+        roots: Vec::new(),
+    };
+    let wrong = roots(&ctx, &f, vec![div(&a, &b)]);
+    assert!(fails(wrong.clone(), at(&[("a", 2), ("b", 1)])));
+    assert!(check(wrong.clone(), at(&[("a", 1), ("b", 1)])).is_err());
+    assert!(
+        check(wrong.clone(), at(&[("a", -1), ("b", 1)])).is_err(),
+        "outside the box"
+    );
+    assert!(
+        check(wrong.clone(), at(&[("a", 2)])).is_err(),
+        "b left free"
+    );
+    assert!(check(wrong, at(&[("a", 2), ("b", 1), ("h", 0)])).is_err());
+    assert!(fails(
+        roots(&free, &pole, vec![a.clone()]),
+        at(&[("a", 1), ("b", 1)])
+    ));
+    assert!(check(roots(&free, &pole, vec![a]), at(&[("a", 1), ("b", 2)])).is_err());
+}

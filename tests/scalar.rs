@@ -74,7 +74,7 @@ fn scalar_claims_and_their_twins_are_decided_as_declared() {
 
 #[test]
 fn signs_on_exactly_a_set_and_root_counts_are_decided_as_declared() {
-    common::assert_as_declared("tests/soundness/sets-and-counts.toml", 21, |rows| {
+    common::assert_as_declared("tests/soundness/sets-and-counts.toml", 28, |rows| {
         for r in rows {
             let (o, id) = (&r.outcome, r.claim.id.as_str());
             // Every verdict here is a proof: Sturm counts, sign charts, certificates.
@@ -111,6 +111,13 @@ fn signs_on_exactly_a_set_and_root_counts_are_decided_as_declared() {
             evidence("count-distinct-multiplicity-twin").contains("left 2, right 3 at x=-2 and 1")
         );
         assert!(evidence("count-open-ends-twin").contains("at x=no real root"));
+        // Roots of parameters: the factorisation proved, or the parameter point where
+        // the zeros differ (no coupling: no root at all).
+        assert!(evidence("roots-of-parameters-localisation").contains("exact division"));
+        assert!(evidence("roots-of-parameters-localisation-uncoupled-twin")
+            .contains("left [], right [0] at G=1, H=0, k=1, p=0, q=0"));
+        assert!(evidence("roots-of-parameters-localisation-planted")
+            .contains("left [1/3], right [1/2] at G=1, H=0, k=1, p=1, q=0"));
     });
 }
 
@@ -127,7 +134,7 @@ fn a_part_of_a_sign_on_exactly_a_set_is_rechecked_with_the_others() {
         let r = cosserat_check::recheck::recheck(&r.to_string(), Some(&lookup)).unwrap();
         (r.accepted, r.refused)
     };
-    assert_eq!(bound(&report), (21, 0));
+    assert_eq!(bound(&report), (28, 0));
     let k = report["claims"]
         .as_array()
         .unwrap()
@@ -154,7 +161,7 @@ fn a_part_of_a_sign_on_exactly_a_set_is_rechecked_with_the_others() {
             .collect();
         c["proofs"] = serde_json::Value::Array(proofs);
         c["certificate"] = serde_json::json!({ "facts": facts });
-        assert_eq!(bound(&r), (20, 1));
+        assert_eq!(bound(&r), (27, 1));
     }
 }
 
@@ -185,7 +192,6 @@ fn malformed_scalar_claims_are_located_errors() {
         ("strategy = \"limit\"\nfunction = \"x\"\nin = \"x\"\ntends_to = \"zero\"\nlimit = \"0\"", "cannot read `zero`"),
         ("strategy = \"limit\"\nfunction = \"x\"\nin = \"x\"\ntends_to = \"0\"\nlimit = \"x\"", "depends on `x`"),
         ("strategy = \"roots\"\nfunction = \"x\"\nin = \"x\"", "needs `roots`"),
-        ("strategy = \"roots\"\nfunction = \"x - a\"\nin = \"x\"\nroots = [\"a\"]", "must be a rational number"),
         ("strategy = \"limit\"\nfunction = \"x\"\nin = \"x\"\ntends_to = \"0\"\nlimit = \"0\"\ndirection = \"increasing\"", "`direction` does not apply"),
         ("strategy = \"roots\"\nfunction = \"x\"\nin = \"x\"\nroots = []\ncount = 1", "not both"),
         ("strategy = \"roots\"\nfunction = \"x\"\nin = \"x\"\ncount = -1", "count must be between 0 and 100000"),

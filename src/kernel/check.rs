@@ -227,6 +227,8 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
         | Fact::Pole { .. }
         | Fact::Limit { .. }
         | Fact::Roots { .. }
+        | Fact::RootsOfParameters { .. }
+        | Fact::RootsAt { .. }
         | Fact::NotConcyclic { .. }
         | Fact::OnCircle { .. }
             if chains.is_none() =>

@@ -128,6 +128,18 @@ pub enum Fact {
     },
     /// The zeros of a function of one variable, counted by the kernel.
     Roots { roots: Vec<FracData> },
+    /// The zeros of a function of parameters are the roots stated, rational functions
+    /// of them, each of this multiplicity in the numerator.
+    RootsOfParameters {
+        multiplicities: Vec<u32>,
+        roots: Vec<FracData>,
+    },
+    /// Its refutation: at `point` (every parameter but the variable) the zeros are not
+    /// the roots stated there.
+    RootsAt {
+        point: Vec<(String, Rational)>,
+        roots: Vec<FracData>,
+    },
     /// The not-a-circle witness: a state and four parameters u of rational normals.
     NotConcyclic {
         point: Vec<(String, Rational)>,
@@ -161,6 +173,8 @@ impl Fact {
             | Fact::Pole { roots, .. }
             | Fact::Limit { roots, .. }
             | Fact::Roots { roots }
+            | Fact::RootsOfParameters { roots, .. }
+            | Fact::RootsAt { roots, .. }
             | Fact::NotConcyclic { roots, .. }
             | Fact::OnCircle { roots, .. } => roots,
         }
@@ -255,6 +269,22 @@ pub enum Checked {
         count: Option<usize>,
         /// Whether the zeros are exactly the roots stated (or as many as `count`).
         exactly: bool,
+    },
+    /// The roots of a function of parameters, each of its multiplicity in the
+    /// numerator, and how many polynomials were certified nonzero on the box (the
+    /// numerator's quotient by the roots, the roots' divisors, the function's divisors
+    /// at the roots).
+    RootsOfParameters {
+        variable: String,
+        roots: Vec<String>,
+        multiplicities: Vec<u32>,
+        nonzero: usize,
+    },
+    /// The zeros at a point of the parameters, not the roots stated there.
+    RootsAt {
+        point: Vec<String>,
+        roots: Vec<String>,
+        zeros: usize,
     },
     /// Four points on no common circle or line.
     NotConcyclic { determinant: String },

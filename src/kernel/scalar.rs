@@ -596,6 +596,10 @@ pub(super) fn run(
         }
         F::Limit { point, .. } => limit(env, claim, &box_, point.as_deref())?,
         F::Roots { .. } => roots(env, claim, &box_)?,
+        F::RootsOfParameters { multiplicities, .. } => {
+            roots_of_parameters(env, claim, &box_, multiplicities)?
+        }
+        F::RootsAt { point, .. } => roots_at(env, claim, &box_, point)?,
         F::NotConcyclic { point, us, .. } => not_concyclic(env, claim, point, us)?,
         F::OnCircle { circle, .. } => on_circle(env, claim, circle)?,
         _ => {
@@ -840,19 +844,6 @@ fn roots(
     let v = env.free_variable(variable)?;
     let i = interval(box_, v);
     let (n, d, c) = univariate(&f, v, box_, env)?;
-    let undefined = d.mul(&c);
-    let (a, b) = (i.lo.value(), i.hi.value());
-    // Zeros: roots of N that are not roots of D·C, open interval, then closed ends.
-    let common = n.gcd(&undefined);
-    let count = |p: &Uni| p.roots_between(a, b).ok_or_else(|| no("the function is 0"));
-    let mut zeros = count(&n)? - if common.is_zero() { 0 } else { count(&common)? };
-    for e in [&i.lo, &i.hi] {
-        if let End::Closed(x) = e {
-            if n.eval(x).is_zero() && !undefined.eval(x).is_zero() {
-                zeros += 1;
-            }
-        }
-    }
     let mut values = Vec::with_capacity(roots.len());
     for r in roots {
         let x = scalar(env, r)?;
@@ -865,9 +856,7 @@ fn roots(
     let mut listed: Vec<&Rational> = values.iter().collect();
     listed.sort();
     listed.dedup();
-    let all_zeros = listed
-        .iter()
-        .all(|x| i.contains(x) && n.eval(x).is_zero() && !undefined.eval(x).is_zero());
+    let (zeros, all_zeros) = tally(&n, &d.mul(&c), &i, &listed)?;
     if stated_count.is_some() && !listed.is_empty() {
         return Err(Rejection::Mismatch("a count with roots listed".into()));
     }
@@ -884,6 +873,257 @@ fn roots(
     } else {
         (Conclusion::Fails, vec![said])
     })
+}
+
+/// The zeros on `i` of a function of one variable, N / D where `undefined` (D and the
+/// conditions) is nonzero: how many (Sturm counts: roots of N in the open interval less
+/// those shared with `undefined`, then the closed ends), and whether every listed value
+/// is one of them.
+fn tally(n: &Uni, undefined: &Uni, i: &Interval, listed: &[&Rational]) -> R<(usize, bool)> {
+    let (a, b) = (i.lo.value(), i.hi.value());
+    let common = n.gcd(undefined);
+    let count = |p: &Uni| p.roots_between(a, b).ok_or_else(|| no("the function is 0"));
+    let mut zeros = count(n)? - if common.is_zero() { 0 } else { count(&common)? };
+    for e in [&i.lo, &i.hi] {
+        if let End::Closed(x) = e {
+            if n.eval(x).is_zero() && !undefined.eval(x).is_zero() {
+                zeros += 1;
+            }
+        }
+    }
+    let all_zeros = listed
+        .iter()
+        .all(|x| i.contains(x) && n.eval(x).is_zero() && !undefined.eval(x).is_zero());
+    Ok((zeros, all_zeros))
+}
+
+/// `f` as N / D with polynomials free of negative powers (both times the monomial that
+/// clears them), and its conditions: f is N / D where D and every condition are
+/// nonzero, undefined elsewhere.
+fn cleared(f: &Frac) -> R<(Poly, Poly, Vec<Poly>)> {
+    let den = denominator(f, |_| true)?;
+    let mut low: BTreeMap<Var, super::poly::Exp> = BTreeMap::new();
+    for (m, _) in f.numerator().terms().chain(den.terms()) {
+        for &(w, e) in m.factors() {
+            let l = low.entry(w).or_insert(0);
+            *l = (*l).min(e);
+        }
+    }
+    let lift = super::poly::Monomial::checked_from_factors(
+        low.iter()
+            .filter(|(_, e)| **e < 0)
+            .map(|(w, e)| (*w, -e))
+            .collect(),
+    )
+    .ok_or(EvalError::Limit)?;
+    let lift = Poly::term(lift, Rational::int(1));
+    let times = |p: &Poly| p.checked_mul(&lift).map_err(|_| EvalError::Limit);
+    Ok((times(f.numerator())?, times(&den)?, f.conditions().to_vec()))
+}
+
+/// `p` with `v` replaced by `r`: Σ c_k r^k over the powers v^k of `p` (none negative).
+fn composed(p: &Poly, v: Var, r: &Frac) -> R<Frac> {
+    let mut by_power: BTreeMap<u32, Poly> = BTreeMap::new();
+    for (m, c) in p.terms() {
+        let k = u32::try_from(m.exponent(v)).map_err(|_| no("a negative power of the variable"))?;
+        by_power
+            .entry(k)
+            .or_default()
+            .add_term(m.without(v), c.clone());
+    }
+    let mut out = Frac::from(Poly::zero());
+    for (k, c) in by_power {
+        out = frac(out.add(&frac(Frac::from(c).mul(&frac(r.pow(k))?))?))?;
+    }
+    Ok(out)
+}
+
+/// The roots of a function of parameters, as rational functions of them: for every
+/// value of the parameters in the box, the zeros in the variable (over the real line)
+/// are exactly the roots stated. Checked as: the numerator N is Π (v − rᵢ)^mᵢ times a
+/// quotient q / d with d free of v (exact division), so that its zeros are the rᵢ and
+/// those of q; q (for every v), d, the rᵢ's divisors, and the function's divisor D and
+/// conditions at each rᵢ keep one strict sign on the box (coefficient signs), so that
+/// q has no zero, and every rᵢ is defined and a zero of the function.
+fn roots_of_parameters(
+    env: &mut Env<'_>,
+    claim: &Claim,
+    box_: &[(Var, Interval)],
+    multiplicities: &[u32],
+) -> R<(Conclusion, Vec<Checked>)> {
+    let Claim::Roots {
+        function,
+        variable,
+        roots,
+        count: None,
+    } = claim
+    else {
+        return Err(Rejection::Mismatch(
+            "not a roots claim that lists them".into(),
+        ));
+    };
+    let f = scalar(env, function)?.tidied();
+    let v = env.free_variable(variable)?;
+    if box_.iter().any(|(w, _)| *w == v) {
+        return Err(no(
+            "roots of parameters are decided on the whole real line only",
+        ));
+    }
+    if multiplicities.len() != roots.len() || multiplicities.contains(&0) {
+        return Err(Rejection::Mismatch("a multiplicity for each root".into()));
+    }
+    let mut rs = Vec::with_capacity(roots.len());
+    for r in roots {
+        let r = scalar(env, r)?;
+        let reads_v = std::iter::once(r.numerator())
+            .chain(r.denominator().iter().map(|(g, _)| g))
+            .chain(r.conditions())
+            .any(|p| p.variables().contains(&v));
+        if reads_v {
+            return Err(no("a root that depends on the variable"));
+        }
+        rs.push(r);
+    }
+    let (num, den, conds) = cleared(&f)?;
+    // N = Π (v − rᵢ)^mᵢ · q / d: the roots divide the numerator (no divisor of the
+    // quotient reads v), and q has one strict sign for every v (below), so that N's
+    // zeros are the rᵢ and nothing else.
+    let mut product = Frac::one();
+    for (r, m) in rs.iter().zip(multiplicities) {
+        let factor = frac(Frac::from(Poly::var(v)).sub(r))?;
+        product = frac(product.mul(&frac(factor.pow(*m))?))?;
+    }
+    let quotient = frac(Frac::from(num).div(&product))?.tidied();
+    if quotient
+        .denominator()
+        .iter()
+        .any(|(g, _)| g.variables().contains(&v))
+    {
+        return Err(no("the roots do not divide the numerator"));
+    }
+    // A negative power of v would make the quotient no polynomial in v; one of a
+    // parameter (a root b/a) is certified nonzero with the rest, since a sign by
+    // coefficients says nothing where a divisor is 0.
+    let negative = |p: &Poly, w: Var| p.terms().any(|(m, _)| m.exponent(w) < 0);
+    if negative(quotient.numerator(), v) {
+        return Err(no("the roots do not divide the numerator"));
+    }
+    let mut laurent: Vec<Var> = std::iter::once(quotient.numerator())
+        .chain(rs.iter().map(Frac::numerator))
+        .flat_map(|p| p.variables())
+        .collect();
+    laurent.sort_unstable();
+    laurent.dedup();
+    laurent.retain(|&w| {
+        negative(quotient.numerator(), w) || rs.iter().any(|r| negative(r.numerator(), w))
+    });
+    let mut nonzero = vec![Frac::from(quotient.numerator().clone())];
+    nonzero.extend(laurent.iter().map(|&w| Frac::from(Poly::var(w))));
+    for (g, _) in quotient.denominator() {
+        nonzero.push(Frac::from(g.clone()));
+    }
+    for r in &rs {
+        for (g, _) in r.denominator() {
+            nonzero.push(Frac::from(g.clone()));
+        }
+        nonzero.extend(r.conditions().iter().cloned().map(Frac::from));
+        nonzero.push(composed(&den, v, r)?);
+        for c in &conds {
+            nonzero.push(composed(c, v, r)?);
+        }
+    }
+    for g in &nonzero {
+        let strict = [Sign::Positive, Sign::Negative]
+            .into_iter()
+            .any(|s| by_coefficients(g, box_, s, &env.vars).is_some());
+        if !strict {
+            return Err(no(&format!(
+                "not certified nonzero on the box: {}",
+                g.numerator().display_truncated(&env.vars, 4)
+            )));
+        }
+    }
+    Ok((
+        Conclusion::Holds,
+        vec![Checked::RootsOfParameters {
+            variable: variable.clone(),
+            roots: rs.iter().map(|r| super::eval::show(r, &env.vars)).collect(),
+            multiplicities: multiplicities.to_vec(),
+            nonzero: nonzero.len(),
+        }],
+    ))
+}
+
+/// A roots claim refuted at a point of the parameters (every one but the variable):
+/// there the zeros of the function on the variable's interval (Sturm counts) are not
+/// exactly the roots stated, evaluated at the point.
+fn roots_at(
+    env: &mut Env<'_>,
+    claim: &Claim,
+    box_: &[(Var, Interval)],
+    point: &[(String, Rational)],
+) -> R<(Conclusion, Vec<Checked>)> {
+    let Claim::Roots {
+        function,
+        variable,
+        roots,
+        count,
+    } = claim
+    else {
+        return Err(Rejection::Mismatch("not a roots claim".into()));
+    };
+    let v = env.free_variable(variable)?;
+    let at = env.point(point)?;
+    if at.contains_key(&v) {
+        return Err(Rejection::Mismatch("the point fixes the variable".into()));
+    }
+    let f = scalar(env, function)?;
+    let values: BTreeMap<Var, Poly> = at
+        .iter()
+        .map(|(w, x)| (*w, Poly::constant(x.clone())))
+        .collect();
+    let (num, den, conds) = cleared(&f)?;
+    let one = |p: &Poly| -> R<Uni> {
+        let p = super::eval::substitute(p, &values)?;
+        Uni::of(&p, v).ok_or_else(|| no("the point leaves a parameter free"))
+    };
+    let mut undefined = one(&den)?;
+    for c in &conds {
+        undefined = undefined.mul(&one(c)?);
+    }
+    let n = one(&num)?;
+    let mut values = Vec::with_capacity(roots.len());
+    for r in roots {
+        let x = scalar(env, r)?;
+        values.push(
+            x.eval(&|w| at.get(&w).cloned())
+                .ok_or_else(|| no("a root is undefined at the point"))?,
+        );
+    }
+    let mut listed: Vec<&Rational> = values.iter().collect();
+    listed.sort();
+    listed.dedup();
+    let i = interval(box_, v);
+    // Undefined for every value of the variable there: no zero at all.
+    let (zeros, all_zeros) = if undefined.is_zero() {
+        (0, listed.is_empty())
+    } else {
+        tally(&n, &undefined, &i, &listed)?
+    };
+    if all_zeros && zeros == count.unwrap_or(listed.len()) {
+        return Err(no("the zeros are the roots stated at the point"));
+    }
+    Ok((
+        Conclusion::Fails,
+        vec![Checked::RootsAt {
+            point: point
+                .iter()
+                .map(|(name, x)| format!("{name} = {x}"))
+                .collect(),
+            roots: listed.iter().map(|x| x.to_string()).collect(),
+            zeros,
+        }],
+    ))
 }
 
 /// Four rational normals ((1 − u²), 2u)/(1 + u²) at a state: the points (x, y) lie on

@@ -372,6 +372,37 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
                     format!("the real roots for {interval} are exactly {} (Sturm isolation)", roots.join(", "))
                 }
             }
+            Checked::RootsOfParameters {
+                variable,
+                roots,
+                multiplicities,
+                nonzero,
+            } => {
+                let factors: Vec<String> = roots
+                    .iter()
+                    .zip(multiplicities)
+                    .map(|(r, m)| match m {
+                        1 => format!("({variable} − ({r}))"),
+                        m => format!("({variable} − ({r}))^{m}"),
+                    })
+                    .collect();
+                format!(
+                    "the numerator is {} times a quotient of one strict sign (exact division), \
+                     and {nonzero} polynomial{} (the quotient, the parameters it or a root \
+                     divides by, the roots' divisors, the function's divisors at the roots) \
+                     of one strict sign on the box (coefficient signs)",
+                    if factors.is_empty() { "1".to_owned() } else { factors.join(" ") },
+                    if *nonzero == 1 { "" } else { "s" }
+                )
+            }
+            Checked::RootsAt { point, roots, zeros } => {
+                let s = if *zeros == 1 { "" } else { "s" };
+                format!(
+                    "at {}: {zeros} zero{s} (Sturm counts), not exactly [{}]",
+                    point.join(", "),
+                    roots.join(", ")
+                )
+            }
             Checked::NotConcyclic { determinant } => {
                 format!("four points on no common circle or line (det = {determinant})")
             }

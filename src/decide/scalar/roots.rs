@@ -1,7 +1,10 @@
 //! `strategy = "roots"`: the real roots of a function of one parameter on its interval
-//! are exactly the stated rationals. The search isolates every real root of the
-//! numerator (Sturm, `algebra::sturm`) and the kernel checks the count between rational
-//! cuts, so a root left out is found as surely as a stated one that is not a root.
+//! are exactly the stated rationals, or as many as `count`. The search isolates every
+//! real root of the numerator (Sturm, `algebra::sturm`) and the kernel checks the count
+//! between rational cuts, so a root left out is found as surely as a stated one that is
+//! not a root. Roots that are functions of the other parameters (h = h_cr(G, k, …))
+//! are proved by the kernel's exact division of the numerator, or refuted at a point
+//! of the parameters.
 
 use super::context::{Context, Stop};
 use crate::algebra::certificate::Certificate;
@@ -25,25 +28,21 @@ pub(super) fn decide(
         .unwrap_or_else(|| cx.env.vars.intern(variable));
     let mut evidence = cx.evidence(&f.f);
     evidence.decided = format!("{} = {}", function.text, evidence.decided);
-    let mut stated = Vec::with_capacity(roots.len());
+    let mut exact_roots = Vec::with_capacity(roots.len());
     for r in roots {
-        match cx.exact(r)?.f.as_constant() {
-            Some(q) => stated.push(q),
-            None => {
-                return Err(Stop::Input(
-                    r.origin
-                        .diagnostic(r.node.span, "a stated root must be a rational number")
-                        .with_help("roots are decided for functions of one parameter; fix the others with assumptions"),
-                ))
-            }
-        }
+        exact_roots.push(cx.exact(r)?);
     }
-    let (num, den) = match of_one(cx, &f, v, &mut evidence) {
-        Some(nd) => nd,
-        None => {
-            return Ok(Outcome::undecided(Method::RationalFunction, 0)
-                .with_finding(Finding::RationalFunction(evidence)))
-        }
+    let stated: Option<Vec<Rational>> = exact_roots.iter().map(|r| r.f.as_constant()).collect();
+    let others = f.variables().iter().any(|w| *w != v);
+    let one = match &stated {
+        Some(_) if !others => Some(f.cleared()),
+        Some(_) => cx.cleared_in(f.cleared(), v),
+        None => None,
+    };
+    let (Some(stated), Some((num, den))) = (stated, one) else {
+        // Roots that are functions of the other parameters (h = h_cr(a, b)), or a
+        // function of several parameters not only through a factor of one sign.
+        return parametric(cx, (function, &f), v, &exact_roots, evidence);
     };
     let i = cx.interval(v);
     let names = &cx.env.vars;
@@ -134,6 +133,230 @@ pub(super) fn decide(
         None => Outcome::undecided(Method::RationalFunction, 0)
             .with_finding(Finding::RationalFunction(evidence)),
     })
+}
+
+/// `roots = [...]` where the roots are functions of the other parameters, or the
+/// function depends on them: for every value of them in the box, the zeros in `v` are
+/// exactly the roots there. The search finds each root's multiplicity at a parameter
+/// point, for the kernel to check the factorisation over the whole box; failing that,
+/// it looks for a point of the parameters where the zeros differ (simple points, then
+/// seeded draws), which the kernel checks by Sturm counts.
+fn parametric(
+    cx: &mut Context<'_>,
+    (function, f): (&Expression, &super::context::Exact),
+    v: crate::kernel::Var,
+    roots: &[super::context::Exact],
+    mut evidence: RationalEvidence,
+) -> Result<Outcome, Stop> {
+    use crate::kernel::{Poly, Var};
+    let name = cx.name(v);
+    let (num, den) = f.cleared();
+    let params: Vec<Var> = {
+        let mut all = f.variables();
+        for r in roots {
+            all.extend(r.variables());
+        }
+        all.sort();
+        all.dedup();
+        all.retain(|w| *w != v);
+        all
+    };
+    let bx = cx.box_on(&params);
+    let i = cx.interval(v);
+    // Simple points first (the box's inner point, small integers and halves), then draws.
+    let mut points: Vec<BTreeMap<Var, Rational>> = Vec::new();
+    let simple: Vec<Vec<Rational>> = bx
+        .iter()
+        .map(|(_, iv)| {
+            let mut c: Vec<Rational> = [
+                (1, 1),
+                (2, 1),
+                (-1, 1),
+                (1, 2),
+                (-1, 2),
+                (3, 1),
+                (-2, 1),
+                (1, 3),
+                (-3, 1),
+            ]
+            .iter()
+            .map(|&(n, d)| Rational::ratio(n, d).expect("nonzero"))
+            .filter(|x| iv.contains(x))
+            .collect();
+            c.insert(0, crate::algebra::sign::inner_point(iv));
+            c.dedup();
+            c
+        })
+        .collect();
+    // The box's inner point (0 where unbounded), then each parameter moved alone
+    // through its simple values, then every combination while there are at most 256.
+    let base: BTreeMap<Var, Rational> = bx
+        .iter()
+        .zip(&simple)
+        .map(|((w, _), c)| (*w, c[0].clone()))
+        .collect();
+    points.push(base.clone());
+    for ((w, _), c) in bx.iter().zip(&simple) {
+        for x in &c[1..] {
+            let mut point = base.clone();
+            point.insert(*w, x.clone());
+            points.push(point);
+        }
+    }
+    let few: Vec<&[Rational]> = simple.iter().map(|c| &c[..c.len().min(4)]).collect();
+    let combos = few
+        .iter()
+        .try_fold(1usize, |acc, c| acc.checked_mul(c.len()))
+        .filter(|&n| n <= 256)
+        .unwrap_or(0);
+    for k in 0..combos {
+        let mut rest = k;
+        points.push(
+            bx.iter()
+                .zip(&few)
+                .map(|((w, _), c)| {
+                    let x = c[rest % c.len()].clone();
+                    rest /= c.len();
+                    (*w, x)
+                })
+                .collect(),
+        );
+    }
+    let mut rng = crate::decide::random::Rng::salted(cx.seed, 0x2007_5EED);
+    for _ in 0..cx.samples.min(64) {
+        points.push(bx.iter().map(|(w, iv)| (*w, rng.draw(iv))).collect());
+    }
+    let at = |p: &Poly, point: &BTreeMap<Var, Rational>| -> Option<Poly> {
+        let values = point
+            .iter()
+            .map(|(w, x)| (*w, Poly::constant(x.clone())))
+            .collect();
+        crate::kernel::eval::substitute(p, &values).ok()
+    };
+    let mut multiplicities: Option<Vec<u32>> = None;
+    let mut refuted: Option<(
+        BTreeMap<Var, Rational>,
+        Vec<crate::algebra::sign::Real>,
+        Vec<Rational>,
+    )> = None;
+    for point in &points {
+        super::super::watch::check().map_err(|_| {
+            Stop::Outcome(Box::new(
+                Outcome::undecided(Method::RationalFunction, 0)
+                    .with_finding(Finding::RationalFunction(evidence.clone())),
+            ))
+        })?;
+        let (Some(n0), Some(d0)) = (at(&num, point), at(&den, point)) else {
+            continue;
+        };
+        let Some(stated) = roots
+            .iter()
+            .map(|r| r.eval(point))
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        if d0.is_zero() {
+            // Undefined for every value of the variable: no zero, so a stated root is
+            // none.
+            if !stated.is_empty() {
+                refuted = Some((point.clone(), Vec::new(), stated));
+                break;
+            }
+            continue;
+        }
+        if n0.is_zero() {
+            continue;
+        }
+        let Some(chart) = crate::algebra::sign::chart_of((&n0, &d0), v, &i) else {
+            continue;
+        };
+        let zeros = chart.zeros();
+        // A stated value is a zero when N vanishes there and D does not (exactly, so
+        // that a rational root the chart isolated rather than found still counts).
+        let value =
+            |p: &Poly, r: &Rational| p.eval(&|w| if w == v { r.clone() } else { Rational::int(0) });
+        let is_zero = |r: &Rational| {
+            i.contains(r)
+                && value(&n0, r).is_some_and(|x| x.is_zero())
+                && value(&d0, r).is_some_and(|x| !x.is_zero())
+        };
+        let mut distinct = stated.clone();
+        distinct.sort();
+        distinct.dedup();
+        if distinct.iter().all(is_zero) && distinct.len() == zeros.len() {
+            if multiplicities.is_none() && distinct.len() == stated.len() {
+                multiplicities = Some(stated.iter().map(|r| multiplicity(&n0, v, r)).collect());
+            }
+        } else {
+            refuted = Some((point.clone(), zeros, stated));
+            break;
+        }
+    }
+    evidence.points = roots
+        .iter()
+        .map(|r| format!("root {name} = {}", cx.evidence(&r.f).decided))
+        .collect();
+    if let Some((point, zeros, stated)) = refuted {
+        let mut full = cx.full_point(&point);
+        full.retain(|(n, _)| *n != name);
+        let o = cx.by_kernel(
+            Fact::RootsAt {
+                point: full,
+                roots: cx.roots(),
+            },
+            None,
+        );
+        if o.verdict() == crate::derivation::Verdict::Fails {
+            let shown = |z: &crate::algebra::sign::Real| super::context::shown_real(z);
+            let found = zeros.iter().map(shown).collect::<Vec<_>>().join(", ");
+            let at = cx.shown(&point);
+            let stated: Vec<String> = stated.iter().map(ToString::to_string).collect();
+            let o = o.with_counterexample(Counterexample {
+                chain: 1,
+                equality: 1,
+                lhs: format!("the real roots of {} in {name}", function.text),
+                rhs: format!("[{}]", stated.join(", ")),
+                point: at,
+                lhs_value: Some(format!("[{found}]")),
+                rhs_value: Some(format!("[{}]", stated.join(", "))),
+                reverified: Some(Reverified::Exact),
+                ..Counterexample::default()
+            });
+            return Ok(super::sign::with_evidence(o, evidence));
+        }
+    }
+    let Some(multiplicities) = multiplicities else {
+        evidence
+            .points
+            .push("no parameter point where the roots are distinct and are the zeros".to_owned());
+        return Ok(Outcome::undecided(Method::RationalFunction, 0)
+            .with_finding(Finding::RationalFunction(evidence)));
+    };
+    let o = cx.by_kernel(
+        Fact::RootsOfParameters {
+            multiplicities,
+            roots: cx.roots(),
+        },
+        None,
+    );
+    Ok(super::sign::with_evidence(o, evidence))
+}
+
+/// The multiplicity of the root `r` of `p` in `v` (the order of the first derivative
+/// that is nonzero there), at least 1.
+fn multiplicity(p: &crate::kernel::Poly, v: crate::kernel::Var, r: &Rational) -> u32 {
+    let mut d = p.derivative(v);
+    let mut m = 1;
+    while m < 1000 {
+        let value = d.eval(&|w| if w == v { r.clone() } else { Rational::int(0) });
+        if value.is_none_or(|x| !x.is_zero()) {
+            break;
+        }
+        d = d.derivative(v);
+        m += 1;
+    }
+    m
 }
 
 /// Numerator and denominator of a function of `v`, its other parameters (if any) only
