@@ -9,14 +9,18 @@
 use super::super::finding::{Finding, RationalEvidence};
 use super::super::outcome::{Method, Outcome, Strength};
 use crate::derivation::{exact_part_checks, Check, ScalarClaim, Strategy, Verdict};
-use crate::lang::{Decls, Diagnostic};
+use crate::lang::Diagnostic;
 
-/// Decides a sign claim with `exactly_when`, part by part.
-pub(super) fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+/// Decides a sign claim with `exactly_when`, part by part, each by `sign` (the scalar
+/// decision of a sign claim).
+pub(super) fn decide(
+    check: &Check,
+    sign: impl Fn(&Check) -> Result<Outcome, Diagnostic>,
+) -> Result<Outcome, Diagnostic> {
     let parts = exact_part_checks(check).unwrap_or_default();
     let mut decided = Vec::with_capacity(parts.len());
     for part in &parts {
-        decided.push((where_(part).0, super::decide(decls, part)?));
+        decided.push((where_(part).0, sign(part)?));
     }
     let first = |v: Verdict| decided.iter().position(|(_, o)| o.verdict() == v);
     if let Some(k) = first(Verdict::Fails).or_else(|| first(Verdict::Undecided)) {

@@ -37,7 +37,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
         unreachable!("dispatched on the strategy")
     };
     if let ScalarClaim::SignExactly(..) = &**claim {
-        return exactly::decide(decls, check);
+        return exactly::decide(check, |part| decide(decls, part));
     }
     // Square roots take their sign on the claim's box.
     let env = ExactEnv::on(decls, &check.defs, &check.assumptions, Some(domain))?;

@@ -234,11 +234,7 @@ fn parametric(
         crate::kernel::eval::substitute(p, &values).ok()
     };
     let mut multiplicities: Option<Vec<u32>> = None;
-    let mut refuted: Option<(
-        BTreeMap<Var, Rational>,
-        Vec<crate::algebra::sign::Real>,
-        Vec<Rational>,
-    )> = None;
+    let mut refuted: Option<Differs> = None;
     for point in &points {
         super::super::watch::check().map_err(|_| {
             Stop::Outcome(Box::new(
@@ -342,6 +338,14 @@ fn parametric(
     );
     Ok(super::sign::with_evidence(o, evidence))
 }
+
+/// A parameter point where the zeros differ from the roots stated: the point, the
+/// zeros found there, the roots' values there.
+type Differs = (
+    BTreeMap<crate::kernel::Var, Rational>,
+    Vec<crate::algebra::sign::Real>,
+    Vec<Rational>,
+);
 
 /// The multiplicity of the root `r` of `p` in `v` (the order of the first derivative
 /// that is nonzero there), at least 1.
