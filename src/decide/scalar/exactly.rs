@@ -18,6 +18,10 @@ pub(super) fn decide(
     sign: impl Fn(&Check) -> Result<Outcome, Diagnostic>,
 ) -> Result<Outcome, Diagnostic> {
     let parts = exact_part_checks(check).unwrap_or_default();
+    if parts.is_empty() {
+        // The parts cover a domain with a point in it: none means nothing was decided.
+        return Ok(Outcome::undecided(Method::RationalFunction, 0));
+    }
     let mut decided = Vec::with_capacity(parts.len());
     for part in &parts {
         decided.push((where_(part).0, sign(part)?));
