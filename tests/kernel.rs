@@ -667,3 +667,39 @@ fn roots_of_parameters_are_proved_only_when_they_divide_the_numerator_and_nothin
     ));
     assert!(check(roots(&free, &pole, vec![a]), at(&[("a", 1), ("b", 2)])).is_err());
 }
+
+#[test]
+fn a_one_point_interval_counts_its_point_once_and_has_no_open_piece() {
+    let mut ctx = context(&[("x", 0)]);
+    ctx.given = vec![(
+        "x".to_owned(),
+        Interval {
+            lo: End::Closed(q(1, 1)),
+            hi: End::Closed(q(1, 1)),
+        },
+    )];
+    let x = sym("x", "");
+    let f = sum(vec![x.clone(), num(-1)]);
+    let counted = |count: usize| Statement {
+        context: ctx.clone(),
+        claim: Claim::Roots {
+            function: f.clone(),
+            variable: "x".to_owned(),
+            roots: Vec::new(),
+            count: Some(count),
+        },
+    };
+    let none = Fact::Roots { roots: Vec::new() };
+    assert!(holds(counted(1), none.clone()));
+    assert!(fails(counted(2), none));
+    // 1/(x − 1) > 0 on the one point x = 1, where it is undefined: no piece to sample.
+    let pole = Term::Div(Box::new(num(1)), Box::new(f));
+    let on_interval = Fact::SignOnInterval {
+        variable: "x".to_owned(),
+        cuts: Vec::new(),
+        reduced: None,
+        function: None,
+        roots: Vec::new(),
+    };
+    assert!(holds(sign(&ctx, pole, Sign::Positive), on_interval));
+}

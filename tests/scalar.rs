@@ -74,13 +74,17 @@ fn scalar_claims_and_their_twins_are_decided_as_declared() {
 
 #[test]
 fn signs_on_exactly_a_set_and_root_counts_are_decided_as_declared() {
-    common::assert_as_declared("tests/soundness/sets-and-counts.toml", 28, |rows| {
+    common::assert_as_declared("tests/soundness/sets-and-counts.toml", 31, |rows| {
         for r in rows {
             let (o, id) = (&r.outcome, r.claim.id.as_str());
             // Every verdict here is a proof: Sturm counts, sign charts, certificates.
             assert_eq!(o.strength(), Strength::Proof, "{id}");
             match o.verdict() {
                 // A sign on exactly a set: the set and each box of the rest proved.
+                // (Two when the set reaches the domain's end.)
+                Verdict::Holds if id == "iff-a-pole-alone-outside" => {
+                    assert_eq!(o.proofs().len(), 2, "{id}")
+                }
                 Verdict::Holds if id.starts_with("iff-") => {
                     assert_eq!(o.proofs().len(), 3, "{id}")
                 }
@@ -111,6 +115,10 @@ fn signs_on_exactly_a_set_and_root_counts_are_decided_as_declared() {
             evidence("count-distinct-multiplicity-twin").contains("left 2, right 3 at x=-2 and 1")
         );
         assert!(evidence("count-open-ends-twin").contains("at x=no real root"));
+        // A one-point domain: its root once, and a pole there no crash.
+        assert!(evidence("count-one-point-twin").ends_with("left 1, right 2 at x=1"));
+        assert!(evidence("iff-a-pole-alone-outside")
+            .contains("≤ 0 for 0 ≤ x ≤ 0 (its one point evaluated exactly)"));
         // Roots of parameters: the factorisation proved, or the parameter point where
         // the zeros differ (no coupling: no root at all).
         assert!(evidence("roots-of-parameters-localisation").contains("exact division"));
@@ -134,7 +142,7 @@ fn a_part_of_a_sign_on_exactly_a_set_is_rechecked_with_the_others() {
         let r = cosserat_check::recheck::recheck(&r.to_string(), Some(&lookup)).unwrap();
         (r.accepted, r.refused)
     };
-    assert_eq!(bound(&report), (28, 0));
+    assert_eq!(bound(&report), (31, 0));
     let k = report["claims"]
         .as_array()
         .unwrap()
@@ -161,7 +169,7 @@ fn a_part_of_a_sign_on_exactly_a_set_is_rechecked_with_the_others() {
             .collect();
         c["proofs"] = serde_json::Value::Array(proofs);
         c["certificate"] = serde_json::json!({ "facts": facts });
-        assert_eq!(bound(&r), (27, 1));
+        assert_eq!(bound(&r), (30, 1));
     }
 }
 

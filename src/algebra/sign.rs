@@ -63,7 +63,8 @@ pub struct EndValue {
 }
 
 /// The sign pattern of `num / den` on an interval: `pieces[k]` lies between `cuts[k-1]`
-/// and `cuts[k]` (so there is one more piece than cuts), with the closed ends apart.
+/// and `cuts[k]` (so there is one more piece than cuts, and none on a one-point
+/// interval), with the closed ends apart.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SignChart {
     pub cuts: Vec<Cut>,
@@ -100,7 +101,7 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
         (!d.is_zero()).then(|| num.eval(x).checked_div(&d).expect("nonzero"))
     };
     let product = num.mul(den);
-    let ends: Vec<EndValue> = [&interval.lo, &interval.hi]
+    let mut ends: Vec<EndValue> = [&interval.lo, &interval.hi]
         .into_iter()
         .filter_map(|e| match e {
             End::Closed(x) => Some(EndValue {
@@ -110,6 +111,8 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
             _ => None,
         })
         .collect();
+    // A one-point interval has one end.
+    ends.dedup_by(|a, b| a.at == b.at);
     if product.is_zero() {
         // f = 0 everywhere: one piece, sampled anywhere inside.
         let sample = inner_point(interval);
@@ -131,6 +134,14 @@ pub fn chart(num: &UniPoly, den: &UniPoly, interval: &Interval) -> Option<SignCh
         .cloned()
         .unwrap_or_else(|| -bound.clone());
     let b = interval.hi.value().cloned().unwrap_or(bound);
+    if a == b {
+        // One point: no open piece; the point is a closed end (`ends`).
+        return Some(SignChart {
+            cuts: Vec::new(),
+            pieces: Vec::new(),
+            ends,
+        });
+    }
     let inner = product.without_root_at(&a).without_root_at(&b);
     // A rational root is usually the simplest rational of its isolating interval:
     // kept exactly when it is.

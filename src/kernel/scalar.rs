@@ -318,8 +318,14 @@ fn on_interval(
     let mut ends: Vec<Option<&Rational>> = vec![i.lo.value()];
     ends.extend(cuts.iter().map(Some));
     ends.push(i.hi.value());
+    let mut pieces = 0;
     for w in ends.windows(2) {
         let (a, b) = (w[0], w[1]);
+        if a.is_some() && a == b {
+            // A one-point interval: no open piece, its point is a closed end (above).
+            continue;
+        }
+        pieces += 1;
         match all.roots_between(a, b) {
             Some(0) => {
                 let s = match (a, b) {
@@ -360,7 +366,7 @@ fn on_interval(
     let poles = undefined
         .roots_between(i.lo.value(), i.hi.value())
         .unwrap_or(0);
-    Ok((ends.len() - 1, poles))
+    Ok((pieces, poles))
 }
 
 /// The reduced denominator of `f` (of `v` alone): its roots are the poles.
@@ -884,11 +890,18 @@ fn tally(n: &Uni, undefined: &Uni, i: &Interval, listed: &[&Rational]) -> R<(usi
     let common = n.gcd(undefined);
     let count = |p: &Uni| p.roots_between(a, b).ok_or_else(|| no("the function is 0"));
     let mut zeros = count(n)? - if common.is_zero() { 0 } else { count(&common)? };
-    for e in [&i.lo, &i.hi] {
-        if let End::Closed(x) = e {
-            if n.eval(x).is_zero() && !undefined.eval(x).is_zero() {
-                zeros += 1;
-            }
+    // The closed ends, once each (a one-point interval has one).
+    let mut ends: Vec<&Rational> = [&i.lo, &i.hi]
+        .into_iter()
+        .filter_map(|e| match e {
+            End::Closed(x) => Some(x),
+            _ => None,
+        })
+        .collect();
+    ends.dedup();
+    for x in ends {
+        if n.eval(x).is_zero() && !undefined.eval(x).is_zero() {
+            zeros += 1;
         }
     }
     let all_zeros = listed

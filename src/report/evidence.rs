@@ -334,9 +334,13 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
                     1 => " except at 1 pole".to_owned(),
                     n => format!(" except at {n} poles"),
                 };
-                format!(
-                    "{relation} for {interval}{undefined} (Sturm: real roots isolated, the sign exact on each of {pieces} piece{s})"
-                )
+                if *pieces == 0 {
+                    format!("{relation} for {interval}{undefined} (its one point evaluated exactly)")
+                } else {
+                    format!(
+                        "{relation} for {interval}{undefined} (Sturm: real roots isolated, the sign exact on each of {pieces} piece{s})"
+                    )
+                }
             }
             Checked::ZeroBetween { variable, lo, hi } => {
                 format!("a zero or pole in {lo} < {variable} < {hi} (Sturm count)")
