@@ -306,7 +306,9 @@ fn parametric(
         if o.verdict() == crate::derivation::Verdict::Fails {
             let shown = |z: &crate::algebra::sign::Real| super::context::shown_real(z);
             let found = zeros.iter().map(shown).collect::<Vec<_>>().join(", ");
-            let at = cx.shown(&point);
+            // The parameters only: the variable's own bound is no coordinate of it.
+            let mut at = cx.shown(&point);
+            at.remove(&name);
             let stated: Vec<String> = stated.iter().map(ToString::to_string).collect();
             let o = o.with_counterexample(Counterexample {
                 chain: 1,
