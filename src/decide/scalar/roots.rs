@@ -64,16 +64,7 @@ pub(super) fn decide(
         }
     };
     let name = cx.name(v);
-    evidence.points = zeros
-        .iter()
-        .map(|z| format!("root at {}", super::context::equated(z, &name)))
-        .collect();
-    if zeros.is_empty() {
-        evidence.points.push(format!(
-            "no real root (Sturm isolation on {})",
-            i.describe(&name)
-        ));
-    }
+    evidence.points = found(&zeros, &i, &name);
     // A stated value that is no root, with its exact value.
     for r in &stated {
         if zeros.contains(&Real::Exact(r.clone())) {
@@ -427,16 +418,7 @@ pub(super) fn count(
                 .with_finding(Finding::RationalFunction(evidence)));
         }
     };
-    evidence.points = zeros
-        .iter()
-        .map(|z| format!("root at {}", super::context::equated(z, &name)))
-        .collect();
-    if zeros.is_empty() {
-        evidence.points.push(format!(
-            "no real root (Sturm isolation on {})",
-            i.describe(&name)
-        ));
-    }
+    evidence.points = found(&zeros, &i, &name);
     let o = cx.by_kernel(Fact::Roots { roots: cx.roots() }, None);
     let counted = o.proofs().first().and_then(|p| {
         p.summary().iter().find_map(|c| match c {
@@ -471,6 +453,20 @@ pub(super) fn count(
         _ => o,
     };
     Ok(super::sign::with_evidence(o, evidence))
+}
+
+/// The zeros found, for the evidence: each exact or isolated, or that there is none.
+fn found(zeros: &[Real], i: &crate::algebra::sign::Interval, name: &str) -> Vec<String> {
+    if zeros.is_empty() {
+        return vec![format!(
+            "no real root (Sturm isolation on {})",
+            i.describe(name)
+        )];
+    }
+    zeros
+        .iter()
+        .map(|z| format!("root at {}", super::context::equated(z, name)))
+        .collect()
 }
 
 /// `fails`, as the kernel concludes it from its own count of the zeros; the
