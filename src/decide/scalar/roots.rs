@@ -22,12 +22,7 @@ pub(super) fn decide(
     variable: &str,
     roots: &[Expression],
 ) -> Result<Outcome, Stop> {
-    let f = cx.exact(function)?;
-    let v = cx
-        .var(variable)
-        .unwrap_or_else(|| cx.env.vars.intern(variable));
-    let mut evidence = cx.evidence(&f.f);
-    evidence.decided = format!("{} = {}", function.text, evidence.decided);
+    let (f, v, mut evidence) = function_of(cx, function, variable)?;
     let mut exact_roots = Vec::with_capacity(roots.len());
     for r in roots {
         exact_roots.push(cx.exact(r)?);
@@ -393,12 +388,7 @@ pub(super) fn count(
     variable: &str,
     stated: usize,
 ) -> Result<Outcome, Stop> {
-    let f = cx.exact(function)?;
-    let v = cx
-        .var(variable)
-        .unwrap_or_else(|| cx.env.vars.intern(variable));
-    let mut evidence = cx.evidence(&f.f);
-    evidence.decided = format!("{} = {}", function.text, evidence.decided);
+    let (f, v, mut evidence) = function_of(cx, function, variable)?;
     let Some((num, den)) = of_one(cx, &f, v, &mut evidence) else {
         return Ok(Outcome::undecided(Method::RationalFunction, 0)
             .with_finding(Finding::RationalFunction(evidence)));
@@ -453,6 +443,22 @@ pub(super) fn count(
         _ => o,
     };
     Ok(super::sign::with_evidence(o, evidence))
+}
+
+/// The claim's function exactly, its variable, and the evidence saying what was
+/// decided.
+fn function_of(
+    cx: &mut Context<'_>,
+    function: &Expression,
+    variable: &str,
+) -> Result<(super::context::Exact, crate::kernel::Var, RationalEvidence), Stop> {
+    let f = cx.exact(function)?;
+    let v = cx
+        .var(variable)
+        .unwrap_or_else(|| cx.env.vars.intern(variable));
+    let mut evidence = cx.evidence(&f.f);
+    evidence.decided = format!("{} = {}", function.text, evidence.decided);
+    Ok((f, v, evidence))
 }
 
 /// The zeros found, for the evidence: each exact or isolated, or that there is none.
