@@ -29,7 +29,7 @@ pub(super) fn decide(
     let first = |v: Verdict| decided.iter().position(|(_, o)| o.verdict() == v);
     if let Some(k) = first(Verdict::Fails).or_else(|| first(Verdict::Undecided)) {
         let (at, mut o) = decided.swap_remove(k);
-        let what = if k == 0 && inside_first(check) {
+        let what = if is_inside(check, &parts[k]) {
             "the part inside the set it is claimed on"
         } else {
             "a part outside the set it is claimed on, where its negation is claimed"
@@ -108,16 +108,15 @@ fn where_(part: &Check) -> (String, (&'static str, String)) {
     }
 }
 
-/// Whether the first part is the set itself (it is left out when the set and the
-/// domain do not meet).
-fn inside_first(check: &Check) -> bool {
-    let Strategy::Scalar { claim, domain, .. } = &check.strategy else {
-        return false;
+/// Whether `part` is the set itself: the one part with the claim's own sign (the
+/// others have its negation).
+fn is_inside(check: &Check, part: &Check) -> bool {
+    let sign = |c: &Check| match &c.strategy {
+        Strategy::Scalar { claim, .. } => match &**claim {
+            ScalarClaim::Sign(s) | ScalarClaim::SignExactly(s, _) => Some(*s),
+            _ => None,
+        },
+        _ => None,
     };
-    let ScalarClaim::SignExactly(want, set) = &**claim else {
-        return false;
-    };
-    crate::derivation::exact_parts(*want, set, domain)
-        .first()
-        .is_some_and(|(sign, _)| sign == want)
+    sign(check).is_some() && sign(check) == sign(part)
 }

@@ -154,7 +154,7 @@ fn parametric(
     let simple: Vec<Vec<Rational>> = bx
         .iter()
         .map(|(_, iv)| {
-            let mut c: Vec<Rational> = [
+            let fractions = [
                 (1, 1),
                 (2, 1),
                 (-1, 1),
@@ -164,14 +164,8 @@ fn parametric(
                 (-2, 1),
                 (1, 3),
                 (-3, 1),
-            ]
-            .iter()
-            .map(|&(n, d)| Rational::ratio(n, d).expect("nonzero"))
-            .filter(|x| iv.contains(x))
-            .collect();
-            c.insert(0, crate::algebra::sign::inner_point(iv));
-            c.dedup();
-            c
+            ];
+            super::sample::simple_values(iv, &fractions)
         })
         .collect();
     // The box's inner point (0 where unbounded), then each parameter moved alone
@@ -189,25 +183,11 @@ fn parametric(
             points.push(point);
         }
     }
-    let few: Vec<&[Rational]> = simple.iter().map(|c| &c[..c.len().min(4)]).collect();
-    let combos = few
+    let few: Vec<Vec<Rational>> = simple
         .iter()
-        .try_fold(1usize, |acc, c| acc.checked_mul(c.len()))
-        .filter(|&n| n <= 256)
-        .unwrap_or(0);
-    for k in 0..combos {
-        let mut rest = k;
-        points.push(
-            bx.iter()
-                .zip(&few)
-                .map(|((w, _), c)| {
-                    let x = c[rest % c.len()].clone();
-                    rest /= c.len();
-                    (*w, x)
-                })
-                .collect(),
-        );
-    }
+        .map(|c| c[..c.len().min(4)].to_vec())
+        .collect();
+    points.extend(super::sample::combinations(&bx, &few, 256));
     let mut rng = crate::decide::random::Rng::salted(cx.seed, 0x2007_5EED);
     for _ in 0..cx.samples.min(64) {
         points.push(bx.iter().map(|(w, iv)| (*w, rng.draw(iv))).collect());

@@ -33,6 +33,46 @@ fn margin(value: &Rational, want: Sign) -> Rational {
     }
 }
 
+/// The interval's inner point, then those of the fractions `n/d` it holds, in order:
+/// the simple values a counterexample reads best at.
+pub(super) fn simple_values(i: &Interval, fractions: &[(i64, i64)]) -> Vec<Rational> {
+    let mut c: Vec<Rational> = fractions
+        .iter()
+        .map(|&(n, d)| Rational::ratio(n, d).expect("nonzero"))
+        .filter(|x| i.contains(x))
+        .collect();
+    c.insert(0, crate::algebra::sign::inner_point(i));
+    c.dedup();
+    c
+}
+
+/// Every point whose coordinates take one of `values` each (the box's variables in
+/// order, the first varying fastest), or none when there are more than `limit`.
+pub(super) fn combinations(
+    bx: &[(Var, Interval)],
+    values: &[Vec<Rational>],
+    limit: usize,
+) -> Vec<BTreeMap<Var, Rational>> {
+    let count = values
+        .iter()
+        .try_fold(1usize, |acc, c| acc.checked_mul(c.len()))
+        .filter(|&n| n <= limit)
+        .unwrap_or(0);
+    (0..count)
+        .map(|k| {
+            let mut rest = k;
+            bx.iter()
+                .zip(values)
+                .map(|((v, _), c)| {
+                    let x = c[rest % c.len()].clone();
+                    rest /= c.len();
+                    (*v, x)
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// Samples `g` on the box of `vars` for the sign `want`; `Err` when the claim's time
 /// limit passes between two exact evaluations (`check::decide` then makes the
 /// claim undecided).
@@ -50,38 +90,13 @@ pub(super) fn search(
     // combination up to 64): a counterexample there reads best.
     let simple: Vec<Vec<Rational>> = bx
         .iter()
-        .map(|(_, i)| {
-            let mut c: Vec<Rational> = [(1, 1), (-1, 1), (1, 2), (-1, 2), (2, 1), (-2, 1)]
-                .iter()
-                .map(|&(n, d)| Rational::ratio(n, d).expect("nonzero"))
-                .filter(|x| i.contains(x))
-                .collect();
-            c.insert(0, crate::algebra::sign::inner_point(i));
-            c.dedup();
-            c
-        })
+        .map(|(_, i)| simple_values(i, &[(1, 1), (-1, 1), (1, 2), (-1, 2), (2, 1), (-2, 1)]))
         .collect();
-    let combos = simple
-        .iter()
-        .try_fold(1usize, |acc, c| acc.checked_mul(c.len()))
-        .unwrap_or(usize::MAX);
-    if combos <= 64 {
-        for k in 0..combos {
-            let mut rest = k;
-            let point: BTreeMap<Var, Rational> = bx
-                .iter()
-                .zip(&simple)
-                .map(|((v, _), c)| {
-                    let x = c[rest % c.len()].clone();
-                    rest /= c.len();
-                    (*v, x)
-                })
-                .collect();
-            watch::check()?;
-            if let Some(value) = g.eval(&point) {
-                if !want.admits(sign_of(&value)) {
-                    return Ok(Sampled::Violation { point });
-                }
+    for point in combinations(&bx, &simple, 64) {
+        watch::check()?;
+        if let Some(value) = g.eval(&point) {
+            if !want.admits(sign_of(&value)) {
+                return Ok(Sampled::Violation { point });
             }
         }
     }
