@@ -292,15 +292,11 @@ fn forged_proofs_are_refused_and_genuine_ones_beside_them_accepted() {
 #[test]
 fn a_definition_chain_twenty_thousand_deep_is_refused_not_a_crash() {
     let leaf = |of: Value| serde_json::json!({"leaf": {"of": of, "slots": []}});
-    let mut definitions = vec![
-        serde_json::json!({"name": "d0", "formal": [], "shape": null,
-        "body": leaf(serde_json::json!({"symbol": "x"}))}),
-    ];
+    let mut definitions = vec![serde_json::json!({"name": "d0", "formal": [],
+        "body": leaf(serde_json::json!({"symbol": "x"}))})];
     for k in 1..20_000 {
-        definitions.push(
-            serde_json::json!({"name": format!("d{k}"), "formal": [], "shape": null,
-            "body": {"neg": leaf(serde_json::json!({"def": format!("d{}", k - 1)}))}}),
-        );
+        definitions.push(serde_json::json!({"name": format!("d{k}"), "formal": [],
+            "body": {"neg": leaf(serde_json::json!({"def": format!("d{}", k - 1)}))}}));
     }
     let report = serde_json::json!({"claims": [{
         "id": "chain", "verdict": "holds", "strength": "proof",

@@ -8,6 +8,7 @@ pub mod draft;
 pub mod edit;
 mod fields;
 pub mod load;
+mod lowering;
 pub mod model;
 pub mod notation;
 pub mod only;

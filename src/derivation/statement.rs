@@ -2,134 +2,29 @@
 //! assumptions, the box of parameter values) and its claim, for the kernel to check a
 //! fact against ([`crate::kernel::check`]).
 //!
-//! The reading is one-to-one: each checked node becomes the term of the same shape,
-//! each assumption the equation or substitution it is. Which assumptions are solved
+//! The reading is one-to-one: each checked node becomes the term of the same shape
+//! (matrices written out in their entries, [`super::lowering`]), each assumption the
+//! equation or substitution it is. Which assumptions are solved
 //! as one linear system and in which order the substitutions apply is taken from the
 //! untrusted solver ([`super::parametrisation::Parametrisation`]); the kernel verifies that the
 //! equations are linear and that no substitution reads a later one.
 
+use super::lowering::Lowering;
 use super::parametrisation::Parametrisation;
 use crate::derivation::{AssumptionKind, Check, ParamBox, Side};
-use crate::kernel::statement::{Claim, Context, Definition, Equation, Statement, Substitution};
-use crate::kernel::term::{Leaf, MatOp, MatRead, Order, Term};
-use crate::lang::check::Target;
-use crate::lang::matrix::{MatrixOp, MatrixRead};
-use crate::lang::parser::{ExprKind, Func, Wrt};
-use crate::lang::{parse_expr, Decls, Diagnostic, Expr, Node, NodeKind};
-
-/// The term a checked node reads as.
-pub fn term(node: &Node) -> Term {
-    let b = |n: &Node| Box::new(term(n));
-    let opaque = |what: &str| Term::Opaque {
-        what: what.to_owned(),
-        free: node.free_letters(),
-    };
-    match &node.kind {
-        NodeKind::Const(q) => Term::Const {
-            value: q.clone(),
-            free: node.free_letters(),
-        },
-        NodeKind::Leaf { target, slots } => {
-            let of = match target {
-                Target::Symbol(s) => Leaf::Symbol(s.clone()),
-                Target::Def(d) => Leaf::Def(d.clone()),
-                Target::Delta => Leaf::Delta,
-                Target::Eps => Leaf::Eps,
-                Target::Normal => Leaf::Normal,
-                Target::Pi => return opaque("π is not rational"),
-            };
-            Term::Leaf {
-                of,
-                slots: slots.clone(),
-            }
-        }
-        NodeKind::Sum(ts) => Term::Sum(ts.iter().map(term).collect()),
-        NodeKind::Product(fs) => Term::Product(fs.iter().map(term).collect()),
-        NodeKind::Div(a, d) => Term::Div(b(a), b(d)),
-        NodeKind::Neg(a) => Term::Neg(b(a)),
-        NodeKind::Pow(a, k) => Term::Pow(b(a), *k),
-        NodeKind::Apply(Func::Sqrt, a) => Term::Sqrt(b(a)),
-        NodeKind::Apply(f, _) => opaque(&format!("{}(…) has no exact polynomial value", f.name())),
-        NodeKind::Apply2(f, _, _) => {
-            opaque(&format!("{}(…, …) has no exact polynomial value", f.name()))
-        }
-        NodeKind::Avg(a) => Term::Avg(b(a)),
-        NodeKind::MaxN(_) => opaque("maxn(…) is a maximum over orientations"),
-        NodeKind::Deriv(a, slot) => Term::Deriv(b(a), *slot),
-        NodeKind::Wrt {
-            op,
-            body,
-            symbol,
-            slots,
-        } => match op {
-            Wrt::Grad => Term::Grad {
-                body: b(body),
-                symbol: symbol.clone(),
-                slots: slots.clone(),
-            },
-            Wrt::Variation => Term::Variation {
-                body: b(body),
-                field: symbol.clone(),
-                slots: slots.clone(),
-            },
-        },
-        NodeKind::Matrix { rows, cols, op } => {
-            let bb = |n: &Node| Box::new(term(n));
-            let order = |o: &crate::lang::matrix::Order| Order {
-                positions: o.positions.clone(),
-                slots: o.slots.clone(),
-            };
-            let op = match op {
-                MatrixOp::Literal(es) => MatOp::Literal(es.iter().map(term).collect()),
-                MatrixOp::Def(d) => MatOp::Def(d.clone()),
-                MatrixOp::Identity => MatOp::Identity,
-                MatrixOp::Sum(ms) => MatOp::Sum(ms.iter().map(term).collect()),
-                MatrixOp::Scale(s, m) => MatOp::Scale(bb(s), bb(m)),
-                MatrixOp::Product(x, y) => MatOp::Product(bb(x), bb(y)),
-                MatrixOp::Transpose(x) => MatOp::Transpose(bb(x)),
-                MatrixOp::Inverse(x) => MatOp::Inverse(bb(x)),
-                MatrixOp::Adjugate(x) => MatOp::Adjugate(bb(x)),
-                MatrixOp::Solve(x, y) => MatOp::Solve(bb(x), bb(y)),
-                MatrixOp::View { tensor, rows, cols } => MatOp::View {
-                    tensor: bb(tensor),
-                    rows: order(rows),
-                    cols: cols.as_deref().map(order),
-                },
-            };
-            Term::Mat {
-                rows: *rows,
-                cols: *cols,
-                op,
-            }
-        }
-        NodeKind::Read(read, m) => {
-            let order = |o: &crate::lang::matrix::Order| Order {
-                positions: o.positions.clone(),
-                slots: o.slots.clone(),
-            };
-            let read = match read {
-                MatrixRead::Det => MatRead::Det,
-                MatrixRead::Trace => MatRead::Trace,
-                MatrixRead::Entry(i, j) => MatRead::Entry(*i, *j),
-                MatrixRead::Tensor { rows, cols } => MatRead::Tensor {
-                    rows: order(rows),
-                    cols: cols.as_deref().map(order),
-                },
-            };
-            Term::Read(read, b(m))
-        }
-    }
-}
-
-/// A side as a term (a side of a matrix chain already reads its entry); `None` for
-/// an ill-formed side.
-pub fn side(s: &Side) -> Option<Term> {
-    s.node.as_ref().ok().map(term)
-}
+use crate::kernel::statement::{Claim, Context, Equation, LimitValue, Statement, Substitution};
+use crate::kernel::term::{Leaf, Term};
+use crate::lang::parser::{ExprKind, Func};
+use crate::lang::{parse_expr, Decls, Diagnostic, Expr, Node};
 
 /// The sides of a chain as terms; the literal 0 takes the free indices of the other
 /// sides (it stands for the zero tensor of their rank).
-fn chain_terms(chain: &[Side], decls: &Decls, defs: &[super::Definition]) -> Vec<Term> {
+fn chain_terms(
+    chain: &[Side],
+    decls: &Decls,
+    defs: &[super::Definition],
+    l: &mut Lowering,
+) -> Vec<Term> {
     let free = chain
         .iter()
         .filter_map(|s| s.node.as_ref().ok())
@@ -143,7 +38,7 @@ fn chain_terms(chain: &[Side], decls: &Decls, defs: &[super::Definition]) -> Vec
                 value: crate::kernel::Rational::int(0),
                 free: free.clone(),
             },
-            Ok(n) => term(n),
+            Ok(n) => l.term(n),
             Err(_) => printed(&s.text, decls, defs).unwrap_or_else(|| Term::Opaque {
                 what: "an ill-formed side outside the reading of index structure".to_owned(),
                 free: Vec::new(),
@@ -235,14 +130,19 @@ fn printed(text: &str, decls: &Decls, defs: &[super::Definition]) -> Option<Term
 }
 
 /// The context of a check: declarations, its definitions in scope order, its
-/// assumptions as equations and substitutions, and the box `domain`.
-pub fn context(
+/// assumptions as equations and substitutions, and the box `domain`. The definitions
+/// the matrices need are added by [`finish`], once the claim's terms are read too.
+fn context(
     decls: &Decls,
     check: &Check,
     domain: Option<&ParamBox>,
+    l: &mut Lowering,
 ) -> Result<Context, Diagnostic> {
     let parametrisation = Parametrisation::new(decls, &check.defs, &check.assumptions)?;
     let substituted = parametrisation.substitutions();
+    for d in &check.defs {
+        l.definition(&d.sig.name, &d.sig.formal, &d.body);
+    }
     let mut equations = Vec::new();
     for (k, a) in check.assumptions.iter().enumerate() {
         if substituted.contains(&k) {
@@ -259,7 +159,7 @@ pub fn context(
             } => Equation::Component {
                 symbol: symbol.clone(),
                 index: index.clone(),
-                value: term(body),
+                value: l.term(body),
             },
             AssumptionKind::Equals {
                 symbol,
@@ -268,29 +168,29 @@ pub fn context(
             } => Equation::Equals {
                 symbol: symbol.clone(),
                 formal: formal.clone(),
-                value: term(body),
+                value: l.term(body),
             },
             AssumptionKind::Constraint { left, right } => Equation::Constraint {
-                left: term(left),
-                right: term(right),
+                left: l.term(left),
+                right: l.term(right),
             },
         });
     }
-    let substitutions = substituted
-        .iter()
-        .filter_map(|&k| match &check.assumptions[k].kind {
-            AssumptionKind::Equals {
-                symbol,
-                formal,
-                body,
-            } => Some(Substitution {
+    let mut substitutions = Vec::new();
+    for &k in substituted {
+        if let AssumptionKind::Equals {
+            symbol,
+            formal,
+            body,
+        } = &check.assumptions[k].kind
+        {
+            substitutions.push(Substitution {
                 symbol: symbol.clone(),
                 formal: formal.clone(),
-                value: term(body),
-            }),
-            _ => None,
-        })
-        .collect();
+                value: l.term(body),
+            });
+        }
+    }
     Ok(Context {
         dim: decls.dim,
         normal: decls.normal.clone(),
@@ -298,55 +198,74 @@ pub fn context(
         symbols: decls.symbols.clone(),
         fields: decls.fields.clone(),
         position: decls.position.clone(),
-        definitions: check
-            .defs
-            .iter()
-            .map(|d| Definition {
-                name: d.sig.name.clone(),
-                formal: d.sig.formal.clone(),
-                shape: d.sig.shape,
-                body: term(&d.body),
-            })
-            .collect(),
+        definitions: Vec::new(),
         equations,
         substitutions,
         given: domain.map(|d| d.bounds.clone()).unwrap_or_default(),
     })
 }
 
+/// The statement of `claim` in `context`, with the definitions the reading made,
+/// keeping only those that the claim or the assumptions read (through other
+/// definitions): the statement is what the claim says, not the whole file.
+fn finish(mut context: Context, claim: Claim, l: Lowering) -> Statement {
+    context.definitions = l.defs;
+    let mut read: Vec<&Term> = Vec::new();
+    match &claim {
+        Claim::Equal { chains } | Claim::Proportional { chains } => {
+            read.extend(chains.iter().flatten())
+        }
+        Claim::Sign { left, right, .. } => read.extend([left, right]),
+        Claim::Monotone { function, .. } => read.push(function),
+        Claim::Roots {
+            function, roots, ..
+        } => {
+            read.push(function);
+            read.extend(roots);
+        }
+        Claim::Limit {
+            function, value, ..
+        } => {
+            read.push(function);
+            if let LimitValue::Finite(v) = value {
+                read.push(v);
+            }
+        }
+        Claim::NotCircle { x, y } => read.extend([x, y]),
+    }
+    let read: Vec<Term> = read.into_iter().cloned().collect();
+    keep_read(&mut context, read.iter());
+    Statement { context, claim }
+}
+
 /// The statement that the sides of every chain of `check` are equal (or, for a
 /// proportionality, proportional). Ill-formed sides read as opaque terms.
 pub fn equalities(decls: &Decls, check: &Check) -> Result<Statement, Diagnostic> {
+    let mut l = Lowering::default();
+    let context = context(decls, check, check.strategy.exact_domain(), &mut l)?;
     let chains: Vec<Vec<Term>> = check
         .chains
         .iter()
-        .map(|c| chain_terms(c, decls, &check.defs))
+        .map(|c| chain_terms(c, decls, &check.defs, &mut l))
         .collect();
     let proportional = matches!(check.strategy, super::Strategy::Proportional { .. });
-    let mut context = context(decls, check, check.strategy.exact_domain())?;
-    keep_read(&mut context, chains.iter().flatten());
-    Ok(Statement {
-        context,
-        claim: if proportional {
-            Claim::Proportional { chains }
-        } else {
-            Claim::Equal { chains }
-        },
-    })
+    let claim = if proportional {
+        Claim::Proportional { chains }
+    } else {
+        Claim::Equal { chains }
+    };
+    Ok(finish(context, claim, l))
 }
 
 /// Keeps only the definitions that `terms` or the assumptions read (through other
-/// definitions): the statement is what the claim says, not the whole file.
+/// definitions).
 fn keep_read<'t>(context: &mut Context, terms: impl Iterator<Item = &'t Term>) {
     fn names(t: &Term, out: &mut Vec<String>) {
-        match t {
-            Term::Leaf {
-                of: Leaf::Def(d), ..
-            }
-            | Term::Mat {
-                op: MatOp::Def(d), ..
-            } => out.push(d.clone()),
-            _ => {}
+        if let Term::Leaf {
+            of: Leaf::Def(d), ..
+        } = t
+        {
+            out.push(d.clone());
         }
         for c in crate::kernel::eval::children(t) {
             names(c, out);
@@ -386,16 +305,17 @@ fn keep_read<'t>(context: &mut Context, terms: impl Iterator<Item = &'t Term>) {
 /// `domain`.
 pub fn scalar(decls: &Decls, check: &Check, domain: &ParamBox) -> Result<Statement, Diagnostic> {
     use crate::derivation::{LimitValue as Value, ScalarClaim, Strategy};
-    use crate::kernel::statement::LimitValue;
     let Strategy::Scalar { claim, .. } = &check.strategy else {
         unreachable!("a scalar strategy")
     };
+    let mut l = Lowering::default();
+    let context = context(decls, check, Some(domain), &mut l)?;
     let claim = match &**claim {
         ScalarClaim::SignExactly(..) => {
             unreachable!("decided part by part, each a sign claim (exact_part_checks)")
         }
         ScalarClaim::Sign(sign) => {
-            let sides = chain_terms(&check.chains[0], decls, &check.defs);
+            let sides = chain_terms(&check.chains[0], decls, &check.defs, &mut l);
             Claim::Sign {
                 left: sides[0].clone(),
                 right: sides[1].clone(),
@@ -407,7 +327,7 @@ pub fn scalar(decls: &Decls, check: &Check, domain: &ParamBox) -> Result<Stateme
             variable,
             increasing,
         } => Claim::Monotone {
-            function: term(&function.node),
+            function: l.term(&function.node),
             variable: variable.clone(),
             increasing: *increasing,
         },
@@ -417,11 +337,11 @@ pub fn scalar(decls: &Decls, check: &Check, domain: &ParamBox) -> Result<Stateme
             to,
             value,
         } => Claim::Limit {
-            function: term(&function.node),
+            function: l.term(&function.node),
             variable: variable.clone(),
             to: to.clone(),
             value: match value {
-                Value::Finite(e) => LimitValue::Finite(term(&e.node)),
+                Value::Finite(e) => LimitValue::Finite(l.term(&e.node)),
                 Value::Signed(plus) => LimitValue::Signed(*plus),
                 Value::Unsigned => LimitValue::Unsigned,
             },
@@ -432,33 +352,13 @@ pub fn scalar(decls: &Decls, check: &Check, domain: &ParamBox) -> Result<Stateme
             roots,
             count,
         } => Claim::Roots {
-            function: term(&function.node),
+            function: l.term(&function.node),
             variable: variable.clone(),
-            roots: roots.iter().map(|r| term(&r.node)).collect(),
+            roots: roots.iter().map(|r| l.term(&r.node)).collect(),
             count: *count,
         },
     };
-    let mut context = context(decls, check, Some(domain))?;
-    let mut read: Vec<&Term> = Vec::new();
-    match &claim {
-        Claim::Sign { left, right, .. } => read.extend([left, right]),
-        Claim::Monotone { function, .. } | Claim::Roots { function, .. } => read.push(function),
-        Claim::Limit {
-            function, value, ..
-        } => {
-            read.push(function);
-            if let LimitValue::Finite(v) = value {
-                read.push(v);
-            }
-        }
-        _ => {}
-    }
-    let extra: Vec<Term> = match &claim {
-        Claim::Roots { roots, .. } => roots.clone(),
-        _ => Vec::new(),
-    };
-    keep_read(&mut context, read.into_iter().chain(&extra));
-    Ok(Statement { context, claim })
+    Ok(finish(context, claim, l))
 }
 
 /// The statement that the locus (x, y) over the normal is not a circle.
@@ -468,11 +368,8 @@ pub fn not_circle(
     x: &Node,
     y: &Node,
 ) -> Result<Statement, Diagnostic> {
-    let (x, y) = (term(x), term(y));
-    let mut context = context(decls, check, None)?;
-    keep_read(&mut context, [&x, &y].into_iter());
-    Ok(Statement {
-        context,
-        claim: Claim::NotCircle { x, y },
-    })
+    let mut l = Lowering::default();
+    let context = context(decls, check, None, &mut l)?;
+    let (x, y) = (l.term(x), l.term(y));
+    Ok(finish(context, Claim::NotCircle { x, y }, l))
 }

@@ -305,7 +305,7 @@ fn identities(
         }
         for pair in chain.windows(2) {
             let (a, b) = (env.eval(&pair[0])?, env.eval(&pair[1])?);
-            for (x, y) in pairs_of(&a, &b, env.ctx_dim())? {
+            for (x, y) in pairs_of(&a, &b, env.ctx_dim()) {
                 let y = match &factor {
                     Some(f) => y.mul(f).map_err(EvalError::from)?,
                     None => y.clone(),
@@ -467,50 +467,22 @@ fn factor_of(
     }
 }
 
-/// The pairs of components an equality compares: for tensors, at every value of the
-/// free letters of either side (a side without a letter does not depend on it), for
-/// matrices of one shape, entry by entry.
-fn pairs_of(a: &Value, b: &Value, dim: usize) -> R<Vec<(Frac, Frac)>> {
-    match (a, b) {
-        (
-            Value::Matrix {
-                rows,
-                cols,
-                entries: x,
-            },
-            Value::Matrix {
-                rows: r2,
-                cols: c2,
-                entries: y,
-            },
-        ) if (rows, cols) == (r2, c2) => Ok(x.iter().cloned().zip(y.iter().cloned()).collect()),
-        (
-            Value::Tensor {
-                letters: la,
-                comps: x,
-            },
-            Value::Tensor {
-                letters: lb,
-                comps: y,
-            },
-        ) => {
-            let mut all: Vec<char> = la.iter().chain(lb).copied().collect();
-            all.sort_unstable();
-            all.dedup();
-            let at = |letters: &[char], idx: &[usize]| {
-                letters.iter().fold(0, |acc, c| {
-                    acc * dim + idx[all.iter().position(|x| x == c).unwrap_or(0)]
-                })
-            };
-            Ok(super::eval::assignments(dim, all.len())
-                .iter()
-                .map(|idx| (x[at(la, idx)].clone(), y[at(lb, idx)].clone()))
-                .collect())
-        }
-        _ => Err(Rejection::False(
-            "a matrix is compared with something of another shape".into(),
-        )),
-    }
+/// The pairs of components an equality compares, at every value of the free letters
+/// of either side (a side without a letter does not depend on it).
+fn pairs_of(a: &Value, b: &Value, dim: usize) -> Vec<(Frac, Frac)> {
+    let (la, lb) = (&a.letters, &b.letters);
+    let mut all: Vec<char> = la.iter().chain(lb).copied().collect();
+    all.sort_unstable();
+    all.dedup();
+    let at = |letters: &[char], idx: &[usize]| {
+        letters.iter().fold(0, |acc, c| {
+            acc * dim + idx[all.iter().position(|x| x == c).unwrap_or(0)]
+        })
+    };
+    super::eval::assignments(dim, all.len())
+        .iter()
+        .map(|idx| (a.comps[at(la, idx)].clone(), b.comps[at(lb, idx)].clone()))
+        .collect()
 }
 
 /// Whether two evaluations agree on every parameter both name (a parameter one of them
@@ -539,7 +511,7 @@ fn equality_pairs(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<
         return Err(Rejection::Mismatch("no such equality".into()));
     };
     let (a, b) = (env.eval(left)?, env.eval(right)?);
-    pairs_of(&a, &b, env.ctx_dim())
+    Ok(pairs_of(&a, &b, env.ctx_dim()))
 }
 
 /// One component of one equality: the pair of fractions its sides have there.
@@ -552,7 +524,7 @@ fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac
     };
     let (a, b) = (env.eval(left)?, env.eval(right)?);
     let dim = env.ctx_dim();
-    let pairs = pairs_of(&a, &b, dim)?;
+    let pairs = pairs_of(&a, &b, dim);
     let at =
         e.at.iter()
             .try_fold(0usize, |acc, &v| {
@@ -560,15 +532,7 @@ fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac
                 acc.checked_mul(dim)?.checked_add(v)
             })
             .ok_or_else(|| Rejection::Mismatch("index values out of range".into()))?;
-    let count_ok = match (&a, &b) {
-        (Value::Matrix { .. }, _) => e.at.len() == 1 && e.at[0] < pairs.len(),
-        _ => dim.checked_pow(e.at.len() as u32) == Some(pairs.len()),
-    };
-    let at = if matches!(a, Value::Matrix { .. }) {
-        e.at.first().copied().unwrap_or(0)
-    } else {
-        at
-    };
+    let count_ok = dim.checked_pow(e.at.len() as u32) == Some(pairs.len());
     match pairs.get(at) {
         Some(p) if count_ok => Ok(p.clone()),
         _ => Err(Rejection::Mismatch(

@@ -4,14 +4,13 @@
 //! the state like any term, so that the assumptions apply after differentiating.
 //!
 //! ∂σ_ab/∂σ_c = δ_{a c_1} δ_{b c_2}; sums, products, quotients, powers, square roots
-//! (d√x = dx / (2√x)), averages, derivatives along the position, `grad` (derivatives
-//! commute) and the matrix operations follow their rules (an adjugate by its
-//! cofactors); a definition's derivative is a new definition, named `∂name/∂σ_c`, made
+//! (d√x = dx / (2√x)), averages, derivatives along the position and `grad`
+//! (derivatives commute) follow their rules; a definition's derivative is a new definition, named `∂name/∂σ_c`, made
 //! once. A term that does not read σ has derivative 0.
 
 use super::rational::Rational;
 use super::statement::Definition;
-use super::term::{component_name, EvalError, Leaf, MatOp, MatRead, Ranks, Slot, Term};
+use super::term::{component_name, EvalError, Leaf, Ranks, Slot, Term};
 use std::collections::BTreeSet;
 
 type R<T> = Result<T, EvalError>;
@@ -111,134 +110,11 @@ pub fn differentiate(t: &Term, symbol: &str, c: &[usize], env: &mut dyn Definiti
                 "a variational derivative inside grad(…)".into(),
             ))
         }
-        Term::Mat { rows, cols, op } => {
-            let mat = |op: MatOp| Term::Mat {
-                rows: *rows,
-                cols: *cols,
-                op,
-            };
-            let op = match op {
-                MatOp::Literal(es) => {
-                    MatOp::Literal(es.iter().map(|x| d(x, env)).collect::<R<_>>()?)
-                }
-                MatOp::Def(name) => MatOp::Def(derived(name, symbol, c, env)?),
-                MatOp::Identity => MatOp::Literal(vec![Term::int(0); rows * cols]),
-                MatOp::Sum(ms) => MatOp::Sum(ms.iter().map(|x| d(x, env)).collect::<R<_>>()?),
-                MatOp::Scale(s, m) => MatOp::Sum(vec![
-                    mat(MatOp::Scale(b(d(s, env)?), m.clone())),
-                    mat(MatOp::Scale(s.clone(), b(d(m, env)?))),
-                ]),
-                MatOp::Product(x, y) => MatOp::Sum(vec![
-                    mat(MatOp::Product(b(d(x, env)?), y.clone())),
-                    mat(MatOp::Product(x.clone(), b(d(y, env)?))),
-                ]),
-                MatOp::Transpose(x) => MatOp::Transpose(b(d(x, env)?)),
-                // d(A⁻¹) = −A⁻¹ dA A⁻¹.
-                MatOp::Inverse(x) => {
-                    let inv = mat(MatOp::Inverse(x.clone()));
-                    let left = mat(MatOp::Product(b(inv.clone()), b(d(x, env)?)));
-                    MatOp::Scale(b(Term::int(-1)), b(mat(MatOp::Product(b(left), b(inv)))))
-                }
-                // x = A⁻¹ y: dx = A⁻¹ (dy − dA x).
-                MatOp::Solve(x, y) => {
-                    let solved = mat(MatOp::Solve(x.clone(), y.clone()));
-                    let dx = x.shape(env).map_or(Ok(Term::int(0)), |_| d(x, env))?;
-                    let dy_cols = y.shape(env).map_or(1, |(_, c)| c);
-                    let correction = Term::Mat {
-                        rows: *rows,
-                        cols: dy_cols,
-                        op: MatOp::Product(b(dx), b(solved)),
-                    };
-                    let rhs = Term::Mat {
-                        rows: *rows,
-                        cols: dy_cols,
-                        op: MatOp::Sum(vec![
-                            d(y, env)?,
-                            Term::Mat {
-                                rows: *rows,
-                                cols: dy_cols,
-                                op: MatOp::Scale(b(Term::int(-1)), b(correction)),
-                            },
-                        ]),
-                    };
-                    MatOp::Solve(x.clone(), b(rhs))
-                }
-                // adj(M)_ij = (−1)^(i+j) det(M without row j and column i): the
-                // derivative of each cofactor is a determinant's.
-                MatOp::Adjugate(x) => {
-                    let n = *rows;
-                    let mut entries = Vec::with_capacity(n * n);
-                    for (i, j) in (0..n).flat_map(|i| (0..n).map(move |j| (i, j))) {
-                        let minor = (0..n)
-                            .filter(|&r| r != j)
-                            .flat_map(|r| (0..n).filter(move |&c| c != i).map(move |c| (r, c)))
-                            .map(|(r, c)| Term::Read(MatRead::Entry(r, c), x.clone()))
-                            .collect::<Vec<_>>();
-                        let cofactor = if n == 1 {
-                            Term::int(1)
-                        } else {
-                            let det = Term::Read(
-                                MatRead::Det,
-                                b(Term::Mat {
-                                    rows: n - 1,
-                                    cols: n - 1,
-                                    op: MatOp::Literal(minor),
-                                }),
-                            );
-                            if (i + j) % 2 == 0 {
-                                det
-                            } else {
-                                Term::Neg(b(det))
-                            }
-                        };
-                        entries.push(d(&cofactor, env)?);
-                    }
-                    MatOp::Literal(entries)
-                }
-                MatOp::View {
-                    tensor,
-                    rows: ro,
-                    cols: co,
-                } => MatOp::View {
-                    tensor: b(d(tensor, env)?),
-                    rows: ro.clone(),
-                    cols: co.clone(),
-                },
-            };
-            mat(op)
-        }
-        // d det M = trace(adj(M) dM).
-        Term::Read(MatRead::Det, m) => {
-            let (n, _) = m
-                .shape(env)
-                .ok_or_else(|| EvalError::IllFormed("not a matrix".into()))?;
-            let product = Term::Mat {
-                rows: n,
-                cols: n,
-                op: MatOp::Product(
-                    b(Term::Mat {
-                        rows: n,
-                        cols: n,
-                        op: MatOp::Adjugate(m.clone()),
-                    }),
-                    b(d(m, env)?),
-                ),
-            };
-            Term::Read(MatRead::Trace, b(product))
-        }
-        Term::Read(read, m) => Term::Read(read.clone(), b(d(m, env)?)),
     })
 }
 
-/// 0 with the free letters of `t` (or a zero matrix of its shape).
+/// 0 with the free letters of `t`.
 fn zero_like(t: &Term, env: &dyn Definitions) -> R<Term> {
-    if let Some((rows, cols)) = t.shape(env) {
-        return Ok(Term::Mat {
-            rows,
-            cols,
-            op: MatOp::Literal(vec![Term::int(0); rows * cols]),
-        });
-    }
     let free = t.letters(env)?.free;
     Ok(Term::Const {
         value: Rational::int(0),
@@ -258,14 +134,12 @@ fn derived(name: &str, symbol: &str, c: &[usize], env: &mut dyn Definitions) -> 
         env.derive(Definition {
             name: dname.clone(),
             formal: def.formal.clone(),
-            shape: def.shape,
             body: Term::int(0),
         });
         let body = differentiate(&def.body, symbol, c, env)?;
         env.derive(Definition {
             name: dname.clone(),
             formal: def.formal,
-            shape: def.shape,
             body,
         });
     }

@@ -2,8 +2,7 @@
 //! one per value of its free letters.
 //!
 //! It is written for being read, not for speed: dense tensors, contraction by visiting
-//! every value of every letter of a product, determinants by expansion over column
-//! sets, no cancellation. Every component of a symbol is a polynomial variable
+//! every value of every letter of a product, no cancellation. Every component of a symbol is a polynomial variable
 //! (`sigma_12`, `n_3`, `R_g`); the linear assumptions are solved once by Gaussian
 //! elimination and the substitutions applied in order; a definition is evaluated once;
 //! `avg` applies the exact moments of the normal; a derivative along the position is
@@ -20,7 +19,7 @@ use super::rational::Rational;
 use super::rules::Rule;
 use super::statement::{Context, Definition, Equation, FracData, PolyData};
 pub use super::term::{children, component_name, EvalError};
-use super::term::{Leaf, Letters, MatOp, MatRead, Order, Ranks, Slot, Term};
+use super::term::{Leaf, Letters, Ranks, Slot, Term};
 use num_traits::{One, Zero};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
@@ -40,41 +39,27 @@ pub const MAX_COMPONENTS: usize = 59_049;
 
 type R<T> = Result<T, EvalError>;
 
-/// A value: a tensor over its sorted free letters (row-major), or a matrix.
+/// A value: a tensor over its sorted free letters, its components row-major.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Value {
-    Tensor {
-        letters: Vec<char>,
-        comps: Vec<Frac>,
-    },
-    Matrix {
-        rows: usize,
-        cols: usize,
-        entries: Vec<Frac>,
-    },
+pub struct Value {
+    pub letters: Vec<char>,
+    pub comps: Vec<Frac>,
 }
 
 impl Value {
     fn scalar(f: Frac) -> Value {
-        Value::Tensor {
+        Value {
             letters: Vec::new(),
             comps: vec![f],
         }
     }
 
-    /// The components of a tensor value (a matrix's entries otherwise).
     pub fn comps(&self) -> &[Frac] {
-        match self {
-            Value::Tensor { comps, .. } => comps,
-            Value::Matrix { entries, .. } => entries,
-        }
+        &self.comps
     }
 
     pub fn letters(&self) -> &[char] {
-        match self {
-            Value::Tensor { letters, .. } => letters,
-            Value::Matrix { .. } => &[],
-        }
+        &self.letters
     }
 }
 
@@ -257,12 +242,7 @@ impl Ranks for Env<'_> {
         self.ctx.symbols.get(name).copied()
     }
     fn def_rank(&self, name: &str) -> Option<usize> {
-        self.definition(name)
-            .filter(|d| d.shape.is_none())
-            .map(|d| d.formal.len())
-    }
-    fn def_shape(&self, name: &str) -> Option<(usize, usize)> {
-        self.definition(name).and_then(|d| d.shape)
+        self.definition(name).map(|d| d.formal.len())
     }
 }
 
@@ -424,9 +404,6 @@ impl<'c> Env<'c> {
                 }
                 Term::Leaf {
                     of: Leaf::Def(d), ..
-                }
-                | Term::Mat {
-                    op: MatOp::Def(d), ..
                 } if seen.insert(d) => {
                     if let Some(def) = self.definition(d) {
                         stack.push(&def.body);
@@ -748,14 +725,14 @@ impl<'c> Env<'c> {
 
     fn scalar_of(&mut self, t: &Term) -> R<Frac> {
         match self.eval(t)? {
-            Value::Tensor { letters, mut comps } if letters.is_empty() => Ok(comps.remove(0)),
+            Value { letters, mut comps } if letters.is_empty() => Ok(comps.remove(0)),
             _ => Err(EvalError::IllFormed("a scalar was expected".into())),
         }
     }
 
     fn eval_checked(&mut self, t: &Term, l: &Letters) -> R<Value> {
         let d = self.ctx.dim;
-        let tensor = |letters: Vec<char>, comps: Vec<Frac>| Value::Tensor { letters, comps };
+        let tensor = |letters: Vec<char>, comps: Vec<Frac>| Value { letters, comps };
         Ok(match t {
             Term::Const { value, .. } => tensor(
                 l.free.clone(),
@@ -770,14 +747,7 @@ impl<'c> Env<'c> {
                 let mut acc = self.eval(&terms[0])?;
                 for term in &terms[1..] {
                     let v = self.eval(term)?;
-                    let (Value::Tensor { comps: a, .. }, Value::Tensor { comps: b, .. }) =
-                        (&mut acc, &v)
-                    else {
-                        return Err(EvalError::IllFormed(
-                            "a sum of matrices outside a matrix".into(),
-                        ));
-                    };
-                    for (x, y) in a.iter_mut().zip(b) {
+                    for (x, y) in acc.comps.iter_mut().zip(&v.comps) {
                         *x = self.add(x, y)?;
                     }
                 }
@@ -895,60 +865,6 @@ impl<'c> Env<'c> {
                 self.variation(body, field, slots, &l.free)?
             }
             Term::Opaque { what, .. } => return Err(EvalError::Unsupported(what.clone())),
-            Term::Mat { rows, cols, op } => {
-                let entries = self.matrix(*rows, *cols, op)?;
-                Value::Matrix {
-                    rows: *rows,
-                    cols: *cols,
-                    entries,
-                }
-            }
-            Term::Read(read, m) => {
-                let Value::Matrix {
-                    rows,
-                    cols,
-                    entries,
-                } = self.eval(m)?
-                else {
-                    return Err(EvalError::IllFormed("not a matrix".into()));
-                };
-                match read {
-                    MatRead::Det => Value::scalar(self.det(&entries, rows)?),
-                    MatRead::Trace => {
-                        let mut acc = Frac::default();
-                        for k in 0..rows {
-                            acc = self.add(&acc, &entries[k * cols + k])?;
-                        }
-                        Value::scalar(acc)
-                    }
-                    MatRead::Entry(i, j) => Value::scalar(entries[i * cols + j].clone()),
-                    MatRead::Tensor { rows: ro, cols: co } => {
-                        let free = l.free.clone();
-                        let mut comps = Vec::new();
-                        for idx in assignments(d, free.len()) {
-                            let at = |o: &Order| {
-                                let values: Vec<usize> = o
-                                    .slots
-                                    .iter()
-                                    .map(|s| match s {
-                                        Slot::Letter(c) => {
-                                            idx[free.iter().position(|x| x == c).unwrap_or(0)]
-                                        }
-                                        Slot::Fixed(k) => *k,
-                                    })
-                                    .collect();
-                                o.positions.iter().position(|p| *p == values)
-                            };
-                            let col = co.as_ref().map_or(Some(0), at);
-                            comps.push(match (at(ro), col) {
-                                (Some(a), Some(b)) => entries[a * cols + b].clone(),
-                                _ => Frac::default(),
-                            });
-                        }
-                        tensor(free, comps)
-                    }
-                }
-            }
         })
     }
 
@@ -960,23 +876,10 @@ impl<'c> Env<'c> {
 
     /// `f` applied to every component of a value.
     fn map_value(&mut self, v: Value, mut f: impl FnMut(&mut Self, &Frac) -> R<Frac>) -> R<Value> {
-        Ok(match v {
-            Value::Tensor { letters, comps } => {
-                let comps = comps.iter().map(|x| f(self, x)).collect::<R<_>>()?;
-                Value::Tensor { letters, comps }
-            }
-            Value::Matrix {
-                rows,
-                cols,
-                entries,
-            } => {
-                let entries = entries.iter().map(|x| f(self, x)).collect::<R<_>>()?;
-                Value::Matrix {
-                    rows,
-                    cols,
-                    entries,
-                }
-            }
+        let comps = v.comps.iter().map(|x| f(self, x)).collect::<R<_>>()?;
+        Ok(Value {
+            letters: v.letters,
+            comps,
         })
     }
 
@@ -1007,16 +910,11 @@ impl<'c> Env<'c> {
                     .collect()
             }
             Leaf::Symbol(s) => self.symbol(s)?,
-            Leaf::Def(name) => match self.def_value(name)? {
-                Value::Tensor { comps, .. } => comps,
-                Value::Matrix { .. } => {
-                    return Err(EvalError::IllFormed(format!("`{name}` is a matrix")))
-                }
-            },
+            Leaf::Def(name) => self.def_value(name)?.comps,
         })
     }
 
-    /// A definition's value: a tensor in its formal order, or a matrix.
+    /// A definition's value: a tensor in its formal order.
     fn def_value(&mut self, name: &str) -> R<Value> {
         if let Some(v) = self.cache.get(name) {
             return Ok(v.clone());
@@ -1034,42 +932,13 @@ impl<'c> Env<'c> {
         let v = self.eval(&def.body);
         self.active.pop();
         let v = v?;
-        let v = match (v, def.shape) {
-            (m @ Value::Matrix { .. }, Some(_)) => m,
-            (Value::Tensor { letters, comps }, None) => {
-                let mut sorted = def.formal.clone();
-                sorted.sort_unstable();
-                if sorted != letters {
-                    return Err(EvalError::IllFormed(format!(
-                        "the indices of `{name}` and its body differ"
-                    )));
-                }
-                Value::Tensor {
-                    letters: def.formal.clone(),
-                    comps: self.in_order(Value::Tensor { letters, comps }, &def.formal)?,
-                }
-            }
-            _ => {
-                return Err(EvalError::IllFormed(format!(
-                    "`{name}` has the wrong shape"
-                )))
-            }
-        };
+        let comps = self.in_order(v, &def.formal).map_err(|_| {
+            EvalError::IllFormed(format!("the indices of `{name}` and its body differ"))
+        })?;
         // A definition is undefined wherever one of its components is.
-        let v = match v {
-            Value::Tensor { letters, comps } => Value::Tensor {
-                letters,
-                comps: with_all_conditions(comps),
-            },
-            Value::Matrix {
-                rows,
-                cols,
-                entries,
-            } => Value::Matrix {
-                rows,
-                cols,
-                entries: with_all_conditions(entries),
-            },
+        let v = Value {
+            letters: def.formal.clone(),
+            comps: with_all_conditions(comps),
         };
         self.cache.insert(name.to_owned(), v.clone());
         Ok(v)
@@ -1077,11 +946,7 @@ impl<'c> Env<'c> {
 
     /// A tensor value's components reordered from sorted letters into `formal` order.
     fn in_order(&self, v: Value, formal: &[char]) -> R<Vec<Frac>> {
-        let Value::Tensor { letters, comps } = v else {
-            return Err(EvalError::IllFormed(
-                "a matrix where a tensor belongs".into(),
-            ));
-        };
+        let Value { letters, comps } = v;
         let d = self.ctx.dim;
         let mut sorted = formal.to_vec();
         sorted.sort_unstable();
@@ -1151,7 +1016,7 @@ impl<'c> Env<'c> {
                 values[k] = 0;
             }
         }
-        Ok(Value::Tensor {
+        Ok(Value {
             letters: out.to_vec(),
             comps,
         })
@@ -1360,179 +1225,6 @@ impl<'c> Env<'c> {
     /// The normal's variables.
     pub fn normal_vars(&self) -> &[Var] {
         &self.normal
-    }
-
-    /// A matrix term's entries, row by row.
-    fn matrix(&mut self, rows: usize, cols: usize, op: &MatOp) -> R<Vec<Frac>> {
-        let d = self.ctx.dim;
-        let of = |env: &mut Self, t: &Term| -> R<(usize, usize, Vec<Frac>)> {
-            match env.eval(t)? {
-                Value::Matrix {
-                    rows,
-                    cols,
-                    entries,
-                } => Ok((rows, cols, entries)),
-                Value::Tensor { letters, comps } if letters.is_empty() => Ok((1, 1, comps)),
-                _ => Err(EvalError::IllFormed("a matrix was expected".into())),
-            }
-        };
-        Ok(match op {
-            MatOp::Literal(entries) => entries
-                .iter()
-                .map(|e| self.scalar_of(e))
-                .collect::<R<_>>()?,
-            MatOp::Def(name) => match self.def_value(name)? {
-                Value::Matrix { entries, .. } => entries,
-                Value::Tensor { .. } => {
-                    return Err(EvalError::IllFormed(format!("`{name}` is not a matrix")))
-                }
-            },
-            MatOp::Identity => (0..rows * cols)
-                .map(|k| Frac::constant(Rational::int(i64::from(k / cols == k % cols))))
-                .collect(),
-            MatOp::Sum(ms) => {
-                let mut acc = of(self, &ms[0])?.2;
-                for m in &ms[1..] {
-                    let b = of(self, m)?.2;
-                    for (x, y) in acc.iter_mut().zip(&b) {
-                        *x = self.add(x, y)?;
-                    }
-                }
-                acc
-            }
-            MatOp::Scale(s, m) => {
-                let s = self.scalar_of(s)?;
-                let m = of(self, m)?.2;
-                m.iter().map(|x| self.mul(x, &s)).collect::<R<_>>()?
-            }
-            MatOp::Product(a, b) => {
-                let (_, inner, a) = of(self, a)?;
-                let b = of(self, b)?.2;
-                self.product(&a, &b, rows, inner, cols)?
-            }
-            MatOp::Transpose(a) => {
-                let a = of(self, a)?.2;
-                (0..rows * cols)
-                    .map(|k| a[(k % cols) * rows + k / cols].clone())
-                    .collect()
-            }
-            MatOp::Adjugate(a) => {
-                let a = of(self, a)?.2;
-                self.adjugate(&a, rows)?
-            }
-            MatOp::Inverse(a) | MatOp::Solve(a, _) => {
-                let (n, _, am) = of(self, a)?;
-                let det = self.det(&am, n)?;
-                if det.is_zero() {
-                    return Err(EvalError::DivisionByZero);
-                }
-                let mut adj = self.adjugate(&am, n)?;
-                if let MatOp::Solve(_, b) = op {
-                    let b = of(self, b)?.2;
-                    adj = self.product(&adj, &b, n, n, cols)?;
-                }
-                adj.iter().map(|x| self.div(x, &det)).collect::<R<_>>()?
-            }
-            MatOp::View {
-                tensor,
-                rows: ro,
-                cols: co,
-            } => {
-                let v = self.eval(tensor)?;
-                let letters = v.letters().to_vec();
-                let mut out = Vec::with_capacity(rows * cols);
-                for a in 0..rows {
-                    for b in 0..cols {
-                        let mut bound: Vec<(char, usize)> = Vec::new();
-                        let mut bind = |o: &Order, p: usize| {
-                            for (s, &v) in o.slots.iter().zip(&o.positions[p]) {
-                                if let Slot::Letter(c) = s {
-                                    bound.push((*c, v));
-                                }
-                            }
-                        };
-                        bind(ro, a);
-                        if let Some(co) = co {
-                            bind(co, b);
-                        }
-                        let at = letters.iter().fold(0, |acc, c| {
-                            acc * d + bound.iter().find(|(l, _)| l == c).map_or(0, |&(_, v)| v)
-                        });
-                        out.push(v.comps()[at].clone());
-                    }
-                }
-                out
-            }
-        })
-    }
-
-    fn product(
-        &mut self,
-        a: &[Frac],
-        b: &[Frac],
-        rows: usize,
-        inner: usize,
-        cols: usize,
-    ) -> R<Vec<Frac>> {
-        let mut out = Vec::with_capacity(rows * cols);
-        for i in 0..rows {
-            for j in 0..cols {
-                let mut acc = Frac::default();
-                for k in 0..inner {
-                    let p = self.mul(&a[i * inner + k], &b[k * cols + j])?;
-                    acc = self.add(&acc, &p)?;
-                }
-                out.push(acc);
-            }
-        }
-        Ok(out)
-    }
-
-    /// det by expansion along rows over the sets of columns used so far (no division):
-    /// minor(S) for the first |S| rows and the columns in S.
-    fn det(&mut self, m: &[Frac], n: usize) -> R<Frac> {
-        if n > 16 {
-            return Err(EvalError::Limit);
-        }
-        let mut minors: Vec<Frac> = vec![Frac::default(); 1 << n];
-        minors[0] = Frac::one();
-        for set in 1usize..(1 << n) {
-            let row = set.count_ones() as usize - 1;
-            let mut acc = Frac::default();
-            // The sign of a column is the parity of the columns of the set after it.
-            for col in (0..n).filter(|c| set & (1 << c) != 0) {
-                let rest = set & !(1 << col);
-                let after = (rest >> col).count_ones();
-                let p = self.mul(&minors[rest], &m[row * n + col])?;
-                acc = if after % 2 == 0 {
-                    self.add(&acc, &p)?
-                } else {
-                    self.add(&acc, &p.neg())?
-                };
-            }
-            minors[set] = acc;
-        }
-        Ok(minors[(1 << n) - 1].clone())
-    }
-
-    /// The adjugate: entry (i, j) is (−1)^(i+j) times the minor without row j, column i.
-    fn adjugate(&mut self, m: &[Frac], n: usize) -> R<Vec<Frac>> {
-        if n == 1 {
-            return Ok(vec![Frac::one()]);
-        }
-        let mut out = Vec::with_capacity(n * n);
-        for i in 0..n {
-            for j in 0..n {
-                let minor: Vec<Frac> = (0..n)
-                    .filter(|&r| r != j)
-                    .flat_map(|r| (0..n).filter(|&c| c != i).map(move |c| (r, c)))
-                    .map(|(r, c)| m[r * n + c].clone())
-                    .collect();
-                let det = self.det(&minor, n - 1)?;
-                out.push(if (i + j) % 2 == 0 { det } else { det.neg() });
-            }
-        }
-        Ok(out)
     }
 }
 

@@ -61,9 +61,7 @@ fn frac(r: Result<Frac, super::frac::FracError>) -> R<Frac> {
 /// The scalar value of a term.
 fn scalar(env: &mut Env<'_>, t: &super::term::Term) -> R<Frac> {
     match env.eval(t)? {
-        super::eval::Value::Tensor { letters, mut comps } if letters.is_empty() => {
-            Ok(comps.remove(0))
-        }
+        super::eval::Value { letters, mut comps } if letters.is_empty() => Ok(comps.remove(0)),
         _ => Err(Rejection::Mismatch(
             "a scalar claim about something that is not a scalar".into(),
         )),

@@ -128,12 +128,11 @@ impl Sign {
     }
 }
 
-/// A definition: `name_formal = body`, or a matrix of `shape`.
+/// A definition: `name_formal = body`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Definition {
     pub name: String,
     pub formal: Vec<char>,
-    pub shape: Option<(usize, usize)>,
     pub body: Term,
 }
 

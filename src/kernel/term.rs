@@ -2,11 +2,12 @@
 //! that gives their symbols meaning, as plain data that a report keeps and `recheck`
 //! reads back.
 //!
-//! A [`Term`] mirrors the expression language after names are resolved: constants,
-//! declared symbols, definitions, δ, ε and the normal with their index slots, sums,
-//! products (a letter twice in a product is summed), quotients, powers, square roots,
-//! averages over the normal, derivatives along the position, `grad`, `variation` and
-//! the matrix operations. The kernel computes which letters are free itself
+//! A [`Term`] is index notation after names are resolved: constants, declared
+//! symbols, definitions, δ, ε and the normal with their index slots, sums, products (a
+//! letter twice in a product is summed), quotients, powers, square roots, averages
+//! over the normal, derivatives along the position, `grad` and `variation`. There are
+//! no matrices: the reader of a file writes a matrix out in definitions of its
+//! entries, and the statement records them. The kernel computes which letters are free itself
 //! ([`Term::letters`]) and refuses an ill-formed term; nothing the reader of the file
 //! computed about indices is believed.
 
@@ -35,53 +36,6 @@ pub enum Leaf {
     Eps,
     /// The unit normal.
     Normal,
-}
-
-/// A position order bound to slots (`voigt_ij`): the positions, one component per
-/// slot (0-based).
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Order {
-    pub positions: Vec<Vec<usize>>,
-    pub slots: Vec<Slot>,
-}
-
-/// A matrix-valued term's operation.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum MatOp {
-    /// Entries row by row.
-    Literal(Vec<Term>),
-    Def(String),
-    Identity,
-    Sum(Vec<Term>),
-    Scale(Box<Term>, Box<Term>),
-    Product(Box<Term>, Box<Term>),
-    Transpose(Box<Term>),
-    Inverse(Box<Term>),
-    Adjugate(Box<Term>),
-    Solve(Box<Term>, Box<Term>),
-    /// Entry (a, b) is the tensor's component at the rows' position a and the
-    /// columns' position b (a column without `cols`).
-    View {
-        tensor: Box<Term>,
-        rows: Order,
-        cols: Option<Order>,
-    },
-}
-
-/// What is read off a matrix.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum MatRead {
-    Det,
-    Trace,
-    Entry(usize, usize),
-    /// The tensor whose component at the rows' position a (and columns' b) is entry
-    /// (a, b), zero elsewhere.
-    Tensor {
-        rows: Order,
-        cols: Option<Order>,
-    },
 }
 
 /// An expression.
@@ -120,12 +74,6 @@ pub enum Term {
         field: String,
         slots: Vec<Slot>,
     },
-    Mat {
-        rows: usize,
-        cols: usize,
-        op: MatOp,
-    },
-    Read(MatRead, Box<Term>),
     /// A construct the kernel does not evaluate (a transcendental function, π, a
     /// maximum over orientations), with its free letters: a statement that reads it
     /// cannot be proved.
@@ -151,10 +99,8 @@ pub trait Ranks {
     fn dim(&self) -> usize;
     /// The rank of a declared symbol, `None` if undeclared.
     fn symbol_rank(&self, name: &str) -> Option<usize>;
-    /// The formal letters' count of a definition (`None` for an unknown or a matrix
-    /// definition) and its shape when it is a matrix.
+    /// The formal letters' count of a definition, `None` for an unknown one.
     fn def_rank(&self, name: &str) -> Option<usize>;
-    fn def_shape(&self, name: &str) -> Option<(usize, usize)>;
 }
 
 /// Letters once free, twice summed; a third occurrence, or a letter summed inside one
@@ -220,7 +166,7 @@ fn slot_letters(slots: &[Slot], dim: usize) -> Result<Vec<char>, EvalError> {
 
 fn scalar(t: &Term, r: &dyn Ranks, what: &str) -> Result<Letters, EvalError> {
     let l = t.letters(r)?;
-    if !l.free.is_empty() || t.shape(r).is_some() {
+    if !l.free.is_empty() {
         return Err(EvalError::IllFormed(format!("{what} must be a scalar")));
     }
     Ok(l)
@@ -232,21 +178,6 @@ impl Term {
             value: Rational::int(n),
             free: Vec::new(),
         }
-    }
-
-    /// The shape of a matrix-valued term.
-    pub fn shape(&self, r: &dyn Ranks) -> Option<(usize, usize)> {
-        match self {
-            Term::Mat { rows, cols, .. } => Some((*rows, *cols)),
-            _ => None,
-        }
-        .or_else(|| match self {
-            Term::Mat {
-                op: MatOp::Def(name),
-                ..
-            } => r.def_shape(name),
-            _ => None,
-        })
     }
 
     /// The term's free letters (sorted) and summed ones, or why it is ill-formed: an
@@ -313,14 +244,7 @@ impl Term {
             Term::Product(fs) => {
                 let parts = fs
                     .iter()
-                    .map(|f| {
-                        if f.shape(r).is_some() {
-                            return Err(EvalError::IllFormed(
-                                "a matrix in a product of tensors".to_owned(),
-                            ));
-                        }
-                        f.letters(r)
-                    })
+                    .map(|f| f.letters(r))
                     .collect::<Result<Vec<_>, _>>()?;
                 tally(&parts, &[])?
             }
@@ -355,174 +279,10 @@ impl Term {
                         slots.len()
                     )));
                 }
-                if body.shape(r).is_some() {
-                    return Err(EvalError::IllFormed(
-                        "a matrix cannot be differentiated".to_owned(),
-                    ));
-                }
                 let inner = body.letters(r)?;
                 tally(&[inner], &slot_letters(slots, dim)?)?
             }
-            Term::Mat { rows, cols, op } => {
-                self.check_matrix(*rows, *cols, op, r)?;
-                Letters::default()
-            }
-            Term::Read(read, m) => {
-                let (rows, cols) = m.shape(r).ok_or_else(|| {
-                    EvalError::IllFormed(
-                        "a matrix read off something that is not a matrix".to_owned(),
-                    )
-                })?;
-                m.letters(r)?;
-                match read {
-                    MatRead::Det | MatRead::Trace if rows != cols => {
-                        return Err(EvalError::IllFormed(
-                            "det and trace need a square matrix".to_owned(),
-                        ))
-                    }
-                    MatRead::Entry(i, j) if *i >= rows || *j >= cols => {
-                        return Err(EvalError::IllFormed(
-                            "an entry outside the matrix".to_owned(),
-                        ))
-                    }
-                    MatRead::Tensor { rows: ro, cols: co } => {
-                        check_order(ro, rows, dim)?;
-                        if let Some(co) = co {
-                            check_order(co, cols, dim)?;
-                        } else if cols != 1 {
-                            return Err(EvalError::IllFormed(
-                                "a tensor view of a matrix needs two orders".to_owned(),
-                            ));
-                        }
-                        let mut letters = slot_letters(&ro.slots, dim)?;
-                        if let Some(co) = co {
-                            letters.extend(slot_letters(&co.slots, dim)?);
-                        }
-                        tally(
-                            &[Letters {
-                                free: letters,
-                                summed: Vec::new(),
-                            }],
-                            &[],
-                        )?
-                    }
-                    _ => Letters::default(),
-                }
-            }
         })
-    }
-
-    fn check_matrix(
-        &self,
-        rows: usize,
-        cols: usize,
-        op: &MatOp,
-        r: &dyn Ranks,
-    ) -> Result<(), EvalError> {
-        let same = |t: &Term, shape: (usize, usize)| -> Result<(), EvalError> {
-            t.letters(r)?;
-            match t.shape(r) {
-                Some(s) if s == shape => Ok(()),
-                _ => Err(EvalError::IllFormed(format!(
-                    "a matrix of shape {shape:?} was expected"
-                ))),
-            }
-        };
-        let square = rows == cols;
-        match op {
-            MatOp::Literal(entries) => {
-                if entries.len() != rows * cols {
-                    return Err(EvalError::IllFormed(
-                        "a matrix literal with the wrong number of entries".to_owned(),
-                    ));
-                }
-                for e in entries {
-                    scalar(e, r, "a matrix entry")?;
-                }
-            }
-            MatOp::Def(name) => {
-                if r.def_shape(name) != Some((rows, cols)) {
-                    return Err(EvalError::IllFormed(format!(
-                        "`{name}` is not a matrix definition of this shape"
-                    )));
-                }
-            }
-            MatOp::Identity if square => {}
-            MatOp::Sum(ms) => {
-                for m in ms {
-                    same(m, (rows, cols))?;
-                }
-            }
-            MatOp::Scale(s, m) => {
-                scalar(s, r, "a scale")?;
-                same(m, (rows, cols))?;
-            }
-            MatOp::Product(a, b) => {
-                let (ra, ca) = a.shape(r).ok_or_else(|| {
-                    EvalError::IllFormed("a product of matrices needs matrices".to_owned())
-                })?;
-                same(a, (rows, ca))?;
-                same(b, (ca, cols))?;
-                if ra != rows {
-                    return Err(EvalError::IllFormed(
-                        "mismatched shapes in a matrix product".to_owned(),
-                    ));
-                }
-            }
-            MatOp::Transpose(a) => same(a, (cols, rows))?,
-            MatOp::Inverse(a) | MatOp::Adjugate(a) if square => same(a, (rows, cols))?,
-            MatOp::Solve(a, b) => {
-                same(a, (rows, rows))?;
-                same(b, (rows, cols))?;
-            }
-            MatOp::View {
-                tensor,
-                rows: ro,
-                cols: co,
-            } => {
-                check_order(ro, rows, r.dim())?;
-                match co {
-                    Some(co) => check_order(co, cols, r.dim())?,
-                    None if cols == 1 => {}
-                    None => {
-                        return Err(EvalError::IllFormed(
-                            "a matrix view needs two orders".to_owned(),
-                        ))
-                    }
-                }
-                let mut letters = slot_letters(&ro.slots, r.dim())?;
-                if let Some(co) = co {
-                    letters.extend(slot_letters(&co.slots, r.dim())?);
-                }
-                letters.sort_unstable();
-                let inner = tensor.letters(r)?;
-                if inner.free != letters {
-                    return Err(EvalError::IllFormed(
-                        "a view's orders do not name the tensor's free indices".to_owned(),
-                    ));
-                }
-            }
-            _ => {
-                return Err(EvalError::IllFormed(
-                    "this matrix operation needs a square matrix".to_owned(),
-                ))
-            }
-        }
-        Ok(())
-    }
-}
-
-fn check_order(o: &Order, len: usize, dim: usize) -> Result<(), EvalError> {
-    let fits = o.positions.len() == len
-        && o.positions
-            .iter()
-            .all(|p| p.len() == o.slots.len() && p.iter().all(|&k| k < dim));
-    if fits {
-        Ok(())
-    } else {
-        Err(EvalError::IllFormed(
-            "an order's positions do not fit its slots or the matrix".to_owned(),
-        ))
     }
 }
 
@@ -562,20 +322,10 @@ pub fn children(t: &Term) -> Vec<&Term> {
     match t {
         Term::Const { .. } | Term::Leaf { .. } | Term::Opaque { .. } => Vec::new(),
         Term::Sum(ts) | Term::Product(ts) => ts.iter().collect(),
-        Term::Neg(a)
-        | Term::Pow(a, _)
-        | Term::Sqrt(a)
-        | Term::Avg(a)
-        | Term::Deriv(a, _)
-        | Term::Read(_, a) => vec![a],
+        Term::Neg(a) | Term::Pow(a, _) | Term::Sqrt(a) | Term::Avg(a) | Term::Deriv(a, _) => {
+            vec![a]
+        }
         Term::Div(a, b) => vec![a, b],
         Term::Grad { body, .. } | Term::Variation { body, .. } => vec![body],
-        Term::Mat { op, .. } => match op {
-            MatOp::Literal(ts) | MatOp::Sum(ts) => ts.iter().collect(),
-            MatOp::Def(_) | MatOp::Identity => Vec::new(),
-            MatOp::Scale(a, b) | MatOp::Product(a, b) | MatOp::Solve(a, b) => vec![a, b],
-            MatOp::Transpose(a) | MatOp::Inverse(a) | MatOp::Adjugate(a) => vec![a],
-            MatOp::View { tensor, .. } => vec![tensor],
-        },
     }
 }
