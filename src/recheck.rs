@@ -7,6 +7,7 @@
 //! What this cannot see is a statement edited into another true one: that is why each
 //! line names what was proved, for the reader to compare with the paper.
 
+use crate::check::ProofStatements;
 use crate::kernel::check::{check, Checked, Conclusion, Fact, Rejection};
 use crate::kernel::statement::Statement;
 use serde::Deserialize;
@@ -89,7 +90,7 @@ fn shown(s: &str) -> String {
 /// The statements a claim's proofs may be about, by claim id (and whether it is the
 /// correction), rebuilt from the derivation files: `None` when the files have no such
 /// claim.
-pub type Statements<'a> = dyn Fn(&str, bool) -> Option<Vec<Statement>> + Sync + 'a;
+pub type Statements<'a> = dyn Fn(&str, bool) -> Option<ProofStatements> + Sync + 'a;
 
 /// Re-checks every proof of the report `text`; `Err` when it is not a report. With
 /// `files`, each proof must also be about the statement its claim's file gives (so that
@@ -107,7 +108,7 @@ pub fn recheck(text: &str, files: Option<&Statements<'_>>) -> Result<Rechecked, 
 /// The statements of every claim of `files` that a proof may be about, for [`recheck`].
 pub fn statements_of(
     files: &[crate::derivation::DerivationFile],
-) -> Result<std::collections::BTreeMap<(String, bool), Vec<Statement>>, crate::lang::Diagnostic> {
+) -> Result<std::collections::BTreeMap<(String, bool), ProofStatements>, crate::lang::Diagnostic> {
     let mut out = std::collections::BTreeMap::new();
     for claim in files.iter().flat_map(|f| &f.claims) {
         let own = crate::check::proof_statements(&claim.decls, &claim.check)?;
@@ -195,7 +196,7 @@ fn about(proved: &Statement, file: &Statement, conditional: bool) -> bool {
 /// (`None` inside when the files have no such claim).
 fn one(
     row: &serde_json::Value,
-    expected: Option<Option<Vec<Statement>>>,
+    expected: Option<Option<ProofStatements>>,
 ) -> Result<Option<String>, Refused> {
     let text = |k: &str| row.get(k).and_then(|v| v.as_str()).unwrap_or("");
     let (verdict, strength) = (text("verdict"), text("strength"));
@@ -231,7 +232,9 @@ fn one(
             Some(None) => return Err(Refused::NotInTheFiles),
             Some(Some(statements)) => {
                 let k = statements
+                    .whole
                     .iter()
+                    .chain(&statements.weaker)
                     .position(|s| about(&w.statement, s, verdict == "conditional"))
                     .ok_or(Refused::NotItsStatement)?;
                 covered.push(k);
@@ -262,10 +265,12 @@ fn one(
     }
     covered.sort_unstable();
     covered.dedup();
-    // With the files, a `holds` has one proof for each statement they give.
+    // With the files, a `holds` has one proof for each statement of the whole claim
+    // they give (and none of a weaker part).
     let every_part = match &expected {
         Some(Some(statements)) => {
-            covered.len() == statements.len() && conclusions.len() == covered.len()
+            covered == (0..statements.whole.len()).collect::<Vec<_>>()
+                && conclusions.len() == covered.len()
         }
         _ => true,
     };

@@ -68,3 +68,20 @@ fn a_sampled_record_holds_the_first_states_drawn() {
         assert!((l - 2.0 * x * y).abs() < 1e-6 && (r - x * x - y * y).abs() < 1e-6);
     }
 }
+
+/// The definition the reader makes of each side of a matrix chain (`side 1.1`) is
+/// typeset as its name in words, not as a product of `side` and the number 1.1.
+#[test]
+fn a_side_of_a_matrix_chain_is_typeset_by_its_name() {
+    let (_, text) = crate::common::run_cli(
+        &[
+            "explain",
+            "inverse-left",
+            "--file",
+            "tests/soundness/matrices.toml",
+        ],
+        false,
+    );
+    assert!(text.contains("typeset: $\\text{side 1.1} = "), "{text}");
+    assert!(!text.contains("\\frac{11}{10}"), "{text}");
+}

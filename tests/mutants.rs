@@ -339,6 +339,19 @@ fn every_mutant_of_a_sign_on_a_set_or_a_root_count_is_refuted() {
     assert_swept(&files, &kinds, "mutation_report_sets_and_counts");
 }
 
+/// Mutants of stationary points and extrema (`tests/soundness/stationary.toml`): the
+/// definitions of the functions, whose stationary points move or change kind.
+#[test]
+fn every_mutant_of_a_stationary_point_is_refuted() {
+    let files = load_files(&["tests/soundness/stationary.toml"]).expect("loads");
+    let kinds = [
+        MutantKind::Coefficient,
+        MutantKind::FlipSign,
+        MutantKind::DropTerm,
+    ];
+    assert_swept(&files, &kinds, "mutation_report_stationary");
+}
+
 /// The least number of refuted mutants (refuted or refuted on resampling) per sweep and
 /// strategy, and the least share of them among the mutants that are neither
 /// equivalent nor rejected as ill-formed. A drop below either fails here, whatever
@@ -373,6 +386,7 @@ const FLOORS: &[(&str, &str, usize, f64)] = &[
         98,
         0.99,
     ),
+    ("mutation_report_stationary", "rational-function", 33, 0.99),
     ("mutation_report_states", "exact", 196, 0.99),
     ("mutation_report_states", "numeric", 36, 0.99),
 ];

@@ -174,6 +174,79 @@ fn a_part_of_a_sign_on_exactly_a_set_is_rechecked_with_the_others() {
 }
 
 #[test]
+fn stationary_points_and_extrema_are_decided_as_declared() {
+    let path = "tests/soundness/stationary.toml";
+    common::assert_as_declared(path, 14, |rows| {
+        for r in rows {
+            let (o, id) = (&r.outcome, r.claim.id.as_str());
+            match o.verdict() {
+                // Every part proved: the ends of the interval, the derivative ≥ 0 and
+                // ≤ 0, and the second derivative for an extremum.
+                Verdict::Holds => {
+                    assert_eq!(o.strength(), Strength::Proof, "{id}");
+                    let parts = match id {
+                        "cubic-stationary" => 2,
+                        "cubic-minimum" => 3,
+                        "sine-of-double-angle-maximum" | "maximum-power-transfer" => 4,
+                        _ => 5,
+                    };
+                    assert_eq!(o.proofs().len(), parts, "{id}");
+                }
+                Verdict::Fails => {
+                    assert_eq!(o.strength(), Strength::Proof, "{id}");
+                    let cx = o.counterexample.as_ref().expect(id);
+                    assert!(cx.reverified.is_some(), "{id}: confirmed by a second route");
+                }
+                // A true statement the test says nothing about: never refuted.
+                _ => assert!(
+                    id == "flat-maximum" || id == "maximum-at-a-closed-end",
+                    "{id}"
+                ),
+            }
+        }
+        let evidence = |id: &str| common::evidence_of(rows, id);
+        assert!(evidence("parabola-maximum")
+            .contains("decided a strict local maximum (the second-derivative test) at t = a/2"));
+        assert!(evidence("parabola-wrong-point").contains("the derivative in t at t = a/3 is ≤ 0"));
+        assert!(
+            evidence("parabola-outside").contains("the point t = a/2 is > 1 (inside the interval)")
+        );
+        assert!(evidence("cubic-minimum-every-a-wrong").contains("values at a=-1/2: left -3"));
+        assert!(evidence("flat-maximum").contains("the second-derivative test decides nothing"));
+        assert!(evidence("maximum-at-a-closed-end").contains("reaches an end of the interval"));
+    });
+    // Every proof is about a part its file gives (a refutation by the weaker part
+    // that tells it from an undecided test included); a holds needs all its parts.
+    let (_, text) = common::run_cli(&["verify", path, "--format", "json"], false);
+    let report: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let files = cosserat_check::derivation::load_files(&[path]).unwrap();
+    let statements = cosserat_check::recheck::statements_of(&files).unwrap();
+    let lookup = |id: &str, c: bool| statements.get(&(id.to_owned(), c)).cloned();
+    let bound = |r: &serde_json::Value| {
+        let r = cosserat_check::recheck::recheck(&r.to_string(), Some(&lookup)).unwrap();
+        (r.accepted, r.refused)
+    };
+    assert_eq!(bound(&report), (12, 0));
+    let k = report["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|c| c["id"] == "parabola-maximum")
+        .unwrap();
+    let mut r = report.clone();
+    let c = &mut r["claims"][k];
+    let mut proofs = c["proofs"].as_array().unwrap().clone();
+    proofs.pop();
+    let facts: Vec<serde_json::Value> = proofs
+        .iter()
+        .flat_map(|p| p["summary"].as_array().unwrap().clone())
+        .collect();
+    c["proofs"] = serde_json::Value::Array(proofs);
+    c["certificate"] = serde_json::json!({ "facts": facts });
+    assert_eq!(bound(&r), (11, 1), "the second derivative's part left out");
+}
+
+#[test]
 fn the_worked_example_is_decided_as_declared() {
     common::assert_as_declared("derivations/examples/rational-functions.toml", 8, |_| {});
 }
@@ -211,6 +284,14 @@ fn malformed_scalar_claims_are_located_errors() {
         ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\nexactly_when = []", "needs at least one bound"),
         ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\nexactly_when = [\"x > a\"]", "cannot read `x > a` as a bound"),
         ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\nexactly_when = [\"s > 0\"]", "`s` is not a scalar parameter"),
+        ("strategy = \"stationary\"\nfunction = \"x^2\"\nin = \"x\"\nkind = \"stationary\"", "needs `at`"),
+        ("strategy = \"stationary\"\nfunction = \"x^2\"\nin = \"x\"\nat = \"0\"", "needs `kind`"),
+        ("strategy = \"stationary\"\nfunction = \"x^2\"\nin = \"x\"\nat = \"0\"\nkind = \"maximum\"", "unknown kind `maximum`"),
+        ("strategy = \"stationary\"\nfunction = \"x^2\"\nin = \"x\"\nat = \"x/2\"\nkind = \"stationary\"", "the point reads `x` itself"),
+        ("strategy = \"stationary\"\nfunction = \"x^2\"\nat = \"0\"\nkind = \"stationary\"", "needs `in`"),
+        ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\nat = \"0\"", "`at` does not apply to strategy = \"sign\""),
+        ("strategy = \"monotone\"\nfunction = \"x\"\ndirection = \"increasing\"\nin = \"x\"\nkind = \"stationary\"", "`kind` does not apply to strategy = \"monotone\""),
+        ("sides = [\"x\", \"x\"]\nat = \"0\"", "`at` does not apply to strategy = \"exact\""),
     ];
     let cases = cases.map(|(body, want)| (claim(body), want));
     common::assert_located_errors(&cases);

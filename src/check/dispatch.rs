@@ -155,35 +155,59 @@ pub(crate) fn decide_unisolated(
     Ok(outcome)
 }
 
+/// The statements a claim's proofs may be about: a `holds` proves every one of
+/// `whole` (one, or each part of a claim decided in parts), and a refutation is about
+/// one of them or of `weaker` (the weaker parts that tell a failure of a stationary
+/// claim from a case its test does not decide).
+#[derive(Clone, Debug, Default)]
+pub struct ProofStatements {
+    pub whole: Vec<crate::kernel::statement::Statement>,
+    pub weaker: Vec<crate::kernel::statement::Statement>,
+}
+
 /// The statements a proof of `check` may be about, rebuilt from its file as a decision
 /// builds them for the kernel: the equalities of an exact or proportional claim, a
-/// scalar claim on its box, a locus; none for the sampled strategies, which prove
-/// nothing. (A scalar claim's proof may also be on a sub-box of its domain: the box is
-/// the one part of the statement this does not fix.)
+/// scalar claim on its box (each part of one decided in parts), a locus; none for the
+/// sampled strategies, which prove nothing. (A scalar claim's proof may also be on a
+/// sub-box of its domain: the box is the one part of the statement this does not fix.)
 pub fn proof_statements(
     decls: &crate::lang::Decls,
     check: &crate::derivation::Check,
-) -> Result<Vec<crate::kernel::statement::Statement>, Diagnostic> {
+) -> Result<ProofStatements, Diagnostic> {
     use crate::derivation::{statement, Strategy};
-    Ok(match &check.strategy {
+    let scalar = |part: &crate::derivation::Check| match &part.strategy {
+        Strategy::Scalar { domain, .. } => statement::scalar(decls, part, domain),
+        _ => unreachable!("a part is a sign claim"),
+    };
+    let whole = match &check.strategy {
         Strategy::Exact { .. } | Strategy::Proportional { .. } => {
             vec![statement::equalities(decls, check)?]
         }
-        Strategy::Scalar { domain, .. } => match crate::derivation::exact_part_checks(check) {
-            Some(parts) => parts
-                .iter()
-                .map(|part| match &part.strategy {
-                    Strategy::Scalar { domain, .. } => statement::scalar(decls, part, domain),
-                    _ => unreachable!("a part is a sign claim"),
-                })
-                .collect::<Result<_, _>>()?,
-            None => vec![statement::scalar(decls, check, domain)?],
-        },
+        Strategy::Scalar { .. } => {
+            if let Some(parts) = crate::derivation::exact_part_checks(check) {
+                parts.iter().map(scalar).collect::<Result<_, _>>()?
+            } else if let Some(parts) = crate::derivation::stationary_parts(check) {
+                let mut out = ProofStatements::default();
+                for p in &parts {
+                    out.whole.push(scalar(&p.check)?);
+                    if let Some((weaker, _)) = &p.weaker {
+                        out.weaker.push(scalar(weaker)?);
+                    }
+                }
+                return Ok(out);
+            } else {
+                vec![scalar(check)?]
+            }
+        }
         Strategy::NotCircle { x, y } => {
             vec![statement::not_circle(decls, check, &x.node, &y.node)?]
         }
         Strategy::Numeric { .. } | Strategy::Gradient { .. } | Strategy::Convex { .. } => {
             Vec::new()
         }
+    };
+    Ok(ProofStatements {
+        whole,
+        weaker: Vec::new(),
     })
 }

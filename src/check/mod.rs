@@ -14,4 +14,4 @@ pub mod transcription;
 
 pub use claim::{decide_claim, decide_claim_recorded};
 pub use decided::{Attribution, Decided};
-pub use dispatch::{decide, proof_statements};
+pub use dispatch::{decide, proof_statements, ProofStatements};

@@ -319,6 +319,7 @@ impl Comparer<'_> {
                 ScalarClaim::Monotone { .. } => Some("monotonicity"),
                 ScalarClaim::Limit { .. } => Some("a limit"),
                 ScalarClaim::Roots { .. } => Some("the roots of a function"),
+                ScalarClaim::Stationary(_) => Some("a stationary point"),
             },
             _ => None,
         };

@@ -25,6 +25,9 @@ pub enum Finding {
     /// The search found a proof or a counterexample, but the kernel's check of it
     /// refused it: a defect of the search, which decides nothing.
     KernelRefused { why: String },
+    /// A test that decides the claim where it applies says nothing at some values of
+    /// the parameters (a second derivative that vanishes): `why`.
+    Inconclusive { why: String },
     /// The checker itself failed while deciding (a panic): a defect of the checker,
     /// not of the input, and never a verdict. `at` is where in the checker's source.
     InternalError { message: String, at: String },

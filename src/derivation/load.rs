@@ -968,7 +968,7 @@ impl Loader {
     }
 
     /// One assumption; its right side may read the definitions in scope.
-    fn assumption(
+    pub(super) fn assumption(
         &self,
         s: &S,
         decls: &Decls,
@@ -1277,7 +1277,9 @@ impl Loader {
                 ScalarClaim::Monotone { function, .. }
                 | ScalarClaim::Limit { function, .. }
                 | ScalarClaim::Roots { function, .. } => Some(function),
-                ScalarClaim::Sign(_) | ScalarClaim::SignExactly(..) => None,
+                ScalarClaim::Sign(_)
+                | ScalarClaim::SignExactly(..)
+                | ScalarClaim::Stationary(_) => None,
             },
             _ => None,
         };

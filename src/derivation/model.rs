@@ -441,6 +441,7 @@ impl Strategy {
                     out.push(function);
                     out.extend(roots);
                 }
+                ScalarClaim::Stationary(s) => out.extend([&s.function, &s.at]),
             },
         }
         out
@@ -535,6 +536,38 @@ pub enum ScalarClaim {
         roots: Vec<Expression>,
         count: Option<usize>,
     },
+    /// `variable = at` (an expression in the other parameters) is a stationary point of
+    /// `function` for every value of them in the domain: the derivative vanishes there;
+    /// for a local maximum (minimum) by the second-derivative test, the second
+    /// derivative there is < 0 (> 0) and the point lies inside the interval `given` for
+    /// `variable` (`strategy = "stationary"`). Decided part by part
+    /// ([`crate::derivation::stationary_parts`]).
+    Stationary(Box<Stationary>),
+}
+
+/// What a stationary claim says of its point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Extremum {
+    Stationary,
+    LocalMaximum,
+    LocalMinimum,
+}
+
+/// A stationary claim (see [`ScalarClaim::Stationary`]), with what its parts read.
+#[derive(Clone, Debug)]
+pub struct Stationary {
+    pub function: Expression,
+    pub variable: String,
+    pub at: Expression,
+    pub kind: Extremum,
+    /// `grad(function, variable)` and its own derivative in `variable`.
+    pub first: Expression,
+    pub second: Expression,
+    /// `variable = at`: every part is decided under it.
+    pub point: Assumption,
+    /// The ends of the interval `given` for `variable`: lower or upper, closed or
+    /// open, and the end as a constant expression.
+    pub ends: Vec<(bool, bool, Expression)>,
 }
 
 impl ScalarClaim {
@@ -552,6 +585,7 @@ impl ScalarClaim {
             | ScalarClaim::Roots {
                 function, variable, ..
             } => Some((function, variable)),
+            ScalarClaim::Stationary(s) => Some((&s.function, &s.variable)),
         }
     }
 }

@@ -139,7 +139,7 @@ pub struct RawClaim {
     pub chains: Option<Vec<Vec<S>>>,
     pub correction: Option<RawCorrection>,
     /// exact (default) | proportional | numeric | gradient | convex | not-circle |
-    /// sign | monotone | limit | roots
+    /// sign | monotone | limit | roots | stationary
     pub strategy: Option<S>,
     /// == (default) | <= | >=, between consecutive sides (numeric); > | >= | < | <=
     /// between the two sides (sign).
@@ -164,7 +164,7 @@ pub struct RawClaim {
     pub wrt: Vec<S>,
     pub x: Option<S>,
     pub y: Option<S>,
-    /// The parameter a monotone, limit or roots claim is about.
+    /// The parameter a monotone, limit, roots or stationary claim is about.
     #[serde(rename = "in")]
     pub variable: Option<S>,
     /// increasing | decreasing (strategy = "monotone").
@@ -179,6 +179,10 @@ pub struct RawClaim {
     pub count: Option<Spanned<i64>>,
     /// The set on which a sign claim holds exactly: bounds on scalars, as `given`.
     pub exactly_when: Option<Spanned<Vec<S>>>,
+    /// The point a stationary claim names: an expression in the other parameters.
+    pub at: Option<S>,
+    /// stationary | local-maximum | local-minimum (strategy = "stationary").
+    pub kind: Option<S>,
 }
 
 #[derive(Deserialize)]

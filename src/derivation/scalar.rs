@@ -1,9 +1,12 @@
 //! Reading the scalar claim kinds (`strategy = "sign" | "monotone" | "limit" |
-//! "roots"`): the parameter box of `given`, the variable of `in`, where it tends to,
-//! the stated limit and roots.
+//! "roots" | "stationary"`): the parameter box of `given`, the variable of `in`, where
+//! it tends to, the stated limit, roots and stationary point; and the parts that a sign
+//! on exactly a set and a stationary point are decided in.
 
 use super::load::Loader;
-use super::model::{Definition, Expression, LimitValue, ParamBox, ScalarClaim, Strategy};
+use super::model::{
+    Definition, Expression, Extremum, LimitValue, ParamBox, ScalarClaim, Stationary, Strategy,
+};
 use super::raw::{RawClaim, S};
 use super::spec::DEFAULT_SAMPLES;
 use crate::algebra::limit::{Approach, Side};
@@ -136,6 +139,66 @@ impl Loader {
                     count,
                 }
             }
+            "stationary" => {
+                let function = function()?;
+                let variable = variable(c)?;
+                let at_text = need(&c.at, "at", "at = \"a / 2\", the stationary point")?;
+                let at = scalar(&at_text)?;
+                let k = need(&c.kind, "kind", "kind = \"local-maximum\"")?;
+                let kind = match k.get_ref().as_str() {
+                    "stationary" => Extremum::Stationary,
+                    "local-maximum" => Extremum::LocalMaximum,
+                    "local-minimum" => Extremum::LocalMinimum,
+                    other => {
+                        return Err(self
+                            .diag(k.span(), format!("unknown kind `{other}`"))
+                            .with_help("kind is \"stationary\" (the derivative vanishes), \"local-maximum\" or \"local-minimum\" (and the second derivative is < 0 or > 0 there)"))
+                    }
+                };
+                // The derivatives, read as the file would write them.
+                let f = need(&c.function, "function", "")?;
+                let derivative = |text: String| scalar(&toml::Spanned::new(f.span(), text));
+                let first = derivative(format!("grad({}, {variable})", f.get_ref()))?;
+                let second = derivative(format!(
+                    "grad(grad({}, {variable}), {variable})",
+                    f.get_ref()
+                ))?;
+                let point = self.assumption(
+                    &toml::Spanned::new(
+                        at_text.span(),
+                        format!("{variable} = {}", at_text.get_ref()),
+                    ),
+                    decls,
+                    defs,
+                )?;
+                if point.reads.contains(&variable) {
+                    return Err(self
+                        .diag(at_text.span(), format!("the point reads `{variable}` itself"))
+                        .with_help(format!("at is an expression in the other parameters, the value of `{variable}` at the stationary point")));
+                }
+                let domain = self.param_box(&c.given, decls)?;
+                let interval = domain.interval(&variable);
+                let mut ends = Vec::new();
+                for (lower, end) in [(true, &interval.lo), (false, &interval.hi)] {
+                    let (closed, value) = match end {
+                        End::Unbounded => continue,
+                        End::Open(x) => (false, x),
+                        End::Closed(x) => (true, x),
+                    };
+                    let value = scalar(&toml::Spanned::new(at_text.span(), value.to_string()))?;
+                    ends.push((lower, closed, value));
+                }
+                ScalarClaim::Stationary(Box::new(Stationary {
+                    function,
+                    variable,
+                    at,
+                    kind,
+                    first,
+                    second,
+                    point,
+                    ends,
+                }))
+            }
             _ => unreachable!("called for the scalar kinds only"),
         };
         for (at, key) in [
@@ -146,9 +209,12 @@ impl Loader {
             (c.roots.as_ref().map(|_| anchor.span()), "roots"),
             (c.count.as_ref().map(|s| s.span()), "count"),
             (c.exactly_when.as_ref().map(|s| s.span()), "exactly_when"),
+            (c.at.as_ref().map(|s| s.span()), "at"),
+            (c.kind.as_ref().map(|s| s.span()), "kind"),
         ] {
             let used = match key {
                 "in" => claim.function().is_some(),
+                "at" | "kind" => matches!(claim, ScalarClaim::Stationary(_)),
                 "direction" => matches!(claim, ScalarClaim::Monotone { .. }),
                 "roots" | "count" => matches!(claim, ScalarClaim::Roots { .. }),
                 "exactly_when" => matches!(claim, ScalarClaim::SignExactly(..)),
@@ -434,6 +500,125 @@ pub fn exact_part_checks(check: &super::model::Check) -> Option<Vec<super::model
             c
         });
     Some(parts.collect())
+}
+
+/// One part of a stationary claim: a sign claim under `variable = at`.
+pub struct Part {
+    /// What the part says, in words.
+    pub what: String,
+    pub check: super::model::Check,
+    /// A weaker claim that tells a failure of the part from a case the test does not
+    /// decide: where the part fails and this holds, the claim is undecided, for `why`.
+    pub weaker: Option<(super::model::Check, &'static str)>,
+}
+
+/// The parts a stationary claim is decided in, each a sign claim on the domain without
+/// the claim's variable, under `variable = at`: the point inside the variable's
+/// interval (in it, for a stationary point), the first derivative ≥ 0 and ≤ 0 there,
+/// and for an extremum the second derivative's strict sign (`None` for any other
+/// claim). The claim holds when every part does.
+pub fn stationary_parts(check: &super::model::Check) -> Option<Vec<Part>> {
+    let Strategy::Scalar {
+        claim,
+        domain,
+        samples,
+        seed,
+    } = &check.strategy
+    else {
+        return None;
+    };
+    let ScalarClaim::Stationary(s) = &**claim else {
+        return None;
+    };
+    let mut domain = domain.clone();
+    domain.bounds.retain(|(name, _)| *name != s.variable);
+    let side = |e: &Expression| super::model::Side {
+        text: e.text.clone(),
+        origin: e.origin.clone(),
+        node: Ok(e.node.clone()),
+        entry: None,
+    };
+    let zero = Expression {
+        text: "0".to_owned(),
+        origin: s.first.origin.clone(),
+        node: crate::lang::Node {
+            kind: crate::lang::NodeKind::Const(Rational::int(0)),
+            free: Vec::new(),
+            bound: Vec::new(),
+            span: s.first.node.span,
+        },
+    };
+    let part = |left: &Expression, right: &Expression, sign: Sign| {
+        let mut c = check.clone();
+        c.assumptions.push(s.point.clone());
+        c.chains = vec![vec![side(left), side(right)]];
+        c.strategy = Strategy::Scalar {
+            claim: Box::new(ScalarClaim::Sign(sign)),
+            domain: domain.clone(),
+            samples: *samples,
+            seed: *seed,
+        };
+        c
+    };
+    let (v, at) = (&s.variable, &s.at.text);
+    let mut parts = Vec::new();
+    for (lower, closed, end) in &s.ends {
+        let (own, strict) = match (lower, closed) {
+            (true, true) => (Sign::NonNegative, Sign::Positive),
+            (true, false) => (Sign::Positive, Sign::Positive),
+            (false, true) => (Sign::NonPositive, Sign::Negative),
+            (false, false) => (Sign::Negative, Sign::Negative),
+        };
+        // `left − right` of `at` and the end, as a relation between the two.
+        let relation = |sign: Sign| &sign.relation()[..sign.relation().len() - 2];
+        let said = |sign: Sign, where_: &str| {
+            format!(
+                "the point {v} = {at} is {} {} ({where_})",
+                relation(sign).trim(),
+                end.text
+            )
+        };
+        parts.push(match s.kind {
+            Extremum::Stationary => Part {
+                what: said(own, "in the interval"),
+                check: part(&s.at, end, own),
+                weaker: None,
+            },
+            Extremum::LocalMaximum | Extremum::LocalMinimum => Part {
+                what: said(strict, "inside the interval"),
+                check: part(&s.at, end, strict),
+                weaker: closed.then(|| {
+                    (
+                        part(&s.at, end, own),
+                        "the point reaches an end of the interval, where the derivative test decides nothing",
+                    )
+                }),
+            },
+        });
+    }
+    for sign in [Sign::NonNegative, Sign::NonPositive] {
+        parts.push(Part {
+            what: format!("the derivative in {v} at {v} = {at} is {}", sign.relation()),
+            check: part(&s.first, &zero, sign),
+            weaker: None,
+        });
+    }
+    let second = match s.kind {
+        Extremum::Stationary => None,
+        Extremum::LocalMaximum => Some((Sign::Negative, Sign::NonPositive)),
+        Extremum::LocalMinimum => Some((Sign::Positive, Sign::NonNegative)),
+    };
+    if let Some((strict, loose)) = second {
+        parts.push(Part {
+            what: format!("the second derivative in {v} at {v} = {at} is {}", strict.relation()),
+            check: part(&s.second, &zero, strict),
+            weaker: Some((
+                part(&s.second, &zero, loose),
+                "the second derivative vanishes there at some values of the parameters, where the second-derivative test decides nothing",
+            )),
+        });
+    }
+    Some(parts)
 }
 
 fn intersect(a: &Interval, b: &Interval) -> Interval {

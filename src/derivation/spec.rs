@@ -17,7 +17,7 @@ pub const DEFAULT_SAMPLES: usize = 200;
 pub const MIN_SAMPLES: usize = 50;
 
 const STRATEGIES: &str =
-    "exact, proportional, numeric, gradient, convex, not-circle, sign, monotone, limit or roots";
+    "exact, proportional, numeric, gradient, convex, not-circle, sign, monotone, limit, roots or stationary";
 
 impl Loader {
     /// The strategy of a claim; `defs` are the claim's visible definitions.
@@ -61,13 +61,15 @@ impl Loader {
             c.count.as_ref().map(|s| ("count", s.span())),
             c.exactly_when.as_ref().map(|s| ("exactly_when", s.span())),
             c.roots.as_ref().map(|_| ("roots", anchor.span())),
+            c.at.as_ref().map(|s| ("at", s.span())),
+            c.kind.as_ref().map(|s| ("kind", s.span())),
         ];
-        let scalar_kind = matches!(name, "sign" | "monotone" | "limit" | "roots");
+        let scalar_kind = matches!(name, "sign" | "monotone" | "limit" | "roots" | "stationary");
         if let (Some((field, at)), false) = (scalar_only.into_iter().flatten().next(), scalar_kind)
         {
             return Err(self
                 .diag(at, format!("`{field}` does not apply to strategy = \"{name}\""))
-                .with_help("it belongs to the claims about rational functions (strategy = \"sign\", \"monotone\", \"limit\" or \"roots\")"));
+                .with_help("it belongs to the claims about rational functions (strategy = \"sign\", \"monotone\", \"limit\", \"roots\" or \"stationary\")"));
         }
         if let (Some(text), false) = (&c.convention, name == "gradient") {
             return Err(self
@@ -183,7 +185,7 @@ impl Loader {
                     wrt,
                 }
             }
-            "sign" | "monotone" | "limit" | "roots" => {
+            "sign" | "monotone" | "limit" | "roots" | "stationary" => {
                 self.scalar_strategy(name, c, decls, defs)?
             }
             "not-circle" => {

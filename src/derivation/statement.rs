@@ -311,8 +311,10 @@ pub fn scalar(decls: &Decls, check: &Check, domain: &ParamBox) -> Result<Stateme
     let mut l = Lowering::default();
     let context = context(decls, check, Some(domain), &mut l)?;
     let claim = match &**claim {
-        ScalarClaim::SignExactly(..) => {
-            unreachable!("decided part by part, each a sign claim (exact_part_checks)")
+        ScalarClaim::SignExactly(..) | ScalarClaim::Stationary(_) => {
+            unreachable!(
+                "decided part by part, each a sign claim (exact_part_checks, stationary_parts)"
+            )
         }
         ScalarClaim::Sign(sign) => {
             let sides = chain_terms(&check.chains[0], decls, &check.defs, &mut l);

@@ -76,6 +76,13 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
         for k in deps {
             let text = check.defs[k].text.trim();
             let typeset = match text.split_once('=') {
+                // A side of a matrix chain, named by the reader (`side 1.2`): words,
+                // not a product of a name and a number.
+                Some((_, body)) if check.defs[k].sig.name.starts_with("side ") => format!(
+                    "\\text{{{}}} = {}",
+                    check.defs[k].sig.name,
+                    super::typeset::latex(body.trim())
+                ),
                 Some((name, body)) => format!(
                     "{} = {}",
                     super::typeset::latex(name.trim()),

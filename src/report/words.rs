@@ -38,6 +38,7 @@ pub fn finding(f: &Finding) -> String {
              `ranges` or `given`, or exclude the set with `singular`",
             self::point(point)
         ),
+        Finding::Inconclusive { why } => format!("undecided: {why}"),
         Finding::KernelRefused { why } => format!(
             "undecided: the search's result was not accepted by the kernel's check ({why})"
         ),

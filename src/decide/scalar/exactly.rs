@@ -6,8 +6,8 @@
 //! that fails: a point of the set where the sign does not hold, or one outside it where
 //! it holds too.
 
-use super::super::finding::{Finding, RationalEvidence};
-use super::super::outcome::{Method, Outcome, Strength};
+use super::super::outcome::{Method, Outcome};
+use super::parts;
 use crate::derivation::{exact_part_checks, Check, ScalarClaim, Strategy, Verdict};
 use crate::lang::Diagnostic;
 
@@ -28,66 +28,22 @@ pub(super) fn decide(
     }
     let first = |v: Verdict| decided.iter().position(|(_, o)| o.verdict() == v);
     if let Some(k) = first(Verdict::Fails).or_else(|| first(Verdict::Undecided)) {
-        let (at, mut o) = decided.swap_remove(k);
+        let (at, o) = decided.swap_remove(k);
         let what = if is_inside(check, &parts[k]) {
             "the part inside the set it is claimed on"
         } else {
             "a part outside the set it is claimed on, where its negation is claimed"
         };
-        let said = format!("{what}: {at}");
-        match &mut o.finding {
-            Some(Finding::RationalFunction(e)) => e.points.insert(0, said),
-            None => {
-                let (relation, box_) = where_(&parts[k]).1;
-                o.finding = Some(Finding::RationalFunction(RationalEvidence {
-                    decided: format!("left − right {relation} ({what})"),
-                    domain: box_,
-                    points: Vec::new(),
-                    holds_on: None,
-                    limit: None,
-                    sampled: None,
-                }))
-            }
-            Some(_) => {}
-        }
-        return Ok(o);
+        let (relation, box_) = where_(&parts[k]).1;
+        return Ok(parts::labelled(
+            o,
+            format!("{what}: {at}"),
+            what,
+            relation,
+            box_,
+        ));
     }
-    let checks = decided.iter().map(|(_, o)| o.checks).sum();
-    let mut evidence = None;
-    let mut points = Vec::new();
-    let mut sampled = None;
-    for (at, o) in &decided {
-        if let Some(Finding::RationalFunction(e)) = &o.finding {
-            let detail = if e.points.is_empty() {
-                String::new()
-            } else {
-                format!(" ({})", e.points.join(", "))
-            };
-            points.push(format!("{at}{detail}"));
-            sampled = sampled.or_else(|| e.sampled.clone());
-            evidence.get_or_insert_with(|| e.clone());
-        }
-    }
-    let all_proved = decided.iter().all(|(_, o)| o.strength() == Strength::Proof);
-    let proofs = decided
-        .iter()
-        .flat_map(|(_, o)| o.proofs().iter().cloned())
-        .collect();
-    let o = match Outcome::proved_parts(Method::RationalFunction, checks, proofs) {
-        Some(o) if all_proved => o,
-        _ => Outcome::holds_sampled(Method::RationalFunction, checks),
-    };
-    Ok(match evidence {
-        Some(mut e) => {
-            e.points = points;
-            e.sampled = sampled;
-            if let Strategy::Scalar { domain, .. } = &check.strategy {
-                e.domain = domain.describe();
-            }
-            o.with_finding(Finding::RationalFunction(e))
-        }
-        None => o,
-    })
+    Ok(parts::all_hold(check, &decided))
 }
 
 /// A part in words (`left − right ≤ 0 where nu ≤ −1`), and its relation and box.

@@ -1,5 +1,5 @@
-//! Claims about scalar rational functions of parameters: `sign`, `monotone`, `limit`
-//! and `roots` (see [`ScalarClaim`]).
+//! Claims about scalar rational functions of parameters: `sign`, `monotone`, `limit`,
+//! `roots` and `stationary` (see [`ScalarClaim`]).
 //!
 //! Every expression is evaluated exactly to a reduced rational function of the
 //! parameters it uses. With one parameter, it is decided completely: Sturm sequences
@@ -15,9 +15,11 @@ mod context;
 mod exactly;
 mod limit;
 mod monotone;
+mod parts;
 mod roots;
 mod sample;
 mod sign;
+mod stationary;
 
 use super::outcome::Outcome;
 use crate::derivation::{Check, ScalarClaim, Strategy};
@@ -36,8 +38,10 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     else {
         unreachable!("dispatched on the strategy")
     };
-    if let ScalarClaim::SignExactly(..) = &**claim {
-        return exactly::decide(check, |part| decide(decls, part));
+    match &**claim {
+        ScalarClaim::SignExactly(..) => return exactly::decide(check, |part| decide(decls, part)),
+        ScalarClaim::Stationary(_) => return stationary::decide(check, |part| decide(decls, part)),
+        _ => {}
     }
     // Square roots take their sign on the claim's box.
     let env = ExactEnv::on(decls, &check.defs, &check.assumptions, Some(domain))?;
@@ -51,7 +55,9 @@ pub fn decide(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
     };
     let decided = match &**claim {
         ScalarClaim::Sign(want) => sign::decide(&mut cx, *want),
-        ScalarClaim::SignExactly(..) => unreachable!("decided part by part"),
+        ScalarClaim::SignExactly(..) | ScalarClaim::Stationary(_) => {
+            unreachable!("decided part by part")
+        }
         ScalarClaim::Monotone {
             function,
             variable,
