@@ -352,6 +352,19 @@ fn every_mutant_of_a_stationary_point_is_refuted() {
     assert_swept(&files, &kinds, "mutation_report_stationary");
 }
 
+/// Mutants of principal values (`tests/soundness/principal-values.toml`): the entries
+/// of the matrices, whose characteristic polynomials change their roots.
+#[test]
+fn every_mutant_of_a_principal_value_is_refuted() {
+    let files = load_files(&["tests/soundness/principal-values.toml"]).expect("loads");
+    let kinds = [
+        MutantKind::Coefficient,
+        MutantKind::FlipSign,
+        MutantKind::DropTerm,
+    ];
+    assert_swept(&files, &kinds, "mutation_report_principal_values");
+}
+
 /// The least number of refuted mutants (refuted or refuted on resampling) per sweep and
 /// strategy, and the least share of them among the mutants that are neither
 /// equivalent nor rejected as ill-formed. A drop below either fails here, whatever
@@ -384,6 +397,12 @@ const FLOORS: &[(&str, &str, usize, f64)] = &[
         "mutation_report_sets_and_counts",
         "rational-function",
         98,
+        0.99,
+    ),
+    (
+        "mutation_report_principal_values",
+        "rational-function",
+        113,
         0.99,
     ),
     ("mutation_report_stationary", "rational-function", 33, 0.99),

@@ -247,6 +247,23 @@ fn stationary_points_and_extrema_are_decided_as_declared() {
 }
 
 #[test]
+fn principal_values_through_the_characteristic_polynomial_are_decided_as_declared() {
+    common::assert_as_declared("tests/soundness/principal-values.toml", 8, |rows| {
+        for r in rows {
+            let (o, id) = (&r.outcome, r.claim.id.as_str());
+            assert_eq!(o.strength(), Strength::Proof, "{id}");
+        }
+        let evidence = |id: &str| common::evidence_of(rows, id);
+        assert!(evidence("three-principal-values")
+            .contains("root at lam ≈ 0.5857864376, root at lam = 2, root at lam ≈ 3.414213562"));
+        assert!(evidence("three-principal-values-twin")
+            .contains("left 3, right 2 at lam ≈ 0.5857864376 and 2 and ≈ 3.414213562"));
+        assert!(evidence("positive-definite-twin").contains("left 2, right 3 at lam=1 and 3"));
+        assert!(evidence("isotropic-stiffness").contains("(lam − (3*K)) (lam − (2*G))^2"));
+    });
+}
+
+#[test]
 fn the_worked_example_is_decided_as_declared() {
     common::assert_as_declared("derivations/examples/rational-functions.toml", 8, |_| {});
 }

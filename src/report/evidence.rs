@@ -172,8 +172,18 @@ fn nonzero_coordinates(point: &std::collections::BTreeMap<String, String>) -> Ve
     point
         .iter()
         .filter(|(_, v)| v.as_str() != "0")
-        .map(|(k, v)| format!("{k}={v}"))
+        .map(|(k, v)| coordinate(k, v))
         .collect()
+}
+
+/// `x=1/2`, or `x ≈ 0.8452994616` for a value given to ten digits (an irrational root):
+/// never `x=≈ …`.
+fn coordinate(k: &str, v: &str) -> String {
+    if v.starts_with('≈') {
+        format!("{k} {v}")
+    } else {
+        format!("{k}={v}")
+    }
 }
 
 /// ` at i=1, j=2` for index values (empty for none).
@@ -198,7 +208,7 @@ fn counterexample_text(cx: &Counterexample) -> String {
             (Some(l), Some(r)) => format!(": left {l}, right {r}"),
             _ => String::new(),
         };
-        let pts: Vec<String> = cx.point.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let pts: Vec<String> = cx.point.iter().map(|(k, v)| coordinate(k, v)).collect();
         let state = if pts.is_empty() {
             "with every variable it reads 0".to_owned()
         } else {
