@@ -12,9 +12,10 @@
 //!   by entry.
 //! - det A is expanded along the rows over the sets of columns used so far (Laplace),
 //!   each minor of two or more rows a definition `det 4{1,3}` of the minors before it;
-//!   adj(A)_ij = (−1)^(i+j) det(A without row j and column i); inv(A) = adj(A) / det A
-//!   and solve(A, b) = adj(A) b / det A, so that both hold where det A ≠ 0, as any
-//!   other division.
+//!   adj(A)_ij = (−1)^(i+j) det(A without row j and column i), read off the same
+//!   expansion without row j (`det 5 without row 2{1,3}`), so that an n×n adjugate
+//!   takes about n·2ⁿ definitions; inv(A) = (1 / det A) adj(A) and solve(A, b) =
+//!   (1 / det A) adj(A) b, so that both hold where det A ≠ 0, as any other division.
 //! - `matrix(T_ijkl, voigt_ij, voigt_kl)` reads the tensor at fixed indices: entry
 //!   (a, b) is `T` with its letters set to the positions a and b (through a definition
 //!   of the tensor when it is not a single name).
@@ -32,8 +33,8 @@ use crate::lang::matrix::{MatrixOp, MatrixRead, Order};
 use crate::lang::parser::{Func, Wrt};
 use crate::lang::{Node, NodeKind};
 
-/// The most definitions the matrices of one statement may add (a 9×9 inverse needs
-/// about 20,000).
+/// The most definitions the matrices of one statement may add (a 12×12 inverse needs
+/// about 27,000).
 pub const BUDGET: usize = 100_000;
 
 /// A matrix's entries, row by row, each a scalar term.
@@ -51,6 +52,8 @@ struct TooLarge;
 pub struct Lowering {
     pub defs: Vec<Definition>,
     made: usize,
+    /// The file's definitions, each lowered when a term first reads it.
+    offered: Vec<(String, Vec<char>, Node)>,
 }
 
 /// The name of a matrix definition's entry k (0-based, row by row).
@@ -141,9 +144,61 @@ impl Lowering {
         Ok(Grid { entries, ..g })
     }
 
+    /// A file's definition, lowered (by [`Lowering::finish`]) only if the statement
+    /// reads it.
+    pub fn offer(&mut self, name: &str, formal: &[char], body: &Node) {
+        self.offered
+            .push((name.to_owned(), formal.to_vec(), body.clone()));
+    }
+
+    /// The definitions the statement reads through `terms`, directly or through other
+    /// definitions, with every file definition among them lowered; the others are left
+    /// out (the statement is what the claim says, not the whole file).
+    pub fn finish<'t>(mut self, terms: impl Iterator<Item = &'t Term>) -> Vec<Definition> {
+        fn names(t: &Term, out: &mut Vec<String>) {
+            if let Term::Leaf {
+                of: Leaf::Def(d), ..
+            } = t
+            {
+                out.push(d.clone());
+            }
+            for c in crate::kernel::eval::children(t) {
+                names(c, out);
+            }
+        }
+        let mut pending = Vec::new();
+        for t in terms {
+            names(t, &mut pending);
+        }
+        let mut index: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
+        let mut indexed = 0;
+        let mut read = std::collections::BTreeSet::new();
+        while let Some(name) = pending.pop() {
+            if !read.insert(name.clone()) {
+                continue;
+            }
+            // A file definition (`A`, or an entry `A[1,2]` of a matrix one) not yet
+            // lowered is lowered now.
+            let file = name.split_once('[').map_or(name.as_str(), |(base, _)| base);
+            if let Some(k) = self.offered.iter().position(|(n, _, _)| n == file) {
+                let (n, formal, body) = self.offered.remove(k);
+                self.definition(&n, &formal, &body);
+            }
+            for (k, d) in self.defs.iter().enumerate().skip(indexed) {
+                index.insert(d.name.clone(), k);
+            }
+            indexed = self.defs.len();
+            if let Some(&k) = index.get(&name) {
+                names(&self.defs[k].body, &mut pending);
+            }
+        }
+        self.defs.retain(|d| read.contains(&d.name));
+        self.defs
+    }
+
     /// A file's definition in the kernel's terms: a matrix definition becomes one
     /// scalar definition per entry.
-    pub fn definition(&mut self, name: &str, formal: &[char], body: &Node) {
+    fn definition(&mut self, name: &str, formal: &[char], body: &Node) {
         let Some((rows, cols)) = body.shape() else {
             let body = self.term(body);
             self.defs.push(Definition {
@@ -308,16 +363,16 @@ impl Lowering {
             MatrixOp::Adjugate(x) => {
                 let a = self.grid(x)?;
                 let a = self.materialised(a)?;
-                self.adjugate(&a.entries, a.rows)?
+                self.adjugate(&a.entries, a.rows)?.0
             }
             MatrixOp::Inverse(x) | MatrixOp::Solve(x, _) => {
                 let a = self.grid(x)?;
                 let a = self.materialised(a)?;
-                let det = self.det(&a.entries, a.rows)?;
+                let (entries, det) = self.adjugate(&a.entries, a.rows)?;
                 let adj = Grid {
                     rows: a.rows,
                     cols: a.rows,
-                    entries: self.adjugate(&a.entries, a.rows)?,
+                    entries,
                 };
                 let top = match op {
                     MatrixOp::Solve(_, y) => {
@@ -404,18 +459,46 @@ impl Lowering {
         Ok(out)
     }
 
-    /// det by expansion along the rows over the sets of columns used so far: the minor
-    /// of a set S of columns is that of the first |S| rows, each of two or more rows a
-    /// definition.
+    /// det by expansion along the rows over the sets of columns used so far.
     fn det(&mut self, m: &[Term], n: usize) -> Result<Term, TooLarge> {
         if n == 0 {
             return Ok(constant(1));
         }
+        let minors = self.minors(m, n, None, &[])?;
+        Ok(minors[(1 << n) - 1].clone())
+    }
+
+    /// The minors of the rows of `m` (without row `skip`) taken in order, by the sets
+    /// of columns used so far: minor(S) is the determinant of the first |S| of those
+    /// rows and the columns in S, expanded along its last row (Laplace); each of two or
+    /// more rows is a definition. Without a skipped row, `shared` is empty; with one,
+    /// it is the minors without a skip, which are the same for the sets of rows before
+    /// the skipped one.
+    fn minors(
+        &mut self,
+        m: &[Term],
+        n: usize,
+        skip: Option<usize>,
+        shared: &[Term],
+    ) -> Result<Vec<Term>, TooLarge> {
         let full = (1usize << n) - 1;
         let tag = self.made + 1;
+        let rows = n - usize::from(skip.is_some());
         let mut minors: Vec<Term> = vec![constant(1); 1 << n];
         for set in 1..=full {
-            let row = set.count_ones() as usize - 1;
+            let size = set.count_ones() as usize;
+            if size > rows {
+                continue;
+            }
+            // The row this set's last step expands along.
+            let row = match skip {
+                Some(j) if size > j => size,
+                Some(_) => {
+                    minors[set] = shared[set].clone();
+                    continue;
+                }
+                None => size - 1,
+            };
             let mut terms = Vec::new();
             // The sign of a column is the parity of the columns of the set after it.
             // The last column first: the diagonal's product leads.
@@ -439,44 +522,44 @@ impl Lowering {
                 });
             }
             let minor = sum(terms);
-            minors[set] = if row == 0 || set == full || atomic(&minor) {
+            minors[set] = if size == 1 || size == rows || atomic(&minor) {
                 minor
             } else {
                 let columns: Vec<String> = (0..n)
                     .filter(|c| set & (1 << c) != 0)
                     .map(|c| (c + 1).to_string())
                     .collect();
-                let name = format!("det {tag}{{{}}}", columns.join(","));
+                let without = skip.map_or(String::new(), |j| format!(" without row {}", j + 1));
+                let name = format!("det {tag}{without}{{{}}}", columns.join(","));
                 self.define(name.clone(), Vec::new(), minor)?;
                 def_leaf(name)
             };
         }
-        Ok(minors[full].clone())
+        Ok(minors)
     }
 
     /// The adjugate: entry (i, j) is (−1)^(i+j) times the minor without row j and
-    /// column i.
-    fn adjugate(&mut self, m: &[Term], n: usize) -> Result<Vec<Term>, TooLarge> {
+    /// column i, read off the minors without row j.
+    /// The adjugate and the determinant, from one expansion.
+    fn adjugate(&mut self, m: &[Term], n: usize) -> Result<(Vec<Term>, Term), TooLarge> {
+        let full = (1usize << n) - 1;
+        let shared = self.minors(m, n, None, &[])?;
         if n == 1 {
-            return Ok(vec![constant(1)]);
+            return Ok((vec![constant(1)], shared[full].clone()));
         }
-        let mut out = Vec::with_capacity(n * n);
-        for i in 0..n {
-            for j in 0..n {
-                let minor: Vec<Term> = (0..n)
-                    .filter(|&r| r != j)
-                    .flat_map(|r| (0..n).filter(|&c| c != i).map(move |c| (r, c)))
-                    .map(|(r, c)| m[r * n + c].clone())
-                    .collect();
-                let det = self.det(&minor, n - 1)?;
-                out.push(if (i + j) % 2 == 0 || is_zero(&det) {
-                    det
+        let mut out = vec![constant(0); n * n];
+        for j in 0..n {
+            let minors = self.minors(m, n, Some(j), &shared)?;
+            for i in 0..n {
+                let minor = minors[full & !(1 << i)].clone();
+                out[i * n + j] = if (i + j) % 2 == 0 || is_zero(&minor) {
+                    minor
                 } else {
-                    Term::Neg(Box::new(det))
-                });
+                    Term::Neg(Box::new(minor))
+                };
             }
         }
-        Ok(out)
+        Ok((out, shared[full].clone()))
     }
 }
 

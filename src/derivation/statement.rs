@@ -141,7 +141,7 @@ fn context(
     let parametrisation = Parametrisation::new(decls, &check.defs, &check.assumptions)?;
     let substituted = parametrisation.substitutions();
     for d in &check.defs {
-        l.definition(&d.sig.name, &d.sig.formal, &d.body);
+        l.offer(&d.sig.name, &d.sig.formal, &d.body);
     }
     let mut equations = Vec::new();
     for (k, a) in check.assumptions.iter().enumerate() {
@@ -205,11 +205,10 @@ fn context(
     })
 }
 
-/// The statement of `claim` in `context`, with the definitions the reading made,
-/// keeping only those that the claim or the assumptions read (through other
-/// definitions): the statement is what the claim says, not the whole file.
+/// The statement of `claim` in `context`, with the definitions that the claim or the
+/// assumptions read (through other definitions), in the kernel's terms: the
+/// statement is what the claim says, not the whole file.
 fn finish(mut context: Context, claim: Claim, l: Lowering) -> Statement {
-    context.definitions = l.defs;
     let mut read: Vec<&Term> = Vec::new();
     match &claim {
         Claim::Equal { chains } | Claim::Proportional { chains } => {
@@ -233,8 +232,16 @@ fn finish(mut context: Context, claim: Claim, l: Lowering) -> Statement {
         }
         Claim::NotCircle { x, y } => read.extend([x, y]),
     }
-    let read: Vec<Term> = read.into_iter().cloned().collect();
-    keep_read(&mut context, read.iter());
+    for e in &context.equations {
+        match e {
+            Equation::Component { value, .. } | Equation::Equals { value, .. } => read.push(value),
+            Equation::Constraint { left, right } => read.extend([left, right]),
+            _ => {}
+        }
+    }
+    read.extend(context.substitutions.iter().map(|s| &s.value));
+    let definitions = l.finish(read.into_iter());
+    context.definitions = definitions;
     Statement { context, claim }
 }
 
@@ -255,50 +262,6 @@ pub fn equalities(decls: &Decls, check: &Check) -> Result<Statement, Diagnostic>
         Claim::Equal { chains }
     };
     Ok(finish(context, claim, l))
-}
-
-/// Keeps only the definitions that `terms` or the assumptions read (through other
-/// definitions).
-fn keep_read<'t>(context: &mut Context, terms: impl Iterator<Item = &'t Term>) {
-    fn names(t: &Term, out: &mut Vec<String>) {
-        if let Term::Leaf {
-            of: Leaf::Def(d), ..
-        } = t
-        {
-            out.push(d.clone());
-        }
-        for c in crate::kernel::eval::children(t) {
-            names(c, out);
-        }
-    }
-    let mut pending = Vec::new();
-    for t in terms {
-        names(t, &mut pending);
-    }
-    for e in &context.equations {
-        match e {
-            Equation::Component { value, .. } | Equation::Equals { value, .. } => {
-                names(value, &mut pending);
-            }
-            Equation::Constraint { left, right } => {
-                names(left, &mut pending);
-                names(right, &mut pending);
-            }
-            _ => {}
-        }
-    }
-    for s in &context.substitutions {
-        names(&s.value, &mut pending);
-    }
-    let mut read = std::collections::BTreeSet::new();
-    while let Some(name) = pending.pop() {
-        if read.insert(name.clone()) {
-            for d in context.definitions.iter().filter(|d| d.name == name) {
-                names(&d.body, &mut pending);
-            }
-        }
-    }
-    context.definitions.retain(|d| read.contains(&d.name));
 }
 
 /// The statement of a claim about a scalar function of parameters, on the box

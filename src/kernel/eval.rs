@@ -209,8 +209,10 @@ pub struct Env<'c> {
     varying: HashMap<Var, Varying>,
     symbols: HashMap<String, Vec<Frac>>,
     cache: HashMap<String, Value>,
-    /// Definitions made by `grad`: the derivatives of definitions.
-    derived: Vec<Definition>,
+    /// Definitions made by `grad`: the derivatives of definitions, by name.
+    derived: HashMap<String, Definition>,
+    /// The statement's definitions by name (the last of a name counts).
+    defined: HashMap<&'c str, &'c Definition>,
     active: Vec<String>,
     /// Symbols some assumption mentions: a field among them cannot be varied.
     assumed: BTreeSet<String>,
@@ -267,7 +269,12 @@ impl<'c> Env<'c> {
             varying: HashMap::new(),
             symbols: HashMap::new(),
             cache: HashMap::new(),
-            derived: Vec::new(),
+            derived: HashMap::new(),
+            defined: ctx
+                .definitions
+                .iter()
+                .map(|d| (d.name.as_str(), d))
+                .collect(),
             active: Vec::new(),
             assumed: BTreeSet::new(),
             roots: Vec::new(),
@@ -344,10 +351,8 @@ impl<'c> Env<'c> {
 
     fn definition(&self, name: &str) -> Option<&Definition> {
         self.derived
-            .iter()
-            .rev()
-            .chain(self.ctx.definitions.iter().rev())
-            .find(|d| d.name == name)
+            .get(name)
+            .or_else(|| self.defined.get(name).copied())
     }
 
     fn rank(&self, symbol: &str) -> R<usize> {
@@ -1335,11 +1340,11 @@ impl Definitions for Env<'_> {
     }
 
     fn derive(&mut self, def: Definition) {
-        self.derived.push(def);
+        self.derived.insert(def.name.clone(), def);
     }
 
     fn has_derived(&self, name: &str) -> bool {
-        self.derived.iter().any(|d| d.name == name)
+        self.derived.contains_key(name)
     }
 
     fn definition_of(&self, name: &str) -> Option<Definition> {
