@@ -371,3 +371,32 @@ fn the_reading_of_matrices_agrees_with_gauss_jordan_elimination() {
         }
     }
 }
+
+/// Large matrices: a 12×12 inverse (the largest side) is written out in about 28,000
+/// definitions and proved; a statement that would need more than the reader's bound
+/// (four nested 12×12 inverses) is undecided with that reason, never a verdict.
+#[test]
+fn a_twelve_by_twelve_inverse_is_proved_and_a_larger_statement_undecided() {
+    let n = 12;
+    let rows: Vec<String> = (0..n)
+        .map(|i| {
+            let es: Vec<String> = (0..n)
+                .map(|j| (u8::from(i == j) + u8::from(j == i + 1)).to_string())
+                .collect();
+            format!("[{}]", es.join(", "))
+        })
+        .collect();
+    let file = format!(
+        "section = \"t\"\ntitle = \"t\"\ndimension = 2\ndefine = [\"A = [{}]\"]\n\n\
+         [[claim]]\nid = \"inverse\"\nprinted = 'x'\nexpect = \"holds\"\nsides = [\"det(inv(A))\", \"1\"]\n\n\
+         [[claim]]\nid = \"too-large\"\nprinted = 'x'\nexpect = \"undecided\"\nreason = \"past the bound\"\n\
+         sides = [\"det(inv(inv(inv(inv(A)))))\", \"1\"]\n",
+        rows.join(", ")
+    );
+    let outcomes = common::outcomes_of(&file);
+    assert_eq!(outcomes[0].verdict(), Verdict::Holds);
+    assert_eq!(outcomes[0].strength(), Strength::Proof);
+    assert_eq!(outcomes[1].verdict(), Verdict::Undecided);
+    let why = cosserat_check::report::evidence(&outcomes[1]);
+    assert!(why.contains("more than 100000 definitions"), "{why}");
+}
