@@ -131,46 +131,64 @@ fn signs_on_exactly_a_set_and_root_counts_are_decided_as_declared() {
 
 #[test]
 fn a_part_of_a_sign_on_exactly_a_set_is_rechecked_with_the_others() {
-    use cosserat_check::derivation::load_files;
-    let path = "tests/soundness/sets-and-counts.toml";
+    let (report, bound) = report_and_recheck("tests/soundness/sets-and-counts.toml");
+    assert_eq!(bound(&report), (31, 0));
+    // A part left out, or one part's proof given for all three: refused.
+    let dropped = with_proofs(&report, "iff-isotropic-moduli", |p| {
+        p.pop();
+    });
+    assert_eq!(bound(&dropped), (30, 1));
+    let copied = with_proofs(&report, "iff-isotropic-moduli", |p| {
+        let first = p[0].clone();
+        p.iter_mut().for_each(|x| *x = first.clone());
+    });
+    assert_eq!(bound(&copied), (30, 1));
+}
+
+/// The JSON report of `path`, and a recheck of a report against the statements the
+/// file gives: (accepted, refused).
+fn report_and_recheck(
+    path: &str,
+) -> (
+    serde_json::Value,
+    impl Fn(&serde_json::Value) -> (usize, usize),
+) {
     let (_, text) = common::run_cli(&["verify", path, "--format", "json"], false);
     let report: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let files = load_files(&[path]).unwrap();
+    let files = cosserat_check::derivation::load_files(&[path]).unwrap();
     let statements = cosserat_check::recheck::statements_of(&files).unwrap();
-    let lookup = |id: &str, c: bool| statements.get(&(id.to_owned(), c)).cloned();
-    let bound = |r: &serde_json::Value| {
+    let bound = move |r: &serde_json::Value| {
+        let lookup = |id: &str, c: bool| statements.get(&(id.to_owned(), c)).cloned();
         let r = cosserat_check::recheck::recheck(&r.to_string(), Some(&lookup)).unwrap();
         (r.accepted, r.refused)
     };
-    assert_eq!(bound(&report), (31, 0));
+    (report, bound)
+}
+
+/// `report` with the proofs of claim `id` edited by `edit`, and its certificate made
+/// to match them (so that only the proofs' coverage can be refused).
+fn with_proofs(
+    report: &serde_json::Value,
+    id: &str,
+    edit: impl Fn(&mut Vec<serde_json::Value>),
+) -> serde_json::Value {
     let k = report["claims"]
         .as_array()
         .unwrap()
         .iter()
-        .position(|c| c["id"] == "iff-isotropic-moduli")
+        .position(|c| c["id"] == id)
         .unwrap();
-    // A part left out, or one part's proof given for all three: refused.
-    for edit in [
-        |p: &mut Vec<serde_json::Value>| {
-            p.pop();
-        },
-        |p: &mut Vec<serde_json::Value>| {
-            let first = p[0].clone();
-            p.iter_mut().for_each(|x| *x = first.clone());
-        },
-    ] {
-        let mut r = report.clone();
-        let c = &mut r["claims"][k];
-        let mut proofs = c["proofs"].as_array().unwrap().clone();
-        edit(&mut proofs);
-        let facts: Vec<serde_json::Value> = proofs
-            .iter()
-            .flat_map(|p| p["summary"].as_array().unwrap().clone())
-            .collect();
-        c["proofs"] = serde_json::Value::Array(proofs);
-        c["certificate"] = serde_json::json!({ "facts": facts });
-        assert_eq!(bound(&r), (30, 1));
-    }
+    let mut r = report.clone();
+    let c = &mut r["claims"][k];
+    let mut proofs = c["proofs"].as_array().unwrap().clone();
+    edit(&mut proofs);
+    let facts: Vec<serde_json::Value> = proofs
+        .iter()
+        .flat_map(|p| p["summary"].as_array().unwrap().clone())
+        .collect();
+    c["proofs"] = serde_json::Value::Array(proofs);
+    c["certificate"] = serde_json::json!({ "facts": facts });
+    r
 }
 
 #[test]
@@ -217,33 +235,16 @@ fn stationary_points_and_extrema_are_decided_as_declared() {
     });
     // Every proof is about a part its file gives (a refutation by the weaker part
     // that tells it from an undecided test included); a holds needs all its parts.
-    let (_, text) = common::run_cli(&["verify", path, "--format", "json"], false);
-    let report: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let files = cosserat_check::derivation::load_files(&[path]).unwrap();
-    let statements = cosserat_check::recheck::statements_of(&files).unwrap();
-    let lookup = |id: &str, c: bool| statements.get(&(id.to_owned(), c)).cloned();
-    let bound = |r: &serde_json::Value| {
-        let r = cosserat_check::recheck::recheck(&r.to_string(), Some(&lookup)).unwrap();
-        (r.accepted, r.refused)
-    };
+    let (report, bound) = report_and_recheck(path);
     assert_eq!(bound(&report), (12, 0));
-    let k = report["claims"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .position(|c| c["id"] == "parabola-maximum")
-        .unwrap();
-    let mut r = report.clone();
-    let c = &mut r["claims"][k];
-    let mut proofs = c["proofs"].as_array().unwrap().clone();
-    proofs.pop();
-    let facts: Vec<serde_json::Value> = proofs
-        .iter()
-        .flat_map(|p| p["summary"].as_array().unwrap().clone())
-        .collect();
-    c["proofs"] = serde_json::Value::Array(proofs);
-    c["certificate"] = serde_json::json!({ "facts": facts });
-    assert_eq!(bound(&r), (11, 1), "the second derivative's part left out");
+    let dropped = with_proofs(&report, "parabola-maximum", |p| {
+        p.pop();
+    });
+    assert_eq!(
+        bound(&dropped),
+        (11, 1),
+        "the second derivative's part left out"
+    );
 }
 
 #[test]

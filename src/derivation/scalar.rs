@@ -475,13 +475,7 @@ pub fn exact_parts(want: Sign, set: &ParamBox, domain: &ParamBox) -> Vec<(Sign, 
 /// The checks a claim with `exactly_when` is decided as: one sign claim per part of
 /// [`exact_parts`], each on its own box (`None` for any other claim).
 pub fn exact_part_checks(check: &super::model::Check) -> Option<Vec<super::model::Check>> {
-    let Strategy::Scalar {
-        claim,
-        domain,
-        samples,
-        seed,
-    } = &check.strategy
-    else {
+    let Strategy::Scalar { claim, domain, .. } = &check.strategy else {
         return None;
     };
     let ScalarClaim::SignExactly(want, set) = &**claim else {
@@ -491,15 +485,25 @@ pub fn exact_part_checks(check: &super::model::Check) -> Option<Vec<super::model
         .into_iter()
         .map(|(sign, part)| {
             let mut c = check.clone();
-            c.strategy = Strategy::Scalar {
-                claim: Box::new(ScalarClaim::Sign(sign)),
-                domain: part,
-                samples: *samples,
-                seed: *seed,
-            };
+            c.strategy = sign_claim(check, sign, part);
             c
         });
     Some(parts.collect())
+}
+
+/// The strategy of a part of `check` (a scalar claim): the sign `sign` on `domain`,
+/// with the claim's samples and seed.
+fn sign_claim(check: &super::model::Check, sign: Sign, domain: ParamBox) -> Strategy {
+    let (samples, seed) = match &check.strategy {
+        Strategy::Scalar { samples, seed, .. } => (*samples, *seed),
+        _ => (DEFAULT_SAMPLES, 1),
+    };
+    Strategy::Scalar {
+        claim: Box::new(ScalarClaim::Sign(sign)),
+        domain,
+        samples,
+        seed,
+    }
 }
 
 /// One part of a stationary claim: a sign claim under `variable = at`.
@@ -518,13 +522,7 @@ pub struct Part {
 /// and for an extremum the second derivative's strict sign (`None` for any other
 /// claim). The claim holds when every part does.
 pub fn stationary_parts(check: &super::model::Check) -> Option<Vec<Part>> {
-    let Strategy::Scalar {
-        claim,
-        domain,
-        samples,
-        seed,
-    } = &check.strategy
-    else {
+    let Strategy::Scalar { claim, domain, .. } = &check.strategy else {
         return None;
     };
     let ScalarClaim::Stationary(s) = &**claim else {
@@ -552,12 +550,7 @@ pub fn stationary_parts(check: &super::model::Check) -> Option<Vec<Part>> {
         let mut c = check.clone();
         c.assumptions.push(s.point.clone());
         c.chains = vec![vec![side(left), side(right)]];
-        c.strategy = Strategy::Scalar {
-            claim: Box::new(ScalarClaim::Sign(sign)),
-            domain: domain.clone(),
-            samples: *samples,
-            seed: *seed,
-        };
+        c.strategy = sign_claim(check, sign, domain.clone());
         c
     };
     let (v, at) = (&s.variable, &s.at.text);
