@@ -50,10 +50,10 @@ struct TooLarge;
 /// The definitions made so far for one statement.
 #[derive(Default)]
 pub struct Lowering {
-    pub defs: Vec<Definition>,
+    defs: Vec<Definition>,
     made: usize,
-    /// The file's definitions, each lowered when a term first reads it.
-    offered: Vec<(String, Vec<char>, Node)>,
+    /// The file's definitions by name, each lowered when a term first reads it.
+    offered: std::collections::HashMap<String, (Vec<char>, Node)>,
 }
 
 /// The name of a matrix definition's entry k (0-based, row by row).
@@ -148,7 +148,7 @@ impl Lowering {
     /// reads it.
     pub fn offer(&mut self, name: &str, formal: &[char], body: &Node) {
         self.offered
-            .push((name.to_owned(), formal.to_vec(), body.clone()));
+            .insert(name.to_owned(), (formal.to_vec(), body.clone()));
     }
 
     /// The definitions the statement reads through `terms`, directly or through other
@@ -180,9 +180,8 @@ impl Lowering {
             // A file definition (`A`, or an entry `A[1,2]` of a matrix one) not yet
             // lowered is lowered now.
             let file = name.split_once('[').map_or(name.as_str(), |(base, _)| base);
-            if let Some(k) = self.offered.iter().position(|(n, _, _)| n == file) {
-                let (n, formal, body) = self.offered.remove(k);
-                self.definition(&n, &formal, &body);
+            if let Some((formal, body)) = self.offered.remove(file) {
+                self.definition(file, &formal, &body);
             }
             for (k, d) in self.defs.iter().enumerate().skip(indexed) {
                 index.insert(d.name.clone(), k);
