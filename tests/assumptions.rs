@@ -404,3 +404,46 @@ fn an_uncertified_root_in_a_substitution_is_undecided_not_an_input_error() {
     let boxed = decide_claim(&file.claims[1]).unwrap().outcome;
     assert_eq!(boxed.verdict(), Verdict::Holds);
 }
+
+#[test]
+fn hypotheses_on_derived_quantities_restrict_where_a_counterexample_may_lie() {
+    crate::common::assert_as_declared("tests/soundness/hypotheses.toml", 9, |rows| {
+        crate::common::assert_failures_confirmed(
+            rows,
+            4,
+            cosserat_check::decide::Reverified::FloatingPoint,
+        );
+        // Every counterexample satisfies its claim's hypotheses, and shows the
+        // variables they read.
+        let between = rows
+            .iter()
+            .find(|r| r.claim.id == "between-two-scalars-wrong")
+            .expect("listed");
+        let point = &between
+            .outcome
+            .counterexample
+            .as_ref()
+            .expect("refuted")
+            .point;
+        assert!(
+            point.contains_key("a") && point.keys().any(|k| k.starts_with("s_")),
+            "{point:?}"
+        );
+    });
+}
+
+#[test]
+fn hypotheses_outside_an_exact_identity_are_located_errors() {
+    let head = "section = \"t\"\ntitle = \"t\"\ndimension = 3\nnormal = \"n\"\nposition = \"x\"\nfields = [\"u_i\"]\ntensors = [\"s_ij\"]\nscalars = [\"a\"]\ndefine = [\"J2 = 1/2 s_ij s_ij\"]\n\n[[claim]]\nid = \"c\"\nprinted = 'c'\nexpect = \"holds\"\n";
+    let cases = [
+        ("given = [\"s_ij n_i n_j > 0\"]\nsides = [\"a\", \"a\"]", "varies with the normal or with position"),
+        ("given = [\"u_k u_k > 0\"]\nsides = [\"a\", \"a\"]", "varies with the normal or with position"),
+        ("strategy = \"proportional\"\ngiven = [\"J2 > 0\"]\nsides = [\"a\", \"a\"]", "`J2` is not a declared scalar"),
+        ("strategy = \"sign\"\ngiven = [\"J2 > 0\"]\nsides = [\"a^2\", \"0\"]\nrelation = \">=\"", "`J2` is not a declared scalar"),
+        ("given = [\"J2 >\"]\nsides = [\"a\", \"a\"]", "cannot read `J2 >` as a bound"),
+    ];
+    for (claim, message) in cases {
+        let e = crate::common::error_of(&format!("{head}{claim}\n"));
+        assert!(e.contains("f.toml:") && e.contains(message), "{claim}: {e}");
+    }
+}

@@ -16,6 +16,54 @@ fn identities_hold_and_their_twins_fail_confirmed_by_differences() {
     });
 }
 
+#[test]
+fn differential_hypotheses_are_decided_and_refuted_at_fields_that_satisfy_them() {
+    common::assert_as_declared("tests/soundness/differential.toml", 20, |rows| {
+        common::assert_failures_confirmed(rows, 10, Reverified::TaylorDifferences);
+    });
+}
+
+#[test]
+fn differential_hypotheses_outside_the_supported_class_are_located_errors() {
+    let fields = "fields = [\"phi\", \"psi\", \"u_i\"]\nnormal = \"n\"";
+    let cases = [
+        (
+            "assume = [\"phi_,kk = phi^3\"]\nsides = [\"phi_,kk\", \"phi^3\"]",
+            "f.toml:12:12",
+            "must be linear in the fields",
+        ),
+        (
+            "assume = [\"x_1 phi_,kk = 0\"]\nsides = [\"phi\", \"phi\"]",
+            "f.toml:12:12",
+            "coefficients constant in position",
+        ),
+        (
+            "assume = [\"phi_,1 = psi\", \"phi_,2 = 0\"]\nsides = [\"phi\", \"phi\"]",
+            "f.toml:12:28",
+            "not in involution: they give `phi_,12` two different values",
+        ),
+        (
+            "assume = [\"x_k x_k = 1\"]\nsides = [\"phi\", \"phi\"]",
+            "f.toml:12:12",
+            "varies with position",
+        ),
+        (
+            "assume = [\"phi_,k n_k = 0\"]\nsides = [\"phi\", \"phi\"]",
+            "f.toml:12:12",
+            "varies with the normal",
+        ),
+        (
+            "assume = [\"phi_,kk = 0\"]\nstrategy = \"numeric\"\nsides = [\"phi\", \"phi\"]",
+            "f.toml:12:12",
+            "decided exactly",
+        ),
+    ];
+    for (claim, at, message) in cases {
+        let e = common::error_of(&one_claim(fields, claim));
+        assert!(e.contains(at) && e.contains(message), "{claim}: {e}");
+    }
+}
+
 fn one_claim(header: &str, claim: &str) -> String {
     format!(
         "section = \"t\"\ntitle = \"t\"\ndimension = 3\nposition = \"x\"\n{header}\n\n[[claim]]\nid = \"c\"\nprinted = 'c'\nexpect = \"holds\"\n{claim}\n"

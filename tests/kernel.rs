@@ -703,3 +703,158 @@ fn a_one_point_interval_counts_its_point_once_and_has_no_open_piece() {
     };
     assert!(holds(sign(&ctx, pole, Sign::Positive), on_interval));
 }
+
+/// ∂ by the coordinates `slots` (letters, or digits 1..3) of `t`, innermost first.
+fn deriv(t: Term, slots: &str) -> Term {
+    slots.chars().fold(t, |acc, c| {
+        let slot = match c.to_digit(10) {
+            Some(d) => Slot::Fixed(d as usize - 1),
+            None => Slot::Letter(c),
+        };
+        Term::Deriv(Box::new(acc), slot)
+    })
+}
+
+fn with_fields(hypotheses: Vec<(Term, Term)>) -> Context {
+    let mut ctx = context(&[("phi", 0), ("psi", 0), ("x", 1)]);
+    ctx.position = Some("x".to_owned());
+    ctx.fields = ["phi", "psi"]
+        .iter()
+        .map(|f| (f.to_string(), vec![true; 3]))
+        .collect();
+    ctx.equations = hypotheses
+        .into_iter()
+        .map(|(left, right)| Equation::Differential { left, right })
+        .collect();
+    ctx
+}
+
+fn refuted_at(point: &[(&str, i64)]) -> Fact {
+    Fact::Refutation {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: Vec::new(),
+            point: point
+                .iter()
+                .map(|&(v, x)| (v.to_owned(), q(x, 1)))
+                .collect(),
+        },
+        roots: Vec::new(),
+    }
+}
+
+#[test]
+fn a_differential_hypothesis_holds_with_every_derivative_and_leaves_the_rest_free() {
+    let phi = || sym("phi", "");
+    let harmonic = with_fields(vec![(deriv(phi(), "kk"), num(0))]);
+    let laplacian = |extra: &str| {
+        sum(["11", "22", "33"]
+            .iter()
+            .map(|d| deriv(phi(), &format!("{d}{extra}")))
+            .collect())
+    };
+    // ∇²φ = 0 and its derivatives, to the fourth order.
+    for extra in ["", "1", "23", "3311"] {
+        let st = equal(&harmonic, laplacian(extra), num(0));
+        assert!(holds(st.clone(), identity()), "{extra}");
+        // A point that breaks the hypothesis does not refute a consequence of it.
+        let jet = |d: &str| {
+            format!("phi_,{}", {
+                let mut s: Vec<char> = format!("{d}{extra}").chars().collect();
+                s.sort_unstable();
+                s.into_iter().collect::<String>()
+            })
+        };
+        assert!(!fails(st, refuted_at(&[(&jet("11"), 1)])), "{extra}");
+    }
+    // φ_,11 is free: refuted where it is 1 (φ = (x_1² − x_3²)/2 is harmonic).
+    let st = equal(&harmonic, deriv(phi(), "11"), num(0));
+    assert!(fails(st.clone(), refuted_at(&[("phi_,11", 1)])));
+    assert!(!holds(st, identity()));
+    // ψ is not assumed harmonic.
+    let psi = sum(["11", "22", "33"]
+        .iter()
+        .map(|d| deriv(sym("psi", ""), d))
+        .collect());
+    assert!(!holds(equal(&harmonic, psi, num(0)), identity()));
+}
+
+#[test]
+fn differential_hypotheses_outside_the_checked_class_are_refused() {
+    let phi = || sym("phi", "");
+    let psi = || sym("psi", "");
+    let claim = |ctx: &Context| equal(ctx, deriv(phi(), "12"), num(0));
+    // φ_,1 = ψ and φ_,2 = 0 give φ_,12 both ψ_,2 and 0: not in involution, so the
+    // derivatives left free are not independent.
+    let open = with_fields(vec![
+        (deriv(phi(), "1"), psi()),
+        (deriv(phi(), "2"), num(0)),
+    ]);
+    assert!(check(claim(&open), identity()).is_err());
+    assert!(check(claim(&open), refuted_at(&[("psi_,2", 1)])).is_err());
+    // With ψ_,2 = 0 they are, and φ_,12 = 0 follows.
+    let closed = with_fields(vec![
+        (deriv(phi(), "1"), psi()),
+        (deriv(phi(), "2"), num(0)),
+        (deriv(psi(), "2"), num(0)),
+    ]);
+    assert!(holds(claim(&closed), identity()));
+    // Nonlinear, or with a coefficient that varies with position: refused.
+    let nonlinear = with_fields(vec![(deriv(phi(), "kk"), prod(vec![phi(), phi()]))]);
+    assert!(check(claim(&nonlinear), identity()).is_err());
+    let varying = with_fields(vec![(
+        prod(vec![sym("x", "1"), deriv(phi(), "kk")]),
+        num(0),
+    )]);
+    assert!(check(claim(&varying), identity()).is_err());
+    // Its highest derivative twice: 2 φ_,11 − φ_,11 is fine, φ_,11 φ_,11 is not.
+    let square = with_fields(vec![(
+        prod(vec![deriv(phi(), "11"), deriv(phi(), "11")]),
+        num(0),
+    )]);
+    assert!(check(claim(&square), identity()).is_err());
+}
+
+#[test]
+fn a_refutation_under_hypotheses_needs_a_point_where_they_hold() {
+    use cosserat_check::kernel::statement::Hypothesis;
+    let mut ctx = context(&[("a", 0), ("b", 0)]);
+    // a > 1 and b ≥ a.
+    ctx.hypotheses = vec![
+        Hypothesis {
+            left: sym("a", ""),
+            right: num(1),
+            sign: Sign::Positive,
+        },
+        Hypothesis {
+            left: sym("b", ""),
+            right: sym("a", ""),
+            sign: Sign::NonNegative,
+        },
+    ];
+    let st = equal(&ctx, sym("a", ""), num(0));
+    let at = |a: i64, b: i64| refuted_at(&[("a", a), ("b", b)]);
+    assert!(fails(st.clone(), at(2, 2)));
+    assert!(!fails(st.clone(), at(1, 1)), "a > 1 is strict");
+    assert!(!fails(st.clone(), at(3, 2)), "b < a there");
+    assert!(!fails(st.clone(), at(-1, 5)), "a < 1 there");
+    // Hypotheses may hold nowhere (a > 1 and a < 0): only a point refutes.
+    let differs = Fact::Differs {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: Vec::new(),
+            point: Vec::new(),
+        },
+        roots: Vec::new(),
+    };
+    assert!(!fails(st, differs));
+    // An identity proved for every state holds where they do.
+    let square = equal(
+        &ctx,
+        prod(vec![sym("a", ""), sym("a", "")]),
+        Term::Pow(Box::new(sym("a", "")), 2),
+    );
+    assert!(holds(square, identity()));
+}

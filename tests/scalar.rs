@@ -284,7 +284,7 @@ fn malformed_scalar_claims_are_located_errors() {
         ("strategy = \"sign\"\nsides = [\"x\", \"0\", \"1\"]\nrelation = \">\"", "compares exactly two sides"),
         ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\ngiven = [\"x > y\"]", "cannot read `x > y` as a bound"),
         ("strategy = \"sign\"\nsides = [\"x\", \"0\"]\nrelation = \">\"\ngiven = [\"x > 1\", \"x < 0\"]", "no value satisfies it"),
-        ("define = [\"q = x^2\"]\nsides = [\"q\", \"x^2\"]\ngiven = [\"q > 0\"]", "a bound on a definition or on any other expression is a hypothesis"),
+        ("strategy = \"proportional\"\ndefine = [\"q = x^2\"]\nsides = [\"q\", \"x^2\"]\ngiven = [\"q > 0\"]", "a hypothesis of an exact identity"),
         ("strategy = \"monotone\"\nfunction = \"x\"\ndirection = \"up\"\nin = \"x\"", "unknown direction `up`"),
         ("strategy = \"monotone\"\nfunction = \"x\"\ndirection = \"increasing\"", "needs `in`"),
         ("strategy = \"monotone\"\nfunction = \"x\"\ndirection = \"increasing\"\nin = \"s\"", "`s` is not a scalar parameter"),

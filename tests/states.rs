@@ -173,7 +173,7 @@ fn malformed_gradients_are_located_errors() {
         // the first partials of its radicand vanish there: an error, never 0.
         (claim("assume = [\"s_ij = x delta_ij\"]\ngiven = [\"x > 0\"]\nsides = [\"grad(sqrt((s_12 - s_21)^2), s_ij)\", \"0\"]"), "its radicand is 0 at the state"),
         (claim("samples = 60\nsides = [\"x\", \"x\"]"), "`samples` belongs to the sampled strategies"),
-        (claim("given = [\"x > y\"]\nsides = [\"x\", \"x\"]"), "cannot read `x > y` as a bound"),
+        (claim("strategy = \"proportional\"\ngiven = [\"x > y\"]\nsides = [\"x\", \"x\"]"), "cannot read `x > y` as a bound"),
         (claim("strategy = \"gradient\"\nfunction = \"grad(x^2 s_kk, x)\"\ngradient = { s = \"2 x delta_ij\" }"), "differentiates this function, which takes grad(…) or variation(…) itself"),
         (file("define = [\"g = grad(x^3, x)\"]\n[[claim]]\nid = \"c\"\nprinted = 'x'\nexpect = \"holds\"\nstrategy = \"convex\"\nfunction = \"g\"\nwrt = [\"s\"]"), "differentiates this function, which takes grad(…) or variation(…) itself"),
     ];

@@ -468,6 +468,7 @@ fn mutated_sides_of_the_paper_make_its_transcriptions_differ() {
                 for m in mutants(side).into_iter().take(6) {
                     let exact = Strategy::Exact {
                         domain: Default::default(),
+                        hypotheses: Vec::new(),
                     };
                     let same = claim
                         .check

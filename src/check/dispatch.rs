@@ -36,13 +36,25 @@ pub(crate) fn method_of(check: &crate::derivation::Check) -> Method {
     }
 }
 
-/// A constraint between expressions (`s_ij s_ij = 2 tau^2`) is supported where its
+/// A differential hypothesis (`phi_,kk = 0`) is supported in an identity decided
+/// exactly. A constraint between expressions (`s_ij s_ij = 2 tau^2`) is supported where its
 /// meaning is settled: in an identity decided exactly or by sampling, and never under a
 /// derivative by a symbol it reads (whose components it ties, in no stated way).
 fn constraints_supported(check: &crate::derivation::Check) -> Result<(), Diagnostic> {
     use crate::derivation::{AssumptionKind, Strategy};
     use crate::lang::parser::Wrt;
     use crate::lang::NodeKind;
+    if let Some(a) = check
+        .assumptions
+        .iter()
+        .find(|a| matches!(a.kind, AssumptionKind::Differential { .. }))
+    {
+        if !matches!(check.strategy, Strategy::Exact { .. }) {
+            return Err(a
+                .diagnostic("a differential hypothesis applies to identities (sides or chains) decided exactly")
+                .with_help("drop the strategy: a sample is a point, not a field"));
+        }
+    }
     let Some(a) = check
         .assumptions
         .iter()

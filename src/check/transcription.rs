@@ -676,7 +676,11 @@ impl Comparer<'_> {
             .exact_domain()
             .cloned()
             .unwrap_or_default();
-        let exact = Strategy::Exact { domain };
+        let hypotheses = match &self.check.strategy {
+            Strategy::Exact { hypotheses, .. } => hypotheses.clone(),
+            _ => Vec::new(),
+        };
+        let exact = Strategy::Exact { domain, hypotheses };
         let c = match self.check.comparing(self.decls, printed, side, exact) {
             Ok(c) => c,
             Err(Incomparable::FreeIndices { left, right }) => {

@@ -67,6 +67,13 @@ pub enum Finding {
     /// hold and the sides differ was found in `tries` tries: there may be no real one,
     /// so nothing is decided.
     NoConstrainedPoint { difference: String, tries: usize },
+    /// The sides differ (by `difference`), but no exact point where the identity's
+    /// hypotheses hold (`hypotheses`, as written) and the sides differ was found: the
+    /// hypotheses may hold nowhere, so nothing is decided.
+    NoPointUnderHypotheses {
+        difference: String,
+        hypotheses: String,
+    },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.
     Unconfirmed { difference: String, why: Rejection },

@@ -210,6 +210,56 @@ fn decide_recording(
             None => return Err(r.into()),
         },
     };
+    // A counterexample's fields must take the values the differential hypotheses give
+    // every derivative the statement reads.
+    let differential = check.assumptions.iter().any(|a| {
+        matches!(
+            a.kind,
+            crate::derivation::AssumptionKind::Differential { .. }
+        )
+    });
+    if differential && env.complete_derivatives(check.derivative_order()).is_err() {
+        return Ok(
+            Outcome::undecided(Method::Exact, 0).with_finding(Finding::ResourceLimit {
+                what: "the derivatives the differential hypotheses determine".to_owned(),
+                at: String::new(),
+                help: "split the statement, or lower the order of its derivatives".to_owned(),
+            }),
+        );
+    }
+    // The hypotheses on derived quantities, each as one quotient with its sign.
+    let mut hypotheses = Vec::new();
+    if let Strategy::Exact {
+        hypotheses: stated, ..
+    } = &check.strategy
+    {
+        for h in stated {
+            let (l, r) = match (env.eval(&h.left, &h.origin), env.eval(&h.right, &h.origin)) {
+                (Ok(l), Ok(r)) => (l, r),
+                (Err(e), _) | (_, Err(e)) => match Finding::of_refusal(&e) {
+                    Some(f) => return Ok(Outcome::undecided(Method::Exact, 0).with_finding(f)),
+                    None => return Err(e.into()),
+                },
+            };
+            let (Some(l), Some(r)) = (l.tensor.into_scalar(), r.tensor.into_scalar()) else {
+                return Err(h
+                    .origin
+                    .diagnostic(Default::default(), "a hypothesis compares scalars"));
+            };
+            let mut work = crate::eval::exact::env::MAX_WORK;
+            let mut ring = crate::algebra::quotient::Quotients {
+                work_left: &mut work,
+            };
+            let difference =
+                crate::algebra::einsum::Arithmetic::add(&mut ring, l, -r).map_err(|_| {
+                    h.origin.diagnostic(
+                        Default::default(),
+                        "this hypothesis is too large to evaluate",
+                    )
+                })?;
+            hypotheses.push((difference, h.sign));
+        }
+    }
     let normal = env.normal_vars().to_vec();
     // An identity (not a proportionality) takes the square root of a polynomial that
     // is no square as a variable of its own, compared modulo its square.
@@ -321,7 +371,7 @@ fn decide_recording(
                 let (mut cx, point, mut values) = counterexample(
                     &env.vars,
                     (env.normal_vars(), env.rules(), &everywhere),
-                    env.domain(),
+                    (env.domain(), &hypotheses),
                     lp,
                     scaled.as_ref().unwrap_or(rp),
                     &diff,
@@ -333,6 +383,21 @@ fn decide_recording(
                         .with_finding(Finding::NoConstrainedPoint {
                             difference: cx.difference.clone(),
                             tries: super::points::CONSTRAINED_TRIES,
+                        }));
+                }
+                if values.is_none() && !hypotheses.is_empty() {
+                    let stated = match &check.strategy {
+                        Strategy::Exact { hypotheses, .. } => hypotheses
+                            .iter()
+                            .map(|h| h.text.as_str())
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                        _ => String::new(),
+                    };
+                    return Ok(Outcome::undecided(Method::Exact, identities.components())
+                        .with_finding(Finding::NoPointUnderHypotheses {
+                            difference: cx.difference.clone(),
+                            hypotheses: stated,
                         }));
                 }
                 satisfies_assumptions(&env, &point, &chain[k].origin)?;
@@ -805,7 +870,7 @@ fn mismatch(l: &Labeled<Quotient>, r: &Labeled<Quotient>) -> String {
 fn counterexample(
     names: &VarTable,
     (normal, rules, everywhere): (&[Var], &[crate::kernel::rules::Rule], &[Quotient]),
-    domain: &[(Var, Interval)],
+    domain: (&[(Var, Interval)], &[super::points::Hypothesis]),
     lhs: &Quotient,
     rhs: &Quotient,
     diff: &Difference,
@@ -826,6 +891,15 @@ fn counterexample(
     match found {
         Some((point, l, r)) => {
             cx.point = shown_point(names, lhs, rhs, &point);
+            // The hypotheses are part of the statement: their variables are shown too,
+            // so that the reader can see that they hold at the point.
+            let read: Vec<Var> = domain.1.iter().flat_map(|(q, _)| q.variables()).collect();
+            cx.point.extend(
+                point
+                    .iter()
+                    .filter(|(v, _)| read.contains(v))
+                    .map(|(&v, q)| (names.name(v).to_owned(), q.to_string())),
+            );
             // Under constraints the point's other coordinates are not 0: every one is
             // shown (the normal aside), so that the point can be checked against them.
             if !rules.is_empty() {

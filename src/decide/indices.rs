@@ -60,11 +60,16 @@ pub struct Difference {
 /// Decides every equality of `check` by canonical forms in symbolic indices, as far as
 /// it can.
 pub fn decide(decls: &Decls, check: &Check) -> Symbolic {
-    // A polynomial constraint has no form in symbolic indices.
-    let constrained = check
-        .assumptions
-        .iter()
-        .any(|a| matches!(a.kind, crate::derivation::AssumptionKind::Constraint { .. }));
+    // A polynomial constraint or a differential hypothesis has no form in symbolic
+    // indices.
+    // Hypotheses on derived quantities restrict where a counterexample may lie.
+    let constrained = check.assumptions.iter().any(|a| {
+        matches!(
+            a.kind,
+            crate::derivation::AssumptionKind::Constraint { .. }
+                | crate::derivation::AssumptionKind::Differential { .. }
+        )
+    }) || matches!(&check.strategy, crate::derivation::Strategy::Exact { hypotheses, .. } if !hypotheses.is_empty());
     if decls.normal_in_plane || constrained {
         return Symbolic::Open;
     }

@@ -108,13 +108,14 @@ pub fn point_where_differ(
     normal: &[Var],
     lhs: &Quotient,
     rhs: &Quotient,
-    domain: &[(Var, Interval)],
+    (domain, hypotheses): (&[(Var, Interval)], &[Hypothesis]),
 ) -> Option<(BTreeMap<Var, Rational>, Rational, Rational)> {
     // A bounded variable gets a value in its interval even where the sides do not
     // read it: the interpreter that confirms the point evaluates the statement before
     // the state is substituted (a square root of τ² at τ = 0 has no derivative).
     let mut used = used_variables(lhs, rhs);
     used.extend(domain.iter().map(|(v, _)| *v));
+    used.extend(hypotheses.iter().flat_map(|(q, _)| q.variables()));
     used.sort_unstable();
     used.dedup();
     let mut rng = Rng::new(0x05EE_DC05_E4A7);
@@ -123,20 +124,46 @@ pub fn point_where_differ(
         .copied()
         .filter(|v| !normal.contains(v))
         .collect();
-    let sparse = others.iter().map(|&v| Some(v)).chain(std::iter::once(None));
+    // Points with one variable at 1 read best; then dense ones. Under hypotheses, also
+    // points with two variables at 1 and dense points of small fractions (0 < J2 < 1
+    // excludes both the origin and most integer points).
+    let sparse = others.iter().map(|&v| Try::Sparse(Some(v)));
+    let pairs = others
+        .iter()
+        .enumerate()
+        .flat_map(|(k, &a)| others[k + 1..].iter().map(move |&b| Try::Pair(a, b)))
+        .take(if hypotheses.is_empty() {
+            0
+        } else {
+            HYPOTHESIS_TRIES
+        });
     let candidates = sparse
+        .chain(std::iter::once(Try::Sparse(None)))
         .flat_map(|one| (0..4).map(move |_| one))
-        .map(Some)
-        .chain((0..64).map(|_| None));
+        .chain((0..64).map(|_| Try::Dense))
+        .chain(pairs)
+        .chain(
+            (0..if hypotheses.is_empty() {
+                0
+            } else {
+                HYPOTHESIS_TRIES
+            })
+                .map(|_| Try::Fractions),
+        );
     for candidate in candidates {
         let n = sphere_point(&mut rng, normal.len().max(2));
         let mut point: BTreeMap<Var, Rational> = BTreeMap::new();
         for &v in &used {
             let value = match (normal.iter().position(|&w| w == v), candidate) {
                 (Some(k), _) => n[k].clone(),
-                (None, Some(Some(one))) => Rational::int(i64::from(v == one)),
-                (None, Some(None)) => Rational::int(0),
-                (None, None) => Rational::int(rng.small()),
+                (None, Try::Sparse(Some(one))) => Rational::int(i64::from(v == one)),
+                (None, Try::Sparse(None)) => Rational::int(0),
+                (None, Try::Dense) => Rational::int(rng.small()),
+                (None, Try::Pair(a, b)) => Rational::int(i64::from(v == a || v == b)),
+                (None, Try::Fractions) => {
+                    Rational::ratio(rng.small(), 1 + (rng.next_u64() % 8) as i64)
+                        .expect("nonzero denominator")
+                }
             };
             let value = match domain.iter().find(|(w, _)| *w == v) {
                 Some((_, i)) => into_interval(i, value),
@@ -161,7 +188,7 @@ pub fn point_where_differ(
         let (Some(l), Some(r)) = (lhs.eval(&at), rhs.eval(&at)) else {
             continue;
         };
-        if l != r {
+        if l != r && hold(hypotheses, &at) {
             for (k, &v) in normal.iter().enumerate() {
                 point.entry(v).or_insert_with(|| n[k].clone());
             }
@@ -169,6 +196,32 @@ pub fn point_where_differ(
         }
     }
     None
+}
+
+/// One kind of candidate point of [`point_where_differ`].
+#[derive(Clone, Copy)]
+enum Try {
+    /// One variable at 1 (or none), the others 0.
+    Sparse(Option<Var>),
+    /// Small integers.
+    Dense,
+    /// Two variables at 1, the others 0.
+    Pair(Var, Var),
+    /// Small fractions.
+    Fractions,
+}
+
+/// Further candidates of each kind [`point_where_differ`] tries under hypotheses.
+const HYPOTHESIS_TRIES: usize = 256;
+
+/// A hypothesis of an identity (`given = ["J2 > 0"]`): `q` has the sign.
+pub type Hypothesis = (Quotient, crate::kernel::statement::Sign);
+
+/// Whether every hypothesis holds at `at` (defined there, of its sign).
+fn hold(hypotheses: &[Hypothesis], at: &dyn Fn(Var) -> Rational) -> bool {
+    hypotheses
+        .iter()
+        .all(|(q, sign)| q.eval(at).is_some_and(|x| sign.admits(x.signum())))
 }
 
 /// Tries at a point that satisfies the polynomial constraints.
@@ -188,10 +241,11 @@ pub fn point_where_differ_constrained(
     rules: &[Rule],
     normal: &[Var],
     (lhs, rhs, everywhere): (&Quotient, &Quotient, &[Quotient]),
-    domain: &[(Var, Interval)],
+    (domain, hypotheses): (&[(Var, Interval)], &[Hypothesis]),
 ) -> Option<(BTreeMap<Var, Rational>, Rational, Rational)> {
     let mut used = used_variables(lhs, rhs);
     used.extend(domain.iter().map(|(v, _)| *v));
+    used.extend(hypotheses.iter().flat_map(|(q, _)| q.variables()));
     used.extend(everywhere.iter().flat_map(Quotient::variables));
     for r in rules {
         used.push(r.var);
@@ -255,7 +309,7 @@ pub fn point_where_differ_constrained(
         let (Some(l), Some(r)) = (lhs.eval(&at), rhs.eval(&at)) else {
             continue;
         };
-        if l != r && everywhere.iter().all(|q| q.eval(&at).is_some()) {
+        if l != r && everywhere.iter().all(|q| q.eval(&at).is_some()) && hold(hypotheses, &at) {
             return Some((point, l, r));
         }
     }

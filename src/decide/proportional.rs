@@ -166,8 +166,8 @@ pub fn reference(
             .chain(lp.conditions().iter().cloned())
             .collect();
         let target = rp.clone().with_conditions(&divisors);
-        let (point, rhs, _) =
-            point_where_differ(normal, &target, &zero, env.domain()).ok_or(NoReference::NoPoint)?;
+        let (point, rhs, _) = point_where_differ(normal, &target, &zero, (env.domain(), &[]))
+            .ok_or(NoReference::NoPoint)?;
         let at = |v: Var| point.get(&v).cloned().unwrap_or_else(|| Rational::int(0));
         let lhs = lp.eval(&at).ok_or(NoReference::NoPoint)?;
         // λ with every variable but the parameters fixed at the point.

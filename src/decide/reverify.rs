@@ -235,14 +235,32 @@ fn interpreter_at<'c>(
 }
 
 /// The fields as Taylor polynomials with the point's jet values (`RealEnv::assume`
-/// ties the components that assumptions tie to others).
+/// ties the components that assumptions tie to others). A derivative that a
+/// differential hypothesis determines takes its value there, so the polynomials
+/// satisfy the hypotheses to the orders the statement reads.
 fn taylor_fields(
     decls: &Decls,
     env: &ExactEnv<'_>,
     point: &BTreeMap<Var, Rational>,
     absent: f64,
 ) -> TaylorFields {
-    let at = |v: Var| point.get(&v).cloned();
+    let free = |v: Var| match point.get(&v) {
+        Some(q) => q.to_f64(),
+        None if env.is_field_value(v) => absent,
+        None => 0.0,
+    };
+    let at = |v: Var| match env.determined_derivative(v) {
+        Some(p) => Some(
+            p.terms()
+                .map(|(m, c)| {
+                    m.factors()
+                        .iter()
+                        .fold(c.to_f64(), |acc, &(x, e)| acc * free(x).powi(e as i32))
+                })
+                .sum(),
+        ),
+        None => point.get(&v).map(Rational::to_f64),
+    };
     TaylorFields::new(decls.dim, env.varying(), &env.vars, &at, absent)
 }
 

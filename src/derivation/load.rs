@@ -447,6 +447,7 @@ impl Loader {
             }
             check.strategy = Strategy::Exact {
                 domain: domain.clone(),
+                hypotheses: Vec::new(),
             };
             curves.push(Curve {
                 label: c.label.get_ref().clone(),
@@ -933,19 +934,22 @@ impl Loader {
         let Ok(e) = parse_expr(&text[..eq]) else {
             return Ok(None);
         };
-        match &e.kind {
-            // A derivative on the left has its own message (`lhs_name`).
-            ExprKind::Deriv { .. } => return Ok(None),
-            // A name with distinct letters, or a declared scalar, is assumed itself.
-            ExprKind::Name { full, indices, .. } => {
-                let letters: BTreeSet<char> = indices.iter().map(|t| t.ch).collect();
-                let distinct = letters.len() == indices.len()
-                    && indices.iter().all(|t| t.ch.is_ascii_alphabetic());
-                if distinct || decls.symbols.get(full) == Some(&0) {
-                    return Ok(None);
-                }
+        // A name with distinct letters, or a declared scalar, is assumed itself; a
+        // definition's name is read as its value (`lap = 0` with lap = phi_,kk).
+        if let ExprKind::Name {
+            full,
+            base,
+            indices,
+            ..
+        } = &e.kind
+        {
+            let letters: BTreeSet<char> = indices.iter().map(|t| t.ch).collect();
+            let distinct = letters.len() == indices.len()
+                && indices.iter().all(|t| t.ch.is_ascii_alphabetic());
+            let defined = sigs.iter().any(|d| d.name == *base || d.name == *full);
+            if (distinct && !defined) || decls.symbols.get(full) == Some(&0) {
+                return Ok(None);
             }
-            _ => {}
         }
         let left = Scope { decls, defs: sigs }
             .check(&e)
@@ -1010,25 +1014,50 @@ impl Loader {
                 _ => {}
             }
         }
-        if let AssumptionKind::Constraint { left, right } = &kind {
-            use super::reads::{varies_with, Varies};
-            for side in [left, right] {
-                let what = match varies_with(side, defs, decls) {
-                    Some(Varies::Normal) => "the normal",
-                    Some(Varies::Position) => "position",
-                    None => continue,
-                };
-                return Err(origin
-                    .diagnostic(side.span, format!("a constraint between expressions relates values of one state, but this side varies with {what}"))
-                    .with_help("constrain symbols that are not fields and do not read the normal; relate a field with X = expression"));
+        let kind = match kind {
+            AssumptionKind::Constraint { left, right } => {
+                Self::constraint_or_differential(&origin, left, right, defs, decls)?
             }
-        }
+            kind => kind,
+        };
         Ok(Assumption {
             kind,
             text: s.get_ref().trim().to_owned(),
             origin,
             reads,
         })
+    }
+
+    /// A constraint between expressions relates values of one state; one that reads a
+    /// derivative of a field, and varies with nothing else, is a differential
+    /// hypothesis that holds at every point (`phi_,kk = 0`).
+    fn constraint_or_differential(
+        origin: &Origin,
+        left: Node,
+        right: Node,
+        defs: &[Definition],
+        decls: &Decls,
+    ) -> Result<AssumptionKind, Diagnostic> {
+        use super::reads::{differentiates_fields, varies_with, Varies};
+        let varies = [&left, &right].map(|side| (side.span, varies_with(side, defs, decls)));
+        if let Some((span, _)) = varies.iter().find(|(_, v)| *v == Some(Varies::Normal)) {
+            return Err(origin
+                .diagnostic(*span, "a constraint between expressions relates values of one state, but this side varies with the normal")
+                .with_help("constrain symbols that are not fields and do not read the normal; relate a field with X = expression"));
+        }
+        if varies.iter().all(|(_, v)| v.is_none()) {
+            return Ok(AssumptionKind::Constraint { left, right });
+        }
+        if !differentiates_fields(&left, defs) && !differentiates_fields(&right, defs) {
+            let span = varies
+                .iter()
+                .find(|(_, v)| v.is_some())
+                .map_or(left.span, |(span, _)| *span);
+            return Err(origin
+                .diagnostic(span, "a constraint between expressions relates values of one state, but this side varies with position")
+                .with_help("relate a field with X = expression (u_i = A_ij x_j), or state a differential hypothesis on its derivatives (phi_,kk = 0)"));
+        }
+        Ok(AssumptionKind::Differential { left, right })
     }
 
     fn assumption_kind(
@@ -1212,6 +1241,7 @@ impl Loader {
             verbatim,
             strategy: Strategy::Exact {
                 domain: ParamBox::default(),
+                hypotheses: Vec::new(),
             },
         })
     }

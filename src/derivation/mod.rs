@@ -24,8 +24,9 @@ pub mod uses;
 pub use load::{load_dir, load_files, load_str, load_texts, parse_grid, LoadError};
 pub use model::{
     Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Curve, Definition,
-    DerivationFile, Expression, Extremum, Figure, GradientConvention, Grid, LimitValue, ParamBox,
-    Relation, Sampling, ScalarClaim, Side, Stated, Stationary, Strategy, Transcript, Use, Verdict,
+    DerivationFile, Expression, Extremum, Figure, GradientConvention, Grid, Hypothesis, LimitValue,
+    ParamBox, Relation, Sampling, ScalarClaim, Side, Stated, Stationary, Strategy, Transcript, Use,
+    Verdict,
 };
 pub use reads::Reads;
 pub use scalar::{exact_part_checks, exact_parts, stationary_parts, Part};

@@ -180,11 +180,16 @@ pub enum AssumptionKind {
     /// `N_ij N_ij = 1`). Affine ones join the linear system; a polynomial one is solved
     /// for a variable that occurs in it only as a power of its own (`eval::assume`).
     Constraint { left: Node, right: Node },
+    /// `left = right` at every point, where a side reads a derivative of a field
+    /// (`phi_,kk = 0`: harmonic; `u_k,k = 0`: solenoidal): a linear differential
+    /// hypothesis, so every derivative of it holds too. Solved for its highest
+    /// derivative (`kernel::eval` says which), exact claims only.
+    Differential { left: Node, right: Node },
 }
 
 impl AssumptionKind {
     /// The symbol the assumption is about (its left side); `None` for a constraint
-    /// between expressions.
+    /// between expressions or a differential hypothesis.
     pub fn symbol(&self) -> Option<&str> {
         match self {
             AssumptionKind::Traceless { symbol }
@@ -192,7 +197,7 @@ impl AssumptionKind {
             | AssumptionKind::Antisymmetric { symbol }
             | AssumptionKind::Component { symbol, .. }
             | AssumptionKind::Equals { symbol, .. } => Some(symbol),
-            AssumptionKind::Constraint { .. } => None,
+            AssumptionKind::Constraint { .. } | AssumptionKind::Differential { .. } => None,
         }
     }
 
@@ -203,7 +208,8 @@ impl AssumptionKind {
             AssumptionKind::Component { body, .. } | AssumptionKind::Equals { body, .. } => {
                 vec![body]
             }
-            AssumptionKind::Constraint { left, right } => vec![left, right],
+            AssumptionKind::Constraint { left, right }
+            | AssumptionKind::Differential { left, right } => vec![left, right],
             _ => Vec::new(),
         }
     }
@@ -384,7 +390,7 @@ impl Strategy {
     /// The parameter box of an exact or proportional claim (`given`).
     pub fn exact_domain(&self) -> Option<&ParamBox> {
         match self {
-            Strategy::Exact { domain } | Strategy::Proportional { domain } => Some(domain),
+            Strategy::Exact { domain, .. } | Strategy::Proportional { domain } => Some(domain),
             _ => None,
         }
     }
@@ -448,12 +454,28 @@ impl Strategy {
     }
 }
 
+/// A hypothesis of an exact identity on a derived quantity (`given = ["J2 > 0"]`,
+/// `["a > b"]`): the identity is claimed where `left − right` has the sign.
+#[derive(Clone, Debug)]
+pub struct Hypothesis {
+    pub text: String,
+    pub origin: Origin,
+    pub left: Node,
+    pub right: Node,
+    pub sign: crate::kernel::statement::Sign,
+}
+
 /// The decision procedure of a claim.
 #[derive(Clone, Debug)]
 pub enum Strategy {
     /// Canonical polynomial expansion (the default). `domain` (`given`) bounds the
-    /// parameters: square roots take their sign on it, and a counterexample lies in it.
-    Exact { domain: ParamBox },
+    /// parameters: square roots take their sign on it, and a counterexample lies in it;
+    /// `hypotheses` (the other entries of `given`, on derived quantities) must hold at
+    /// a counterexample too.
+    Exact {
+        domain: ParamBox,
+        hypotheses: Vec<Hypothesis>,
+    },
     /// Canonical expansion of `left = λ · right` for one nonzero λ (a constant, or a
     /// rational function of the parameters), the same in every component: two sides
     /// that agree up to a sign or scale convention, or a modulus.

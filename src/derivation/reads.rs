@@ -40,7 +40,8 @@ pub enum Varies {
 }
 
 /// What makes `node` vary outside `avg` and `maxn`, through the definitions it reads
-/// (in `defs`, the innermost of a name): the normal, or a field or the position.
+/// (in `defs`, the innermost of a name): the normal (when it varies with both), or a
+/// field or the position.
 pub fn varies_with(node: &Node, defs: &[Definition], decls: &Decls) -> Option<Varies> {
     fn walk<'a>(
         node: &'a Node,
@@ -60,20 +61,66 @@ pub fn varies_with(node: &Node, defs: &[Definition], decls: &Decls) -> Option<Va
             } if decls.varies(s) => return Some(Varies::Position),
             _ => {}
         }
+        let mut found = None;
         if let Some(name) = node.definition() {
             if seen.insert(name) {
                 if let Some(d) = defs.iter().rev().find(|d| d.sig.name == name) {
-                    if let Some(what) = walk(&d.body, defs, decls, seen) {
-                        return Some(what);
-                    }
+                    found = walk(&d.body, defs, decls, seen);
                 }
             }
         }
-        node.children()
-            .into_iter()
-            .find_map(|c| walk(c, defs, decls, seen))
+        for c in node.children() {
+            if found == Some(Varies::Normal) {
+                break;
+            }
+            found = walk(c, defs, decls, seen).or(found);
+        }
+        found
     }
     walk(node, defs, decls, &mut BTreeSet::new())
+}
+
+/// Whether `node` differentiates by the position (`phi_,kk`, `d(…)/dx_i`), through
+/// the definitions it reads (in `defs`, the innermost of a name).
+pub fn differentiates_fields(node: &Node, defs: &[Definition]) -> bool {
+    reachable(vec![node], defs)
+        .0
+        .iter()
+        .any(|n| matches!(n.kind, NodeKind::Deriv(..)))
+}
+
+/// The highest order of derivative by the position that `node` takes of anything,
+/// through the definitions it reads (`d(d(phi psi)/dx_k)/dx_k` is 2).
+fn derivative_order(node: &Node, defs: &[Definition]) -> usize {
+    fn walk<'a>(
+        node: &'a Node,
+        defs: &'a [Definition],
+        known: &mut std::collections::BTreeMap<&'a str, usize>,
+    ) -> usize {
+        let own = match &node.kind {
+            NodeKind::Deriv(inner, _) => return 1 + walk(inner, defs, known),
+            _ => node.definition().map_or(0, |name| {
+                if let Some(&k) = known.get(name) {
+                    return k;
+                }
+                // A name is read before its value is known only through a cycle, which
+                // the loader refuses; 0 stops the walk there.
+                known.insert(name, 0);
+                let k = defs
+                    .iter()
+                    .rev()
+                    .find(|d| d.sig.name == name)
+                    .map_or(0, |d| walk(&d.body, defs, known));
+                known.insert(name, k);
+                k
+            }),
+        };
+        node.children()
+            .into_iter()
+            .map(|c| walk(c, defs, known))
+            .fold(own, usize::max)
+    }
+    walk(node, defs, &mut std::collections::BTreeMap::new())
 }
 
 /// The symbols a statement reads, and whether it reads the normal.
@@ -99,6 +146,17 @@ impl Check {
             .collect();
         roots.extend(self.strategy.expressions().into_iter().map(|e| &e.node));
         reachable(roots, &self.defs)
+    }
+
+    /// The highest order of derivative by the position its sides take.
+    pub(crate) fn derivative_order(&self) -> usize {
+        self.chains
+            .iter()
+            .flatten()
+            .filter_map(|s| s.node.as_ref().ok())
+            .map(|n| derivative_order(n, &self.defs))
+            .max()
+            .unwrap_or(0)
     }
 
     /// The names of the definitions the statement depends on: those its expressions
@@ -157,9 +215,10 @@ impl Check {
                     (AssumptionKind::Component { .. } | AssumptionKind::Equals { .. }, Some(s)) => {
                         out.symbols.contains(s)
                     }
-                    (AssumptionKind::Constraint { .. }, _) => {
-                        a.reads.iter().any(|s| out.symbols.contains(s))
-                    }
+                    (
+                        AssumptionKind::Constraint { .. } | AssumptionKind::Differential { .. },
+                        _,
+                    ) => a.reads.iter().any(|s| out.symbols.contains(s)),
                     _ => false,
                 };
                 if tied {

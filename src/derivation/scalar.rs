@@ -368,9 +368,9 @@ impl Loader {
                 .parameter(&toml::Spanned::new(g.span(), symbol.to_owned()), decls)
                 .map_err(|d| {
                     d.with_help(
-                        "`given` of an exact or scalar claim bounds declared scalars (`given = [\"f_r > 0\"]`); \
-                         a bound on a definition or on any other expression is a hypothesis of \
-                         strategy = \"numeric\"",
+                        "`given` of a proportionality or of a claim about a rational function bounds declared \
+                         scalars (`given = [\"f_r > 0\"]`); a bound on a definition or on any other \
+                         expression is a hypothesis of an exact identity or of strategy = \"numeric\"",
                     )
                 })?;
             let new = Interval {

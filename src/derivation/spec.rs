@@ -93,9 +93,31 @@ impl Loader {
                         .diag(anchor.span(), format!("`{field}` belongs to the sampled strategies; strategy = \"{name}\" decides exactly"))
                         .with_help("remove it, or bound the parameters of an exact claim with given = [\"f_r > 0\"]"));
                 }
-                let domain = self.param_box(&c.given, decls)?;
+                // An entry that bounds no declared scalar by rationals is a hypothesis
+                // of an identity (`J2 > 0`); elsewhere it is refused as a bound.
+                let mut bounds = Vec::new();
+                let mut hypotheses = Vec::new();
+                for g in &c.given {
+                    if name == "exact" && self.param_box(std::slice::from_ref(g), decls).is_err() {
+                        if let Ok(h) = self.hypotheses(g, decls, &sigs) {
+                            use super::reads::varies_with;
+                            if h.iter()
+                                .flat_map(|h| [&h.left, &h.right])
+                                .any(|n| varies_with(n, defs, decls).is_some())
+                            {
+                                return Err(self
+                                    .diag(g.span(), "a hypothesis bounds a quantity of one state, but it varies with the normal or with position")
+                                    .with_help("bound a quantity that reads neither the normal (outside avg) nor a field"));
+                            }
+                            hypotheses.extend(h);
+                            continue;
+                        }
+                    }
+                    bounds.push(g.clone());
+                }
+                let domain = self.param_box(&bounds, decls)?;
                 if name == "exact" {
-                    Strategy::Exact { domain }
+                    Strategy::Exact { domain, hypotheses }
                 } else {
                     Strategy::Proportional { domain }
                 }
@@ -253,6 +275,73 @@ impl Loader {
             origin,
             node,
         })
+    }
+
+    /// `J2 > 0`, `a <= b`, `0 < J2 < k^2`: comparisons of scalar expressions of one
+    /// state (not the normal, not varying with position), each a hypothesis.
+    fn hypotheses(
+        &self,
+        s: &S,
+        decls: &Decls,
+        sigs: &[DefSig],
+    ) -> Result<Vec<super::model::Hypothesis>, Diagnostic> {
+        use crate::kernel::statement::Sign;
+        const COMPARISONS: [&str; 6] = ["<=", ">=", "≤", "≥", "<", ">"];
+        let origin = self.origin(s);
+        let text = s.get_ref();
+        let mut cuts: Vec<(usize, &str)> = Vec::new();
+        let mut at = 0;
+        while let Some((k, op)) = COMPARISONS
+            .iter()
+            .filter_map(|op| text[at..].find(op).map(|k| (at + k, *op)))
+            .min_by_key(|(k, op)| (*k, std::cmp::Reverse(op.len())))
+        {
+            cuts.push((k, op));
+            at = k + op.len();
+        }
+        let upper = |op: &str| matches!(op, "<" | "<=" | "≤");
+        if cuts.is_empty() || cuts.len() > 2 || cuts.iter().any(|c| upper(c.1) != upper(cuts[0].1))
+        {
+            return Err(origin.diagnostic(
+                Span::new(0, text.len()),
+                "a hypothesis is one or two comparisons in one direction",
+            ));
+        }
+        let mut sides = Vec::new();
+        let mut start = 0;
+        for (k, op) in cuts
+            .iter()
+            .copied()
+            .chain(std::iter::once((text.len(), "")))
+        {
+            let sub = sub_origin(&origin, start..k);
+            let e = parse_expr(&text[start..k]).map_err(|e| self.lang(&sub, e))?;
+            let node = Scope { decls, defs: sigs }
+                .check(&e)
+                .map_err(|e| self.lang(&sub, e))?;
+            super::load::no_matrix(&sub, &node, "a hypothesis")?;
+            if !node.free.is_empty() {
+                return Err(sub.diagnostic(node.span, "a hypothesis compares scalars"));
+            }
+            sides.push(node);
+            start = k + op.len();
+        }
+        Ok(cuts
+            .iter()
+            .zip(sides.windows(2))
+            .map(|(&(_, op), pair)| super::model::Hypothesis {
+                text: text.trim().to_owned(),
+                origin: origin.clone(),
+                left: pair[0].clone(),
+                right: pair[1].clone(),
+                sign: match op {
+                    "<" => Sign::Negative,
+                    ">" => Sign::Positive,
+                    "<=" | "≤" => Sign::NonPositive,
+                    _ => Sign::NonNegative,
+                },
+            })
+            .collect())
     }
 
     /// `a <= b`, `a >= b` or `a == b` between scalars.

@@ -174,6 +174,10 @@ fn context(
                 left: l.term(left),
                 right: l.term(right),
             },
+            AssumptionKind::Differential { left, right } => Equation::Differential {
+                left: l.term(left),
+                right: l.term(right),
+            },
         });
     }
     let mut substitutions = Vec::new();
@@ -202,6 +206,17 @@ fn context(
         equations,
         substitutions,
         given: domain.map(|d| d.bounds.clone()).unwrap_or_default(),
+        hypotheses: match &check.strategy {
+            super::Strategy::Exact { hypotheses, .. } => hypotheses
+                .iter()
+                .map(|h| crate::kernel::statement::Hypothesis {
+                    left: l.term(&h.left),
+                    right: l.term(&h.right),
+                    sign: h.sign,
+                })
+                .collect(),
+            _ => Vec::new(),
+        },
     })
 }
 
@@ -232,10 +247,15 @@ fn finish(mut context: Context, claim: Claim, l: Lowering) -> Statement {
         }
         Claim::NotCircle { x, y } => read.extend([x, y]),
     }
+    for h in &context.hypotheses {
+        read.extend([&h.left, &h.right]);
+    }
     for e in &context.equations {
         match e {
             Equation::Component { value, .. } | Equation::Equals { value, .. } => read.push(value),
-            Equation::Constraint { left, right } => read.extend([left, right]),
+            Equation::Constraint { left, right } | Equation::Differential { left, right } => {
+                read.extend([left, right])
+            }
             _ => {}
         }
     }

@@ -49,11 +49,13 @@ use std::collections::{BTreeMap, BTreeSet};
 pub const MAX_EQUATIONS: usize = 20_000;
 
 /// How an assumption enters: equations in the system, polynomial constraints solved
-/// after it, or a substitution.
+/// after it, a substitution, or a differential hypothesis (solved by the evaluation
+/// environment after all of these: `eval::exact::differential`).
 enum Role {
     Linear(Vec<Poly>),
     Polynomial(Vec<Poly>),
     Substitution,
+    Differential,
 }
 
 impl Parametrisation {
@@ -431,6 +433,7 @@ fn role(env: &mut ExactEnv<'_>, decls: &Decls, a: &Assumption) -> Result<Role, D
                 Role::Polynomial(out)
             }
         }
+        AssumptionKind::Differential { .. } => Role::Differential,
         AssumptionKind::Equals {
             symbol,
             formal,

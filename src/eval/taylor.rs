@@ -7,7 +7,7 @@
 
 use super::exact::env::Varying;
 use crate::algebra::{assignments, Tensor};
-use crate::kernel::{Rational, Var, VarTable};
+use crate::kernel::{Var, VarTable};
 use crate::lang::Decls;
 use num_dual::DualNum;
 use rustc_hash::FxHashMap as HashMap;
@@ -37,7 +37,7 @@ impl TaylorFields {
         dim: usize,
         varying: &HashMap<Var, Varying>,
         vars: &VarTable,
-        point: &dyn Fn(Var) -> Option<Rational>,
+        point: &dyn Fn(Var) -> Option<f64>,
         absent: f64,
     ) -> Self {
         let mut centre = vec![absent; dim];
@@ -45,7 +45,7 @@ impl TaylorFields {
         let mut ordered: Vec<(&Var, &Varying)> = varying.iter().collect();
         ordered.sort_by_key(|(v, _)| vars.name(**v).to_owned());
         for (&v, what) in ordered {
-            let value = point(v).map(|q| q.to_f64());
+            let value = point(v);
             match what {
                 Varying::Coordinate(k) => {
                     if let Some(x) = value {
@@ -173,6 +173,7 @@ pub fn stencil_with<T: DualNum<Primitive = f64>>([m2, m1, p1, p2]: [T; 4], h: f6
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::Rational;
     use crate::tolerance::TAYLOR_STEP;
 
     /// u(x) with u = 2, u_,1 = 3, u_,12 = 5, u_,11 = 4 at the centre (1, 0, -1).
@@ -197,7 +198,13 @@ mod tests {
             varying.insert(v, Varying::Coordinate(k));
             values.insert(v, Rational::int(1 - k as i64));
         }
-        TaylorFields::new(3, &varying, &vars, &|v| values.get(&v).cloned(), 0.0)
+        TaylorFields::new(
+            3,
+            &varying,
+            &vars,
+            &|v| values.get(&v).map(Rational::to_f64),
+            0.0,
+        )
     }
 
     #[test]

@@ -19,7 +19,7 @@ pub use super::fact::{Checked, Conclusion, Evaluation, Fact, Factor, Reduced, Re
 use super::frac::Frac;
 use super::poly::{Poly, Var};
 use super::rational::Rational;
-use super::statement::{Claim, FracData, Statement};
+use super::statement::{Claim, Context, FracData, Statement};
 use super::term::Term;
 use serde::Serialize;
 
@@ -81,6 +81,15 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
                 .into(),
         ));
     }
+    // Hypotheses may hold nowhere: only a point shows that they hold somewhere.
+    let checked = matches!(fact, Fact::Identity { .. } | Fact::Refutation { .. })
+        && matches!(st.claim, Claim::Equal { .. });
+    if !st.context.hypotheses.is_empty() && !checked {
+        return Err(Rejection::Mismatch(
+            "under hypotheses only an identity or a refutation at a point where they hold is checked"
+                .into(),
+        ));
+    }
     match fact {
         Fact::Identity { roots } if !proportional => Ok((
             Conclusion::Holds,
@@ -98,6 +107,7 @@ fn run(st: &Statement, fact: &Fact) -> R<(Conclusion, Summary)> {
             if l == r {
                 return Err(Rejection::False("the sides are equal there".into()));
             }
+            hypotheses_hold(&mut env, &st.context, &at.point)?;
             // Under constraints or square roots a side may be undefined on a whole
             // region: the claim says nothing there, so every side of every chain must
             // be defined at the point (their own roots join the rules it satisfies).
@@ -554,6 +564,29 @@ fn values_at(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Rati
             "a side is undefined at the point, or the point leaves a variable out".into(),
         )),
     }
+}
+
+/// Every hypothesis of `ctx` holds at `point`: both its sides defined, their
+/// difference of its sign.
+fn hypotheses_hold(env: &mut Env<'_>, ctx: &Context, point: &[(String, Rational)]) -> R<()> {
+    let at = env.point(point)?;
+    let value = |v: Var| at.get(&v).cloned();
+    for h in &ctx.hypotheses {
+        let (l, r) = (env.eval(&h.left)?, env.eval(&h.right)?);
+        let ([l], [r]) = (l.comps(), r.comps()) else {
+            return Err(Rejection::False("a hypothesis is not a scalar".into()));
+        };
+        let holds = match (l.eval(&value), r.eval(&value)) {
+            (Some(x), Some(y)) => h.sign.admits((&x - &y).signum()),
+            _ => false,
+        };
+        if !holds {
+            return Err(Rejection::False(
+                "a hypothesis does not hold at the point, or is undefined there".into(),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// No divisor of `f` vanishes wherever the normal is a unit vector: else `f` is

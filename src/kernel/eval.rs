@@ -161,6 +161,48 @@ enum Varying {
     },
 }
 
+/// A linear differential hypothesis solved for its highest derivative:
+/// ∂^orders field_idx = value. Every derivative of it holds too, so ∂^β field_idx for
+/// β ⊇ orders is ∂^(β − orders) value.
+#[derive(Clone, Debug)]
+struct JetRule {
+    field: String,
+    idx: Vec<usize>,
+    orders: Vec<usize>,
+    value: Poly,
+}
+
+/// The rank of a derivative among the unknowns of the differential hypotheses: by
+/// order, then field and component, then the coordinates, the highest first. It is a
+/// term order: two derivatives compare the same after both are differentiated once
+/// more, so every derivative of a rule keeps the rule's leading derivative.
+pub fn jet_rank(
+    field: &str,
+    idx: &[usize],
+    orders: &[usize],
+    dim: usize,
+) -> (usize, String, Vec<usize>, Vec<usize>) {
+    let mut counts = vec![0; dim];
+    for &k in orders {
+        if let Some(c) = counts.get_mut(k) {
+            *c += 1;
+        }
+    }
+    counts.reverse();
+    (orders.len(), field.to_owned(), idx.to_vec(), counts)
+}
+
+/// The coordinates of `orders` beyond those of `base` (both sorted), when `orders`
+/// holds every coordinate of `base` as often.
+fn beyond(orders: &[usize], base: &[usize]) -> Option<Vec<usize>> {
+    let mut rest = orders.to_vec();
+    for k in base {
+        let at = rest.iter().position(|x| x == k)?;
+        rest.remove(at);
+    }
+    Some(rest)
+}
+
 /// A square root the kernel accepted: √radicand = root on the box `on`, the root's
 /// sign certified by coefficients.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -231,6 +273,10 @@ pub struct Env<'c> {
     pub roots_taken: Vec<RootTaken>,
     /// Square roots accepted so far, by radicand.
     certified: Vec<(Frac, Frac)>,
+    /// The differential hypotheses, each solved for its highest derivative.
+    jet_rules: Vec<JetRule>,
+    /// The derivatives the rules determine, by variable, reduced.
+    jet_values: HashMap<Var, Poly>,
     work: usize,
     /// How deeply [`Env::eval`] is recursing now.
     depth: usize,
@@ -283,6 +329,8 @@ impl<'c> Env<'c> {
             algebraic_roots: false,
             certified: Vec::new(),
             roots_taken: Vec::new(),
+            jet_rules: Vec::new(),
+            jet_values: HashMap::new(),
             work: WORK,
             depth: 0,
         };
@@ -346,6 +394,7 @@ impl<'c> Env<'c> {
             env.cache.clear();
             env.certified.clear();
         }
+        env.differential()?;
         Ok(env)
     }
 
@@ -456,6 +505,8 @@ impl<'c> Env<'c> {
                     }
                     continue;
                 }
+                // Solved after the substitutions (`Env::differential`).
+                Equation::Differential { .. } => continue,
             };
             if self.ctx.position.as_deref() == Some(symbol.as_str()) {
                 return Err(EvalError::IllFormed(
@@ -514,7 +565,7 @@ impl<'c> Env<'c> {
                         rows.push(&var(self, &idx) - &values[at]);
                     }
                 }
-                Equation::Constraint { .. } => {}
+                Equation::Constraint { .. } | Equation::Differential { .. } => {}
             }
         }
         self.mentions_of_equations(&equations)?;
@@ -605,7 +656,7 @@ impl<'c> Env<'c> {
                 Equation::Component { value, .. } | Equation::Equals { value, .. } => {
                     self.mentions(value, &mut mentioned)?;
                 }
-                Equation::Constraint { left, right } => {
+                Equation::Constraint { left, right } | Equation::Differential { left, right } => {
                     self.mentions(left, &mut mentioned)?;
                     self.mentions(right, &mut mentioned)?;
                 }
@@ -1053,9 +1104,7 @@ impl<'c> Env<'c> {
                 {
                     orders.push(k);
                     orders.sort_unstable();
-                    let w = self.vars.intern(&jet_name(&field, &idx, &orders));
-                    self.varying.insert(w, Varying::Jet { field, idx, orders });
-                    Poly::var(w)
+                    self.jet(&field, &idx, orders)?
                 }
                 _ => continue,
             };
@@ -1064,6 +1113,195 @@ impl<'c> Env<'c> {
             acc += &term.checked_mul(&dx).map_err(|_| EvalError::Limit)?;
         }
         Ok(f.map_numerator(|_| Ok(acc))?)
+    }
+
+    /// ∂^orders field_idx: its variable, or its value when a differential hypothesis
+    /// determines it.
+    fn jet(&mut self, field: &str, idx: &[usize], orders: Vec<usize>) -> R<Poly> {
+        let w = self.vars.intern(&jet_name(field, idx, &orders));
+        if let Some(p) = self.jet_values.get(&w) {
+            return Ok(p.clone());
+        }
+        let rule = self
+            .jet_rules
+            .iter()
+            .position(|r| r.field == field && r.idx == idx && beyond(&orders, &r.orders).is_some());
+        self.varying.insert(
+            w,
+            Varying::Jet {
+                field: field.to_owned(),
+                idx: idx.to_vec(),
+                orders: orders.clone(),
+            },
+        );
+        let Some(r) = rule else {
+            return Ok(Poly::var(w));
+        };
+        let p = self.by_rule(r, &orders)?;
+        self.jet_values.insert(w, p.clone());
+        Ok(p)
+    }
+
+    /// ∂^orders field_idx by rule `r` (whose derivative it must be): the rule's value
+    /// differentiated by the coordinates beyond the rule's, every derivative in it
+    /// reduced. Each step goes to derivatives of lower [`jet_rank`], so it ends.
+    fn by_rule(&mut self, r: usize, orders: &[usize]) -> R<Poly> {
+        if self.depth >= MAX_DEPTH {
+            return Err(EvalError::Limit);
+        }
+        let rule = &self.jet_rules[r];
+        let rest = beyond(orders, &rule.orders)
+            .ok_or_else(|| EvalError::IllFormed("a derivative no rule determines".into()))?;
+        let mut p = rule.value.clone();
+        self.depth += 1;
+        let mut reduced = Ok(());
+        for k in rest {
+            match self.total_derivative(&Frac::from(p.clone()), k) {
+                Ok(f) => p = f.numerator().clone(),
+                Err(e) => {
+                    reduced = Err(e);
+                    break;
+                }
+            }
+        }
+        let p = reduced.and_then(|()| self.reduce_jets(&p));
+        self.depth -= 1;
+        p
+    }
+
+    /// `p` with every derivative that a differential hypothesis determines replaced by
+    /// its value.
+    fn reduce_jets(&mut self, p: &Poly) -> R<Poly> {
+        let mut values = BTreeMap::new();
+        for x in p.variables() {
+            let Some(Varying::Jet { field, idx, orders }) = self.varying.get(&x).cloned() else {
+                continue;
+            };
+            let ruled = self
+                .jet_rules
+                .iter()
+                .any(|r| r.field == field && r.idx == idx && beyond(&orders, &r.orders).is_some());
+            if ruled {
+                values.insert(x, self.jet(&field, &idx, orders)?);
+            }
+        }
+        substitute(p, &values)
+    }
+
+    /// The differential hypotheses (`phi_,kk = 0`), after every other assumption: each
+    /// component of each, reduced by the rules before it, is solved for its derivative
+    /// of highest [`jet_rank`], which must occur once, alone, with a rational
+    /// coefficient. Each must be linear in the fields with coefficients constant in
+    /// position, and the rules must be in involution (any two that determine
+    /// derivatives of one component agree on their common derivative): then the
+    /// derivatives no rule determines are independent at a point, as a refutation needs
+    /// (Riquier's and Janet's normal form of a passive linear system).
+    fn differential(&mut self) -> R<()> {
+        let ctx = self.ctx;
+        let hypotheses: Vec<(&Term, &Term)> = ctx
+            .equations
+            .iter()
+            .filter_map(|e| match e {
+                Equation::Differential { left, right } => Some((left, right)),
+                _ => None,
+            })
+            .collect();
+        for (left, right) in hypotheses {
+            for row in self.constraint_rows(left, right)? {
+                let row = self.reduce_jets(&row)?;
+                if row.is_zero() {
+                    continue;
+                }
+                self.linear_in_fields(&row)?;
+                let leading = row
+                    .variables()
+                    .into_iter()
+                    .filter_map(|v| match self.varying.get(&v) {
+                        Some(Varying::Jet { field, idx, orders }) if !orders.is_empty() => {
+                            Some((jet_rank(field, idx, orders, ctx.dim), v))
+                        }
+                        _ => None,
+                    })
+                    .max();
+                let Some((_, v)) = leading else {
+                    return Err(EvalError::IllFormed(
+                        "a differential hypothesis reads no derivative of a field".into(),
+                    ));
+                };
+                let terms: Vec<_> = row.terms().filter(|(m, _)| m.exponent(v) != 0).collect();
+                let c = match terms.as_slice() {
+                    [(m, c)] if m.factors() == [(v, 1)] => (*c).clone(),
+                    _ => {
+                        return Err(EvalError::IllFormed(
+                            "the highest derivative of a differential hypothesis must occur once, with a rational coefficient".into(),
+                        ))
+                    }
+                };
+                let scale = Poly::constant(-&c.recip().ok_or(EvalError::DivisionByZero)?);
+                let rest = &row - &Poly::term(super::poly::Monomial::var(v, 1), c);
+                let value = rest.checked_mul(&scale).map_err(|_| EvalError::Limit)?;
+                let Some(Varying::Jet { field, idx, orders }) = self.varying.get(&v).cloned()
+                else {
+                    return Err(EvalError::IllFormed("a derivative without a field".into()));
+                };
+                self.jet_rules.push(JetRule {
+                    field,
+                    idx,
+                    orders,
+                    value,
+                });
+                self.jet_values.clear();
+                self.cache.clear();
+            }
+        }
+        for a in 0..self.jet_rules.len() {
+            for b in a + 1..self.jet_rules.len() {
+                let (x, y) = (&self.jet_rules[a], &self.jet_rules[b]);
+                if (&x.field, &x.idx) != (&y.field, &y.idx) {
+                    continue;
+                }
+                // The least derivative of both: each coordinate as often as in either.
+                let often = |o: &[usize], k: usize| o.iter().filter(|&&c| c == k).count();
+                let common: Vec<usize> = (0..self.ctx.dim)
+                    .flat_map(|k| vec![k; often(&x.orders, k).max(often(&y.orders, k))])
+                    .collect();
+                if self.by_rule(a, &common)? != self.by_rule(b, &common)? {
+                    let x = &self.jet_rules[a];
+                    return Err(EvalError::IllFormed(format!(
+                        "the differential hypotheses are not in involution: they give `{}` two different values",
+                        jet_name(&x.field, &x.idx, &common)
+                    )));
+                }
+            }
+        }
+        self.cache.clear();
+        Ok(())
+    }
+
+    /// Refuses a row that is not linear in the fields' components and derivatives, or
+    /// whose coefficients vary with position (a term without a field may: a source).
+    fn linear_in_fields(&self, row: &Poly) -> R<()> {
+        for (m, _) in row.terms() {
+            let is = |v: &Var, jet: bool| match self.varying.get(v) {
+                Some(Varying::Jet { .. }) => jet,
+                Some(Varying::Coordinate(_)) => !jet,
+                None => false,
+            };
+            let jets: Vec<_> = m.factors().iter().filter(|(v, _)| is(v, true)).collect();
+            let positional = m.factors().iter().any(|(v, _)| is(v, false));
+            let normal = m.factors().iter().any(|(v, _)| self.normal.contains(v));
+            let linear = match jets.as_slice() {
+                [] => true,
+                [(_, 1)] => !positional,
+                _ => false,
+            };
+            if !linear || normal {
+                return Err(EvalError::IllFormed(
+                    "a differential hypothesis must be linear in the fields, with coefficients constant in position".into(),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The Euler operator: Σ_α (−1)^|α| D_α (∂P/∂v_j,α) over the jet variables of the

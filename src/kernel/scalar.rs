@@ -259,16 +259,6 @@ fn content_in(p: &Poly, v: Var) -> Option<(Poly, Uni)> {
     Some((content, Uni::of(&q, v)?))
 }
 
-fn sign_of(x: &Rational) -> i32 {
-    if x.is_zero() {
-        0
-    } else if x.is_negative() {
-        -1
-    } else {
-        1
-    }
-}
-
 /// `f` (of `v` alone) has the sign `want` on `i` wherever defined: between the cuts
 /// (strictly increasing, inside `i`) each piece holds no root of N·D·C (sign at one
 /// point) or one, between two cuts that are not roots (signs at both cuts, and for a
@@ -292,7 +282,7 @@ fn on_interval(
     let undefined = d.mul(&c);
     let all = n.mul(&undefined);
     let value = |x: &Rational| -> Option<i32> {
-        (!undefined.eval(x).is_zero()).then(|| sign_of(&n.eval(x)) * sign_of(&d.eval(x)))
+        (!undefined.eval(x).is_zero()).then(|| n.eval(x).signum() * d.eval(x).signum())
     };
     let inside = |x: &Rational| i.contains(x) && Some(x) != i.lo.value() && Some(x) != i.hi.value();
     if cuts.windows(2).any(|w| w[0] >= w[1]) || !cuts.iter().all(inside) {
@@ -484,7 +474,7 @@ pub(super) fn run(
             let (Some(lv), Some(rv)) = (at(env, &l, point)?, at(env, &r, point)?) else {
                 return Err(no("a side is undefined at the point"));
             };
-            if sign.admits(sign_of(&(&lv - &rv))) {
+            if sign.admits((&lv - &rv).signum()) {
                 return Err(no("the sign holds at the point"));
             }
             (
@@ -815,7 +805,7 @@ fn limit(
         (LimitValue::Finite(_), None) | (_, Some(_)) => true,
         (LimitValue::Signed(plus), None) => match &sign_of {
             None => true,
-            Some(s) => at(s).is_some_and(|x| (sign_of_rational(&x) > 0) != *plus),
+            Some(s) => at(s).is_some_and(|x| (x.signum() > 0) != *plus),
         },
         (LimitValue::Unsigned, None) => false,
     };
@@ -823,10 +813,6 @@ fn limit(
         return Err(no("the limit found and the one stated agree at the point"));
     }
     Ok((Conclusion::Fails, said))
-}
-
-fn sign_of_rational(x: &Rational) -> i32 {
-    sign_of(x)
 }
 
 /// The zeros of the function on the interval of its variable, against the list.

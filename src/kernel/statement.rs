@@ -161,6 +161,13 @@ pub enum Equation {
         left: Term,
         right: Term,
     },
+    /// `left = right` at every point, for every value of their free letters, and
+    /// therefore every derivative of it: a linear differential hypothesis on fields,
+    /// solved for its highest derivative (see `Env::differential`).
+    Differential {
+        left: Term,
+        right: Term,
+    },
 }
 
 /// `symbol_formal := value`: the whole symbol replaced, after the equations, in order.
@@ -191,6 +198,18 @@ pub struct Context {
     /// The box of parameter values (`given`): square roots take their sign on it, and
     /// sign claims hold on it.
     pub given: Vec<(String, Interval)>,
+    /// Hypotheses on derived quantities (`given = ["J2 > 0"]`) of an identity: it is
+    /// claimed where they hold, so a refutation needs a point where they do.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hypotheses: Vec<Hypothesis>,
+}
+
+/// `left − right` has the sign: a hypothesis of an identity.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Hypothesis {
+    pub left: Term,
+    pub right: Term,
+    pub sign: Sign,
 }
 
 /// Where a limit's variable goes.

@@ -86,6 +86,14 @@ pub fn finding(f: &Finding) -> String {
              nowhere, and the identity would hold only vacuously",
             radicands.join(", ")
         ),
+        Finding::NoPointUnderHypotheses {
+            difference,
+            hypotheses,
+        } => format!(
+            "undecided: the sides differ by {difference}, but no exact point where the \
+             hypotheses hold ({hypotheses}) and the sides differ was found (they may hold \
+             nowhere); this is not a counterexample"
+        ),
         Finding::NoConstrainedPoint { difference, tries } => format!(
             "undecided: the sides differ modulo the constraints and the squares of the roots \
              by {difference}, but no exact point where they hold, every root is rational and \

@@ -12,7 +12,7 @@ use cosserat_check::algebra::sign::{End, Interval};
 use cosserat_check::algebra::Tensor;
 use cosserat_check::decide::random::Rng;
 use cosserat_check::derivation::parametrisation::Parametrisation;
-use cosserat_check::derivation::{Check, Strategy, Verdict};
+use cosserat_check::derivation::{AssumptionKind, Check, Strategy, Verdict};
 use cosserat_check::eval::real::{component_pairs, RealEnv};
 use cosserat_check::eval::taylor::TaylorFields;
 use cosserat_check::lang::parser::Wrt;
@@ -36,6 +36,15 @@ pub fn decide(
     seed: u64,
 ) -> Result<Option<Verdict>, String> {
     if check.chains.iter().flatten().any(|s| s.node.is_err()) {
+        return Ok(None);
+    }
+    // Random polynomial fields do not satisfy a differential hypothesis (phi_,kk = 0):
+    // this route does not judge such a check.
+    if check
+        .assumptions
+        .iter()
+        .any(|a| matches!(a.kind, AssumptionKind::Differential { .. }))
+    {
         return Ok(None);
     }
     let d = decls.dim;

@@ -12,7 +12,7 @@
 //! derivatives of fields assume a polynomial denominator free of them.
 
 use crate::algebra::certificate::Certificate;
-use crate::algebra::einsum::{einsum, einsum_closing, Arithmetic, Polynomials};
+use crate::algebra::einsum::{einsum, einsum_closing, Arithmetic};
 use crate::algebra::quotient::Quotients;
 use crate::algebra::sign::Interval;
 use crate::algebra::{assignments, Quotient, Tensor};
@@ -66,6 +66,16 @@ pub enum Varying {
     },
 }
 
+/// A differential hypothesis solved for its highest derivative: ∂^orders field_idx =
+/// value, and so for every derivative of it (`differential.rs` solves and applies it).
+#[derive(Clone, Debug)]
+pub(crate) struct DerivativeRule {
+    pub(crate) field: String,
+    pub(crate) idx: Vec<usize>,
+    pub(crate) orders: Vec<usize>,
+    pub(crate) value: Poly,
+}
+
 /// The exact evaluation environment of one claim.
 pub struct ExactEnv<'a> {
     pub(crate) decls: &'a Decls,
@@ -100,6 +110,10 @@ pub struct ExactEnv<'a> {
     /// Whether a square root of a polynomial that is no square becomes a variable of
     /// its own (see [`ExactEnv::allow_algebraic_roots`]).
     algebraic_roots: bool,
+    /// The differential hypotheses, each solved for its highest derivative.
+    pub(crate) derivative_rules: Vec<DerivativeRule>,
+    /// The derivatives of fields those rules determine, by variable.
+    pub(crate) derivative_values: HashMap<Var, Poly>,
 }
 
 pub(crate) fn poly_error(origin: &Origin, node: &Node, e: PolyError) -> Diagnostic {
@@ -191,6 +205,7 @@ impl<'a> ExactEnv<'a> {
             let t = to_formal_order(&value, sub.formal);
             env.symbols.insert(sub.symbol.to_owned(), t);
         }
+        env.differential(assumptions)?;
         env.pending.clear();
         if let Some(domain) = domain {
             env.set_domain(domain);
@@ -229,6 +244,8 @@ impl<'a> ExactEnv<'a> {
             pending: Vec::new(),
             rules: Vec::new(),
             algebraic_roots: false,
+            derivative_rules: Vec::new(),
+            derivative_values: HashMap::default(),
         }
     }
 
@@ -333,22 +350,22 @@ impl<'a> ExactEnv<'a> {
         &self.varying
     }
 
-    /// ∂v/∂x_k for one variable: 1 or 0 for a coordinate, the next jet variable for a
-    /// field that depends on x_k, and `None` (zero) for everything else.
-    fn derivative_of_var(&mut self, v: Var, k: usize) -> Option<Poly> {
-        match self.varying.get(&v)? {
-            Varying::Coordinate(j) => (*j == k).then(Poly::one),
-            Varying::Jet { field, idx, orders } => {
+    /// ∂v/∂x_k for one variable: 1 or 0 for a coordinate, the next jet variable (or its
+    /// value by a differential hypothesis) for a field that depends on x_k, and `None`
+    /// (zero) for everything else.
+    pub(crate) fn derivative_of_var(&mut self, v: Var, k: usize) -> Result<Option<Poly>, Failure> {
+        match self.varying.get(&v) {
+            None => Ok(None),
+            Some(Varying::Coordinate(j)) => Ok((*j == k).then(Poly::one)),
+            Some(Varying::Jet { field, idx, orders }) => {
                 if !self.decls.fields.get(field).is_some_and(|deps| deps[k]) {
-                    return None;
+                    return Ok(None);
                 }
                 let mut orders = orders.clone();
                 orders.push(k);
                 orders.sort_unstable();
                 let (field, idx) = (field.clone(), idx.clone());
-                let w = self.vars.intern(&jet_name(&field, &idx, &orders));
-                self.varying.insert(w, Varying::Jet { field, idx, orders });
-                Some(Poly::var(w))
+                self.derivative(&field, &idx, orders).map(Some)
             }
         }
     }
@@ -509,19 +526,7 @@ impl ExactRing<'_, '_> {
 
     /// D_k p: Σ_v ∂p/∂v · ∂v/∂x_k over the variables of p, charged to the budget.
     pub(crate) fn total_derivative(&mut self, p: &Poly, k: usize) -> Result<Poly, Failure> {
-        let mut acc = Poly::zero();
-        for x in p.variables() {
-            if let Some(dx) = self.env.derivative_of_var(x, k) {
-                let mut ring = Polynomials {
-                    work_left: &mut self.env.work_left,
-                };
-                let term = ring
-                    .mul(p.derivative(x), &dx)
-                    .map_err(|_| Failure::OverBudget)?;
-                acc += &term;
-            }
-        }
-        Ok(acc)
+        self.env.differentiate(p, k)
     }
 
     /// A resource limit reached at `node`.

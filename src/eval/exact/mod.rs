@@ -4,6 +4,7 @@
 //! the values, [`jets`] the ring); derivatives of fields are total
 //! derivatives over jet variables ([`env`](mod@env)).
 
+pub mod differential;
 pub mod env;
 pub mod jet;
 pub mod jets;
