@@ -85,3 +85,21 @@ fn a_side_of_a_matrix_chain_is_typeset_by_its_name() {
     assert!(text.contains("typeset: $\\text{side 1.1} = "), "{text}");
     assert!(!text.contains("\\frac{11}{10}"), "{text}");
 }
+
+#[test]
+fn the_hypotheses_of_an_identity_are_listed_once_each() {
+    let (_, text) = crate::common::run_cli(
+        &[
+            "explain",
+            "between-two-scalars-wrong",
+            "--file",
+            "tests/soundness/hypotheses.toml",
+        ],
+        false,
+    );
+    assert!(
+        text.contains("Hypotheses (given): a > b; 0 < J2 < 1\n"),
+        "{text}"
+    );
+    assert!(text.contains("values at a=1, s_11=1"), "{text}");
+}

@@ -315,15 +315,7 @@ impl Loader {
             .chain(std::iter::once((text.len(), "")))
         {
             let sub = sub_origin(&origin, start..k);
-            let e = parse_expr(&text[start..k]).map_err(|e| self.lang(&sub, e))?;
-            let node = Scope { decls, defs: sigs }
-                .check(&e)
-                .map_err(|e| self.lang(&sub, e))?;
-            super::load::no_matrix(&sub, &node, "a hypothesis")?;
-            if !node.free.is_empty() {
-                return Err(sub.diagnostic(node.span, "a hypothesis compares scalars"));
-            }
-            sides.push(node);
+            sides.push(self.compared(&sub, &text[start..k], (decls, sigs), "a hypothesis")?);
             start = k + op.len();
         }
         Ok(cuts
@@ -344,6 +336,26 @@ impl Loader {
             .collect())
     }
 
+    /// One side of a comparison (`what`: "a constraint", "a hypothesis"): a scalar
+    /// expression, not a matrix, located at `sub`.
+    fn compared(
+        &self,
+        sub: &crate::lang::Origin,
+        part: &str,
+        (decls, sigs): (&Decls, &[DefSig]),
+        what: &str,
+    ) -> Result<crate::lang::Node, Diagnostic> {
+        let e = parse_expr(part).map_err(|e| self.lang(sub, e))?;
+        let node = Scope { decls, defs: sigs }
+            .check(&e)
+            .map_err(|e| self.lang(sub, e))?;
+        super::load::no_matrix(sub, &node, what)?;
+        if !node.free.is_empty() {
+            return Err(sub.diagnostic(node.span, format!("{what} compares scalars")));
+        }
+        Ok(node)
+    }
+
     /// `a <= b`, `a >= b` or `a == b` between scalars.
     fn constraint(&self, s: &S, decls: &Decls, sigs: &[DefSig]) -> Result<Constraint, Diagnostic> {
         let origin = self.origin(s);
@@ -362,14 +374,7 @@ impl Loader {
         let side = |range: std::ops::Range<usize>| -> Result<Expression, Diagnostic> {
             let sub = sub_origin(&origin, range.clone());
             let part = &text[range];
-            let e = parse_expr(part).map_err(|e| self.lang(&sub, e))?;
-            let node = Scope { decls, defs: sigs }
-                .check(&e)
-                .map_err(|e| self.lang(&sub, e))?;
-            super::load::no_matrix(&sub, &node, "a constraint")?;
-            if !node.free.is_empty() {
-                return Err(sub.diagnostic(node.span, "a constraint compares scalars"));
-            }
+            let node = self.compared(&sub, part, (decls, sigs), "a constraint")?;
             Ok(Expression {
                 text: part.trim().to_owned(),
                 origin: sub,

@@ -102,6 +102,14 @@ fn check_section(out: &mut String, check: &Check, outcome: &Outcome) {
             let _ = writeln!(out, "Parameter box (given): {}", domain.describe());
         }
     }
+    if let Strategy::Exact { hypotheses, .. } = &check.strategy {
+        if !hypotheses.is_empty() {
+            // One entry may give two comparisons (`0 < J2 < 1`): each text once.
+            let mut texts: Vec<&str> = hypotheses.iter().map(|h| h.text.as_str()).collect();
+            texts.dedup();
+            let _ = writeln!(out, "Hypotheses (given): {}", texts.join("; "));
+        }
+    }
     match &check.strategy {
         Strategy::Exact { .. } | Strategy::Proportional { .. } => {
             expansions(out, outcome.record.as_ref())
