@@ -40,7 +40,12 @@ fn differential_hypotheses_outside_the_supported_class_are_located_errors() {
         (
             "assume = [\"phi_,1 = psi\", \"phi_,2 = 0\"]\nsides = [\"phi\", \"phi\"]",
             "f.toml:12:28",
-            "not in involution: they give `phi_,12` two different values",
+            "they give `phi_,12` two different values, so they imply -psi_,2 = 0",
+        ),
+        (
+            "assume = [\"phi_,1 = 0\", \"phi_,1 = 1\"]\nsides = [\"phi\", \"phi\"]",
+            "f.toml:12:26",
+            "this one says -1 = 0, a relation without derivatives (or a contradiction)",
         ),
         (
             "assume = [\"x_k x_k = 1\"]\nsides = [\"phi\", \"phi\"]",

@@ -146,9 +146,11 @@ impl ExactEnv<'_> {
                 })
                 .max();
             let Some((_, v)) = leading else {
-                return Err(refuse(
-                    "a differential hypothesis reads no derivative of a field",
-                ));
+                // Reduced by the rules before it, nothing of order 1 or more is left.
+                return Err(refuse(&format!(
+                    "with the differential hypotheses before it, this one says {} = 0, a relation without derivatives (or a contradiction)",
+                    row.display_truncated(&self.vars, 8)
+                )));
             };
             let mut with_v = row.terms().filter(|(m, _)| m.exponent(v) != 0);
             let c = match (with_v.next(), with_v.next()) {
@@ -194,10 +196,12 @@ impl ExactEnv<'_> {
                     .flat_map(|k| vec![k; often(&x.orders, k).max(often(&y.orders, k))])
                     .collect();
                 let name = jet_name(&x.field, &x.idx, &common);
-                if self.by_rule(i, &common)? != self.by_rule(j, &common)? {
+                let (p, q) = (self.by_rule(i, &common)?, self.by_rule(j, &common)?);
+                if p != q {
+                    let condition = (&p - &q).display_truncated(&self.vars, 8);
                     return Err(Failure::Located(
-                        a.diagnostic(format!("the differential hypotheses are not in involution: they give `{name}` two different values"))
-                            .with_help("add the condition their derivatives imply as a hypothesis of its own, or drop one"),
+                        a.diagnostic(format!("the differential hypotheses are not in involution: they give `{name}` two different values, so they imply {condition} = 0"))
+                            .with_help("add that condition as a hypothesis of its own (assume = [\"… = 0\"]), or drop one"),
                     ));
                 }
             }
