@@ -840,3 +840,32 @@ fn a_refutation_under_hypotheses_needs_a_point_where_they_hold() {
     );
     assert!(holds(square, identity()));
 }
+
+#[test]
+fn a_square_root_in_a_hypothesis_is_held_to_its_square_at_the_point() {
+    use cosserat_check::kernel::statement::Hypothesis;
+    let mut ctx = context(&[("x", 0)]);
+    // √x > 1, so x > 1.
+    ctx.hypotheses = vec![Hypothesis {
+        left: Term::Sqrt(Box::new(sym("x", ""))),
+        right: num(1),
+        sign: Sign::Positive,
+    }];
+    let st = equal(&ctx, sym("x", ""), num(0));
+    let at = |x: Rational, root: Rational| Fact::Refutation {
+        at: Evaluation {
+            chain: 0,
+            equality: 0,
+            at: Vec::new(),
+            point: vec![("x".to_owned(), x), ("√(x)".to_owned(), root)],
+        },
+        roots: Vec::new(),
+    };
+    assert!(fails(st.clone(), at(q(4, 1), q(2, 1))));
+    assert!(!fails(st.clone(), at(q(1, 4), q(1, 2))), "√x = 1/2 there");
+    assert!(
+        !fails(st.clone(), at(q(1, 4), q(5, 1))),
+        "a root that is not √x"
+    );
+    assert!(!fails(st, at(q(4, 1), q(-2, 1))), "the negative root");
+}

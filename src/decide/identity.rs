@@ -227,7 +227,14 @@ fn decide_recording(
             }),
         );
     }
-    // The hypotheses on derived quantities, each as one quotient with its sign.
+    let normal = env.normal_vars().to_vec();
+    // An identity (not a proportionality) takes the square root of a polynomial that
+    // is no square as a variable of its own, compared modulo its square.
+    if matches!(check.strategy, Strategy::Exact { .. }) {
+        env.allow_algebraic_roots();
+    }
+    // The hypotheses on derived quantities, each as one quotient with its sign (a
+    // square root they take is a variable of its own, as in the sides).
     let mut hypotheses = Vec::new();
     if let Strategy::Exact {
         hypotheses: stated, ..
@@ -259,12 +266,6 @@ fn decide_recording(
                 })?;
             hypotheses.push((difference, h.sign));
         }
-    }
-    let normal = env.normal_vars().to_vec();
-    // An identity (not a proportionality) takes the square root of a polynomial that
-    // is no square as a variable of its own, compared modulo its square.
-    if matches!(check.strategy, Strategy::Exact { .. }) {
-        env.allow_algebraic_roots();
     }
     let mut identities = Identities::new(&normal).with_rules(env.rules());
     // A proportionality's factor (1 when the right side is zero everywhere: the left

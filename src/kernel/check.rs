@@ -569,15 +569,20 @@ fn values_at(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Rati
 /// Every hypothesis of `ctx` holds at `point`: both its sides defined, their
 /// difference of its sign.
 fn hypotheses_hold(env: &mut Env<'_>, ctx: &Context, point: &[(String, Rational)]) -> R<()> {
-    let at = env.point(point)?;
-    let value = |v: Var| at.get(&v).cloned();
+    // Evaluated first: a square root they take joins the rules the point must satisfy.
+    let mut sides = Vec::new();
     for h in &ctx.hypotheses {
         let (l, r) = (env.eval(&h.left)?, env.eval(&h.right)?);
         let ([l], [r]) = (l.comps(), r.comps()) else {
             return Err(Rejection::False("a hypothesis is not a scalar".into()));
         };
+        sides.push((l.clone(), r.clone(), h.sign));
+    }
+    let at = env.point(point)?;
+    let value = |v: Var| at.get(&v).cloned();
+    for (l, r, sign) in &sides {
         let holds = match (l.eval(&value), r.eval(&value)) {
-            (Some(x), Some(y)) => h.sign.admits((&x - &y).signum()),
+            (Some(x), Some(y)) => sign.admits((&x - &y).signum()),
             _ => false,
         };
         if !holds {
