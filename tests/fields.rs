@@ -25,7 +25,7 @@ fn differential_hypotheses_are_decided_and_refuted_at_fields_that_satisfy_them()
 
 #[test]
 fn differential_hypotheses_outside_the_supported_class_are_located_errors() {
-    let fields = "fields = [\"phi\", \"psi\", \"u_i\"]\nnormal = \"n\"";
+    let fields = "fields = [\"phi\", \"psi\", \"u_i\", \"w(x_1)\"]\nnormal = \"n\"";
     let cases = [
         (
             "assume = [\"phi_,kk = phi^3\"]\nsides = [\"phi_,kk\", \"phi^3\"]",
@@ -41,6 +41,18 @@ fn differential_hypotheses_outside_the_supported_class_are_located_errors() {
             "assume = [\"phi_,1 = psi\", \"phi_,2 = 0\"]\nsides = [\"phi\", \"phi\"]",
             "f.toml:12:28",
             "they give `phi_,12` two different values, so they imply -psi_,2 = 0",
+        ),
+        // A field on some coordinates only would lose that restriction when an
+        // assumption replaces, eliminates or ties it (w = psi made psi_,2 free).
+        (
+            "assume = [\"w = psi\"]\nsides = [\"psi_,2\", \"0\"]",
+            "f.toml:12:12",
+            "`w` depends on some coordinates only, and an assumption that mentions it would lose that",
+        ),
+        (
+            "assume = [\"w_,1 = psi\"]\nsides = [\"psi_,2\", \"0\"]",
+            "f.toml:12:12",
+            "as a hypothesis (`w_,2 = 0`)",
         ),
         (
             "assume = [\"phi_,1 = 0\", \"phi_,1 = 1\"]\nsides = [\"phi\", \"phi\"]",

@@ -981,7 +981,7 @@ impl Loader {
         let origin = self.origin(s);
         let sigs: Vec<DefSig> = defs.iter().map(|d| d.sig.clone()).collect();
         let kind = self.assumption_kind(&origin, s.get_ref(), decls, &sigs)?;
-        let reads = super::reads::reachable(kind.bodies(), defs)
+        let reads: BTreeSet<String> = super::reads::reachable(kind.bodies(), defs)
             .0
             .into_iter()
             .flat_map(|n| n.symbols())
@@ -1020,6 +1020,27 @@ impl Loader {
             }
             kind => kind,
         };
+        // A field declared on some coordinates only (`w_i(x_2)`) keeps that
+        // restriction only while nothing replaces, eliminates or ties it.
+        let restricted = kind
+            .symbol()
+            .map(str::to_owned)
+            .into_iter()
+            .chain(reads.iter().cloned())
+            .find_map(|s| {
+                let free = decls.fields.get(&s)?.iter().position(|d| !d)?;
+                Some((s, free + 1))
+            });
+        if let Some((field, k)) = restricted {
+            let rank = decls.symbols.get(&field).copied().unwrap_or(0);
+            let slots: String = "ijklmnpq".chars().take(rank).collect();
+            return Err(origin
+                .diagnostic(
+                    Span::new(0, s.get_ref().len()),
+                    format!("`{field}` depends on some coordinates only, and an assumption that mentions it would lose that"),
+                )
+                .with_help(format!("declare `{field}` on every coordinate and state what it does not depend on as a hypothesis (`{field}_{slots},{k} = 0`)")));
+        }
         Ok(Assumption {
             kind,
             text: s.get_ref().trim().to_owned(),

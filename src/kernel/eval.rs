@@ -395,6 +395,17 @@ impl<'c> Env<'c> {
             env.certified.clear();
         }
         env.differential()?;
+        // A field on some coordinates only keeps that restriction only while no
+        // assumption replaces, eliminates or ties it.
+        if let Some(field) = env
+            .assumed
+            .iter()
+            .find(|s| ctx.fields.get(*s).is_some_and(|deps| deps.contains(&false)))
+        {
+            return Err(EvalError::IllFormed(format!(
+                "`{field}` depends on some coordinates only, and an assumption mentions it"
+            )));
+        }
         Ok(env)
     }
 
