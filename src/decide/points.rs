@@ -127,29 +127,23 @@ pub fn point_where_differ(
     // Points with one variable at 1 read best; then dense ones. Under hypotheses, also
     // points with two variables at 1 and dense points of small fractions (0 < J2 < 1
     // excludes both the origin and most integer points).
+    let more = if hypotheses.is_empty() {
+        0
+    } else {
+        HYPOTHESIS_TRIES
+    };
     let sparse = others.iter().map(|&v| Try::Sparse(Some(v)));
     let pairs = others
         .iter()
         .enumerate()
         .flat_map(|(k, &a)| others[k + 1..].iter().map(move |&b| Try::Pair(a, b)))
-        .take(if hypotheses.is_empty() {
-            0
-        } else {
-            HYPOTHESIS_TRIES
-        });
+        .take(more);
     let candidates = sparse
         .chain(std::iter::once(Try::Sparse(None)))
         .flat_map(|one| (0..4).map(move |_| one))
         .chain((0..64).map(|_| Try::Dense))
         .chain(pairs)
-        .chain(
-            (0..if hypotheses.is_empty() {
-                0
-            } else {
-                HYPOTHESIS_TRIES
-            })
-                .map(|_| Try::Fractions),
-        );
+        .chain((0..more).map(|_| Try::Fractions));
     for candidate in candidates {
         let n = sphere_point(&mut rng, normal.len().max(2));
         let mut point: BTreeMap<Var, Rational> = BTreeMap::new();

@@ -253,9 +253,9 @@ fn taylor_fields(
         Some(p) => Some(
             p.terms()
                 .map(|(m, c)| {
-                    m.factors()
-                        .iter()
-                        .fold(c.to_f64(), |acc, &(x, e)| acc * free(x).powi(e as i32))
+                    m.factors().iter().fold(c.to_f64(), |acc, &(x, e)| {
+                        acc * free(x).powi(i32::try_from(e).unwrap_or(i32::MAX))
+                    })
                 })
                 .sum(),
         ),
