@@ -9,10 +9,13 @@ fn field(s: &str) -> String {
 }
 
 /// A text cell a spreadsheet will not run as a formula: one that starts with `=`, `+`,
-/// `-`, `@`, a tab or a carriage return gets a leading `'` (OWASP's advice against CSV
-/// injection). Numbers the checker writes are not text cells and keep their sign.
+/// `-`, `@` or `|` (or their full-width forms), after any white space, or with a tab or
+/// a line break, gets a leading `'` (OWASP's advice against CSV injection; spreadsheets
+/// skip leading spaces before a formula). Numbers the checker writes are not text
+/// cells and keep their sign.
 pub fn neutralised(s: &str) -> std::borrow::Cow<'_, str> {
-    if s.starts_with(['=', '+', '-', '@', '\t', '\r']) {
+    const STARTS: [char; 10] = ['=', '+', '-', '@', '|', '＝', '＋', '－', '＠', '｜'];
+    if s.starts_with(['\t', '\r', '\n']) || s.trim_start().starts_with(STARTS) {
         format!("'{s}").into()
     } else {
         s.into()
@@ -52,4 +55,30 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
         out.push('\n');
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::neutralised;
+
+    #[test]
+    fn no_cell_starts_a_formula_even_after_white_space() {
+        for cell in [
+            "=1+1",
+            " =1+1",
+            " \t=HYPERLINK(\"x\")",
+            "\n=1",
+            "+1",
+            "-1",
+            "@SUM(A1)",
+            "|cmd",
+            "＝1+1",
+            "  －1",
+        ] {
+            assert!(neutralised(cell).starts_with('\''), "{cell:?}");
+        }
+        for cell in ["x = 1", "1 = 1", "holds", "a -1", ""] {
+            assert_eq!(neutralised(cell), cell);
+        }
+    }
 }

@@ -10,8 +10,9 @@ use std::fmt::Write as _;
 /// `|` escaped, no `<` directly before a letter, `/`, `!` or `?` (where HTML would start
 /// a tag or comment, a space is put after it), and outside code spans nothing that
 /// renders as markup: `[`, `]` (links, images), `*`, `_`, `~` (emphasis) and `$`
-/// (mathematics) are escaped, a backslash of the file's own before punctuation is
-/// doubled (it cannot undo an escape or hide a backtick), and a bare address that
+/// (mathematics) are escaped, every backslash of the file's own is doubled (it cannot
+/// undo an escape, hide a backtick, or pass to a converter such as pandoc as a TeX
+/// command, `\input{…}`), and a bare address that
 /// GitHub would link (`https://…`, `www.…`, `a@b.example`) is broken.
 pub fn cell(s: &str) -> String {
     escaped(s.trim(), Reading::Text)
@@ -76,8 +77,7 @@ fn escaped(s: &str, reading: Reading) -> String {
         };
         match reading {
             Reading::Text => {
-                let punctuation = rest.first().is_some_and(char::is_ascii_punctuation);
-                if (c == '\\' && punctuation) || "[]*_~$".contains(c) || address {
+                if "\\[]*_~$".contains(c) || address {
                     out.push('\\');
                 }
                 out.push(c);
@@ -155,9 +155,15 @@ pub fn line(s: &str) -> String {
 
 /// Inline LaTeX, `$…$`, safe in a table cell as [`cell`] makes text: its brackets
 /// become `\lbrack`, `\rbrack` (the same brackets to LaTeX, no link to Markdown), its
-/// dollars are escaped.
+/// dollars are escaped. Only a formula the LaTeX report would take (the allowlist of
+/// [`super::tex::check`]) becomes mathematics, since a converter such as pandoc hands
+/// it to TeX as it stands; any other is shown as text, escaped as [`cell`] escapes it.
 pub fn math(s: &str) -> String {
-    format!("${}$", escaped(s.trim(), Reading::Math))
+    let s = s.trim();
+    match super::tex::check(s) {
+        Ok(()) => format!("${}$", escaped(s, Reading::Math)),
+        Err(_) => escaped(s, Reading::Text),
+    }
 }
 
 /// Marks where [`evidence_cell`] puts a statement back, around its number.
@@ -281,7 +287,11 @@ fn prose(s: &str) -> String {
             Some(j) => {
                 let piece = |a: usize, b: usize| line[a..b].iter().collect::<String>();
                 out.push_str(&escaped(&piece(text, k), Reading::Text));
-                out.push_str(&format!("${}$", escaped(&piece(k + 1, j), Reading::Math)));
+                let formula = piece(k + 1, j);
+                match super::tex::check(&formula) {
+                    Ok(()) => out.push_str(&format!("${}$", escaped(&formula, Reading::Math))),
+                    Err(_) => out.push_str(&escaped(&piece(k, j + 1), Reading::Text)),
+                }
                 text = j + 1;
                 k = j + 1;
             }
@@ -320,8 +330,8 @@ mod tests {
         // `\`` is a literal backtick to CommonMark: doubled, the backslash is text and
         // the backtick opens the span it is read as.
         assert_eq!(cell(r"\`*a*`"), r"\\`*a*`");
-        // Before a letter a backslash escapes nothing and stays as it is.
-        assert_eq!(cell(r"\alpha"), r"\alpha");
+        // Before a letter too: pandoc would pass `\input{…}` on to TeX.
+        assert_eq!(cell(r"\alpha \input{x}"), r"\\alpha \\input{x}");
     }
 
     #[test]
@@ -365,12 +375,23 @@ mod tests {
             math("[a](javascript:b)"),
             "$\\lbrack a\\rbrack (javascript:b)$"
         );
-        assert_eq!(math("x$ y"), "$x\\$ y$");
-        assert_eq!(math("x\\$ y"), "$x\\\\\\$ y$");
         assert_eq!(math("http://e.example"), "$http{:}//e.example$");
-        // An escaped backtick would open no code span: doubled, the backslash is text
-        // and the span is where it is read to be.
-        assert_eq!(math("\\`[a](b)`"), "$\\\\`[a](b)`$");
         assert_eq!(math("\\|x\\|"), "$\\\\\\|x\\\\\\|$");
+    }
+
+    #[test]
+    fn a_formula_the_latex_report_would_refuse_is_text() {
+        // A dollar would close the mathematics early; an escaped backtick would open
+        // no code span; `\input` would read a file when a converter hands it to TeX.
+        assert_eq!(math("x$ y"), "x\\$ y");
+        assert_eq!(math("\\`[a](b)`"), "\\\\`[a](b)`");
+        assert_eq!(
+            math("x = \\input{/etc/passwd}"),
+            "x = \\\\input{/etc/passwd}"
+        );
+        assert_eq!(
+            prose("see $\\openout5$ and $a_1$"),
+            "see \\$\\\\openout5\\$ and $a_1$"
+        );
     }
 }
