@@ -76,8 +76,11 @@ pub enum Command {
     /// Write a derivation file from a paper's LaTeX (or Markdown with `$$…$$` displays):
     /// one claim per numbered displayed equation, decided on its reading, with the
     /// declarations, definitions and notation the equations imply; what cannot be read
-    /// is kept as a commented claim under "To complete", with its line and reason.
-    /// `verify` accepts the file unchanged
+    /// is kept as a commented claim and listed in `to_complete`, with its line, reason
+    /// and the edit that would let it be read, which `verify` prints. The file starts
+    /// with `drafted = true`: a failure whose sides read different symbols (which the
+    /// paper may tie in words) is undecided, never an accusation. `verify` accepts the
+    /// file unchanged
     Draft(DraftArgs),
 }
 
@@ -843,7 +846,42 @@ fn table(
         &inputs,
         out.stream,
     )?;
+    for f in &files {
+        if let Some(list) = to_complete(f) {
+            eprintln!("{}", report::words::inert(&list));
+        }
+    }
     Ok(Status::of(&rows))
+}
+
+/// The equations a drafted file lists as not read and that are still no claim of it,
+/// each with its reason and the edit that would let it be read (the guided loop of
+/// `draft`): `None` when there are none.
+fn to_complete(file: &crate::derivation::DerivationFile) -> Option<String> {
+    let open: Vec<_> = file
+        .to_complete
+        .iter()
+        .filter(|t| file.claims.iter().all(|c| c.id != t.id))
+        .collect();
+    if open.is_empty() {
+        return None;
+    }
+    let mut text = format!(
+        "\n{}: {} equation{} to complete (commented in the file):\n",
+        file.path,
+        open.len(),
+        if open.len() == 1 { "" } else { "s" }
+    );
+    for t in open {
+        text.push_str(&format!(
+            "- {} (line {} of the paper): {}\n",
+            t.id, t.line, t.reason
+        ));
+        if let Some(edit) = &t.edit {
+            text.push_str(&format!("  edit: {edit}\n"));
+        }
+    }
+    Some(text)
 }
 
 /// The command that explains one claim of this run's files, for the compact table's
@@ -1115,7 +1153,7 @@ fn draft(a: &DraftArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
 /// A draft whose every claim is decided without an input error: a claim whose exact
 /// decision asks for sampling (a square root of 2, π, `|…|`, a cosine) is decided with
 /// `strategy = "numeric"`; a claim (or the definition it states) that the decision
-/// refuses otherwise goes under "To complete" with the reason, and the draft is written
+/// refuses otherwise goes to `to_complete` with the reason, and the draft is written
 /// again.
 fn draft_decided(
     label: &str,

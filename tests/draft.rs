@@ -5,7 +5,7 @@
 
 use crate::common::{cli_error, run_cli};
 use cosserat_check::cli::{decide_all, RunError, Status};
-use cosserat_check::derivation::{load_str, Verdict};
+use cosserat_check::derivation::{load_dir, load_str, Verdict};
 
 const PAPER: &str = "../shared/paper/sliding-and-rolling-dissipation-in-cosserat-plasticity.md";
 
@@ -75,12 +75,28 @@ fn the_papers_markdown_drafts_into_a_file_verify_accepts() {
     assert!(holding >= 14, "{holding} hold\n{toml}");
     assert!(verdicts.len() >= 34, "{} claims\n{toml}", verdicts.len());
     assert!(toml.contains("# 62 numbered equations: "), "{toml}");
-    // The printed error of (26) is flagged.
+    // The printed error of (26) is flagged, and no true equation is accused: every
+    // drafted claim that fails, fails in the paper's own derivation files too. (A
+    // failure whose sides read symbols the draft took as independent is undecided.)
     assert!(verdicts.contains(&("eq26".to_owned(), Verdict::Fails)));
+    let corpus =
+        load_dir(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("derivations")).unwrap();
+    let failing: Vec<&str> = corpus
+        .iter()
+        .flat_map(|f| &f.claims)
+        .filter(|c| c.expect == Verdict::Fails)
+        .map(|c| c.id.as_str())
+        .collect();
+    for (id, v) in &verdicts {
+        assert!(
+            *v != Verdict::Fails || failing.contains(&id.as_str()),
+            "{id} is true in the paper, yet fails as drafted\n{toml}"
+        );
+    }
     // What is not drafted is kept, commented, with its line and reason.
     assert!(
         toml.contains(
-            "# - eq4 (line 88): cannot read column 30: a subscript on a bracketed expression"
+            "{ id = 'eq4', line = 88, reason = 'cannot read column 30: a subscript on a bracketed expression' },"
         ),
         "{toml}"
     );
@@ -206,14 +222,86 @@ fn a_true_equation_never_fails_on_what_an_unread_one_defines() {
     for (name, source, want) in cases {
         assert_eq!(verdicts_of(name, source), want, "{name}");
     }
-    // Each equation left to complete says the one edit that would let it be read.
+    // Each equation left to complete says the one edit that would let it be read, and
+    // `verify` lists them, until each is a claim of the file.
     let (toml, _) = drafted(&[&written("unread-definition.md", UNREAD)]);
     assert!(
-        toml.contains("#   edit: add `normal = \"n\"` at the top of the file"),
+        toml.contains("edit = 'add `normal = \"n\"` at the top of the file'"),
         "{toml}"
     );
     assert!(
-        toml.contains("#   edit: complete eq1 first (or define `t_{i}^{(n)}` yourself)"),
+        toml.contains("edit = 'complete eq1 first (or define `t_{i}^{(n)}` yourself)'"),
         "{toml}"
     );
+    let file = written("unread-definition.toml", &toml);
+    let verify = |file: &str| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_cosserat-check"))
+            .args(["verify", file, "--format", "markdown"])
+            .output()
+            .unwrap();
+        String::from_utf8(out.stderr).unwrap()
+    };
+    let listed = verify(&file);
+    assert!(
+        listed.contains("unread-definition.toml: 2 equations to complete (commented in the file):\n- eq1 (line 1 of the paper): "),
+        "{listed}"
+    );
+    assert!(
+        listed.contains("\n- eq2 (line 2 of the paper): it reads `t_{i}^{(n)}`, which eq1 may define, and that is still to complete\n  edit: complete eq1 first (or define `t_{i}^{(n)}` yourself)\n"),
+        "{listed}"
+    );
+    // Completed (here: given sides), an equation is no longer listed.
+    let completed = toml.replacen(
+        "\n# [[claim]]\n# id = \"eq1\"\n# printed",
+        "\n[[claim]]\nid = \"eq1\"\nsides = [\"1\", \"1\"]\nprinted",
+        1,
+    );
+    assert_ne!(completed, toml);
+    let listed = verify(&written("completed.toml", &completed));
+    assert!(
+        listed.contains("1 equation to complete") && !listed.contains("- eq1 "),
+        "{listed}"
+    );
+}
+
+/// A draft takes every symbol as independent. A failure whose sides read different
+/// symbols may be a tie the paper states in words (the forces on two faces equal and
+/// opposite), so it is undecided and names them; one whose sides read the same symbols
+/// (a wrong coefficient, sign or constant) no tie explains, and it fails. Without
+/// `drafted = true` (the declarations checked), the first fails too.
+#[test]
+fn a_failure_a_tie_between_symbols_could_explain_is_undecided_as_drafted() {
+    let source = "$$P = a b \\quad (1)$$\n$$Q = P + c \\quad (2)$$\n$$Q = a b + g \\quad (3)$$\n$$Q = 2 a b + c \\quad (4)$$\n$$Q - c = P \\quad (5)$$";
+    let path = written("tie.md", source);
+    let (toml, verdicts) = drafted(&[&path]);
+    let v = |id: &str, v: Verdict| (id.to_owned(), v);
+    assert_eq!(
+        verdicts,
+        vec![
+            v("eq1", Verdict::Holds),
+            v("eq2", Verdict::Holds),
+            v("eq3", Verdict::Undecided),
+            v("eq4", Verdict::Fails),
+            v("eq5", Verdict::Holds),
+        ],
+        "{toml}"
+    );
+    let (_, md) = run_cli(
+        &[
+            "verify",
+            &written("tie.toml", &toml),
+            "--format",
+            "markdown",
+        ],
+        false,
+    );
+    assert!(
+        md.contains("undecided (as drafted): the left side reads `c`; the right side reads `g`"),
+        "{md}"
+    );
+    let strict = toml.replace("drafted = true\n", "");
+    assert_ne!(strict, toml);
+    let f = load_str("strict.toml", &strict).unwrap();
+    let rows = decide_all(std::slice::from_ref(&f), None).unwrap();
+    assert_eq!(rows[2].outcome.verdict(), Verdict::Fails);
 }

@@ -230,6 +230,15 @@ fn seeds(root: &Path) -> Vec<Vec<u8>> {
             for p in paths {
                 if p.extension().is_some_and(|x| x == "toml" || x == "tex") {
                     if let Ok(b) = std::fs::read(&p) {
+                        // A paper's draft is a seed too: a drafted file (`drafted`,
+                        // `to_complete`) as `verify` reads it.
+                        if p.extension().is_some_and(|x| x == "tex") {
+                            let text = String::from_utf8_lossy(&b).into_owned();
+                            let none = (&Default::default(), &Default::default());
+                            let d =
+                                draft::draft("seed.tex", &text, &draft::Options::default(), none);
+                            out.push(d.toml.into_bytes());
+                        }
                         out.push(b);
                     }
                 }

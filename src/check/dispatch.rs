@@ -2,7 +2,9 @@
 //! isolation from panics.
 
 use super::isolate;
-use crate::decide::{finding, identity, numeric, sampler, scalar, watch, witness, Method, Outcome};
+use crate::decide::{
+    drafted, finding, identity, numeric, sampler, scalar, watch, witness, Method, Outcome,
+};
 use crate::lang::Diagnostic;
 
 /// Decides one check with its strategy.
@@ -164,7 +166,7 @@ pub(crate) fn decide_unisolated(
     if keep {
         outcome.record.get_or_insert_with(Default::default).states = sink.into_inner();
     }
-    Ok(outcome)
+    Ok(drafted::judged(decls, check, outcome))
 }
 
 /// The statements a claim's proofs may be about: a `holds` proves every one of

@@ -74,6 +74,16 @@ pub enum Finding {
         difference: String,
         hypotheses: String,
     },
+    /// A drafted reading (`drafted = true`) fails at equality `equality` of chain
+    /// `chain` (both 1-based), but its sides read different symbols: those of `left`
+    /// and `right` (by their names in the file) that the other side does not read. The
+    /// draft took them as independent; the paper may tie them, so nothing is decided.
+    OneSided {
+        chain: usize,
+        equality: usize,
+        left: Vec<String>,
+        right: Vec<String>,
+    },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.
     Unconfirmed { difference: String, why: Rejection },

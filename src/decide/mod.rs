@@ -8,9 +8,11 @@
 //! relations, gradients and convexity, with the [`sampler`], the adversarial [`search`]
 //! and one random generator, [`random`]), `scalar` (sign, monotonicity, limits,
 //! roots) and [`witness`]; `reverify` confirms a counterexample by a second method
-//! before it is printed. [`finding`] holds what a decision found, as data; [`watch`]
+//! before it is printed; [`drafted`] keeps a drafted file's guesses from becoming
+//! errors of the paper. [`finding`] holds what a decision found, as data; [`watch`]
 //! is the per-claim time limit the decisions poll.
 
+pub mod drafted;
 pub(crate) mod enclosures;
 pub mod finding;
 pub mod identity;

@@ -68,6 +68,7 @@ impl Check {
             assumptions: self.assumptions.clone(),
             chains,
             verbatim: false,
+            drafted: self.drafted,
             strategy,
         })
     }

@@ -4,7 +4,8 @@
 use super::model::ParamBox;
 use super::model::{
     Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
-    Figure, Grid, ScalarClaim, Side, Stated, Strategy, Transcript, Use, Verdict, MAX_NESTING,
+    Figure, Grid, ScalarClaim, Side, Stated, Strategy, ToComplete, Transcript, Use, Verdict,
+    MAX_NESTING,
 };
 use super::notation::{self, Notation};
 use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
@@ -378,9 +379,38 @@ impl Loader {
                 claims,
                 stated,
                 figures,
+                to_complete: self.to_complete(&raw)?,
             },
             ids,
         ))
+    }
+
+    /// The equations `draft` could not read: each id a claim id, each line a line.
+    fn to_complete(&self, raw: &RawFile) -> Result<Vec<ToComplete>, Diagnostic> {
+        raw.to_complete
+            .iter()
+            .map(|t| {
+                let id = t.id.get_ref();
+                if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-') {
+                    return Err(self
+                        .diag(t.id.span(), format!("`{id}` is not a claim id"))
+                        .with_help("ids use letters, digits and `-`, like eq33"));
+                }
+                let line = usize::try_from(*t.line.get_ref())
+                    .ok()
+                    .filter(|&l| l >= 1)
+                    .ok_or_else(|| {
+                        self.diag(t.line.span(), "a line number is 1 or more")
+                            .with_help("the equation's line in the paper's source")
+                    })?;
+                Ok(ToComplete {
+                    id: id.clone(),
+                    line,
+                    reason: t.reason.get_ref().clone(),
+                    edit: t.edit.as_ref().map(|e| e.get_ref().clone()),
+                })
+            })
+            .collect()
     }
 
     /// File-wide assumptions come first, then the check's own. They may read the
@@ -1260,6 +1290,7 @@ impl Loader {
             assumptions,
             chains: out,
             verbatim,
+            drafted: false,
             strategy: Strategy::Exact {
                 domain: ParamBox::default(),
                 hypotheses: Vec::new(),
@@ -1538,6 +1569,7 @@ impl Loader {
             needs_sides,
         )?;
         check.strategy = self.strategy(c, decls, &check.defs)?;
+        check.drafted = raw.drafted;
         self.one_pair_if_needed(c, &check)?;
         self.file_assumptions_first(raw, decls, defs, &mut check)?;
         let correction = match &c.correction {
@@ -1580,6 +1612,7 @@ impl Loader {
                     needs_sides,
                 )?;
                 inner.strategy = check.strategy.clone();
+                inner.drafted = raw.drafted;
                 self.corrected_function(r, &mut inner, decls)?;
                 self.one_pair_if_needed(c, &inner)?;
                 let mut assumptions = check.assumptions.clone();

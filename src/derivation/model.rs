@@ -251,6 +251,11 @@ pub struct Check {
     /// The sides transcribe a printed statement index for index, so ill-formed
     /// indices are a verdict rather than an input error.
     pub verbatim: bool,
+    /// The file was written by `draft` (`drafted = true`): its declarations are guesses,
+    /// so a symbol it takes as independent may be tied to others by the paper, in its
+    /// text or in an equation the draft could not read. A failure then counts only when
+    /// both sides of the failing equality read the same symbols (`decide::drafted`).
+    pub drafted: bool,
     /// How the statement is decided.
     pub strategy: Strategy,
 }
@@ -746,6 +751,20 @@ pub struct DerivationFile {
     pub stated: Arc<Vec<Stated>>,
     /// The `[[figure]]` tables, for `plot`.
     pub figures: Vec<Figure>,
+    /// The equations `draft` could not read (`to_complete`), which `verify` lists.
+    pub to_complete: Vec<ToComplete>,
+}
+
+/// An equation `draft` could not read, kept in its file as a commented claim.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ToComplete {
+    pub id: String,
+    /// Its line in the paper's source.
+    pub line: usize,
+    /// Why the draft could not read it.
+    pub reason: String,
+    /// The one edit that would let it be read, where the reason names one.
+    pub edit: Option<String>,
 }
 
 /// A figure of a derivation file: curves of scalar expressions against one parameter.

@@ -19,6 +19,13 @@ pub struct RawFile {
     pub normal: Option<S>,
     #[serde(default)]
     pub normal_in_plane: bool,
+    /// Written by `draft`: the declarations are the draft's guesses (see
+    /// [`super::model::Check::drafted`]).
+    #[serde(default)]
+    pub drafted: bool,
+    /// Written by `draft`: the equations it could not read (`verify` lists them).
+    #[serde(default)]
+    pub to_complete: Vec<RawToComplete>,
     #[serde(default)]
     pub assume: Vec<S>,
     #[serde(default)]
@@ -48,6 +55,17 @@ pub struct RawFile {
     pub claim: Vec<RawClaim>,
     #[serde(default)]
     pub figure: Vec<RawFigure>,
+}
+
+/// An equation `draft` could not read: its claim id, its line in the source, why, and
+/// the edit that would let it be read.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawToComplete {
+    pub id: S,
+    pub line: Spanned<i64>,
+    pub reason: S,
+    pub edit: Option<S>,
 }
 
 /// `[[figure]]`: curves of scalar expressions against one parameter (`plot`).

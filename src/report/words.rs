@@ -94,6 +94,46 @@ pub fn finding(f: &Finding) -> String {
              hypotheses hold ({hypotheses}) and the sides differ was found (they may hold \
              nowhere); this is not a counterexample"
         ),
+        Finding::OneSided {
+            chain,
+            equality,
+            left,
+            right,
+        } => {
+            let names = |names: &[String]| match names {
+                [] => String::new(),
+                [one] => format!("`{one}`"),
+                [init @ .., last] => format!(
+                    "{} and `{last}`",
+                    init.iter()
+                        .map(|n| format!("`{n}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            };
+            let reads = match (left.is_empty(), right.is_empty()) {
+                (false, false) => format!(
+                    "the left side reads {}; the right side reads {}; neither is read by the other side",
+                    names(left),
+                    names(right)
+                ),
+                (false, true) => format!(
+                    "the left side reads {}, which the right side does not",
+                    names(left)
+                ),
+                _ => format!(
+                    "the right side reads {}, which the left side does not",
+                    names(right)
+                ),
+            };
+            format!(
+                "undecided (as drafted): {reads}. Equality {equality} of chain {chain} fails as \
+                 read, but the draft took every symbol as independent, and the paper may tie \
+                 these, in its text or in an equation left to complete: state the tie (a \
+                 definition, or `assume`), or delete `drafted = true` once the file's \
+                 declarations are checked, to decide it strictly. This is not a counterexample"
+            )
+        }
         Finding::NoConstrainedPoint { difference, tries } => format!(
             "undecided: the sides differ modulo the constraints and the squares of the roots \
              by {difference}, but no exact point where they hold, every root is rational and \

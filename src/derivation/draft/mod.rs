@@ -11,8 +11,9 @@
 //! readable name.
 //!
 //! An equation the draft cannot read, or whose claim the loader refuses, is kept in the
-//! file as a commented claim under "To complete", with its line in the source and the
-//! reason: nothing is dropped silently. The draft is deterministic: the same source and
+//! file as a commented claim, and listed in `to_complete` with its line in the source,
+//! the reason and the edit that would let it be read (`verify` lists them): nothing is
+//! dropped silently. The draft is deterministic: the same source and
 //! options give the same bytes.
 
 mod displays;
@@ -563,6 +564,10 @@ fn write(
         }
         chosen.insert(key, (q, body));
     }
+    // A square that defines nothing is its base times itself (`x^2` after `x = 1`),
+    // not a symbol of its own that no equation ties to its base.
+    symbols.retain(|k, _| !k.ends_with("^2") || chosen.contains_key(k));
+    order.retain(|k| symbols.contains_key(k));
     let mut defined: BTreeMap<Key, String> = BTreeMap::new();
     for (key, (q, _)) in &chosen {
         let eq = &mut equations[*q];
@@ -608,7 +613,15 @@ fn write(
                 .map(|(key, &b)| (key.clone(), b))
         });
         if let Some((k, b)) = first {
-            let printed = symbols.get(&k).map_or(k.as_str(), |s| s.key.0.as_str());
+            // A square that defines nothing is no symbol: it is printed as its base's.
+            let printed = symbols.get(&k).map_or_else(
+                || {
+                    k.strip_suffix("^2")
+                        .and_then(|b| symbols.get(b))
+                        .map_or_else(|| k.clone(), |s| format!("{}^2", s.key.0))
+                },
+                |s| s.key.0.clone(),
+            );
             eq.unread = Some(format!(
                 "it reads `{printed}`, which {} may define, and that is still to complete",
                 ids[b]
@@ -862,27 +875,41 @@ fn render(r: Render<'_>) -> String {
     out.push_str(
         "# equation left to complete may define is left to complete too. Check each reading\n",
     );
-    out.push_str("# before trusting a verdict.\n");
+    out.push_str(
+        "# before trusting a verdict. Every declared symbol is taken as independent, so a\n",
+    );
+    out.push_str("# failure whose sides read different symbols is left undecided, naming them\n");
+    out.push_str("# (the paper may tie them); delete `drafted = true` once the declarations are\n");
+    out.push_str("# checked, to decide every claim strictly.\n");
+    out.push_str(&format!("section = \"{}\"\n", "1"));
     if !todo.is_empty() {
-        out.push_str("#\n# To complete:\n");
+        out.push_str(
+            "# The equations the draft could not read: each stays below as a commented claim;\n",
+        );
+        out.push_str(
+            "# `verify` lists them, with the reason and the edit that would let each be read.\n",
+        );
+        out.push_str("to_complete = [\n");
         for e in &todo {
             out.push_str(&format!(
-                "# - {} (line {}): {}\n",
-                e.id,
+                "  {{ id = {}, line = {}, reason = {}",
+                toml_string(&e.id),
                 e.line,
-                comment(e.unread.as_deref().unwrap_or(""))
+                toml_string(&comment(e.unread.as_deref().unwrap_or("")))
             ));
             if let Some(edit) = &e.edit {
-                out.push_str(&format!("#   edit: {}\n", comment(edit)));
+                out.push_str(&format!(", edit = {}", toml_string(&comment(edit))));
             }
+            out.push_str(" },\n");
         }
+        out.push_str("]\n");
     }
-    out.push_str(&format!("section = \"{}\"\n", "1"));
     out.push_str(&format!(
         "title = {}\n",
         toml_string(&format!("drafted from {}", r.label))
     ));
     out.push_str(&format!("dimension = {}\n", r.dimension));
+    out.push_str("drafted = true\n");
     if let Some(n) = r.normal {
         out.push_str(&format!("normal = {}\n", toml_string(n)));
     }
@@ -1068,7 +1095,11 @@ mod tests {
         let d = plain_draft("p.tex", source);
         assert_eq!(d.equations, 2);
         assert_eq!(d.claims, 0, "{}", d.toml);
-        assert!(d.toml.contains("# - eq1 (line 1): "), "{}", d.toml);
+        assert!(
+            d.toml.contains("{ id = 'eq1', line = 1, reason = "),
+            "{}",
+            d.toml
+        );
         assert!(d.toml.contains("# [[claim]]\n# id = \"eq1\""), "{}", d.toml);
         crate::derivation::load_str("d.toml", &d.toml).unwrap();
     }
