@@ -92,11 +92,12 @@ pub struct DraftArgs {
     #[arg(value_name = "PAPER")]
     pub paper: PathBuf,
     /// The index range 1..=N; without it, a sentence of the paper such as "indices
-    /// ranging from 1 to 3" sets it, else 3.
+    /// ranging from 1 to 3" sets it (unless another range is named too), else 3.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(2..=3))]
     pub dimension: Option<u8>,
     /// The paper's unit normal (a letter such as `n`), which `\langle … \rangle`
-    /// averages over.
+    /// averages over; without it, the letter the text calls "the unit normal" (or "unit
+    /// vector"), if it names one.
     #[arg(long, value_name = "NAME")]
     pub normal: Option<String>,
     /// Write the file here (replaced atomically, never the paper) instead of standard
@@ -848,7 +849,7 @@ fn table(
     )?;
     for f in &files {
         if let Some(list) = to_complete(f) {
-            eprintln!("{}", report::words::inert(&list));
+            eprintln!("{list}");
         }
     }
     Ok(Status::of(&rows))
@@ -866,19 +867,23 @@ fn to_complete(file: &crate::derivation::DerivationFile) -> Option<String> {
     if open.is_empty() {
         return None;
     }
+    // One line each: a line break in a file's text could forge an entry or a summary.
+    let line = |s: &str| report::words::inert(&s.replace(['\n', '\r'], " "));
     let mut text = format!(
         "\n{}: {} equation{} to complete (commented in the file):\n",
-        file.path,
+        line(&file.path),
         open.len(),
         if open.len() == 1 { "" } else { "s" }
     );
     for t in open {
         text.push_str(&format!(
             "- {} (line {} of the paper): {}\n",
-            t.id, t.line, t.reason
+            t.id,
+            t.line,
+            line(&t.reason)
         ));
         if let Some(edit) = &t.edit {
-            text.push_str(&format!("  edit: {edit}\n"));
+            text.push_str(&format!("  edit: {}\n", line(edit)));
         }
     }
     Some(text)

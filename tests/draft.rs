@@ -305,3 +305,58 @@ fn a_failure_a_tie_between_symbols_could_explain_is_undecided_as_drafted() {
     let rows = decide_all(std::slice::from_ref(&f), None).unwrap();
     assert_eq!(rows[2].outcome.verdict(), Verdict::Fails);
 }
+
+/// What the paper's text says in words shapes the reading: a symbol a sentence sets
+/// equal to an expression before a display is not defined by that display (else a
+/// wrong first display would hold as a definition, and the true one after it fail);
+/// "the unit normal" names the normal; two different index ranges named set none.
+#[test]
+fn what_the_text_says_in_words_shapes_the_reading() {
+    let v = |id: &str, v: Verdict| (id.to_owned(), v);
+    let prose = "\\documentclass{article}\\begin{document}\nWith the deviator, $J_2 = \\frac12 s_{ij}s_{ij}$ gives\n\\begin{equation} J_2 = \\frac{1}{2}\\sigma_{ij}\\sigma_{ij} - \\frac{1}{2} p^2 \\end{equation}\n\\begin{equation} p = \\frac{1}{3}\\sigma_{kk}, \\quad s_{ij} = \\sigma_{ij} - p\\delta_{ij} \\end{equation}\n\\begin{equation} J_2 = \\frac{1}{2} s_{ij} s_{ij} \\end{equation}\n\\end{document}\n";
+    let verdicts = verdicts_of("prose-definition.tex", prose);
+    assert!(
+        verdicts.iter().all(|(_, x)| *x != Verdict::Fails),
+        "{verdicts:?}"
+    );
+    assert!(verdicts.contains(&v("eq2", Verdict::Holds)), "{verdicts:?}");
+    let unit = "\\documentclass{article}\\begin{document}\nLet $n$ be the unit normal of the band.\n\\begin{equation}C_{ijkl} = \\lambda\\delta_{ij}\\delta_{kl} + \\mu(\\delta_{ik}\\delta_{jl} + \\delta_{il}\\delta_{jk})\\end{equation}\n\\begin{equation}A_{ik} = C_{ijkl} n_j n_l\\end{equation}\n\\begin{equation}A_{ik} = (\\lambda + \\mu) n_i n_k + \\mu\\delta_{ik}\\end{equation}\n\\begin{equation}A_{ik} n_k = (\\lambda + 3\\mu) n_i\\end{equation}\n\\end{document}\n";
+    let (toml, verdicts) = drafted(&[&written("unit-normal.tex", unit)]);
+    assert!(toml.contains("normal = 'n'"), "{toml}");
+    assert_eq!(
+        verdicts,
+        vec![
+            v("eq1", Verdict::Holds),
+            v("eq2", Verdict::Holds),
+            v("eq3", Verdict::Holds),
+            v("eq4", Verdict::Fails),
+        ],
+        "{toml}"
+    );
+    let ranges = "Latin indices take the values 1, 2, 3; Greek indices ranging from 1 to 2 label in-plane components.\n\\begin{equation}\\delta_{kk} = 3\\end{equation}\n";
+    let (toml, verdicts) = drafted(&[&written("ranges.tex", ranges)]);
+    assert!(toml.contains("dimension = 3"), "{toml}");
+    assert_eq!(verdicts, vec![v("eq1", Verdict::Holds)]);
+}
+
+/// `verify` prints each equation to complete on one line: a line break in a file's
+/// reason or edit cannot forge an entry or a summary on standard error.
+#[test]
+fn a_line_break_in_an_equation_to_complete_forges_nothing() {
+    let toml = "section = \"1\"\ntitle = \"t\"\ndimension = 3\nscalars = [\"x\"]\nto_complete = [ { id = \"eq1\", line = 3, reason = \"\"\"one\n- eq9 (line 1 of the paper): fake\"\"\", edit = \"e\\n\\n5 claims: 5 hold\" } ]\n[[claim]]\nid = \"a1\"\nprinted = 'x = x'\n";
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_cosserat-check"))
+        .args([
+            "verify",
+            &written("forged.toml", toml),
+            "--format",
+            "markdown",
+        ])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.contains("- eq1 (line 3 of the paper): one - eq9 (line 1 of the paper): fake\n  edit: e  5 claims: 5 hold\n"),
+        "{stderr}"
+    );
+    assert!(!stderr.lines().any(|l| l.starts_with("- eq9")), "{stderr}");
+}

@@ -15,10 +15,12 @@
 
 use super::finding::Finding;
 use super::Outcome;
+use crate::algebra::assignments;
 use crate::derivation::{reachable, Check, Side};
 use crate::eval::exact::env::{ExactEnv, Varying};
+use crate::kernel::Var;
 use crate::lang::{Decls, NodeKind, Target};
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 
 /// `outcome` unchanged, unless it is a failure of a drafted check whose failing
 /// equality has sides that read different symbols: then undecided, with those symbols.
@@ -63,45 +65,64 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
 /// name, through the definitions it uses.
 fn read(decls: &Decls, check: &Check, side: &Side) -> Option<BTreeSet<String>> {
     let node = side.node.as_ref().ok()?;
-    if let Some(exact) = read_exactly(decls, check, side) {
-        return Some(exact);
-    }
-    let (nodes, _) = reachable(vec![node], &check.defs);
-    Some(
-        nodes
-            .iter()
-            .filter_map(|n| match &n.kind {
-                NodeKind::Leaf {
-                    target: Target::Symbol(s),
-                    ..
-                } => Some(s.clone()),
-                _ => None,
-            })
-            .collect(),
-    )
+    let named = named(check, node);
+    Some(read_exactly(decls, check, side, &named).unwrap_or(named))
 }
 
-/// The declared symbols the exact value of `side` depends on, over all its components.
-fn read_exactly(decls: &Decls, check: &Check, side: &Side) -> Option<BTreeSet<String>> {
+/// The symbols `node` names, directly or through the definitions it uses.
+fn named(check: &Check, node: &crate::lang::Node) -> BTreeSet<String> {
+    let (nodes, _) = reachable(vec![node], &check.defs);
+    nodes
+        .iter()
+        .filter_map(|n| match &n.kind {
+            NodeKind::Leaf {
+                target: Target::Symbol(s),
+                ..
+            } => Some(s.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Those of the symbols `named` that the exact value of `side` depends on, over all its
+/// components; `None` when it has no exact value, or the claim's time limit stops the
+/// evaluation. (Only the named symbols' components are looked up: the evaluation built
+/// them already.)
+fn read_exactly(
+    decls: &Decls,
+    check: &Check,
+    side: &Side,
+    named: &BTreeSet<String>,
+) -> Option<BTreeSet<String>> {
     let node = side.node.as_ref().ok()?;
-    let mut env = ExactEnv::on(
-        decls,
-        &check.defs,
-        &check.assumptions,
-        check.strategy.exact_domain(),
-    )
-    .ok()?;
-    let value = env.eval(node, &side.origin).ok()?;
-    let components = env.component_vars();
-    let mut out = BTreeSet::new();
-    for q in value.tensor.components() {
-        for v in q.variables() {
-            if let Some((name, _)) = components.get(&v) {
-                out.insert(name.clone());
-            } else if let Some(Varying::Jet { field, .. }) = env.varying().get(&v) {
-                out.insert(field.clone());
+    crate::kernel::interrupt::stoppable(|| {
+        let mut env = ExactEnv::on(
+            decls,
+            &check.defs,
+            &check.assumptions,
+            check.strategy.exact_domain(),
+        )
+        .ok()?;
+        let value = env.eval(node, &side.origin).ok()?;
+        let mut symbol_of: HashMap<Var, &str> = HashMap::new();
+        for name in named {
+            let rank = *decls.symbols.get(name)?;
+            for idx in assignments(decls.dim, rank) {
+                symbol_of.insert(env.component_var(name, &idx), name);
             }
         }
-    }
-    Some(out)
+        let mut out = BTreeSet::new();
+        for q in value.tensor.components() {
+            for v in q.variables() {
+                if let Some(name) = symbol_of.get(&v) {
+                    out.insert((*name).to_owned());
+                } else if let Some(Varying::Jet { field, .. }) = env.varying().get(&v) {
+                    out.insert(field.clone());
+                }
+            }
+        }
+        Some(out)
+    })
+    .ok()
+    .flatten()
 }

@@ -1,7 +1,8 @@
 //! Control characters are refused in a derivation file, written raw or as a TOML
 //! escape (`"\u001b[2J"`, `"\b"`): they would reach a terminal as escape sequences, a
-//! report as invisible text, or the LaTeX writer, and no statement needs one. A tab and
-//! the line ends are allowed.
+//! report as invisible text, or the LaTeX writer, and no statement needs one. So are the
+//! bidirectional controls and the line separators, which reorder or break what a reader
+//! sees. A tab and the line ends are allowed.
 
 /// The byte offset of the first control character in `text` (raw, or escaped inside
 /// a basic string), with a description of it; `None` when there is none.
@@ -60,11 +61,25 @@ pub fn first_control(text: &str) -> Option<(usize, String)> {
 }
 
 fn forbidden(c: char) -> bool {
-    c.is_control() && !matches!(c, '\t' | '\n' | '\r')
+    (c.is_control() && !matches!(c, '\t' | '\n' | '\r')) || invisible(c)
+}
+
+/// Formatting characters that reorder or break what a reader sees: the bidirectional
+/// controls (which make `=1 X` display as `X 1=`) and the line and paragraph separators
+/// (a line break to some terminals and viewers, none to a report's line count).
+fn invisible(c: char) -> bool {
+    matches!(c, '\u{61C}' | '\u{200E}' | '\u{200F}' | '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}' | '\u{2028}' | '\u{2029}')
 }
 
 fn describe(c: char) -> String {
-    format!("the control character U+{:04X}", u32::from(c))
+    if invisible(c) {
+        format!(
+            "the invisible formatting character U+{:04X} (a bidirectional control or a line separator)",
+            u32::from(c)
+        )
+    } else {
+        format!("the control character U+{:04X}", u32::from(c))
+    }
 }
 
 /// The control character an escape (after its backslash) stands for, described.
@@ -105,5 +120,10 @@ mod tests {
         assert_eq!(first_control("p = \"\\\"\\u0041\t\""), None);
         assert!(first_control("p = \"\\\"\\u0002\"").is_some());
         assert!(first_control("p = \"\"\"\n\\U0000009b\"\"\"").is_some());
+        // Bidirectional controls and line separators, raw or escaped.
+        assert!(first_control("p = 'a\u{202e}b'").is_some());
+        assert!(first_control("p = \"\\u2066\"").is_some());
+        assert!(first_control("p = \"a\u{2028}b\"").is_some());
+        assert!(first_control("# \u{200f}\np = 1").is_some());
     }
 }

@@ -413,10 +413,10 @@ pub fn point(at: &Point) -> String {
 /// Text for a terminal: every control character but the line end (an escape sequence
 /// could clear the screen, retitle the window or draw a fake verdict) and every
 /// bidirectional control (which reorders what follows it on the line, so that a
-/// verdict could read as another) shown as `\u{…}`, so that what a file or a file
+/// verdict could read as another) and line separator shown as `\u{…}`, so that what a file or a file
 /// name holds is seen, never obeyed.
 pub fn inert(s: &str) -> String {
-    let bidi = |c: char| matches!(c, '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{61c}');
+    let bidi = |c: char| matches!(c, '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{61c}' | '\u{2028}' | '\u{2029}');
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         if (c.is_control() && c != '\n') || bidi(c) {

@@ -251,6 +251,81 @@ pub fn live(text: &str, markdown: bool) -> String {
     text
 }
 
+/// The inline formulas of the paper's text that are equalities (`$J_2 = \frac12
+/// s_{ij}s_{ij}$`, `\(p = 0\)`), each with its line: a symbol such a sentence defines is
+/// no display's to define. A `$$` (a display) is not inline, and a formula does not run
+/// past a blank line; an escaped dollar is text.
+pub fn inline_equalities(text: &str, markdown: bool) -> Vec<(usize, String)> {
+    let live = live(text, markdown);
+    let mut out = Vec::new();
+    for (mut line, paragraph) in paragraphs(&live) {
+        let mut rest = paragraph.as_str();
+        while let Some((open, close, at)) = next_inline(rest) {
+            let body_start = at + open.len();
+            let Some(end) = rest[body_start..].find(close) else {
+                break;
+            };
+            let body = &rest[body_start..body_start + end];
+            let skip = body_start + end + close.len();
+            if body.contains('=') {
+                let here = line + rest[..at].matches('\n').count();
+                out.push((here, body.trim().to_owned()));
+            }
+            line += rest[..skip].matches('\n').count();
+            rest = &rest[skip..];
+        }
+    }
+    out
+}
+
+/// The next inline formula's opening in `s`: (opening, closing, where), skipping `$$`
+/// and escaped dollars.
+fn next_inline(s: &str) -> Option<(&'static str, &'static str, usize)> {
+    let bytes = s.as_bytes();
+    let mut k = 0;
+    while k < bytes.len() {
+        match bytes[k] {
+            b'\\' if bytes.get(k + 1) == Some(&b'(') => return Some(("\\(", "\\)", k)),
+            b'\\' => k += 2,
+            b'$' if bytes.get(k + 1) == Some(&b'$') => {
+                // A display: skip to its end.
+                let end = s[k + 2..].find("$$")?;
+                k += 2 + end + 2;
+            }
+            b'$' => return Some(("$", "$", k)),
+            _ => k += 1,
+        }
+    }
+    None
+}
+
+/// The paragraphs of `text` (separated by blank lines), each with its first line
+/// (1-based).
+fn paragraphs(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut current = String::new();
+    let mut first = 1;
+    for (k, line) in text.lines().enumerate() {
+        if line.trim().is_empty() {
+            if !current.is_empty() {
+                out.push((first, std::mem::take(&mut current)));
+            }
+            first = k + 2;
+        } else {
+            if current.is_empty() {
+                first = k + 1;
+            } else {
+                current.push('\n');
+            }
+            current.push_str(line);
+        }
+    }
+    if !current.is_empty() {
+        out.push((first, current));
+    }
+    out
+}
+
 /// `text` without its `\iffalse … \fi` blocks, each ended by the `\fi` that matches it
 /// (every `\if…` inside opens one more); line breaks kept.
 fn without_iffalse(text: &str) -> String {

@@ -32,7 +32,8 @@ pub struct Options {
     /// The index range 1..=d; without it, a sentence of the source such as "indices
     /// ranging from 1 to 3" sets it, else 3.
     pub dimension: Option<usize>,
-    /// The unit normal that `\langle … \rangle` averages over.
+    /// The unit normal that `\langle … \rangle` averages over; without it, the one the
+    /// text names ("Let $n$ be the unit normal").
     pub normal: Option<String>,
 }
 
@@ -100,7 +101,13 @@ pub fn draft(
         .dimension
         .or_else(|| dimension_in(source, markdown))
         .unwrap_or(3);
-    let normal = options.normal.as_deref();
+    let stated = options
+        .normal
+        .is_none()
+        .then(|| normal_in(source, markdown))
+        .flatten();
+    let normal = options.normal.as_deref().or(stated.as_deref());
+    let prose = displays::inline_equalities(source, markdown);
     let mut seen_ids = BTreeSet::new();
     let mut equations: Vec<Equation> = found
         .into_iter()
@@ -136,7 +143,13 @@ pub fn draft(
     // Refused claims move to "To complete", and the file is written again, until the
     // loader accepts it (each round moves at least one claim).
     for _ in 0..=2 * equations.len() + 2 {
-        let Some(toml) = write(label, &mut equations, dimension, normal, unnumbered) else {
+        let Some(toml) = write(
+            label,
+            &mut equations,
+            (dimension, normal),
+            unnumbered,
+            &prose,
+        ) else {
             continue;
         };
         match super::load::load_str("draft.toml", &toml) {
@@ -162,8 +175,14 @@ pub fn draft(
         e.unread
             .get_or_insert_with(|| "the drafted file was refused as a whole".to_owned());
     }
-    let toml = write(label, &mut equations, dimension, normal, unnumbered)
-        .expect("with every claim to complete, nothing is read");
+    let toml = write(
+        label,
+        &mut equations,
+        (dimension, normal),
+        unnumbered,
+        &prose,
+    )
+    .expect("with every claim to complete, nothing is read");
     Draft {
         toml,
         equations: equations.len(),
@@ -376,6 +395,77 @@ fn leads_to(
     false
 }
 
+/// "Let $n$ be the unit normal", "the unit normal vector $\mathbf{n}$": the letter of the
+/// unit normal the source's text names beside the words "unit normal" (or "unit
+/// vector"), if it names one and only one. Read as a plain vector, n·n = 1 is lost, and
+/// true equations that need it would fail.
+fn normal_in(source: &str, markdown: bool) -> Option<String> {
+    let text = displays::live(source, markdown);
+    let lower = text.to_lowercase();
+    let mut found = BTreeSet::new();
+    for phrase in ["unit normal", "unit vector"] {
+        for (at, _) in lower.match_indices(phrase) {
+            // The inline formula just before or just after the words.
+            let before = lower[..at].trim_end();
+            let after = lower[at + phrase.len()..].trim_start();
+            let after = after.strip_prefix("vector").unwrap_or(after).trim_start();
+            let candidates = [
+                before
+                    .strip_suffix("$")
+                    .and_then(|b| b.rfind('$').map(|k| &b[k + 1..])),
+                after
+                    .strip_prefix('$')
+                    .and_then(|a| a.find('$').map(|k| &a[..k])),
+                after
+                    .strip_prefix("\\(")
+                    .and_then(|a| a.find("\\)").map(|k| &a[..k])),
+            ];
+            for formula in candidates.into_iter().flatten() {
+                if let Some(letter) = vector_letter(formula) {
+                    found.insert(letter);
+                }
+            }
+            // "Let $n$ be the unit normal": the formula before "be the".
+            if let Some(b) = before
+                .strip_suffix("be the")
+                .or_else(|| before.strip_suffix("is the"))
+                .map(str::trim_end)
+                .and_then(|b| b.strip_suffix('$'))
+            {
+                if let Some(letter) = b.rfind('$').and_then(|k| vector_letter(&b[k + 1..])) {
+                    found.insert(letter);
+                }
+            }
+        }
+    }
+    match found.len() {
+        1 => found.into_iter().next(),
+        _ => None,
+    }
+}
+
+/// `n`, `n_i`, `n_{i}`, `\mathbf{n}`, `\boldsymbol{n}`, `\bm{n}`: the one Latin letter of a
+/// vector written alone.
+fn vector_letter(formula: &str) -> Option<String> {
+    let mut f = formula.trim();
+    for font in ["\\mathbf{", "\\boldsymbol{", "\\bm{", "\\vec{"] {
+        if let Some(inner) = f.strip_prefix(font).and_then(|r| r.strip_suffix('}')) {
+            f = inner.trim();
+        }
+    }
+    let f = f
+        .strip_suffix("_i")
+        .or_else(|| f.strip_suffix("_{i}"))
+        .or_else(|| f.strip_suffix("_k"))
+        .or_else(|| f.strip_suffix("_{k}"))
+        .unwrap_or(f);
+    let mut chars = f.chars();
+    match (chars.next(), chars.next()) {
+        (Some(c), None) if c.is_ascii_lowercase() => Some(c.to_string()),
+        _ => None,
+    }
+}
+
 /// "indices ranging from 1 to 3", "i = 1, 2, 3", "i, j = 1, 2": the index range the
 /// source's text states (comments and other dead text left out), if it states one and
 /// only one.
@@ -395,9 +485,16 @@ fn dimension_in(source: &str, markdown: bool) -> Option<usize> {
             }
         }
     }
-    for phrase in ["= 1, 2$", "= 1,2$", "= 1, 2 ", "= 1,2 "] {
+    for phrase in ["= 1, 2$", "= 1,2$", "= 1, 2 ", "= 1,2 ", "two-dimensional"] {
         if lower.contains(phrase) {
             found.insert(2);
+        }
+    }
+    // Another range named anywhere makes the sentence ambiguous ("Latin indices take
+    // the values 1, 2, 3; Greek ones range from 1 to 2"): no dimension is read then.
+    for phrase in ["1, 2, 3", "1,2,3", "1, 2 and 3", "three-dimensional"] {
+        if lower.contains(phrase) {
+            found.insert(3);
         }
     }
     match found.len() {
@@ -412,9 +509,9 @@ fn dimension_in(source: &str, markdown: bool) -> Option<usize> {
 fn write(
     label: &str,
     equations: &mut [Equation],
-    dimension: usize,
-    normal: Option<&str>,
+    (dimension, normal): (usize, Option<&str>),
     unnumbered: (usize, usize),
+    prose: &[(usize, String)],
 ) -> Option<String> {
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
@@ -451,6 +548,24 @@ fn write(
             blocked.entry(k).or_insert(q);
         }
     };
+    // Symbols a sentence of the text sets equal to something (`$J_2 = …$`) before an
+    // equation that would define them: the text's own meaning may differ from the
+    // equation's, which is then a claim about them, not their definition.
+    // (A second name for the symbol, `$f_i^{(2,1)c} = f_i^c$`, says nothing of its value.)
+    let mut in_prose: BTreeMap<Key, usize> = BTreeMap::new();
+    for (line, text) in prose {
+        let alias = text.split_once('=').is_some_and(|(_, right)| {
+            latex::read(right, &options).is_ok_and(|r| {
+                matches!(&r.parts[..], [part] if matches!(&part.members[..], [m] if matches!(m.kind, MathKind::Atom(_))))
+            })
+        });
+        if alias {
+            continue;
+        }
+        if let Some(k) = left_symbol(text, normal, &tensors) {
+            in_prose.entry(k).or_insert(*line);
+        }
+    }
     let mut plain: BTreeSet<Key> = BTreeSet::new();
     for (q, eq) in equations.iter_mut().enumerate() {
         eq.reads.clear();
@@ -555,8 +670,12 @@ fn write(
         };
         let base = key.strip_suffix("^2");
         let square_of_plain = base.is_some_and(|b| plain.contains(b) || before(b));
+        let said_before = in_prose
+            .get(&key)
+            .is_some_and(|&line| line < equations[q].line);
         if chosen.contains_key(&key)
             || before(&key)
+            || said_before
             || square_of_plain
             || leads_to(&body, &key, &chosen)
         {
