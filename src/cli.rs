@@ -96,8 +96,8 @@ pub struct DraftArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(2..=3))]
     pub dimension: Option<u8>,
     /// The paper's unit normal (a letter such as `n`), which `\langle … \rangle`
-    /// averages over; without it, the letter the text calls "the unit normal" (or "unit
-    /// vector"), if it names one.
+    /// averages over; without it, the letter the text calls "the unit normal" (or, for
+    /// n, "unit vector"), if it names one.
     #[arg(long, value_name = "NAME")]
     pub normal: Option<String>,
     /// Write the file here (replaced atomically, never the paper) instead of standard

@@ -396,8 +396,8 @@ fn leads_to(
 }
 
 /// "Let $n$ be the unit normal", "the unit normal vector $\mathbf{n}$": the letter of the
-/// unit normal the source's text names beside the words "unit normal" (or "unit
-/// vector"), if it names one and only one. Read as a plain vector, n·n = 1 is lost, and
+/// unit normal the source's text names beside the words "unit normal" (or "unit vector",
+/// for the letter n), if it names one and only one. Read as a plain vector, n·n = 1 is lost, and
 /// true equations that need it would fail.
 fn normal_in(source: &str, markdown: bool) -> Option<String> {
     let text = displays::live(source, markdown);
@@ -420,8 +420,11 @@ fn normal_in(source: &str, markdown: bool) -> Option<String> {
                     .strip_prefix("\\(")
                     .and_then(|a| a.find("\\)").map(|k| &a[..k])),
             ];
+            // "The unit vector e_i along axis i" names no normal: a unit vector is one
+            // only when it is written n.
+            let takes = |letter: &String| phrase == "unit normal" || letter == "n";
             for formula in candidates.into_iter().flatten() {
-                if let Some(letter) = vector_letter(formula) {
+                if let Some(letter) = vector_letter(formula).filter(takes) {
                     found.insert(letter);
                 }
             }
@@ -432,7 +435,11 @@ fn normal_in(source: &str, markdown: bool) -> Option<String> {
                 .map(str::trim_end)
                 .and_then(|b| b.strip_suffix('$'))
             {
-                if let Some(letter) = b.rfind('$').and_then(|k| vector_letter(&b[k + 1..])) {
+                if let Some(letter) = b
+                    .rfind('$')
+                    .and_then(|k| vector_letter(&b[k + 1..]))
+                    .filter(takes)
+                {
                     found.insert(letter);
                 }
             }
