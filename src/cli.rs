@@ -78,9 +78,9 @@ pub enum Command {
     /// declarations, definitions and notation the equations imply; what cannot be read
     /// is kept as a commented claim and listed in `to_complete`, with its line, reason
     /// and the edit that would let it be read, which `verify` prints. The file starts
-    /// with `drafted = true`: a failure whose sides read different symbols (which the
-    /// paper may tie in words) is undecided, never an accusation. `verify` accepts the
-    /// file unchanged
+    /// with `drafted = true`: a failure that a tie the paper may state in words would
+    /// remove (between symbols the draft took as independent) is undecided, never an
+    /// accusation. `verify` accepts the file unchanged
     Draft(DraftArgs),
 }
 

@@ -333,10 +333,89 @@ fn what_the_text_says_in_words_shapes_the_reading() {
         ],
         "{toml}"
     );
-    let ranges = "Latin indices take the values 1, 2, 3; Greek indices ranging from 1 to 2 label in-plane components.\n\\begin{equation}\\delta_{kk} = 3\\end{equation}\n";
-    let (toml, verdicts) = drafted(&[&written("ranges.tex", ranges)]);
-    assert!(toml.contains("dimension = 3"), "{toml}");
-    assert_eq!(verdicts, vec![v("eq1", Verdict::Holds)]);
+    // A range named in a sentence about something else, or two ranges, set none.
+    for (k, text) in [
+        "Latin indices take the values 1, 2, 3; Greek indices ranging from 1 to 2 label in-plane components.",
+        "Unlike the two-dimensional case treated in [4], we work in space.",
+        "The load steps run from 1 to 2.",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let source = format!("{text}\n\\begin{{equation}}\\delta_{{kk}} = 3\\end{{equation}}\n");
+        let (toml, verdicts) = drafted(&[&written(&format!("ranges{k}.tex"), &source)]);
+        assert!(toml.contains("dimension = 3"), "{toml}");
+        assert_eq!(verdicts, vec![v("eq1", Verdict::Holds)], "{toml}");
+    }
+    // Words that do not call one letter the unit normal name no normal, and a false
+    // equation that needs n·n = 1 is then not `holds`.
+    for (k, text) in [
+        "There are $n$ unit vectors.",
+        "Let $n$ be the unit normalisation constant.",
+        "the non-unit normal $n$",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let source = format!("{text}\n\\begin{{equation}}n_k n_k a_i = a_i\\end{{equation}}\n");
+        let (toml, verdicts) = drafted(&[&written(&format!("not-normal{k}.tex"), &source)]);
+        assert!(!toml.contains("normal = "), "{toml}");
+        assert_eq!(verdicts, vec![v("eq1", Verdict::Undecided)], "{toml}");
+    }
+}
+
+/// A failure that a common tie between the draft's independent symbols would remove is
+/// undecided, naming the tie: a relation giving one symbol in the others (the text
+/// defines W before the display, which is then no definition), a symmetric tensor, a
+/// unit vector. A wrong coefficient no such tie removes still fails.
+#[test]
+fn a_failure_a_common_tie_would_remove_is_undecided_as_drafted() {
+    let v = |id: &str, v: Verdict| (id.to_owned(), v);
+    type Case = (
+        &'static str,
+        &'static str,
+        Vec<(String, Verdict)>,
+        &'static str,
+    );
+    let cases: [Case; 3] = [
+        (
+            "tie-definition.tex",
+            "At $W = 0$ the body is unstressed.\n\\begin{equation}W = \\frac12 e_{ij} e_{ij}\\end{equation}\n\\begin{equation}2W - e_{ij}e_{ij} = W - \\frac12 e_{ij} e_{ij}\\end{equation}\n\\begin{equation}W + e_{ij}e_{ij} = W + \\frac12 e_{ij} e_{ij}\\end{equation}\n",
+            vec![
+                v("eq1", Verdict::Undecided),
+                v("eq2", Verdict::Undecided),
+                v("eq3", Verdict::Fails),
+            ],
+            "a relation that gives W in the other symbols",
+        ),
+        (
+            "tie-symmetric.tex",
+            "The Cauchy stress is symmetric,\n\\begin{equation}\\sigma_{ij} = \\sigma_{ji}\\end{equation}\n\\begin{equation}\\sigma_{ij}\\sigma_{ji} = \\sigma_{ij}\\sigma_{ij}\\end{equation}\n",
+            vec![v("eq1", Verdict::Undecided), v("eq2", Verdict::Undecided)],
+            "sigma being symmetric",
+        ),
+        (
+            "tie-unit.tex",
+            "\\begin{equation}a_i m_k m_k + m_i = a_i + m_i\\end{equation}\n",
+            vec![v("eq1", Verdict::Undecided)],
+            "m being a unit vector",
+        ),
+    ];
+    for (name, source, want, tie) in cases {
+        let path = written(name, source);
+        let (toml, verdicts) = drafted(&[&path]);
+        assert_eq!(verdicts, want, "{toml}");
+        let (_, md) = run_cli(
+            &[
+                "verify",
+                &written(&format!("{name}.toml"), &toml),
+                "--format",
+                "markdown",
+            ],
+            false,
+        );
+        assert!(md.contains(tie), "{md}");
+    }
 }
 
 /// `verify` prints each equation to complete on one line: a line break in a file's

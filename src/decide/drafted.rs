@@ -1,13 +1,23 @@
 //! A drafted file's failures (`drafted = true`, written by `cosserat-check draft`).
 //!
-//! A draft guesses its declarations from the printed symbols, and takes every symbol as
-//! independent. The paper may tie some of them in its text ("the forces on the two
-//! faces are equal and opposite") or in an equation the draft could not read. A failure
-//! whose two sides read different symbols may be nothing but such a tie: "P = ⟨t⟩"
-//! relates `P` to `t` whatever the paper means. It is reported as undecided, naming the
-//! symbols, never as an error of the paper. A failure whose sides read the same symbols
-//! (a wrong coefficient, a sign, a swapped index, a constant such as (26)'s −4/5) is
-//! one no tie between them explains away, and stands.
+//! A draft guesses its declarations from the printed symbols, and takes every symbol it
+//! does not define as independent. The paper may tie some of them in its text ("the
+//! forces on the two faces are equal and opposite", "the stress is symmetric", "n is the
+//! unit normal", "with $W = \frac12 e_{ij}e_{ij}$") or in an equation the draft could
+//! not read. A failure that such a tie would remove is reported as undecided, naming
+//! the tie, never as an error of the paper:
+//!
+//! - the two sides read different symbols ("P = ⟨t⟩" relates `P` to `t` whatever the
+//!   paper means);
+//! - the difference of the sides is linear in a component of a symbol, beside other
+//!   terms: a relation that gives that component in the others removes it (`W − ½ e·e`,
+//!   `σ₁₂ − σ₂₁`);
+//! - the difference vanishes when a tensor of rank 2 is symmetric, or when a vector is
+//!   of unit length.
+//!
+//! What stands is a difference no such tie explains: a constant such as (26)'s −4/5, a
+//! wrong coefficient of a square (`(½ − ⅓) s_ij s_ij`), a factor that is a special value
+//! of a parameter rather than a relation (`μ`, `2μ n_i n_k`).
 //!
 //! The symbols a side reads are those its exact value depends on (a symbol that
 //! cancels, like the pressure in the tangential traction, is not read), or, where the
@@ -15,15 +25,17 @@
 
 use super::finding::Finding;
 use super::Outcome;
-use crate::algebra::assignments;
+use crate::algebra::{assignments, Quotient};
 use crate::derivation::{reachable, Check, Side};
 use crate::eval::exact::env::{ExactEnv, Varying};
+use crate::eval::labeled::Labeled;
+use crate::kernel::poly::{Monomial, Poly};
 use crate::kernel::Var;
 use crate::lang::{Decls, NodeKind, Target};
-use std::collections::{BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
-/// `outcome` unchanged, unless it is a failure of a drafted check whose failing
-/// equality has sides that read different symbols: then undecided, with those symbols.
+/// `outcome` unchanged, unless it is a failure of a drafted check that a tie between
+/// the draft's independent symbols could remove: then undecided, naming the tie.
 pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
     if !check.drafted || outcome.verdict() != crate::derivation::Verdict::Fails {
         return outcome;
@@ -43,30 +55,41 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
     let Some((left, right)) = sides else {
         return outcome;
     };
-    let (Some(l), Some(r)) = (read(decls, check, left), read(decls, check, right)) else {
+    let (Ok(l_node), Ok(r_node)) = (&left.node, &right.node) else {
         return outcome;
     };
-    if l == r {
-        return outcome;
-    }
-    let mut undecided =
-        Outcome::undecided(outcome.method, outcome.checks).with_finding(Finding::OneSided {
+    let named = (named(check, l_node), named(check, r_node));
+    let exact = crate::kernel::interrupt::stoppable(|| Exact::of(decls, check, (left, right)))
+        .ok()
+        .flatten();
+    let (l, r) = match &exact {
+        Some(e) => (e.reads(&e.left, &named.0), e.reads(&e.right, &named.1)),
+        None => named.clone(),
+    };
+    let finding = if l != r {
+        Some(Finding::OneSided {
             chain,
             equality,
             left: l.difference(&r).cloned().collect(),
             right: r.difference(&l).cloned().collect(),
-        });
+        })
+    } else {
+        exact
+            .as_ref()
+            .and_then(|e| e.tie(decls, &cx.indices))
+            .map(|tie| Finding::Tie {
+                chain,
+                equality,
+                tie,
+            })
+    };
+    let Some(finding) = finding else {
+        return outcome;
+    };
+    let mut undecided = Outcome::undecided(outcome.method, outcome.checks).with_finding(finding);
     // What the decision evaluated stays, for `explain`.
     undecided.record = outcome.record;
     undecided
-}
-
-/// The declared symbols `side` reads: exactly, where it has an exact value; else by
-/// name, through the definitions it uses.
-fn read(decls: &Decls, check: &Check, side: &Side) -> Option<BTreeSet<String>> {
-    let node = side.node.as_ref().ok()?;
-    let named = named(check, node);
-    Some(read_exactly(decls, check, side, &named).unwrap_or(named))
 }
 
 /// The symbols `node` names, directly or through the definitions it uses.
@@ -84,18 +107,20 @@ fn named(check: &Check, node: &crate::lang::Node) -> BTreeSet<String> {
         .collect()
 }
 
-/// Those of the symbols `named` that the exact value of `side` depends on, over all its
-/// components; `None` when it has no exact value, or the claim's time limit stops the
-/// evaluation. (Only the named symbols' components are looked up: the evaluation built
-/// them already.)
-fn read_exactly(
-    decls: &Decls,
-    check: &Check,
-    side: &Side,
-    named: &BTreeSet<String>,
-) -> Option<BTreeSet<String>> {
-    let node = side.node.as_ref().ok()?;
-    crate::kernel::interrupt::stoppable(|| {
+/// Both sides' exact values, in one environment.
+struct Exact<'a> {
+    env: ExactEnv<'a>,
+    left: Labeled<Quotient>,
+    right: Labeled<Quotient>,
+    /// Each component of a symbol the sides name: its symbol and indices (0-based).
+    components: HashMap<Var, (String, Vec<usize>)>,
+}
+
+impl<'a> Exact<'a> {
+    fn of(decls: &'a Decls, check: &'a Check, (left, right): (&Side, &Side)) -> Option<Self> {
+        let (Ok(l), Ok(r)) = (&left.node, &right.node) else {
+            return None;
+        };
         let mut env = ExactEnv::on(
             decls,
             &check.defs,
@@ -103,26 +128,159 @@ fn read_exactly(
             check.strategy.exact_domain(),
         )
         .ok()?;
-        let value = env.eval(node, &side.origin).ok()?;
-        let mut symbol_of: HashMap<Var, &str> = HashMap::new();
-        for name in named {
-            let rank = *decls.symbols.get(name)?;
+        let left_value = env.eval(l, &left.origin).ok()?;
+        let right_value = env.eval(r, &right.origin).ok()?;
+        let mut names = named(check, l);
+        names.extend(named(check, r));
+        let mut components = HashMap::new();
+        for name in names {
+            let Some(&rank) = decls.symbols.get(&name) else {
+                continue;
+            };
             for idx in assignments(decls.dim, rank) {
-                symbol_of.insert(env.component_var(name, &idx), name);
+                components.insert(env.component_var(&name, &idx), (name.clone(), idx));
             }
         }
+        Some(Exact {
+            env,
+            left: left_value,
+            right: right_value,
+            components,
+        })
+    }
+
+    /// Those of `named` that `side`'s value depends on, over all its components (and
+    /// the fields whose derivatives it reads).
+    fn reads(&self, side: &Labeled<Quotient>, named: &BTreeSet<String>) -> BTreeSet<String> {
         let mut out = BTreeSet::new();
-        for q in value.tensor.components() {
+        for q in side.tensor.components() {
             for v in q.variables() {
-                if let Some(name) = symbol_of.get(&v) {
-                    out.insert((*name).to_owned());
-                } else if let Some(Varying::Jet { field, .. }) = env.varying().get(&v) {
+                if let Some((name, _)) = self.components.get(&v) {
+                    if named.contains(name) {
+                        out.insert(name.clone());
+                    }
+                } else if let Some(Varying::Jet { field, .. }) = self.env.varying().get(&v) {
                     out.insert(field.clone());
                 }
             }
         }
-        Some(out)
-    })
-    .ok()
-    .flatten()
+        out
+    }
+
+    /// A tie of a common kind that removes the difference of the sides at the failing
+    /// component (`indices`, 1-based), described; `None` when none does (or the
+    /// difference is not a polynomial).
+    fn tie(&self, decls: &Decls, indices: &BTreeMap<String, usize>) -> Option<String> {
+        let at = |side: &Labeled<Quotient>| -> Option<Poly> {
+            let assignment: Vec<(char, usize)> = side
+                .labels
+                .iter()
+                .map(|&c| Some((c, indices.get(&c.to_string())?.checked_sub(1)?)))
+                .collect::<Option<_>>()?;
+            let q = side.at(&assignment);
+            q.factors().is_empty().then(|| q.numerator().clone())
+        };
+        let difference = &at(&self.left)? - &at(&self.right)?;
+        let normal = self.env.normal_vars();
+        let difference = difference.reduce_on_sphere(normal).ok()?;
+        if difference.is_zero() {
+            return None;
+        }
+        // A relation that gives one component in the others.
+        for v in difference.variables() {
+            if normal.contains(&v)
+                || self
+                    .env
+                    .varying()
+                    .get(&v)
+                    .is_some_and(|w| matches!(w, Varying::Coordinate(_)))
+            {
+                continue;
+            }
+            let linear = difference.terms().all(|(m, _)| m.exponent(v) <= 1);
+            let beside = difference.terms().any(|(m, _)| m.exponent(v) == 0);
+            if linear && beside {
+                return Some(format!(
+                    "a relation that gives {} in the other symbols",
+                    self.env.vars.name(v)
+                ));
+            }
+        }
+        let read: BTreeSet<&str> = difference
+            .variables()
+            .iter()
+            .filter_map(|v| self.components.get(v).map(|(n, _)| n.as_str()))
+            .collect();
+        for name in read {
+            let rank = *decls.symbols.get(name)?;
+            let var = |idx: &[usize]| {
+                self.components
+                    .iter()
+                    .find(|(_, (n, i))| n == name && i == idx)
+                    .map(|(&v, _)| v)
+            };
+            if rank == 2 {
+                // (Antisymmetry is no common tie: it would also remove every trace.)
+                for (sign, what) in [(1, "symmetric")] {
+                    let mut map: HashMap<Var, (Option<Var>, i64)> = HashMap::new();
+                    for i in 0..decls.dim {
+                        for j in 0..decls.dim {
+                            let Some(v) = var(&[i, j]) else { continue };
+                            let image = match i.cmp(&j) {
+                                std::cmp::Ordering::Greater => (var(&[j, i]), sign),
+                                _ => (Some(v), 1),
+                            };
+                            map.insert(v, image);
+                        }
+                    }
+                    if substituted(&difference, &map).is_zero() {
+                        return Some(format!("{name} being {what}"));
+                    }
+                }
+            }
+            if rank == 1 {
+                let vars: Option<Vec<Var>> = (0..decls.dim).map(|i| var(&[i])).collect();
+                if let Some(vars) = vars {
+                    if difference
+                        .reduce_on_sphere(&vars)
+                        .is_ok_and(|p| p.is_zero())
+                    {
+                        return Some(format!("{name} being a unit vector"));
+                    }
+                }
+            }
+        }
+        None
+    }
+}
+
+/// `p` with each variable of `map` replaced by its image times its sign (a sign 0, or
+/// no image, makes it 0).
+fn substituted(p: &Poly, map: &HashMap<Var, (Option<Var>, i64)>) -> Poly {
+    Poly::from_terms(p.terms().filter_map(|(m, c)| {
+        let mut factors = Vec::new();
+        let mut coefficient = c.clone();
+        for &(v, e) in m.factors() {
+            match map.get(&v) {
+                None => factors.push((v, e)),
+                Some((Some(w), sign)) if *sign != 0 => {
+                    factors.push((*w, e));
+                    if *sign < 0 && e % 2 == 1 {
+                        coefficient = -coefficient;
+                    }
+                }
+                _ => return None,
+            }
+        }
+        // Two factors may become one variable (σ₁₂σ₂₁ → σ₁₂²): exponents add, checked.
+        let mut merged: BTreeMap<Var, crate::kernel::poly::Exp> = BTreeMap::new();
+        for (v, e) in factors {
+            let sum = merged.get(&v).map_or(Some(e), |&f| f.checked_add(e))?;
+            merged.insert(v, sum);
+        }
+        Some((
+            Monomial::checked_from_factors(merged.into_iter().collect())?,
+            coefficient,
+        ))
+    }))
 }

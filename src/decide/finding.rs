@@ -84,6 +84,15 @@ pub enum Finding {
         left: Vec<String>,
         right: Vec<String>,
     },
+    /// A drafted reading fails at equality `equality` of chain `chain`, but a tie of a
+    /// common kind between the draft's independent symbols (`tie`: a relation giving one
+    /// component in the others, a symmetric tensor, a unit vector) removes the
+    /// difference; the paper may state it in words, so nothing is decided.
+    Tie {
+        chain: usize,
+        equality: usize,
+        tie: String,
+    },
     /// The sides differ as polynomials, but the counterexample was not confirmed by a
     /// second evaluation.
     Unconfirmed { difference: String, why: Rejection },

@@ -68,7 +68,9 @@ impl Check {
             assumptions: self.assumptions.clone(),
             chains,
             verbatim: false,
-            drafted: self.drafted,
+            // Two readings compared: whether they differ is the question, whatever a
+            // draft guessed.
+            drafted: false,
             strategy,
         })
     }

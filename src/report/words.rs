@@ -134,6 +134,17 @@ pub fn finding(f: &Finding) -> String {
                  declarations are checked, to decide it strictly. This is not a counterexample"
             )
         }
+        Finding::Tie {
+            chain,
+            equality,
+            tie,
+        } => format!(
+            "undecided (as drafted): equality {equality} of chain {chain} fails as read, but \
+             {tie} would remove the difference, and the paper may state such a tie in words \
+             (the draft took every symbol it does not define as independent): state it (a \
+             definition, or `assume`), or delete `drafted = true` once the file's \
+             declarations are checked, to decide it strictly. This is not a counterexample"
+        ),
         Finding::NoConstrainedPoint { difference, tries } => format!(
             "undecided: the sides differ modulo the constraints and the squares of the roots \
              by {difference}, but no exact point where they hold, every root is rational and \

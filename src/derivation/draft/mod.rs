@@ -401,18 +401,30 @@ fn leads_to(
 /// true equations that need it would fail.
 fn normal_in(source: &str, markdown: bool) -> Option<String> {
     let text = displays::live(source, markdown);
-    let lower = text.to_lowercase();
+    // The words in any case; the formulas as written (`N` is not `n`). An ASCII
+    // lowercase keeps every byte offset.
+    let lower = text.to_ascii_lowercase();
     let mut found = BTreeSet::new();
     for phrase in ["unit normal", "unit vector"] {
         for (at, _) in lower.match_indices(phrase) {
-            // The inline formula just before or just after the words.
-            let before = lower[..at].trim_end();
-            let after = lower[at + phrase.len()..].trim_start();
-            let after = after.strip_prefix("vector").unwrap_or(after).trim_start();
+            // Whole words only: not "non-unit normal", "community", "normalisation",
+            // "unit vectors" (a count of them).
+            let prior = lower[..at].chars().next_back();
+            let next = lower[at + phrase.len()..].chars().next();
+            if prior.is_some_and(|c| c.is_alphanumeric() || c == '-')
+                || next.is_some_and(char::is_alphanumeric)
+            {
+                continue;
+            }
+            // The inline formula just after the words.
+            let before = text[..at].trim_end();
+            let after = text[at + phrase.len()..].trim_start();
+            let after = after
+                .get(..6)
+                .filter(|w| w.eq_ignore_ascii_case("vector"))
+                .map_or(after, |_| &after[6..])
+                .trim_start();
             let candidates = [
-                before
-                    .strip_suffix("$")
-                    .and_then(|b| b.rfind('$').map(|k| &b[k + 1..])),
                 after
                     .strip_prefix('$')
                     .and_then(|a| a.find('$').map(|k| &a[..k])),
@@ -429,10 +441,17 @@ fn normal_in(source: &str, markdown: bool) -> Option<String> {
                 }
             }
             // "Let $n$ be the unit normal": the formula before "be the".
-            if let Some(b) = before
-                .strip_suffix("be the")
-                .or_else(|| before.strip_suffix("is the"))
-                .map(str::trim_end)
+            let lead = before
+                .len()
+                .checked_sub(6)
+                .filter(|&k| before.is_char_boundary(k));
+            let verb = lead.is_some_and(|k| {
+                let w = before[k..].to_ascii_lowercase();
+                w == "be the" || w == "is the"
+            });
+            if let Some(b) = lead
+                .filter(|_| verb)
+                .map(|k| before[..k].trim_end())
                 .and_then(|b| b.strip_suffix('$'))
             {
                 if let Some(letter) = b
@@ -479,28 +498,40 @@ fn vector_letter(formula: &str) -> Option<String> {
 fn dimension_in(source: &str, markdown: bool) -> Option<usize> {
     let lower = displays::live(source, markdown).to_lowercase();
     let mut found = BTreeSet::new();
-    for phrase in ["from 1 to ", "= 1, 2, ", "= 1,2,"] {
-        for (at, _) in lower.match_indices(phrase) {
-            match lower[at + phrase.len()..].chars().next() {
-                Some('2') if !phrase.starts_with('=') => {
-                    found.insert(2);
+    // Sentence by sentence: words name a range only in a sentence about indices ("the
+    // load steps run from 1 to 2" is not one); `i = 1, 2, 3` is one wherever it stands.
+    for sentence in lower.split(['.', ';']) {
+        let about_indices = sentence.contains("ind") || sentence.contains("subscript");
+        let mut phrases = vec!["= 1, 2, ", "= 1,2,"];
+        if about_indices {
+            phrases.extend(["from 1 to ", "values 1, 2, ", "values 1,2,"]);
+        }
+        for phrase in phrases {
+            for (at, _) in sentence.match_indices(phrase) {
+                match sentence[at + phrase.len()..].chars().next() {
+                    Some('2') if phrase.starts_with("from") => {
+                        found.insert(2);
+                    }
+                    Some('3') => {
+                        found.insert(3);
+                    }
+                    _ => {}
                 }
-                Some('3') => {
-                    found.insert(3);
-                }
-                _ => {}
             }
         }
-    }
-    for phrase in ["= 1, 2$", "= 1,2$", "= 1, 2 ", "= 1,2 ", "two-dimensional"] {
-        if lower.contains(phrase) {
-            found.insert(2);
+        for phrase in ["= 1, 2$", "= 1,2$", "= 1, 2 ", "= 1,2 "] {
+            if sentence.contains(phrase) || sentence.trim_end().ends_with(phrase.trim_end()) {
+                found.insert(2);
+            }
         }
-    }
-    // Another range named anywhere makes the sentence ambiguous ("Latin indices take
-    // the values 1, 2, 3; Greek ones range from 1 to 2"): no dimension is read then.
-    for phrase in ["1, 2, 3", "1,2,3", "1, 2 and 3", "three-dimensional"] {
-        if lower.contains(phrase) {
+        // Another range named in a sentence about indices makes the text ambiguous
+        // ("Latin indices take the values 1, 2, 3; Greek ones range from 1 to 2"): no
+        // dimension is read then.
+        if about_indices
+            && ["1, 2, 3", "1,2,3", "1, 2 and 3"]
+                .iter()
+                .any(|p| sentence.contains(p))
+        {
             found.insert(3);
         }
     }
@@ -559,7 +590,10 @@ fn write(
     // equation that would define them: the text's own meaning may differ from the
     // equation's, which is then a claim about them, not their definition.
     // (A second name for the symbol, `$f_i^{(2,1)c} = f_i^c$`, says nothing of its value.)
-    let mut in_prose: BTreeMap<Key, usize> = BTreeMap::new();
+    // (The same equation said in a sentence first, `$A_{ik} = C_{ijkl} n_j n_l$`, is no
+    // other meaning: the display still defines it.)
+    let spaceless = |t: &str| t.chars().filter(|c| !c.is_whitespace()).collect::<String>();
+    let mut in_prose: BTreeMap<Key, (usize, BTreeSet<String>)> = BTreeMap::new();
     for (line, text) in prose {
         let alias = text.split_once('=').is_some_and(|(_, right)| {
             latex::read(right, &options).is_ok_and(|r| {
@@ -570,7 +604,8 @@ fn write(
             continue;
         }
         if let Some(k) = left_symbol(text, normal, &tensors) {
-            in_prose.entry(k).or_insert(*line);
+            let said = in_prose.entry(k).or_insert((*line, BTreeSet::new()));
+            said.1.insert(spaceless(text));
         }
     }
     let mut plain: BTreeSet<Key> = BTreeSet::new();
@@ -677,9 +712,9 @@ fn write(
         };
         let base = key.strip_suffix("^2");
         let square_of_plain = base.is_some_and(|b| plain.contains(b) || before(b));
-        let said_before = in_prose
-            .get(&key)
-            .is_some_and(|&line| line < equations[q].line);
+        let said_before = in_prose.get(&key).is_some_and(|(line, texts)| {
+            *line < equations[q].line && !texts.contains(&spaceless(&equations[q].latex))
+        });
         if chosen.contains_key(&key)
             || before(&key)
             || said_before
@@ -1004,8 +1039,11 @@ fn render(r: Render<'_>) -> String {
     out.push_str(
         "# before trusting a verdict. Every declared symbol is taken as independent, so a\n",
     );
-    out.push_str("# failure whose sides read different symbols is left undecided, naming them\n");
-    out.push_str("# (the paper may tie them); delete `drafted = true` once the declarations are\n");
+    out.push_str("# failure that a common tie between symbols would remove (one side reads what\n");
+    out.push_str("# the other does not, a relation, a symmetric tensor, a unit vector) is left\n");
+    out.push_str(
+        "# undecided, naming the tie; delete `drafted = true` once the declarations are\n",
+    );
     out.push_str("# checked, to decide every claim strictly.\n");
     out.push_str(&format!("section = \"{}\"\n", "1"));
     if !todo.is_empty() {
