@@ -59,29 +59,36 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
         return outcome;
     };
     let named = (named(check, l_node), named(check, r_node));
-    let exact = crate::kernel::interrupt::stoppable(|| Exact::of(decls, check, (left, right)))
-        .ok()
-        .flatten();
-    let (l, r) = match &exact {
-        Some(e) => (e.reads(&e.left, &named.0), e.reads(&e.right, &named.1)),
-        None => named.clone(),
-    };
-    let finding = if l != r {
-        Some(Finding::OneSided {
-            chain,
-            equality,
-            left: l.difference(&r).cloned().collect(),
-            right: r.difference(&l).cloned().collect(),
-        })
-    } else {
-        exact
-            .as_ref()
-            .and_then(|e| e.tie(decls, &cx.indices))
-            .map(|tie| Finding::Tie {
+    // Past the claim's time limit the analysis stops, and nothing is said of the paper.
+    let analysed = crate::kernel::interrupt::stoppable(|| {
+        let exact = Exact::of(decls, check, (left, right));
+        let (l, r) = match &exact {
+            Some(e) => (e.reads(&e.left, &named.0), e.reads(&e.right, &named.1)),
+            None => named.clone(),
+        };
+        if l != r {
+            Some(Finding::OneSided {
                 chain,
                 equality,
-                tie,
+                left: l.difference(&r).cloned().collect(),
+                right: r.difference(&l).cloned().collect(),
             })
+        } else {
+            exact
+                .as_ref()
+                .and_then(|e| e.tie(decls, &cx.indices))
+                .map(|tie| Finding::Tie {
+                    chain,
+                    equality,
+                    tie,
+                })
+        }
+    });
+    let finding = match analysed {
+        Ok(finding) => finding,
+        Err(_) => Some(Finding::TimeLimit {
+            seconds: super::watch::expired().map_or(0.0, |l| l.as_secs_f64()),
+        }),
     };
     let Some(finding) = finding else {
         return outcome;
