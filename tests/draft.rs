@@ -439,3 +439,15 @@ fn a_line_break_in_an_equation_to_complete_forges_nothing() {
     );
     assert!(!stderr.lines().any(|l| l.starts_with("- eq9")), "{stderr}");
 }
+
+/// What a side reads is what its value depends on: through an assumption (`S = 3 V /
+/// (2 R_g)` makes `S` read `V` and `R_g`), and not through a divisor that cancelled. So
+/// `2 S R_g = 3 V + 1` differs by the constant −1, which no tie removes: it fails.
+#[test]
+fn a_drafted_side_reads_through_assumptions_and_not_cancelled_divisors() {
+    let toml = "section = \"1\"\ntitle = \"t\"\ndimension = 3\ndrafted = true\nscalars = [\"S\", \"V\", \"R_g\"]\nassume = [\"S = 3 V / (2 R_g)\"]\n[[claim]]\nid = \"a\"\nprinted = 'S = V'\nsides = [\"S\", \"V\"]\n[[claim]]\nid = \"b\"\nprinted = '2 S R_g = 3 V + 1'\nsides = [\"2 S R_g\", \"3 V + 1\"]\n";
+    let f = load_str("assumed.toml", toml).unwrap();
+    let rows = decide_all(std::slice::from_ref(&f), None).unwrap();
+    let verdicts: Vec<Verdict> = rows.iter().map(|r| r.outcome.verdict()).collect();
+    assert_eq!(verdicts, vec![Verdict::Undecided, Verdict::Fails]);
+}

@@ -63,7 +63,7 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
     let analysed = crate::kernel::interrupt::stoppable(|| {
         let exact = Exact::of(decls, check, (left, right));
         let (l, r) = match &exact {
-            Some(e) => (e.reads(&e.left, &named.0), e.reads(&e.right, &named.1)),
+            Some(e) => (e.reads(&e.left), e.reads(&e.right)),
             None => named.clone(),
         };
         if l != r {
@@ -119,7 +119,8 @@ struct Exact<'a> {
     env: ExactEnv<'a>,
     left: Labeled<Quotient>,
     right: Labeled<Quotient>,
-    /// Each component of a symbol the sides name: its symbol and indices (0-based).
+    /// Each component of a symbol the sides or the assumptions name: its symbol and
+    /// indices (0-based).
     components: HashMap<Var, (String, Vec<usize>)>,
 }
 
@@ -137,8 +138,11 @@ impl<'a> Exact<'a> {
         .ok()?;
         let left_value = env.eval(l, &left.origin).ok()?;
         let right_value = env.eval(r, &right.origin).ok()?;
+        // The symbols the sides name, and those the assumptions compute them from
+        // (`S = 3 V / (2 R_g)` makes `V` read where `S` is).
         let mut names = named(check, l);
         names.extend(named(check, r));
+        names.extend(check.reads().symbols);
         let mut components = HashMap::new();
         for name in names {
             let Some(&rank) = decls.symbols.get(&name) else {
@@ -156,16 +160,21 @@ impl<'a> Exact<'a> {
         })
     }
 
-    /// Those of `named` that `side`'s value depends on, over all its components (and
-    /// the fields whose derivatives it reads).
-    fn reads(&self, side: &Labeled<Quotient>, named: &BTreeSet<String>) -> BTreeSet<String> {
+    /// The symbols `side`'s value depends on, over all its components (and the fields
+    /// whose derivatives it reads).
+    fn reads(&self, side: &Labeled<Quotient>) -> BTreeSet<String> {
         let mut out = BTreeSet::new();
+        // What the value depends on: its numerator and denominator, not the divisors
+        // it cancelled (kept as conditions of where it is defined).
+        let depends = |q: &Quotient| {
+            let mut vars = q.numerator().variables();
+            vars.extend(q.factors().iter().flat_map(|(f, _)| f.variables()));
+            vars
+        };
         for q in side.tensor.components() {
-            for v in q.variables() {
+            for v in depends(q) {
                 if let Some((name, _)) = self.components.get(&v) {
-                    if named.contains(name) {
-                        out.insert(name.clone());
-                    }
+                    out.insert(name.clone());
                 } else if let Some(Varying::Jet { field, .. }) = self.env.varying().get(&v) {
                     out.insert(field.clone());
                 }
@@ -219,7 +228,9 @@ impl<'a> Exact<'a> {
             .filter_map(|v| self.components.get(v).map(|(n, _)| n.as_str()))
             .collect();
         for name in read {
-            let rank = *decls.symbols.get(name)?;
+            let Some(&rank) = decls.symbols.get(name) else {
+                continue;
+            };
             let var = |idx: &[usize]| {
                 self.components
                     .iter()
