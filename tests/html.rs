@@ -176,6 +176,11 @@ fn in_a_real_browser_the_page_renders_mathml_and_a_click_scrolls_to_the_claim() 
     );
     assert_eq!(result["unrendered"], 0, "{result}");
     assert_eq!(
+        result["overflowing"],
+        serde_json::json!([]),
+        "cards whose content sticks out: {result}"
+    );
+    assert_eq!(
         result["raw_latex_outside_code"],
         serde_json::json!([]),
         "{result}"

@@ -34,6 +34,18 @@ pub fn escape(s: &str) -> String {
 /// Escaped text whose `inline code` spans become `<code>`, or MathML when they quote
 /// printed LaTeX (a backslash or a brace: the expression language has neither).
 fn text(s: &str) -> String {
+    spans(s, &escape)
+}
+
+/// An author's prose (a note, a reason): as [`text`], with the author's TeX-style
+/// scripts outside code set as `<sup>`/`<sub>` ([`super::scripts`]).
+fn authored(s: &str) -> String {
+    spans(s, &|t| {
+        super::scripts::render(t, &escape, ("<sup>", "</sup>"), ("<sub>", "</sub>"))
+    })
+}
+
+fn spans(s: &str, plain: &dyn Fn(&str) -> String) -> String {
     let mut out = String::new();
     for (k, part) in s.split('`').enumerate() {
         if k % 2 == 1 {
@@ -45,7 +57,7 @@ fn text(s: &str) -> String {
                 }
             }
         } else {
-            out.push_str(&escape(part));
+            out.push_str(&plain(part));
         }
     }
     out
@@ -151,7 +163,8 @@ fn verdict_of(r: &Decided<'_>) -> (&'static str, &'static str) {
 }
 
 /// The graph's node label: the id, the verdict glyph, and `root` or `inherited` for a
-/// failure.
+/// failure; a long id is broken after the hyphen nearest its middle, so that a column
+/// stays narrow.
 fn node_label(r: &Decided<'_>) -> String {
     let (_, glyph) = verdict_of(r);
     let origin = match &r.attribution {
@@ -160,8 +173,23 @@ fn node_label(r: &Decided<'_>) -> String {
         Some(_) => " origin?",
         None => "",
     };
-    format!("{} {glyph}{origin}", r.claim.id)
+    let id = &r.claim.id;
+    let middle = id.chars().count() / 2;
+    let cut = id
+        .char_indices()
+        .filter(|&(_, c)| c == '-')
+        .map(|(i, _)| i + 1)
+        .min_by_key(|&i| id[..i].chars().count().abs_diff(middle));
+    match cut {
+        Some(i) if id.chars().count() > LONG_ID => {
+            format!("{}\n{} {glyph}{origin}", &id[..i], &id[i..])
+        }
+        _ => format!("{id} {glyph}{origin}"),
+    }
 }
+
+/// Ids longer than this take two lines in the graph.
+const LONG_ID: usize = 16;
 
 /// Renders the page.
 pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
@@ -288,7 +316,7 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
     );
     item("Evidence", text(&evidence(&r.outcome)));
     if let Some(reason) = &c.reason {
-        item("Why", text(reason));
+        item("Why", authored(reason));
     }
     if let Some(a) = &r.attribution {
         item("Origin", text(&graph::attribution(a)));
@@ -299,7 +327,7 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
             format!(
                 "<div class=\"statement\">{}</div>{} <span class=\"badge {}\">{}</span> ({}; {})",
                 formula(&k.statement, true),
-                text(&k.reason),
+                authored(&k.reason),
                 if o.verdict() == Verdict::Holds {
                     "holds"
                 } else {
@@ -325,7 +353,7 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
         item("Used by", users.join(", "));
     }
     if let Some(note) = &c.note {
-        item("Note", text(note));
+        item("Note", authored(note));
     }
     let _ = write!(
         out,
@@ -334,97 +362,210 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
     );
 }
 
-/// The legend and the graph of `uses` as inline SVG.
+/// The legend and the graph of `uses` as inline SVG, one band per section in the order
+/// of the rows: a band lays out its section's claims, and each claim of another section
+/// that one of them uses appears there once more, as a dashed copy that links to it.
+/// Every edge is drawn inside one band, so the drawing grows with the number of
+/// sections, not with the length of the longest chain of the whole paper.
 fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
     let by_id: std::collections::HashMap<&str, usize> = rows
         .iter()
         .enumerate()
         .map(|(k, r)| (r.claim.id.as_str(), k))
         .collect();
-    let index = |id: &str| by_id.get(id).copied();
     let uses: Vec<Vec<usize>> = rows
         .iter()
-        .map(|r| r.claim.uses.iter().filter_map(|u| index(&u.id)).collect())
+        .map(|r| {
+            r.claim
+                .uses
+                .iter()
+                .filter_map(|u| by_id.get(u.id.as_str()).copied())
+                .collect()
+        })
         .collect();
     let used_by: Vec<Vec<usize>> = (0..rows.len())
         .map(|k| (0..rows.len()).filter(|&j| uses[j].contains(&k)).collect())
         .collect();
-    let labels: Vec<String> = rows.iter().map(|r| node_label(r)).collect();
-    let Layout {
-        places,
-        width,
-        height,
-    } = layered(&labels, &uses);
+    let mut sections: Vec<&str> = Vec::new();
+    for r in rows {
+        if !sections.contains(&r.claim.section.as_str()) {
+            sections.push(&r.claim.section);
+        }
+    }
+    let mut body = String::new();
+    let (mut width, mut top) = (0.0f64, 0.0f64);
+    for s in sections {
+        let members: Vec<usize> = (0..rows.len())
+            .filter(|&k| rows[k].claim.section == s)
+            .collect();
+        // The band's nodes: its claims, then the claims of other sections they use.
+        let mut nodes = members.clone();
+        for &k in &members {
+            for &u in &uses[k] {
+                if !nodes.contains(&u) {
+                    nodes.push(u);
+                }
+            }
+        }
+        let local = |k: usize| nodes.iter().position(|&j| j == k);
+        let band_uses: Vec<Vec<usize>> = nodes
+            .iter()
+            .map(|&k| {
+                if rows[k].claim.section == s {
+                    uses[k].iter().filter_map(|&u| local(u)).collect()
+                } else {
+                    Vec::new()
+                }
+            })
+            .collect();
+        let labels: Vec<String> = nodes
+            .iter()
+            .map(|&k| match rows[k].claim.section.as_str() {
+                other if other != s => format!("{} (§{other})", node_label(rows[k])),
+                _ => node_label(rows[k]),
+            })
+            .collect();
+        let Layout {
+            places,
+            routes,
+            width: w,
+            height: h,
+        } = layered(&labels, &band_uses);
+        let _ = writeln!(
+            body,
+            "<g class=\"band\" transform=\"translate(0,{top:.0})\"><text class=\"band-title\" x=\"8\" y=\"16\">§{}</text>",
+            escape(s)
+        );
+        let offset = BAND_TITLE;
+        for route in &routes {
+            let (from, to) = (rows[nodes[route.from]], rows[nodes[route.to]]);
+            let inherited = to
+                .attribution
+                .as_ref()
+                .is_some_and(|a| a.inherited_from().contains(&from.claim.id));
+            let mut d = String::new();
+            for (i, &(x, y)) in route.points.iter().enumerate() {
+                let y = y + offset;
+                if i == 0 {
+                    let _ = write!(d, "M{x:.1},{y:.1}");
+                } else if i % 2 == 1 {
+                    // Across the gap between two columns: a curve, level at both ends.
+                    let (px, py) = route.points[i - 1];
+                    let bend = (x - px) / 2.0;
+                    let _ = write!(
+                        d,
+                        " C{:.1},{:.1} {:.1},{y:.1} {x:.1},{y:.1}",
+                        px + bend,
+                        py + offset,
+                        x - bend
+                    );
+                } else {
+                    let _ = write!(d, " L{x:.1},{y:.1}");
+                }
+            }
+            let _ = writeln!(
+                body,
+                "<path class=\"edge{}\" data-from=\"{}\" data-to=\"{}\" d=\"{d}\" marker-end=\"url(#arrow)\"/>",
+                if inherited { " inherited" } else { "" },
+                escape(&from.claim.id),
+                escape(&to.claim.id),
+            );
+        }
+        for (local_k, &k) in nodes.iter().enumerate() {
+            let r = rows[k];
+            let p = places[local_k];
+            let (class, _) = verdict_of(r);
+            let root = r.attribution.as_ref().is_some_and(|a| a.is_root());
+            let copy = r.claim.section != s;
+            // The direct neighbours only (the page's script follows them to the whole
+            // ancestry), so that the page grows with the edges, not with their closure.
+            let ids = |set: &[usize]| {
+                set.iter()
+                    .map(|&j| escape(&rows[j].claim.id))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            };
+            let title = format!(
+                "{}{}: {}{}",
+                r.claim.id,
+                if copy {
+                    format!(" (§{}, used here)", r.claim.section)
+                } else {
+                    String::new()
+                },
+                r.outcome.verdict_text(),
+                r.attribution
+                    .as_ref()
+                    .map(|a| format!("; {}", graph::attribution(a)))
+                    .unwrap_or_default()
+            );
+            let neighbours = if copy {
+                String::new()
+            } else {
+                format!(
+                    " data-up=\"{}\" data-down=\"{}\"",
+                    ids(&uses[k]),
+                    ids(&used_by[k])
+                )
+            };
+            let _ = writeln!(
+                body,
+                "<a class=\"{} {class}{}\" href=\"#claim-{id}\" data-id=\"{id}\"{neighbours}><title>{}</title><rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" rx=\"{}\"/>{}</a>",
+                if copy { "copy" } else { "node" },
+                if root { " root" } else { "" },
+                escape(&title),
+                p.x - p.width / 2.0,
+                p.y - p.height / 2.0 + offset,
+                p.width,
+                p.height,
+                if r.claim.prose { p.height / 2.0 } else { 2.0 },
+                label_text(p.x, p.y + offset, &labels[local_k]),
+                id = escape(&r.claim.id),
+            );
+        }
+        let _ = writeln!(
+            body,
+            "<line class=\"band-rule\" x1=\"0\" y1=\"{:.0}\" x2=\"100%\" y2=\"{:.0}\"/></g>",
+            h + offset,
+            h + offset
+        );
+        width = width.max(w);
+        top += h + offset;
+    }
     out.push_str(LEGEND);
     let _ = write!(
         out,
-        "<div class=\"graph-box\"><svg id=\"graph\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{height:.0}\" viewBox=\"0 0 {width:.0} {height:.0}\" role=\"img\" aria-label=\"The claims and the claims each uses\">\n<defs><marker id=\"arrow\" viewBox=\"0 0 8 8\" refX=\"8\" refY=\"4\" markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L8,4 L0,8 z\" fill=\"#667\"/></marker></defs>\n"
+        "<div class=\"graph-box\"><svg id=\"graph\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{top:.0}\" viewBox=\"0 0 {width:.0} {top:.0}\" role=\"img\" aria-label=\"The claims and the claims each uses, section by section\">\n<defs><marker id=\"arrow\" viewBox=\"0 0 8 8\" refX=\"8\" refY=\"4\" markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L8,4 L0,8 z\" fill=\"#667\"/></marker></defs>\n{body}"
     );
-    for (k, r) in rows.iter().enumerate() {
-        for &u in &uses[k] {
-            let (a, b) = (places[u], places[k]);
-            let (x1, y1, x2, y2) = (a.x + a.width / 2.0, a.y, b.x - b.width / 2.0, b.y);
-            let bend = (x2 - x1) / 2.0;
-            let inherited = r
-                .attribution
-                .as_ref()
-                .is_some_and(|a| a.inherited_from().contains(&rows[u].claim.id));
-            let _ = writeln!(
-                out,
-                "<path class=\"edge{}\" data-from=\"{}\" data-to=\"{}\" d=\"M{x1:.1},{y1:.1} C{:.1},{y1:.1} {:.1},{y2:.1} {x2:.1},{y2:.1}\" marker-end=\"url(#arrow)\"/>",
-                if inherited { " inherited" } else { "" },
-                escape(&rows[u].claim.id),
-                escape(&r.claim.id),
-                x1 + bend,
-                x2 - bend,
-            );
-        }
-    }
-    for (k, r) in rows.iter().enumerate() {
-        let p = places[k];
-        let (class, _) = verdict_of(r);
-        let root = r.attribution.as_ref().is_some_and(|a| a.is_root());
-        // The direct neighbours only (the page's script follows them to the whole
-        // ancestry), so that the page grows with the edges, not with their closure.
-        let ids = |set: &[usize]| {
-            set.iter()
-                .map(|&j| escape(&rows[j].claim.id))
-                .collect::<Vec<_>>()
-                .join(" ")
-        };
-        let title = format!(
-            "{}: {}{}",
-            r.claim.id,
-            r.outcome.verdict_text(),
-            r.attribution
-                .as_ref()
-                .map(|a| format!("; {}", graph::attribution(a)))
-                .unwrap_or_default()
-        );
-        let _ = writeln!(
-            out,
-            "<a class=\"node {class}{}\" href=\"#claim-{id}\" data-id=\"{id}\" data-up=\"{}\" data-down=\"{}\"><title>{}</title><rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" rx=\"{}\"/><text x=\"{:.1}\" y=\"{:.1}\">{}</text></a>",
-            if root { " root" } else { "" },
-            ids(&uses[k]),
-            ids(&used_by[k]),
-            escape(&title),
-            p.x - p.width / 2.0,
-            p.y - p.height / 2.0,
-            p.width,
-            p.height,
-            if r.claim.prose { p.height / 2.0 } else { 2.0 },
-            p.x,
-            p.y + 4.0,
-            escape(&labels[k]),
-            id = escape(&r.claim.id),
-        );
-    }
     out.push_str("</svg></div>\n<p id=\"focus-note\" class=\"note\">Click a claim to jump to it and to focus the graph on what it uses and what uses it.</p>\n");
 }
 
+/// A node's label as SVG text centred at (x, y), one `tspan` per line.
+fn label_text(x: f64, y: f64, label: &str) -> String {
+    let lines: Vec<&str> = label.lines().collect();
+    let first = y + 4.0 - 7.0 * (lines.len().max(1) - 1) as f64;
+    let mut out = format!("<text x=\"{x:.1}\" y=\"{first:.1}\">");
+    for (i, line) in lines.iter().enumerate() {
+        if i == 0 {
+            out.push_str(&escape(line));
+        } else {
+            let _ = write!(
+                out,
+                "<tspan x=\"{x:.1}\" dy=\"14\">{}</tspan>",
+                escape(line)
+            );
+        }
+    }
+    out.push_str("</text>");
+    out
+}
+
+/// The height of a band's title, above its drawing (pixels).
+const BAND_TITLE: f64 = 22.0;
+
 const LEGEND: &str = r#"<section id="graph-section">
 <h2>Derivation graph</h2>
-<p>An arrow runs from a claim to each claim derived from it (<code>uses</code>).</p>
+<p>An arrow runs from a claim to each claim derived from it (<code>uses</code>), section by section: a dashed box is a claim of another section that this section uses.</p>
 <ul class="legend">
 <li><svg width="44" height="18"><rect x="1" y="1" width="42" height="16" rx="2" class="key"/></svg> a printed formula</li>
 <li><svg width="44" height="18"><rect x="1" y="1" width="42" height="16" rx="8" class="key"/></svg> a sentence of prose</li>
@@ -443,18 +584,21 @@ body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 72rem; pad
 h1 { margin-bottom: 0.2rem; } .paper { font-style: italic; margin-top: 0; }
 code { font-size: 0.9em; background: #f3f3f6; padding: 0 0.2em; border-radius: 3px; overflow-wrap: anywhere; }
 .note { color: #555; font-size: 0.9em; }
-.graph-box { overflow: auto; border: 1px solid #ccd; border-radius: 6px; max-height: 80vh; background: #fcfcfe; }
+.graph-box { overflow-x: auto; border: 1px solid #ccd; border-radius: 6px; background: #fcfcfe; width: calc(100vw - 2rem); max-width: fit-content; margin-left: 50%; transform: translateX(-50%); }
 #graph text { font: 12px ui-monospace, monospace; text-anchor: middle; fill: #1b1b1f; pointer-events: none; }
-#graph .node rect { stroke: #556; stroke-width: 1; cursor: pointer; }
-#graph .node.holds rect, .swatch.holds { fill: #d9f2dd; background: #d9f2dd; }
-#graph .node.fails rect, .swatch.fails { fill: #f9d6d9; background: #f9d6d9; }
-#graph .node.conditional rect, .swatch.conditional { fill: #fdf0c4; background: #fdf0c4; }
-#graph .node.undecided rect, .swatch.undecided { fill: #e3e3e8; background: #e3e3e8; }
-#graph .node.root rect { stroke: #a3000f; stroke-width: 3; }
+#graph .node rect, #graph .copy rect { stroke: #556; stroke-width: 1; cursor: pointer; }
+#graph .copy rect { stroke-dasharray: 4 2; }
+#graph .band-title { font: 600 13px system-ui, sans-serif; text-anchor: start; }
+#graph .band-rule { stroke: #dde; stroke-width: 1; }
+#graph .holds rect, .swatch.holds { fill: #d9f2dd; background: #d9f2dd; }
+#graph .fails rect, .swatch.fails { fill: #f9d6d9; background: #f9d6d9; }
+#graph .conditional rect, .swatch.conditional { fill: #fdf0c4; background: #fdf0c4; }
+#graph .undecided rect, .swatch.undecided { fill: #e3e3e8; background: #e3e3e8; }
+#graph .root rect { stroke: #a3000f; stroke-width: 3; }
 #graph .edge { fill: none; stroke: #99a; stroke-width: 1; }
 #graph .edge.inherited { stroke: #c0001a; stroke-width: 2; stroke-dasharray: 5 3; }
-#graph.focused .node:not(.kept) { opacity: 0.15; } #graph.focused .edge:not(.kept) { opacity: 0.08; }
-#graph .node.current rect { stroke: #0b57d0; stroke-width: 3; }
+#graph.focused .node:not(.kept), #graph.focused .copy:not(.kept) { opacity: 0.15; } #graph.focused .edge:not(.kept) { opacity: 0.08; }
+#graph .current rect { stroke: #0b57d0; stroke-width: 3; }
 .legend { list-style: none; padding: 0; display: grid; grid-template-columns: repeat(auto-fill, minmax(22rem, 1fr)); gap: 0.2rem 1rem; }
 .legend svg { vertical-align: middle; } .legend .key { fill: #fff; stroke: #556; }
 .swatch { display: inline-block; min-width: 1.4em; text-align: center; border: 1px solid #556; border-radius: 3px; padding: 0 0.25em; }
@@ -469,8 +613,8 @@ h3 { margin: 0.3rem 0; font-size: 1.05rem; } h3 a { color: inherit; }
 .badge.conditional { background: #fdf0c4; } .badge.undecided { background: #e3e3e8; }
 .origin { font-size: 0.85rem; font-weight: 600; color: #7a0010; }
 .statement { overflow-x: auto; margin: 0.4rem 0; } .statement math[display="block"] { margin: 0.3rem 0; }
-dl { display: grid; grid-template-columns: 7rem 1fr; gap: 0.15rem 0.8rem; margin: 0.4rem 0; }
-dt { font-weight: 600; color: #444; } dd { margin: 0; overflow-wrap: anywhere; }
+dl { display: grid; grid-template-columns: 7rem minmax(0, 1fr); gap: 0.15rem 0.8rem; margin: 0.4rem 0; }
+dt { font-weight: 600; color: #444; } dd { margin: 0; min-width: 0; overflow-wrap: anywhere; }
 button { font: inherit; font-size: 0.85rem; cursor: pointer; }
 math { font-size: 1.1em; }
 "#;
@@ -501,7 +645,7 @@ const SCRIPT: &str = r#"
     const up = closure(byId, id, 'up'), down = closure(byId, id, 'down');
     const keep = new Set([id, ...up, ...down]);
     svg.classList.add('focused');
-    svg.querySelectorAll('.node').forEach(n => {
+    svg.querySelectorAll('.node, .copy').forEach(n => {
       n.classList.toggle('kept', keep.has(n.dataset.id));
       n.classList.toggle('current', n.dataset.id === id);
     });
@@ -514,7 +658,7 @@ const SCRIPT: &str = r#"
     note.textContent = 'The whole graph.';
   }
   svg.addEventListener('click', ev => {
-    const a = ev.target.closest('.node');
+    const a = ev.target.closest('.node, .copy');
     if (a) focus(a.dataset.id);
   });
   document.querySelectorAll('button.focus').forEach(b => b.addEventListener('click', () => {
@@ -525,7 +669,7 @@ const SCRIPT: &str = r#"
   // `?selftest`: click every node and record whether its claim scrolled to the top
   // (the browser test reads the result from the page).
   async function selftest() {
-    const out = { nodes: 0, claims: 0, math: 0, unrendered: 0, raw_latex: [], raw_latex_outside_code: [], clicks: 0, scrolled: 0, focused: 0, failures: [], notes: {}, failing: 0, failing_visible: 0, pwned: window.__pwned || 0 };
+    const out = { nodes: 0, claims: 0, math: 0, overflowing: [], unrendered: 0, raw_latex: [], raw_latex_outside_code: [], clicks: 0, scrolled: 0, focused: 0, failures: [], notes: {}, failing: 0, failing_visible: 0, pwned: window.__pwned || 0 };
     const failing = [...document.querySelectorAll('article.claim.fails')];
     out.failing = failing.length;
     out.failing_visible = failing.filter(a => {
@@ -536,6 +680,8 @@ const SCRIPT: &str = r#"
     out.nodes = nodes.length;
     out.claims = document.querySelectorAll('article.claim').length;
     out.math = document.querySelectorAll('math').length;
+    // Cards whose content sticks out of them (a wide statement scrolls inside its own box).
+    out.overflowing = [...document.querySelectorAll('article.claim')].filter(a => a.scrollWidth > a.clientWidth + 1).map(a => a.id);
     out.unrendered = document.querySelectorAll('code.source').length;
     out.raw_latex = (document.body.innerText.match(/\\[a-zA-Z]+/g) || []).slice(0, 10);
     const plain = document.body.cloneNode(true);

@@ -18,6 +18,30 @@ const CLOSE: char = '\u{2}';
 /// column with `\ccfit`.
 const FIT: char = '\u{3}';
 const FIT_END: char = '\u{4}';
+/// Around an author's superscript or subscript (inserted by [`authored`]), which
+/// [`escape`] sets with `\textsuperscript` or `\textsubscript`.
+const SUP: char = '\u{5}';
+const SUB: char = '\u{6}';
+const SCRIPT_END: char = '\u{7}';
+
+/// An author's prose (a reason) with its TeX-style scripts (`f^{(1,2)c}`) marked for
+/// [`escape`] to set in text mode ([`super::scripts`]); the rest stays text.
+fn authored(s: &str) -> String {
+    let (sup, sub, end) = (SUP.to_string(), SUB.to_string(), SCRIPT_END.to_string());
+    // Only outside `code` spans, which `escape` typesets as expressions.
+    let text: String = s
+        .chars()
+        .filter(|c| ![OPEN, CLOSE, FIT, FIT_END, SUP, SUB, SCRIPT_END].contains(c))
+        .collect();
+    text.split('`')
+        .enumerate()
+        .map(|(k, part)| match k % 2 {
+            0 => super::scripts::render(part, &|t| t.to_owned(), (&sup, &end), (&sub, &end)),
+            _ => part.to_owned(),
+        })
+        .collect::<Vec<_>>()
+        .join("`")
+}
 
 /// A printed formula as mathematics when [`super::tex::check`] lets it into a `.tex`
 /// file; otherwise its text, for [`escape`] to show literally (with no backtick to
@@ -36,7 +60,7 @@ fn math(s: &str) -> String {
 /// Text with the characters [`escape`] gives a meaning (markers, backticks) made plain.
 fn literal(s: &str) -> String {
     s.chars()
-        .filter(|&c| ![OPEN, CLOSE, FIT, FIT_END].contains(&c))
+        .filter(|&c| ![OPEN, CLOSE, FIT, FIT_END, SUP, SUB, SCRIPT_END].contains(&c))
         .map(|c| if c == '`' { '‘' } else { c })
         .collect()
 }
@@ -155,6 +179,9 @@ pub fn escape(s: &str) -> String {
             // On a line of its own, so that scaled to the column it fits beside nothing.
             FIT => out.push_str("\\newline\\ccfit{"),
             FIT_END => out.push_str("}\\newline "),
+            SUP => out.push_str("\\textsuperscript{"),
+            SUB => out.push_str("\\textsubscript{"),
+            SCRIPT_END => out.push('}'),
             // Straight double quotes as TeX's opening and closing quotes.
             '"' => {
                 // After a space, an opening bracket or a break point (`(\allowbreak{}`).
@@ -576,7 +603,11 @@ pub fn render(rows: &[&Decided<'_>], standalone: bool, paper: &str) -> String {
             out,
             "{} & {} \\\\",
             escape(&r.claim.id),
-            escape(&full_evidence(r, &|s| format!("{FIT}{}{FIT_END}", math(s))))
+            escape(&full_evidence(
+                r,
+                &|s| format!("{FIT}{}{FIT_END}", math(s)),
+                &authored
+            ))
         );
     }
     let _ = writeln!(out, "\\hline\n\\end{{longtable}}\n}}");
@@ -628,7 +659,7 @@ fn erratum(out: &mut String, r: &Decided<'_>) {
         escape(r.outcome.method.as_str())
     );
     if let Some(reason) = &c.reason {
-        let _ = writeln!(out, "\\item Why: {}", escape(reason));
+        let _ = writeln!(out, "\\item Why: {}", escape(&authored(reason)));
     }
     if let Some(a) = &r.attribution {
         let _ = writeln!(
@@ -645,7 +676,7 @@ fn erratum(out: &mut String, r: &Decided<'_>) {
             escape(&math(&k.statement)),
             escape(&o.verdict_text()),
             escape(o.method.as_str()),
-            escape(&k.reason)
+            escape(&authored(&k.reason))
         );
     }
     let _ = writeln!(out, "\\end{{itemize}}");

@@ -16,6 +16,7 @@ pub mod markdown;
 pub mod mathml;
 pub mod plot;
 pub mod row;
+pub mod scripts;
 pub mod summary;
 pub mod tex;
 pub mod transcription;

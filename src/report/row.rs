@@ -49,8 +49,13 @@ pub fn verdict_label(r: &Decided<'_>) -> String {
 }
 
 /// The evidence, the reason and the correction of a row in one paragraph;
-/// `statement` renders the correction's statement (math in Markdown or LaTeX).
-pub fn full_evidence(r: &Decided<'_>, statement: &dyn Fn(&str) -> String) -> String {
+/// `statement` renders the correction's statement (math in Markdown or LaTeX) and
+/// `authored` the author's reason (its scripts, in LaTeX).
+pub fn full_evidence(
+    r: &Decided<'_>,
+    statement: &dyn Fn(&str) -> String,
+    authored: &dyn Fn(&str) -> String,
+) -> String {
     let c = r.claim;
     let mut ev = evidence(&r.outcome);
     if !c.prose && r.transcription.label() != "machine-read" {
@@ -60,7 +65,10 @@ pub fn full_evidence(r: &Decided<'_>, statement: &dyn Fn(&str) -> String) -> Str
         ));
     }
     if let Some(reason) = &c.reason {
-        ev.push_str(&format!(". Why: {}", reason.trim_end_matches('.')));
+        ev.push_str(&format!(
+            ". Why: {}",
+            authored(reason.trim_end_matches('.'))
+        ));
     }
     if let Some(a) = &r.attribution {
         ev.push_str(&format!(". Origin: {}", graph::attribution(a)));
