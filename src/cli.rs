@@ -17,13 +17,22 @@ use std::time::{Duration, Instant};
 
 /// The guide's chapters (`docs/src`, an mdBook: `mdbook build docs`), in the order of
 /// its summary; `cosserat-check guide` prints them one after another.
-pub const GUIDE: [&str; 6] = [
+pub const GUIDE: [&str; 15] = [
     include_str!("../docs/src/introduction.md"),
+    include_str!("../docs/src/tutorial.md"),
     include_str!("../docs/src/table.md"),
     include_str!("../docs/src/commands.md"),
     include_str!("../docs/src/files.md"),
+    include_str!("../docs/src/fields.md"),
+    include_str!("../docs/src/assumptions.md"),
+    include_str!("../docs/src/strategies.md"),
     include_str!("../docs/src/reading.md"),
+    include_str!("../docs/src/file-reference.md"),
+    include_str!("../docs/src/grammar.md"),
+    include_str!("../docs/src/json.md"),
+    include_str!("../docs/src/limits.md"),
     include_str!("../docs/src/trust.md"),
+    include_str!("../docs/src/case-study.md"),
 ];
 
 /// Decides every claim of a set of derivation files, equation by equation, and prints
@@ -162,6 +171,10 @@ pub struct PlotArgs {
     /// Output format: the table of values or the picture.
     #[arg(long, value_enum, default_value_t = FigureFormat::Csv)]
     pub format: FigureFormat,
+    /// With --format svg: a linear y axis, even when the data span more than a factor
+    /// of 30 (which gives a logarithmic one by default).
+    #[arg(long)]
+    pub linear: bool,
     /// Time limit for evaluating all the curves, in seconds: past it the figure is not
     /// written and the exit status is 2 [default: 600].
     #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
@@ -1356,7 +1369,15 @@ fn plot(a: &PlotArgs, out: &mut Output<'_>) -> Result<Status, RunError> {
     }
     let text = match a.format {
         FigureFormat::Csv => report::plot::csv(&figure, &columns),
-        FigureFormat::Svg => report::plot::svg(&figure, &columns),
+        FigureFormat::Svg => report::plot::svg(
+            &figure,
+            &columns,
+            if a.linear {
+                report::plot::Scale::Linear
+            } else {
+                report::plot::Scale::Auto
+            },
+        ),
     };
     let input = a.file.display().to_string();
     emit(&text, &a.out, &[input.as_str()], out.stream)?;

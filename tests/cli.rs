@@ -472,6 +472,38 @@ fn plot_draws_the_paper_figure_as_a_table_and_a_picture() {
             "curve and legend in {colour}"
         );
     }
+    // Both axes have round ends, labelled ticks and minor ticks: the x axis starts at
+    // 0 (the grid at 0.05), the log y axis runs from 2 to 100 labelled 2, 5, 10, 20, 50.
+    let labels: Vec<&str> = picture
+        .split("text-anchor=\"middle\">")
+        .skip(1)
+        .map(|rest| rest.split('<').next().unwrap())
+        .collect();
+    assert!(labels.starts_with(&["0", "1", "2", "3"]), "{labels:?}");
+    for y in ["2", "5", "10", "20", "50", "100"] {
+        assert!(
+            picture.contains(&format!("text-anchor=\"end\">{y}</text>")),
+            "no y label {y}"
+        );
+    }
+    assert!(
+        picture.matches("stroke-width=\"0.4\"/>").count() >= 20,
+        "minor ticks"
+    );
+    // The minimum of (54), inside the range, is marked on the curve and in the legend,
+    // and the legend sits in a corner of the axes that no curve crosses.
+    assert!(
+        picture.contains("(54) as printed; min. ≈ 2.597 at"),
+        "{picture}"
+    );
+    assert_eq!(picture.matches("<circle").count(), 2, "curve and legend");
+    assert!(
+        picture.contains("fill=\"white\" stroke=\"#999\""),
+        "a legend box inside the axes"
+    );
+    // A linear axis when asked.
+    let linear = text(&run(&[&args[..], &["--linear"]].concat()).stdout);
+    assert!(linear.contains("text-anchor=\"end\">40</text>"), "{linear}");
     // Coordinates are not rounded to whole units: the curves' points carry fractions.
     let points: Vec<f64> = picture
         .split("points=\"")

@@ -1,8 +1,14 @@
 //! Figures as CSV and as SVG fit for a single-column figure (8.5 cm wide): every value
 //! inside the axes (the y range, or a log axis, comes from the data, so nothing is
-//! clipped), a colour-blind-safe palette (Okabe–Ito) with a distinct dash pattern per
-//! curve, labels set as mathematics, coordinates to 1/100 of a unit. Written by hand,
-//! so the same figure gives the same bytes.
+//! clipped), round ends and minor ticks on both axes, a colour-blind-safe palette
+//! (Okabe–Ito) with a distinct dash pattern per curve, each curve's interior minimum
+//! marked, the legend in a free corner, labels set as mathematics, coordinates to 1/100
+//! of a unit.
+//!
+//! Written by hand rather than through a plotting crate: the labels are mathematics
+//! (italic letters, sub- and superscripts as `tspan`s, `d_B/R_g`), which the text of
+//! plotters' SVG backend cannot set, and every byte of the file is ours to escape. The
+//! same figure gives the same bytes.
 
 use crate::derivation::Figure;
 use std::fmt::Write;
@@ -216,9 +222,10 @@ fn rich(text: &str) -> String {
         .collect()
 }
 
-/// About five round ticks (1, 2 or 5 × 10^k apart) covering [lo, hi]; just the two
-/// ends where no round step exists in f64 (a subnormal or an overflowing range).
-fn ticks(lo: f64, hi: f64) -> Vec<f64> {
+/// About five round ticks (1, 2 or 5 × 10^k apart) covering [lo, hi], and their step;
+/// just the two ends where no round step exists in f64 (a subnormal or an overflowing
+/// range).
+fn ticks(lo: f64, hi: f64) -> (Vec<f64>, Option<f64>) {
     // Halves first, so that a range near ±f64::MAX does not overflow.
     let raw = (hi / 2.0 - lo / 2.0) / 2.5;
     let magnitude = 10f64.powf(raw.log10().floor());
@@ -229,24 +236,71 @@ fn ticks(lo: f64, hi: f64) -> Vec<f64> {
         .unwrap_or(10.0 * magnitude);
     let (first, last) = ((lo / step).ceil(), (hi / step).floor());
     if !(step.is_normal() && first.is_finite() && last.is_finite()) || last - first > 20.0 {
-        return if lo < hi { vec![lo, hi] } else { vec![lo] };
+        return (if lo < hi { vec![lo, hi] } else { vec![lo] }, None);
+    }
+    let t = (first as i64..=last as i64)
+        .map(|k| k as f64 * step)
+        .collect();
+    (t, Some(step))
+}
+
+/// Unlabelled ticks between the labelled ones: fifths of a step of 1 or 5 × 10^k,
+/// quarters of a step of 2 × 10^k.
+fn minor_ticks(lo: f64, hi: f64, step: f64) -> Vec<f64> {
+    let mantissa = step / 10f64.powf(step.log10().floor());
+    let parts = if (mantissa - 2.0).abs() < 1e-9 {
+        4.0
+    } else {
+        5.0
+    };
+    let minor = step / parts;
+    let (first, last) = ((lo / minor).ceil(), (hi / minor).floor());
+    if !(minor.is_normal() && first.is_finite() && last.is_finite()) || last - first > 200.0 {
+        return Vec::new();
     }
     (first as i64..=last as i64)
-        .map(|k| k as f64 * step)
+        .map(|k| k as f64 * minor)
+        .filter(|t| ((t / step).round() * step - t).abs() > 1e-9 * step)
         .collect()
 }
 
-/// The y axis: linear with round ends, or logarithmic when the data span more than a
-/// factor of 30 and are all positive.
+/// How the y axis is scaled: chosen from the data, or as asked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Scale {
+    /// Logarithmic when the data span more than a factor of 30 and are all positive.
+    #[default]
+    Auto,
+    Linear,
+}
+
+/// An axis: linear with round ends, or logarithmic with ends at 1, 2 or 5 × 10^k.
 struct Axis {
     lo: f64,
     hi: f64,
     log: bool,
 }
 
+/// The largest of 1, 2, 5 × 10^k at most `v` (`up`: the smallest at least `v`).
+fn one_two_five(v: f64, up: bool) -> f64 {
+    let decade = 10f64.powf(v.log10().floor());
+    let steps = [1.0, 2.0, 5.0, 10.0].map(|m| m * decade);
+    if up {
+        steps
+            .into_iter()
+            .find(|s| *s >= v * (1.0 - 1e-12))
+            .unwrap_or(v)
+    } else {
+        steps
+            .into_iter()
+            .rev()
+            .find(|s| *s <= v * (1.0 + 1e-12))
+            .unwrap_or(v)
+    }
+}
+
 impl Axis {
     /// The axis of the finite `values` (a non-finite value is not drawn).
-    fn of(values: &[f64]) -> Axis {
+    fn of(values: &[f64], scale: Scale) -> Axis {
         let finite = values.iter().copied().filter(|v| v.is_finite());
         let min = finite.clone().fold(f64::INFINITY, f64::min);
         let max = finite.fold(f64::NEG_INFINITY, f64::max);
@@ -257,13 +311,16 @@ impl Axis {
                 log: false,
             };
         }
-        if min.is_normal() && min > 0.0 && max / min > 30.0 {
-            return Axis {
-                lo: 10f64.powf(min.log10().floor()),
-                hi: 10f64.powf(max.log10().ceil()),
-                log: true,
-            };
+        if scale == Scale::Auto && min.is_normal() && min > 0.0 && max / min > 30.0 {
+            let (lo, hi) = (one_two_five(min, false), one_two_five(max, true));
+            if lo.is_normal() && hi.is_normal() && lo < hi {
+                return Axis { lo, hi, log: true };
+            }
         }
+        Axis::linear(min, max)
+    }
+
+    fn linear(min: f64, max: f64) -> Axis {
         let (mut lo, mut hi) = (min, max);
         if lo >= 0.0 && lo < 0.3 * hi {
             lo = 0.0;
@@ -274,9 +331,10 @@ impl Axis {
             lo = (lo - pad).max(f64::MIN);
             hi = (hi + pad).min(f64::MAX);
         }
-        let t = ticks(lo, hi);
-        let step = if t.len() > 1 { t[1] - t[0] } else { hi - lo };
-        if !step.is_normal() || !(hi / step).is_finite() {
+        let Some(step) = ticks(lo, hi).1 else {
+            return Axis { lo, hi, log: false };
+        };
+        if !(hi / step).is_finite() {
             return Axis { lo, hi, log: false };
         }
         // Round ends, unless rounding would leave f64.
@@ -297,33 +355,181 @@ impl Axis {
         }
     }
 
-    fn ticks(&self) -> Vec<f64> {
-        if self.log {
-            let (a, b) = (
-                self.lo.log10().round() as i32,
-                self.hi.log10().round() as i32,
-            );
-            // At most about a dozen labelled decades.
-            let every = usize::try_from((b - a) / 12 + 1).unwrap_or(1);
-            (a..=b).step_by(every).map(|e| 10f64.powi(e)).collect()
-        } else {
-            ticks(self.lo, self.hi)
+    /// The labelled ticks with their labels (SVG text), and the unlabelled ones.
+    fn ticks(&self) -> (Vec<(f64, String)>, Vec<f64>) {
+        if !self.log {
+            let (major, step) = ticks(self.lo, self.hi);
+            let minor = step.map_or_else(Vec::new, |s| minor_ticks(self.lo, self.hi, s));
+            return (major.into_iter().map(|t| (t, decimal(t))).collect(), minor);
         }
+        let (a, b) = (
+            self.lo.log10().floor() as i32,
+            self.hi.log10().ceil() as i32,
+        );
+        let inside = |t: &f64| *t >= self.lo * (1.0 - 1e-12) && *t <= self.hi * (1.0 + 1e-12);
+        if b - a <= 3 {
+            // A few decades: 1, 2 and 5 × 10^k labelled as numbers, the rest unlabelled.
+            let mut major = Vec::new();
+            let mut minor = Vec::new();
+            for e in a..=b {
+                for m in 1..10 {
+                    let t = f64::from(m) * 10f64.powi(e);
+                    if !inside(&t) {
+                        continue;
+                    }
+                    if [1, 2, 5].contains(&m) {
+                        major.push((t, decimal(t)));
+                    } else {
+                        minor.push(t);
+                    }
+                }
+            }
+            return (major, minor);
+        }
+        // At most about a dozen labelled decades, 2…9 × 10^k unlabelled between them.
+        let every = usize::try_from((b - a) / 12 + 1).unwrap_or(1);
+        let major = (a..=b)
+            .step_by(every)
+            .map(|e| 10f64.powi(e))
+            .filter(inside)
+            .map(|t| {
+                let label = format!(
+                    "10<tspan baseline-shift=\"super\" font-size=\"75%\">{}</tspan>",
+                    t.log10().round()
+                );
+                (t, label)
+            })
+            .collect();
+        let minor = if every == 1 {
+            (a..b)
+                .flat_map(|e| (2..10).map(move |m| f64::from(m) * 10f64.powi(e)))
+                .filter(inside)
+                .collect()
+        } else {
+            Vec::new()
+        };
+        (major, minor)
     }
 }
 
-/// The figure as SVG, 85 mm wide (user units: 4 per mm); the legend below the axes.
-pub fn svg(figure: &Figure, columns: &[Column]) -> String {
+/// The lowest value of a curve and where, when it lies strictly inside the range (a
+/// minimum the figure is about, such as that of (54)), not at an end.
+fn interior_minimum(xs: &[f64], col: &Column) -> Option<(f64, f64)> {
+    let (k, v) = col
+        .iter()
+        .enumerate()
+        .filter_map(|(k, v)| v.filter(|v| v.is_finite()).map(|v| (k, v)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let defined = |j: usize| col.get(j).copied().flatten().is_some();
+    (k > 0 && k + 1 < col.len() && defined(k - 1) && defined(k + 1)).then(|| (xs[k], v))
+}
+
+/// A length of SVG text in user units, roughly (a serif font at `size`).
+fn text_width(label: &str, size: f64) -> f64 {
+    plain(label).chars().count() as f64 * size * 0.5
+}
+
+/// The figure as SVG, 85 mm wide (user units: 4 per mm): both axes with round ends
+/// and minor ticks, each curve's interior minimum marked and given in the legend, the
+/// legend inside the axes in a corner no curve crosses, or below them.
+pub fn svg(figure: &Figure, columns: &[Column], scale: Scale) -> String {
     let xs: Vec<f64> = figure.x.values.iter().map(|x| x.to_f64()).collect();
     let ys: Vec<f64> = columns.iter().flatten().flatten().copied().collect();
-    let (x_lo, x_hi) = (xs[0], xs[xs.len() - 1]);
-    let y = Axis::of(&ys);
+    let x = Axis::linear(xs[0], xs[xs.len() - 1]);
+    let y = Axis::of(&ys, scale);
     let (width, left, right, top, plot_h) = (340.0, 46.0, 10.0, 8.0, 170.0);
     let plot_w = width - left - right;
-    let legend_top = top + plot_h + 40.0;
-    let height = legend_top + 13.0 * figure.curves.len() as f64 + 4.0;
-    let px = |x: f64| left + plot_w * (x - x_lo) / (x_hi - x_lo);
+    let px = |v: f64| left + plot_w * x.fraction(v);
     let py = |v: f64| top + plot_h * (1.0 - y.fraction(v));
+    // Each curve's runs of points (split where undefined or off the axis), its minimum.
+    let runs: Vec<Vec<Vec<(f64, f64)>>> = columns
+        .iter()
+        .map(|col| {
+            let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+            for (xv, v) in xs.iter().zip(col) {
+                let point = v
+                    .map(|v| (px(*xv), py(v)))
+                    .filter(|(a, b)| a.is_finite() && b.is_finite());
+                match point {
+                    Some(p) => runs.last_mut().expect("one run").push(p),
+                    None if !runs.last().expect("one run").is_empty() => runs.push(Vec::new()),
+                    None => {}
+                }
+            }
+            runs.retain(|r| !r.is_empty());
+            runs
+        })
+        .collect();
+    let minima: Vec<Option<(f64, f64)>> =
+        columns.iter().map(|c| interior_minimum(&xs, c)).collect();
+    let entries: Vec<String> = figure
+        .curves
+        .iter()
+        .zip(columns)
+        .zip(&minima)
+        .map(|((curve, col), min)| {
+            let missing = col.iter().filter(|v| v.is_none()).count();
+            let mut words = String::new();
+            if let Some((at, v)) = min {
+                let _ = write!(
+                    words,
+                    "; min. ≈ {} at ${}$ ≈ {}",
+                    crate::digits::significant(*v, 4),
+                    figure.x_label.replace('$', ""),
+                    crate::digits::significant(*at, 4)
+                );
+            }
+            if missing > 0 {
+                let _ = write!(words, " (undefined at {missing} of {} points)", col.len());
+            }
+            format!("{}{words}", curve.label)
+        })
+        .collect();
+    // The legend: a corner of the axes that no curve enters, else below the axes.
+    let (line, size, gap) = (11.0, 9.0, 4.0);
+    let legend_w = 30.0
+        + entries
+            .iter()
+            .map(|e| text_width(e, size))
+            .fold(0.0, f64::max);
+    let legend_h = line * entries.len() as f64 + gap;
+    let free = |x0: f64, y0: f64| {
+        let (x1, y1) = (x0 + legend_w, y0 + legend_h);
+        runs.iter().flatten().all(|run| {
+            run.windows(2).all(|w| {
+                // Sampled along each segment, so that a steep one is seen.
+                (0..=8).all(|k| {
+                    let t = f64::from(k) / 8.0;
+                    let (a, b) = (
+                        w[0].0 + t * (w[1].0 - w[0].0),
+                        w[0].1 + t * (w[1].1 - w[0].1),
+                    );
+                    !(a >= x0 && a <= x1 && b >= y0 && b <= y1)
+                })
+            }) && run
+                .iter()
+                .all(|&(a, b)| !(a >= x0 && a <= x1 && b >= y0 && b <= y1))
+        })
+    };
+    let corners = [
+        (left + plot_w - legend_w - 4.0, top + 4.0),
+        (left + 4.0, top + 4.0),
+        (
+            left + plot_w - legend_w - 4.0,
+            top + plot_h - legend_h - 4.0,
+        ),
+        (left + 4.0, top + plot_h - legend_h - 4.0),
+    ];
+    let inside = corners
+        .into_iter()
+        .find(|&(a, b)| legend_w + 8.0 <= plot_w && legend_h + 8.0 <= plot_h && free(a, b));
+    let below = top + plot_h + 34.0;
+    let (legend_x, legend_y) = inside.unwrap_or((left, below));
+    let height = if inside.is_some() {
+        below
+    } else {
+        below + legend_h
+    };
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -332,48 +538,40 @@ pub fn svg(figure: &Figure, columns: &[Column]) -> String {
     );
     let _ = writeln!(s, "<title>{}</title>", escape(&figure.title));
     let _ = writeln!(s, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>");
-    // Axes, ticks and grid.
     let _ = writeln!(
         s,
         "<rect x=\"{left}\" y=\"{top}\" width=\"{plot_w}\" height=\"{plot_h}\" fill=\"none\" stroke=\"black\" stroke-width=\"0.6\"/>"
     );
-    for t in ticks(x_lo, x_hi) {
-        let x = px(t);
+    let (x_major, x_minor) = x.ticks();
+    let bottom = top + plot_h;
+    for t in x_minor {
+        let v = px(t);
         let _ = writeln!(
             s,
-            "<line x1=\"{x:.2}\" y1=\"{:.2}\" x2=\"{x:.2}\" y2=\"{:.2}\" stroke=\"black\" stroke-width=\"0.6\"/><text x=\"{x:.2}\" y=\"{:.2}\" text-anchor=\"middle\">{}</text>",
-            top + plot_h,
-            top + plot_h - 3.0,
-            top + plot_h + 11.0,
-            decimal(t)
+            "<line x1=\"{v:.2}\" y1=\"{bottom:.2}\" x2=\"{v:.2}\" y2=\"{:.2}\" stroke=\"black\" stroke-width=\"0.4\"/>",
+            bottom - 1.5
         );
     }
-    if y.log {
-        // Unlabelled minor ticks at 2…9 × 10^k.
-        for decade in y.ticks() {
-            for m in 2..10 {
-                let t = decade * f64::from(m);
-                if t < y.hi {
-                    let v = py(t);
-                    let _ = writeln!(
-                        s,
-                        "<line x1=\"{left}\" y1=\"{v:.2}\" x2=\"{:.2}\" y2=\"{v:.2}\" stroke=\"black\" stroke-width=\"0.4\"/>",
-                        left + 1.5
-                    );
-                }
-            }
-        }
+    for (t, label) in x_major {
+        let v = px(t);
+        let _ = writeln!(
+            s,
+            "<line x1=\"{v:.2}\" y1=\"{bottom:.2}\" x2=\"{v:.2}\" y2=\"{:.2}\" stroke=\"black\" stroke-width=\"0.6\"/><text x=\"{v:.2}\" y=\"{:.2}\" text-anchor=\"middle\">{label}</text>",
+            bottom - 3.0,
+            bottom + 11.0,
+        );
     }
-    for t in y.ticks() {
+    let (y_major, y_minor) = y.ticks();
+    for t in y_minor {
         let v = py(t);
-        let label = if y.log {
-            format!(
-                "10<tspan baseline-shift=\"super\" font-size=\"75%\">{}</tspan>",
-                t.log10().round()
-            )
-        } else {
-            decimal(t)
-        };
+        let _ = writeln!(
+            s,
+            "<line x1=\"{left}\" y1=\"{v:.2}\" x2=\"{:.2}\" y2=\"{v:.2}\" stroke=\"black\" stroke-width=\"0.4\"/>",
+            left + 1.5
+        );
+    }
+    for (t, label) in y_major {
+        let v = py(t);
         let _ = writeln!(
             s,
             "<line x1=\"{left}\" y1=\"{v:.2}\" x2=\"{:.2}\" y2=\"{v:.2}\" stroke=\"black\" stroke-width=\"0.6\"/><text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"end\">{label}</text>",
@@ -386,7 +584,7 @@ pub fn svg(figure: &Figure, columns: &[Column]) -> String {
         s,
         "<text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"middle\">{}</text>",
         left + plot_w / 2.0,
-        top + plot_h + 25.0,
+        bottom + 25.0,
         math(&figure.x_label)
     );
     let _ = writeln!(
@@ -395,49 +593,57 @@ pub fn svg(figure: &Figure, columns: &[Column]) -> String {
         top + plot_h / 2.0,
         math(&figure.y_label)
     );
-    // Curves, split where undefined; the legend names the points left out.
-    for (k, (curve, col)) in figure.curves.iter().zip(columns).enumerate() {
+    if inside.is_some() {
+        let _ = writeln!(
+            s,
+            "<rect x=\"{:.2}\" y=\"{:.2}\" width=\"{legend_w:.2}\" height=\"{legend_h:.2}\" fill=\"white\" stroke=\"#999\" stroke-width=\"0.4\"/>",
+            legend_x,
+            legend_y
+        );
+    }
+    for (k, ((run, min), entry)) in runs.iter().zip(&minima).zip(&entries).enumerate() {
         let (colour, dash) = (COLOURS[k % COLOURS.len()], DASHES[k % DASHES.len()]);
         let dash_attr = if dash.is_empty() {
             String::new()
         } else {
             format!(" stroke-dasharray=\"{dash}\"")
         };
-        let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-        for (x, v) in xs.iter().zip(col) {
-            // A value off the axis (non-finite, or ≤ 0 on a log axis) breaks the curve.
-            let point = v
-                .map(|v| (px(*x), py(v)))
-                .filter(|(a, b)| a.is_finite() && b.is_finite());
-            match point {
-                Some(p) => runs.last_mut().expect("one run").push(p),
-                None if !runs.last().expect("one run").is_empty() => runs.push(Vec::new()),
-                None => {}
-            }
-        }
-        for run in runs.iter().filter(|r| !r.is_empty()) {
-            let points: Vec<String> = run.iter().map(|(a, b)| format!("{a:.2},{b:.2}")).collect();
+        for r in run {
+            let points: Vec<String> = r.iter().map(|(a, b)| format!("{a:.2},{b:.2}")).collect();
             let _ = writeln!(
                 s,
                 "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.2\"{dash_attr}/>",
                 points.join(" ")
             );
         }
-        let missing = col.iter().filter(|v| v.is_none()).count();
-        let note = if missing > 0 {
-            format!(" (undefined at {missing} of {} points)", col.len())
-        } else {
-            String::new()
+        let marker = |s: &mut String, a: f64, b: f64| {
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{a:.2}\" cy=\"{b:.2}\" r=\"2.2\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"0.6\"/>"
+            );
         };
-        let ly = legend_top + 13.0 * k as f64;
+        if let Some((at, v)) = min {
+            let (a, b) = (px(*at), py(*v));
+            if a.is_finite() && b.is_finite() {
+                marker(&mut s, a, b);
+            }
+        }
+        let ly = legend_y + gap / 2.0 + line * (k as f64 + 0.5);
         let _ = writeln!(
             s,
-            "<line x1=\"{left}\" y1=\"{ly:.2}\" x2=\"{:.2}\" y2=\"{ly:.2}\" stroke=\"{colour}\" stroke-width=\"1.2\"{dash_attr}/><text x=\"{:.2}\" y=\"{:.2}\">{}{}</text>",
-            left + 24.0,
-            left + 30.0,
-            ly + 3.5,
-            rich(&curve.label),
-            escape(&note)
+            "<line x1=\"{:.2}\" y1=\"{ly:.2}\" x2=\"{:.2}\" y2=\"{ly:.2}\" stroke=\"{colour}\" stroke-width=\"1.2\"{dash_attr}/>",
+            legend_x + 4.0,
+            legend_x + 24.0
+        );
+        if min.is_some() {
+            marker(&mut s, legend_x + 14.0, ly);
+        }
+        let _ = writeln!(
+            s,
+            "<text x=\"{:.2}\" y=\"{:.2}\" font-size=\"{size}\">{}</text>",
+            legend_x + 28.0,
+            ly + 2.8,
+            rich(entry)
         );
     }
     s.push_str("</svg>\n");
@@ -462,8 +668,8 @@ mod tests {
             &[1e-300, 1e300],
         ];
         for values in sets {
-            let axis = Axis::of(values);
-            let t = axis.ticks();
+            let axis = Axis::of(values, Scale::Auto);
+            let t: Vec<f64> = axis.ticks().0.into_iter().map(|(t, _)| t).collect();
             assert!(
                 !t.is_empty() && t.len() <= 25,
                 "{values:?}: {} ticks",
