@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 
 /// The guide's chapters (`docs/src`, an mdBook: `mdbook build docs`), in the order of
 /// its summary; `cosserat-check guide` prints them one after another.
-pub const GUIDE: [&str; 15] = [
+pub const GUIDE: [&str; 16] = [
     include_str!("../docs/src/introduction.md"),
     include_str!("../docs/src/tutorial.md"),
     include_str!("../docs/src/table.md"),
@@ -27,6 +27,7 @@ pub const GUIDE: [&str; 15] = [
     include_str!("../docs/src/assumptions.md"),
     include_str!("../docs/src/strategies.md"),
     include_str!("../docs/src/reading.md"),
+    include_str!("../docs/src/cli.md"),
     include_str!("../docs/src/file-reference.md"),
     include_str!("../docs/src/grammar.md"),
     include_str!("../docs/src/json.md"),

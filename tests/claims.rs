@@ -268,6 +268,33 @@ fn the_readme_excerpt_matches_the_table() {
     }
 }
 
+/// The compact excerpt in the guide is the compact table's own lines (no terminal
+/// width, no colour).
+#[test]
+fn the_compact_excerpt_in_the_guide_matches_the_table() {
+    let guide = cosserat_check::cli::GUIDE.join("\n");
+    let rows = report::refs(decided());
+    let table = report::compact::render(
+        &rows,
+        &report::paper_of(&rows, &[]),
+        (false, None),
+        "",
+        false,
+    );
+    let excerpt: Vec<&str> = guide
+        .lines()
+        .filter(|l| l.starts_with("eq") || l.starts_with("sec5-"))
+        .filter(|l| l.contains("  holds  ") || l.contains("  FAILS  ") || l.contains("  conditional  "))
+        .collect();
+    assert!(excerpt.len() >= 4, "the guide shows no compact rows");
+    for row in excerpt {
+        assert!(
+            table.lines().any(|l| l.trim_end() == row.trim_end()),
+            "guide row is out of date:\n{row}"
+        );
+    }
+}
+
 /// Gradient claims whose function and closed forms are polynomials are also proved
 /// exactly: the exact derivative of the function's canonical expansion equals the
 /// closed form's expansion in every component (an independent route to num-dual).

@@ -10,15 +10,35 @@ const README: &str = concat!(
     "\n",
     include_str!("../docs/src/introduction.md"),
     "\n",
+    include_str!("../docs/src/tutorial.md"),
+    "\n",
     include_str!("../docs/src/table.md"),
     "\n",
     include_str!("../docs/src/commands.md"),
     "\n",
     include_str!("../docs/src/files.md"),
     "\n",
+    include_str!("../docs/src/fields.md"),
+    "\n",
+    include_str!("../docs/src/assumptions.md"),
+    "\n",
+    include_str!("../docs/src/strategies.md"),
+    "\n",
     include_str!("../docs/src/reading.md"),
     "\n",
-    include_str!("../docs/src/trust.md")
+    include_str!("../docs/src/cli.md"),
+    "\n",
+    include_str!("../docs/src/file-reference.md"),
+    "\n",
+    include_str!("../docs/src/grammar.md"),
+    "\n",
+    include_str!("../docs/src/json.md"),
+    "\n",
+    include_str!("../docs/src/limits.md"),
+    "\n",
+    include_str!("../docs/src/trust.md"),
+    "\n",
+    include_str!("../docs/src/case-study.md")
 );
 
 /// The contents of every fenced block of `lang`.
@@ -174,4 +194,111 @@ fn the_book_summary_lists_the_chapters_the_guide_prints() {
             "the examples read every chapter"
         );
     }
+}
+
+/// The command-line reference (`docs/src/cli.md`) as the argument parser defines it:
+/// every command, its usage, and every argument with its help, possible values and
+/// default. The test below keeps the chapter current (`UPDATE_DOCS=1` rewrites it).
+fn cli_reference() -> String {
+    use clap::CommandFactory;
+    use std::fmt::Write as _;
+    let mut root = cosserat_check::cli::Cli::command();
+    root.build();
+    let mut out = String::from(
+        "# Command-line reference\n\nEvery command and option, as the program's argument parser defines them (`cosserat-check --help` and `cosserat-check COMMAND --help` print the same text; `cosserat-check manpage` prints it as a manual page). A test regenerates this chapter from the parser and fails when it is out of date.\n",
+    );
+    let mut commands = vec![root.clone()];
+    commands.extend(
+        root.get_subcommands()
+            .filter(|c| c.get_name() != "help")
+            .cloned(),
+    );
+    for mut c in commands {
+        let name = c
+            .get_bin_name()
+            .map(str::to_owned)
+            .unwrap_or_else(|| c.get_name().to_owned());
+        let _ = write!(out, "\n## `{name}`\n\n");
+        if let Some(about) = c.get_long_about().or(c.get_about()) {
+            let _ = writeln!(out, "{about}\n");
+        }
+        let usage = c.render_usage().to_string();
+        let _ = writeln!(out, "```text\n{}\n```\n", usage.trim_end());
+        let args: Vec<&clap::Arg> = c
+            .get_arguments()
+            .filter(|a| !a.is_hide_set() && !["help", "version"].contains(&a.get_id().as_str()))
+            .collect();
+        for a in args {
+            let values = a
+                .get_value_names()
+                .map(|v| {
+                    v.iter()
+                        .map(|n| format!("<{n}>"))
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                })
+                .unwrap_or_default();
+            let takes = a.get_num_args().is_some_and(|n| n.takes_values());
+            let form = match (a.get_long(), a.get_short()) {
+                (Some(l), Some(s)) => format!("-{s}, --{l}"),
+                (Some(l), None) => format!("--{l}"),
+                (None, Some(s)) => format!("-{s}"),
+                (None, None) => String::new(),
+            };
+            let form = match (form.is_empty(), takes) {
+                (true, _) => values,
+                (false, true) => format!("{form} {values}"),
+                (false, false) => form,
+            };
+            let help = a
+                .get_long_help()
+                .or(a.get_help())
+                .map(|h| h.to_string())
+                .unwrap_or_default();
+            let mut help = help.trim().replace('\n', " ");
+            if !help.ends_with('.') {
+                help.push('.');
+            }
+            let _ = write!(out, "- `{form}`: {help}");
+            let possible = a.get_possible_values();
+            if takes && !possible.is_empty() && !possible.iter().all(|p| ["true", "false"].contains(&p.get_name())) {
+                let list: Vec<String> = possible
+                    .iter()
+                    .filter(|p| !p.is_hide_set())
+                    .map(|p| match p.get_help() {
+                        Some(h) => format!("`{}` ({h})", p.get_name()),
+                        None => format!("`{}`", p.get_name()),
+                    })
+                    .collect();
+                let _ = write!(out, " Values: {}.", list.join("; "));
+            }
+            let defaults: Vec<String> = a
+                .get_default_values()
+                .iter()
+                .map(|d| d.to_string_lossy().into_owned())
+                .collect();
+            if takes && !defaults.is_empty() {
+                let _ = write!(out, " Default: `{}`.", defaults.join(" "));
+            }
+            out.push('\n');
+        }
+        if let Some(after) = c.get_after_long_help().or(c.get_after_help()) {
+            let _ = write!(out, "\n{}\n", after.to_string().trim());
+        }
+    }
+    out
+}
+
+#[test]
+fn the_cli_reference_is_generated_from_the_argument_parser() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/src/cli.md");
+    let want = cli_reference();
+    if std::env::var_os("UPDATE_DOCS").is_some() {
+        std::fs::write(&path, &want).unwrap();
+    }
+    let have = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        have == want,
+        "docs/src/cli.md is out of date: run `UPDATE_DOCS=1 cargo test --release the_cli_reference` and review the change"
+    );
 }
