@@ -1015,10 +1015,15 @@ pub fn run(cli: Cli, out: &mut Output<'_>) -> Result<Status, RunError> {
             } else {
                 String::new()
             };
+            let here = a.out.as_os_str() == "." || a.out.as_os_str().is_empty();
+            let go = if here {
+                String::new()
+            } else {
+                format!("cd {} && ", a.out.display())
+            };
             let text = format!(
-                "wrote {written} of {all} files under {}{kept}; try: cd {} && cosserat-check\n",
+                "wrote {written} of {all} files under {}{kept}; try: {go}cosserat-check\n",
                 a.out.display(),
-                a.out.display()
             );
             emit(&report::words::inert(&text), &None, &[], out.stream)?;
             Ok(Status::AsExpected)

@@ -284,7 +284,9 @@ fn the_compact_excerpt_in_the_guide_matches_the_table() {
     let excerpt: Vec<&str> = guide
         .lines()
         .filter(|l| l.starts_with("eq") || l.starts_with("sec5-"))
-        .filter(|l| l.contains("  holds  ") || l.contains("  FAILS  ") || l.contains("  conditional  "))
+        .filter(|l| {
+            l.contains("  holds  ") || l.contains("  FAILS  ") || l.contains("  conditional  ")
+        })
         .collect();
     assert!(excerpt.len() >= 4, "the guide shows no compact rows");
     for row in excerpt {

@@ -261,7 +261,12 @@ fn cli_reference() -> String {
             }
             let _ = write!(out, "- `{form}`: {help}");
             let possible = a.get_possible_values();
-            if takes && !possible.is_empty() && !possible.iter().all(|p| ["true", "false"].contains(&p.get_name())) {
+            if takes
+                && !possible.is_empty()
+                && !possible
+                    .iter()
+                    .all(|p| ["true", "false"].contains(&p.get_name()))
+            {
                 let list: Vec<String> = possible
                     .iter()
                     .filter(|p| !p.is_hide_set())

@@ -46,6 +46,8 @@ const COLUMN_GAP: f64 = 40.0;
 const MARGIN: f64 = 12.0;
 /// Approximate width of a label character at the drawing's font size.
 const CHAR: f64 = 7.2;
+/// At most this many slots in one drawing.
+const MAX_SLOTS: usize = 20_000;
 /// Ordering sweeps (each alternates direction).
 const SWEEPS: usize = 8;
 
@@ -67,7 +69,15 @@ pub fn layered(labels: &[String], uses: &[Vec<usize>]) -> Layout {
         for (i, &u) in uses[k].iter().enumerate() {
             let mut slots = Vec::new();
             let mut previous = u;
-            for c in column[u] + 1..column[k] {
+            // Past the budget a long edge is drawn straight across, so that a crafted
+            // graph cannot make the page grow with the square of its size.
+            let span = column[k] - column[u] - 1;
+            let crossed = if vertex_column.len() - n + span <= MAX_SLOTS {
+                column[u] + 1..column[k]
+            } else {
+                0..0
+            };
+            for c in crossed {
                 let s = vertex_column.len();
                 vertex_column.push(c);
                 left.push(vec![previous]);
