@@ -7,7 +7,7 @@
 //! whole paper in a fresh process (the user's view, when the release binary exists).
 //! `-- --each` times every claim of the paper, slowest first (the profile by claim);
 //! `-- --task NAME REPS` prints each repetition of one task for benches/peers.py.
-//! Targets live in issue 8; this prints what the machine does, it asserts nothing.
+//! The targets are in benches/README.md; this prints what the machine does, it asserts nothing.
 //! `-- --claim ID` and `-- --derive-a2` print one median for benches/sympy_compare.py.
 
 use cosserat_check::algebra::gcd;

@@ -97,8 +97,20 @@ fn browser() -> Option<PathBuf> {
 }
 
 /// Chromium's output, killed after two minutes (a page that waits on the network
-/// would otherwise hold the test forever).
+/// would otherwise hold the test forever). One browser runs at a time: two started
+/// together on a loaded machine have left one with no output at all. A run that
+/// printed nothing is the browser's failure, not the page's, and is run once more.
 fn chromium(browser: &Path, profile: &Path, args: &[&str]) -> std::process::Output {
+    static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let first = chromium_once(browser, profile, args);
+    if !first.stdout.is_empty() || args.iter().any(|a| a.starts_with("--screenshot")) {
+        return first;
+    }
+    chromium_once(browser, profile, args)
+}
+
+fn chromium_once(browser: &Path, profile: &Path, args: &[&str]) -> std::process::Output {
     let mut child = Command::new(browser)
         .args([
             "--headless",

@@ -183,6 +183,11 @@ pub fn point_where_differ(
             continue;
         };
         if l != r && hold(hypotheses, &at) {
+            let (mut point, l, r) = if matches!(candidate, Try::Sparse(_)) {
+                (point, l, r)
+            } else {
+                sparser(point, (l, r), &others, lhs, rhs, (domain, hypotheses))
+            };
             for (k, &v) in normal.iter().enumerate() {
                 point.entry(v).or_insert_with(|| n[k].clone());
             }
@@ -190,6 +195,62 @@ pub fn point_where_differ(
         }
     }
     None
+}
+
+/// At most this many variables are tried one by one by [`sparser`], on sides whose
+/// values at the point found take at most this many bits.
+const SPARSER_VARIABLES: usize = 64;
+const SPARSER_BITS: u64 = 4096;
+
+/// A point with as few nonzero variables (and as many at 1) as one pass finds: each
+/// variable in turn is set to 0, then each left nonzero to 1, where the sides still
+/// differ there and the hypotheses still hold. A point that reads best, for the same
+/// refutation; the kernel checks whichever point it is given.
+fn sparser(
+    mut point: BTreeMap<Var, Rational>,
+    (mut l, mut r): (Rational, Rational),
+    others: &[Var],
+    lhs: &Quotient,
+    rhs: &Quotient,
+    (domain, hypotheses): (&[(Var, Interval)], &[Hypothesis]),
+) -> (BTreeMap<Var, Rational>, Rational, Rational) {
+    // Values of many digits mean costly evaluations: such a point is left as found.
+    if others.len() > SPARSER_VARIABLES || l.bits() + r.bits() > SPARSER_BITS {
+        return (point, l, r);
+    }
+    for target in [0, 1] {
+        for &v in others {
+            let value = match domain.iter().find(|(w, _)| *w == v) {
+                Some((_, i)) => into_interval(i, Rational::int(target)),
+                None => Rational::int(target),
+            };
+            if point.get(&v).is_none_or(|x| x.is_zero()) || point.get(&v) == Some(&value) {
+                continue;
+            }
+            let old = point.insert(v, value);
+            // Equal residues modulo a prime: (almost surely) equal sides, not worth an
+            // exact evaluation.
+            let residues: Option<BTreeMap<Var, u64>> = point
+                .iter()
+                .map(|(&w, q)| residue::of_rational(q).map(|x| (w, x)))
+                .collect();
+            if let Some(residues) = residues {
+                let value = |w: Var| residues.get(&w).copied().unwrap_or(0);
+                if !lhs.differs_mod_p(rhs, &value) {
+                    point.insert(v, old.expect("a nonzero value was there"));
+                    continue;
+                }
+            }
+            let at = |w: Var| point.get(&w).cloned().unwrap_or_else(|| Rational::int(0));
+            match (lhs.eval(&at), rhs.eval(&at)) {
+                (Some(a), Some(b)) if a != b && hold(hypotheses, &at) => (l, r) = (a, b),
+                _ => {
+                    point.insert(v, old.expect("a nonzero value was there"));
+                }
+            }
+        }
+    }
+    (point, l, r)
 }
 
 /// One kind of candidate point of [`point_where_differ`].

@@ -243,12 +243,8 @@ fn counterexample_text(cx: &Counterexample) -> String {
             let where_ = match (shown.len(), zeros) {
                 (0, 0) => String::new(),
                 (0, _) => " with every variable 0".to_owned(),
-                (1..=8, 0) => format!(" at {}", shown.join(", ")),
-                (1..=8, _) => format!(" at {}, other variables 0", shown.join(", ")),
-                _ => format!(
-                    " at a rational point of {} variables (see JSON)",
-                    cx.point.len()
-                ),
+                (_, 0) => format!(" at {}", shown.join(", ")),
+                _ => format!(" at {}, other variables 0", shown.join(", ")),
             };
             parts.push(format!("values{where_}: left {l}, right {r}"));
         }
