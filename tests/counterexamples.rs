@@ -1,4 +1,4 @@
-//! What a counterexample shows (issue 17, item 4; item 9): only the symbols the
+//! What a counterexample shows: only the symbols the
 //! statement reads, auxiliary numbers (a central difference, an eigenvalue) apart from
 //! the point, and numbers rounded to significant digits rather than fixed decimals.
 
@@ -127,4 +127,51 @@ fn small_values_keep_their_significant_digits() {
             "{v}: a value of 1e-5 is written in scientific notation"
         );
     }
+}
+
+/// A counterexample names its variables as the paper prints them, through the notation
+/// table read backwards, and its point is sparse: the one product that the difference
+/// needs, each factor 1, every other variable 0.
+#[test]
+fn the_point_is_sparse_and_shown_in_the_papers_notation() {
+    let text = r#"
+section = "1"
+title = "t"
+dimension = 3
+scalars = ["tb", "k"]
+tensors = ["s1_ij", "a_i"]
+
+[notation]
+'\bar\tau' = "tb"
+'\sigma_{ij}^{(1)}' = "s1_ij"
+
+[[claim]]
+id = "slip"
+printed = '\bar\tau \sigma_{ij}^{(1)} a_i a_j = 0'
+expect = "fails"
+reason = "planted"
+"#;
+    let files = vec![cosserat_check::derivation::load_str("notation.toml", text).unwrap()];
+    let rows = decide_all(&files, None).unwrap();
+    let refs: Vec<&Decided<'_>> = rows.iter().collect();
+    let cx = counterexample(&rows, "slip");
+    let nonzero: Vec<&String> = cx
+        .point
+        .iter()
+        .filter(|(_, v)| *v != "0")
+        .map(|(k, _)| k)
+        .collect();
+    assert_eq!(
+        nonzero,
+        ["a_3", "s1_33", "tb"],
+        "not sparse: {:?}",
+        cx.point
+    );
+    let table = report::markdown::render(&refs, &report::paper_of(&refs, &[]));
+    assert!(
+        table.contains(r"(in the paper's notation, $\sigma_{33}^{(1)} = 1$, $\bar\tau = 1$)"),
+        "{table}"
+    );
+    let html = report::html::render(&refs, "p");
+    assert!(html.contains("in the paper's notation, <math"), "{html}");
 }

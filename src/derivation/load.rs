@@ -1519,6 +1519,7 @@ impl Loader {
             conditions,
             from_reading: false,
             prose,
+            notation: Arc::new(notation),
         })
     }
 

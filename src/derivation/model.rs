@@ -681,6 +681,9 @@ pub struct Transcript {
     pub from_reading: bool,
     /// The statement is a sentence of prose, which is not read.
     pub prose: bool,
+    /// The claim's notation table, then the file's: read backwards, it names a
+    /// counterexample's variables as the paper prints them.
+    pub notation: std::sync::Arc<super::notation::Notation>,
 }
 
 /// A claim this one is derived from (`uses`), as written.

@@ -27,6 +27,8 @@ use std::collections::{BTreeMap, BTreeSet};
 #[derive(Clone, Debug)]
 pub struct Entry {
     pattern: Math,
+    /// The key as written, for reading the table backwards ([`Notation::printed`]).
+    key: String,
     pub values: Vec<String>,
     /// The letters of the key's subscript that are pattern variables.
     vars: BTreeSet<char>,
@@ -135,6 +137,7 @@ impl Notation {
         }
         self.entries.push(Entry {
             pattern,
+            key: key.to_owned(),
             values,
             vars: vars.unwrap_or_default(),
         });
@@ -156,6 +159,80 @@ impl Notation {
         self.macaulay |= file.macaulay;
         self
     }
+
+    /// The printed symbol of a variable of the language, read backwards through the
+    /// table: the key of the first entry whose one reading is the variable's name with
+    /// the key's pattern variables as its indices, those letters replaced by the
+    /// variable's index values (`'\Gamma_{mi}^{(1)}' = "G1_mi"` gives `G1_21` ↦
+    /// `\Gamma_{21}^{(1)}`; `'\bar\tau' = "tb"` gives `tb` ↦ `\bar\tau`). None for a
+    /// variable no entry names alone (an entry whose reading is an expression).
+    pub fn printed(&self, variable: &str) -> Option<String> {
+        self.entries.iter().find_map(|e| {
+            let [value] = e.values.as_slice() else {
+                return None;
+            };
+            if e.vars.is_empty() {
+                return (value == variable && is_name(value)).then(|| e.key.clone());
+            }
+            let (base, letters) = value.rsplit_once('_')?;
+            let (vbase, digits) = variable.rsplit_once('_')?;
+            let letters: Vec<char> = letters.chars().collect();
+            let distinct: BTreeSet<char> = letters.iter().copied().collect();
+            let fits = base == vbase
+                && is_name(base)
+                && distinct == e.vars
+                && distinct.len() == letters.len()
+                && digits.chars().count() == letters.len()
+                && digits.chars().all(|c| c.is_ascii_digit());
+            if !fits {
+                return None;
+            }
+            let map: Vec<(char, char)> = letters.into_iter().zip(digits.chars()).collect();
+            with_indices(&e.key, &map)
+        })
+    }
+}
+
+/// A name of the language with no indices: a letter, then letters and digits.
+fn is_name(s: &str) -> bool {
+    s.starts_with(|c: char| c.is_ascii_alphabetic())
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// `key` with the letters of its subscript (the first `_` outside braces, a group of
+/// letters and commas or one letter) replaced by `map`; None where the subscript holds
+/// anything else.
+fn with_indices(key: &str, map: &[(char, char)]) -> Option<String> {
+    let chars: Vec<char> = key.chars().collect();
+    let mut depth = 0usize;
+    let at = chars.iter().enumerate().find_map(|(k, &c)| {
+        match c {
+            '{' => depth += 1,
+            '}' => depth = depth.saturating_sub(1),
+            '_' if depth == 0 => return Some(k),
+            _ => {}
+        }
+        None
+    })?;
+    let (start, end) = if chars.get(at + 1) == Some(&'{') {
+        let close = chars[at + 2..].iter().position(|&c| c == '}')? + at + 2;
+        (at + 2, close)
+    } else {
+        (at + 1, at + 2)
+    };
+    let group = chars.get(start..end)?;
+    if !group
+        .iter()
+        .all(|c| c.is_ascii_alphabetic() || *c == ',' || *c == ' ')
+    {
+        return None;
+    }
+    let mut out: String = chars[..start].iter().collect();
+    for c in group {
+        out.push(map.iter().find(|(l, _)| l == c).map_or(*c, |(_, d)| *d));
+    }
+    out.extend(&chars[end..]);
+    Some(out)
 }
 
 /// The letters of a key's subscript: its pattern variables.
@@ -862,4 +939,31 @@ fn match_atom(p: &Atom, vars: &BTreeSet<char>, a: &Atom) -> Option<BTreeMap<char
         _ => return None,
     }
     Some(binding)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_read_backwards_names_a_variable_as_printed() {
+        let mut t = Notation::default();
+        let entries = [
+            (r"\Gamma_{mi}^{(1)}", "G1_mi"),
+            (r"w_{i,m}^c", "Dw_im"),
+            (r"\bar\tau", "tb"),
+            (r"P^{(n)}", "1/V f_i v21c_i"),
+            (r"T^2", "avg(tt_k tt_k)"),
+        ];
+        for (k, v) in entries {
+            t.add(k, vec![v.to_owned()]).unwrap();
+        }
+        assert_eq!(t.printed("G1_21").as_deref(), Some(r"\Gamma_{21}^{(1)}"));
+        assert_eq!(t.printed("Dw_23").as_deref(), Some(r"w_{2,3}^c"));
+        assert_eq!(t.printed("tb").as_deref(), Some(r"\bar\tau"));
+        // Not a variable an entry names alone, or the wrong number of indices.
+        for v in ["G1_2", "G1_213", "G1", "Dw_ab", "tt_1", "V", "P"] {
+            assert_eq!(t.printed(v), None, "{v}");
+        }
+    }
 }

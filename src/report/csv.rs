@@ -41,7 +41,7 @@ pub fn render(rows: &[&Decided<'_>]) -> String {
             if c.declared { c.expect.as_str() } else { "" },
             r.outcome.method.as_str(),
             &r.outcome.checks.to_string(),
-            &full_evidence(r, &|s| s.to_owned(), &|s| s.to_owned()),
+            &full_evidence(r, (&|s| s.to_owned(), &|s| s.to_owned()), &|s| s.to_owned()),
             corr,
             corr_verdict,
             match r.outcome.strength() {

@@ -61,7 +61,11 @@ fn section(out: &mut String, r: &Decided<'_>, level: &str) {
     if let Some(a) = &r.attribution {
         let _ = writeln!(out, "- Origin: {}", cell(&graph::attribution(a)));
     }
-    let _ = writeln!(out, "- Evidence: {}", cell(&evidence(&r.outcome)));
+    // The printed point's words are plain and its formulas pass `math`'s check.
+    let printed = super::row::printed_point(r, &math)
+        .map(|p| format!(" ({p})"))
+        .unwrap_or_default();
+    let _ = writeln!(out, "- Evidence: {}{printed}", cell(&evidence(&r.outcome)));
     if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
         let _ = writeln!(out, "- Correction: {}", math(&k.statement));
         let _ = writeln!(out, "  - {}", cell(&k.reason));

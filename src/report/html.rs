@@ -314,7 +314,13 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
             ))
         ),
     );
-    item("Evidence", text(&evidence(&r.outcome)));
+    let printed = super::row::printed_point(r, &|s| formula(s, false))
+        .map(|p| format!(" ({p})"))
+        .unwrap_or_default();
+    item(
+        "Evidence",
+        format!("{}{printed}", text(&evidence(&r.outcome))),
+    );
     if let Some(reason) = &c.reason {
         item("Why", authored(reason));
     }

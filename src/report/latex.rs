@@ -605,7 +605,7 @@ pub fn render(rows: &[&Decided<'_>], standalone: bool, paper: &str) -> String {
             escape(&r.claim.id),
             escape(&full_evidence(
                 r,
-                &|s| format!("{FIT}{}{FIT_END}", math(s)),
+                (&|s| format!("{FIT}{}{FIT_END}", math(s)), &math),
                 &authored
             ))
         );
@@ -668,7 +668,14 @@ fn erratum(out: &mut String, r: &Decided<'_>) {
             escape(&super::graph::attribution(a))
         );
     }
-    let _ = writeln!(out, "\\item Evidence: {}", escape(&evidence(&r.outcome)));
+    let printed = super::row::printed_point(r, &math)
+        .map(|p| format!(" ({p})"))
+        .unwrap_or_default();
+    let _ = writeln!(
+        out,
+        "\\item Evidence: {}",
+        escape(&format!("{}{printed}", evidence(&r.outcome)))
+    );
     if let (Some(k), Some(o)) = (&c.correction, &r.correction) {
         let _ = writeln!(
             out,

@@ -175,15 +175,12 @@ const MARK: char = '\u{E000}';
 /// itself can at most repeat one of the row's statements, which are safe.
 fn evidence_cell(r: &Decided<'_>) -> String {
     let maths = std::cell::RefCell::new(Vec::new());
-    let words = full_evidence(
-        r,
-        &|s| {
-            let mut m = maths.borrow_mut();
-            m.push(math(s));
-            format!("{MARK}{}{MARK}", m.len() - 1)
-        },
-        &|s| s.to_owned(),
-    );
+    let mark = |s: &str| {
+        let mut m = maths.borrow_mut();
+        m.push(math(s));
+        format!("{MARK}{}{MARK}", m.len() - 1)
+    };
+    let words = full_evidence(r, (&mark, &mark), &|s| s.to_owned());
     let maths = maths.into_inner();
     let escaped = cell(&words);
     let parts: Vec<&str> = escaped.split(MARK).collect();

@@ -48,16 +48,39 @@ pub fn verdict_label(r: &Decided<'_>) -> String {
     }
 }
 
+/// A counterexample's point in the paper's notation: `symbol = value` for each nonzero
+/// coordinate whose variable the claim's notation table names (read backwards), each
+/// rendered by `math` (which lets only safe LaTeX through). None when no coordinate has
+/// a printed name.
+pub fn printed_point(r: &Decided<'_>, math: &dyn Fn(&str) -> String) -> Option<String> {
+    let cx = r.outcome.counterexample.as_ref()?;
+    let table = &r.claim.transcript.notation;
+    let shown: Vec<String> = cx
+        .point
+        .iter()
+        .filter(|(_, v)| v.as_str() != "0" && !v.starts_with('≈'))
+        .filter_map(|(k, v)| {
+            let symbol = table.printed(k)?;
+            (symbol != *k).then(|| math(&format!("{symbol} = {v}")))
+        })
+        .collect();
+    (!shown.is_empty()).then(|| format!("in the paper's notation, {}", shown.join(", ")))
+}
+
 /// The evidence, the reason and the correction of a row in one paragraph;
-/// `statement` renders the correction's statement (math in Markdown or LaTeX) and
+/// `statement` renders the correction's statement (math in Markdown or LaTeX),
+/// `inline` a formula within the text (a counterexample in the paper's notation) and
 /// `authored` the author's reason (its scripts, in LaTeX).
 pub fn full_evidence(
     r: &Decided<'_>,
-    statement: &dyn Fn(&str) -> String,
+    (statement, inline): (&dyn Fn(&str) -> String, &dyn Fn(&str) -> String),
     authored: &dyn Fn(&str) -> String,
 ) -> String {
     let c = r.claim;
     let mut ev = evidence(&r.outcome);
+    if let Some(p) = printed_point(r, inline) {
+        ev.push_str(&format!(" ({p})"));
+    }
     if !c.prose && r.transcription.label() != "machine-read" {
         ev.push_str(&format!(
             ". Read: {}",
