@@ -1079,6 +1079,33 @@ fn write_examples(dir: &Path) -> Result<usize, RunError> {
         .copied()
         .collect();
     let mut todo = Vec::new();
+    // The directories under DIR that the files go into are real directories (or are
+    // created): a symbolic link there would lead the files out of DIR.
+    let mut folders: Vec<PathBuf> = all
+        .iter()
+        .flat_map(|(name, _)| {
+            Path::new(name)
+                .ancestors()
+                .skip(1)
+                .filter(|a| !a.as_os_str().is_empty())
+                .map(|a| dir.join(a))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    folders.sort();
+    folders.dedup();
+    for folder in &folders {
+        match std::fs::symlink_metadata(folder) {
+            Ok(m) if !m.is_dir() => {
+                return Err(RunError::Input(format!(
+                    "error: {}: is not a directory (a symbolic link or a file); nothing was written
+  = help: write into an empty directory",
+                    report::words::inert(&folder.display().to_string())
+                )))
+            }
+            _ => {}
+        }
+    }
     for (name, text) in &all {
         let path = dir.join(name);
         let shown = report::words::inert(&path.display().to_string());

@@ -1175,6 +1175,21 @@ fn examples_are_written_for_an_installed_binary_and_never_replace_a_file() {
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(std::fs::read_to_string(&edited).unwrap(), "edited");
     assert!(!dir.join("derivations/A-2-bifurcation.toml").exists());
+    // A symbolic link on the way would lead the files out of the directory: refused,
+    // nothing written anywhere.
+    let linked = dir.join("linked");
+    let outside = dir.join("outside");
+    std::fs::create_dir_all(&linked).unwrap();
+    std::fs::create_dir_all(&outside).unwrap();
+    std::os::unix::fs::symlink(&outside, linked.join("derivations")).unwrap();
+    let out = run(&["examples", "--out", linked.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("is not a directory"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert_eq!(std::fs::read_dir(&outside).unwrap().count(), 0);
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -191,16 +191,16 @@ fn a_hostile_report_reads_and_writes_nothing_and_shows_every_claim() {
             "{name}: the password file is in the PDF"
         );
         let ids: &[&str] = if name == "table" {
-            &["op", "tex", "href"]
+            &["op", "tex", "href", "quotes"]
         } else {
-            &["op", "tex"]
+            &["op", "tex", "quotes"]
         };
         for id in ids {
             assert!(txt.contains(id), "{name}: claim {id} is missing:\n{txt}");
         }
         if name == "table" {
             assert!(
-                txt.contains("2 fail"),
+                txt.contains("3 fail"),
                 "{name}: the summary is missing:\n{txt}"
             );
         }

@@ -61,7 +61,14 @@ pub fn first_control(text: &str) -> Option<(usize, String)> {
 }
 
 fn forbidden(c: char) -> bool {
-    (c.is_control() && !matches!(c, '\t' | '\n' | '\r')) || invisible(c)
+    (c.is_control() && !matches!(c, '\t' | '\n' | '\r')) || invisible(c) || noncharacter(c)
+}
+
+/// The noncharacters (U+FDD0–U+FDEF and the last two code points of every plane),
+/// which XML, and so the SVG and HTML reports, may not contain.
+fn noncharacter(c: char) -> bool {
+    let u = u32::from(c);
+    (0xFDD0..=0xFDEF).contains(&u) || u & 0xFFFE == 0xFFFE
 }
 
 /// Formatting characters that reorder or break what a reader sees: the bidirectional
@@ -77,6 +84,8 @@ fn describe(c: char) -> String {
             "the invisible formatting character U+{:04X} (a bidirectional control or a line separator)",
             u32::from(c)
         )
+    } else if noncharacter(c) {
+        format!("the noncharacter U+{:04X}", u32::from(c))
     } else {
         format!("the control character U+{:04X}", u32::from(c))
     }
@@ -125,5 +134,10 @@ mod tests {
         assert!(first_control("p = \"\\u2066\"").is_some());
         assert!(first_control("p = \"a\u{2028}b\"").is_some());
         assert!(first_control("# \u{200f}\np = 1").is_some());
+        // Noncharacters, which no XML may hold, raw or escaped.
+        assert!(first_control("p = 'A\u{fffe}'").is_some());
+        assert!(first_control("p = \"\\uFFFF\"").is_some());
+        assert!(first_control("p = \"\\U0010FFFF\"").is_some());
+        assert_eq!(first_control("p = 'ﬀ \u{fdcf}'"), None);
     }
 }

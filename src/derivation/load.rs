@@ -447,6 +447,17 @@ impl Loader {
                 .diag(f.id.span(), "a figure needs at least one curve")
                 .with_help("curves = [{ y = \"…\", label = \"…\" }]"));
         }
+        if f.curves.len() > MAX_CURVES {
+            return Err(self
+                .diag(
+                    f.id.span(),
+                    format!(
+                        "a figure holds at most {MAX_CURVES} curves, this one {}",
+                        f.curves.len()
+                    ),
+                )
+                .with_help("split the curves between figures"));
+        }
         let domain = self.param_box(&f.given, decls)?;
         let mut curves = Vec::new();
         for c in &f.curves {
@@ -1936,6 +1947,8 @@ pub(super) fn entrywise(
 
 /// The most points a figure's range may have.
 const MAX_POINTS: usize = 10_000;
+/// The most curves one figure draws (each evaluated at every point of the grid).
+pub const MAX_CURVES: usize = 16;
 
 /// Why a range of a figure could not be read.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]

@@ -27,24 +27,53 @@ impl Span {
 pub struct SourceFile {
     pub path: String,
     pub text: String,
+    /// Found once, since a file locates every claim and a scan from the start for each
+    /// would be quadratic in its length: the byte offset where each line starts, and
+    /// the number of characters before every 4 KiB of the text (a line may be long).
+    index: std::sync::OnceLock<(Vec<usize>, Vec<(usize, usize)>)>,
 }
+
+/// The span of text whose characters [`SourceFile::line_col`] counts one by one.
+const BLOCK: usize = 4096;
 
 impl SourceFile {
     pub fn new(path: impl Into<String>, text: impl Into<String>) -> Arc<Self> {
         Arc::new(SourceFile {
             path: path.into(),
             text: text.into(),
+            index: std::sync::OnceLock::new(),
         })
     }
 
     /// 1-based line and column (in characters) of a byte offset.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = floor_char_boundary(&self.text, offset.min(self.text.len()));
-        let before = &self.text[..offset];
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |k| k + 1);
-        let col = self.text[line_start..offset].chars().count() + 1;
-        (line, col)
+        let (starts, blocks) = self.index.get_or_init(|| {
+            let starts = std::iter::once(0)
+                .chain(self.text.match_indices('\n').map(|(k, _)| k + 1))
+                .collect();
+            let mut blocks = Vec::new();
+            let (mut byte, mut chars) = (0, 0);
+            while byte < self.text.len() {
+                blocks.push((byte, chars));
+                let next = floor_char_boundary(&self.text, (byte + BLOCK).min(self.text.len()));
+                let next = if next > byte { next } else { byte + BLOCK };
+                let next = next.min(self.text.len());
+                chars += self.text[byte..next].chars().count();
+                byte = next;
+            }
+            blocks.push((byte, chars));
+            (starts, blocks)
+        });
+        let chars_before = |at: usize| {
+            let k = blocks.partition_point(|&(b, _)| b <= at) - 1;
+            let (b, c) = blocks[k];
+            c + self.text[b..at].chars().count()
+        };
+        // The last line start at or before the offset.
+        let line = starts.partition_point(|&s| s <= offset);
+        let line_start = starts[line - 1];
+        (line, chars_before(offset) - chars_before(line_start) + 1)
     }
 
     /// A diagnostic at a byte span of this file.
@@ -206,6 +235,22 @@ impl fmt::Display for Diagnostic {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn line_and_column_agree_with_a_scan_from_the_start() {
+        let long: String = "αβ".repeat(5000);
+        let text = format!("a = 1\nσ_ij = 'é'\n{long}x\n\nlast");
+        let file = SourceFile::new("t.toml", text.clone());
+        let naive = |offset: usize| {
+            let before = &text[..offset];
+            let line = before.matches('\n').count() + 1;
+            let start = before.rfind('\n').map_or(0, |k| k + 1);
+            (line, text[start..offset].chars().count() + 1)
+        };
+        for offset in (0..=text.len()).filter(|&k| text.is_char_boundary(k)) {
+            assert_eq!(file.line_col(offset), naive(offset), "at {offset}");
+        }
+    }
     use super::*;
 
     #[test]

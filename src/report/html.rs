@@ -220,6 +220,16 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
         escape(&summary.transcription_sentence())
     );
     graph_section(&mut out, rows);
+    // Each claim's users, in the order of the rows, each once.
+    let mut users: std::collections::HashMap<&str, Vec<&str>> = std::collections::HashMap::new();
+    for u in rows {
+        for x in &u.claim.uses {
+            let list = users.entry(x.id.as_str()).or_default();
+            if list.last() != Some(&u.claim.id.as_str()) {
+                list.push(u.claim.id.as_str());
+            }
+        }
+    }
     let mut sections: Vec<&str> = Vec::new();
     for r in rows {
         if !sections.contains(&r.claim.section.as_str()) {
@@ -242,7 +252,13 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
             escape(&part.transcription_sentence())
         );
         for r in &here {
-            claim(&mut out, r, rows);
+            claim(
+                &mut out,
+                r,
+                users
+                    .get(r.claim.id.as_str())
+                    .map_or(&[][..], Vec::as_slice),
+            );
         }
         out.push_str("</section>\n");
     }
@@ -251,7 +267,7 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
 }
 
 /// One claim: statement, verdict, evidence, correction, origin, and its edges.
-fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
+fn claim(out: &mut String, r: &Decided<'_>, used_by: &[&str]) {
     let c = r.claim;
     let (class, glyph) = verdict_of(r);
     let origin = match &r.attribution {
@@ -350,11 +366,7 @@ fn claim(out: &mut String, r: &Decided<'_>, rows: &[&Decided<'_>]) {
         let links: Vec<String> = c.uses.iter().map(|u| link(&u.id)).collect();
         item("Uses", links.join(", "));
     }
-    let users: Vec<String> = rows
-        .iter()
-        .filter(|u| u.claim.uses.iter().any(|x| x.id == c.id))
-        .map(|u| link(&u.claim.id))
-        .collect();
+    let users: Vec<String> = used_by.iter().map(|u| link(u)).collect();
     if !users.is_empty() {
         item("Used by", users.join(", "));
     }
@@ -389,9 +401,14 @@ fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
                 .collect()
         })
         .collect();
-    let used_by: Vec<Vec<usize>> = (0..rows.len())
-        .map(|k| (0..rows.len()).filter(|&j| uses[j].contains(&k)).collect())
-        .collect();
+    let mut used_by: Vec<Vec<usize>> = vec![Vec::new(); rows.len()];
+    for (j, us) in uses.iter().enumerate() {
+        for &k in us {
+            if used_by[k].last() != Some(&j) {
+                used_by[k].push(j);
+            }
+        }
+    }
     let mut sections: Vec<&str> = Vec::new();
     for r in rows {
         if !sections.contains(&r.claim.section.as_str()) {
@@ -406,14 +423,17 @@ fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
             .collect();
         // The band's nodes: its claims, then the claims of other sections they use.
         let mut nodes = members.clone();
+        let mut place: std::collections::HashMap<usize, usize> =
+            members.iter().enumerate().map(|(i, &k)| (k, i)).collect();
         for &k in &members {
             for &u in &uses[k] {
-                if !nodes.contains(&u) {
+                if !place.contains_key(&u) {
+                    place.insert(u, nodes.len());
                     nodes.push(u);
                 }
             }
         }
-        let local = |k: usize| nodes.iter().position(|&j| j == k);
+        let local = |k: usize| place.get(&k).copied();
         let band_uses: Vec<Vec<usize>> = nodes
             .iter()
             .map(|&k| {
@@ -427,7 +447,7 @@ fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
         let labels: Vec<String> = nodes
             .iter()
             .map(|&k| match rows[k].claim.section.as_str() {
-                other if other != s => format!("{} (§{other})", node_label(rows[k])),
+                other if other != s => format!("{} (§{})", node_label(rows[k]), short(other)),
                 _ => node_label(rows[k]),
             })
             .collect();
@@ -495,7 +515,7 @@ fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
                 "{}{}: {}{}",
                 r.claim.id,
                 if copy {
-                    format!(" (§{}, used here)", r.claim.section)
+                    format!(" (§{}, used here)", short(&r.claim.section))
                 } else {
                     String::new()
                 },
@@ -544,6 +564,17 @@ fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
         "<div class=\"graph-box\"><svg id=\"graph\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{top:.0}\" viewBox=\"0 0 {width:.0} {top:.0}\" role=\"img\" aria-label=\"The claims and the claims each uses, section by section\">\n<defs><marker id=\"arrow\" viewBox=\"0 0 8 8\" refX=\"8\" refY=\"4\" markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L8,4 L0,8 z\" fill=\"#667\"/></marker></defs>\n{body}"
     );
     out.push_str("</svg></div>\n<p id=\"focus-note\" class=\"note\">Click a claim to jump to it and to focus the graph on what it uses and what uses it.</p>\n");
+}
+
+/// A section's name as a copy of one of its claims shows it: at most 12 characters, so
+/// that a long name is not repeated in full once per claim that uses the claim.
+fn short(section: &str) -> String {
+    if section.chars().count() <= 12 {
+        section.to_owned()
+    } else {
+        let head: String = section.chars().take(11).collect();
+        format!("{head}…")
+    }
 }
 
 /// A node's label as SVG text centred at (x, y), one `tspan` per line.

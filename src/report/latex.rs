@@ -28,11 +28,18 @@ const SCRIPT_END: char = '\u{7}';
 /// [`escape`] to set in text mode ([`super::scripts`]); the rest stays text.
 fn authored(s: &str) -> String {
     let (sup, sub, end) = (SUP.to_string(), SUB.to_string(), SCRIPT_END.to_string());
-    // Only outside `code` spans, which `escape` typesets as expressions.
-    let text: String = s
+    // Only outside `code` spans, which `escape` typesets as expressions; a backtick
+    // that opens no closed span is a quotation mark, so that the span cannot run on
+    // into the words that follow the reason.
+    let mut text: String = s
         .chars()
         .filter(|c| ![OPEN, CLOSE, FIT, FIT_END, SUP, SUB, SCRIPT_END].contains(c))
         .collect();
+    if text.matches('`').count() % 2 == 1 {
+        if let Some(k) = text.rfind('`') {
+            text.replace_range(k..k + 1, "‘");
+        }
+    }
     text.split('`')
         .enumerate()
         .map(|(k, part)| match k % 2 {
@@ -163,7 +170,7 @@ pub fn escape(s: &str) -> String {
                 } else if text.contains(['\\', '{']) {
                     let _ = write!(out, "\\texttt{{{}}}", escape(&literal(text)));
                 } else {
-                    out.push_str(&expression(text));
+                    out.push_str(&quoted_expression(text));
                 }
                 code = None;
             } else {
@@ -211,9 +218,31 @@ pub fn escape(s: &str) -> String {
         }
     }
     if let Some(text) = code {
-        out.push_str(&expression(&text));
+        out.push_str(&quoted_expression(&text));
     }
     out
+}
+
+/// A backticked span of text: an expression of the language typeset by [`expression`],
+/// anything else (an author's `é`, `^^`) in typewriter type as the characters it is.
+fn quoted_expression(text: &str) -> String {
+    // What the typesetter reads: the language's characters (with the ellipsis of a
+    // truncated polynomial and √), each script followed by what it raises or lowers.
+    let chars: Vec<char> = text.chars().collect();
+    let known = chars.iter().all(|c| {
+        c.is_ascii_alphanumeric() || " _^*/+-(),.=<>|!'[];:".contains(*c) || "…√·−".contains(*c)
+    });
+    let scripts = chars.iter().enumerate().all(|(k, c)| {
+        !matches!(c, '^' | '_')
+            || chars
+                .get(k + 1)
+                .is_some_and(|n| n.is_ascii_alphanumeric() || matches!(n, '(' | '-'))
+    });
+    if known && scripts && !text.trim().is_empty() {
+        expression(text)
+    } else {
+        format!("\\texttt{{{}}}", escape(&literal(text)))
+    }
 }
 
 /// An expression of the language (`-n_2*R_g*Dw_31 + sigma_ki n_k`) as inline

@@ -56,9 +56,14 @@ const SWEEPS: usize = 8;
 /// `\n`.
 pub fn layered(labels: &[String], uses: &[Vec<usize>]) -> Layout {
     let n = labels.len();
-    let used_by: Vec<Vec<usize>> = (0..n)
-        .map(|k| (0..n).filter(|&j| uses[j].contains(&k)).collect())
-        .collect();
+    let mut used_by: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (j, us) in uses.iter().enumerate() {
+        for &k in us {
+            if used_by[k].last() != Some(&j) {
+                used_by[k].push(j);
+            }
+        }
+    }
     let column = columns(uses, &used_by);
     let columns = column.iter().max().map_or(0, |m| m + 1);
     // The drawing's vertices: the nodes, then one slot per column an edge crosses.

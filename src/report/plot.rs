@@ -121,6 +121,14 @@ fn greek(name: &str) -> Option<char> {
 /// TeX-like mathematics as SVG text: single letters italic, `_x`/`_{…}` and `^x`/`^{…}`
 /// as sub- and superscripts, `\nu` and the other Greek letters, everything else upright.
 pub fn math(tex: &str) -> String {
+    math_at(tex, 0)
+}
+
+/// Scripts nested deeper than this are set as plain text (each level of `tspan` would
+/// repeat the text inside it).
+const SCRIPT_DEPTH: usize = 4;
+
+fn math_at(tex: &str, depth: usize) -> String {
     let mut out = String::new();
     let chars: Vec<char> = tex.chars().collect();
     let mut i = 0;
@@ -165,10 +173,14 @@ pub fn math(tex: &str) -> String {
                 i += 1;
                 let body = script(&mut i);
                 let shift = if c == '_' { "sub" } else { "super" };
+                if depth >= SCRIPT_DEPTH {
+                    out.push_str(&escape(&body));
+                    continue;
+                }
                 let _ = write!(
                     out,
                     "<tspan baseline-shift=\"{shift}\" font-size=\"75%\">{}</tspan>",
-                    math(&body)
+                    math_at(&body, depth + 1)
                 );
             }
             '\\' => {
@@ -653,6 +665,25 @@ pub fn svg(figure: &Figure, columns: &[Column], scale: Scale) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Deeply nested scripts in a label are set as text past a few levels: the SVG stays
+    /// about as long as the label, and open groups are read once.
+    #[test]
+    fn nested_scripts_in_a_label_stay_linear() {
+        for label in [
+            "a^{".repeat(20_000),
+            format!("x{}{}", "^{a".repeat(5_000), "}".repeat(5_000)),
+        ] {
+            let svg = math(&label);
+            assert!(
+                svg.len() < 40 * label.len() / 10 + 1_000,
+                "{} from {}",
+                svg.len(),
+                label.len()
+            );
+            assert!(svg.matches("<tspan").count() <= 2 * SCRIPT_DEPTH + 2);
+        }
+    }
 
     /// Data at the edges of f64 (subnormal, near ±f64::MAX, constant, non-finite) give
     /// an axis with a few finite ticks on which every finite value has a finite place.
