@@ -30,8 +30,11 @@ pub struct SourceFile {
     /// Found once, since a file locates every claim and a scan from the start for each
     /// would be quadratic in its length: the byte offset where each line starts, and
     /// the number of characters before every 4 KiB of the text (a line may be long).
-    index: std::sync::OnceLock<(Vec<usize>, Vec<(usize, usize)>)>,
+    index: std::sync::OnceLock<Positions>,
 }
+
+/// Where each line starts (bytes), and (byte, characters before it) every 4 KiB.
+type Positions = (Vec<usize>, Vec<(usize, usize)>);
 
 /// The span of text whose characters [`SourceFile::line_col`] counts one by one.
 const BLOCK: usize = 4096;

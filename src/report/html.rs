@@ -427,8 +427,8 @@ fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
             members.iter().enumerate().map(|(i, &k)| (k, i)).collect();
         for &k in &members {
             for &u in &uses[k] {
-                if !place.contains_key(&u) {
-                    place.insert(u, nodes.len());
+                if let std::collections::hash_map::Entry::Vacant(e) = place.entry(u) {
+                    e.insert(nodes.len());
                     nodes.push(u);
                 }
             }

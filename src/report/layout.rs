@@ -327,7 +327,11 @@ mod tests {
     #[test]
     fn the_layout_is_deterministic() {
         let uses: Vec<Vec<usize>> = (0..40)
-            .map(|k: usize| (0..k).filter(|j| (k * 7 + j * 3) % 5 == 0).collect())
+            .map(|k: usize| {
+                (0..k)
+                    .filter(|j| (k * 7 + j * 3).is_multiple_of(5))
+                    .collect()
+            })
             .collect();
         let (a, b) = (layered(&labels(40), &uses), layered(&labels(40), &uses));
         assert_eq!(a.places, b.places);

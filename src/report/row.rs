@@ -67,13 +67,16 @@ pub fn printed_point(r: &Decided<'_>, math: &dyn Fn(&str) -> String) -> Option<S
     (!shown.is_empty()).then(|| format!("in the paper's notation, {}", shown.join(", ")))
 }
 
+/// A renderer of a formula or of words for one format.
+pub type Render<'a> = &'a dyn Fn(&str) -> String;
+
 /// The evidence, the reason and the correction of a row in one paragraph;
 /// `statement` renders the correction's statement (math in Markdown or LaTeX),
 /// `inline` a formula within the text (a counterexample in the paper's notation) and
 /// `authored` the author's reason (its scripts, in LaTeX).
 pub fn full_evidence(
     r: &Decided<'_>,
-    (statement, inline): (&dyn Fn(&str) -> String, &dyn Fn(&str) -> String),
+    (statement, inline): (Render<'_>, Render<'_>),
     authored: &dyn Fn(&str) -> String,
 ) -> String {
     let c = r.claim;
