@@ -338,7 +338,7 @@ impl Loader {
             if !valid_id(&id) {
                 return Err(self
                     .diag(c.id.span(), format!("`{id}` is not a valid claim id"))
-                    .with_help("ids use letters, digits and `-`, like eq33 or odd-averages")
+                    .with_help("ids use letters, digits, `-` and `_`, like eq33 or odd-averages")
                     .into());
             }
             if local_ids.insert(id.clone(), ()).is_some() {
@@ -391,10 +391,10 @@ impl Loader {
             .iter()
             .map(|t| {
                 let id = t.id.get_ref();
-                if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-') {
+                if !valid_id(id) {
                     return Err(self
                         .diag(t.id.span(), format!("`{id}` is not a claim id"))
-                        .with_help("ids use letters, digits and `-`, like eq33"));
+                        .with_help("ids use letters, digits, `-` and `_`, like eq33"));
                 }
                 let line = usize::try_from(*t.line.get_ref())
                     .ok()
@@ -1393,7 +1393,7 @@ impl Loader {
     fn verdict(&self, s: &S) -> Result<Verdict, Diagnostic> {
         Verdict::parse(s.get_ref()).ok_or_else(|| {
             self.diag(s.span(), format!("unknown verdict `{}`", s.get_ref()))
-                .with_help("expect is one of \"holds\", \"fails\", \"conditional\"")
+                .with_help("expect is one of \"holds\", \"fails\", \"conditional\", \"undecided\"")
         })
     }
 
