@@ -96,18 +96,30 @@ fn browser() -> Option<PathBuf> {
     candidates.into_iter().find(|p| p.is_file())
 }
 
-/// Chromium's output, killed after two minutes (a page that waits on the network
-/// would otherwise hold the test forever). One browser runs at a time: two started
-/// together on a loaded machine have left one with no output at all. A run that
-/// printed nothing is the browser's failure, not the page's, and is run once more.
+/// Chromium's output, each run killed after 45 s (a page that waits on the network
+/// would otherwise hold the test forever; these pages finish in a few seconds). One
+/// browser runs at a time: two started together on a loaded machine have left one
+/// with no output at all. Headless Chromium also hangs now and then with
+/// `--virtual-time-budget` and prints nothing: a run that printed nothing is the
+/// browser's failure, not the page's, and is run again, up to three times in all.
 fn chromium(browser: &Path, profile: &Path, args: &[&str]) -> std::process::Output {
     static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    let first = chromium_once(browser, profile, args);
-    if !first.stdout.is_empty() || args.iter().any(|a| a.starts_with("--screenshot")) {
-        return first;
+    let screenshot = args.iter().any(|a| a.starts_with("--screenshot"));
+    // A fresh profile for every run: a killed browser may leave its lock behind.
+    let run = |attempt: usize| {
+        let profile = profile.with_extension(attempt.to_string());
+        let _ = std::fs::remove_dir_all(&profile);
+        chromium_once(browser, &profile, args)
+    };
+    let mut out = run(0);
+    for attempt in 1..3 {
+        if !out.stdout.is_empty() || screenshot {
+            break;
+        }
+        out = run(attempt);
     }
-    chromium_once(browser, profile, args)
+    out
 }
 
 fn chromium_once(browser: &Path, profile: &Path, args: &[&str]) -> std::process::Output {
@@ -134,7 +146,7 @@ fn chromium_once(browser: &Path, profile: &Path, args: &[&str]) -> std::process:
         let _ = std::io::Read::read_to_end(&mut { stdout }, &mut out);
         out
     });
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(45);
     while child.try_wait().ok().flatten().is_none() && std::time::Instant::now() < deadline {
         std::thread::sleep(std::time::Duration::from_millis(50));
     }

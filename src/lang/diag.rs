@@ -59,9 +59,8 @@ impl SourceFile {
             let (mut byte, mut chars) = (0, 0);
             while byte < self.text.len() {
                 blocks.push((byte, chars));
+                // A character is at most 4 bytes, so the block always moves on.
                 let next = floor_char_boundary(&self.text, (byte + BLOCK).min(self.text.len()));
-                let next = if next > byte { next } else { byte + BLOCK };
-                let next = next.min(self.text.len());
                 chars += self.text[byte..next].chars().count();
                 byte = next;
             }

@@ -7,7 +7,7 @@
 
 use super::evidence::evidence;
 use super::graph;
-use super::layout::{layered, Layout};
+use super::layout::{layered, users, Layout};
 use super::mathml::Unrendered;
 use super::summary::Summary;
 use crate::check::Decided;
@@ -219,29 +219,10 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
         "<p>{}</p>\n</header>",
         escape(&summary.transcription_sentence())
     );
-    graph_section(&mut out, rows);
-    // Each claim's users, in the order of the rows, each once.
-    let mut users: std::collections::HashMap<&str, Vec<&str>> = std::collections::HashMap::new();
-    for u in rows {
-        for x in &u.claim.uses {
-            let list = users.entry(x.id.as_str()).or_default();
-            if list.last() != Some(&u.claim.id.as_str()) {
-                list.push(u.claim.id.as_str());
-            }
-        }
-    }
-    let mut sections: Vec<&str> = Vec::new();
-    for r in rows {
-        if !sections.contains(&r.claim.section.as_str()) {
-            sections.push(&r.claim.section);
-        }
-    }
-    for s in sections {
-        let here: Vec<&Decided<'_>> = rows
-            .iter()
-            .copied()
-            .filter(|r| r.claim.section == s)
-            .collect();
+    let graph = Graph::of(rows);
+    graph_section(&mut out, rows, &graph);
+    for (s, members) in &graph.sections {
+        let here: Vec<&Decided<'_>> = members.iter().map(|&k| rows[k]).collect();
         let part = Summary::of(&here);
         let _ = writeln!(
             out,
@@ -251,14 +232,12 @@ pub fn render(rows: &[&Decided<'_>], paper: &str) -> String {
             escape(&part.sentence(here.len())),
             escape(&part.transcription_sentence())
         );
-        for r in &here {
-            claim(
-                &mut out,
-                r,
-                users
-                    .get(r.claim.id.as_str())
-                    .map_or(&[][..], Vec::as_slice),
-            );
+        for &k in members {
+            let users: Vec<&str> = graph.used_by[k]
+                .iter()
+                .map(|&j| rows[j].claim.id.as_str())
+                .collect();
+            claim(&mut out, rows[k], &users);
         }
         out.push_str("</section>\n");
     }
@@ -385,47 +364,66 @@ fn claim(out: &mut String, r: &Decided<'_>, used_by: &[&str]) {
 /// that one of them uses appears there once more, as a dashed copy that links to it.
 /// Every edge is drawn inside one band, so the drawing grows with the number of
 /// sections, not with the length of the longest chain of the whole paper.
-fn graph_section(out: &mut String, rows: &[&Decided<'_>]) {
-    let by_id: std::collections::HashMap<&str, usize> = rows
-        .iter()
-        .enumerate()
-        .map(|(k, r)| (r.claim.id.as_str(), k))
-        .collect();
-    let uses: Vec<Vec<usize>> = rows
-        .iter()
-        .map(|r| {
-            r.claim
-                .uses
-                .iter()
-                .filter_map(|u| by_id.get(u.id.as_str()).copied())
-                .collect()
-        })
-        .collect();
-    let mut used_by: Vec<Vec<usize>> = vec![Vec::new(); rows.len()];
-    for (j, us) in uses.iter().enumerate() {
-        for &k in us {
-            if used_by[k].last() != Some(&j) {
-                used_by[k].push(j);
-            }
+/// The `uses` between the rows (by index), read both ways, and the rows of each
+/// section in the order sections first appear: found once for the graph and the cards.
+struct Graph<'r> {
+    uses: Vec<Vec<usize>>,
+    used_by: Vec<Vec<usize>>,
+    sections: Vec<(&'r str, Vec<usize>)>,
+}
+
+impl<'r> Graph<'r> {
+    fn of(rows: &[&'r Decided<'_>]) -> Graph<'r> {
+        let by_id: std::collections::HashMap<&str, usize> = rows
+            .iter()
+            .enumerate()
+            .map(|(k, r)| (r.claim.id.as_str(), k))
+            .collect();
+        let uses: Vec<Vec<usize>> = rows
+            .iter()
+            .map(|r| {
+                r.claim
+                    .uses
+                    .iter()
+                    .filter_map(|u| by_id.get(u.id.as_str()).copied())
+                    .collect()
+            })
+            .collect();
+        let mut sections: Vec<(&'r str, Vec<usize>)> = Vec::new();
+        let mut section_of: std::collections::HashMap<&str, usize> =
+            std::collections::HashMap::new();
+        for (k, r) in rows.iter().enumerate() {
+            let at = *section_of
+                .entry(r.claim.section.as_str())
+                .or_insert_with(|| {
+                    sections.push((r.claim.section.as_str(), Vec::new()));
+                    sections.len() - 1
+                });
+            sections[at].1.push(k);
+        }
+        Graph {
+            used_by: users(&uses),
+            uses,
+            sections,
         }
     }
-    let mut sections: Vec<&str> = Vec::new();
-    for r in rows {
-        if !sections.contains(&r.claim.section.as_str()) {
-            sections.push(&r.claim.section);
-        }
-    }
+}
+
+fn graph_section(out: &mut String, rows: &[&Decided<'_>], graph: &Graph<'_>) {
+    let Graph {
+        uses,
+        used_by,
+        sections,
+    } = graph;
     let mut body = String::new();
     let (mut width, mut top) = (0.0f64, 0.0f64);
-    for s in sections {
-        let members: Vec<usize> = (0..rows.len())
-            .filter(|&k| rows[k].claim.section == s)
-            .collect();
+    for (s, members) in sections {
+        let s: &str = s;
         // The band's nodes: its claims, then the claims of other sections they use.
         let mut nodes = members.clone();
         let mut place: std::collections::HashMap<usize, usize> =
             members.iter().enumerate().map(|(i, &k)| (k, i)).collect();
-        for &k in &members {
+        for &k in members {
             for &u in &uses[k] {
                 if let std::collections::hash_map::Entry::Vacant(e) = place.entry(u) {
                     e.insert(nodes.len());

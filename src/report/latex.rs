@@ -23,6 +23,8 @@ const FIT_END: char = '\u{4}';
 const SUP: char = '\u{5}';
 const SUB: char = '\u{6}';
 const SCRIPT_END: char = '\u{7}';
+/// Every mark [`escape`] gives a meaning; text from a file never carries one.
+const MARKERS: [char; 7] = [OPEN, CLOSE, FIT, FIT_END, SUP, SUB, SCRIPT_END];
 
 /// An author's prose (a reason) with its TeX-style scripts (`f^{(1,2)c}`) marked for
 /// [`escape`] to set in text mode ([`super::scripts`]); the rest stays text.
@@ -31,10 +33,7 @@ fn authored(s: &str) -> String {
     // Only outside `code` spans, which `escape` typesets as expressions; a backtick
     // that opens no closed span is a quotation mark, so that the span cannot run on
     // into the words that follow the reason.
-    let mut text: String = s
-        .chars()
-        .filter(|c| ![OPEN, CLOSE, FIT, FIT_END, SUP, SUB, SCRIPT_END].contains(c))
-        .collect();
+    let mut text: String = s.chars().filter(|c| !MARKERS.contains(c)).collect();
     if text.matches('`').count() % 2 == 1 {
         if let Some(k) = text.rfind('`') {
             text.replace_range(k..k + 1, "‘");
@@ -67,7 +66,7 @@ fn math(s: &str) -> String {
 /// Text with the characters [`escape`] gives a meaning (markers, backticks) made plain.
 fn literal(s: &str) -> String {
     s.chars()
-        .filter(|&c| ![OPEN, CLOSE, FIT, FIT_END, SUP, SUB, SCRIPT_END].contains(&c))
+        .filter(|c| !MARKERS.contains(c))
         .map(|c| if c == '`' { '‘' } else { c })
         .collect()
 }

@@ -56,14 +56,7 @@ const SWEEPS: usize = 8;
 /// `\n`.
 pub fn layered(labels: &[String], uses: &[Vec<usize>]) -> Layout {
     let n = labels.len();
-    let mut used_by: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for (j, us) in uses.iter().enumerate() {
-        for &k in us {
-            if used_by[k].last() != Some(&j) {
-                used_by[k].push(j);
-            }
-        }
-    }
+    let used_by = users(uses);
     let column = columns(uses, &used_by);
     let columns = column.iter().max().map_or(0, |m| m + 1);
     // The drawing's vertices: the nodes, then one slot per column an edge crosses.
@@ -169,6 +162,19 @@ pub fn layered(labels: &[String], uses: &[Vec<usize>]) -> Layout {
         width: x - COLUMN_GAP + MARGIN,
         height,
     }
+}
+
+/// The nodes that use each node (`uses` read backwards), in order, each once.
+pub fn users(uses: &[Vec<usize>]) -> Vec<Vec<usize>> {
+    let mut used_by: Vec<Vec<usize>> = vec![Vec::new(); uses.len()];
+    for (j, us) in uses.iter().enumerate() {
+        for &k in us {
+            if used_by[k].last() != Some(&j) {
+                used_by[k].push(j);
+            }
+        }
+    }
+    used_by
 }
 
 /// Each node's column: one right of the furthest node it uses; a node that uses nothing
