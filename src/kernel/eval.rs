@@ -1,8 +1,9 @@
 //! The kernel's evaluator: a [`Term`] in its [`Context`] to a tensor of fractions,
 //! one per value of its free letters.
 //!
-//! It is written for being read, not for speed: dense tensors, contraction by visiting
-//! every value of every letter of a product, no cancellation. Every component of a symbol is a polynomial variable
+//! It is written for being read rather than for speed: dense tensors, a contraction
+//! that visits the values of a product's letters in order (skipping those where a
+//! factor is 0), no cancellation. Every component of a symbol is a polynomial variable
 //! (`sigma_12`, `n_3`, `R_g`); the linear assumptions are solved once by Gaussian
 //! elimination and the substitutions applied in order; a definition is evaluated once;
 //! `avg` applies the exact moments of the normal; a derivative along the position is
@@ -60,6 +61,40 @@ impl Value {
 
     pub fn letters(&self) -> &[char] {
         &self.letters
+    }
+}
+
+/// One axis of a factor in a contraction: the position of its letter among the
+/// contraction's letters, or a fixed index value.
+#[derive(Clone, Copy, Debug)]
+enum Axis {
+    Letter(usize),
+    Fixed(usize),
+}
+
+/// A contraction under way ([`Env::contract`]): each factor's components, axes and
+/// how many letters must have values before it is known; the letters' values so far,
+/// the first `out` of them the result's; the result's components.
+struct Walk<'f> {
+    factors: Vec<(&'f [Frac], Vec<Axis>, usize)>,
+    values: Vec<usize>,
+    out: usize,
+    comps: Vec<Frac>,
+}
+
+impl<'f> Walk<'f> {
+    /// Factor `k`'s component at the letters' values so far.
+    fn component(&self, k: usize, d: usize) -> R<&'f Frac> {
+        let (t, axes, _) = &self.factors[k];
+        let offset = axes.iter().fold(0, |acc, a| {
+            acc * d
+                + match *a {
+                    Axis::Letter(p) => self.values[p],
+                    Axis::Fixed(value) => value,
+                }
+        });
+        t.get(offset)
+            .ok_or_else(|| EvalError::IllFormed("a slot count that is not the rank".into()))
     }
 }
 
@@ -807,32 +842,31 @@ impl<'c> Env<'c> {
             ),
             Term::Leaf { of, slots } => {
                 let base = self.leaf(of)?;
-                let rank = slots.len();
-                self.contract(&[(&base, slots.clone())], &l.free, rank)?
+                self.contract(&[(&base, slots.clone())], &l.free)?
             }
             Term::Sum(terms) => {
                 let mut acc = self.eval(&terms[0])?;
                 for term in &terms[1..] {
+                    // A product adds its terms into the sum as it forms them, in the
+                    // same order: the same sum, without a tensor of its own.
+                    if let Term::Product(fs) = term {
+                        if term.letters(self)?.free == acc.letters {
+                            acc = self.product(fs, &l.free, Some(acc.comps))?;
+                            continue;
+                        }
+                    }
                     let v = self.eval(term)?;
                     for (x, y) in acc.comps.iter_mut().zip(&v.comps) {
-                        *x = self.add(x, y)?;
+                        // x + 0 is x itself, divisors and conditions alike.
+                        if !(y.is_zero() && y.denominator().is_empty() && y.conditions().is_empty())
+                        {
+                            *x = self.add(x, y)?;
+                        }
                     }
                 }
                 acc
             }
-            Term::Product(fs) => {
-                let mut factors = Vec::with_capacity(fs.len());
-                for f in fs {
-                    let v = self.eval(f)?;
-                    let slots: Vec<Slot> = v.letters().iter().map(|&c| Slot::Letter(c)).collect();
-                    factors.push((v.comps().to_vec(), slots));
-                }
-                let refs: Vec<(&[Frac], Vec<Slot>)> = factors
-                    .iter()
-                    .map(|(c, s)| (c.as_slice(), s.clone()))
-                    .collect();
-                self.contract(&refs, &l.free, 0)?
-            }
+            Term::Product(fs) => self.product(fs, &l.free, None)?,
             Term::Neg(a) => self.map(a, |_, f| Ok(f.neg()))?,
             // A divisor written as a product of scalars or a power is divided by one
             // factor at a time, so that the factors stay apart (and are named apart
@@ -903,7 +937,7 @@ impl<'c> Env<'c> {
                 }
                 let mut slots: Vec<Slot> = v.letters().iter().map(|&c| Slot::Letter(c)).collect();
                 slots.push(*slot);
-                self.contract(&[(&comps, slots)], &l.free, 0)?
+                self.contract(&[(&comps, slots)], &l.free)?
             }
             Term::Grad {
                 body,
@@ -926,7 +960,7 @@ impl<'c> Env<'c> {
                     .collect();
                 let mut all: Vec<Slot> = letters.iter().map(|&c| Slot::Letter(c)).collect();
                 all.extend(slots);
-                self.contract(&[(&comps, all)], &l.free, 0)?
+                self.contract(&[(&comps, all)], &l.free)?
             }
             Term::Variation { body, field, slots } => {
                 self.variation(body, field, slots, &l.free)?
@@ -1027,12 +1061,41 @@ impl<'c> Env<'c> {
     }
 
     /// Σ over the summed letters of Π factors (each a tensor with its axes' slots), for
-    /// every value of `out`; the first `_rank` is unused (a leaf's own rank).
-    fn contract(
+    /// every value of `out`. The letters take their values in order, those of `out`
+    /// first and the last fastest, so that each component adds its terms in one fixed
+    /// order, each term the product of the factors from left to right. The values are
+    /// walked as a tree: a factor is read once its letters have values, a factor that
+    /// is 0 there cuts off every term below (each would be 0), and the product of the
+    /// leading factors known so far is formed once for all the terms that share it.
+    fn contract(&mut self, factors: &[(&[Frac], Vec<Slot>)], out: &[char]) -> R<Value> {
+        self.contract_into(factors, out, None)
+    }
+
+    /// The product of the terms `fs` over the letters `out`, its terms added to the
+    /// components `into` when given (else to zeros).
+    fn product(&mut self, fs: &[Term], out: &[char], into: Option<Vec<Frac>>) -> R<Value> {
+        let mut values = Vec::with_capacity(fs.len());
+        for f in fs {
+            values.push(self.eval(f)?);
+        }
+        let factors: Vec<(&[Frac], Vec<Slot>)> = values
+            .iter()
+            .map(|v| {
+                (
+                    v.comps(),
+                    v.letters().iter().map(|&c| Slot::Letter(c)).collect(),
+                )
+            })
+            .collect();
+        self.contract_into(&factors, out, into)
+    }
+
+    /// [`Env::contract`], its terms added to the components `into` when given.
+    fn contract_into(
         &mut self,
         factors: &[(&[Frac], Vec<Slot>)],
         out: &[char],
-        _rank: usize,
+        into: Option<Vec<Frac>>,
     ) -> R<Value> {
         let d = self.ctx.dim;
         let mut all: Vec<char> = out.to_vec();
@@ -1045,48 +1108,80 @@ impl<'c> Env<'c> {
                 }
             }
         }
-        let total = count(d, all.len()).map_err(|_| EvalError::Limit)?;
-        let outs = count(d, out.len())?;
-        let mut comps = vec![Frac::default(); outs];
-        let mut values = vec![0usize; all.len()];
-        for _ in 0..total {
-            let mut product = Frac::one();
-            let mut zero = false;
-            for (t, slots) in factors {
-                let mut offset = 0;
-                for s in slots {
-                    let v = match s {
-                        Slot::Letter(c) => values[all.iter().position(|x| x == c).unwrap_or(0)],
-                        Slot::Fixed(k) => *k,
-                    };
-                    offset = offset * d + v;
-                }
-                let x = t.get(offset).ok_or_else(|| {
-                    EvalError::IllFormed("a slot count that is not the rank".into())
-                })?;
-                if x.is_zero() && x.conditions().is_empty() {
-                    zero = true;
-                    break;
-                }
-                product = self.mul(&product, x)?;
-            }
-            if !zero {
-                let at = values[..out.len()].iter().fold(0, |acc, &v| acc * d + v);
-                comps[at] = self.add(&comps[at], &product)?;
-            }
-            // The odometer, last letter fastest.
-            for k in (0..values.len()).rev() {
-                values[k] += 1;
-                if values[k] < d {
-                    break;
-                }
-                values[k] = 0;
-            }
-        }
+        count(d, all.len()).map_err(|_| EvalError::Limit)?;
+        let factors = factors
+            .iter()
+            .map(|(t, slots)| {
+                let axes: Vec<Axis> = slots
+                    .iter()
+                    .map(|s| match *s {
+                        Slot::Letter(c) => {
+                            Axis::Letter(all.iter().position(|x| *x == c).unwrap_or(0))
+                        }
+                        Slot::Fixed(k) => Axis::Fixed(k),
+                    })
+                    .collect();
+                let known = axes
+                    .iter()
+                    .filter_map(|a| match a {
+                        Axis::Letter(p) => Some(p + 1),
+                        Axis::Fixed(_) => None,
+                    })
+                    .max()
+                    .unwrap_or(0);
+                (*t, axes, known)
+            })
+            .collect();
+        let mut walk = Walk {
+            factors,
+            values: vec![0; all.len()],
+            out: out.len(),
+            comps: match into {
+                Some(comps) if comps.len() == count(d, out.len())? => comps,
+                Some(_) => return Err(EvalError::IllFormed("a sum of different ranks".into())),
+                None => vec![Frac::default(); count(d, out.len())?],
+            },
+        };
+        self.visit(&mut walk, 0, &mut vec![Frac::one()])?;
         Ok(Value {
             letters: out.to_vec(),
-            comps,
+            comps: walk.comps,
         })
+    }
+
+    /// The walk of [`Env::contract`] once `level` letters have values: `products[k]`
+    /// is the product of the first `k` factors, as far as they are known.
+    fn visit(&mut self, w: &mut Walk<'_>, level: usize, products: &mut Vec<Frac>) -> R<()> {
+        let d = self.ctx.dim;
+        for k in 0..w.factors.len() {
+            if w.factors[k].2 == level {
+                let x = w.component(k, d)?;
+                if x.is_zero() && x.conditions().is_empty() {
+                    return Ok(());
+                }
+            }
+        }
+        let entry = products.len();
+        while w
+            .factors
+            .get(products.len() - 1)
+            .is_some_and(|f| f.2 <= level)
+        {
+            let x = w.component(products.len() - 1, d)?;
+            let p = self.mul(&products[products.len() - 1], x)?;
+            products.push(p);
+        }
+        if level == w.values.len() {
+            let at = w.values[..w.out].iter().fold(0, |acc, &v| acc * d + v);
+            w.comps[at] = self.add(&w.comps[at], &products[products.len() - 1])?;
+        } else {
+            for v in 0..d {
+                w.values[level] = v;
+                self.visit(w, level + 1, products)?;
+            }
+        }
+        products.truncate(entry);
+        Ok(())
     }
 
     /// D_k f = Σ_v ∂f/∂v · ∂v/∂x_k over the variables of the numerator; no divisor may
@@ -1360,7 +1455,7 @@ impl<'c> Env<'c> {
         }
         let mut all: Vec<Slot> = v.letters().iter().map(|&c| Slot::Letter(c)).collect();
         all.extend(slots);
-        self.contract(&[(&comps, all)], out, 0)
+        self.contract(&[(&comps, all)], out)
     }
 
     /// √x: a nonnegative rational, or an offered root r with r² = x exactly (cleared)
@@ -1598,5 +1693,142 @@ impl Definitions for Env<'_> {
 
     fn definition_of(&self, name: &str) -> Option<Definition> {
         self.definition(name).cloned()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The contraction as defined: every value of every letter in order (those of
+    /// `out` first, the last fastest), the product of the factors from left to right up
+    /// to the first that is 0 without conditions (then no term), each term added.
+    fn by_definition(
+        env: &mut Env<'_>,
+        factors: &[(&[Frac], Vec<Slot>)],
+        out: &[char],
+    ) -> Vec<Frac> {
+        let d = env.ctx.dim;
+        let mut all: Vec<char> = out.to_vec();
+        for s in factors.iter().flat_map(|(_, slots)| slots) {
+            if let Slot::Letter(c) = s {
+                if !all.contains(c) {
+                    all.push(*c);
+                }
+            }
+        }
+        let mut comps = vec![Frac::default(); d.pow(out.len() as u32)];
+        for values in assignments(d, all.len()) {
+            let mut product = Frac::one();
+            let mut zero = false;
+            for (t, slots) in factors {
+                let offset = slots.iter().fold(0, |acc, s| {
+                    acc * d
+                        + match s {
+                            Slot::Letter(c) => values[all.iter().position(|x| x == c).unwrap()],
+                            Slot::Fixed(k) => *k,
+                        }
+                });
+                let x = &t[offset];
+                if x.is_zero() && x.conditions().is_empty() {
+                    zero = true;
+                    break;
+                }
+                product = env.mul(&product, x).unwrap();
+            }
+            if !zero {
+                let at = values[..out.len()].iter().fold(0, |acc, &v| acc * d + v);
+                comps[at] = env.add(&comps[at], &product).unwrap();
+            }
+        }
+        comps
+    }
+
+    /// A pseudo-random generator for the cases (SplitMix64).
+    struct Cases(u64);
+
+    impl Cases {
+        fn below(&mut self, n: usize) -> usize {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) % n as u64) as usize
+        }
+    }
+
+    /// A component: mostly 0 (with or without a condition), else a constant, a
+    /// variable, or a fraction over one of two divisors.
+    fn fraction(env: &mut Env<'_>, cases: &mut Cases) -> Frac {
+        let (x, y) = (
+            Poly::var(env.vars.intern("x")),
+            Poly::var(env.vars.intern("y")),
+        );
+        let over = |p: &Poly| Frac::one().div(&Frac::from(p.clone())).unwrap();
+        let first = over(&(&x + &Poly::one()));
+        let second = over(&(&(&x + &y) + &Poly::one()));
+        match cases.below(9) {
+            0..=3 => Frac::default(),
+            4 => Frac::default().with_conditions_of(&second),
+            5 => Frac::constant(Rational::int(cases.below(5) as i64 - 2)),
+            6 => Frac::from(if cases.below(2) == 0 { x } else { y }),
+            7 => first,
+            _ => second.mul(&Frac::from(y)).unwrap(),
+        }
+    }
+
+    #[test]
+    fn the_walk_gives_the_definition_s_components_in_its_order() {
+        let ctx = Context {
+            dim: 3,
+            ..Context::default()
+        };
+        let mut env = Env::new(&ctx, &[]).unwrap();
+        let mut cases = Cases(7);
+        for _ in 0..400 {
+            // Up to four factors of rank 0 to 3 over the letters a–e (each at most twice),
+            // now and then a fixed slot.
+            let mut uses = [0usize; 5];
+            let mut factors: Vec<(Vec<Frac>, Vec<Slot>)> = Vec::new();
+            for _ in 0..1 + cases.below(4) {
+                let mut slots = Vec::new();
+                for _ in 0..cases.below(4) {
+                    let k = cases.below(5);
+                    if cases.below(6) == 0 || uses[k] == 2 {
+                        slots.push(Slot::Fixed(cases.below(3)));
+                    } else {
+                        uses[k] += 1;
+                        slots.push(Slot::Letter(char::from(b'a' + k as u8)));
+                    }
+                }
+                let comps = (0..3usize.pow(slots.len() as u32))
+                    .map(|_| fraction(&mut env, &mut cases))
+                    .collect();
+                factors.push((comps, slots));
+            }
+            let out: Vec<char> = (0..5)
+                .filter(|&k| uses[k] == 1)
+                .map(|k| char::from(b'a' + k as u8))
+                .collect();
+            let refs: Vec<(&[Frac], Vec<Slot>)> = factors
+                .iter()
+                .map(|(c, s)| (c.as_slice(), s.clone()))
+                .collect();
+            let expected = by_definition(&mut env, &refs, &out);
+            assert_eq!(env.contract(&refs, &out).unwrap().comps, expected);
+            // Added into a sum: as the sum and the product's own value added.
+            let sum: Vec<Frac> = (0..expected.len())
+                .map(|_| fraction(&mut env, &mut cases))
+                .collect();
+            let added: Vec<Frac> = sum
+                .iter()
+                .zip(&expected)
+                .map(|(a, b)| a.add(b).unwrap())
+                .collect();
+            assert_eq!(
+                env.contract_into(&refs, &out, Some(sum)).unwrap().comps,
+                added
+            );
+        }
     }
 }
