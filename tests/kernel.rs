@@ -869,3 +869,67 @@ fn a_square_root_in_a_hypothesis_is_held_to_its_square_at_the_point() {
     );
     assert!(!fails(st, at(q(4, 1), q(-2, 1))), "the negative root");
 }
+
+/// A refutation's sides are evaluated at its index values only: each term with its
+/// free letters fixed must give the component the whole tensor has there, including
+/// where a letter free in a numerator is summed in its divisor, a constant carries
+/// free letters, a slot is fixed and `grad` adds letters of its own.
+#[test]
+fn a_term_at_fixed_index_values_is_that_component_of_the_whole() {
+    use cosserat_check::kernel::eval::{assignments, Env};
+    let ctx = context(&[("a", 1), ("T", 2), ("s", 0)]);
+    let grad = Term::Grad {
+        body: Box::new(prod(vec![sym("T", "kl"), sym("T", "kl"), sym("a", "c")])),
+        symbol: "T".to_owned(),
+        slots: vec![Slot::Letter('i'), Slot::Letter('j')],
+    };
+    let terms = vec![
+        Term::Div(
+            Box::new(prod(vec![sym("T", "ic"), sym("a", "i")])),
+            Box::new(sum(vec![prod(vec![sym("a", "c"), sym("a", "c")]), num(1)])),
+        ),
+        sum(vec![
+            prod(vec![sym("T", "ij"), sym("a", "j")]),
+            prod(vec![leaf(Leaf::Eps, "ijk"), sym("a", "j"), sym("T", "k1")]),
+            neg(prod(vec![
+                leaf(Leaf::Delta, "ij"),
+                sym("a", "j"),
+                sym("s", ""),
+            ])),
+        ]),
+        Term::Avg(Box::new(prod(vec![
+            leaf(Leaf::Normal, "i"),
+            leaf(Leaf::Normal, "j"),
+            leaf(Leaf::Normal, "k"),
+            leaf(Leaf::Normal, "k"),
+            sym("T", "ij"),
+            sym("a", "m"),
+        ]))),
+        sum(vec![
+            Term::Const {
+                value: q(2, 3),
+                free: vec!['i', 'j'],
+            },
+            sym("T", "ji"),
+        ]),
+        prod(vec![sym("T", "2j"), sym("a", "i")]),
+        grad,
+    ];
+    for t in &terms {
+        let mut env = Env::new(&ctx, &[]).unwrap();
+        let whole = env.eval(t).unwrap();
+        let letters = whole.letters().to_vec();
+        assert!(!letters.is_empty());
+        for (k, values) in assignments(3, letters.len()).iter().enumerate() {
+            let at: Vec<(char, usize)> = letters
+                .iter()
+                .copied()
+                .zip(values.iter().copied())
+                .collect();
+            let fixed = t.at_indices(&at, &env).unwrap();
+            let one = env.eval(&fixed).unwrap();
+            assert!(one.letters().is_empty(), "{fixed:?} keeps a letter");
+            assert_eq!(one.comps(), &whole.comps()[k..=k], "{t:?} at {at:?}");
+        }
+    }
+}

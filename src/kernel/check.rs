@@ -524,7 +524,9 @@ fn equality_pairs(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<
     Ok(pairs_of(&a, &b, env.ctx_dim()))
 }
 
-/// One component of one equality: the pair of fractions its sides have there.
+/// One component of one equality: the pair of fractions its sides have there, each
+/// side evaluated with its free letters fixed at the evaluation's values (in sorted
+/// letter order over both sides).
 fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac, Frac)> {
     let chain = chains
         .get(e.chain)
@@ -532,21 +534,24 @@ fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac
     let (Some(left), Some(right)) = (chain.get(e.equality), chain.get(e.equality + 1)) else {
         return Err(Rejection::Mismatch("no such equality".into()));
     };
-    let (a, b) = (env.eval(left)?, env.eval(right)?);
-    let dim = env.ctx_dim();
-    let pairs = pairs_of(&a, &b, dim);
-    let at =
-        e.at.iter()
-            .try_fold(0usize, |acc, &v| {
-                (v < dim).then_some(())?;
-                acc.checked_mul(dim)?.checked_add(v)
-            })
-            .ok_or_else(|| Rejection::Mismatch("index values out of range".into()))?;
-    let count_ok = dim.checked_pow(e.at.len() as u32) == Some(pairs.len());
-    match pairs.get(at) {
-        Some(p) if count_ok => Ok(p.clone()),
-        _ => Err(Rejection::Mismatch(
+    let mut letters = left.letters(env)?.free;
+    letters.extend(right.letters(env)?.free);
+    letters.sort_unstable();
+    letters.dedup();
+    if letters.len() != e.at.len() || e.at.iter().any(|&v| v >= env.ctx_dim()) {
+        return Err(Rejection::Mismatch(
             "index values that do not fit the sides".into(),
+        ));
+    }
+    let at: Vec<(char, usize)> = letters.into_iter().zip(e.at.iter().copied()).collect();
+    let (a, b) = (
+        env.eval(&left.at_indices(&at, env)?)?,
+        env.eval(&right.at_indices(&at, env)?)?,
+    );
+    match (a.comps(), b.comps()) {
+        ([x], [y]) => Ok((x.clone(), y.clone())),
+        _ => Err(Rejection::Mismatch(
+            "a side with free letters left at the index values".into(),
         )),
     }
 }
