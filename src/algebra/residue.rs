@@ -173,8 +173,14 @@ pub fn of_poly(p: &Poly, value: &dyn Fn(Var) -> u64) -> Option<u64> {
         let mut t = of_rational(c)?;
         for &(v, e) in m.factors() {
             let x = value(v);
-            let x = if e < 0 { inverse(x)? } else { x };
-            t = mul(t, pow(x, e.unsigned_abs()));
+            t = match e.cmp(&0) {
+                std::cmp::Ordering::Less => mul(t, pow(inverse(x)?, e.unsigned_abs())),
+                // A term with a factor 0 is 0 (unless a negative power of 0 follows:
+                // no value), and need not be multiplied out.
+                std::cmp::Ordering::Greater if x == 0 || t == 0 => 0,
+                std::cmp::Ordering::Greater => mul(t, pow(x, e.unsigned_abs())),
+                std::cmp::Ordering::Equal => t,
+            };
         }
         total = (total + t) % P;
     }
@@ -399,6 +405,53 @@ mod tests {
         // A composite modulus fails Fermat's test: 2⁶¹ − 3 = 29 · 79511827903920481.
         let f = Field { c: 3 };
         assert_ne!(f.pow(2, f.p() - 1), 1);
+    }
+
+    /// A polynomial's residue is the residue of its exact value, at points with zeros
+    /// (a term through 0 vanishes; a negative power of 0 has no residue, as it has no
+    /// value).
+    #[test]
+    fn a_polynomial_s_residue_is_that_of_its_value() {
+        let mut names = VarTable::new();
+        let (x, y, z) = (names.intern("x"), names.intern("y"), names.intern("z"));
+        let term = |c: i64, f: &[(Var, i32)]| {
+            crate::kernel::Poly::from_terms(vec![(
+                crate::kernel::Monomial::checked_from_factors(
+                    f.iter().map(|&(v, e)| (v, e.into())).collect(),
+                )
+                .unwrap(),
+                Rational::ratio(c, 3).unwrap(),
+            )])
+        };
+        let p = &(&term(5, &[(x, 2), (y, 1)]) + &term(-7, &[(y, 3), (z, 2)]))
+            + &(&term(2, &[(z, 1)]) + &term(1, &[]));
+        let q = &p + &term(4, &[(x, 1), (z, -1)]);
+        for point in [
+            [0, 0, 0],
+            [1, 0, 2],
+            [0, 3, 0],
+            [2, -1, 5],
+            [-4, 0, 0],
+            [3, 2, 1],
+        ] {
+            let exact = |v: Var| {
+                Rational::int(
+                    [x, y, z]
+                        .iter()
+                        .position(|&w| w == v)
+                        .map_or(0, |k| point[k]),
+                )
+            };
+            let residue = |v: Var| of_rational(&exact(v)).unwrap();
+            for poly in [&p, &q] {
+                let value = poly.eval(&exact);
+                assert_eq!(
+                    of_poly(poly, &residue),
+                    value.and_then(|v| of_rational(&v)),
+                    "{point:?}"
+                );
+            }
+        }
     }
 
     #[test]

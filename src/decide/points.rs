@@ -6,7 +6,7 @@ use crate::algebra::sign::{inner_point, End, Interval};
 use crate::algebra::{residue, Quotient};
 use crate::decide::random::Rng;
 use crate::kernel::rules::Rule;
-use crate::kernel::{Rational, Var, VarTable};
+use crate::kernel::{Poly, Rational, Var, VarTable};
 use std::collections::BTreeMap;
 
 /// The point of the unit circle (one parameter u) or sphere (two, u and v) by the
@@ -168,12 +168,8 @@ pub fn point_where_differ(
         // Screen modulo a prime first: equal residues mean (almost surely) equal
         // values, and the exact evaluation of a high power at a dense point costs
         // bigint arithmetic that is wasted on a candidate that will be skipped.
-        let residues: BTreeMap<Var, Option<u64>> = point
-            .iter()
-            .map(|(&v, q)| (v, residue::of_rational(q)))
-            .collect();
-        if residues.values().all(Option::is_some) {
-            let value = |v: Var| residues.get(&v).copied().flatten().unwrap_or(0);
+        if let Some(residues) = residues_of(&point) {
+            let value = |v: Var| residues.get(v as usize).copied().unwrap_or(0);
             if !lhs.differs_mod_p(rhs, &value) {
                 continue;
             }
@@ -206,9 +202,15 @@ const SPARSER_BITS: u64 = 4096;
 /// variable in turn is set to 0, then each left nonzero to 1, where the sides still
 /// differ there and the hypotheses still hold. A point that reads best, for the same
 /// refutation; the kernel checks whichever point it is given.
+///
+/// Residues modulo a prime decide each step where they can: equal residues mean
+/// (almost surely) equal sides, and the step is not taken; different residues, with
+/// every divisor and condition nonzero modulo the prime, mean different sides, both
+/// defined, and the step is taken without evaluating (the sides are evaluated once,
+/// at the end). Elsewhere, and under hypotheses, the sides are evaluated exactly.
 fn sparser(
-    mut point: BTreeMap<Var, Rational>,
-    (mut l, mut r): (Rational, Rational),
+    point: BTreeMap<Var, Rational>,
+    (l, r): (Rational, Rational),
     others: &[Var],
     lhs: &Quotient,
     rhs: &Quotient,
@@ -218,6 +220,8 @@ fn sparser(
     if others.len() > SPARSER_VARIABLES || l.bits() + r.bits() > SPARSER_BITS {
         return (point, l, r);
     }
+    let found = (point.clone(), l.clone(), r.clone());
+    let (mut point, mut values) = (point, Some((l, r)));
     for target in [0, 1] {
         for &v in others {
             let value = match domain.iter().find(|(w, _)| *w == v) {
@@ -228,29 +232,70 @@ fn sparser(
                 continue;
             }
             let old = point.insert(v, value);
-            // Equal residues modulo a prime: (almost surely) equal sides, not worth an
-            // exact evaluation.
-            let residues: Option<BTreeMap<Var, u64>> = point
-                .iter()
-                .map(|(&w, q)| residue::of_rational(q).map(|x| (w, x)))
-                .collect();
-            if let Some(residues) = residues {
-                let value = |w: Var| residues.get(&w).copied().unwrap_or(0);
-                if !lhs.differs_mod_p(rhs, &value) {
-                    point.insert(v, old.expect("a nonzero value was there"));
-                    continue;
+            let screened = residues_of(&point).and_then(|residues| {
+                let value = |w: Var| residues.get(w as usize).copied().unwrap_or(0);
+                differ_mod_p(lhs, rhs, &value).filter(|&d| !d || hypotheses.is_empty())
+            });
+            let keep = match screened {
+                Some(differ) => {
+                    if differ {
+                        values = None;
+                    }
+                    differ
                 }
-            }
-            let at = |w: Var| point.get(&w).cloned().unwrap_or_else(|| Rational::int(0));
-            match (lhs.eval(&at), rhs.eval(&at)) {
-                (Some(a), Some(b)) if a != b && hold(hypotheses, &at) => (l, r) = (a, b),
-                _ => {
-                    point.insert(v, old.expect("a nonzero value was there"));
+                None => {
+                    let at = |w: Var| point.get(&w).cloned().unwrap_or_else(|| Rational::int(0));
+                    match (lhs.eval(&at), rhs.eval(&at)) {
+                        (Some(a), Some(b)) if a != b && hold(hypotheses, &at) => {
+                            values = Some((a, b));
+                            true
+                        }
+                        _ => false,
+                    }
                 }
+            };
+            if !keep {
+                point.insert(v, old.expect("a nonzero value was there"));
             }
         }
     }
-    (point, l, r)
+    let at = |w: Var| point.get(&w).cloned().unwrap_or_else(|| Rational::int(0));
+    match values.or_else(|| Some((lhs.eval(&at)?, rhs.eval(&at)?))) {
+        Some((a, b)) if a != b => (point, a, b),
+        _ => found,
+    }
+}
+
+/// The residues of a point's values modulo the prime, by variable (0 for a variable
+/// it leaves out); `None` when a denominator is a multiple of the prime.
+fn residues_of(point: &BTreeMap<Var, Rational>) -> Option<Vec<u64>> {
+    let size = point.keys().last().map_or(0, |&v| v as usize + 1);
+    let mut out = vec![0; size];
+    for (&v, q) in point {
+        out[v as usize] = residue::of_rational(q)?;
+    }
+    Some(out)
+}
+
+/// Whether the sides differ at a point, by residues modulo a prime: `Some(false)` when
+/// their residues agree (almost surely equal), `Some(true)` when they disagree and
+/// every divisor and condition is nonzero modulo the prime (so nonzero: both sides
+/// are defined and differ), `None` when the residues say neither.
+fn differ_mod_p(lhs: &Quotient, rhs: &Quotient, value: &dyn Fn(Var) -> u64) -> Option<bool> {
+    let (x, y) = (lhs.residue(value)?, rhs.residue(value)?);
+    if x == y {
+        return Some(false);
+    }
+    let nonzero = |p: &Poly| residue::of_poly(p, value).is_some_and(|x| x != 0);
+    [lhs, rhs]
+        .iter()
+        .all(|q| {
+            q.conditions()
+                .iter()
+                .chain(q.factors().iter().map(|(f, _)| f))
+                .all(nonzero)
+        })
+        .then_some(true)
 }
 
 /// One kind of candidate point of [`point_where_differ`].
