@@ -842,7 +842,7 @@ impl<'c> Env<'c> {
             ),
             Term::Leaf { of, slots } => {
                 let base = self.leaf(of)?;
-                self.contract(&[(&base, slots.clone())], &l.free)?
+                self.contract(&[(&base, slots.clone())], &l.free, None)?
             }
             Term::Sum(terms) => {
                 let mut acc = self.eval(&terms[0])?;
@@ -937,7 +937,7 @@ impl<'c> Env<'c> {
                 }
                 let mut slots: Vec<Slot> = v.letters().iter().map(|&c| Slot::Letter(c)).collect();
                 slots.push(*slot);
-                self.contract(&[(&comps, slots)], &l.free)?
+                self.contract(&[(&comps, slots)], &l.free, None)?
             }
             Term::Grad {
                 body,
@@ -960,7 +960,7 @@ impl<'c> Env<'c> {
                     .collect();
                 let mut all: Vec<Slot> = letters.iter().map(|&c| Slot::Letter(c)).collect();
                 all.extend(slots);
-                self.contract(&[(&comps, all)], &l.free)?
+                self.contract(&[(&comps, all)], &l.free, None)?
             }
             Term::Variation { body, field, slots } => {
                 self.variation(body, field, slots, &l.free)?
@@ -1060,17 +1060,6 @@ impl<'c> Env<'c> {
             .collect())
     }
 
-    /// Σ over the summed letters of Π factors (each a tensor with its axes' slots), for
-    /// every value of `out`. The letters take their values in order, those of `out`
-    /// first and the last fastest, so that each component adds its terms in one fixed
-    /// order, each term the product of the factors from left to right. The values are
-    /// walked as a tree: a factor is read once its letters have values, a factor that
-    /// is 0 there cuts off every term below (each would be 0), and the product of the
-    /// leading factors known so far is formed once for all the terms that share it.
-    fn contract(&mut self, factors: &[(&[Frac], Vec<Slot>)], out: &[char]) -> R<Value> {
-        self.contract_into(factors, out, None)
-    }
-
     /// The product of the terms `fs` over the letters `out`, its terms added to the
     /// components `into` when given (else to zeros).
     fn product(&mut self, fs: &[Term], out: &[char], into: Option<Vec<Frac>>) -> R<Value> {
@@ -1087,11 +1076,18 @@ impl<'c> Env<'c> {
                 )
             })
             .collect();
-        self.contract_into(&factors, out, into)
+        self.contract(&factors, out, into)
     }
 
-    /// [`Env::contract`], its terms added to the components `into` when given.
-    fn contract_into(
+    /// Σ over the summed letters of Π factors (each a tensor with its axes' slots), for
+    /// every value of `out`. The letters take their values in order, those of `out`
+    /// first and the last fastest, so that each component adds its terms in one fixed
+    /// order, each term the product of the factors from left to right. The values are
+    /// walked as a tree: a factor is read once its letters have values, a factor that
+    /// is 0 there cuts off every term below (each would be 0), and the product of the
+    /// leading factors known so far is formed once for all the terms that share it.
+    /// The terms are added to the components `into` when given, else to zeros.
+    fn contract(
         &mut self,
         factors: &[(&[Frac], Vec<Slot>)],
         out: &[char],
@@ -1455,7 +1451,7 @@ impl<'c> Env<'c> {
         }
         let mut all: Vec<Slot> = v.letters().iter().map(|&c| Slot::Letter(c)).collect();
         all.extend(slots);
-        self.contract(&[(&comps, all)], out)
+        self.contract(&[(&comps, all)], out, None)
     }
 
     /// √x: a nonnegative rational, or an offered root r with r² = x exactly (cleared)
@@ -1815,7 +1811,7 @@ mod tests {
                 .map(|(c, s)| (c.as_slice(), s.clone()))
                 .collect();
             let expected = by_definition(&mut env, &refs, &out);
-            assert_eq!(env.contract(&refs, &out).unwrap().comps, expected);
+            assert_eq!(env.contract(&refs, &out, None).unwrap().comps, expected);
             // Added into a sum: as the sum and the product's own value added.
             let sum: Vec<Frac> = (0..expected.len())
                 .map(|_| fraction(&mut env, &mut cases))
@@ -1825,10 +1821,7 @@ mod tests {
                 .zip(&expected)
                 .map(|(a, b)| a.add(b).unwrap())
                 .collect();
-            assert_eq!(
-                env.contract_into(&refs, &out, Some(sum)).unwrap().comps,
-                added
-            );
+            assert_eq!(env.contract(&refs, &out, Some(sum)).unwrap().comps, added);
         }
     }
 }

@@ -291,66 +291,47 @@ impl Term {
     /// letter of `at` becomes a fixed slot (a constant's free letter is dropped). A
     /// letter summed inside a subterm belongs to that subterm, and stays.
     pub fn at_indices(&self, at: &[(char, usize)], r: &dyn Ranks) -> Result<Term, EvalError> {
+        let mut t = self.clone();
+        t.fix_letters(at, r)?;
+        Ok(t)
+    }
+
+    fn fix_letters(&mut self, at: &[(char, usize)], r: &dyn Ranks) -> Result<(), EvalError> {
         let free = self.letters(r)?.free;
         let here: Vec<(char, usize)> = at
             .iter()
             .copied()
             .filter(|(c, _)| free.contains(c))
             .collect();
-        if here.is_empty() {
-            return Ok(self.clone());
-        }
-        let fix = |s: &Slot| match s {
-            Slot::Letter(c) => here
-                .iter()
-                .find(|(d, _)| d == c)
-                .map_or(*s, |&(_, v)| Slot::Fixed(v)),
-            Slot::Fixed(_) => *s,
+        let fix = |s: &mut Slot| {
+            if let Some(&(_, v)) = here.iter().find(|(c, _)| *s == Slot::Letter(*c)) {
+                *s = Slot::Fixed(v);
+            }
         };
-        let kept = |letters: &[char]| -> Vec<char> {
-            let fixed = |c: &char| here.iter().any(|(d, _)| d == c);
-            letters.iter().filter(|c| !fixed(c)).copied().collect()
-        };
-        let each = |ts: &[Term]| -> Result<Vec<Term>, EvalError> {
-            ts.iter().map(|t| t.at_indices(&here, r)).collect()
-        };
-        let boxed = |t: &Term| t.at_indices(&here, r).map(Box::new);
-        Ok(match self {
-            Term::Const { value, free } => Term::Const {
-                value: value.clone(),
-                free: kept(free),
-            },
-            Term::Opaque { what, free } => Term::Opaque {
-                what: what.clone(),
-                free: kept(free),
-            },
-            Term::Leaf { of, slots } => Term::Leaf {
-                of: of.clone(),
-                slots: slots.iter().map(fix).collect(),
-            },
-            Term::Sum(ts) => Term::Sum(each(ts)?),
-            Term::Product(ts) => Term::Product(each(ts)?),
-            Term::Neg(a) => Term::Neg(boxed(a)?),
-            Term::Avg(a) => Term::Avg(boxed(a)?),
+        match self {
+            _ if here.is_empty() => {}
+            Term::Const { free, .. } | Term::Opaque { free, .. } => {
+                free.retain(|c| !here.iter().any(|(d, _)| d == c))
+            }
+            Term::Leaf { slots, .. } => slots.iter_mut().for_each(fix),
+            Term::Sum(ts) | Term::Product(ts) => {
+                for t in ts {
+                    t.fix_letters(&here, r)?;
+                }
+            }
             // A divisor, a base and a radicand are scalars: no free letter.
-            Term::Div(a, b) => Term::Div(boxed(a)?, b.clone()),
-            Term::Pow(..) | Term::Sqrt(_) => self.clone(),
-            Term::Deriv(a, s) => Term::Deriv(boxed(a)?, fix(s)),
-            Term::Grad {
-                body,
-                symbol,
-                slots,
-            } => Term::Grad {
-                body: boxed(body)?,
-                symbol: symbol.clone(),
-                slots: slots.iter().map(fix).collect(),
-            },
-            Term::Variation { body, field, slots } => Term::Variation {
-                body: boxed(body)?,
-                field: field.clone(),
-                slots: slots.iter().map(fix).collect(),
-            },
-        })
+            Term::Neg(a) | Term::Avg(a) | Term::Div(a, _) => a.fix_letters(&here, r)?,
+            Term::Pow(..) | Term::Sqrt(_) => {}
+            Term::Deriv(a, s) => {
+                fix(s);
+                a.fix_letters(&here, r)?;
+            }
+            Term::Grad { body, slots, .. } | Term::Variation { body, slots, .. } => {
+                slots.iter_mut().for_each(fix);
+                body.fix_letters(&here, r)?;
+            }
+        }
+        Ok(())
     }
 }
 
