@@ -213,11 +213,12 @@ pub fn reduce(p: &Poly, rules: &[Rule], steps: usize) -> Result<Poly, PolyError>
         if !changed {
             return Ok(p);
         }
-        let mut next = Poly::from_terms(out);
-        for t in sums {
-            next += &t;
+        // All the terms at once, sorted and merged: adding the sums one by one would
+        // merge the whole polynomial for each.
+        for t in &sums {
+            out.extend(t.terms().map(|(m, c)| (m.clone(), c.clone())));
         }
-        p = next;
+        p = Poly::from_terms(out);
     }
 }
 
