@@ -538,7 +538,10 @@ fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac
     letters.extend(right.letters(env)?.free);
     letters.sort_unstable();
     letters.dedup();
-    if letters.len() != e.at.len() || e.at.iter().any(|&v| v >= env.ctx_dim()) {
+    if e.at.iter().any(|&v| v >= env.ctx_dim()) {
+        return Err(Rejection::Mismatch("index values out of range".into()));
+    }
+    if letters.len() != e.at.len() {
         return Err(Rejection::Mismatch(
             "index values that do not fit the sides".into(),
         ));
