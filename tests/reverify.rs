@@ -138,3 +138,25 @@ fn exact_counterexamples_are_confirmed_by_the_interpreter() {
     assert_eq!(o.verdict(), Verdict::Fails);
     assert_eq!(reverified(&o), Some(Reverified::FloatingPoint));
 }
+
+/// A definition read at fixed index values is confirmed at that component only (its
+/// body inlined there when it is a polynomial): a claim that holds only for a
+/// symmetric tensor, written through a definition, is confirmed at the counterexample's
+/// component, and one that holds still holds.
+#[test]
+fn a_definition_at_a_counterexample_s_indices_is_confirmed_at_that_component() {
+    let with = |right: &str, expect: &str| {
+        let text = format!(
+            "{HEADER}\ndefine = [\"Q_ijk = A_ij x n_k + A_ji n_k\", \"P_ijk = {right}\"]\n[[claim]]\nid = \"x\"\nprinted = 'x'\nexpect = \"{expect}\"\nreason = \"r\"\nsides = [\"Q_ijk\", \"P_ijk\"]"
+        );
+        let file = load_str("test.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+        decide_claim(&file.claims[0]).unwrap().outcome
+    };
+    let wrong = with("A_ij (x + 1) n_k", "fails");
+    assert_eq!(wrong.verdict(), Verdict::Fails);
+    assert_eq!(reverified(&wrong), Some(Reverified::FloatingPoint));
+    assert_eq!(
+        with("(A_ij x + A_ji) n_k", "holds").verdict(),
+        Verdict::Holds
+    );
+}

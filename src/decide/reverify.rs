@@ -26,6 +26,7 @@ use super::finding::Rejection;
 use super::outcome::{Counterexample, Reverified};
 use super::sampler::{relation_holds, Sampler};
 use crate::algebra::{Quotient, Tensor};
+use crate::derivation::Definition;
 use crate::derivation::{Check, Constraint, Expression, Relation};
 use crate::eval::exact::env::{component_name, ExactEnv, Labeled};
 use crate::eval::real::RealError;
@@ -33,8 +34,8 @@ use crate::eval::real::{component_pairs, RealEnv};
 use crate::eval::state::State;
 use crate::eval::taylor::TaylorFields;
 use crate::kernel::{Rational, Var};
-use crate::lang::Decls;
 use crate::lang::Diagnostic;
+use crate::lang::{Decls, Node, NodeKind, Slot, Target};
 use crate::tolerance::REVERIFY_AGREEMENT;
 use rustc_hash::FxHashMap as HashMap;
 use std::cell::RefCell;
@@ -141,13 +142,103 @@ fn float_values(
             .as_ref()
             .map_err(|e| NoValue::Side(chain[k].origin.diagnostic(e.span, e.message.clone())))?;
         match node.at_indices(&at) {
-            Some(fixed) => real.eval(&fixed, &n),
+            Some(fixed) => {
+                let mut budget = INLINED_NODES;
+                match inline_fixed(&fixed, real.defs, &mut budget) {
+                    Some(inlined) => real.eval(&inlined, &n),
+                    None => real.eval(&fixed, &n),
+                }
+            }
             None => real.eval(node, &n),
         }
         .map_err(NoValue::Eval)
     };
     let (l, r) = (side(cx.equality - 1)?, side(cx.equality)?);
     pick(decls.dim, &l, &r, cx)
+}
+
+/// The most nodes [`inline_fixed`] writes for one side; past it the side is evaluated
+/// as written.
+const INLINED_NODES: usize = 100_000;
+
+/// `node` with each definition that it reads at fixed index values only (every slot
+/// fixed) replaced by the definition's body at those values, where that body is made of
+/// constants, symbols, δ, ε, the normal, sums, products, negations, powers and
+/// definitions alone: the interpreter then forms the one component with the
+/// operations, in the order, that give it in the definition's whole tensor, and no
+/// other (with no division and no function, every component is defined wherever this
+/// one is). The node is walked through sums, products, negations, powers, quotients and
+/// averages; `None` past `budget` nodes (a definition read many times is written
+/// anew each time).
+fn inline_fixed(node: &Node, defs: &[Definition], budget: &mut usize) -> Option<Node> {
+    *budget = budget.checked_sub(1)?;
+    let each = |xs: &[Node], budget: &mut usize| -> Option<Vec<Node>> {
+        xs.iter().map(|x| inline_fixed(x, defs, budget)).collect()
+    };
+    let kind = match &node.kind {
+        NodeKind::Leaf {
+            target: Target::Def(name),
+            slots,
+        } => match inlined_definition(name, slots, defs, budget)? {
+            Some(body) => return Some(body),
+            None => node.kind.clone(),
+        },
+        NodeKind::Sum(xs) => NodeKind::Sum(each(xs, budget)?),
+        NodeKind::Product(xs) => NodeKind::Product(each(xs, budget)?),
+        NodeKind::Neg(a) => NodeKind::Neg(Box::new(inline_fixed(a, defs, budget)?)),
+        NodeKind::Pow(a, k) => NodeKind::Pow(Box::new(inline_fixed(a, defs, budget)?), *k),
+        NodeKind::Avg(a) => NodeKind::Avg(Box::new(inline_fixed(a, defs, budget)?)),
+        NodeKind::Div(a, b) => NodeKind::Div(
+            Box::new(inline_fixed(a, defs, budget)?),
+            Box::new(inline_fixed(b, defs, budget)?),
+        ),
+        other => other.clone(),
+    };
+    Some(Node {
+        kind,
+        free: node.free.clone(),
+        bound: node.bound.clone(),
+        span: node.span,
+    })
+}
+
+/// The body of definition `name` at the fixed values of `slots`, inlined in turn, when
+/// it has slots, every one fixed, and the body is a polynomial (see [`inline_fixed`]);
+/// `Some(None)` where it is not; `None` past `budget`.
+fn inlined_definition(
+    name: &str,
+    slots: &[Slot],
+    defs: &[Definition],
+    budget: &mut usize,
+) -> Option<Option<Node>> {
+    let values: Option<Vec<usize>> = slots
+        .iter()
+        .map(|s| match s {
+            Slot::Fixed(v) => Some(*v),
+            Slot::Letter(_) => None,
+        })
+        .collect();
+    let def = defs.iter().rev().find(|d| d.sig.name == name);
+    let (Some(values), Some(def)) = (values.filter(|v| !v.is_empty()), def) else {
+        return Some(None);
+    };
+    let at: Vec<(char, usize)> = def.sig.formal.iter().copied().zip(values).collect();
+    let Some(body) = def.body.at_indices(&at).filter(|b| polynomial(b)) else {
+        return Some(None);
+    };
+    inline_fixed(&body, defs, budget).map(Some)
+}
+
+/// Whether `node` is made of constants, symbols, δ, ε, the normal, definitions, sums,
+/// products, negations and powers alone.
+fn polynomial(node: &Node) -> bool {
+    match &node.kind {
+        NodeKind::Const(_) => true,
+        NodeKind::Leaf { target, .. } => !matches!(target, Target::Pi),
+        NodeKind::Sum(xs) | NodeKind::Product(xs) => xs.iter().all(polynomial),
+        NodeKind::Neg(a) | NodeKind::Pow(a, _) => polynomial(a),
+        _ => false,
+    }
 }
 
 /// A scalar expression by the interpreter at `point` (the variables it leaves out set

@@ -1054,6 +1054,9 @@ impl<'c> Env<'c> {
         if sorted != letters {
             return Err(EvalError::IllFormed("indices differ".into()));
         }
+        if formal == letters {
+            return Ok(comps);
+        }
         Ok(assignments(d, formal.len())
             .iter()
             .map(|idx| comps[position_of(&letters, formal, idx, d)].clone())
