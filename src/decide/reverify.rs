@@ -223,7 +223,7 @@ fn inlined_definition(
         return Some(None);
     };
     let at: Vec<(char, usize)> = def.sig.formal.iter().copied().zip(values).collect();
-    let Some(body) = def.body.at_indices(&at).filter(|b| polynomial(b)) else {
+    let Some(body) = def.body.at_indices(&at).filter(polynomial) else {
         return Some(None);
     };
     inline_fixed(&body, defs, budget).map(Some)
