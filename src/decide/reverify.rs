@@ -222,6 +222,9 @@ fn inlined_definition(
     let (Some(values), Some(def)) = (values.filter(|v| !v.is_empty()), def) else {
         return Some(None);
     };
+    if def.sig.formal.len() != values.len() {
+        return Some(None);
+    }
     let at: Vec<(char, usize)> = def.sig.formal.iter().copied().zip(values).collect();
     let Some(body) = def.body.at_indices(&at).filter(polynomial) else {
         return Some(None);
