@@ -90,7 +90,9 @@ pub enum Command {
     /// and the edit that would let it be read, which `verify` prints. The file starts
     /// with `drafted = true`: a failure that a tie the paper may state in words would
     /// remove (between symbols the draft took as independent) is undecided, never an
-    /// accusation. `verify` accepts the file unchanged
+    /// accusation, when the text gives a reason for such a tie (listed in `tied`, with
+    /// its line: "equal and opposite", "symmetric", an equation left to complete, a
+    /// labelled variant). `verify` accepts the file unchanged
     Draft(DraftArgs),
 }
 

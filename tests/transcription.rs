@@ -141,6 +141,11 @@ fn the_reader_refuses_what_is_outside_the_subset_where_it_stands() {
         (r"x = \text{const}", 5, "expected an expression"),
         ("a/b/c = d", 1, "two ways"),
         ("w_3(y) = 0", 1, "function application"),
+        (
+            r"\theta = \theta(x_1, x_2)",
+            10,
+            "function application f(x, y)",
+        ),
         (r"\frac{1}{2 = x", 9, "never closed"),
         ("", 1, "empty"),
         ("a = b;", 6, "unexpected `;`"),

@@ -23,9 +23,10 @@
 //! cancels, like the pressure in the tangential traction, is not read), or, where the
 //! side has no exact value (a cosine, a root), those it names, through definitions.
 
-use super::finding::Finding;
+use super::finding::{DraftedSymbol, Finding};
 use super::Outcome;
 use crate::algebra::{assignments, Quotient};
+use crate::derivation::notation::Notation;
 use crate::derivation::{reachable, Check, Side};
 use crate::eval::exact::env::{ExactEnv, Varying};
 use crate::eval::labeled::Labeled;
@@ -37,7 +38,11 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 /// `outcome` unchanged, unless it is a failure of a drafted check that a tie between
 /// the draft's independent symbols could remove: then undecided, naming the tie.
 pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
-    if !check.drafted || outcome.verdict() != crate::derivation::Verdict::Fails {
+    let Some(drafted) = &check.drafted else {
+        return outcome;
+    };
+    let (table, tied) = (&*drafted.notation, &*drafted.tied);
+    if outcome.verdict() != crate::derivation::Verdict::Fails {
         return outcome;
     }
     let Some(cx) = &outcome.counterexample else {
@@ -66,17 +71,30 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
             Some(e) => (e.reads(&e.left), e.reads(&e.right)),
             None => named.clone(),
         };
-        if l != r {
+        // Only a symbol the paper's text may tie (`tied`) explains a difference.
+        let explains = |names: &BTreeSet<String>| names.iter().any(|n| tied.contains_key(n));
+        if l != r && !explains(&l.symmetric_difference(&r).cloned().collect()) {
+            None
+        } else if l != r {
+            let shown = |only: BTreeSet<&String>| {
+                only.into_iter()
+                    .map(|s| DraftedSymbol {
+                        name: s.clone(),
+                        printed: table.printed_symbol(s).map(str::to_owned),
+                        tied: tied.get(s).cloned(),
+                    })
+                    .collect()
+            };
             Some(Finding::OneSided {
                 chain,
                 equality,
-                left: l.difference(&r).cloned().collect(),
-                right: r.difference(&l).cloned().collect(),
+                left: shown(l.difference(&r).collect()),
+                right: shown(r.difference(&l).collect()),
             })
         } else {
             exact
                 .as_ref()
-                .and_then(|e| e.tie(decls, &cx.indices))
+                .and_then(|e| e.tie(decls, &cx.indices, (table, tied)))
                 .map(|tie| Finding::Tie {
                     chain,
                     equality,
@@ -186,7 +204,12 @@ impl<'a> Exact<'a> {
     /// A tie of a common kind that removes the difference of the sides at the failing
     /// component (`indices`, 1-based), described; `None` when none does (or the
     /// difference is not a polynomial).
-    fn tie(&self, decls: &Decls, indices: &BTreeMap<String, usize>) -> Option<String> {
+    fn tie(
+        &self,
+        decls: &Decls,
+        indices: &BTreeMap<String, usize>,
+        (table, tied): (&Notation, &BTreeMap<String, String>),
+    ) -> Option<String> {
         let at = |side: &Labeled<Quotient>| -> Option<Poly> {
             let assignment: Vec<(char, usize)> = side
                 .labels
@@ -204,7 +227,12 @@ impl<'a> Exact<'a> {
         }
         // A relation that gives one component in the others.
         for v in difference.variables() {
+            let symbol = match (self.components.get(&v), self.env.varying().get(&v)) {
+                (Some((n, _)), _) | (None, Some(Varying::Jet { field: n, .. })) => Some(n),
+                _ => None,
+            };
             if normal.contains(&v)
+                || !symbol.is_some_and(|n| tied.contains_key(n))
                 || self
                     .env
                     .varying()
@@ -216,9 +244,13 @@ impl<'a> Exact<'a> {
             let linear = difference.terms().all(|(m, _)| m.exponent(v) <= 1);
             let beside = difference.terms().any(|(m, _)| m.exponent(v) == 0);
             if linear && beside {
+                let name = self.env.vars.name(v);
+                let why = symbol.and_then(|n| tied.get(n)).map_or(String::new(), |w| {
+                    format!(" (the paper may state one: {w})")
+                });
                 return Some(format!(
-                    "a relation that gives {} in the other symbols",
-                    self.env.vars.name(v)
+                    "a relation that gives {} in the other symbols{why}",
+                    shown(name, table.printed(name).as_deref())
                 ));
             }
         }
@@ -226,6 +258,7 @@ impl<'a> Exact<'a> {
             .variables()
             .iter()
             .filter_map(|v| self.components.get(v).map(|(n, _)| n.as_str()))
+            .filter(|n| tied.contains_key(*n))
             .collect();
         for name in read {
             let Some(&rank) = decls.symbols.get(name) else {
@@ -252,7 +285,9 @@ impl<'a> Exact<'a> {
                         }
                     }
                     if substituted(&difference, &map).is_zero() {
-                        return Some(format!("{name} being {what}"));
+                        let why = &tied[name];
+                        let name = shown(name, table.printed_symbol(name));
+                        return Some(format!("{name} being {what} (the paper may say so: {why})"));
                     }
                 }
             }
@@ -263,12 +298,25 @@ impl<'a> Exact<'a> {
                         .reduce_on_sphere(&vars)
                         .is_ok_and(|p| p.is_zero())
                     {
-                        return Some(format!("{name} being a unit vector"));
+                        let why = &tied[name];
+                        let name = shown(name, table.printed_symbol(name));
+                        return Some(format!(
+                            "{name} being a unit vector (the paper may say so: {why})"
+                        ));
                     }
                 }
             }
         }
         None
+    }
+}
+
+/// A symbol or component named in words: as the paper prints it, then its name in
+/// the file (which an edit names), or the file's name alone.
+pub fn shown(name: &str, printed: Option<&str>) -> String {
+    match printed {
+        Some(p) => format!("`{p}` (`{name}` in the file)"),
+        None => format!("`{name}`"),
     }
 }
 

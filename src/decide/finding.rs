@@ -15,6 +15,18 @@ use std::collections::BTreeMap;
 pub type Point = BTreeMap<String, String>;
 
 /// What a decision found.
+/// A symbol of a drafted file: its name there, and the symbol the paper prints (the
+/// key of the notation entry that names it, as written), when an entry names it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DraftedSymbol {
+    pub name: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub printed: Option<String>,
+    /// Where and why the paper may tie it (the file's `tied`), if it may.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tied: Option<String>,
+}
+
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum Finding {
@@ -76,13 +88,13 @@ pub enum Finding {
     },
     /// A drafted reading (`drafted = true`) fails at equality `equality` of chain
     /// `chain` (both 1-based), but its sides read different symbols: those of `left`
-    /// and `right` (by their names in the file) that the other side does not read. The
-    /// draft took them as independent; the paper may tie them, so nothing is decided.
+    /// and `right` that the other side does not read. The draft took them as
+    /// independent; the paper may tie them, so nothing is decided.
     OneSided {
         chain: usize,
         equality: usize,
-        left: Vec<String>,
-        right: Vec<String>,
+        left: Vec<DraftedSymbol>,
+        right: Vec<DraftedSymbol>,
     },
     /// A drafted reading fails at equality `equality` of chain `chain`, but a tie of a
     /// common kind between the draft's independent symbols (`tie`: a relation giving one

@@ -70,7 +70,7 @@ impl Check {
             verbatim: false,
             // Two readings compared: whether they differ is the question, whatever a
             // draft guessed.
-            drafted: false,
+            drafted: None,
             strategy,
         })
     }

@@ -4,8 +4,8 @@
 use super::model::ParamBox;
 use super::model::{
     Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
-    Figure, Grid, ScalarClaim, Side, Stated, Strategy, ToComplete, Transcript, Use, Verdict,
-    MAX_NESTING,
+    Drafted, Figure, Grid, ScalarClaim, Side, Stated, Strategy, ToComplete, Transcript, Use,
+    Verdict, MAX_NESTING,
 };
 use super::notation::{self, Notation};
 use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
@@ -24,6 +24,10 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use toml::Spanned;
+
+/// How the loader's refusal of sides with different free indices begins: an equation so
+/// printed is ill-formed, and `draft` takes it to tie no symbols.
+pub(crate) const DIFFERENT_FREE_INDICES: &str = "the sides have different free indices";
 
 /// Why derivation files could not be read.
 #[derive(Debug, thiserror::Error)]
@@ -316,6 +320,7 @@ impl Loader {
             defs.push(def);
         }
         let notation = self.notation(&raw.notation, &Notation::default())?;
+        let tied = self.tied(&raw, &decls)?;
         let stated = Arc::new(self.stated(&raw.stated, &decls, &defs)?);
         let mut claims = Vec::new();
         let mut ids: Vec<(String, IdDiag)> = Vec::new();
@@ -353,7 +358,7 @@ impl Loader {
                 id,
                 Box::new(move |m| file.diagnostic(Span::new(span.start, span.end), m)),
             ));
-            let mut claim = self.claim(c, &raw, &decls, &defs, &notation)?;
+            let mut claim = self.claim(c, (&raw, &tied), &decls, &defs, &notation)?;
             claim.stated = stated.clone();
             claims.push(claim);
         }
@@ -383,6 +388,39 @@ impl Loader {
             },
             ids,
         ))
+    }
+
+    /// The symbols a drafted file says the paper may tie, each with where and why: each
+    /// a declared symbol, each line a line; `None` for a file that is not drafted.
+    fn tied(
+        &self,
+        raw: &RawFile,
+        decls: &Decls,
+    ) -> Result<Option<Arc<BTreeMap<String, String>>>, Diagnostic> {
+        // Checked either way; without `drafted = true` (the declarations checked, every
+        // failure decided strictly) it has no effect.
+        let mut out = BTreeMap::new();
+        for t in &raw.tied {
+            let name = t.symbol.get_ref();
+            if !decls.symbols.contains_key(name) {
+                return Err(self
+                    .diag(t.symbol.span(), format!("`{name}` is not a declared symbol"))
+                    .with_help("`tied` names declared symbols (scalars, tensors, fields) by their names in the file"));
+            }
+            let why = t.why.get_ref();
+            let why = match &t.line {
+                Some(line) if *line.get_ref() < 1 => {
+                    return Err(self
+                        .diag(line.span(), "a line number is 1 or more")
+                        .with_help("the line in the paper's source where the tie may be stated"));
+                }
+                Some(line) => format!("line {}: {why}", line.get_ref()),
+                None => why.clone(),
+            };
+            // The first entry of a symbol says why.
+            out.entry(name.clone()).or_insert(why);
+        }
+        Ok(raw.drafted.then(|| Arc::new(out)))
     }
 
     /// The equations `draft` could not read: each id a claim id, each line a line.
@@ -1278,7 +1316,7 @@ impl Loader {
                             .diagnostic(
                                 Span::new(0, s.get_ref().len()),
                                 format!(
-                                    "the sides have different free indices: {} on the left, {} here",
+                                    "{DIFFERENT_FREE_INDICES}: {} on the left, {} here",
                                     letters(&prev.free_letters()),
                                     letters(&cur.free_letters())
                                 ),
@@ -1301,7 +1339,7 @@ impl Loader {
             assumptions,
             chains: out,
             verbatim,
-            drafted: false,
+            drafted: None,
             strategy: Strategy::Exact {
                 domain: ParamBox::default(),
                 hypotheses: Vec::new(),
@@ -1537,7 +1575,7 @@ impl Loader {
     fn claim(
         &self,
         c: &RawClaim,
-        raw: &RawFile,
+        (raw, tied): (&RawFile, &Option<Arc<BTreeMap<String, String>>>),
         decls: &Arc<Decls>,
         defs: &[Definition],
         notation: &Notation,
@@ -1581,7 +1619,14 @@ impl Loader {
             needs_sides,
         )?;
         check.strategy = self.strategy(c, decls, &check.defs)?;
-        check.drafted = raw.drafted;
+        check.drafted = match tied {
+            // The claim's table, then the file's: it names a tie's symbols as printed.
+            Some(tied) => Some(Drafted {
+                notation: Arc::new(self.notation(&c.notation, notation)?.then(notation)),
+                tied: tied.clone(),
+            }),
+            None => None,
+        };
         self.one_pair_if_needed(c, &check)?;
         self.file_assumptions_first(raw, decls, defs, &mut check)?;
         let correction = match &c.correction {
@@ -1624,7 +1669,10 @@ impl Loader {
                     needs_sides,
                 )?;
                 inner.strategy = check.strategy.clone();
-                inner.drafted = raw.drafted;
+                inner.drafted = tied.as_ref().map(|tied| Drafted {
+                    notation: Arc::new(table.clone()),
+                    tied: tied.clone(),
+                });
                 self.corrected_function(r, &mut inner, decls)?;
                 self.one_pair_if_needed(c, &inner)?;
                 let mut assumptions = check.assumptions.clone();

@@ -24,9 +24,9 @@ pub mod uses;
 pub use load::{load_dir, load_files, load_str, load_texts, parse_grid, LoadError};
 pub use model::{
     Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Curve, Definition,
-    DerivationFile, Expression, Extremum, Figure, GradientConvention, Grid, Hypothesis, LimitValue,
-    ParamBox, Relation, Sampling, ScalarClaim, Side, Stated, Stationary, Strategy, ToComplete,
-    Transcript, Use, Verdict,
+    DerivationFile, Drafted, Expression, Extremum, Figure, GradientConvention, Grid, Hypothesis,
+    LimitValue, ParamBox, Relation, Sampling, ScalarClaim, Side, Stated, Stationary, Strategy,
+    ToComplete, Transcript, Use, Verdict,
 };
 pub use reads::{reachable, Reads};
 pub use scalar::{exact_part_checks, exact_parts, stationary_parts, Part};

@@ -255,9 +255,19 @@ pub struct Check {
     /// so a symbol it takes as independent may be tied to others by the paper, in its
     /// text or in an equation the draft could not read. A failure then counts only when
     /// both sides of the failing equality read the same symbols (`decide::drafted`).
-    pub drafted: bool,
+    pub drafted: Option<Drafted>,
     /// How the statement is decided.
     pub strategy: Strategy,
+}
+
+/// What a drafted file says of its symbols, for the failures of its claims.
+#[derive(Clone, Debug)]
+pub struct Drafted {
+    /// The claim's notation table, then the file's: it names symbols as printed.
+    pub notation: std::sync::Arc<super::notation::Notation>,
+    /// The symbols the paper's text may tie to others (`tied`), each with where and
+    /// why: only a tie of one of them makes a failure undecided.
+    pub tied: std::sync::Arc<std::collections::BTreeMap<String, String>>,
 }
 
 impl Check {

@@ -191,6 +191,28 @@ impl Notation {
             with_indices(&e.key, &map)
         })
     }
+    /// The printed symbol of a symbol of the language (no index values): the key as
+    /// written of the first entry whose one reading is the name alone, or the name with
+    /// the key's pattern variables as its indices (`'f_{i}^{(1,2)c}' = "f12c_i"` gives
+    /// `f12c` ↦ `f_{i}^{(1,2)c}`). None for a symbol no entry names alone.
+    pub fn printed_symbol(&self, symbol: &str) -> Option<&str> {
+        self.entries.iter().find_map(|e| {
+            let [value] = e.values.as_slice() else {
+                return None;
+            };
+            let fits = if e.vars.is_empty() {
+                value == symbol
+            } else {
+                value.rsplit_once('_').is_some_and(|(base, letters)| {
+                    let distinct: BTreeSet<char> = letters.chars().collect();
+                    base == symbol
+                        && distinct == e.vars
+                        && distinct.len() == letters.chars().count()
+                })
+            };
+            (fits && is_name(symbol)).then_some(e.key.as_str())
+        })
+    }
 }
 
 /// A name of the language with no indices: a letter, then letters and digits.
@@ -850,7 +872,12 @@ impl Translator<'_> {
             None => (sub.text.as_str(), None),
         };
         let slots_ok = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric());
-        if !slots_ok(indices) || derivs.is_some_and(|d| !slots_ok(d)) {
+        // A scalar field's derivative has no index slots before the comma (`\phi_{,jk}`).
+        let scalar_field = indices.is_empty()
+            && derivs.is_some()
+            && self.decls.fields.contains_key(name)
+            && self.decls.symbols.get(name) == Some(&0);
+        if !(slots_ok(indices) || scalar_field) || derivs.is_some_and(|d| !slots_ok(d)) {
             return refuse(
                 sub.span,
                 format!(
@@ -860,6 +887,7 @@ impl Translator<'_> {
             );
         }
         let known = matches!(name, "delta" | "eps")
+            || scalar_field
             || self.decls.normal.as_deref() == Some(name)
             || self.decls.symbols.get(name).is_some_and(|&r| r > 0)
             || self
@@ -961,6 +989,12 @@ mod tests {
         assert_eq!(t.printed("G1_21").as_deref(), Some(r"\Gamma_{21}^{(1)}"));
         assert_eq!(t.printed("Dw_23").as_deref(), Some(r"w_{2,3}^c"));
         assert_eq!(t.printed("tb").as_deref(), Some(r"\bar\tau"));
+        assert_eq!(t.printed_symbol("G1"), Some(r"\Gamma_{mi}^{(1)}"));
+        assert_eq!(t.printed_symbol("tb"), Some(r"\bar\tau"));
+        assert_eq!(t.printed_symbol("Dw"), Some(r"w_{i,m}^c"));
+        for v in ["G1_mi", "tt", "P", "Dw_im"] {
+            assert_eq!(t.printed_symbol(v), None, "{v}");
+        }
         // Not a variable an entry names alone, or the wrong number of indices.
         for v in ["G1_2", "G1_213", "G1", "Dw_ab", "tt_1", "V", "P"] {
             assert_eq!(t.printed(v), None, "{v}");

@@ -26,6 +26,11 @@ pub struct RawFile {
     /// Written by `draft`: the equations it could not read (`verify` lists them).
     #[serde(default)]
     pub to_complete: Vec<RawToComplete>,
+    /// Written by `draft`: the declared symbols the paper's text may tie to others (a
+    /// sentence, an equation left to complete, a labelled variant), each with where
+    /// and why. Only a tie of these makes a drafted failure undecided.
+    #[serde(default)]
+    pub tied: Vec<RawTied>,
     #[serde(default)]
     pub assume: Vec<S>,
     #[serde(default)]
@@ -66,6 +71,15 @@ pub struct RawToComplete {
     pub line: Spanned<i64>,
     pub reason: S,
     pub edit: Option<S>,
+}
+
+/// A symbol the paper may tie to others, as `draft` found it.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTied {
+    pub symbol: S,
+    pub line: Option<Spanned<i64>>,
+    pub why: S,
 }
 
 /// `[[figure]]`: curves of scalar expressions against one parameter (`plot`).

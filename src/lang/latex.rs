@@ -16,7 +16,8 @@
 //! or guesses. Two readings are fixed conventions, stated here and in the guide (docs/src/reading.md):
 //! `a b/c d` is `(a b)/(c d)` (a slash divides the whole product on its left by the
 //! whole product on its right, as in `2R_g S/3V`), and a symbol written against a
-//! parenthesised single symbol, `w(y)`, is refused as a possible function application.
+//! parenthesised single symbol or list, `w(y)`, `\theta(x_1, x_2)`, is refused as a possible
+//! function application.
 
 use super::diag::Span;
 
@@ -624,9 +625,10 @@ impl<'a> Reader<'a> {
                 );
             }
             let f = self.factor()?;
-            // `w(y)`: a symbol against a bracketed single symbol may be a function's
-            // argument rather than a product.
-            if let (Some(prev), MathKind::Atom(_)) = (factors.last(), &f.kind) {
+            // `w(y)`, `\theta(x_1, x_2)`: a symbol against a bracketed single symbol or
+            // list may be a function's arguments rather than a product.
+            if let (Some(prev), MathKind::Atom(_) | MathKind::Tuple(_)) = (factors.last(), &f.kind)
+            {
                 let prev: &Math = prev;
                 let bracketed = self.src[f.span.start..].starts_with('(');
                 if bracketed
@@ -636,7 +638,11 @@ impl<'a> Reader<'a> {
                     return self.err(
                         prev.span.start,
                         f.span.end,
-                        "a symbol followed by a bracketed symbol reads as a function application f(x); the reader does not guess",
+                        if matches!(f.kind, MathKind::Tuple(_)) {
+                            "a symbol followed by a bracketed list reads as a function application f(x, y); the reader does not guess"
+                        } else {
+                            "a symbol followed by a bracketed symbol reads as a function application f(x); the reader does not guess"
+                        },
                     );
                 }
             }

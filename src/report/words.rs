@@ -100,16 +100,23 @@ pub fn finding(f: &Finding) -> String {
             left,
             right,
         } => {
-            let names = |names: &[String]| match names {
-                [] => String::new(),
-                [one] => format!("`{one}`"),
-                [init @ .., last] => format!(
-                    "{} and `{last}`",
-                    init.iter()
-                        .map(|n| format!("`{n}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
+            // As the paper prints it, then the file's name (which an edit names).
+            let names = |names: &[crate::decide::finding::DraftedSymbol]| {
+                let shown: Vec<String> = names
+                    .iter()
+                    .map(|s| {
+                        let name = crate::decide::drafted::shown(&s.name, s.printed.as_deref());
+                        match &s.tied {
+                            Some(why) => format!("{name} (which the paper may tie: {why})"),
+                            None => name,
+                        }
+                    })
+                    .collect();
+                match shown.as_slice() {
+                    [] => String::new(),
+                    [one] => one.clone(),
+                    [init @ .., last] => format!("{} and {last}", init.join(", ")),
+                }
             };
             let reads = match (left.is_empty(), right.is_empty()) {
                 (false, false) => format!(

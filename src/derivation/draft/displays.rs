@@ -6,7 +6,8 @@
 //!
 //! A statement is flattened for the reader: alignment marks (`&`, `\\`, `aligned`,
 //! `split`) are removed, and a row that starts with a relation (`&= …`) continues the
-//! row before it, which then carries the number of the last.
+//! row before it: the chain carries the number of the last row, and a numbered row
+//! before it is a statement of its own as well.
 
 /// One numbered statement.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -139,6 +140,11 @@ pub fn numbered(text: &str, markdown: bool) -> (Vec<Display>, usize) {
                     }
                     match pending.as_mut() {
                         Some(p) if starts_with_relation(&flat) => {
+                            // Both rows numbered (`σ &= Cε \\ &= λ…`, (2) and (3)):
+                            // (2) is its row, (3) the chain up to its own row.
+                            if number.is_some() && !p.number.is_empty() {
+                                out.push(p.clone());
+                            }
                             p.latex = format!("{} {}", p.latex, without_spacing(&flat));
                             if number.is_some() {
                                 p.number = number.unwrap_or_default();
@@ -251,31 +257,112 @@ pub fn live(text: &str, markdown: bool) -> String {
     text
 }
 
-/// The inline formulas of the paper's text that are equalities (`$J_2 = \frac12
-/// s_{ij}s_{ij}$`, `\(p = 0\)`), each with its line: a symbol such a sentence defines is
-/// no display's to define. A `$$` (a display) is not inline, and a formula does not run
-/// past a blank line; an escaped dollar is text.
-pub fn inline_equalities(text: &str, markdown: bool) -> Vec<(usize, String)> {
+/// The words that lead into a display starting on line `line` (1-based) of `live` (the
+/// paper's text, [`live`]): the last sentence before it, back to a blank line or the
+/// end of another display, its inline formulas left in. "The Cauchy stress is symmetric,"
+/// before `\sigma_{ij} = \sigma_{ji}`.
+pub fn lead_in(live: &str, line: usize) -> String {
+    let lines: Vec<&str> = live.lines().collect();
+    let Some(first) = line.checked_sub(1).and_then(|k| lines.get(k)) else {
+        return String::new();
+    };
+    // The display may start in the middle of its line.
+    let opening = ["\\begin{", "$$", "\\["]
+        .iter()
+        .filter_map(|o| first.find(o))
+        .min()
+        .unwrap_or(first.len());
+    let mut text = vec![&first[..opening]];
+    // Blank lines just above a display (a Markdown paragraph of its own) are skipped.
+    let mut above = first[..opening].trim().is_empty();
+    for prior in lines[..line - 1].iter().rev() {
+        let display_end = ["\\end{", "$$", "\\]", "\\\\"]
+            .iter()
+            .any(|e| prior.contains(e));
+        if prior.trim().is_empty() && above {
+            continue;
+        }
+        above = false;
+        if prior.trim().is_empty() || display_end {
+            break;
+        }
+        text.push(prior);
+    }
+    text.reverse();
+    let text = text.join(" ");
+    let start = sentence_end(&text).unwrap_or(0);
+    text[start..].trim().to_owned()
+}
+
+/// An inline formula of the paper's text (`$…$`, `\(…\)`): its line, its body, and the
+/// words of its sentence (the formulas in it left out).
+#[derive(Clone, Debug)]
+pub struct Inline {
+    pub line: usize,
+    pub body: String,
+    pub words: String,
+}
+
+/// The inline formulas of the paper's text, each with its line and the words of its
+/// sentence. A `$$` (a display) is not inline, and a formula does not run past a blank
+/// line; an escaped dollar is text.
+pub fn inline_formulas(text: &str, markdown: bool) -> Vec<Inline> {
     let live = live(text, markdown);
     let mut out = Vec::new();
     for (mut line, paragraph) in paragraphs(&live) {
+        // (offset in the paragraph, line, body) of each formula; the words between.
+        let mut found: Vec<(usize, usize, String)> = Vec::new();
+        let mut words = String::new();
         let mut rest = paragraph.as_str();
         while let Some((open, close, at)) = next_inline(rest) {
             let body_start = at + open.len();
             let Some(end) = rest[body_start..].find(close) else {
                 break;
             };
-            let body = &rest[body_start..body_start + end];
+            let here = line + rest[..at].matches('\n').count();
+            words.push_str(&rest[..at]);
+            found.push((
+                words.len(),
+                here,
+                rest[body_start..body_start + end].trim().to_owned(),
+            ));
+            // A formula stands for a word in its sentence.
+            words.push_str(" x ");
             let skip = body_start + end + close.len();
-            if body.contains('=') {
-                let here = line + rest[..at].matches('\n').count();
-                out.push((here, body.trim().to_owned()));
-            }
             line += rest[..skip].matches('\n').count();
             rest = &rest[skip..];
         }
+        words.push_str(rest);
+        for (at, line, body) in found {
+            let start = sentence_end(&words[..at]).unwrap_or(0);
+            let stop = sentence_end_after(&words[at..]).map_or(words.len(), |k| at + k);
+            out.push(Inline {
+                line,
+                body,
+                words: words[start..stop].to_owned(),
+            });
+        }
     }
     out
+}
+
+/// Where the last sentence of `text` starts: after its last `.`, `?` or `!` followed by
+/// white space.
+fn sentence_end(text: &str) -> Option<usize> {
+    text.char_indices()
+        .zip(text.chars().skip(1))
+        .filter(|((_, c), next)| matches!(c, '.' | '?' | '!') && next.is_whitespace())
+        .map(|((k, _), _)| k + 1)
+        .last()
+}
+
+/// Where the first sentence of `text` ends: at its first `.`, `?` or `!` followed by
+/// white space (or the end).
+fn sentence_end_after(text: &str) -> Option<usize> {
+    text.char_indices()
+        .zip(text.chars().skip(1).map(Some).chain([None]))
+        .find(|((_, c), next)| matches!(c, '.' | '?' | '!') && next.is_none_or(char::is_whitespace))
+        .map(|((k, _), _)| k + 1)
 }
 
 /// The next inline formula's opening in `s`: (opening, closing, where), skipping `$$`
@@ -583,6 +670,42 @@ mod tests {
                 ("3".to_owned(), "p = q".to_owned()),
             ]
         );
+    }
+
+    #[test]
+    fn a_numbered_row_before_a_continuation_is_a_statement_of_its_own() {
+        let text = "\\begin{align} s &= a \\\\ &= b \\\\ t &= c \\nonumber \\\\ &= d \\end{align}";
+        assert_eq!(
+            numbers(text),
+            vec![
+                ("1".to_owned(), "s = a".to_owned()),
+                ("2".to_owned(), "s = a = b".to_owned()),
+                ("3".to_owned(), "t = c = d".to_owned()),
+            ]
+        );
+    }
+
+    #[test]
+    fn inline_formulas_carry_the_words_of_their_sentence_and_displays_their_lead_in() {
+        let text = "First $a = 1$ here. The stress $s_{ij}$ is\nsymmetric. Last.\n\nnext $b$";
+        let found = inline_formulas(text, false);
+        let got: Vec<(usize, &str, &str)> = found
+            .iter()
+            .map(|f| (f.line, f.body.as_str(), f.words.as_str()))
+            .collect();
+        assert_eq!(
+            got,
+            vec![
+                (1, "a = 1", "First  x  here."),
+                (1, "s_{ij}", " The stress  x  is\nsymmetric."),
+                (4, "b", "next  x "),
+            ]
+        );
+        let live = "Intro. The stress is symmetric,\n\\begin{equation} s = t \\end{equation}\nThen\n\n$$ u = v (2)$$";
+        assert_eq!(lead_in(live, 2), "The stress is symmetric,");
+        assert_eq!(lead_in(live, 5), "Then");
+        assert_eq!(lead_in("$$ a = b (1)$$", 1), "");
+        assert_eq!(lead_in(live, 99), "");
     }
 
     #[test]

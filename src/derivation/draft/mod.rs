@@ -68,6 +68,8 @@ struct Equation {
     edit: Option<String>,
     /// Decided by sampling (its exact decision asked for it).
     numeric: bool,
+    /// The sentence of the text that leads into it ([`displays::lead_in`]).
+    lead_in: String,
     /// The symbols it reads (identities).
     reads: BTreeSet<Key>,
     /// Their names in the file.
@@ -107,7 +109,8 @@ pub fn draft(
         .then(|| normal_in(source, markdown))
         .flatten();
     let normal = options.normal.as_deref().or(stated.as_deref());
-    let prose = displays::inline_equalities(source, markdown);
+    let prose = displays::inline_formulas(source, markdown);
+    let live = displays::live(source, markdown);
     let mut seen_ids = BTreeSet::new();
     let mut equations: Vec<Equation> = found
         .into_iter()
@@ -134,6 +137,7 @@ pub fn draft(
                 latex: d.latex,
                 unread,
                 edit: None,
+                lead_in: displays::lead_in(&live, d.line),
                 reads: BTreeSet::new(),
                 names: BTreeSet::new(),
                 defines: Vec::new(),
@@ -440,17 +444,15 @@ fn normal_in(source: &str, markdown: bool) -> Option<String> {
                     found.insert(letter);
                 }
             }
-            // "Let $n$ be the unit normal": the formula before "be the".
-            let lead = before
-                .len()
-                .checked_sub(6)
-                .filter(|&k| before.is_char_boundary(k));
-            let verb = lead.is_some_and(|k| {
-                let w = before[k..].to_ascii_lowercase();
-                w == "be the" || w == "is the"
+            // "Let $n$ be the unit normal", "where $n$ is a unit vector": the formula
+            // before the verb.
+            let lead = VERBS.iter().find_map(|verb| {
+                let k = before.len().checked_sub(verb.len())?;
+                let w = before.get(k..)?;
+                let word_start = before[..k].ends_with(char::is_whitespace);
+                (w.eq_ignore_ascii_case(verb) && word_start).then_some(k)
             });
             if let Some(b) = lead
-                .filter(|_| verb)
                 .map(|k| before[..k].trim_end())
                 .and_then(|b| b.strip_suffix('$'))
             {
@@ -464,10 +466,67 @@ fn normal_in(source: &str, markdown: bool) -> Option<String> {
             }
         }
     }
+    // "with $n_k n_k = 1$", "$|\mathbf{n}| = 1$": a vector of unit length, written n.
+    for f in displays::inline_formulas(source, markdown) {
+        if let Some(letter) = unit_length(&f.body).filter(|l| l == "n") {
+            found.insert(letter);
+        }
+    }
     match found.len() {
         1 => found.into_iter().next(),
         _ => None,
     }
+}
+
+/// The words between a vector and "unit normal" or "unit vector" that say it is one.
+const VERBS: [&str; 8] = [
+    "be the",
+    "is the",
+    "be a",
+    "is a",
+    "denotes the",
+    "denotes a",
+    "denote the",
+    "denote a",
+];
+
+/// The letter of a vector an inline formula says is of unit length: `n_k n_k = 1`,
+/// `|n| = 1`, `\|\mathbf{n}\| = 1`, `n \cdot n = 1`.
+fn unit_length(formula: &str) -> Option<String> {
+    let f: String = formula.chars().filter(|c| !c.is_whitespace()).collect();
+    let (left, right) = f.split_once('=')?;
+    if right != "1" {
+        return None;
+    }
+    let norm = ["\\|", "|", "\\lVert", "\\lvert", "\\left|", "\\left\\|"]
+        .iter()
+        .find_map(|open| {
+            let inner = left.strip_prefix(open)?;
+            ["\\|", "|", "\\rVert", "\\rvert", "\\right|", "\\right\\|"]
+                .iter()
+                .find_map(|close| inner.strip_suffix(close))
+        });
+    if let Some(v) = norm {
+        return vector_letter(v);
+    }
+    if let Some((a, b)) = left.split_once("\\cdot") {
+        return (a == b).then(|| vector_letter(a)).flatten();
+    }
+    // x_k x_k, x_{k}x_{k}: one letter with one index, twice.
+    let half = left.len() / 2;
+    let (a, b) = (left.get(..half)?, left.get(half..)?);
+    let indexed = a.contains('_');
+    (a == b && indexed)
+        .then(|| vector_letter_any_index(a))
+        .flatten()
+}
+
+/// `n_q` or `n_{q}` for any one index letter q: the vector's letter.
+fn vector_letter_any_index(f: &str) -> Option<String> {
+    let (v, index) = f.split_once('_')?;
+    let index = index.trim_start_matches('{').trim_end_matches('}');
+    let one = index.len() == 1 && index.chars().all(|c| c.is_ascii_lowercase());
+    one.then(|| vector_letter(v)).flatten()
 }
 
 /// `n`, `n_i`, `n_{i}`, `\mathbf{n}`, `\boldsymbol{n}`, `\bm{n}`: the one Latin letter of a
@@ -549,7 +608,7 @@ fn write(
     equations: &mut [Equation],
     (dimension, normal): (usize, Option<&str>),
     unnumbered: (usize, usize),
-    prose: &[(usize, String)],
+    prose: &[displays::Inline],
 ) -> Option<String> {
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
@@ -594,7 +653,8 @@ fn write(
     // other meaning: the display still defines it.)
     let spaceless = |t: &str| t.chars().filter(|c| !c.is_whitespace()).collect::<String>();
     let mut in_prose: BTreeMap<Key, (usize, BTreeSet<String>)> = BTreeMap::new();
-    for (line, text) in prose {
+    let equalities = prose.iter().filter(|f| f.body.contains('='));
+    for (line, text) in equalities.map(|f| (&f.line, &f.body)) {
         let alias = text.split_once('=').is_some_and(|(_, right)| {
             latex::read(right, &options).is_ok_and(|r| {
                 matches!(&r.parts[..], [part] if matches!(&part.members[..], [m] if matches!(m.kind, MathKind::Atom(_))))
@@ -609,6 +669,8 @@ fn write(
         }
     }
     let mut plain: BTreeSet<Key> = BTreeSet::new();
+    // The symbols each equation left to complete mentions: it may tie them.
+    let mut open: BTreeMap<Key, usize> = BTreeMap::new();
     for (q, eq) in equations.iter_mut().enumerate() {
         eq.reads.clear();
         eq.defines.clear();
@@ -617,6 +679,9 @@ fn write(
                 for part in &p.parts {
                     let members: Vec<&latex::Math> = part.members.iter().collect();
                     let found = symbols::occurrences(&members, normal, &tensors);
+                    for (k, _) in &found {
+                        open.entry(k.clone()).or_insert(q);
+                    }
                     plain.extend(
                         found
                             .iter()
@@ -799,6 +864,12 @@ fn write(
     }
     let defined_keys: BTreeSet<Key> = defined.keys().cloned().collect();
     symbols::unique_names(&mut symbols, &order, &defined_keys);
+    let tied = tied(
+        (equations, &symbols, &defined_keys),
+        (&open, &opaque),
+        prose,
+        (normal, &tensors),
+    );
     for eq in equations.iter_mut() {
         eq.names = eq
             .reads
@@ -981,7 +1052,213 @@ fn write(
         position: position.as_deref(),
         unnumbered,
         with_slots: &with_slots,
+        tied: &tied,
     }))
+}
+
+/// Words of a sentence that say its symbols are tied to others: "equal and opposite",
+/// "symmetric", "deviatoric", "a unit vector", … (a whole word or the start of one).
+const TIE_WORDS: [&str; 14] = [
+    "opposite",
+    "reaction",
+    "symmetric",
+    "deviator",
+    "traceless",
+    "trace-free",
+    "orthogonal",
+    "perpendicular",
+    "incompressib",
+    "isochoric",
+    "constrain",
+    "normalised",
+    "normalized",
+    "coaxial",
+];
+
+/// What may follow "unit" for a tie ("a unit vector", not "per unit volume").
+const UNIT_WHAT: [&str; 5] = ["vector", "normal", "length", "norm", "magnitude"];
+
+/// The tie word of `words`, if any: one of [`TIE_WORDS`] at the start of a word (any
+/// case), or "unit" before one of [`UNIT_WHAT`].
+fn tie_word(words: &str) -> Option<String> {
+    let lower = words.to_lowercase();
+    let tokens: Vec<&str> = lower
+        .split(|c: char| !(c.is_alphanumeric() || c == '-'))
+        .filter(|t| !t.is_empty())
+        .collect();
+    for (k, t) in tokens.iter().enumerate() {
+        if let Some(w) = TIE_WORDS
+            .iter()
+            .find(|w| t.starts_with(**w) || t.starts_with(&format!("anti{w}")))
+        {
+            return Some((*w).to_owned());
+        }
+        // Whole words: "unit vectors", not "unit normalisation".
+        let is_what = |w: &str| {
+            UNIT_WHAT
+                .iter()
+                .any(|u| w == *u || w.strip_suffix('s') == Some(*u))
+        };
+        let unit = *t == "unit" || t.strip_prefix("unit-").is_some_and(is_what);
+        let what = tokens.get(k + 1).is_some_and(|n| is_what(n));
+        if unit && (what || *t != "unit") {
+            return Some("unit".to_owned());
+        }
+    }
+    None
+}
+
+/// The declared symbols the paper may tie to others, by name, each with its line (if
+/// one) and why: an equation left to complete mentions it; a formula of the text
+/// relates it to others, or stands in a sentence that says so ("equal and opposite",
+/// "symmetric", "a unit vector"); or the paper writes a labelled variant of it
+/// (`f^{(1,2)}` beside `f^{(2,1)}`), which it may relate in words.
+fn tied(
+    (equations, symbols, defined): (&[Equation], &BTreeMap<Key, Symbol>, &BTreeSet<Key>),
+    (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
+    prose: &[displays::Inline],
+    (normal, tensors): (Option<&str>, &BTreeSet<String>),
+) -> BTreeMap<String, (Option<usize>, String)> {
+    let declared = |k: &Key| {
+        symbols
+            .get(k)
+            .filter(|s| !s.component && !defined.contains(k))
+    };
+    let mut out: BTreeMap<String, (Option<usize>, String)> = BTreeMap::new();
+    let mut add = |name: &str, line: Option<usize>, why: String| {
+        out.entry(name.to_owned()).or_insert((line, why));
+    };
+    // What the sentence before an equation says of it ("the stress is symmetric,").
+    for e in equations {
+        let Some(w) = tie_word(&e.lead_in) else {
+            continue;
+        };
+        for k in &e.reads {
+            if let Some(s) = declared(k) {
+                add(
+                    &s.name,
+                    Some(e.line),
+                    format!("the sentence before equation ({}) says \"{w}\"", e.number),
+                );
+            }
+        }
+    }
+    for (k, &q) in open {
+        let e = &equations[q];
+        // An equation whose sides carry different free indices is ill-formed: it
+        // states no relation, so it ties nothing.
+        let ill_formed = e
+            .unread
+            .as_deref()
+            .is_some_and(|why| why.starts_with(super::load::DIFFERENT_FREE_INDICES));
+        if ill_formed {
+            continue;
+        }
+        if let Some(s) = declared(k) {
+            add(
+                &s.name,
+                Some(e.line),
+                format!("equation ({}), left to complete, mentions it", e.number),
+            );
+        }
+    }
+    // What the reader cannot read at all is searched for each symbol's printed base.
+    for (q, latex) in opaque {
+        for (k, s) in symbols {
+            let base = k.split('|').nth(1).unwrap_or("");
+            if declared(k).is_some() && mentions(latex, base) {
+                let e = &equations[*q];
+                add(
+                    &s.name,
+                    Some(e.line),
+                    format!("equation ({}), left to complete, may mention it", e.number),
+                );
+            }
+        }
+    }
+    let options = ReadOptions::default();
+    for f in prose {
+        let Ok(read) = latex::read(&f.body, &options) else {
+            continue;
+        };
+        // An equality ties; a condition such as `\mu > 0` does not.
+        let relation = read
+            .parts
+            .iter()
+            .any(|p| p.relations.contains(&latex::Rel::Eq));
+        let word = tie_word(&f.words);
+        let found: Vec<Key> = read
+            .parts
+            .iter()
+            .flat_map(|part| {
+                let members: Vec<&latex::Math> = part.members.iter().collect();
+                symbols::occurrences(&members, normal, tensors)
+            })
+            .map(|(k, _)| k)
+            .collect();
+        // An equation that names a symbol no numbered equation has (`$\rho c_L^2 =
+        // \lambda + 2\mu$`, `$f_i^{(2,1)c} = f_i^c$`) says what that symbol is: it
+        // ties nothing else.
+        let new = found
+            .iter()
+            .any(|k| !symbols.contains_key(k) && !open.contains_key(k));
+        let relation = relation && !new;
+        // `$m$` names the vector `m_i` too: keys compared without their rank.
+        let unranked = |k: &Key| k.rsplit_once('|').map(|(head, _)| head.to_owned());
+        let named: Vec<&Symbol> = found
+            .iter()
+            .flat_map(|k| {
+                symbols
+                    .iter()
+                    .filter(move |(j, _)| unranked(j) == unranked(k))
+                    .filter_map(|(j, _)| declared(j))
+            })
+            .collect();
+        {
+            for s in named {
+                if relation {
+                    add(
+                        &s.name,
+                        Some(f.line),
+                        "an equation in the text relates it to others".to_owned(),
+                    );
+                } else if let Some(w) = &word {
+                    add(&s.name, Some(f.line), format!("its sentence says \"{w}\""));
+                }
+            }
+        }
+    }
+    // A labelled variant: the same base (and name suffix), another accent, label or
+    // primes.
+    let parts = |k: &Key| -> Option<(String, String)> {
+        let f: Vec<&str> = k.split('|').collect();
+        let [accent, base, sup, primes, suffix, _rank] = f[..] else {
+            return None;
+        };
+        Some((
+            format!("{base}|{suffix}"),
+            format!("{accent}|{sup}|{primes}"),
+        ))
+    };
+    for (k, s) in symbols {
+        if declared(k).is_none() {
+            continue;
+        }
+        let Some((stem, label)) = parts(k) else {
+            continue;
+        };
+        let variant = symbols.iter().find(|(j, t)| {
+            !t.component && parts(j).is_some_and(|(st, la)| st == stem && la != label)
+        });
+        if let Some((_, t)) = variant {
+            add(
+                &s.name,
+                None,
+                format!("the paper also writes `{}`", t.key.0),
+            );
+        }
+    }
+    out
 }
 
 struct Render<'a> {
@@ -998,6 +1275,8 @@ struct Render<'a> {
     /// Displays without a number, and numbered equations past [`MAX_EQUATIONS`].
     unnumbered: (usize, usize),
     with_slots: &'a dyn Fn(&Symbol) -> String,
+    /// The declared symbols the paper may tie to others: line and why.
+    tied: &'a BTreeMap<String, (Option<usize>, String)>,
 }
 
 /// The file's text.
@@ -1065,6 +1344,24 @@ fn render(r: Render<'_>) -> String {
                 out.push_str(&format!(", edit = {}", toml_string(&comment(edit))));
             }
             out.push_str(" },\n");
+        }
+        out.push_str("]\n");
+    }
+    if !r.tied.is_empty() {
+        out.push_str(
+            "# The symbols the paper may tie to others, in words or in an equation left to\n",
+        );
+        out.push_str(
+            "# complete: a failure that only a tie of one of them would remove is undecided.\n",
+        );
+        out.push_str("# Delete an entry to decide such failures strictly.\n");
+        out.push_str("tied = [\n");
+        for (name, (line, why)) in r.tied {
+            out.push_str(&format!("  {{ symbol = {}", toml_string(name)));
+            if let Some(l) = line {
+                out.push_str(&format!(", line = {l}"));
+            }
+            out.push_str(&format!(", why = {} }},\n", toml_string(&comment(why))));
         }
         out.push_str("]\n");
     }
@@ -1226,6 +1523,40 @@ fn comment(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn words_that_tie_and_formulas_of_unit_length() {
+        for (words, tie) in [
+            (
+                "their equal and opposite reactions x and x",
+                Some("opposite"),
+            ),
+            ("The Cauchy stress is Symmetric,", Some("symmetric")),
+            ("the antisymmetric part x", Some("symmetric")),
+            ("the deviatoric stress x", Some("deviator")),
+            ("Let x be a unit vector.", Some("unit")),
+            ("the unit-normal x", Some("unit")),
+            ("the power per unit volume x", None),
+            ("Let x be the unit normalisation constant.", None),
+            ("the non-unit normal x", None),
+            ("Let x be the strain.", None),
+        ] {
+            assert_eq!(tie_word(words).as_deref(), tie, "{words}");
+        }
+        for (formula, letter) in [
+            ("n_k n_k = 1", Some("n")),
+            ("n_{i}n_{i}=1", Some("n")),
+            ("|\\mathbf{n}| = 1", Some("n")),
+            ("\\|m\\| = 1", Some("m")),
+            ("n \\cdot n = 1", Some("n")),
+            ("n_k n_k = 2", None),
+            ("n_k m_k = 1", None),
+            ("n_k n_j = 1", None),
+            ("|n| < 1", None),
+        ] {
+            assert_eq!(unit_length(formula).as_deref(), letter, "{formula}");
+        }
+    }
 
     /// The draft of `source` with the default options, nothing refused or sampled.
     fn plain_draft(label: &str, source: &str) -> Draft {

@@ -342,6 +342,8 @@ pub fn unique_names(symbols: &mut BTreeMap<Key, Symbol>, order: &[Key], defined:
             n += 1;
         }
         taken.insert(name.clone());
+        // A renamed symbol (`d` is reserved: `d2`) is read through an entry.
+        s.entry |= name != s.name;
         s.name = name;
     }
 }
