@@ -408,6 +408,13 @@ impl Loader {
                     .with_help("`tied` names declared symbols (scalars, tensors, fields) by their names in the file"));
             }
             let why = t.why.get_ref();
+            // The reason is set in a report's sentence, where a backtick would open code.
+            if let Some(k) = why.find('`') {
+                let at = content_map(&self.file.text, t.why.span(), why)[k];
+                return Err(self
+                    .diag(at..at + 1, "a backtick in `why` would open code in a report")
+                    .with_help("quote a symbol with \" or ', not a backtick"));
+            }
             let why = match &t.line {
                 Some(line) if *line.get_ref() < 1 => {
                     return Err(self

@@ -1254,7 +1254,7 @@ fn tied(
             add(
                 &s.name,
                 None,
-                format!("the paper also writes `{}`", t.key.0),
+                format!("the paper also writes {}", t.key.0),
             );
         }
     }
