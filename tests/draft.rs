@@ -312,6 +312,52 @@ fn papers_written_apart_are_decided_with_no_edit() {
     );
 }
 
+/// The reasons for a tie a text gives around its equations: a clause after an equation
+/// that names a symbol in plain words ("where m_i is a unit vector"), and an equation
+/// the text writes without a number. Without them the same failures are errors.
+#[test]
+fn a_tie_is_read_from_the_clause_after_an_equation_and_from_unnumbered_displays() {
+    let v = |id: &str, v: Verdict| (id.to_owned(), v);
+    let unit = |clause: &str| {
+        format!("\\begin{{equation}}A_{{ik}} = \\mu\\delta_{{ik}} + m_i m_k\\end{{equation}}\n{clause}\n\\begin{{equation}}A_{{ik}} m_k = (1 + \\mu) m_i\\end{{equation}}\n")
+    };
+    let symmetric = |display: &str| {
+        format!(
+            "{display}\n\\begin{{equation}}S_{{ij}} a_i b_j = S_{{ij}} b_i a_j\\end{{equation}}\n"
+        )
+    };
+    for (name, source, want) in [
+        (
+            "clause.tex",
+            unit("where m_i is a unit vector."),
+            Verdict::Undecided,
+        ),
+        (
+            "no-clause.tex",
+            unit("Then it follows that"),
+            Verdict::Fails,
+        ),
+        (
+            "other-clause.tex",
+            unit("where A is a unit vector."),
+            Verdict::Fails,
+        ),
+        (
+            "unnumbered.tex",
+            symmetric("\\begin{equation*}S_{ij} = S_{ji}\\end{equation*}"),
+            Verdict::Undecided,
+        ),
+        ("no-display.tex", symmetric(""), Verdict::Fails),
+    ] {
+        let (toml, verdicts) = drafted(&[&written(name, &source)]);
+        assert_eq!(
+            verdicts.last(),
+            Some(&v(&verdicts.last().unwrap().0, want)),
+            "{name}\n{toml}"
+        );
+    }
+}
+
 /// A draft takes every symbol as independent. A failure whose sides read different
 /// symbols may be a tie the paper states in words (the forces on two faces equal and
 /// opposite), so it is undecided and names them, when the text gives a reason to think

@@ -412,7 +412,10 @@ impl Loader {
             if let Some(k) = why.find('`') {
                 let at = content_map(&self.file.text, t.why.span(), why)[k];
                 return Err(self
-                    .diag(at..at + 1, "a backtick in `why` would open code in a report")
+                    .diag(
+                        at..at + 1,
+                        "a backtick in `why` would open code in a report",
+                    )
                     .with_help("quote a symbol with \" or ', not a backtick"));
             }
             let why = match &t.line {

@@ -52,7 +52,7 @@ pub fn plain(label: &str) -> String {
             let end = rest
                 .find(|c: char| !c.is_ascii_alphabetic())
                 .unwrap_or(rest.len());
-            match greek(&rest[..end]) {
+            match crate::lang::latex::greek_letter(&rest[..end]) {
                 Some(g) => out.push(g),
                 None => out.push_str(&rest[..end]),
             }
@@ -87,35 +87,6 @@ fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
-}
-
-/// A Greek letter named by its LaTeX command.
-fn greek(name: &str) -> Option<char> {
-    let table = [
-        ("alpha", 'α'),
-        ("beta", 'β'),
-        ("gamma", 'γ'),
-        ("delta", 'δ'),
-        ("epsilon", 'ε'),
-        ("varepsilon", 'ε'),
-        ("theta", 'θ'),
-        ("kappa", 'κ'),
-        ("lambda", 'λ'),
-        ("mu", 'μ'),
-        ("nu", 'ν'),
-        ("xi", 'ξ'),
-        ("pi", 'π'),
-        ("rho", 'ρ'),
-        ("sigma", 'σ'),
-        ("tau", 'τ'),
-        ("phi", 'φ'),
-        ("psi", 'ψ'),
-        ("omega", 'ω'),
-        ("Gamma", 'Γ'),
-        ("Delta", 'Δ'),
-        ("Sigma", 'Σ'),
-    ];
-    table.iter().find(|(n, _)| *n == name).map(|(_, c)| *c)
 }
 
 /// TeX-like mathematics as SVG text: single letters italic, `_x`/`_{…}` and `^x`/`^{…}`
@@ -190,7 +161,7 @@ fn math_at(tex: &str, depth: usize) -> String {
                     i += 1;
                 }
                 let name: String = chars[start..i].iter().collect();
-                match greek(&name) {
+                match crate::lang::latex::greek_letter(&name) {
                     Some(g) => {
                         let _ = write!(out, "<tspan font-style=\"italic\">{g}</tspan>");
                     }

@@ -18,6 +18,8 @@ pub struct Display {
     pub latex: String,
     /// The line (1-based) where it starts in the source.
     pub line: usize,
+    /// The line where its display ends (an environment's `\end`, the closing `$$`).
+    pub end: usize,
 }
 
 /// The environments that number their rows, with whether each row is a statement of
@@ -46,12 +48,12 @@ const DEAD_TEX: &[(&str, &str)] = &[
 /// Regions of a Markdown source that are not shown as mathematics.
 const DEAD_MARKDOWN: &[(&str, &str)] = &[("<!--", "-->"), ("```", "```"), ("~~~", "~~~")];
 
-/// Every numbered display of `text` (Markdown when `markdown`, else LaTeX), and how
-/// many displays carry no number.
-pub fn numbered(text: &str, markdown: bool) -> (Vec<Display>, usize) {
+/// Every numbered display of `text` (Markdown when `markdown`, else LaTeX), and every
+/// display (or row) that carries no number.
+pub fn numbered(text: &str, markdown: bool) -> (Vec<Display>, Vec<Display>) {
     let text = live(text, markdown);
     let mut out = Vec::new();
-    let mut unnumbered = 0;
+    let mut unnumbered = Vec::new();
     let mut counter = 0usize;
     let mut at = 0;
     let mut scan = Scan::new(&text);
@@ -73,19 +75,19 @@ pub fn numbered(text: &str, markdown: bool) -> (Vec<Display>, usize) {
                 };
                 let body = &text[body_start..body_start + len];
                 at = body_start + len + close.len();
+                let end = line + text[start..at].matches('\n').count();
                 let (body, tag) = take_tag(body);
                 let (body, trailing) = match tag {
                     Some(t) => (body, Some(t)),
                     None => take_trailing_number(&body),
                 };
-                match trailing {
-                    Some(number) => out.push(Display {
-                        number,
-                        latex: flatten(&body),
-                        line,
-                    }),
-                    None => unnumbered += 1,
-                }
+                let d = Display {
+                    number: trailing.unwrap_or_default(),
+                    latex: flatten(&body),
+                    line,
+                    end,
+                };
+                push_numbered(&mut out, &mut unnumbered, d);
             }
             Kind::Environment(name, starred) => {
                 let full = if starred {
@@ -105,6 +107,7 @@ pub fn numbered(text: &str, markdown: bool) -> (Vec<Display>, usize) {
                 };
                 let body = &text[body_start..body_start + len];
                 at = body_start + len + close.len();
+                let end = line + text[start..at].matches('\n').count();
                 let by_rows = ENVIRONMENTS.iter().any(|&(n, rows)| n == name && rows);
                 let rows: Vec<(usize, String)> = if by_rows {
                     rows_of(body)
@@ -158,6 +161,7 @@ pub fn numbered(text: &str, markdown: bool) -> (Vec<Display>, usize) {
                                 number: number.unwrap_or_default(),
                                 latex: flat.trim().to_owned(),
                                 line: row_line,
+                                end,
                             });
                         }
                     }
@@ -171,9 +175,9 @@ pub fn numbered(text: &str, markdown: bool) -> (Vec<Display>, usize) {
     (out, unnumbered)
 }
 
-fn push_numbered(out: &mut Vec<Display>, unnumbered: &mut usize, d: Display) {
+fn push_numbered(out: &mut Vec<Display>, unnumbered: &mut Vec<Display>, d: Display) {
     if d.number.is_empty() {
-        *unnumbered += 1;
+        unnumbered.push(d);
     } else {
         out.push(d);
     }
@@ -292,6 +296,47 @@ pub fn lead_in(live: &str, line: usize) -> String {
     let text = text.join(" ");
     let start = sentence_end(&text).unwrap_or(0);
     text[start..].trim().to_owned()
+}
+
+/// The words that follow a display ending on line `end` (1-based) of `live`: the first
+/// sentence after it, up to a blank line or another display. "where $n$ is the unit
+/// normal" after `A_{ik} = C_{ijkl} n_j n_l`.
+pub fn lead_out(live: &str, end: usize) -> String {
+    let lines: Vec<&str> = live.lines().collect();
+    let Some(last) = end.checked_sub(1).and_then(|k| lines.get(k)) else {
+        return String::new();
+    };
+    // What follows the display's closing on its last line (`\end{…}`, `$$`, `\]`).
+    let closing = ["\\end{", "$$", "\\]"]
+        .iter()
+        .filter_map(|c| {
+            let at = last.rfind(c)?;
+            let after = &last[at + c.len()..];
+            Some(if *c == "\\end{" {
+                after.find('}').map_or("", |k| &after[k + 1..])
+            } else {
+                after
+            })
+        })
+        .min_by_key(|rest| rest.len())
+        .unwrap_or("");
+    let mut text = vec![closing];
+    // Blank lines just below a display (a Markdown paragraph of its own) are skipped.
+    let mut below = closing.trim().is_empty();
+    for next in lines.iter().skip(end) {
+        if next.trim().is_empty() && below {
+            continue;
+        }
+        below = false;
+        let display = ["\\begin{", "$$", "\\["].iter().any(|o| next.contains(o));
+        if next.trim().is_empty() || display {
+            break;
+        }
+        text.push(next);
+    }
+    let text = text.join(" ");
+    let stop = sentence_end_after(&text).unwrap_or(text.len());
+    text[..stop].trim().to_owned()
 }
 
 /// An inline formula of the paper's text (`$…$`, `\(…\)`): its line, its body, and the
@@ -647,7 +692,8 @@ mod tests {
     fn markdown_displays_carry_their_numbers() {
         let text = "intro\n$$P = a + b \\quad (3)$$\n$$x = y$$\ntext\n$$\\begin{aligned} Q &= a \\\\ &= b \\end{aligned} \\quad (4)$$";
         let (found, unnumbered) = numbered(text, true);
-        assert_eq!(unnumbered, 1);
+        assert_eq!(unnumbered.len(), 1);
+        assert_eq!((unnumbered[0].line, unnumbered[0].end), (3, 3));
         assert_eq!(found[0].line, 2);
         assert_eq!(
             numbers(text),
@@ -705,6 +751,10 @@ mod tests {
         assert_eq!(lead_in(live, 2), "The stress is symmetric,");
         assert_eq!(lead_in(live, 5), "Then");
         assert_eq!(lead_in("$$ a = b (1)$$", 1), "");
+        let live = "\\begin{equation} a = b \\end{equation} where $n$ is\na unit vector. More.\n\n$$ c = d (2)$$\n\nNext line.";
+        assert_eq!(lead_out(live, 1), "where $n$ is a unit vector.");
+        assert_eq!(lead_out(live, 4), "Next line.");
+        assert_eq!(lead_out(live, 99), "");
         assert_eq!(lead_in(live, 99), "");
     }
 

@@ -68,8 +68,10 @@ struct Equation {
     edit: Option<String>,
     /// Decided by sampling (its exact decision asked for it).
     numeric: bool,
-    /// The sentence of the text that leads into it ([`displays::lead_in`]).
+    /// The sentence of the text that leads into it ([`displays::lead_in`]), and the one
+    /// that follows it ([`displays::lead_out`]: "where n is the unit normal").
     lead_in: String,
+    lead_out: String,
     /// The symbols it reads (identities).
     reads: BTreeSet<Key>,
     /// Their names in the file.
@@ -94,11 +96,11 @@ pub fn draft(
     let markdown = label.ends_with(".md")
         || label.ends_with(".markdown")
         || (!label.contains('.') && source.contains("$$") && !source.contains("\\begin{document}"));
-    let (mut found, unnumbered) = displays::numbered(source, markdown);
+    let (mut found, unnumbered_displays) = displays::numbered(source, markdown);
     // Past the most a draft takes, equations are counted in the header, not drafted.
     let beyond = found.len().saturating_sub(MAX_EQUATIONS);
     found.truncate(MAX_EQUATIONS);
-    let unnumbered = (unnumbered, beyond);
+    let unnumbered = (unnumbered_displays.len(), beyond);
     let dimension = options
         .dimension
         .or_else(|| dimension_in(source, markdown))
@@ -109,8 +111,14 @@ pub fn draft(
         .then(|| normal_in(source, markdown))
         .flatten();
     let normal = options.normal.as_deref().or(stated.as_deref());
-    let prose = displays::inline_formulas(source, markdown);
     let live = displays::live(source, markdown);
+    let mut prose = displays::inline_formulas(source, markdown);
+    // A display without a number is an equation of the text too: it may tie symbols.
+    prose.extend(unnumbered_displays.iter().map(|d| displays::Inline {
+        line: d.line,
+        body: d.latex.clone(),
+        words: displays::lead_in(&live, d.line),
+    }));
     let mut seen_ids = BTreeSet::new();
     let mut equations: Vec<Equation> = found
         .into_iter()
@@ -138,6 +146,7 @@ pub fn draft(
                 unread,
                 edit: None,
                 lead_in: displays::lead_in(&live, d.line),
+                lead_out: displays::lead_out(&live, d.end),
                 reads: BTreeSet::new(),
                 names: BTreeSet::new(),
                 defines: Vec::new(),
@@ -1075,6 +1084,25 @@ const TIE_WORDS: [&str; 14] = [
     "coaxial",
 ];
 
+/// Whether `words` name the symbol of `key` as a word of their own: its base letter
+/// (`n` in "where n_i is"), a Greek base by its letter or its command (`σ`, `\sigma`).
+fn names(words: &str, key: &Key) -> bool {
+    let base = key.split('|').nth(1).unwrap_or("");
+    let greek = base
+        .strip_prefix('\\')
+        .and_then(|name| crate::lang::latex::greek_letter(name));
+    let alone = |w: &str| {
+        !w.is_empty()
+            && words.match_indices(w).any(|(at, _)| {
+                let before = words[..at].chars().next_back();
+                let after = words[at + w.len()..].chars().next();
+                !before.is_some_and(char::is_alphanumeric)
+                    && !after.is_some_and(char::is_alphabetic)
+            })
+    };
+    alone(base) || greek.is_some_and(|g| alone(&g.to_string()))
+}
+
 /// What may follow "unit" for a tie ("a unit vector", not "per unit volume").
 const UNIT_WHAT: [&str; 5] = ["vector", "normal", "length", "norm", "magnitude"];
 
@@ -1128,17 +1156,29 @@ fn tied(
     let mut add = |name: &str, line: Option<usize>, why: String| {
         out.entry(name.to_owned()).or_insert((line, why));
     };
-    // What the sentence before an equation says of it ("the stress is symmetric,").
+    // What the sentence that leads into an equation says of it ("The Cauchy stress is
+    // symmetric,"), and the clause that continues it says of a symbol it names ("where
+    // n_i is the unit vector normal to the plane", in words or formulas).
     for e in equations {
-        let Some(w) = tie_word(&e.lead_in) else {
-            continue;
-        };
+        let before = tie_word(&e.lead_in);
+        let lower = e.lead_out.to_lowercase();
+        let continues = ["where ", "with ", "in which ", "here "]
+            .iter()
+            .any(|w| lower.starts_with(w));
+        let after = continues.then(|| tie_word(&e.lead_out)).flatten();
         for k in &e.reads {
-            if let Some(s) = declared(k) {
+            let Some(s) = declared(k) else { continue };
+            if let Some(w) = &before {
                 add(
                     &s.name,
                     Some(e.line),
                     format!("the sentence before equation ({}) says \"{w}\"", e.number),
+                );
+            } else if let Some(w) = after.as_ref().filter(|_| names(&e.lead_out, k)) {
+                add(
+                    &s.name,
+                    Some(e.line),
+                    format!("the sentence after equation ({}) says \"{w}\"", e.number),
                 );
             }
         }
@@ -1251,11 +1291,7 @@ fn tied(
             !t.component && parts(j).is_some_and(|(st, la)| st == stem && la != label)
         });
         if let Some((_, t)) = variant {
-            add(
-                &s.name,
-                None,
-                format!("the paper also writes {}", t.key.0),
-            );
+            add(&s.name, None, format!("the paper also writes {}", t.key.0));
         }
     }
     out
@@ -1523,6 +1559,16 @@ fn comment(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn words_name_a_symbol_by_its_base_letter() {
+        let key = |base: &str| format!("|{base}||0||1");
+        assert!(names("where n_i is the unit normal", &key("n")));
+        assert!(names("where σ is symmetric", &key("\\sigma")));
+        assert!(names("with \\sigma_{ij} symmetric", &key("\\sigma")));
+        assert!(!names("where nn is", &key("n")));
+        assert!(!names("in which the normal", &key("n")));
+    }
 
     #[test]
     fn words_that_tie_and_formulas_of_unit_length() {
