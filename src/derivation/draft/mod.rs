@@ -1090,7 +1090,7 @@ fn names(words: &str, key: &Key) -> bool {
     let base = key.split('|').nth(1).unwrap_or("");
     let greek = base
         .strip_prefix('\\')
-        .and_then(|name| crate::lang::latex::greek_letter(name));
+        .and_then(crate::lang::latex::greek_letter);
     let alone = |w: &str| {
         !w.is_empty()
             && words.match_indices(w).any(|(at, _)| {
