@@ -27,12 +27,15 @@ use super::finding::{DraftedSymbol, Finding};
 use super::Outcome;
 use crate::algebra::{assignments, Quotient};
 use crate::derivation::notation::Notation;
+use crate::derivation::TiedSymbol;
 use crate::derivation::{reachable, Check, Side};
+use crate::eval::exact::env::{component_name, jet_name};
 use crate::eval::exact::env::{ExactEnv, Varying};
 use crate::eval::labeled::Labeled;
 use crate::kernel::poly::{Monomial, Poly};
 use crate::kernel::Var;
 use crate::lang::{Decls, NodeKind, Target};
+use num_traits::Zero;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 /// `outcome` unchanged, unless it is a failure of a drafted check that a tie between
@@ -66,22 +69,21 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
     let named = (named(check, l_node), named(check, r_node));
     // Past the claim's time limit the analysis stops, and nothing is said of the paper.
     let analysed = crate::kernel::interrupt::stoppable(|| {
-        let exact = Exact::of(decls, check, (left, right));
+        let mut exact = Exact::of(decls, check, (left, right));
         let (l, r) = match &exact {
             Some(e) => (e.reads(&e.left), e.reads(&e.right)),
             None => named.clone(),
         };
-        // Only a symbol the paper's text may tie (`tied`) explains a difference.
-        let explains = |names: &BTreeSet<String>| names.iter().any(|n| tied.contains_key(n));
-        if l != r && !explains(&l.symmetric_difference(&r).cloned().collect()) {
-            None
-        } else if l != r {
+        // Only a symbol the paper's text may tie to others (`tied`, for any tie, not a
+        // trace only) explains sides that read different symbols.
+        let any_tie = |n: &String| tied.get(n).is_some_and(|t| !t.trace_only);
+        if l != r && l.symmetric_difference(&r).any(any_tie) {
             let shown = |only: BTreeSet<&String>| {
                 only.into_iter()
                     .map(|s| DraftedSymbol {
                         name: s.clone(),
                         printed: table.printed_symbol(s).map(str::to_owned),
-                        tied: tied.get(s).cloned(),
+                        tied: tied.get(s).map(|t| t.why.clone()),
                     })
                     .collect()
             };
@@ -92,8 +94,10 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
                 right: shown(r.difference(&l).collect()),
             })
         } else {
+            // The same symbols, or none the text ties to others: a tie of one symbol
+            // (a relation, a symmetry, a unit length, a zero trace) may still remove it.
             exact
-                .as_ref()
+                .as_mut()
                 .and_then(|e| e.tie(decls, &cx.indices, (table, tied)))
                 .map(|tie| Finding::Tie {
                     chain,
@@ -205,10 +209,10 @@ impl<'a> Exact<'a> {
     /// component (`indices`, 1-based), described; `None` when none does (or the
     /// difference is not a polynomial).
     fn tie(
-        &self,
+        &mut self,
         decls: &Decls,
         indices: &BTreeMap<String, usize>,
-        (table, tied): (&Notation, &BTreeMap<String, String>),
+        (table, tied): (&Notation, &BTreeMap<String, TiedSymbol>),
     ) -> Option<String> {
         let at = |side: &Labeled<Quotient>| -> Option<Poly> {
             let assignment: Vec<(char, usize)> = side
@@ -232,7 +236,7 @@ impl<'a> Exact<'a> {
                 _ => None,
             };
             if normal.contains(&v)
-                || !symbol.is_some_and(|n| tied.contains_key(n))
+                || !symbol.is_some_and(|n| tied.get(n).is_some_and(|t| !t.trace_only))
                 || self
                     .env
                     .varying()
@@ -245,8 +249,8 @@ impl<'a> Exact<'a> {
             let beside = difference.terms().any(|(m, _)| m.exponent(v) == 0);
             if linear && beside {
                 let name = self.env.vars.name(v);
-                let why = symbol.and_then(|n| tied.get(n)).map_or(String::new(), |w| {
-                    format!(" (the paper may state one: {w})")
+                let why = symbol.and_then(|n| tied.get(n)).map_or(String::new(), |t| {
+                    format!(" (the paper may state one: {})", t.why)
                 });
                 return Some(format!(
                     "a relation that gives {} in the other symbols{why}",
@@ -254,12 +258,19 @@ impl<'a> Exact<'a> {
                 ));
             }
         }
+        // A symmetric tensor and a unit vector are ties narrow enough to name whether or
+        // not the text gives a reason: they remove only a difference that vanishes for
+        // every such tensor or vector, and papers often leave them unsaid.
         let read: BTreeSet<&str> = difference
             .variables()
             .iter()
             .filter_map(|v| self.components.get(v).map(|(n, _)| n.as_str()))
-            .filter(|n| tied.contains_key(*n))
             .collect();
+        let said = |name: &str| {
+            tied.get(name).map_or(String::new(), |t| {
+                format!(" (the paper may say so: {})", t.why)
+            })
+        };
         for name in read {
             let Some(&rank) = decls.symbols.get(name) else {
                 continue;
@@ -285,9 +296,9 @@ impl<'a> Exact<'a> {
                         }
                     }
                     if substituted(&difference, &map).is_zero() {
-                        let why = &tied[name];
+                        let why = said(name);
                         let name = shown(name, table.printed_symbol(name));
-                        return Some(format!("{name} being {what} (the paper may say so: {why})"));
+                        return Some(format!("{name} being {what}{why}"));
                     }
                 }
             }
@@ -298,13 +309,92 @@ impl<'a> Exact<'a> {
                         .reduce_on_sphere(&vars)
                         .is_ok_and(|p| p.is_zero())
                     {
-                        let why = &tied[name];
+                        let why = said(name);
                         let name = shown(name, table.printed_symbol(name));
-                        return Some(format!(
-                            "{name} being a unit vector (the paper may say so: {why})"
-                        ));
+                        return Some(format!("{name} being a unit vector{why}"));
                     }
                 }
+            }
+        }
+        self.trace_tie(decls, &difference, (table, tied))
+    }
+
+    /// A zero trace of a tensor of rank 2, or a zero divergence of a vector field (and
+    /// of its derivatives), that removes `difference`, for a symbol the text ties: each
+    /// relation solved for its last diagonal component (`s_33 = −s_11 − s_22`,
+    /// `u_3,3j = −u_1,1j − u_2,2j`) and substituted, the difference vanishes, and it is
+    /// linear in those components.
+    fn trace_tie(
+        &mut self,
+        decls: &Decls,
+        difference: &Poly,
+        (table, tied): (&Notation, &BTreeMap<String, TiedSymbol>),
+    ) -> Option<String> {
+        let last = decls.dim.checked_sub(1)?;
+        let said = |t: &TiedSymbol| format!(" (the paper may say so: {})", t.why);
+        for (name, t) in tied {
+            let mut map: BTreeMap<Var, Poly> = BTreeMap::new();
+            let field = decls.fields.contains_key(name);
+            match decls.symbols.get(name) {
+                Some(2) if !field => {
+                    let mut var = |k: usize| self.env.vars.intern(&component_name(name, &[k, k]));
+                    let pivot = var(last);
+                    let rest = (0..last).fold(Poly::zero(), |acc, k| &acc - &Poly::var(var(k)));
+                    map.insert(pivot, rest);
+                }
+                Some(1) if field => {
+                    // Every derivative of the last component by the last coordinate.
+                    let pivots: Vec<(Var, Vec<usize>)> = difference
+                        .variables()
+                        .into_iter()
+                        .filter_map(|v| match self.env.varying().get(&v) {
+                            Some(Varying::Jet {
+                                field: f,
+                                idx,
+                                orders,
+                            }) if f == name
+                                && idx.as_slice() == [last]
+                                && orders.contains(&last) =>
+                            {
+                                let mut beta = orders.clone();
+                                let at = beta.iter().position(|&o| o == last)?;
+                                beta.remove(at);
+                                Some((v, beta))
+                            }
+                            _ => None,
+                        })
+                        .collect();
+                    for (pivot, beta) in pivots {
+                        let mut rest = Poly::zero();
+                        for k in 0..last {
+                            let mut orders = beta.clone();
+                            orders.push(k);
+                            orders.sort_unstable();
+                            let v = self.env.vars.intern(&jet_name(name, &[k], &orders));
+                            rest = &rest - &Poly::var(v);
+                        }
+                        map.insert(pivot, rest);
+                    }
+                }
+                _ => continue,
+            }
+            // Linear in the trace only: a wrong coefficient of a trace squared (`p²` with
+            // p = σ_kk/3) is an error a zero trace would hide, not a tie.
+            let linear = map
+                .keys()
+                .all(|&v| difference.terms().all(|(m, _)| m.exponent(v) <= 1));
+            if map.is_empty() || !linear {
+                continue;
+            }
+            let reduced = crate::kernel::eval::substitute(difference, &map).ok()?;
+            if reduced.is_zero() {
+                let what = if field {
+                    "of zero divergence"
+                } else {
+                    "of zero trace"
+                };
+                let shown = shown(name, table.printed_symbol(name));
+                return Some(format!("{shown} being {what}{}", said(t)));
             }
         }
         None

@@ -4,8 +4,8 @@
 use super::model::ParamBox;
 use super::model::{
     Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
-    Drafted, Figure, Grid, ScalarClaim, Side, Stated, Strategy, ToComplete, Transcript, Use,
-    Verdict, MAX_NESTING,
+    Drafted, Figure, Grid, ScalarClaim, Side, Stated, Strategy, TiedSymbol, ToComplete, Transcript,
+    Use, Verdict, MAX_NESTING,
 };
 use super::notation::{self, Notation};
 use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
@@ -396,7 +396,7 @@ impl Loader {
         &self,
         raw: &RawFile,
         decls: &Decls,
-    ) -> Result<Option<Arc<BTreeMap<String, String>>>, Diagnostic> {
+    ) -> Result<Option<Arc<BTreeMap<String, TiedSymbol>>>, Diagnostic> {
         // Checked either way; without `drafted = true` (the declarations checked, every
         // failure decided strictly) it has no effect.
         let mut out = BTreeMap::new();
@@ -427,8 +427,23 @@ impl Loader {
                 Some(line) => format!("line {}: {why}", line.get_ref()),
                 None => why.clone(),
             };
-            // The first entry of a symbol says why.
-            out.entry(name.clone()).or_insert(why);
+            let trace_only = match &t.tie {
+                None => false,
+                Some(k) if k.get_ref() == "trace" => true,
+                Some(k) => {
+                    return Err(self
+                        .diag(k.span(), format!("`{}` is not a kind of tie", k.get_ref()))
+                        .with_help("`tie = \"trace\"` limits the tie to a zero trace; without it, any tie counts"))
+                }
+            };
+            // The first entry of a symbol says why; one for any tie prevails.
+            let entry = out.entry(name.clone()).or_insert(TiedSymbol {
+                why: why.clone(),
+                trace_only,
+            });
+            if entry.trace_only && !trace_only {
+                *entry = TiedSymbol { why, trace_only };
+            }
         }
         Ok(raw.drafted.then(|| Arc::new(out)))
     }
@@ -1585,7 +1600,7 @@ impl Loader {
     fn claim(
         &self,
         c: &RawClaim,
-        (raw, tied): (&RawFile, &Option<Arc<BTreeMap<String, String>>>),
+        (raw, tied): (&RawFile, &Option<Arc<BTreeMap<String, TiedSymbol>>>),
         decls: &Arc<Decls>,
         defs: &[Definition],
         notation: &Notation,

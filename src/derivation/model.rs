@@ -267,7 +267,17 @@ pub struct Drafted {
     pub notation: std::sync::Arc<super::notation::Notation>,
     /// The symbols the paper's text may tie to others (`tied`), each with where and
     /// why: only a tie of one of them makes a failure undecided.
-    pub tied: std::sync::Arc<std::collections::BTreeMap<String, String>>,
+    pub tied: std::sync::Arc<std::collections::BTreeMap<String, TiedSymbol>>,
+}
+
+/// Why a drafted file's text may tie a symbol, and to what.
+#[derive(Clone, Debug)]
+pub struct TiedSymbol {
+    /// Where and why, in words.
+    pub why: String,
+    /// The reason speaks of a trace only (`tie = "trace"`: a deviator, an incompressible
+    /// body): it allows no tie but a zero trace, or a zero divergence of a field.
+    pub trace_only: bool,
 }
 
 impl Check {

@@ -80,6 +80,8 @@ pub struct RawTied {
     pub symbol: S,
     pub line: Option<Spanned<i64>>,
     pub why: S,
+    /// `"trace"`: the reason speaks of a trace only (a deviator, incompressibility).
+    pub tie: Option<S>,
 }
 
 /// `[[figure]]`: curves of scalar expressions against one parameter (`plot`).

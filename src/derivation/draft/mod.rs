@@ -786,8 +786,12 @@ fn write(
         };
         let base = key.strip_suffix("^2");
         let square_of_plain = base.is_some_and(|b| plain.contains(b) || before(b));
-        let said_before = in_prose.get(&key).is_some_and(|(line, texts)| {
-            *line < equations[q].line && !texts.contains(&spaceless(&equations[q].latex))
+        // Said of the symbol, or of its base for a square (`$q = \sqrt{3J_2}$` before
+        // `q^2 = …`).
+        let said_before = [Some(key.as_str()), base].into_iter().flatten().any(|k| {
+            in_prose.get(k).is_some_and(|(line, texts)| {
+                *line < equations[q].line && !texts.contains(&spaceless(&equations[q].latex))
+            })
         });
         if chosen.contains_key(&key)
             || before(&key)
@@ -874,7 +878,7 @@ fn write(
     let defined_keys: BTreeSet<Key> = defined.keys().cloned().collect();
     symbols::unique_names(&mut symbols, &order, &defined_keys);
     let tied = tied(
-        (equations, &symbols, &defined_keys),
+        (equations, &symbols, &chosen),
         (&open, &opaque),
         prose,
         (normal, &tensors),
@@ -1066,11 +1070,12 @@ fn write(
 }
 
 /// Words of a sentence that say its symbols are tied to others: "equal and opposite",
-/// "symmetric", "deviatoric", "a unit vector", … (a whole word or the start of one).
-const TIE_WORDS: [&str; 14] = [
+/// "deviatoric", "orthogonal", … (a whole word or the start of one). "Symmetric" and
+/// "unit vector" are not among them: those ties are named without a reason
+/// (`decide::drafted`), and a symmetry or a unit length relates no two symbols.
+const TIE_WORDS: [&str; 10] = [
     "opposite",
     "reaction",
-    "symmetric",
     "deviator",
     "traceless",
     "trace-free",
@@ -1079,10 +1084,47 @@ const TIE_WORDS: [&str; 14] = [
     "incompressib",
     "isochoric",
     "constrain",
-    "normalised",
-    "normalized",
-    "coaxial",
 ];
+
+/// The tie words that speak of a trace only (a deviator, an incompressible body): they
+/// make a symbol's trace, or a field's divergence, zero, and no other tie.
+const TRACE_WORDS: [&str; 5] = [
+    "deviator",
+    "traceless",
+    "trace-free",
+    "incompressib",
+    "isochoric",
+];
+
+/// The tie word of `words`, if any: one of [`TIE_WORDS`] at the start of a word (any
+/// case).
+fn tie_word(words: &str) -> Option<String> {
+    let lower = words.to_lowercase();
+    lower
+        .split(|c: char| !(c.is_alphanumeric() || c == '-'))
+        .filter(|t| !t.is_empty())
+        .find_map(|t| TIE_WORDS.iter().find(|w| t.starts_with(**w)))
+        .map(|w| (*w).to_owned())
+}
+
+/// Whether a formula has a subscript that repeats an index letter (`\varepsilon_{kk}`,
+/// `u_{k,k}`): a trace or a divergence.
+fn repeated_index(formula: &str) -> bool {
+    let mut rest = formula;
+    while let Some(at) = rest.find('_') {
+        rest = &rest[at + 1..];
+        let sub = match rest.strip_prefix('{') {
+            Some(inner) => inner.split('}').next().unwrap_or(""),
+            None => rest.get(..1).unwrap_or(""),
+        };
+        let letters: Vec<char> = sub.chars().filter(char::is_ascii_lowercase).collect();
+        let distinct: BTreeSet<char> = letters.iter().copied().collect();
+        if distinct.len() < letters.len() {
+            return true;
+        }
+    }
+    false
+}
 
 /// Whether `words` name the symbol of `key` as a word of their own: its base letter
 /// (`n` in "where n_i is"), a Greek base by its letter or its command (`σ`, `\sigma`).
@@ -1103,58 +1145,53 @@ fn names(words: &str, key: &Key) -> bool {
     alone(base) || greek.is_some_and(|g| alone(&g.to_string()))
 }
 
-/// What may follow "unit" for a tie ("a unit vector", not "per unit volume").
-const UNIT_WHAT: [&str; 5] = ["vector", "normal", "length", "norm", "magnitude"];
-
-/// The tie word of `words`, if any: one of [`TIE_WORDS`] at the start of a word (any
-/// case), or "unit" before one of [`UNIT_WHAT`].
-fn tie_word(words: &str) -> Option<String> {
-    let lower = words.to_lowercase();
-    let tokens: Vec<&str> = lower
-        .split(|c: char| !(c.is_alphanumeric() || c == '-'))
-        .filter(|t| !t.is_empty())
-        .collect();
-    for (k, t) in tokens.iter().enumerate() {
-        if let Some(w) = TIE_WORDS
-            .iter()
-            .find(|w| t.starts_with(**w) || t.starts_with(&format!("anti{w}")))
-        {
-            return Some((*w).to_owned());
-        }
-        // Whole words: "unit vectors", not "unit normalisation".
-        let is_what = |w: &str| {
-            UNIT_WHAT
-                .iter()
-                .any(|u| w == *u || w.strip_suffix('s') == Some(*u))
-        };
-        let unit = *t == "unit" || t.strip_prefix("unit-").is_some_and(is_what);
-        let what = tokens.get(k + 1).is_some_and(|n| is_what(n));
-        if unit && (what || *t != "unit") {
-            return Some("unit".to_owned());
-        }
-    }
-    None
-}
-
 /// The declared symbols the paper may tie to others, by name, each with its line (if
 /// one) and why: an equation left to complete mentions it; a formula of the text
 /// relates it to others, or stands in a sentence that says so ("equal and opposite",
 /// "symmetric", "a unit vector"); or the paper writes a labelled variant of it
 /// (`f^{(1,2)}` beside `f^{(2,1)}`), which it may relate in words.
+#[allow(clippy::type_complexity)]
 fn tied(
-    (equations, symbols, defined): (&[Equation], &BTreeMap<Key, Symbol>, &BTreeSet<Key>),
+    (equations, symbols, chosen): (
+        &[Equation],
+        &BTreeMap<Key, Symbol>,
+        &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+    ),
     (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
     prose: &[displays::Inline],
     (normal, tensors): (Option<&str>, &BTreeSet<String>),
-) -> BTreeMap<String, (Option<usize>, String)> {
+) -> BTreeMap<String, (Option<usize>, String, bool)> {
     let declared = |k: &Key| {
         symbols
             .get(k)
-            .filter(|s| !s.component && !defined.contains(k))
+            .filter(|s| !s.component && !chosen.contains_key(k))
     };
-    let mut out: BTreeMap<String, (Option<usize>, String)> = BTreeMap::new();
-    let mut add = |name: &str, line: Option<usize>, why: String| {
-        out.entry(name.to_owned()).or_insert((line, why));
+    // The declared symbols a symbol stands for: itself, or what its definition reads,
+    // through every definition (`ε` defined from the field `u` stands for `u`).
+    let through = |k: &Key| -> Vec<&Symbol> {
+        let mut out = Vec::new();
+        let mut stack = vec![k];
+        let mut seen: BTreeSet<&Key> = BTreeSet::new();
+        while let Some(k) = stack.pop() {
+            if !seen.insert(k) {
+                continue;
+            }
+            match chosen.get(k) {
+                Some((_, body)) => stack.extend(body.iter()),
+                None => out.extend(declared(k)),
+            }
+        }
+        out
+    };
+    let mut out: BTreeMap<String, (Option<usize>, String, bool)> = BTreeMap::new();
+    // A reason for a trace only gives way to one for any tie.
+    let mut add = |name: &str, line: Option<usize>, why: String, trace: bool| {
+        let entry = out
+            .entry(name.to_owned())
+            .or_insert((line, why.clone(), trace));
+        if entry.2 && !trace {
+            *entry = (line, why, false);
+        }
     };
     // What the sentence that leads into an equation says of it ("The Cauchy stress is
     // symmetric,"), and the clause that continues it says of a symbol it names ("where
@@ -1166,19 +1203,24 @@ fn tied(
             .iter()
             .any(|w| lower.starts_with(w));
         let after = continues.then(|| tie_word(&e.lead_out)).flatten();
-        for k in &e.reads {
-            let Some(s) = declared(k) else { continue };
+        for (k, s) in e
+            .reads
+            .iter()
+            .flat_map(|k| through(k).into_iter().map(move |s| (k, s)))
+        {
             if let Some(w) = &before {
                 add(
                     &s.name,
                     Some(e.line),
                     format!("the sentence before equation ({}) says \"{w}\"", e.number),
+                    TRACE_WORDS.contains(&w.as_str()),
                 );
             } else if let Some(w) = after.as_ref().filter(|_| names(&e.lead_out, k)) {
                 add(
                     &s.name,
                     Some(e.line),
                     format!("the sentence after equation ({}) says \"{w}\"", e.number),
+                    TRACE_WORDS.contains(&w.as_str()),
                 );
             }
         }
@@ -1194,11 +1236,12 @@ fn tied(
         if ill_formed {
             continue;
         }
-        if let Some(s) = declared(k) {
+        for s in through(k) {
             add(
                 &s.name,
                 Some(e.line),
                 format!("equation ({}), left to complete, mentions it", e.number),
+                false,
             );
         }
     }
@@ -1212,6 +1255,7 @@ fn tied(
                     &s.name,
                     Some(e.line),
                     format!("equation ({}), left to complete, may mention it", e.number),
+                    false,
                 );
             }
         }
@@ -1243,28 +1287,108 @@ fn tied(
             .iter()
             .any(|k| !symbols.contains_key(k) && !open.contains_key(k));
         let relation = relation && !new;
+        // An equation with one symbol alone on its left (`$K = \lambda + \frac23\mu$`)
+        // says what that symbol is, and ties it only; `$u_{k,k} = 0$`,
+        // `$t_k n_k = 0$` tie every symbol they read.
+        let lone: Vec<Key> = read
+            .parts
+            .iter()
+            .filter(|p| p.relations.first() == Some(&latex::Rel::Eq))
+            .filter_map(|p| p.members.first())
+            .filter(|m| matches!(m.kind, MathKind::Atom(_)))
+            .flat_map(|m| symbols::occurrences(&[m], normal, tensors))
+            .map(|(k, _)| k)
+            .collect();
+        let relates: Vec<Key> = if lone.is_empty() { found.clone() } else { lone };
+        // `$\lambda = \frac{E\nu}{(1+\nu)(1-2\nu)}$`, with E and ν defined by the
+        // equations from λ and μ: a definition read backwards (the right side's
+        // definitions read the left symbol), which ties nothing.
+        let backwards = read.parts.iter().all(|p| {
+            let right: Vec<Key> = p
+                .members
+                .iter()
+                .skip(1)
+                .flat_map(|m| symbols::occurrences(&[m], normal, tensors))
+                .map(|(k, _)| k)
+                .collect();
+            let left: Vec<Key> = p
+                .members
+                .first()
+                .filter(|m| matches!(m.kind, MathKind::Atom(_)))
+                .map(|m| symbols::occurrences(&[m], normal, tensors))
+                .into_iter()
+                .flatten()
+                .map(|(k, _)| k)
+                .collect();
+            // The right side's definitions read the left symbol back.
+            let mut reach: BTreeSet<&Key> = BTreeSet::new();
+            let mut stack: Vec<&Key> = right.iter().collect();
+            while let Some(k) = stack.pop() {
+                if let Some((_, body)) = chosen.get(k).filter(|_| reach.insert(k)) {
+                    stack.extend(body.iter());
+                }
+                reach.insert(k);
+            }
+            let [left] = left.as_slice() else {
+                return false;
+            };
+            !right.is_empty()
+                && right.iter().all(|k| chosen.contains_key(k))
+                && reach.contains(left)
+        });
+        let relation = relation && !backwards;
         // `$m$` names the vector `m_i` too: keys compared without their rank.
         let unranked = |k: &Key| k.rsplit_once('|').map(|(head, _)| head.to_owned());
-        let named: Vec<&Symbol> = found
-            .iter()
-            .flat_map(|k| {
-                symbols
+        let named = |keys: &[Key]| -> Vec<&Symbol> {
+            keys.iter()
+                .flat_map(|k| {
+                    symbols
+                        .keys()
+                        .filter(move |j| unranked(j) == unranked(k))
+                        .flat_map(|j| through(j))
+                })
+                .collect()
+        };
+        if relation {
+            let all = named(&found);
+            let names: BTreeSet<&str> = all.iter().map(|s| s.name.as_str()).collect();
+            // An equation of one symbol relates it to no other: with a trace in it
+            // (`$\varepsilon_{kk} = 0$`, `$u_{k,k} = 0$`) it gives a reason for a zero
+            // trace; with the symbol on both sides (`$\varepsilon_{ij} =
+            // \varepsilon_{ji}$`: a symmetry, which like a unit length needs no reason),
+            // none; a value (`$W = 0$`), a reason for any tie.
+            let trace = repeated_index(&f.body);
+            // `$\varepsilon_{ij} = \varepsilon_{ji}$`: the symbol on both sides.
+            let both_sides = read.parts.iter().any(|p| {
+                p.members
                     .iter()
-                    .filter(move |(j, _)| unranked(j) == unranked(k))
-                    .filter_map(|(j, _)| declared(j))
-            })
-            .collect();
-        {
-            for s in named {
-                if relation {
-                    add(
-                        &s.name,
-                        Some(f.line),
-                        "an equation in the text relates it to others".to_owned(),
-                    );
-                } else if let Some(w) = &word {
-                    add(&s.name, Some(f.line), format!("its sentence says \"{w}\""));
+                    .skip(1)
+                    .flat_map(|m| symbols::occurrences(&[m], normal, tensors))
+                    .any(|(k, _)| found.first().is_some_and(|f| unranked(&k) == unranked(f)))
+            });
+            match (names.len() == 1, trace) {
+                (true, false) if both_sides => {}
+                (true, true) => {
+                    for s in named(&relates) {
+                        let why = "an equation in the text sets a trace of it".to_owned();
+                        add(&s.name, Some(f.line), why, true);
+                    }
                 }
+                _ => {
+                    for s in named(&relates) {
+                        let why = "an equation in the text relates it to others".to_owned();
+                        add(&s.name, Some(f.line), why, false);
+                    }
+                }
+            }
+        } else if let Some(w) = &word {
+            for s in named(&found) {
+                add(
+                    &s.name,
+                    Some(f.line),
+                    format!("its sentence says \"{w}\""),
+                    TRACE_WORDS.contains(&w.as_str()),
+                );
             }
         }
     }
@@ -1291,7 +1415,12 @@ fn tied(
             !t.component && parts(j).is_some_and(|(st, la)| st == stem && la != label)
         });
         if let Some((_, t)) = variant {
-            add(&s.name, None, format!("the paper also writes {}", t.key.0));
+            add(
+                &s.name,
+                None,
+                format!("the paper also writes {}", t.key.0),
+                false,
+            );
         }
     }
     out
@@ -1311,8 +1440,9 @@ struct Render<'a> {
     /// Displays without a number, and numbered equations past [`MAX_EQUATIONS`].
     unnumbered: (usize, usize),
     with_slots: &'a dyn Fn(&Symbol) -> String,
-    /// The declared symbols the paper may tie to others: line and why.
-    tied: &'a BTreeMap<String, (Option<usize>, String)>,
+    /// The declared symbols the paper may tie to others: line, why, and whether only
+    /// a trace.
+    tied: &'a BTreeMap<String, (Option<usize>, String, bool)>,
 }
 
 /// The file's text.
@@ -1392,12 +1522,16 @@ fn render(r: Render<'_>) -> String {
         );
         out.push_str("# Delete an entry to decide such failures strictly.\n");
         out.push_str("tied = [\n");
-        for (name, (line, why)) in r.tied {
+        for (name, (line, why, trace)) in r.tied {
             out.push_str(&format!("  {{ symbol = {}", toml_string(name)));
             if let Some(l) = line {
                 out.push_str(&format!(", line = {l}"));
             }
-            out.push_str(&format!(", why = {} }},\n", toml_string(&comment(why))));
+            out.push_str(&format!(", why = {}", toml_string(&comment(why))));
+            if *trace {
+                out.push_str(", tie = 'trace'");
+            }
+            out.push_str(" },\n");
         }
         out.push_str("]\n");
     }
@@ -1561,6 +1695,19 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_trace_is_a_repeated_index_in_one_subscript() {
+        for (formula, trace) in [
+            ("\\varepsilon_{kk} = 0", true),
+            ("u_{k,k} = 0", true),
+            ("\\varepsilon_{ij} = \\varepsilon_{ji}", false),
+            ("n_k n_k = 1", false),
+            ("a_i", false),
+        ] {
+            assert_eq!(repeated_index(formula), trace, "{formula}");
+        }
+    }
+
+    #[test]
     fn words_name_a_symbol_by_its_base_letter() {
         let key = |base: &str| format!("|{base}||0||1");
         assert!(names("where n_i is the unit normal", &key("n")));
@@ -1577,14 +1724,10 @@ mod tests {
                 "their equal and opposite reactions x and x",
                 Some("opposite"),
             ),
-            ("The Cauchy stress is Symmetric,", Some("symmetric")),
-            ("the antisymmetric part x", Some("symmetric")),
-            ("the deviatoric stress x", Some("deviator")),
-            ("Let x be a unit vector.", Some("unit")),
-            ("the unit-normal x", Some("unit")),
-            ("the power per unit volume x", None),
-            ("Let x be the unit normalisation constant.", None),
-            ("the non-unit normal x", None),
+            ("the Deviatoric stress x", Some("deviator")),
+            ("x is orthogonal to y", Some("orthogonal")),
+            ("The Cauchy stress is symmetric,", None),
+            ("Let x be a unit vector.", None),
             ("Let x be the strain.", None),
         ] {
             assert_eq!(tie_word(words).as_deref(), tie, "{words}");
