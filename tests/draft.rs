@@ -264,11 +264,12 @@ fn a_true_equation_never_fails_on_what_an_unread_one_defines() {
     );
 }
 
-/// Four short papers written apart from the checker (`tests/papers/`), each a textbook
-/// derivation with planted errors, drafted and decided with no edit: every planted
-/// error that is drafted fails, no true equation fails, and what stays undecided is a
-/// tie the text states in words (a strain or a tensor said to be symmetric). The one
-/// planted error not drafted (a wrong free index) is left to complete with that reason.
+/// Nine short papers written apart from the checker (`tests/papers/`), each a textbook
+/// derivation with planted errors (listed at the top of each), drafted and decided with
+/// no edit. Of the 26 planted errors, 23 fail, one is undecided (q² beside a text
+/// equation `q = √(3 J₂)`) and two are left to complete (a wrong free index, with that
+/// reason; a subscript on a bracket). What else is undecided is a tie the text gives a
+/// reason for; one true equation fails (below).
 #[test]
 fn papers_written_apart_are_decided_with_no_edit() {
     use Verdict::{Fails as F, Holds as H, Undecided as U};
@@ -294,7 +295,37 @@ fn papers_written_apart_are_decided_with_no_edit() {
             &[],
         ),
     ];
-    for (name, want, open) in cases {
+    let more: [(&str, Vec<Verdict>, &[&str]); 5] = [
+        (
+            "plasticity-invariants",
+            vec![H, H, H, H, U, U, U, H, H, H, F, U],
+            &[],
+        ),
+        (
+            "cosserat-kinematics",
+            vec![H, H, H, F, H, H, U, F, U],
+            &["eq8", "eq9", "eq12"],
+        ),
+        (
+            "fabric-averages",
+            vec![H, H, H, H, H, H, H, U, F, F, U, F],
+            &[],
+        ),
+        // (12) is true for an incompressible body, and fails as read: its difference is
+        // the square of the divergence, which no tie of the draft removes (a known
+        // accusation; a linear one is undecided).
+        (
+            "small-strain-kinematics",
+            vec![H, H, H, H, H, H, F, H, F, H, F, F],
+            &[],
+        ),
+        (
+            "strain-energy",
+            vec![H, H, U, U, U, F, U, F, H, H, H, F],
+            &[],
+        ),
+    ];
+    for (name, want, open) in cases.into_iter().chain(more) {
         let (toml, verdicts) = drafted(&[&format!("tests/papers/{name}.tex")]);
         let got: Vec<Verdict> = verdicts.iter().map(|(_, v)| *v).collect();
         assert_eq!(got, want, "{name}: {verdicts:?}\n{toml}");

@@ -236,7 +236,7 @@ impl<'a> Exact<'a> {
                 _ => None,
             };
             if normal.contains(&v)
-                || !symbol.is_some_and(|n| tied.get(n).is_some_and(|t| !t.trace_only))
+                || symbol.is_none_or(|n| tied.get(n).is_none_or(|t| t.trace_only))
                 || self
                     .env
                     .varying()

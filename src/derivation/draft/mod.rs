@@ -1345,7 +1345,7 @@ fn tied(
                     symbols
                         .keys()
                         .filter(move |j| unranked(j) == unranked(k))
-                        .flat_map(|j| through(j))
+                        .flat_map(&through)
                 })
                 .collect()
         };
