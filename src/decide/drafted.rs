@@ -2,22 +2,27 @@
 //!
 //! A draft guesses its declarations from the printed symbols, and takes every symbol it
 //! does not define as independent. The paper may tie some of them in its text ("the
-//! forces on the two faces are equal and opposite", "the stress is symmetric", "n is the
-//! unit normal", "with $W = \frac12 e_{ij}e_{ij}$") or in an equation the draft could
-//! not read. A failure that such a tie would remove is reported as undecided, naming
-//! the tie, never as an error of the paper:
+//! forces on the two faces are equal and opposite", "s is deviatoric", "with $W =
+//! \frac12 e_{ij}e_{ij}$") or in an equation the draft could not read. A failure that
+//! such a tie would remove is reported as undecided, naming the tie, never as an error
+//! of the paper:
 //!
 //! - the two sides read different symbols ("P = ⟨t⟩" relates `P` to `t` whatever the
-//!   paper means);
-//! - the difference of the sides is linear in a component of a symbol, beside other
-//!   terms: a relation that gives that component in the others removes it (`W − ½ e·e`,
-//!   `σ₁₂ − σ₂₁`);
+//!   paper means), one of which the file's `tied` lists for any tie;
+//! - the difference of the sides is linear in a component of such a symbol, beside
+//!   other terms: a relation that gives that component in the others removes it
+//!   (`W − ½ e·e`);
 //! - the difference vanishes when a tensor of rank 2 is symmetric, or when a vector is
-//!   of unit length.
+//!   of unit length (ties named whether or not `tied` lists the symbol: they relate no
+//!   two symbols, and papers often leave them unsaid);
+//! - the difference vanishes, and is linear, in the trace of a tensor or the divergence
+//!   of a field that `tied` lists (for a trace, or any tie).
 //!
-//! What stands is a difference no such tie explains: a constant such as (26)'s −4/5, a
-//! wrong coefficient of a square (`(½ − ⅓) s_ij s_ij`), a factor that is a special value
-//! of a parameter rather than a relation (`μ`, `2μ n_i n_k`).
+//! `tied` holds the reasons `draft` found in the paper's text, each with its line: a
+//! failure whose tie the text gives no reason for stands. So does a difference no tie
+//! explains: a constant such as (26)'s −4/5, a wrong coefficient of a square (`(½ − ⅓)
+//! s_ij s_ij`), a factor that is a special value of a parameter rather than a relation
+//! (`μ`, `2μ n_i n_k`).
 //!
 //! The symbols a side reads are those its exact value depends on (a symbol that
 //! cancels, like the pressure in the tangential traction, is not read), or, where the
