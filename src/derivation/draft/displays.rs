@@ -261,12 +261,11 @@ pub fn live(text: &str, markdown: bool) -> String {
     text
 }
 
-/// The words that lead into a display starting on line `line` (1-based) of `live` (the
-/// paper's text, [`live`]): the last sentence before it, back to a blank line or the
+/// The words that lead into a display starting on line `line` (1-based) of `lines` (the
+/// paper's text, [`live`], by lines): the last sentence before it, back to a blank line or the
 /// end of another display, its inline formulas left in. "The Cauchy stress is symmetric,"
 /// before `\sigma_{ij} = \sigma_{ji}`.
-pub fn lead_in(live: &str, line: usize) -> String {
-    let lines: Vec<&str> = live.lines().collect();
+pub fn lead_in(lines: &[&str], line: usize) -> String {
     let Some(first) = line.checked_sub(1).and_then(|k| lines.get(k)) else {
         return String::new();
     };
@@ -287,22 +286,25 @@ pub fn lead_in(live: &str, line: usize) -> String {
             continue;
         }
         above = false;
-        if prior.trim().is_empty() || display_end {
+        if prior.trim().is_empty()
+            || display_end
+            || text.iter().map(|t| t.len()).sum::<usize>() > SENTENCE
+        {
             break;
         }
         text.push(prior);
     }
     text.reverse();
     let text = text.join(" ");
-    let start = sentence_end(&text).unwrap_or(0);
+    let text = &text[floor(&text, text.len().saturating_sub(SENTENCE))..];
+    let start = sentence_end(text).unwrap_or(0);
     text[start..].trim().to_owned()
 }
 
-/// The words that follow a display ending on line `end` (1-based) of `live`: the first
+/// The words that follow a display ending on line `end` (1-based) of `lines`: the first
 /// sentence after it, up to a blank line or another display. "where $n$ is the unit
 /// normal" after `A_{ik} = C_{ijkl} n_j n_l`.
-pub fn lead_out(live: &str, end: usize) -> String {
-    let lines: Vec<&str> = live.lines().collect();
+pub fn lead_out(lines: &[&str], end: usize) -> String {
     let Some(last) = end.checked_sub(1).and_then(|k| lines.get(k)) else {
         return String::new();
     };
@@ -329,13 +331,17 @@ pub fn lead_out(live: &str, end: usize) -> String {
         }
         below = false;
         let display = ["\\begin{", "$$", "\\["].iter().any(|o| next.contains(o));
-        if next.trim().is_empty() || display {
+        if next.trim().is_empty()
+            || display
+            || text.iter().map(|t| t.len()).sum::<usize>() > SENTENCE
+        {
             break;
         }
         text.push(next);
     }
     let text = text.join(" ");
-    let stop = sentence_end_after(&text).unwrap_or(text.len());
+    let text = &text[..ceil(&text, SENTENCE)];
+    let stop = sentence_end_after(text).unwrap_or(text.len());
     text[..stop].trim().to_owned()
 }
 
@@ -378,9 +384,25 @@ pub fn inline_formulas(text: &str, markdown: bool) -> Vec<Inline> {
             rest = &rest[skip..];
         }
         words.push_str(rest);
+        // Where each sentence starts, found once for the paragraph; a sentence is taken
+        // at most `SENTENCE` bytes either side of its formula.
+        let starts: Vec<usize> = std::iter::once(0)
+            .chain(
+                words
+                    .char_indices()
+                    .zip(words.chars().skip(1))
+                    .filter(|((_, c), next)| matches!(c, '.' | '?' | '!') && next.is_whitespace())
+                    .map(|((k, _), _)| k + 1),
+            )
+            .collect();
         for (at, line, body) in found {
-            let start = sentence_end(&words[..at]).unwrap_or(0);
-            let stop = sentence_end_after(&words[at..]).map_or(words.len(), |k| at + k);
+            let k = starts.partition_point(|&b| b <= at);
+            let start = starts[k.saturating_sub(1)].max(floor(&words, at.saturating_sub(SENTENCE)));
+            let stop = starts
+                .get(k)
+                .copied()
+                .unwrap_or(words.len())
+                .min(ceil(&words, at + SENTENCE));
             out.push(Inline {
                 line,
                 body,
@@ -389,6 +411,25 @@ pub fn inline_formulas(text: &str, markdown: bool) -> Vec<Inline> {
         }
     }
     out
+}
+
+/// The most of a sentence taken either side of a formula, or before and after a
+/// display, in bytes: longer runs without a full stop are no prose a tie is read from.
+const SENTENCE: usize = 600;
+
+/// The largest character boundary of `s` at or below `at`.
+fn floor(s: &str, at: usize) -> usize {
+    (0..=at.min(s.len()))
+        .rev()
+        .find(|&k| s.is_char_boundary(k))
+        .unwrap_or(0)
+}
+
+/// The smallest character boundary of `s` at or above `at` (at most its length).
+fn ceil(s: &str, at: usize) -> usize {
+    (at.min(s.len())..=s.len())
+        .find(|&k| s.is_char_boundary(k))
+        .unwrap_or(s.len())
 }
 
 /// Where the last sentence of `text` starts: after its last `.`, `?` or `!` followed by
@@ -748,14 +789,16 @@ mod tests {
             ]
         );
         let live = "Intro. The stress is symmetric,\n\\begin{equation} s = t \\end{equation}\nThen\n\n$$ u = v (2)$$";
-        assert_eq!(lead_in(live, 2), "The stress is symmetric,");
-        assert_eq!(lead_in(live, 5), "Then");
-        assert_eq!(lead_in("$$ a = b (1)$$", 1), "");
+        let lines: Vec<&str> = live.lines().collect();
+        assert_eq!(lead_in(&lines, 2), "The stress is symmetric,");
+        assert_eq!(lead_in(&lines, 5), "Then");
+        assert_eq!(lead_in(&["$$ a = b (1)$$"], 1), "");
         let live = "\\begin{equation} a = b \\end{equation} where $n$ is\na unit vector. More.\n\n$$ c = d (2)$$\n\nNext line.";
-        assert_eq!(lead_out(live, 1), "where $n$ is a unit vector.");
-        assert_eq!(lead_out(live, 4), "Next line.");
-        assert_eq!(lead_out(live, 99), "");
-        assert_eq!(lead_in(live, 99), "");
+        let lines: Vec<&str> = live.lines().collect();
+        assert_eq!(lead_out(&lines, 1), "where $n$ is a unit vector.");
+        assert_eq!(lead_out(&lines, 4), "Next line.");
+        assert_eq!(lead_out(&lines, 99), "");
+        assert_eq!(lead_in(&lines, 99), "");
     }
 
     #[test]

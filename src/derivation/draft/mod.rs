@@ -112,13 +112,16 @@ pub fn draft(
         .flatten();
     let normal = options.normal.as_deref().or(stated.as_deref());
     let live = displays::live(source, markdown);
+    let lines: Vec<&str> = live.lines().collect();
     let mut prose = displays::inline_formulas(source, markdown);
     // A display without a number is an equation of the text too: it may tie symbols.
     prose.extend(unnumbered_displays.iter().map(|d| displays::Inline {
         line: d.line,
         body: d.latex.clone(),
-        words: displays::lead_in(&live, d.line),
+        words: displays::lead_in(&lines, d.line),
     }));
+    // What the text's own equations say, read in the first round.
+    let mut said = None;
     let mut seen_ids = BTreeSet::new();
     let mut equations: Vec<Equation> = found
         .into_iter()
@@ -145,8 +148,8 @@ pub fn draft(
                 latex: d.latex,
                 unread,
                 edit: None,
-                lead_in: displays::lead_in(&live, d.line),
-                lead_out: displays::lead_out(&live, d.end),
+                lead_in: displays::lead_in(&lines, d.line),
+                lead_out: displays::lead_out(&lines, d.end),
                 reads: BTreeSet::new(),
                 names: BTreeSet::new(),
                 defines: Vec::new(),
@@ -155,15 +158,28 @@ pub fn draft(
         .collect();
     // Refused claims move to "To complete", and the file is written again, until the
     // loader accepts it (each round moves at least one claim).
+    // The reasons for ties (`tied`) are found only for a file the loader accepts
+    // without them: finding them in every round would cost rounds × formulas.
     for _ in 0..=2 * equations.len() + 2 {
         let Some(toml) = write(
             label,
             &mut equations,
             (dimension, normal),
             unnumbered,
-            &prose,
+            (&prose, None),
         ) else {
             continue;
+        };
+        let toml = match super::load::load_str("draft.toml", &toml) {
+            Ok(_) => write(
+                label,
+                &mut equations,
+                (dimension, normal),
+                unnumbered,
+                (&prose, Some(&mut said)),
+            )
+            .unwrap_or(toml),
+            Err(_) => toml,
         };
         match super::load::load_str("draft.toml", &toml) {
             Ok(_) => {
@@ -193,7 +209,7 @@ pub fn draft(
         &mut equations,
         (dimension, normal),
         unnumbered,
-        &prose,
+        (&prose, Some(&mut said)),
     )
     .expect("with every claim to complete, nothing is read");
     Draft {
@@ -617,7 +633,7 @@ fn write(
     equations: &mut [Equation],
     (dimension, normal): (usize, Option<&str>),
     unnumbered: (usize, usize),
-    prose: &[displays::Inline],
+    (prose, said): (&[displays::Inline], Option<&mut Option<Vec<Said>>>),
 ) -> Option<String> {
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
@@ -877,12 +893,13 @@ fn write(
     }
     let defined_keys: BTreeSet<Key> = defined.keys().cloned().collect();
     symbols::unique_names(&mut symbols, &order, &defined_keys);
-    let tied = tied(
-        (equations, &symbols, &chosen),
-        (&open, &opaque),
-        prose,
-        (normal, &tensors),
-    );
+    let tied = match said {
+        Some(cache) => {
+            let said = cache.get_or_insert_with(|| said_in_text(prose, normal, &tensors));
+            tied((equations, &symbols, &chosen), (&open, &opaque), said)
+        }
+        None => BTreeMap::new(),
+    };
     for eq in equations.iter_mut() {
         eq.names = eq
             .reads
@@ -1107,6 +1124,78 @@ fn tie_word(words: &str) -> Option<String> {
         .map(|w| (*w).to_owned())
 }
 
+/// What an equation of the paper's text (inline, or a display without a number) says,
+/// read once for every round of the draft.
+struct Said {
+    line: usize,
+    /// The tie word of its sentence.
+    word: Option<String>,
+    /// Every symbol it names.
+    found: Vec<Key>,
+    /// Each equality: its left side when that is one symbol, and the right side's
+    /// symbols.
+    parts: Vec<(Option<Key>, Vec<Key>)>,
+    /// It is an equality (a condition such as `\mu > 0` is not).
+    relation: bool,
+    /// It writes a trace (`\varepsilon_{kk}`, `u_{k,k}`).
+    trace: bool,
+}
+
+/// What each equation of the text says ([`Said`]); a formula the reader cannot read, or
+/// with neither an equality nor a tie word, says nothing.
+fn said_in_text(
+    prose: &[displays::Inline],
+    normal: Option<&str>,
+    tensors: &BTreeSet<String>,
+) -> Vec<Said> {
+    let options = ReadOptions::default();
+    let keys = |members: &[&latex::Math]| -> Vec<Key> {
+        symbols::occurrences(members, normal, tensors)
+            .into_iter()
+            .map(|(k, _)| k)
+            .collect()
+    };
+    prose
+        .iter()
+        .filter_map(|f| {
+            let word = tie_word(&f.words);
+            if word.is_none() && !f.body.contains('=') {
+                return None;
+            }
+            let read = latex::read(&f.body, &options).ok()?;
+            let found = read
+                .parts
+                .iter()
+                .flat_map(|part| keys(&part.members.iter().collect::<Vec<_>>()))
+                .collect();
+            let parts = read
+                .parts
+                .iter()
+                .filter(|p| p.relations.first() == Some(&latex::Rel::Eq))
+                .map(|p| {
+                    let left = p
+                        .members
+                        .first()
+                        .filter(|m| matches!(m.kind, MathKind::Atom(_)))
+                        .and_then(|m| keys(&[m]).into_iter().next());
+                    (left, keys(&p.members.iter().skip(1).collect::<Vec<_>>()))
+                })
+                .collect();
+            Some(Said {
+                line: f.line,
+                word,
+                found,
+                parts,
+                relation: read
+                    .parts
+                    .iter()
+                    .any(|p| p.relations.contains(&latex::Rel::Eq)),
+                trace: repeated_index(&f.body),
+            })
+        })
+        .collect()
+}
+
 /// Whether a formula has a subscript that repeats an index letter (`\varepsilon_{kk}`,
 /// `u_{k,k}`): a trace or a divergence.
 fn repeated_index(formula: &str) -> bool {
@@ -1158,8 +1247,7 @@ fn tied(
         &BTreeMap<Key, (usize, BTreeSet<Key>)>,
     ),
     (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
-    prose: &[displays::Inline],
-    (normal, tensors): (Option<&str>, &BTreeSet<String>),
+    said: &[Said],
 ) -> BTreeMap<String, (Option<usize>, String, bool)> {
     let declared = |k: &Key| {
         symbols
@@ -1260,67 +1348,32 @@ fn tied(
             }
         }
     }
-    let options = ReadOptions::default();
-    for f in prose {
-        let Ok(read) = latex::read(&f.body, &options) else {
-            continue;
-        };
-        // An equality ties; a condition such as `\mu > 0` does not.
-        let relation = read
-            .parts
-            .iter()
-            .any(|p| p.relations.contains(&latex::Rel::Eq));
-        let word = tie_word(&f.words);
-        let found: Vec<Key> = read
-            .parts
-            .iter()
-            .flat_map(|part| {
-                let members: Vec<&latex::Math> = part.members.iter().collect();
-                symbols::occurrences(&members, normal, tensors)
-            })
-            .map(|(k, _)| k)
-            .collect();
+    // Each symbol's keys by their identity without the rank: `$m$` names `m_i` too.
+    fn unranked(k: &Key) -> &str {
+        k.rsplit_once('|').map_or(k.as_str(), |(head, _)| head)
+    }
+    let mut by_identity: BTreeMap<&str, Vec<&Key>> = BTreeMap::new();
+    for k in symbols.keys() {
+        by_identity.entry(unranked(k)).or_default().push(k);
+    }
+    let named = |keys: &[Key]| -> Vec<&Symbol> {
+        keys.iter()
+            .flat_map(|k| by_identity.get(unranked(k)).into_iter().flatten())
+            .flat_map(|j| through(j))
+            .collect()
+    };
+    for f in said {
         // An equation that names a symbol no numbered equation has (`$\rho c_L^2 =
         // \lambda + 2\mu$`, `$f_i^{(2,1)c} = f_i^c$`) says what that symbol is: it
         // ties nothing else.
-        let new = found
+        let new = f
+            .found
             .iter()
             .any(|k| !symbols.contains_key(k) && !open.contains_key(k));
-        let relation = relation && !new;
-        // An equation with one symbol alone on its left (`$K = \lambda + \frac23\mu$`)
-        // says what that symbol is, and ties it only; `$u_{k,k} = 0$`,
-        // `$t_k n_k = 0$` tie every symbol they read.
-        let lone: Vec<Key> = read
-            .parts
-            .iter()
-            .filter(|p| p.relations.first() == Some(&latex::Rel::Eq))
-            .filter_map(|p| p.members.first())
-            .filter(|m| matches!(m.kind, MathKind::Atom(_)))
-            .flat_map(|m| symbols::occurrences(&[m], normal, tensors))
-            .map(|(k, _)| k)
-            .collect();
-        let relates: Vec<Key> = if lone.is_empty() { found.clone() } else { lone };
         // `$\lambda = \frac{E\nu}{(1+\nu)(1-2\nu)}$`, with E and ν defined by the
         // equations from λ and μ: a definition read backwards (the right side's
         // definitions read the left symbol), which ties nothing.
-        let backwards = read.parts.iter().all(|p| {
-            let right: Vec<Key> = p
-                .members
-                .iter()
-                .skip(1)
-                .flat_map(|m| symbols::occurrences(&[m], normal, tensors))
-                .map(|(k, _)| k)
-                .collect();
-            let left: Vec<Key> = p
-                .members
-                .first()
-                .filter(|m| matches!(m.kind, MathKind::Atom(_)))
-                .map(|m| symbols::occurrences(&[m], normal, tensors))
-                .into_iter()
-                .flatten()
-                .map(|(k, _)| k)
-                .collect();
-            // The right side's definitions read the left symbol back.
+        let backwards = f.parts.iter().all(|(left, right)| {
             let mut reach: BTreeSet<&Key> = BTreeSet::new();
             let mut stack: Vec<&Key> = right.iter().collect();
             while let Some(k) = stack.pop() {
@@ -1329,60 +1382,46 @@ fn tied(
                 }
                 reach.insert(k);
             }
-            let [left] = left.as_slice() else {
-                return false;
-            };
-            !right.is_empty()
+            left.as_ref().is_some_and(|l| reach.contains(l))
+                && !right.is_empty()
                 && right.iter().all(|k| chosen.contains_key(k))
-                && reach.contains(left)
         });
-        let relation = relation && !backwards;
-        // `$m$` names the vector `m_i` too: keys compared without their rank.
-        let unranked = |k: &Key| k.rsplit_once('|').map(|(head, _)| head.to_owned());
-        let named = |keys: &[Key]| -> Vec<&Symbol> {
-            keys.iter()
-                .flat_map(|k| {
-                    symbols
-                        .keys()
-                        .filter(move |j| unranked(j) == unranked(k))
-                        .flat_map(&through)
-                })
-                .collect()
-        };
-        if relation {
-            let all = named(&found);
-            let names: BTreeSet<&str> = all.iter().map(|s| s.name.as_str()).collect();
+        if f.relation && !new && !backwards {
+            // An equation with one symbol alone on its left (`$K = \lambda +
+            // \frac23\mu$`) says what that symbol is, and ties it only; `$u_{k,k} = 0$`,
+            // `$t_k n_k = 0$` tie every symbol they read.
+            let lone: Vec<Key> = f.parts.iter().filter_map(|(l, _)| l.clone()).collect();
+            let relates = if lone.is_empty() { &f.found } else { &lone };
+            let names: BTreeSet<&str> = named(&f.found).iter().map(|s| s.name.as_str()).collect();
             // An equation of one symbol relates it to no other: with a trace in it
             // (`$\varepsilon_{kk} = 0$`, `$u_{k,k} = 0$`) it gives a reason for a zero
             // trace; with the symbol on both sides (`$\varepsilon_{ij} =
             // \varepsilon_{ji}$`: a symmetry, which like a unit length needs no reason),
             // none; a value (`$W = 0$`), a reason for any tie.
-            let trace = repeated_index(&f.body);
-            // `$\varepsilon_{ij} = \varepsilon_{ji}$`: the symbol on both sides.
-            let both_sides = read.parts.iter().any(|p| {
-                p.members
-                    .iter()
-                    .skip(1)
-                    .flat_map(|m| symbols::occurrences(&[m], normal, tensors))
-                    .any(|(k, _)| found.first().is_some_and(|f| unranked(&k) == unranked(f)))
+            let both_sides = f.parts.iter().any(|(_, right)| {
+                right.iter().any(|k| {
+                    f.found
+                        .first()
+                        .is_some_and(|first| unranked(k) == unranked(first))
+                })
             });
-            match (names.len() == 1, trace) {
+            match (names.len() == 1, f.trace) {
                 (true, false) if both_sides => {}
                 (true, true) => {
-                    for s in named(&relates) {
+                    for s in named(relates) {
                         let why = "an equation in the text sets a trace of it".to_owned();
                         add(&s.name, Some(f.line), why, true);
                     }
                 }
                 _ => {
-                    for s in named(&relates) {
+                    for s in named(relates) {
                         let why = "an equation in the text relates it to others".to_owned();
                         add(&s.name, Some(f.line), why, false);
                     }
                 }
             }
-        } else if let Some(w) = &word {
-            for s in named(&found) {
+        } else if let Some(w) = &f.word {
+            for s in named(&f.found) {
                 add(
                     &s.name,
                     Some(f.line),
