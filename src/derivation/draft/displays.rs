@@ -386,15 +386,7 @@ pub fn inline_formulas(text: &str, markdown: bool) -> Vec<Inline> {
         words.push_str(rest);
         // Where each sentence starts, found once for the paragraph; a sentence is taken
         // at most `SENTENCE` bytes either side of its formula.
-        let starts: Vec<usize> = std::iter::once(0)
-            .chain(
-                words
-                    .char_indices()
-                    .zip(words.chars().skip(1))
-                    .filter(|((_, c), next)| matches!(c, '.' | '?' | '!') && next.is_whitespace())
-                    .map(|((k, _), _)| k + 1),
-            )
-            .collect();
+        let starts: Vec<usize> = std::iter::once(0).chain(sentence_starts(&words)).collect();
         for (at, line, body) in found {
             let k = starts.partition_point(|&b| b <= at);
             let start = starts[k.saturating_sub(1)].max(floor(&words, at.saturating_sub(SENTENCE)));
@@ -435,11 +427,16 @@ fn ceil(s: &str, at: usize) -> usize {
 /// Where the last sentence of `text` starts: after its last `.`, `?` or `!` followed by
 /// white space.
 fn sentence_end(text: &str) -> Option<usize> {
+    sentence_starts(text).last()
+}
+
+/// Where each sentence after the first starts in `text`: after a `.`, `?` or `!` that
+/// white space follows.
+fn sentence_starts(text: &str) -> impl Iterator<Item = usize> + '_ {
     text.char_indices()
         .zip(text.chars().skip(1))
         .filter(|((_, c), next)| matches!(c, '.' | '?' | '!') && next.is_whitespace())
         .map(|((k, _), _)| k + 1)
-        .last()
 }
 
 /// Where the first sentence of `text` ends: at its first `.`, `?` or `!` followed by
