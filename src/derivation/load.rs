@@ -28,6 +28,8 @@ use toml::Spanned;
 /// How the loader's refusal of sides with different free indices begins: an equation so
 /// printed is ill-formed, and `draft` takes it to tie no symbols.
 pub(crate) const DIFFERENT_FREE_INDICES: &str = "the sides have different free indices";
+/// How the error of a definition whose free indices differ from its name's begins.
+pub(crate) const DEFINED_WITH_INDICES: &str = "is defined with indices";
 
 /// Why derivation files could not be read.
 #[derive(Debug, thiserror::Error)]
@@ -861,10 +863,10 @@ impl Loader {
                 .diagnostic(
                     name_span,
                     format!(
-                    "`{name}` is defined with indices {} but its right side has free indices {}",
-                    letters(&formal),
-                    letters(&body.free_letters())
-                ),
+                        "`{name}` {DEFINED_WITH_INDICES} {} but its right side has free indices {}",
+                        letters(&formal),
+                        letters(&body.free_letters())
+                    ),
                 )
                 .with_help("the defined name carries exactly the free indices of its right side"));
         }

@@ -24,7 +24,7 @@ use crate::lang::latex::{self, MathKind, ReadOptions};
 use crate::lang::{Decls, DefSig};
 use std::collections::{BTreeMap, BTreeSet};
 pub use symbols::RESERVED;
-use symbols::{Key, Symbol};
+use symbols::{Key, Stems, Symbol};
 
 /// What the command line sets.
 #[derive(Clone, Debug, Default)]
@@ -78,6 +78,11 @@ struct Equation {
     names: BTreeSet<String>,
     /// The symbols it defines: (identity, index letters, the definition's text).
     defines: Vec<(Key, String)>,
+    /// The printed symbols it reads with a stray subscript (`t_{i}^{(n)}`).
+    stray: BTreeSet<String>,
+    /// Its members carry different free indices as printed: it is checked as printed,
+    /// for every value of each (`verbatim`).
+    verbatim: bool,
 }
 
 /// Drafts a derivation file from `source` (named `label` in the file's header); the
@@ -153,6 +158,8 @@ pub fn draft(
                 reads: BTreeSet::new(),
                 names: BTreeSet::new(),
                 defines: Vec::new(),
+                stray: BTreeSet::new(),
+                verbatim: false,
             }
         })
         .collect();
@@ -160,13 +167,15 @@ pub fn draft(
     // loader accepts it (each round moves at least one claim).
     // The reasons for ties (`tied`) are found only for a file the loader accepts
     // without them: finding them in every round would cost rounds × formulas.
-    for _ in 0..=2 * equations.len() + 2 {
+    let mut rounds = Rounds::default();
+    for _ in 0..=2 * (equations.len() + prose.len()) + 2 {
         let Some(toml) = write(
             label,
             &mut equations,
             (dimension, normal),
             unnumbered,
             (&prose, None),
+            &mut rounds,
         ) else {
             continue;
         };
@@ -177,6 +186,7 @@ pub fn draft(
                 (dimension, normal),
                 unnumbered,
                 (&prose, Some(&mut said)),
+                &mut rounds,
             )
             .unwrap_or(toml),
             Err(_) => toml,
@@ -192,7 +202,7 @@ pub fn draft(
                 };
             }
             Err(e) => {
-                if !refuse_claims(&toml, &e, &mut equations) {
+                if !refuse_claims(&toml, &e, &mut equations, &mut rounds) {
                     break;
                 }
             }
@@ -210,6 +220,10 @@ pub fn draft(
         (dimension, normal),
         unnumbered,
         (&prose, Some(&mut said)),
+        &mut Rounds {
+            refused_text: prose.iter().map(|f| f.line).collect(),
+            stray: BTreeSet::new(),
+        },
     )
     .expect("with every claim to complete, nothing is read");
     Draft {
@@ -222,13 +236,26 @@ pub fn draft(
 
 /// Marks the claims the loader's diagnostics point into as to complete; `false` when
 /// none of them is a claim's.
-fn refuse_claims(toml: &str, e: &super::LoadError, equations: &mut [Equation]) -> bool {
+fn refuse_claims(
+    toml: &str,
+    e: &super::LoadError,
+    equations: &mut [Equation],
+    rounds: &mut Rounds,
+) -> bool {
     let super::LoadError::Invalid(ds) = e else {
         return false;
     };
     let owners = line_owners(toml);
     let mut moved = false;
     for d in ds {
+        let text_line = owners
+            .get(&d.line)
+            .and_then(|o| o.strip_prefix("the text, line "))
+            .and_then(|l| l.parse().ok());
+        if let Some(line) = text_line {
+            moved |= rounds.refused_text.insert(line);
+            continue;
+        }
         let Some(id) = owners.get(&d.line) else {
             // A declaration the loader refuses (`'c_abcdefghijk'`): the claims that read
             // the symbol it declares.
@@ -244,10 +271,35 @@ fn refuse_claims(toml: &str, e: &super::LoadError, equations: &mut [Equation]) -
             }
             continue;
         };
+        // A definition whose left side carries indices its right side lacks
+        // (`t_i^{(n)} = t_i n_i`): once, its subscript is read as stray.
+        let stray_index = d.message.contains(super::load::DEFINED_WITH_INDICES)
+            && d.message.ends_with("free indices none");
         if let Some(eq) = equations
             .iter_mut()
             .find(|q| &q.id == id && q.unread.is_none())
         {
+            let stems: Vec<String> = eq
+                .defines
+                .iter()
+                .filter_map(|(k, _)| symbols::tensor_stem(k))
+                .collect();
+            // A chain whose members carry different free indices as printed
+            // (`t_i = … = \sigma_{ki} n_k (\delta_{il} - n_i n_l)`): once, it is checked as
+            // printed, for every value of each.
+            if d.message.starts_with(super::load::DIFFERENT_FREE_INDICES) && !eq.verbatim {
+                eq.verbatim = true;
+                moved = true;
+                continue;
+            }
+            if stray_index && !stems.is_empty() {
+                let before = rounds.stray.len();
+                rounds.stray.extend(stems);
+                if rounds.stray.len() > before {
+                    moved = true;
+                    continue;
+                }
+            }
             eq.unread = Some(d.message.clone());
             eq.edit.clone_from(&d.help);
             moved = true;
@@ -316,9 +368,13 @@ fn line_owners(toml: &str) -> BTreeMap<usize, String> {
 fn defined_symbol(
     first: &latex::Math,
     symbol: Option<&(Key, Symbol)>,
-    tensors: &BTreeSet<String>,
+    tensors: &Stems,
 ) -> Option<(Key, Option<Symbol>)> {
     let (key, s) = symbol?;
+    // A component (`\sigma_{21} = \tau`) defines no tensor.
+    if s.rank > 0 && s.key.1.iter().any(char::is_ascii_digit) {
+        return None;
+    }
     // The chain's first symbol must be the first member's own (a constant such as π is
     // no symbol, and the first symbol is then a later member's).
     let own = symbols::occurrences(&[first], None, tensors);
@@ -342,6 +398,8 @@ fn defined_symbol(
                 squared: false,
                 doubt: None,
                 derivatives: BTreeSet::new(),
+                stray: false,
+                printed: BTreeSet::new(),
             };
             Some((format!("{key}^2"), Some(square)))
         }
@@ -351,7 +409,7 @@ fn defined_symbol(
 
 /// The symbol an equation the reader cannot read may define: its text before the first
 /// `=` outside braces, when that reads as one symbol alone (or its square).
-fn left_symbol(latex_text: &str, normal: Option<&str>, tensors: &BTreeSet<String>) -> Option<Key> {
+fn left_symbol(latex_text: &str, normal: Option<&str>, tensors: &Stems) -> Option<Key> {
     let mut depth = 0i32;
     let at = latex_text.char_indices().find_map(|(i, c)| {
         match c {
@@ -634,18 +692,25 @@ fn write(
     (dimension, normal): (usize, Option<&str>),
     unnumbered: (usize, usize),
     (prose, said): (&[displays::Inline], Option<&mut Option<Vec<Said>>>),
+    rounds: &mut Rounds,
 ) -> Option<String> {
+    let Rounds {
+        refused_text,
+        stray,
+    } = rounds;
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
     let mut symbols: BTreeMap<Key, Symbol> = BTreeMap::new();
     let mut order: Vec<Key> = Vec::new();
-    let mut candidates: Vec<(usize, Key, BTreeSet<Key>, String)> = Vec::new();
+    let mut candidates: Vec<Candidate> = Vec::new();
     // Equations left to complete that the reader cannot read: what they define is
     // unknown, so a symbol they mention is defined by no later equation.
     let mut opaque: Vec<(usize, String)> = Vec::new();
     let options = ReadOptions::default();
-    // Pass 0: the symbols that carry index slots anywhere (read or left to complete).
-    let tensors: BTreeSet<String> = equations
+    // Pass 0: the symbols that carry index slots anywhere (read or left to complete),
+    // and those printed bare somewhere, which a stray subscript may stand for.
+    let mut bare: BTreeSet<String> = BTreeSet::new();
+    let tensor_stems: BTreeSet<String> = equations
         .iter()
         .filter_map(|eq| latex::read(&eq.latex, &options).ok())
         .flat_map(|p| {
@@ -653,13 +718,22 @@ fn write(
                 .iter()
                 .flat_map(|part| {
                     let members: Vec<&latex::Math> = part.members.iter().collect();
-                    symbols::occurrences(&members, normal, &BTreeSet::new())
+                    symbols::occurrences(&members, normal, &Stems::default())
                 })
                 .filter(|(_, s)| !s.component)
+                .inspect(|(k, _)| {
+                    if let Some(stem) = k.strip_suffix("||0") {
+                        bare.insert(stem.to_owned());
+                    }
+                })
                 .filter_map(|(k, _)| symbols::tensor_stem(&k))
                 .collect::<Vec<_>>()
         })
         .collect();
+    let tensors = Stems {
+        tensors: tensor_stems,
+        stray: stray.intersection(&bare).cloned().collect(),
+    };
     // Symbols that an equation left to complete has alone on a left side: it may define
     // them, so no later equation does. Symbols met other than squared (`T`, not `T^2`):
     // their squares are no symbols of their own.
@@ -699,6 +773,7 @@ fn write(
     for (q, eq) in equations.iter_mut().enumerate() {
         eq.reads.clear();
         eq.defines.clear();
+        eq.stray.clear();
         if eq.unread.is_some() {
             if let Ok(p) = latex::read(&eq.latex, &options) {
                 for part in &p.parts {
@@ -761,6 +836,11 @@ fn write(
                 });
                 entry.field |= s.field;
                 entry.derivatives.extend(s.derivatives.iter().cloned());
+                entry.printed.extend(s.printed.iter().cloned());
+                entry.entry |= s.entry;
+                if s.stray {
+                    eq.stray.insert(s.key.0.clone());
+                }
             }
             if part.relations.first() != Some(&latex::Rel::Eq) || members.len() < 2 {
                 continue;
@@ -787,13 +867,44 @@ fn write(
                 .unwrap_or("")
                 .trim()
                 .to_owned();
-            candidates.push((q, key, body, text));
+            candidates.push(Candidate {
+                q,
+                key,
+                body,
+                text,
+                stated: None,
+            });
         }
     }
+    candidates.extend(stated_definitions(
+        equations,
+        (prose, &*refused_text),
+        (&symbols, &open, &in_prose),
+        (normal, &tensors),
+    ));
+    // A decomposition `A = B + C` of a symbol read before defines B, not A.
+    let instead: BTreeSet<(usize, Key)> = candidates
+        .iter()
+        .filter_map(|c| Some((c.q, c.stated.as_ref()?.instead_of.clone()?)))
+        .collect();
+    candidates.retain(|c| c.stated.is_some() || !instead.contains(&(c.q, c.key.clone())));
+    // A definition the text states comes before the equation that follows it.
+    candidates.sort_by_key(|c| (c.q, c.stated.as_ref().is_none_or(|s| s.line.is_none())));
     // The first candidate of each symbol defines it, unless its body leads back to it
     // through the definitions chosen before.
     let mut chosen: BTreeMap<Key, (usize, BTreeSet<Key>)> = BTreeMap::new();
-    for (q, key, body, text) in candidates {
+    let mut stated: BTreeMap<Key, Stated> = BTreeMap::new();
+    // Symbols whose square an equation states alone on its left (`T^2 = …` where the
+    // paper writes `T` too): the first such equation of each.
+    let mut squares: BTreeMap<Key, usize> = BTreeMap::new();
+    for Candidate {
+        q,
+        key,
+        body,
+        text,
+        stated: by,
+    } in candidates
+    {
         let before = |k: &str| {
             blocked.get(k).is_some_and(|&b| b < q)
                 || opaque
@@ -804,11 +915,15 @@ fn write(
         let square_of_plain = base.is_some_and(|b| plain.contains(b) || before(b));
         // Said of the symbol, or of its base for a square (`$q = \sqrt{3J_2}$` before
         // `q^2 = …`).
-        let said_before = [Some(key.as_str()), base].into_iter().flatten().any(|k| {
-            in_prose.get(k).is_some_and(|(line, texts)| {
-                *line < equations[q].line && !texts.contains(&spaceless(&equations[q].latex))
-            })
-        });
+        let said_before = by.is_none()
+            && [Some(key.as_str()), base].into_iter().flatten().any(|k| {
+                in_prose.get(k).is_some_and(|(line, texts)| {
+                    *line < equations[q].line && !texts.contains(&spaceless(&equations[q].latex))
+                })
+            });
+        if let Some(b) = base.filter(|_| square_of_plain && by.is_none()) {
+            squares.entry(b.to_owned()).or_insert(q);
+        }
         if chosen.contains_key(&key)
             || before(&key)
             || said_before
@@ -816,6 +931,9 @@ fn write(
             || leads_to(&body, &key, &chosen)
         {
             continue;
+        }
+        if let Some(by) = by {
+            stated.insert(key.clone(), by);
         }
         chosen.insert(key, (q, body));
     }
@@ -825,6 +943,10 @@ fn write(
     order.retain(|k| symbols.contains_key(k));
     let mut defined: BTreeMap<Key, String> = BTreeMap::new();
     for (key, (q, _)) in &chosen {
+        if let Some(line) = stated.get(key).and_then(|s| s.line) {
+            defined.insert(key.clone(), format!("the text, line {line}"));
+            continue;
+        }
         let eq = &mut equations[*q];
         eq.defines.push((key.clone(), String::new()));
         defined.insert(key.clone(), eq.id.clone());
@@ -896,7 +1018,17 @@ fn write(
     let tied = match said {
         Some(cache) => {
             let said = cache.get_or_insert_with(|| said_in_text(prose, normal, &tensors));
-            tied((equations, &symbols, &chosen), (&open, &opaque), said)
+            // A definition of the text is an equation of the file, not a reason.
+            let text_lines: BTreeSet<usize> = stated.values().filter_map(|s| s.line).collect();
+            let said: Vec<&Said> = said
+                .iter()
+                .filter(|f| !text_lines.contains(&f.line))
+                .collect();
+            tied(
+                (equations, &symbols, &chosen, &squares),
+                (&open, &opaque),
+                &said,
+            )
         }
         None => BTreeMap::new(),
     };
@@ -957,6 +1089,12 @@ fn write(
             if table.add(key, vec![value.clone()]).is_ok() {
                 entries.push((key.clone(), value));
             }
+            // A scalar printed with a stray subscript too (`t_{i}^{(n)}` beside `t^{(n)}`).
+            for other in s.printed.iter().filter(|p| *p != key && s.rank == 0) {
+                if table.add(other, vec![s.name.clone()]).is_ok() {
+                    entries.push((other.clone(), s.name.clone()));
+                }
+            }
             for (key, value) in &s.derivatives {
                 // The derivative's reading names the symbol by its final name.
                 let value = match value.split_once('_') {
@@ -1007,6 +1145,24 @@ fn write(
             });
         }
     }
+    // A stated definition, `X = …` alone: its defining member.
+    let stated_member = |st: &Stated| {
+        latex::read(&st.latex, &options)
+            .ok()
+            .and_then(|p| p.parts.first()?.members.first().cloned())
+    };
+    for (key, st) in &stated {
+        let (Some(s), Some(member)) = (symbols.get(key), stated_member(st)) else {
+            continue;
+        };
+        if !sigs.iter().any(|g| g.name == s.name) {
+            sigs.push(DefSig {
+                name: s.name.clone(),
+                formal: formal_of(&member, s.rank),
+                shape: None,
+            });
+        }
+    }
     let mut texts: BTreeMap<Key, (String, String)> = BTreeMap::new();
     for eq in equations.iter_mut() {
         if eq.unread.is_some() || eq.defines.is_empty() {
@@ -1043,6 +1199,58 @@ fn write(
             };
             texts.insert(key.clone(), (format!("{head} = {body}"), eq.id.clone()));
         }
+    }
+    for (key, st) in &stated {
+        let (Some(s), Some((q, _))) = (symbols.get(key), chosen.get(key)) else {
+            continue;
+        };
+        let origin = match st.line {
+            Some(line) => format!("the text, line {line}"),
+            None => equations[*q].id.clone(),
+        };
+        let body = stated_member(st).and_then(|member| {
+            let reading = notation::read(
+                &st.latex,
+                &table,
+                std::slice::from_ref(&member),
+                &decls,
+                &sigs,
+            )
+            .ok()?;
+            let body = reading
+                .parts
+                .iter()
+                .find(|p| p.defines.is_some())?
+                .routes
+                .first()?
+                .first()?
+                .text
+                .clone();
+            Some((member, body))
+        });
+        let Some((member, body)) = body else {
+            // Not read: the text's definition is dropped, a decomposition's equation is
+            // left to complete; the file is written again.
+            match st.line {
+                Some(line) => {
+                    refused_text.insert(line);
+                }
+                None => {
+                    equations[*q].unread = Some(format!(
+                        "the definition it states of `{}` cannot be read",
+                        s.key.0
+                    ));
+                }
+            }
+            return None;
+        };
+        let formal: String = formal_of(&member, s.rank).into_iter().collect();
+        let head = if formal.is_empty() {
+            s.name.clone()
+        } else {
+            format!("{}_{formal}", s.name)
+        };
+        texts.insert(key.clone(), (format!("{head} = {body}"), origin));
     }
     // In an order where each definition uses only those above it.
     let mut define_lines: Vec<(String, String)> = Vec::new();
@@ -1084,6 +1292,202 @@ fn write(
         with_slots: &with_slots,
         tied: &tied,
     }))
+}
+
+/// What one round of writing the file learns for the next: definitions of the text the
+/// loader refuses (by line), and stems read with a stray subscript.
+#[derive(Default)]
+struct Rounds {
+    refused_text: BTreeSet<usize>,
+    stray: BTreeSet<String>,
+}
+
+/// A symbol's definition on its way into the file.
+struct Candidate {
+    /// The numbered equation that states it, or for the text's, the number of
+    /// equations before it.
+    q: usize,
+    key: Key,
+    /// The symbols its body reads.
+    body: BTreeSet<Key>,
+    /// The defined symbol as printed.
+    text: String,
+    /// Where it is stated, if not alone on the left of equation `q`.
+    stated: Option<Stated>,
+}
+
+/// Words of the sentence before a decomposition ("We decompose the stress into a
+/// spherical and a deviatoric part").
+const DECOMPOSITION_WORDS: [&str; 4] = ["decompos", "split", " part", "sum of"];
+
+/// A definition stated other than alone on the left of a numbered equation.
+struct Stated {
+    /// The text's line, for one a sentence states; `None` for a decomposition that a
+    /// numbered equation states.
+    line: Option<usize>,
+    /// The definition as LaTeX, `X = …`.
+    latex: String,
+    /// A decomposition's left side, which it defines instead of being defined by it.
+    instead_of: Option<Key>,
+}
+
+/// Definitions the paper states other than alone on the left of a numbered equation:
+/// - an equation of the text that introduces a symbol the numbered equations read only
+///   after it ("the stress vector $t_i = \sigma_{ki} n_k$"), from symbols they read.
+///   Its right side must read a symbol, and not be one alone: `$f_i^{(2,1)c} = f_i^c$`
+///   gives a second name, `$x = 0$` a condition;
+/// - a decomposition (`\sigma_{ij} = s_{ij} + p \delta_{ij}`), where the sentence before
+///   it says so ([`DECOMPOSITION_WORDS`]): an equation `A = B` whose right side is a sum
+///   with one added term that is a symbol met there first and once; it defines that
+///   symbol as the rest moved over (`s_{ij} = \sigma_{ij} - (p \delta_{ij})`), and `A`
+///   is not defined by it, even where met there first.
+#[allow(clippy::type_complexity)]
+fn stated_definitions(
+    equations: &[Equation],
+    (prose, refused): (&[displays::Inline], &BTreeSet<usize>),
+    (symbols, open, in_prose): (
+        &BTreeMap<Key, Symbol>,
+        &BTreeMap<Key, usize>,
+        &BTreeMap<Key, (usize, BTreeSet<String>)>,
+    ),
+    (normal, tensors): (Option<&str>, &Stems),
+) -> Vec<Candidate> {
+    let options = ReadOptions::default();
+    // The line each symbol is first read at, by an equation read or left to complete.
+    let mut first_line: BTreeMap<&Key, usize> = BTreeMap::new();
+    let reads = equations
+        .iter()
+        .flat_map(|e| e.reads.iter().map(move |k| (k, e.line)))
+        .chain(open.iter().map(|(k, &q)| (k, equations[q].line)));
+    for (k, line) in reads {
+        let at = first_line.entry(k).or_insert(line);
+        *at = (*at).min(line);
+    }
+    let keys = |members: &[&latex::Math]| -> Vec<Key> {
+        symbols::occurrences(members, normal, tensors)
+            .into_iter()
+            .map(|(k, _)| k)
+            .collect()
+    };
+    fn span<'t>(text: &'t str, m: &latex::Math) -> Option<&'t str> {
+        text.get(m.span.start..m.span.end).map(str::trim)
+    }
+    let mut out = Vec::new();
+    for f in prose {
+        if refused.contains(&f.line) || !f.body.contains('=') {
+            continue;
+        }
+        let Ok(read) = latex::read(&f.body, &options) else {
+            continue;
+        };
+        let [part] = &read.parts[..] else { continue };
+        let [m0, m1] = &part.members[..] else {
+            continue;
+        };
+        if part.relations[..] != [latex::Rel::Eq]
+            || !matches!(m0.kind, MathKind::Atom(_))
+            || matches!(m1.kind, MathKind::Atom(_))
+        {
+            continue;
+        }
+        let found = symbols::occurrences(&[m0, m1], normal, tensors);
+        let Some((key, None)) = defined_symbol(m0, found.first(), tensors) else {
+            continue;
+        };
+        let body: BTreeSet<Key> = keys(&[m1]).into_iter().collect();
+        let introduced = first_line.get(&key).is_some_and(|&l| l > f.line);
+        if body.is_empty()
+            || body.contains(&key)
+            || !introduced
+            || !body.iter().all(|k| symbols.contains_key(k))
+        {
+            continue;
+        }
+        let Some(text) = span(&f.body, m0) else {
+            continue;
+        };
+        out.push(Candidate {
+            q: equations.iter().filter(|e| e.line < f.line).count(),
+            key,
+            body,
+            text: text.to_owned(),
+            stated: Some(Stated {
+                line: Some(f.line),
+                latex: f.body.clone(),
+                instead_of: None,
+            }),
+        });
+    }
+    for (q, eq) in equations.iter().enumerate() {
+        // Only where its sentence says so: a new symbol added to a known one is
+        // otherwise as likely an error as a definition.
+        let lead_in = eq.lead_in.to_lowercase();
+        if eq.unread.is_some() || !DECOMPOSITION_WORDS.iter().any(|w| lead_in.contains(w)) {
+            continue;
+        }
+        let Ok(printed) = latex::read(&eq.latex, &options) else {
+            continue;
+        };
+        for part in &printed.parts {
+            let [m0, m1] = &part.members[..] else {
+                continue;
+            };
+            let MathKind::Sum(terms) = &m1.kind else {
+                continue;
+            };
+            if part.relations[..] != [latex::Rel::Eq] || terms.len() < 2 {
+                continue;
+            }
+            let found = keys(&[m0, m1]);
+            let known = |k: &Key| first_line.get(k).is_some_and(|&l| l < eq.line);
+            // The one added term that is a symbol met here first, once.
+            let new: Vec<(usize, Key)> = terms
+                .iter()
+                .enumerate()
+                .filter(|(_, (minus, t))| !minus && matches!(t.kind, MathKind::Atom(_)))
+                .filter_map(|(n, (_, t))| Some((n, keys(&[m0, t]).pop()?)))
+                .filter(|(_, k)| {
+                    found.iter().filter(|f| *f == k).count() == 1
+                        && !known(k)
+                        && !in_prose.contains_key(k)
+                        && symbols.contains_key(k)
+                })
+                .collect();
+            let [(at, key)] = &new[..] else { continue };
+            let Some(rest) = terms
+                .iter()
+                .enumerate()
+                .filter(|(n, _)| n != at)
+                .map(|(n, (minus, t))| {
+                    let sign = match (minus, n == 0 || (*at == 0 && n == 1)) {
+                        (true, _) => "- ",
+                        (false, true) => "",
+                        (false, false) => "+ ",
+                    };
+                    span(&eq.latex, t).map(|t| format!("{sign}{t}"))
+                })
+                .collect::<Option<Vec<String>>>()
+            else {
+                continue;
+            };
+            let (Some(text), Some(left)) = (span(&eq.latex, &terms[*at].1), span(&eq.latex, m0))
+            else {
+                continue;
+            };
+            out.push(Candidate {
+                q,
+                key: key.clone(),
+                body: found.iter().filter(|k| *k != key).cloned().collect(),
+                text: text.to_owned(),
+                stated: Some(Stated {
+                    line: None,
+                    latex: format!("{text} = {left} - ({})", rest.join(" ")),
+                    instead_of: keys(&[m0]).pop(),
+                }),
+            });
+        }
+    }
+    out
 }
 
 /// Words of a sentence that say its symbols are tied to others: "equal and opposite",
@@ -1143,11 +1547,7 @@ struct Said {
 
 /// What each equation of the text says ([`Said`]); a formula the reader cannot read, or
 /// with neither an equality nor a tie word, says nothing.
-fn said_in_text(
-    prose: &[displays::Inline],
-    normal: Option<&str>,
-    tensors: &BTreeSet<String>,
-) -> Vec<Said> {
+fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stems) -> Vec<Said> {
     let options = ReadOptions::default();
     let keys = |members: &[&latex::Math]| -> Vec<Key> {
         symbols::occurrences(members, normal, tensors)
@@ -1241,13 +1641,14 @@ fn names(words: &str, key: &Key) -> bool {
 /// (`f^{(1,2)}` beside `f^{(2,1)}`), which it may relate in words.
 #[allow(clippy::type_complexity)]
 fn tied(
-    (equations, symbols, chosen): (
+    (equations, symbols, chosen, squares): (
         &[Equation],
         &BTreeMap<Key, Symbol>,
         &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+        &BTreeMap<Key, usize>,
     ),
     (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
-    said: &[Said],
+    said: &[&Said],
 ) -> BTreeMap<String, (Option<usize>, String, bool)> {
     let declared = |k: &Key| {
         symbols
@@ -1461,6 +1862,18 @@ fn tied(
                 false,
             );
         }
+        // A symbol whose square an equation states (`T^2 = \langle … \rangle`, with `T`
+        // written elsewhere): that equation is a claim about it, and may be what the
+        // paper means by it.
+        if let Some(&q) = squares.get(k) {
+            let e = &equations[q];
+            add(
+                &s.name,
+                Some(e.line),
+                format!("equation ({}) states its square", e.number),
+                false,
+            );
+        }
     }
     out
 }
@@ -1669,6 +2082,21 @@ fn render(r: Render<'_>) -> String {
         );
         if e.numeric {
             table.push_str("strategy = \"numeric\"\n");
+        }
+        let mut notes = Vec::new();
+        if e.verbatim {
+            table.push_str("verbatim = true\n");
+            notes.push("As printed, its members carry different free indices: it is checked for every value of each.".to_owned());
+        }
+        if !e.stray.is_empty() {
+            let printed: Vec<&str> = e.stray.iter().map(String::as_str).collect();
+            notes.push(format!(
+                "Read with a stray subscript: {} carries an index that its equation does not, and is read as the scalar the paper also prints without it.",
+                printed.join(", ")
+            ));
+        }
+        if !notes.is_empty() {
+            table.push_str(&format!("note = {}\n", toml_string(&notes.join(" "))));
         }
         let mut uses: BTreeSet<&str> = BTreeSet::new();
         for target in e.reads.iter().filter_map(|k| definer.get(k).copied()) {

@@ -40,6 +40,22 @@ pub struct Symbol {
     /// Its comma derivatives as printed (`w_{i,m}^{c}`), each a notation key with its
     /// reading (`wc_i,m`), for a symbol that needs an entry.
     pub derivatives: BTreeSet<(String, String)>,
+    /// This occurrence carries a stray subscript ([`Stems::stray`]).
+    pub stray: bool,
+    /// For a scalar, the printed forms it is read from (`t^{(n)}`, and `t_{i}^{(n)}` with
+    /// a stray subscript), each a notation key.
+    pub printed: BTreeSet<String>,
+}
+
+/// What the paper's equations, all together, say of the stems of its symbols
+/// ([`tensor_stem`]).
+#[derive(Clone, Debug, Default)]
+pub struct Stems {
+    /// Stems of symbols that carry index slots somewhere.
+    pub tensors: BTreeSet<String>,
+    /// Stems whose subscript is stray (`t_i^{(n)} = t_i n_i`, where the paper prints
+    /// `t^{(n)}` elsewhere): read as the bare scalar.
+    pub stray: BTreeSet<String>,
 }
 
 /// The identity of a printed symbol: everything but its index letters.
@@ -58,11 +74,7 @@ pub fn tensor_stem(key: &Key) -> Option<String> {
 /// Every symbol occurrence of one equation: (identity, the symbol), built-ins left out.
 /// `tensors` holds the stems ([`tensor_stem`]) of symbols that carry index slots
 /// elsewhere in the paper: a one-letter subscript on one of them is an index too.
-pub fn occurrences(
-    members: &[&Math],
-    normal: Option<&str>,
-    tensors: &BTreeSet<String>,
-) -> Vec<(Key, Symbol)> {
+pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> Vec<(Key, Symbol)> {
     // A subscript letter is an index where two symbols share it (`n_i` in
     // `\ell_i = R_g n_i`) or one side repeats it (`u_i u_i`).
     let mut indices: BTreeSet<char> = BTreeSet::new();
@@ -73,7 +85,11 @@ pub fn occurrences(
         atoms_of(m, false, &mut own);
         let mut in_member: BTreeMap<char, usize> = BTreeMap::new();
         for (a, _) in &own {
-            if let Some(sub) = &a.sub {
+            if let Some(sub) = a
+                .sub
+                .as_ref()
+                .filter(|s| greek_subscript(&s.text).is_none())
+            {
                 for c in sub.text.chars().filter(char::is_ascii_alphabetic) {
                     bases.entry(c).or_default().insert(a.base.clone());
                     *in_member.entry(c).or_default() += 1;
@@ -138,7 +154,7 @@ fn symbol(
     a: &Atom,
     indices: &BTreeSet<char>,
     normal: Option<&str>,
-    tensors: &BTreeSet<String>,
+    tensors: &Stems,
 ) -> Option<(Key, Symbol)> {
     let base = a.base.trim_start_matches('\\');
     let sub = a.sub.as_ref().map(|s| s.text.as_str()).unwrap_or("");
@@ -175,6 +191,9 @@ fn symbol(
     // A one-letter subscript met once completes the name (R_g), and so does one digit
     // (J_2: a component `u_1` where the paper has a vector `u`, see `unique_names`);
     // any other subscript holds index slots.
+    // A subscript of one Greek letter (`\mu_\tau`) names: the language's indices are
+    // Latin letters, so it never holds a slot.
+    let greek = greek_subscript(slots).is_some() && !derivative;
     let one_letter = slots.len() == 1 && slots.chars().all(|c| c.is_ascii_alphanumeric());
     let stem = format!(
         "{}|{}|{}|{}",
@@ -186,9 +205,16 @@ fn symbol(
     // `t_k^{(t)}` where the paper writes `t_i^{(t)}` with an index elsewhere: one of the
     // usual index letters on a symbol with slots is an index (`f_s` beside `f_i` stays
     // a name: s, r, g, p, n, t label as often as they index).
-    let of_a_tensor = slots.chars().all(|c| "ijklm".contains(c)) && tensors.contains(&stem);
-    let suffix =
-        one_letter && !derivative && !of_a_tensor && !slots.chars().any(|c| indices.contains(&c));
+    let of_a_tensor = slots.chars().all(|c| "ijklm".contains(c)) && tensors.tensors.contains(&stem);
+    let stray = !slots.is_empty()
+        && !derivative
+        && slots.chars().all(|c| c.is_ascii_lowercase())
+        && tensors.stray.contains(&stem);
+    let suffix = !stray && greek
+        || (one_letter
+            && !derivative
+            && !of_a_tensor
+            && !slots.chars().any(|c| indices.contains(&c)));
     let mut name = String::from(base);
     if let Some(acc) = &a.accent {
         name.push_str(match acc.trim_start_matches('\\') {
@@ -206,7 +232,9 @@ fn symbol(
     }
     name.push_str(&"p".repeat(a.primes));
     let (rank, key_letters) = if suffix {
-        name = format!("{name}_{slots}");
+        name = format!("{name}_{}", slots.trim().trim_start_matches('\\'));
+        (0, Vec::new())
+    } else if stray {
         (0, Vec::new())
     } else {
         (
@@ -217,6 +245,11 @@ fn symbol(
     // Symbols of one name with different numbers of slots are different symbols.
     let identity = format!("{stem}|{}|{rank}", if suffix { slots } else { "" });
     let key = (printed_key(a, suffix.then_some(slots)), key_letters.clone());
+    let printed = if rank == 0 {
+        BTreeSet::from([key.0.clone()])
+    } else {
+        BTreeSet::new()
+    };
     let mut derivatives = BTreeSet::new();
     if derivative && !plain {
         let whole = sub.replace(' ', "");
@@ -235,13 +268,21 @@ fn symbol(
             rank,
             field: derivative,
             key,
-            entry: !plain,
+            entry: !plain || stray,
             component: false,
             squared: false,
             doubt,
             derivatives,
+            stray,
+            printed,
         },
     ))
+}
+
+/// The Greek letter a subscript is, alone (`\tau`, `{\tau}`), or `None`.
+fn greek_subscript(sub: &str) -> Option<char> {
+    let name = sub.trim().strip_prefix('\\')?;
+    crate::lang::latex::greek_letter(name)
 }
 
 /// The printed symbol without its derivative letters, as a notation key:
