@@ -352,6 +352,9 @@ pub struct Inline {
     pub line: usize,
     pub body: String,
     pub words: String,
+    /// Where the formula stands in `words` (a byte offset): the words before it are
+    /// `words[..at]`.
+    pub at: usize,
 }
 
 /// The inline formulas of the paper's text, each with its line and the words of its
@@ -399,6 +402,7 @@ pub fn inline_formulas(text: &str, markdown: bool) -> Vec<Inline> {
                 line,
                 body,
                 words: words[start..stop].to_owned(),
+                at: at - start,
             });
         }
     }

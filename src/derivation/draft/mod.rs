@@ -7,8 +7,13 @@
 //! ([`symbols`]); a symbol seen for the first time alone on the left of an equation is
 //! a definition (its body is the equation's next member, read through the draft's
 //! notation), and the claim that states it is a use of every later claim that reads
-//! it. A symbol with a label, an accent or primes gets a notation entry with a
-//! readable name.
+//! it. So is a symbol an equation of the text introduces (`$t_i = \sigma_{ki} n_k$`),
+//! and the new term of a decomposition the text announces ([`stated_definitions`]). A
+//! symbol with a label, an accent or primes gets a notation entry with a readable name.
+//! What the loader refuses is learned round by round ([`Rounds`]): a definition of the
+//! text is dropped; a subscript a definition's right side has no index for, on a symbol
+//! the paper also prints bare, is read as stray; a chain whose members carry different
+//! free indices is checked as printed (`verbatim`).
 //!
 //! An equation the draft cannot read, or whose claim the loader refuses, is kept in the
 //! file as a commented claim, and listed in `to_complete` with its line in the source,
@@ -120,10 +125,14 @@ pub fn draft(
     let lines: Vec<&str> = live.lines().collect();
     let mut prose = displays::inline_formulas(source, markdown);
     // A display without a number is an equation of the text too: it may tie symbols.
-    prose.extend(unnumbered_displays.iter().map(|d| displays::Inline {
-        line: d.line,
-        body: d.latex.clone(),
-        words: displays::lead_in(&lines, d.line),
+    prose.extend(unnumbered_displays.iter().map(|d| {
+        let words = displays::lead_in(&lines, d.line);
+        displays::Inline {
+            line: d.line,
+            body: d.latex.clone(),
+            at: words.len(),
+            words,
+        }
     }));
     // What the text's own equations say, read in the first round.
     let mut said = None;
@@ -371,8 +380,11 @@ fn defined_symbol(
     tensors: &Stems,
 ) -> Option<(Key, Option<Symbol>)> {
     let (key, s) = symbol?;
-    // A component (`\sigma_{21} = \tau`) defines no tensor.
-    if s.rank > 0 && s.key.1.iter().any(char::is_ascii_digit) {
+    // A component (`\sigma_{21} = \tau`), a trace (`s_{kk} = 0`) or a derivative
+    // (`u_{i,j} = …`) defines no symbol.
+    let letters: BTreeSet<&char> = s.key.1.iter().collect();
+    let part = s.key.1.iter().any(char::is_ascii_digit) || letters.len() < s.key.1.len();
+    if s.field || (s.rank > 0 && part) {
         return None;
     }
     // The chain's first symbol must be the first member's own (a constant such as π is
@@ -666,6 +678,19 @@ fn dimension_in(source: &str, markdown: bool) -> Option<usize> {
                 found.insert(2);
             }
         }
+        // "indices range over 1 and 2", "take the values 1, 2": two values, not three.
+        if about_indices {
+            for phrase in ["1 and 2", "1, 2", "1,2"] {
+                for (at, _) in sentence.match_indices(phrase) {
+                    let next = sentence[at + phrase.len()..].trim_start_matches([',', ' ']);
+                    let third = ["3", "and 3", "or 3"].iter().any(|t| next.starts_with(t));
+                    let before = sentence[..at].trim_end();
+                    if !third && !before.ends_with("from") && !before.ends_with('=') {
+                        found.insert(2);
+                    }
+                }
+            }
+        }
         // Another range named in a sentence about indices makes the text ambiguous
         // ("Latin indices take the values 1, 2, 3; Greek ones range from 1 to 2"): no
         // dimension is read then.
@@ -876,10 +901,12 @@ fn write(
             });
         }
     }
+    // Symbols a numbered equation has alone on its left: defined there, not by the text.
+    let numbered: BTreeSet<Key> = candidates.iter().map(|c| c.key.clone()).collect();
     candidates.extend(stated_definitions(
         equations,
         (prose, &*refused_text),
-        (&symbols, &open, &in_prose),
+        (&symbols, &open, &in_prose, &numbered),
         (normal, &tensors),
     ));
     // A decomposition `A = B + C` of a symbol read before defines B, not A.
@@ -1316,6 +1343,107 @@ struct Candidate {
     stated: Option<Stated>,
 }
 
+/// "… their equal and opposite reactions $f_i^{(1,2)c}$ …": a symbol whose label is a
+/// pair `(a,b)`, named after the word "opposite" in its sentence, is minus the one the
+/// paper labels `(b,a)` (action and reaction), when the equations read both and read it
+/// only after the sentence.
+fn reaction(
+    f: &displays::Inline,
+    equations: &[Equation],
+    (symbols, first_line): (&BTreeMap<Key, Symbol>, &BTreeMap<&Key, usize>),
+    (normal, tensors): (Option<&str>, &Stems),
+) -> Option<Candidate> {
+    let before = f.words.get(..f.at)?.to_lowercase();
+    if !before.contains("opposite") {
+        return None;
+    }
+    let read = latex::read(&f.body, &ReadOptions::default()).ok()?;
+    let [part] = &read.parts[..] else { return None };
+    let [m] = &part.members[..] else { return None };
+    let MathKind::Atom(a) = &m.kind else {
+        return None;
+    };
+    // The label's pair, `(1,2)` in `(1,2)c`, and the body with it reversed.
+    let sup = a.sup.as_ref()?.text.as_str();
+    let open = sup.find('(')?;
+    let close = open + sup[open..].find(')')?;
+    let (x, y) = sup[open + 1..close].split_once(',')?;
+    let (x, y) = (x.trim(), y.trim());
+    if x.is_empty() || y.is_empty() || x == y {
+        return None;
+    }
+    let reversed_sup = format!("{}({y},{x}){}", &sup[..open], &sup[close + 1..]);
+    let body = f.body.trim();
+    let at = body.find(sup)?;
+    let reversed = format!("{}{reversed_sup}{}", &body[..at], &body[at + sup.len()..]);
+    let key_of = |text: &str| -> Option<Key> {
+        let r = latex::read(text, &ReadOptions::default()).ok()?;
+        let m = r.parts.first()?.members.first()?;
+        symbols::occurrences(&[m], normal, tensors)
+            .into_iter()
+            .next()
+            .map(|(k, _)| k)
+    };
+    let (key, other) = (key_of(body)?, key_of(&reversed)?);
+    let introduced = first_line.get(&key).is_some_and(|&l| l > f.line);
+    if key == other || !introduced || !symbols.contains_key(&other) {
+        return None;
+    }
+    Some(Candidate {
+        q: equations.iter().filter(|e| e.line < f.line).count(),
+        key,
+        body: BTreeSet::from([other]),
+        text: body.to_owned(),
+        stated: Some(Stated {
+            line: Some(f.line),
+            latex: format!("{body} = -{reversed}"),
+            instead_of: None,
+        }),
+    })
+}
+
+/// Whether the words before a formula of the text, in its sentence, introduce it as the
+/// value of what they name ("the stress vector", "the equivalent stress is", "where"),
+/// rather than as a condition or another model's ("In a hydrostatic state,", "Earlier
+/// models took … as", "Rather than").
+fn names_its_value(before: &str) -> bool {
+    const STOP: [&str; 19] = [
+        "as", "than", "of", "in", "on", "under", "for", "when", "if", "at", "to", "from", "that",
+        "and", "or", "not", "nor", "like", "unless",
+    ];
+    const CONDITION: [&str; 16] = [
+        "if",
+        "when",
+        "whenever",
+        "under",
+        "assuming",
+        "assume",
+        "suppose",
+        "case",
+        "state",
+        "example",
+        "instance",
+        "earlier",
+        "classical",
+        "rather",
+        "instead",
+        "unlike",
+    ];
+    let clause = before
+        .rsplit(|c: char| ",;:.!?()".contains(c))
+        .next()
+        .unwrap_or("")
+        .to_lowercase();
+    let words: Vec<&str> = clause
+        .split(|c: char| !c.is_alphanumeric() && c != '-')
+        .filter(|w| !w.is_empty())
+        .collect();
+    words
+        .last()
+        .is_some_and(|w| !STOP.contains(w) && !CONDITION.contains(w))
+        && !words.iter().any(|w| CONDITION.contains(w))
+}
+
 /// Words of the sentence before a decomposition ("We decompose the stress into a
 /// spherical and a deviatoric part").
 const DECOMPOSITION_WORDS: [&str; 4] = ["decompos", "split", " part", "sum of"];
@@ -1345,10 +1473,11 @@ struct Stated {
 fn stated_definitions(
     equations: &[Equation],
     (prose, refused): (&[displays::Inline], &BTreeSet<usize>),
-    (symbols, open, in_prose): (
+    (symbols, open, in_prose, numbered): (
         &BTreeMap<Key, Symbol>,
         &BTreeMap<Key, usize>,
         &BTreeMap<Key, (usize, BTreeSet<String>)>,
+        &BTreeSet<Key>,
     ),
     (normal, tensors): (Option<&str>, &Stems),
 ) -> Vec<Candidate> {
@@ -1374,7 +1503,15 @@ fn stated_definitions(
     }
     let mut out = Vec::new();
     for f in prose {
-        if refused.contains(&f.line) || !f.body.contains('=') {
+        if refused.contains(&f.line) {
+            continue;
+        }
+        let reacts = reaction(f, equations, (symbols, &first_line), (normal, tensors));
+        if let Some(c) = reacts.filter(|c| !numbered.contains(&c.key)) {
+            out.push(c);
+            continue;
+        }
+        if !f.body.contains('=') {
             continue;
         }
         let Ok(read) = latex::read(&f.body, &options) else {
@@ -1399,6 +1536,8 @@ fn stated_definitions(
         if body.is_empty()
             || body.contains(&key)
             || !introduced
+            || numbered.contains(&key)
+            || !names_its_value(&f.words[..f.at.min(f.words.len())])
             || !body.iter().all(|k| symbols.contains_key(k))
         {
             continue;
@@ -1450,6 +1589,7 @@ fn stated_definitions(
                     found.iter().filter(|f| *f == k).count() == 1
                         && !known(k)
                         && !in_prose.contains_key(k)
+                        && !numbered.contains(k)
                         && symbols.contains_key(k)
                 })
                 .collect();
@@ -1925,14 +2065,18 @@ fn render(r: Render<'_>) -> String {
         "# occurs more than once in an equation's subscripts, holds index slots; a one-letter\n",
     );
     out.push_str(
-        "# subscript met once completes a scalar's name (R_g); a symbol first seen alone on the\n",
+        "# subscript met once (or one Greek letter) completes a scalar's name (R_g, mu_tau); a\n",
     );
     out.push_str(
-        "# left of an equation is defined by it; an equation that reads a symbol an earlier\n",
+        "# symbol first seen alone on the left of an equation is defined by it, and so is one\n",
     );
     out.push_str(
-        "# equation left to complete may define is left to complete too. Check each reading\n",
+        "# an equation of the text introduces, or the new term of a decomposition its sentence\n",
     );
+    out.push_str(
+        "# announces; an equation that reads a symbol an earlier equation left to complete may\n",
+    );
+    out.push_str("# define is left to complete too. Check each reading\n");
     out.push_str(
         "# before trusting a verdict. Every declared symbol is taken as independent, so a\n",
     );

@@ -9,7 +9,9 @@
 //!   `\ell_i = R_g n_i`); digits are components (`\sigma_{12}`);
 //! - a one-letter subscript that occurs once completes a scalar's name (`R_g`, `f_r`),
 //!   unless it is one of i, j, k, l, m on a symbol written with index slots elsewhere
-//!   (`t_k` where the paper has `t_i`);
+//!   (`t_k` where the paper has `t_i`); so does a subscript of one Greek letter
+//!   (`\mu_\tau`), since the language's indices are Latin letters;
+//! - a subscript found stray ([`Stems::stray`]) is read as the bare scalar;
 //! - δ_{ij}, e_{ijk} and ε_{ijk} are Kronecker's and Levi-Civita's symbols.
 
 use crate::lang::latex::{Atom, Math, MathKind};
