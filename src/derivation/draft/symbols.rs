@@ -212,11 +212,12 @@ fn symbol(
         && !derivative
         && slots.chars().all(|c| c.is_ascii_lowercase())
         && tensors.stray.contains(&stem);
-    let suffix = !stray && greek
-        || (one_letter
-            && !derivative
-            && !of_a_tensor
-            && !slots.chars().any(|c| indices.contains(&c)));
+    let suffix = !stray
+        && (greek
+            || (one_letter
+                && !derivative
+                && !of_a_tensor
+                && !slots.chars().any(|c| indices.contains(&c))));
     let mut name = String::from(base);
     if let Some(acc) = &a.accent {
         name.push_str(match acc.trim_start_matches('\\') {
