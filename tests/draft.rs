@@ -115,91 +115,85 @@ fn the_papers_markdown_drafts_into_a_file_verify_accepts() {
 /// introduces a symbol defines it; a reaction is minus its action.
 #[test]
 fn readings_of_notation_papers_use() {
-    let v = |id: &str, v: Verdict| (id.to_owned(), v);
-    let greek = "Indices range from 1 to 3. The couple stress is decomposed as\n\n$$\\mu_{ij} = c_{ij} + \\mu_\\tau \\delta_{ij} \\quad \\text{with} \\quad \\mu_\\tau = \\frac{1}{3} \\mu_{kk} \\quad (1)$$\n";
-    let (toml, verdicts) = drafted(&[&written("greek.md", greek)]);
-    assert!(toml.contains("'\\mu_{\\tau}' = 'mutau'"), "{toml}");
-    assert!(
-        toml.contains("'c_ij = mu_ij - mutau delta_ij',  # from eq1"),
-        "{toml}"
-    );
-    assert_eq!(verdicts, vec![v("eq1", Verdict::Holds)], "{toml}");
+    use Verdict::{Fails as F, Holds as H, Undecided as U};
     let decomposition = |words: &str| {
         format!("Indices range from 1 to 3.\n\n$$P = \\sigma_{{ij}} \\sigma_{{ij}} \\quad (1)$$\n\n{words}\n\n$$\\sigma_{{ij}} = s_{{ij}} + p \\delta_{{ij}} \\quad \\text{{with}} \\quad p = \\frac{{1}}{{3}} \\sigma_{{kk}} \\quad (2)$$\n\n$$s_{{kk}} = 0 \\quad (3)$$\n\n$$s_{{ij}} s_{{ij}} = \\sigma_{{ij}} \\sigma_{{ij}} - 2 p^2 \\quad (4)$$\n")
     };
-    let (toml, verdicts) = drafted(&[&written(
-        "decomposition.md",
-        &decomposition("We decompose the stress into a spherical and a deviatoric part"),
-    )]);
-    assert!(
-        toml.contains("'s_ij = sigma_ij - p delta_ij',  # from eq2"),
-        "{toml}"
-    );
-    assert_eq!(
-        verdicts,
-        vec![
-            v("eq1", Verdict::Holds),
-            v("eq2", Verdict::Holds),
-            v("eq3", Verdict::Holds),
-            v("eq4", Verdict::Fails),
-        ],
-        "{toml}"
-    );
-    let (toml, _) = drafted(&[&written("no-decomposition.md", &decomposition("Then"))]);
-    assert!(!toml.contains("'s_ij = "), "{toml}");
     let stray = "Indices range from 1 to 3. Let $n$ be the unit normal.\n\n$$t_i = \\sigma_{ki} n_k \\quad (1)$$\n\n$$t_i^{(n)} = t_i n_i = \\sigma_{ki} n_k n_i \\quad (2)$$\n\n$$t_i^{(t)} = t_i - t_i^{(n)} n_i = \\sigma_{ki} n_k (\\delta_{il} - n_i n_l) \\quad (3)$$\n\n$$\\langle t^{(n)} \\rangle = \\frac{1}{3} \\sigma_{kk} \\quad (4)$$\n";
-    let (toml, verdicts) = drafted(&[&written("stray.md", stray)]);
-    assert!(toml.contains("'t_{i}^{(n)}' = 'tn'"), "{toml}");
-    assert!(
-        toml.contains("note = 'Read with a stray subscript: t_{i}^{(n)}"),
-        "{toml}"
-    );
-    assert!(toml.contains("verbatim = true"), "{toml}");
-    assert_eq!(
-        verdicts,
-        vec![
-            v("eq1", Verdict::Holds),
-            v("eq2", Verdict::Holds),
-            v("eq3", Verdict::Fails),
-            v("eq4", Verdict::Holds),
-        ],
-        "{toml}"
-    );
-    // Without the bare t^{(n)}, the subscript is not taken as stray: (2) is to complete.
-    let (toml, _) = drafted(&[&written(
-        "not-stray.md",
-        &stray.replace("\\langle t^{(n)} \\rangle", "\\langle t_k n_k \\rangle"),
-    )]);
-    assert!(
-        toml.contains("{ id = 'eq2', line = 5, reason = '`tn` is defined with indices i"),
-        "{toml}"
-    );
-    let text = "Indices range from 1 to 3. Let $n$ be the unit normal. The traction $t_i = \\sigma_{ki} n_k$ on the plane gives\n\n$$t_i n_i = \\sigma_{ki} n_i n_k \\quad (1)$$\n\nand at $x = 0$ we have\n\n$$t_i t_i = \\sigma_{ki} \\sigma_{li} n_k n_l + x \\quad (2)$$\n";
-    let (toml, verdicts) = drafted(&[&written("text-definition.md", text)]);
-    assert!(
-        toml.contains("'t_i = sigma_ki n_k',  # from the text, line 1"),
-        "{toml}"
-    );
-    assert!(!toml.contains("'x = "), "{toml}");
-    assert_eq!(verdicts[0], v("eq1", Verdict::Holds), "{toml}");
-    // Action and reaction: the symbol named after "opposite" is minus its label-reversed
-    // twin; without the word, the two are independent symbols.
     let reaction = |words: &str| {
         format!("Indices range from 1 to 3. The force $f_i^{{(2,1)}}$ acts on grain 2, while {words} $f_i^{{(1,2)}}$ acts on grain 1.\n\n$$P = f_i^{{(2,1)}} v_i^{{(2)}} + f_i^{{(1,2)}} v_i^{{(1)}} = f_i^{{(2,1)}} (v_i^{{(2)}} - v_i^{{(1)}}) \\quad (1)$$\n")
     };
-    let (toml, verdicts) = drafted(&[&written(
-        "reaction.md",
-        &reaction("its equal and opposite reaction"),
-    )]);
-    assert!(
-        toml.contains("'f12_i = -f21_i',  # from the text, line 1"),
-        "{toml}"
-    );
-    assert_eq!(verdicts, vec![v("eq1", Verdict::Holds)], "{toml}");
-    let (toml, verdicts) = drafted(&[&written("no-reaction.md", &reaction("the force"))]);
-    assert!(!toml.contains("-f21_i"), "{toml}");
-    // The labelled twin is still a reason to think the paper ties them.
-    assert_eq!(verdicts, vec![v("eq1", Verdict::Undecided)], "{toml}");
+    // (file, source, what the draft must write, what it must not, the verdicts).
+    let cases: Vec<(&str, String, Vec<&str>, Vec<&str>, Vec<Verdict>)> = vec![
+        (
+            "greek.md",
+            "Indices range from 1 to 3. The couple stress is decomposed as\n\n$$\\mu_{ij} = c_{ij} + \\mu_\\tau \\delta_{ij} \\quad \\text{with} \\quad \\mu_\\tau = \\frac{1}{3} \\mu_{kk} \\quad (1)$$\n".to_owned(),
+            vec!["'\\mu_{\\tau}' = 'mutau'", "'c_ij = mu_ij - mutau delta_ij',  # from eq1"],
+            vec![],
+            vec![H],
+        ),
+        (
+            "decomposition.md",
+            decomposition("We decompose the stress into a spherical and a deviatoric part"),
+            vec!["'s_ij = sigma_ij - p delta_ij',  # from eq2"],
+            vec![],
+            vec![H, H, H, F],
+        ),
+        // Without the words, `s` is a symbol of its own, which (2) is the first to write
+        // (`introduces`): (2) is undecided. (3) and (4) fail as read, a known accusation:
+        // only the text could say that s is the deviator.
+        (
+            "no-decomposition.md",
+            decomposition("Then"),
+            vec!["introduces = ['p', 's']"],
+            vec!["'s_ij = "],
+            vec![H, U, F, F],
+        ),
+        (
+            "stray.md",
+            stray.to_owned(),
+            vec!["'t_{i}^{(n)}' = 'tn'", "note = 'Read with a stray subscript: t_{i}^{(n)}", "verbatim = true"],
+            vec![],
+            vec![H, H, F, H],
+        ),
+        // Without the bare t^{(n)}, the subscript is not taken as stray: (2) is to complete.
+        (
+            "not-stray.md",
+            stray.replace("\\langle t^{(n)} \\rangle", "\\langle t_k n_k \\rangle"),
+            vec!["{ id = 'eq2', line = 5, reason = '`tn` is defined with indices i"],
+            vec!["'t_{i}^{(n)}' = 'tn'"],
+            vec![H, H],
+        ),
+        (
+            "text-definition.md",
+            "Indices range from 1 to 3. Let $n$ be the unit normal. The traction $t_i = \\sigma_{ki} n_k$ on the plane gives\n\n$$t_i n_i = \\sigma_{ki} n_i n_k \\quad (1)$$\n\nand at $x = 0$ we have\n\n$$t_i t_i = \\sigma_{ki} \\sigma_{li} n_k n_l + x \\quad (2)$$\n".to_owned(),
+            vec!["'t_i = sigma_ki n_k',  # from the text, line 1"],
+            vec!["'x = "],
+            vec![H, U],
+        ),
+        // Action and reaction: the symbol named after "opposite" is minus its
+        // label-reversed twin; without the word the two are independent symbols, which
+        // the labelled twin gives a reason to think tied.
+        (
+            "reaction.md",
+            reaction("its equal and opposite reaction"),
+            vec!["'f12_i = -f21_i',  # from the text, line 1"],
+            vec![],
+            vec![H],
+        ),
+        ("no-reaction.md", reaction("the force"), vec![], vec!["-f21_i"], vec![U]),
+    ];
+    for (name, source, must, must_not, want) in cases {
+        let (toml, verdicts) = drafted(&[&written(name, &source)]);
+        for m in must {
+            assert!(toml.contains(m), "{name}: {m}\n{toml}");
+        }
+        for m in must_not {
+            assert!(!toml.contains(m), "{name}: {m}\n{toml}");
+        }
+        let got: Vec<Verdict> = verdicts.iter().map(|(_, v)| *v).collect();
+        assert_eq!(got, want, "{name}: {verdicts:?}\n{toml}");
+    }
 }
 
 /// Readings an outside tester turned against the draft, each a true equation accused or
@@ -566,8 +560,11 @@ fn a_tie_is_read_from_the_clause_after_an_equation_and_from_unnumbered_displays(
     let trace = |clause: &str| {
         format!("\\begin{{equation}}\\sigma_{{ij}} = s_{{ij}} + p\\delta_{{ij}}\\end{{equation}}\n{clause}\n\\begin{{equation}}\\sigma_{{kk}} = 3 p\\end{{equation}}\n")
     };
-    let relation =
-        |display: &str| format!("{display}\n\\begin{{equation}}a x = (b + c) x\\end{{equation}}\n");
+    // The text names the symbols first: else the equation, the first to write them, may
+    // define them.
+    let relation = |display: &str| {
+        format!("Let $a$, $b$, $c$ and $x$ be numbers.\n{display}\n\\begin{{equation}}a x = (b + c) x\\end{{equation}}\n")
+    };
     for (name, source, want) in [
         (
             "clause.tex",
@@ -613,7 +610,12 @@ fn a_tie_is_read_from_the_clause_after_an_equation_and_from_unnumbered_displays(
 fn a_failure_a_tie_between_symbols_could_explain_is_undecided_as_drafted() {
     let equations = "$$P = a b \\quad (1)$$\n$$Q = P + c \\quad (2)$$\n$$Q = a b + g \\quad (3)$$\n$$Q = 2 a b + c \\quad (4)$$\n$$Q - c = P \\quad (5)$$";
     let source = format!("The load $g$ is constrained by the support.\n\n{equations}");
-    let (_, untied) = drafted(&[&written("untied.md", equations)]);
+    // The first equation to write `g` may be what defines it: undecided. Once the text
+    // has named it with no word of a tie, (3) fails.
+    let (_, first) = drafted(&[&written("untied.md", equations)]);
+    assert_eq!(first[2], ("eq3".to_owned(), Verdict::Undecided));
+    let named = format!("The load $g$ acts on the support.\n\n{equations}");
+    let (_, untied) = drafted(&[&written("named.md", &named)]);
     assert_eq!(untied[2], ("eq3".to_owned(), Verdict::Fails));
     let path = written("tie.md", &source);
     let (toml, verdicts) = drafted(&[&path]);

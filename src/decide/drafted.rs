@@ -18,7 +18,8 @@
 //! - the difference vanishes, and is linear, in the trace of a tensor or the divergence
 //!   of a field that `tied` lists (for a trace, or any tie).
 //!
-//! `tied` holds the reasons `draft` found in the paper's text, each with its line: a
+//! `tied` holds the reasons `draft` found in the paper's text, each with its line (and,
+//! for one claim, the symbols its equation is the first to write, its `introduces`): a
 //! failure whose tie the text gives no reason for stands. So does a difference no tie
 //! explains: a constant such as (26)'s −4/5, a wrong coefficient of a square (`(½ − ⅓)
 //! s_ij s_ij`), a factor that is a special value of a parameter rather than a relation

@@ -392,6 +392,35 @@ impl Loader {
         ))
     }
 
+    /// The symbols a claim says its equation writes first (`introduces`), as ties of
+    /// this claim only: each a declared symbol; `None` when it names none.
+    fn introduced(
+        &self,
+        c: &RawClaim,
+        decls: &Decls,
+    ) -> Result<Option<Vec<(String, TiedSymbol)>>, Diagnostic> {
+        if c.introduces.is_empty() {
+            return Ok(None);
+        }
+        let mut out = Vec::new();
+        for s in &c.introduces {
+            let name = s.get_ref();
+            if !decls.symbols.contains_key(name) {
+                return Err(self
+                    .diag(s.span(), format!("`{name}` is not a declared symbol"))
+                    .with_help("`introduces` names declared symbols by their names in the file"));
+            }
+            out.push((
+                name.clone(),
+                TiedSymbol {
+                    why: "this equation is the first to write it, and may define it".to_owned(),
+                    trace_only: false,
+                },
+            ));
+        }
+        Ok(Some(out))
+    }
+
     /// The symbols a drafted file says the paper may tie, each with where and why: each
     /// a declared symbol, each line a line; `None` for a file that is not drafted.
     fn tied(
@@ -1646,11 +1675,21 @@ impl Loader {
             needs_sides,
         )?;
         check.strategy = self.strategy(c, decls, &check.defs)?;
+        let introduced = self.introduced(c, decls)?;
         check.drafted = match tied {
             // The claim's table, then the file's: it names a tie's symbols as printed.
             Some(tied) => Some(Drafted {
                 notation: Arc::new(self.notation(&c.notation, notation)?.then(notation)),
-                tied: tied.clone(),
+                tied: match introduced {
+                    Some(mine) => {
+                        let mut all = (**tied).clone();
+                        for (name, t) in mine {
+                            all.entry(name).or_insert(t).trace_only = false;
+                        }
+                        Arc::new(all)
+                    }
+                    None => tied.clone(),
+                },
             }),
             None => None,
         };

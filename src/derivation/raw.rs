@@ -165,6 +165,11 @@ pub struct RawClaim {
     pub note: Option<S>,
     #[serde(default)]
     pub verbatim: bool,
+    /// In a drafted file, the declared symbols this equation is the first to write: it
+    /// may be what defines them, so a failure they could explain is undecided, as for
+    /// the file's `tied`, in this claim only.
+    #[serde(default)]
+    pub introduces: Vec<S>,
     #[serde(default)]
     pub define: Vec<S>,
     #[serde(default)]

@@ -88,6 +88,8 @@ struct Equation {
     /// Its members carry different free indices as printed: it is checked as printed,
     /// for every value of each (`verbatim`).
     verbatim: bool,
+    /// The names of the declared symbols it is the first to write (`introduces`).
+    introduces: BTreeSet<String>,
 }
 
 /// Drafts a derivation file from `source` (named `label` in the file's header); the
@@ -169,6 +171,7 @@ pub fn draft(
                 defines: Vec::new(),
                 stray: BTreeSet::new(),
                 verbatim: false,
+                introduces: BTreeSet::new(),
             }
         })
         .collect();
@@ -799,6 +802,7 @@ fn write(
         eq.reads.clear();
         eq.defines.clear();
         eq.stray.clear();
+        eq.introduces.clear();
         if eq.unread.is_some() {
             if let Ok(p) = latex::read(&eq.latex, &options) {
                 for part in &p.parts {
@@ -1051,11 +1055,13 @@ fn write(
                 .iter()
                 .filter(|f| !text_lines.contains(&f.line))
                 .collect();
-            tied(
+            let tied = tied(
                 (equations, &symbols, &chosen, &squares),
                 (&open, &opaque),
                 &said,
-            )
+            );
+            first_written(equations, (&symbols, &defined), (&open, prose));
+            tied
         }
         None => BTreeMap::new(),
     };
@@ -1341,6 +1347,44 @@ struct Candidate {
     text: String,
     /// Where it is stated, if not alone on the left of equation `q`.
     stated: Option<Stated>,
+}
+
+/// Sets each claim's `introduces`: the declared symbols it is the first to write, before
+/// any other equation (read or left to complete) and any formula of the text names them.
+/// Such an equation may be what defines them (`\sigma_{ij} = s_{ij} + p\delta_{ij}` with
+/// no word of a decomposition), so a failure they could explain is undecided there.
+fn first_written(
+    equations: &mut [Equation],
+    (symbols, defined): (&BTreeMap<Key, Symbol>, &BTreeMap<Key, String>),
+    (open, prose): (&BTreeMap<Key, usize>, &[displays::Inline]),
+) {
+    let mut first: BTreeMap<&Key, usize> = open.iter().map(|(k, &q)| (k, q)).collect();
+    for (q, eq) in equations.iter().enumerate() {
+        for k in &eq.reads {
+            let at = first.entry(k).or_insert(q);
+            *at = (*at).min(q);
+        }
+    }
+    let mut out: Vec<(usize, String)> = Vec::new();
+    for (k, &q) in &first {
+        let Some(s) = symbols
+            .get(*k)
+            .filter(|s| !s.component && !defined.contains_key(*k))
+        else {
+            continue;
+        };
+        let line = equations[q].line;
+        let base = k.split('|').nth(1).unwrap_or("");
+        let said = prose
+            .iter()
+            .any(|f| f.line <= line && mentions(&f.body, base));
+        if equations[q].unread.is_none() && equations[q].reads.contains(*k) && !said {
+            out.push((q, s.name.clone()));
+        }
+    }
+    for (q, name) in out {
+        equations[q].introduces.insert(name);
+    }
 }
 
 /// "… their equal and opposite reactions $f_i^{(1,2)c}$ …": a symbol whose label is a
@@ -2226,6 +2270,10 @@ fn render(r: Render<'_>) -> String {
         );
         if e.numeric {
             table.push_str("strategy = \"numeric\"\n");
+        }
+        if !e.introduces.is_empty() && e.unread.is_none() {
+            let names: Vec<String> = e.introduces.iter().map(|n| toml_string(n)).collect();
+            table.push_str(&format!("introduces = [{}]\n", names.join(", ")));
         }
         let mut notes = Vec::new();
         if e.verbatim {
