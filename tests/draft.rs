@@ -124,7 +124,8 @@ fn readings_of_notation_papers_use() {
         format!("Indices range from 1 to 3. The force $f_i^{{(2,1)}}$ acts on grain 2, while {words} $f_i^{{(1,2)}}$ acts on grain 1.\n\n$$P = f_i^{{(2,1)}} v_i^{{(2)}} + f_i^{{(1,2)}} v_i^{{(1)}} = f_i^{{(2,1)}} (v_i^{{(2)}} - v_i^{{(1)}}) \\quad (1)$$\n")
     };
     // (file, source, what the draft must write, what it must not, the verdicts).
-    let cases: Vec<(&str, String, Vec<&str>, Vec<&str>, Vec<Verdict>)> = vec![
+    type Case<'a> = (&'a str, String, Vec<&'a str>, Vec<&'a str>, Vec<Verdict>);
+    let cases: Vec<Case> = vec![
         (
             "greek.md",
             "Indices range from 1 to 3. The couple stress is decomposed as\n\n$$\\mu_{ij} = c_{ij} + \\mu_\\tau \\delta_{ij} \\quad \\text{with} \\quad \\mu_\\tau = \\frac{1}{3} \\mu_{kk} \\quad (1)$$\n".to_owned(),
