@@ -8,9 +8,9 @@
 //! a definition (its body is the equation's next member, read through the draft's
 //! notation), and the claim that states it is a use of every later claim that reads
 //! it. So is a symbol an equation of the text introduces (`$t_i = \sigma_{ki} n_k$`),
-//! and the new term of a decomposition the text announces ([`stated_definitions`]). A
+//! and the new term of a decomposition the text announces (`stated_definitions`). A
 //! symbol with a label, an accent or primes gets a notation entry with a readable name.
-//! What the loader refuses is learned round by round ([`Rounds`]): a definition of the
+//! What the loader refuses is learned round by round (`Rounds`): a definition of the
 //! text is dropped; a subscript a definition's right side has no index for, on a symbol
 //! the paper also prints bare, is read as stray; a chain whose members carry different
 //! free indices is checked as printed (`verbatim`).
@@ -1505,14 +1505,18 @@ struct Stated {
 
 /// Definitions the paper states other than alone on the left of a numbered equation:
 /// - an equation of the text that introduces a symbol the numbered equations read only
-///   after it ("the stress vector $t_i = \sigma_{ki} n_k$"), from symbols they read.
-///   Its right side must read a symbol, and not be one alone: `$f_i^{(2,1)c} = f_i^c$`
-///   gives a second name, `$x = 0$` a condition;
+///   after it ("the stress vector $t_i = \sigma_{ki} n_k$"), from symbols they read,
+///   where the words before it name its value ([`names_its_value`]) and no numbered
+///   equation has the symbol alone on its left. Its right side must read a symbol, and
+///   not be one alone: `$f_i^{(2,1)c} = f_i^c$` gives a second name, `$x = 0$` a
+///   condition;
+/// - a reaction ([`reaction`]): minus its action;
 /// - a decomposition (`\sigma_{ij} = s_{ij} + p \delta_{ij}`), where the sentence before
 ///   it says so ([`DECOMPOSITION_WORDS`]): an equation `A = B` whose right side is a sum
 ///   with one added term that is a symbol met there first and once; it defines that
 ///   symbol as the rest moved over (`s_{ij} = \sigma_{ij} - (p \delta_{ij})`), and `A`
-///   is not defined by it, even where met there first.
+///   is not defined by it, even where met there first; not when a numbered equation has
+///   that symbol alone on its left (the sum is then a claim, which may be wrong).
 #[allow(clippy::type_complexity)]
 fn stated_definitions(
     equations: &[Equation],
