@@ -1358,18 +1358,11 @@ fn first_written(
     (symbols, defined): (&BTreeMap<Key, Symbol>, &BTreeMap<Key, String>),
     (open, prose): (&BTreeMap<Key, usize>, &[displays::Inline]),
 ) {
-    let mut first: BTreeMap<&Key, usize> = open.iter().map(|(k, &q)| (k, q)).collect();
-    for (q, eq) in equations.iter().enumerate() {
-        for k in &eq.reads {
-            let at = first.entry(k).or_insert(q);
-            *at = (*at).min(q);
-        }
-    }
     let mut out: Vec<(usize, String)> = Vec::new();
-    for (k, &q) in &first {
+    for (k, q) in first_readers(equations, open) {
         let Some(s) = symbols
-            .get(*k)
-            .filter(|s| !s.component && !defined.contains_key(*k))
+            .get(k)
+            .filter(|s| !s.component && !defined.contains_key(k))
         else {
             continue;
         };
@@ -1378,13 +1371,30 @@ fn first_written(
         let said = prose
             .iter()
             .any(|f| f.line <= line && mentions(&f.body, base));
-        if equations[q].unread.is_none() && equations[q].reads.contains(*k) && !said {
+        // An equation left to complete writes it first: no claim introduces it.
+        if equations[q].unread.is_none() && !said {
             out.push((q, s.name.clone()));
         }
     }
     for (q, name) in out {
         equations[q].introduces.insert(name);
     }
+}
+
+/// The first equation (its index) that reads each symbol, read or left to complete
+/// (`open`: what the equations left to complete mention).
+fn first_readers<'e>(
+    equations: &'e [Equation],
+    open: &'e BTreeMap<Key, usize>,
+) -> BTreeMap<&'e Key, usize> {
+    let mut first: BTreeMap<&Key, usize> = open.iter().map(|(k, &q)| (k, q)).collect();
+    for (q, eq) in equations.iter().enumerate() {
+        for k in &eq.reads {
+            let at = first.entry(k).or_insert(q);
+            *at = (*at).min(q);
+        }
+    }
+    first
 }
 
 /// "… their equal and opposite reactions $f_i^{(1,2)c}$ …": a symbol whose label is a
@@ -1451,9 +1461,10 @@ fn reaction(
 /// rather than as a condition or another model's ("In a hydrostatic state,", "Earlier
 /// models took … as", "Rather than").
 fn names_its_value(before: &str) -> bool {
-    const STOP: [&str; 19] = [
-        "as", "than", "of", "in", "on", "under", "for", "when", "if", "at", "to", "from", "that",
-        "and", "or", "not", "nor", "like", "unless",
+    // A last word that leaves the formula's role open (besides the condition words).
+    const STOP: [&str; 16] = [
+        "as", "than", "of", "in", "on", "for", "at", "to", "from", "that", "and", "or", "not",
+        "nor", "like", "unless",
     ];
     const CONDITION: [&str; 16] = [
         "if",
@@ -1482,10 +1493,7 @@ fn names_its_value(before: &str) -> bool {
         .split(|c: char| !c.is_alphanumeric() && c != '-')
         .filter(|w| !w.is_empty())
         .collect();
-    words
-        .last()
-        .is_some_and(|w| !STOP.contains(w) && !CONDITION.contains(w))
-        && !words.iter().any(|w| CONDITION.contains(w))
+    words.last().is_some_and(|w| !STOP.contains(w)) && !words.iter().any(|w| CONDITION.contains(w))
 }
 
 /// Words of the sentence before a decomposition ("We decompose the stress into a
@@ -1531,15 +1539,10 @@ fn stated_definitions(
 ) -> Vec<Candidate> {
     let options = ReadOptions::default();
     // The line each symbol is first read at, by an equation read or left to complete.
-    let mut first_line: BTreeMap<&Key, usize> = BTreeMap::new();
-    let reads = equations
-        .iter()
-        .flat_map(|e| e.reads.iter().map(move |k| (k, e.line)))
-        .chain(open.iter().map(|(k, &q)| (k, equations[q].line)));
-    for (k, line) in reads {
-        let at = first_line.entry(k).or_insert(line);
-        *at = (*at).min(line);
-    }
+    let first_line: BTreeMap<&Key, usize> = first_readers(equations, open)
+        .into_iter()
+        .map(|(k, q)| (k, equations[q].line))
+        .collect();
     let keys = |members: &[&latex::Math]| -> Vec<Key> {
         symbols::occurrences(members, normal, tensors)
             .into_iter()
