@@ -16,7 +16,8 @@
 //!   of unit length (ties named whether or not `tied` lists the symbol: they relate no
 //!   two symbols, and papers often leave them unsaid);
 //! - the difference vanishes, and is linear, in the trace of a tensor or the divergence
-//!   of a field that `tied` lists (for a trace, or any tie).
+//!   of a field that `tied` lists (for a trace, or any tie); for a field the text calls
+//!   incompressible (`tie = "divergence"`), at any power (`(u_k,k)²`).
 //!
 //! `tied` holds the reasons `draft` found in the paper's text, each with its line (and,
 //! for one claim, the symbols its equation is the first to write, its `introduces`): a
@@ -33,8 +34,8 @@ use super::finding::{DraftedSymbol, Finding};
 use super::Outcome;
 use crate::algebra::{assignments, Quotient};
 use crate::derivation::notation::Notation;
-use crate::derivation::TiedSymbol;
 use crate::derivation::{reachable, Check, Side};
+use crate::derivation::{TieKind, TiedSymbol};
 use crate::eval::exact::env::{component_name, jet_name};
 use crate::eval::exact::env::{ExactEnv, Varying};
 use crate::eval::labeled::Labeled;
@@ -82,7 +83,7 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
         };
         // Only a symbol the paper's text may tie to others (`tied`, for any tie, not a
         // trace only) explains sides that read different symbols.
-        let any_tie = |n: &String| tied.get(n).is_some_and(|t| !t.trace_only);
+        let any_tie = |n: &String| tied.get(n).is_some_and(|t| t.kind == TieKind::Any);
         if l != r && l.symmetric_difference(&r).any(any_tie) {
             let shown = |only: BTreeSet<&String>| {
                 only.into_iter()
@@ -242,7 +243,7 @@ impl<'a> Exact<'a> {
                 _ => None,
             };
             if normal.contains(&v)
-                || symbol.is_none_or(|n| tied.get(n).is_none_or(|t| t.trace_only))
+                || symbol.is_none_or(|n| tied.get(n).is_none_or(|t| t.kind != TieKind::Any))
                 || self
                     .env
                     .varying()
@@ -385,11 +386,13 @@ impl<'a> Exact<'a> {
                 _ => continue,
             }
             // Linear in the trace only: a wrong coefficient of a trace squared (`p²` with
-            // p = σ_kk/3) is an error a zero trace would hide, not a tie.
+            // p = σ_kk/3) is an error a zero trace would hide, not a tie. A field the
+            // text calls incompressible has a zero divergence outright, at any power.
+            let outright = field && t.kind >= TieKind::Divergence;
             let linear = map
                 .keys()
                 .all(|&v| difference.terms().all(|(m, _)| m.exponent(v) <= 1));
-            if map.is_empty() || !linear {
+            if map.is_empty() || !(linear || outright) {
                 continue;
             }
             let reduced = crate::kernel::eval::substitute(difference, &map).ok()?;

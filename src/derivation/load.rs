@@ -4,8 +4,8 @@
 use super::model::ParamBox;
 use super::model::{
     Assumption, AssumptionKind, Check, Claim, Correction, Curve, Definition, DerivationFile,
-    Drafted, Figure, Grid, ScalarClaim, Side, Stated, Strategy, TiedSymbol, ToComplete, Transcript,
-    Use, Verdict, MAX_NESTING,
+    Drafted, Figure, Grid, ScalarClaim, Side, Stated, Strategy, TieKind, TiedSymbol, ToComplete,
+    Transcript, Use, Verdict, MAX_NESTING,
 };
 use super::notation::{self, Notation};
 use super::raw::{NotationValue, RawClaim, RawFigure, RawFile, RawStated, S};
@@ -414,7 +414,7 @@ impl Loader {
                 name.clone(),
                 TiedSymbol {
                     why: "this equation is the first to write it, and may define it".to_owned(),
-                    trace_only: false,
+                    kind: TieKind::Any,
                 },
             ));
         }
@@ -458,22 +458,25 @@ impl Loader {
                 Some(line) => format!("line {}: {why}", line.get_ref()),
                 None => why.clone(),
             };
-            let trace_only = match &t.tie {
-                None => false,
-                Some(k) if k.get_ref() == "trace" => true,
-                Some(k) => {
-                    return Err(self
-                        .diag(k.span(), format!("`{}` is not a kind of tie", k.get_ref()))
-                        .with_help("`tie = \"trace\"` limits the tie to a zero trace; without it, any tie counts"))
-                }
+            let kind = match &t.tie {
+                None => TieKind::Any,
+                Some(k) => match k.get_ref().as_str() {
+                    "trace" => TieKind::Trace,
+                    "divergence" => TieKind::Divergence,
+                    other => {
+                        return Err(self
+                            .diag(k.span(), format!("`{other}` is not a kind of tie"))
+                            .with_help("`tie = \"trace\"` limits the tie to a zero trace, and `tie = \"divergence\"` to a zero trace or a divergence zero at any power; without it, any tie counts"))
+                    }
+                },
             };
-            // The first entry of a symbol says why; one for any tie prevails.
+            // The first entry of a symbol says why; one that allows more prevails.
             let entry = out.entry(name.clone()).or_insert(TiedSymbol {
                 why: why.clone(),
-                trace_only,
+                kind,
             });
-            if entry.trace_only && !trace_only {
-                *entry = TiedSymbol { why, trace_only };
+            if kind > entry.kind {
+                *entry = TiedSymbol { why, kind };
             }
         }
         Ok(raw.drafted.then(|| Arc::new(out)))
@@ -1684,7 +1687,7 @@ impl Loader {
                     Some(mine) => {
                         let mut all = (**tied).clone();
                         for (name, t) in mine {
-                            all.entry(name).or_insert(t).trace_only = false;
+                            all.entry(name).or_insert(t).kind = TieKind::Any;
                         }
                         Arc::new(all)
                     }

@@ -26,7 +26,7 @@ pub use model::{
     Assumption, AssumptionKind, Check, Claim, Constraint, Correction, Curve, Definition,
     DerivationFile, Drafted, Expression, Extremum, Figure, GradientConvention, Grid, Hypothesis,
     LimitValue, ParamBox, Relation, Sampling, ScalarClaim, Side, Stated, Stationary, Strategy,
-    TiedSymbol, ToComplete, Transcript, Use, Verdict,
+    TieKind, TiedSymbol, ToComplete, Transcript, Use, Verdict,
 };
 pub use reads::{reachable, Reads};
 pub use scalar::{exact_part_checks, exact_parts, stationary_parts, Part};

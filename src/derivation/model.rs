@@ -275,9 +275,26 @@ pub struct Drafted {
 pub struct TiedSymbol {
     /// Where and why, in words.
     pub why: String,
-    /// The reason speaks of a trace only (`tie = "trace"`: a deviator, an incompressible
-    /// body): it allows no tie but a zero trace, or a zero divergence of a field.
-    pub trace_only: bool,
+    /// The ties the reason allows.
+    pub kind: TieKind,
+}
+
+/// The ties a drafted file's reason allows, from the narrowest: a later kind allows
+/// every tie of an earlier one, and prevails when a symbol has two reasons.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum TieKind {
+    /// `tie = "trace"` (a deviator, an equation of the text that sets a trace): a zero
+    /// trace of a tensor, or a zero divergence of a vector field, explains a difference
+    /// linear in it. A wrong coefficient of a trace squared stays an error: the words
+    /// may speak of a part of the tensor (`s` deviatoric, `σ` not).
+    Trace,
+    /// `tie = "divergence"` (the text says the body is incompressible, or its motion
+    /// isochoric): a vector field's divergence is zero outright, and explains a
+    /// difference that vanishes with it at any power (`(u_k,k)²`); a tensor's trace is
+    /// as for [`TieKind::Trace`].
+    Divergence,
+    /// No `tie`: any tie (a relation, a symmetry, a unit length, a zero trace).
+    Any,
 }
 
 impl Check {

@@ -80,7 +80,8 @@ pub struct RawTied {
     pub symbol: S,
     pub line: Option<Spanned<i64>>,
     pub why: S,
-    /// `"trace"`: the reason speaks of a trace only (a deviator, incompressibility).
+    /// `"trace"`: the reason speaks of a trace only (a deviator); `"divergence"`: of an
+    /// incompressible body (see `TieKind`).
     pub tie: Option<S>,
 }
 

@@ -25,6 +25,7 @@ mod displays;
 mod symbols;
 
 use super::notation::{self, Notation};
+use super::TieKind;
 use crate::lang::latex::{self, MathKind, ReadOptions};
 use crate::lang::{Decls, DefSig};
 use std::collections::{BTreeMap, BTreeSet};
@@ -1708,15 +1709,27 @@ const TRACE_WORDS: [&str; 5] = [
     "isochoric",
 ];
 
-/// The tie word of `words`, if any: one of [`TIE_WORDS`] at the start of a word (any
-/// case).
+/// The ties a tie word allows: a zero divergence outright for an incompressible body, a
+/// zero trace for a deviator, any tie else.
+fn tie_kind(word: &str) -> TieKind {
+    let starts = |stems: &[&str]| stems.iter().any(|w| word.starts_with(w));
+    if starts(&["incompressib", "isochoric"]) {
+        TieKind::Divergence
+    } else if starts(&TRACE_WORDS) {
+        TieKind::Trace
+    } else {
+        TieKind::Any
+    }
+}
+
+/// The tie word of `words`, if any: the first word (lowercase) that starts with one of
+/// [`TIE_WORDS`].
 fn tie_word(words: &str) -> Option<String> {
     let lower = words.to_lowercase();
     lower
         .split(|c: char| !(c.is_alphanumeric() || c == '-'))
-        .filter(|t| !t.is_empty())
-        .find_map(|t| TIE_WORDS.iter().find(|w| t.starts_with(**w)))
-        .map(|w| (*w).to_owned())
+        .find(|t| !t.is_empty() && TIE_WORDS.iter().any(|w| t.starts_with(w)))
+        .map(str::to_owned)
 }
 
 /// What an equation of the paper's text (inline, or a display without a number) says,
@@ -1840,7 +1853,7 @@ fn tied(
     ),
     (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
     said: &[&Said],
-) -> BTreeMap<String, (Option<usize>, String, bool)> {
+) -> BTreeMap<String, (Option<usize>, String, TieKind)> {
     let declared = |k: &Key| {
         symbols
             .get(k)
@@ -1863,14 +1876,14 @@ fn tied(
         }
         out
     };
-    let mut out: BTreeMap<String, (Option<usize>, String, bool)> = BTreeMap::new();
-    // A reason for a trace only gives way to one for any tie.
-    let mut add = |name: &str, line: Option<usize>, why: String, trace: bool| {
+    let mut out: BTreeMap<String, (Option<usize>, String, TieKind)> = BTreeMap::new();
+    // A reason that allows more ties prevails (for a trace only, then any tie).
+    let mut add = |name: &str, line: Option<usize>, why: String, kind: TieKind| {
         let entry = out
             .entry(name.to_owned())
-            .or_insert((line, why.clone(), trace));
-        if entry.2 && !trace {
-            *entry = (line, why, false);
+            .or_insert((line, why.clone(), kind));
+        if kind > entry.2 {
+            *entry = (line, why, kind);
         }
     };
     // What the sentence that leads into an equation says of it ("The Cauchy stress is
@@ -1893,14 +1906,14 @@ fn tied(
                     &s.name,
                     Some(e.line),
                     format!("the sentence before equation ({}) says \"{w}\"", e.number),
-                    TRACE_WORDS.contains(&w.as_str()),
+                    tie_kind(w),
                 );
             } else if let Some(w) = after.as_ref().filter(|_| names(&e.lead_out, k)) {
                 add(
                     &s.name,
                     Some(e.line),
                     format!("the sentence after equation ({}) says \"{w}\"", e.number),
-                    TRACE_WORDS.contains(&w.as_str()),
+                    tie_kind(w),
                 );
             }
         }
@@ -1921,7 +1934,7 @@ fn tied(
                 &s.name,
                 Some(e.line),
                 format!("equation ({}), left to complete, mentions it", e.number),
-                false,
+                TieKind::Any,
             );
         }
     }
@@ -1935,7 +1948,7 @@ fn tied(
                     &s.name,
                     Some(e.line),
                     format!("equation ({}), left to complete, may mention it", e.number),
-                    false,
+                    TieKind::Any,
                 );
             }
         }
@@ -2002,13 +2015,13 @@ fn tied(
                 (true, true) => {
                     for s in named(relates) {
                         let why = "an equation in the text sets a trace of it".to_owned();
-                        add(&s.name, Some(f.line), why, true);
+                        add(&s.name, Some(f.line), why, TieKind::Trace);
                     }
                 }
                 _ => {
                     for s in named(relates) {
                         let why = "an equation in the text relates it to others".to_owned();
-                        add(&s.name, Some(f.line), why, false);
+                        add(&s.name, Some(f.line), why, TieKind::Any);
                     }
                 }
             }
@@ -2018,7 +2031,7 @@ fn tied(
                     &s.name,
                     Some(f.line),
                     format!("its sentence says \"{w}\""),
-                    TRACE_WORDS.contains(&w.as_str()),
+                    tie_kind(w),
                 );
             }
         }
@@ -2050,7 +2063,7 @@ fn tied(
                 &s.name,
                 None,
                 format!("the paper also writes {}", t.key.0),
-                false,
+                TieKind::Any,
             );
         }
         // A symbol whose square an equation states (`T^2 = \langle … \rangle`, with `T`
@@ -2062,7 +2075,7 @@ fn tied(
                 &s.name,
                 Some(e.line),
                 format!("equation ({}) states its square", e.number),
-                false,
+                TieKind::Any,
             );
         }
     }
@@ -2085,7 +2098,7 @@ struct Render<'a> {
     with_slots: &'a dyn Fn(&Symbol) -> String,
     /// The declared symbols the paper may tie to others: line, why, and whether only
     /// a trace.
-    tied: &'a BTreeMap<String, (Option<usize>, String, bool)>,
+    tied: &'a BTreeMap<String, (Option<usize>, String, TieKind)>,
 }
 
 /// The file's text.
@@ -2169,15 +2182,17 @@ fn render(r: Render<'_>) -> String {
         );
         out.push_str("# Delete an entry to decide such failures strictly.\n");
         out.push_str("tied = [\n");
-        for (name, (line, why, trace)) in r.tied {
+        for (name, (line, why, kind)) in r.tied {
             out.push_str(&format!("  {{ symbol = {}", toml_string(name)));
             if let Some(l) = line {
                 out.push_str(&format!(", line = {l}"));
             }
             out.push_str(&format!(", why = {}", toml_string(&comment(why))));
-            if *trace {
-                out.push_str(", tie = 'trace'");
-            }
+            out.push_str(match kind {
+                TieKind::Trace => ", tie = 'trace'",
+                TieKind::Divergence => ", tie = 'divergence'",
+                TieKind::Any => "",
+            });
             out.push_str(" },\n");
         }
         out.push_str("]\n");
@@ -2390,7 +2405,8 @@ mod tests {
                 "their equal and opposite reactions x and x",
                 Some("opposite"),
             ),
-            ("the Deviatoric stress x", Some("deviator")),
+            ("the Deviatoric stress x", Some("deviatoric")),
+            ("an incompressible body", Some("incompressible")),
             ("x is orthogonal to y", Some("orthogonal")),
             ("The Cauchy stress is symmetric,", None),
             ("Let x be a unit vector.", None),
