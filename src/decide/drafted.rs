@@ -165,6 +165,11 @@ impl<'a> Exact<'a> {
             check.strategy.exact_domain(),
         )
         .ok()?;
+        // As the identity was decided: a square root of a polynomial that is no square
+        // is a variable of its own, compared modulo its square.
+        if matches!(check.strategy, crate::derivation::Strategy::Exact { .. }) {
+            env.allow_algebraic_roots();
+        }
         let left_value = env.eval(l, &left.origin).ok()?;
         let right_value = env.eval(r, &right.origin).ok()?;
         // The symbols the sides name, and those the assumptions compute them from
@@ -200,8 +205,23 @@ impl<'a> Exact<'a> {
             vars.extend(q.factors().iter().flat_map(|(f, _)| f.variables()));
             vars
         };
+        // A root, or a variable a constraint solves for, reads what its rule reads.
+        let rules = self.env.rules();
+        let through_rules = |vars: Vec<Var>| {
+            let mut out = BTreeSet::new();
+            let mut stack = vars;
+            while let Some(v) = stack.pop() {
+                if !out.insert(v) {
+                    continue;
+                }
+                for r in rules.iter().filter(|r| r.var == v) {
+                    stack.extend(r.value.variables());
+                }
+            }
+            out
+        };
         for q in side.tensor.components() {
-            for v in depends(q) {
+            for v in through_rules(depends(q)) {
                 if let Some((name, _)) = self.components.get(&v) {
                     out.insert(name.clone());
                 } else if let Some(Varying::Jet { field, .. }) = self.env.varying().get(&v) {
@@ -233,9 +253,20 @@ impl<'a> Exact<'a> {
         let difference = &at(&self.left)? - &at(&self.right)?;
         let normal = self.env.normal_vars();
         let difference = difference.reduce_on_sphere(normal).ok()?;
+        // Modulo the constraints and the squares of the roots (`R² = …` with R a root),
+        // as the failure was found.
+        let rules = self.env.rules();
+        let difference =
+            crate::kernel::rules::reduce(&difference, rules, crate::kernel::eval::RULE_STEPS)
+                .ok()?;
         if difference.is_zero() {
             return None;
         }
+        // A difference that still reads a root or a solved variable is a tie's only
+        // modulo rules that read the components it would substitute: no symmetry, unit
+        // length or trace is claimed of it.
+        let ruled: BTreeSet<Var> = rules.iter().map(|r| r.var).collect();
+        let algebraic = difference.variables().iter().any(|v| ruled.contains(v));
         // A relation that gives one component in the others.
         for v in difference.variables() {
             let symbol = match (self.components.get(&v), self.env.varying().get(&v)) {
@@ -264,6 +295,9 @@ impl<'a> Exact<'a> {
                     shown(name, table.printed(name).as_deref())
                 ));
             }
+        }
+        if algebraic {
+            return None;
         }
         // A symmetric tensor and a unit vector are ties narrow enough to name whether or
         // not the text gives a reason: they remove only a difference that vanishes for

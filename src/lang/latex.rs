@@ -261,6 +261,16 @@ pub const GREEK: &[&str] = &[
     "Omega",
     "ell",
 ];
+/// The letters of an upright label that makes up a whole script (`\mathrm{eq}`,
+/// `\text{I}`, `\textrm{II}`, `\rm{el}`): letters and digits only.
+pub fn roman_label(script: &str) -> Option<&str> {
+    let inner = ["\\mathrm{", "\\text{", "\\textrm{", "\\rm{"]
+        .iter()
+        .find_map(|open| script.strip_prefix(open))?
+        .strip_suffix('}')?;
+    (!inner.is_empty() && inner.chars().all(|c| c.is_ascii_alphanumeric())).then_some(inner)
+}
+
 pub const FUNCTIONS: &[&str] = &[
     "cos", "sin", "tan", "exp", "ln", "log", "arctan", "arcsin", "arccos", "det",
 ];
@@ -645,6 +655,14 @@ impl<'a> Reader<'a> {
         })
     }
 
+    /// Whether another factor of a product follows (no operator, no end of the
+    /// expression, no `\cdot`).
+    fn continues_product(&mut self) -> bool {
+        !self.ends_expr()
+            && !matches!(self.peek(), Some('+' | '-' | '/'))
+            && !matches!(self.command(), Some("cdot" | "partial"))
+    }
+
     fn product(&mut self) -> R<Math> {
         self.skip();
         let start = self.pos;
@@ -815,10 +833,16 @@ impl<'a> Reader<'a> {
         if text.is_empty() {
             return self.err(start, self.pos, "an empty script");
         }
+        // An upright name (`\sigma_{\mathrm{eq}}`, `\sigma_{\text{I}}`) is a label, kept as
+        // printed: its braces are the only ones a script may hold.
+        let checked = match roman_label(&text) {
+            Some(_) => String::new(),
+            None => text.clone(),
+        };
         if let Some(k) =
-            text.find(|c: char| !(c.is_ascii_alphanumeric() || "(),*-/.\\".contains(c)))
+            checked.find(|c: char| !(c.is_ascii_alphanumeric() || "(),*-/.\\".contains(c)))
         {
-            let bad = text[k..].chars().next().unwrap_or(' ');
+            let bad = checked[k..].chars().next().unwrap_or(' ');
             return self.err(
                 start,
                 self.pos,
@@ -973,14 +997,66 @@ impl<'a> Reader<'a> {
             _ if FUNCTIONS.contains(&name) => {
                 self.pos += 1 + name.len();
                 self.skip();
-                if self.peek() == Some('^') || self.peek() == Some('_') {
-                    return self.err(start, self.pos + 1, format!("a script on `\\{name}`"));
+                if self.peek() == Some('_') {
+                    return self.err(start, self.pos + 1, format!("a subscript on `\\{name}`"));
                 }
-                let arg = self.factor()?;
-                Ok(Math {
+                // `\cos^2\theta`: a whole power of the value, as tables of identities
+                // print it (`\cos^{-1}` would be the inverse function: not read).
+                let power = if self.peek() == Some('^') {
+                    self.pos += 1;
+                    self.skip();
+                    let script = self.script()?;
+                    let t = script.text.trim();
+                    let whole =
+                        !t.is_empty() && t.len() <= 3 && t.bytes().all(|b| b.is_ascii_digit());
+                    if !whole {
+                        return self.err(
+                            start,
+                            self.pos,
+                            format!(
+                                "a script on `\\{name}` other than a whole power (`\\{name}^2 x`)"
+                            ),
+                        );
+                    }
+                    Some(script)
+                } else {
+                    None
+                };
+                let mut arg = self.factor()?;
+                // `\sin 2\theta` is sin(2θ): a number and the factor right after it are
+                // one argument. A third factor (`\sin 2\theta x`) could belong to either.
+                if matches!(arg.kind, MathKind::Number(_)) && self.continues_product() {
+                    let next = self.factor()?;
+                    if self.continues_product() {
+                        return self.err(
+                            start,
+                            self.pos,
+                            format!("the argument of `\\{name}` can be read two ways; bracket it, `\\{name}(…)`"),
+                        );
+                    }
+                    let span = Span::new(arg.span.start, next.span.end);
+                    arg = Math {
+                        kind: MathKind::Product(vec![arg, next]),
+                        span,
+                    };
+                }
+                let applied = Math {
                     kind: MathKind::Apply(name.to_owned(), Box::new(arg)),
                     span: Span::new(start, self.pos),
-                })
+                };
+                match power {
+                    Some(script) => {
+                        let exponent = Math {
+                            kind: MathKind::Number(script.text.trim().to_owned()),
+                            span: script.span,
+                        };
+                        Ok(Math {
+                            kind: MathKind::Power(Box::new(applied), Box::new(exponent)),
+                            span: Span::new(start, self.pos),
+                        })
+                    }
+                    None => Ok(applied),
+                }
             }
             _ => self.err(start, start + 1 + name.len(), self.unexpected()),
         }
@@ -1159,5 +1235,81 @@ impl<'a> Reader<'a> {
             kind: MathKind::Matrix(rows),
             span: Span::new(start, self.pos),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The only member of a statement without a relation.
+    fn one(src: &str) -> Result<Math, LatexError> {
+        let p = read(src, &ReadOptions::default())?;
+        Ok(p.parts[0].members[0].clone())
+    }
+
+    /// The shape of a reading, in words: `sin(2 theta)`, `pow(cos(theta), 2)`.
+    fn shape(m: &Math) -> String {
+        match &m.kind {
+            MathKind::Number(n) => n.clone(),
+            MathKind::Atom(a) => a.base.trim_start_matches('\\').to_owned(),
+            MathKind::Product(fs) => fs.iter().map(shape).collect::<Vec<_>>().join(" "),
+            MathKind::Apply(f, x) => format!("{f}({})", shape(x)),
+            MathKind::Power(b, e) => format!("pow({}, {})", shape(b), shape(e)),
+            _ => "?".to_owned(),
+        }
+    }
+
+    /// `\sin 2\theta` is sin(2θ), as every table of identities prints it, and
+    /// `\cos^2\theta` the square of cos θ; a third factor, or a script that is no whole
+    /// power, is not guessed.
+    #[test]
+    fn a_function_of_a_multiple_and_a_power_of_a_function_read_as_printed() {
+        for (src, want) in [
+            ("\\sin 2\\theta", "sin(2 theta)"),
+            ("\\cos 2 \\theta", "cos(2 theta)"),
+            ("\\sin\\theta\\cos\\theta", "sin(theta) cos(theta)"),
+            ("2\\sin\\theta", "2 sin(theta)"),
+            ("\\cos^2\\theta", "pow(cos(theta), 2)"),
+            ("\\sin^{2} 2\\theta", "pow(sin(2 theta), 2)"),
+            ("\\sin 2", "sin(2)"),
+        ] {
+            let m = one(src).unwrap_or_else(|e| panic!("{src}: {}", e.message));
+            assert_eq!(shape(&m), want, "{src}");
+        }
+        for (src, why) in [
+            ("\\sin 2\\theta x", "can be read two ways"),
+            ("\\cos^{-1} x", "other than a whole power"),
+            ("\\cos^n x", "other than a whole power"),
+            ("\\cos_k x", "a subscript on"),
+        ] {
+            let e = one(src).expect_err(src);
+            assert!(e.message.contains(why), "{src}: {}", e.message);
+        }
+        // A sum after the multiple ends the argument.
+        let p = read("\\sin 2\\theta + x", &ReadOptions::default()).unwrap();
+        assert!(matches!(p.parts[0].members[0].kind, MathKind::Sum(_)));
+    }
+
+    /// An upright subscript is a label, kept as printed; other braces in a script are
+    /// not read.
+    #[test]
+    fn an_upright_subscript_is_a_label() {
+        for (src, label) in [
+            ("\\sigma_{\\mathrm{I}}", "\\mathrm{I}"),
+            ("\\sigma_{\\text{eq}}", "\\text{eq}"),
+            ("\\tau_{\\max}", "\\max"),
+        ] {
+            let m = one(src).unwrap_or_else(|e| panic!("{src}: {}", e.message));
+            let MathKind::Atom(a) = &m.kind else {
+                panic!("{src}")
+            };
+            assert_eq!(a.sub.as_ref().map(|s| s.text.as_str()), Some(label));
+        }
+        assert_eq!(roman_label("\\mathrm{II}"), Some("II"));
+        assert_eq!(roman_label("\\mathrm{I}x"), None);
+        assert_eq!(roman_label("\\mathrm{}"), None);
+        assert!(one("\\sigma_{\\mathrm{I}{x}}").is_err());
+        assert!(one("\\sigma_{\\hat{x}}").is_err());
     }
 }

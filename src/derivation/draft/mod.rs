@@ -181,6 +181,25 @@ pub fn draft(
     // The reasons for ties (`tied`) are found only for a file the loader accepts
     // without them: finding them in every round would cost rounds × formulas.
     let mut rounds = Rounds::default();
+    for text in equations
+        .iter()
+        .map(|e| e.latex.as_str())
+        .chain(prose.iter().map(|f| f.body.as_str()))
+    {
+        for part in latex::read(text, &ReadOptions::default())
+            .iter()
+            .flat_map(|r| &r.parts)
+        {
+            for m in &part.members {
+                symbols::vector_letters(m, &mut rounds.vectors);
+            }
+        }
+    }
+    rounds.vectors.extend(normal.and_then(|n| {
+        let mut c = n.chars();
+        c.next().filter(|_| c.next().is_none())
+    }));
+    let mut refusal = None;
     for _ in 0..=2 * (equations.len() + prose.len()) + 2 {
         let Some(toml) = write(
             label,
@@ -216,16 +235,20 @@ pub fn draft(
             }
             Err(e) => {
                 if !refuse_claims(&toml, &e, &mut equations, &mut rounds) {
+                    refusal = first_message(&e);
                     break;
                 }
             }
         }
     }
     // Nothing the loader refused could be traced to one claim: every claim is left to
-    // complete, which the loader always accepts.
+    // complete, which the loader always accepts, with the loader's reason.
+    let why = match refusal {
+        Some(m) => format!("the drafted file was refused as a whole: {m}"),
+        None => "the drafted file was refused as a whole".to_owned(),
+    };
     for e in &mut equations {
-        e.unread
-            .get_or_insert_with(|| "the drafted file was refused as a whole".to_owned());
+        e.unread.get_or_insert_with(|| why.clone());
     }
     let toml = write(
         label,
@@ -236,6 +259,7 @@ pub fn draft(
         &mut Rounds {
             refused_text: prose.iter().map(|f| f.line).collect(),
             stray: BTreeSet::new(),
+            vectors: rounds.vectors,
         },
     )
     .expect("with every claim to complete, nothing is read");
@@ -249,6 +273,14 @@ pub fn draft(
 
 /// Marks the claims the loader's diagnostics point into as to complete; `false` when
 /// none of them is a claim's.
+/// The first message of a loader's refusal.
+fn first_message(e: &super::LoadError) -> Option<String> {
+    match e {
+        super::LoadError::Invalid(ds) => ds.first().map(|d| d.message.clone()),
+        _ => None,
+    }
+}
+
 fn refuse_claims(
     toml: &str,
     e: &super::LoadError,
@@ -300,8 +332,21 @@ fn refuse_claims(
             // A chain whose members carry different free indices as printed
             // (`t_i = … = \sigma_{ki} n_k (\delta_{il} - n_i n_l)`): once, it is checked as
             // printed, for every value of each.
-            if d.message.starts_with(super::load::DIFFERENT_FREE_INDICES) && !eq.verbatim {
+            // Only where an index is certain: with single-letter subscripts alone
+            // (`\sigma_n + \tau_n = R`) the letter may label, and the equation is left
+            // to complete rather than accused.
+            let different = d.message.starts_with(super::load::DIFFERENT_FREE_INDICES);
+            if different && !eq.verbatim && indexed(&eq.latex) {
                 eq.verbatim = true;
+                moved = true;
+                continue;
+            }
+            if different && !eq.verbatim {
+                eq.unread = Some(format!(
+                    "{}; every subscript is one letter, which may label (the normal stress σ_n) rather than index",
+                    d.message
+                ));
+                eq.edit = Some("declare each labelled symbol as a scalar with a notation entry (`'\\sigma_{n}' = 'sigma_n'`), or write its indices".to_owned());
                 moved = true;
                 continue;
             }
@@ -726,6 +771,7 @@ fn write(
     let Rounds {
         refused_text,
         stray,
+        vectors,
     } = rounds;
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
@@ -747,7 +793,11 @@ fn write(
                 .iter()
                 .flat_map(|part| {
                     let members: Vec<&latex::Math> = part.members.iter().collect();
-                    symbols::occurrences(&members, normal, &Stems::default())
+                    let first = Stems {
+                        vectors: vectors.clone(),
+                        ..Stems::default()
+                    };
+                    symbols::occurrences(&members, normal, &first)
                 })
                 .filter(|(_, s)| !s.component)
                 .inspect(|(k, _)| {
@@ -762,6 +812,7 @@ fn write(
     let tensors = Stems {
         tensors: tensor_stems,
         stray: stray.intersection(&bare).cloned().collect(),
+        vectors: vectors.clone(),
     };
     // Symbols that an equation left to complete has alone on a left side: it may define
     // them, so no later equation does. Symbols met other than squared (`T`, not `T^2`):
@@ -1102,6 +1153,16 @@ fn write(
     };
     let mut table = Notation::default();
     let mut entries: Vec<(String, String)> = Vec::new();
+    // One entry per printed key (a TOML table has each key once): the table takes
+    // `\sigma_{n}` with `n` an index and as a label as two patterns, but the second
+    // reading gets no entry, and the equations that read it are left to complete.
+    let mut keys: BTreeSet<String> = BTreeSet::new();
+    let mut add = |table: &mut Notation, key: &String, value: String| {
+        if !keys.contains(key) && table.add(key, vec![value.clone()]).is_ok() {
+            keys.insert(key.clone());
+            entries.push((key.clone(), value));
+        }
+    };
     for k in &order {
         let s = &symbols[k];
         if s.component {
@@ -1120,14 +1181,10 @@ fn write(
             } else {
                 format!("{}_{}", s.name, key_letters.iter().collect::<String>())
             };
-            if table.add(key, vec![value.clone()]).is_ok() {
-                entries.push((key.clone(), value));
-            }
+            add(&mut table, key, value);
             // A scalar printed with a stray subscript too (`t_{i}^{(n)}` beside `t^{(n)}`).
             for other in s.printed.iter().filter(|p| *p != key && s.rank == 0) {
-                if table.add(other, vec![s.name.clone()]).is_ok() {
-                    entries.push((other.clone(), s.name.clone()));
-                }
+                add(&mut table, other, s.name.clone());
             }
             for (key, value) in &s.derivatives {
                 // The derivative's reading names the symbol by its final name.
@@ -1135,9 +1192,7 @@ fn write(
                     Some((_, rest)) => format!("{}_{rest}", s.name),
                     None => value.clone(),
                 };
-                if table.add(key, vec![value.clone()]).is_ok() {
-                    entries.push((key.clone(), value));
-                }
+                add(&mut table, key, value);
             }
         }
     }
@@ -1329,11 +1384,14 @@ fn write(
 }
 
 /// What one round of writing the file learns for the next: definitions of the text the
-/// loader refuses (by line), and stems read with a stray subscript.
+/// loader refuses (by line), and stems read with a stray subscript; and what every
+/// round reads alike, found once: the letters of the paper's vectors
+/// ([`Stems::vectors`]).
 #[derive(Default)]
 struct Rounds {
     refused_text: BTreeSet<usize>,
     stray: BTreeSet<String>,
+    vectors: BTreeSet<char>,
 }
 
 /// A symbol's definition on its way into the file.
@@ -1584,6 +1642,35 @@ fn stated_definitions(
             continue;
         };
         let body: BTreeSet<Key> = keys(&[m1]).into_iter().collect();
+        let well_formed = !body.is_empty()
+            && !body.contains(&key)
+            && body.iter().all(|k| symbols.contains_key(k));
+        // "… = K\varepsilon_{kk}, where $p = \sigma_{kk}/3$ is the mean stress": the
+        // clause that continues the first equation to read the symbol defines it there,
+        // instead of that equation (then a claim about it).
+        let clause = equations.iter().position(|e| {
+            e.unread.is_none()
+                && e.reads.contains(&key)
+                && first_line.get(&key) == Some(&e.line)
+                && defines_in_clause(&e.lead_out, &f.body)
+        });
+        if let (Some(q), true) = (clause, well_formed) {
+            let Some(text) = span(&f.body, m0) else {
+                continue;
+            };
+            out.push(Candidate {
+                q,
+                key: key.clone(),
+                body,
+                text: text.to_owned(),
+                stated: Some(Stated {
+                    line: Some(f.line),
+                    latex: f.body.clone(),
+                    instead_of: Some(key),
+                }),
+            });
+            continue;
+        }
         let introduced = first_line.get(&key).is_some_and(|&l| l > f.line);
         if body.is_empty()
             || body.contains(&key)
@@ -1800,6 +1887,93 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
         .collect()
 }
 
+/// Whether `formula` stands in `clause`, the words after an equation, as a definition
+/// of that equation's symbol: the clause continues the equation ("where", "with", "in
+/// which"), and the formula ends the clause or is followed by words that name it ("is
+/// the mean stress", "denotes").
+fn defines_in_clause(clause: &str, formula: &str) -> bool {
+    let lower = clause.trim_start().to_lowercase();
+    if !["where ", "with ", "in which "]
+        .iter()
+        .any(|w| lower.starts_with(w))
+    {
+        return false;
+    }
+    let Some(at) = clause.find(&format!("${formula}$")) else {
+        return false;
+    };
+    let after = clause[at + formula.len() + 2..].trim_start().to_lowercase();
+    if after.is_empty() || after.starts_with(['.', ',', ';']) {
+        return true;
+    }
+    let word = after
+        .split(|c: char| !c.is_alphabetic())
+        .next()
+        .unwrap_or("");
+    [
+        "is",
+        "are",
+        "denotes",
+        "denote",
+        "being",
+        "represents",
+        "defines",
+    ]
+    .contains(&word)
+}
+
+/// The inline formula that follows `word` in `words` within three words ("deviatoric
+/// strain $e_{ij} = …$"), without its dollars.
+fn formula_after<'w>(words: &'w str, word: &str) -> Option<&'w str> {
+    let at = words.to_lowercase().find(word)?;
+    let mut rest = words.get(at + word.len()..)?;
+    for _ in 0..4 {
+        rest = rest.trim_start();
+        if let Some(inner) = rest.strip_prefix('$') {
+            return inner.split('$').next();
+        }
+        let end = rest
+            .find(|c: char| !c.is_alphabetic())
+            .unwrap_or(rest.len());
+        if end == 0 {
+            return None;
+        }
+        rest = &rest[end..];
+    }
+    None
+}
+
+/// Whether an equation sets an expression to zero (`\sigma_{ij,j} + b_i = 0`): its
+/// last member is 0.
+fn sets_zero(latex_text: &str) -> bool {
+    latex::read(latex_text, &ReadOptions::default()).is_ok_and(|r| {
+        r.parts.last().is_some_and(|p| {
+            p.members.len() > 1
+                && p.relations.last() == Some(&latex::Rel::Eq)
+                && matches!(&p.members.last().map(|m| &m.kind), Some(MathKind::Number(n)) if n == "0")
+        })
+    })
+}
+
+/// Whether a formula has a subscript of two or more letters, or a comma derivative
+/// (`A_{ik}`, `u_{i,j}`): its letters are indices beyond doubt.
+fn indexed(formula: &str) -> bool {
+    formula.split('_').skip(1).any(|rest| {
+        let sub = match rest.trim_start().strip_prefix('{') {
+            Some(inner) => inner.split('}').next().unwrap_or(""),
+            None => return false,
+        };
+        // Letters of a command (`\mathrm`, `\tau`) are no indices.
+        let mut letters = 0;
+        let mut command = false;
+        for c in sub.chars() {
+            command = (command && c.is_ascii_alphabetic()) || c == '\\';
+            letters += usize::from(!command && c.is_ascii_alphabetic());
+        }
+        sub.contains(',') || letters > 1
+    })
+}
+
 /// Whether a formula has a subscript that repeats an index letter (`\varepsilon_{kk}`,
 /// `u_{k,k}`): a trace or a divergence.
 fn repeated_index(formula: &str) -> bool {
@@ -1896,11 +2070,22 @@ fn tied(
             .iter()
             .any(|w| lower.starts_with(w));
         let after = continues.then(|| tie_word(&e.lead_out)).flatten();
+        // "Introducing the deviatoric strain $e_{ij} = …$": a word of a trace names the
+        // symbol of the formula right after it, and only that one, if the file declares
+        // it (a defined symbol's trace is what its definition gives).
+        let named = before
+            .as_ref()
+            .filter(|w| tie_kind(w) == TieKind::Trace)
+            .and_then(|w| formula_after(&e.lead_in, w))
+            .map(|f| f.split('=').next().unwrap_or(f));
         for (k, s) in e
             .reads
             .iter()
             .flat_map(|k| through(k).into_iter().map(move |s| (k, s)))
         {
+            if named.is_some_and(|left| !names(left, k) || declared(k).is_none()) {
+                continue;
+            }
             if let Some(w) = &before {
                 add(
                     &s.name,
@@ -1938,6 +2123,37 @@ fn tied(
             );
         }
     }
+    // A law the paper may posit (`\sigma_{ij,j} + b_i = 0`, equilibrium): an equation
+    // that sets an expression of two or more symbols to zero and defines nothing ties
+    // the symbols no equation defines that it is the first to write (the body force):
+    // later equations may hold only where it does (Navier's equations). One of a single
+    // symbol (`e_{ijk}\phi_{,jk} = 0`) relates it to no other.
+    for (k, q) in first_readers(equations, open) {
+        let e = &equations[q];
+        if e.unread.is_some() || !e.defines.is_empty() || !sets_zero(&e.latex) {
+            continue;
+        }
+        let related: BTreeSet<&str> = e
+            .reads
+            .iter()
+            .flat_map(&through)
+            .map(|s| s.name.as_str())
+            .collect();
+        if related.len() < 2 {
+            continue;
+        }
+        if let Some(s) = declared(k) {
+            add(
+                &s.name,
+                Some(e.line),
+                format!(
+                    "equation ({}), the first to write it, sets an expression to zero, which may be a law the paper posits",
+                    e.number
+                ),
+                TieKind::Any,
+            );
+        }
+    }
     // What the reader cannot read at all is searched for each symbol's printed base.
     for (q, latex) in opaque {
         for (k, s) in symbols {
@@ -1967,7 +2183,28 @@ fn tied(
             .flat_map(|j| through(j))
             .collect()
     };
+    // The line of the first equation to read each symbol.
+    let first_line: BTreeMap<&Key, usize> = first_readers(equations, open)
+        .into_iter()
+        .map(|(k, q)| (k, equations[q].line))
+        .collect();
     for f in said {
+        // A component of a vector the equations write with an index (`$n_1 =
+        // \cos\theta$` beside `n_i`) is that vector.
+        let vector = |k: &Key| symbols::vector_of(k, symbols).unwrap_or_else(|| k.clone());
+        let found: Vec<Key> = f.found.iter().map(vector).collect();
+        let parts: Vec<(Option<Key>, Vec<Key>)> = f
+            .parts
+            .iter()
+            .map(|(l, r)| (l.as_ref().map(vector), r.iter().map(vector).collect()))
+            .collect();
+        let f = Said {
+            found,
+            parts,
+            word: f.word.clone(),
+            ..**f
+        };
+        let f = &f;
         // An equation that names a symbol no numbered equation has (`$\rho c_L^2 =
         // \lambda + 2\mu$`, `$f_i^{(2,1)c} = f_i^c$`) says what that symbol is: it
         // ties nothing else.
@@ -1996,7 +2233,19 @@ fn tied(
             // \frac23\mu$`) says what that symbol is, and ties it only; `$u_{k,k} = 0$`,
             // `$t_k n_k = 0$` tie every symbol they read.
             let lone: Vec<Key> = f.parts.iter().filter_map(|(l, _)| l.clone()).collect();
-            let relates = if lone.is_empty() { &f.found } else { &lone };
+            // `$\det(\sigma_{ij} - \lambda\delta_{ij}) = 0$` with σ read before and λ
+            // new: it says what the new symbols are, and ties them only.
+            let fresh: Vec<Key> = f
+                .found
+                .iter()
+                .filter(|k| first_line.get(k).is_some_and(|&l| l > f.line))
+                .cloned()
+                .collect();
+            let relates = match (lone.is_empty(), fresh.is_empty()) {
+                (false, _) => &lone,
+                (true, false) => &fresh,
+                (true, true) => &f.found,
+            };
             let names: BTreeSet<&str> = named(&f.found).iter().map(|s| s.name.as_str()).collect();
             // An equation of one symbol relates it to no other: with a trace in it
             // (`$\varepsilon_{kk} = 0$`, `$u_{k,k} = 0$`) it gives a reason for a zero
@@ -2055,8 +2304,26 @@ fn tied(
         let Some((stem, label)) = parts(k) else {
             continue;
         };
+        // A variant the draft defines from this symbol (`\sigma'_{ij} = \sigma_{ij} -
+        // p\delta_{ij}`) is related to it by that definition, in the file.
+        let reaches = |from: &Key, to: &Key| {
+            let mut stack = vec![from];
+            let mut seen: BTreeSet<&Key> = BTreeSet::new();
+            while let Some(x) = stack.pop() {
+                if x == to {
+                    return true;
+                }
+                if seen.insert(x) {
+                    stack.extend(chosen.get(x).into_iter().flat_map(|(_, body)| body));
+                }
+            }
+            false
+        };
         let variant = symbols.iter().find(|(j, t)| {
-            !t.component && parts(j).is_some_and(|(st, la)| st == stem && la != label)
+            !t.component
+                && parts(j).is_some_and(|(st, la)| st == stem && la != label)
+                && !reaches(j, k)
+                && !reaches(k, j)
         });
         if let Some((_, t)) = variant {
             add(

@@ -12,9 +12,12 @@
 //!   (`t_k` where the paper has `t_i`); so does a subscript of one Greek letter
 //!   (`\mu_\tau`), since the language's indices are Latin letters;
 //! - a subscript found stray ([`Stems::stray`]) is read as the bare scalar;
+//! - a one-letter subscript that is also the letter of a vector of the paper (`n` where
+//!   it has `n_i`) labels, unless the equation has it in a longer subscript
+//!   (`\sigma_n + \tau_n`, but `\delta_{nm} a_n`);
 //! - δ_{ij}, e_{ijk} and ε_{ijk} are Kronecker's and Levi-Civita's symbols.
 
-use crate::lang::latex::{Atom, Math, MathKind};
+use crate::lang::latex::{roman_label, Atom, Math, MathKind};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// One printed symbol, as a draft declares it.
@@ -58,6 +61,31 @@ pub struct Stems {
     /// Stems whose subscript is stray (`t_i^{(n)} = t_i n_i`, where the paper prints
     /// `t^{(n)}` elsewhere): read as the bare scalar.
     pub stray: BTreeSet<String>,
+    /// The letters that name vectors in the paper ([`vector_letters`]): a lone subscript
+    /// of one of them is a label (`\sigma_n + \tau_n`, the normal and shear stresses
+    /// where the paper has `n_i`), never an index shared by two symbols.
+    pub vectors: BTreeSet<char>,
+}
+
+/// The letters that name vectors in `m`: a plain Latin letter with a subscript of one
+/// index letter or digit (`n` in `n_i`, `n_1`).
+pub fn vector_letters(m: &Math, out: &mut BTreeSet<char>) {
+    let mut atoms = Vec::new();
+    atoms_of(m, false, &mut atoms);
+    for (a, _) in atoms {
+        let mut base = a.base.chars();
+        let (Some(letter), None) = (base.next(), base.next()) else {
+            continue;
+        };
+        let one = a.sub.as_ref().is_some_and(|s| {
+            let t = s.text.trim();
+            t.len() == 1 && t.chars().all(|c| c.is_ascii_alphanumeric())
+        });
+        let plain = a.accent.is_none() && a.sup.is_none() && a.primes == 0;
+        if letter.is_ascii_alphabetic() && one && plain {
+            out.insert(letter);
+        }
+    }
 }
 
 /// The identity of a printed symbol: everything but its index letters.
@@ -81,6 +109,9 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
     // `\ell_i = R_g n_i`) or one side repeats it (`u_i u_i`).
     let mut indices: BTreeSet<char> = BTreeSet::new();
     let mut bases: BTreeMap<char, BTreeSet<String>> = BTreeMap::new();
+    // Letters met in a subscript of more than one character (`\delta_{nm}`): indices
+    // whatever they name elsewhere.
+    let mut in_longer: BTreeSet<char> = BTreeSet::new();
     let mut atoms = Vec::new();
     for m in members {
         let mut own = Vec::new();
@@ -90,8 +121,12 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
             if let Some(sub) = a
                 .sub
                 .as_ref()
-                .filter(|s| greek_subscript(&s.text).is_none())
+                .filter(|s| greek_subscript(&s.text).is_none() && upright(&s.text).is_none())
             {
+                let letters = sub.text.chars().filter(char::is_ascii_alphanumeric);
+                if letters.count() > 1 {
+                    in_longer.extend(sub.text.chars().filter(char::is_ascii_alphabetic));
+                }
                 for c in sub.text.chars().filter(char::is_ascii_alphabetic) {
                     bases.entry(c).or_default().insert(a.base.clone());
                     *in_member.entry(c).or_default() += 1;
@@ -112,6 +147,8 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
             .filter(|(_, b)| b.len() > 1)
             .map(|(c, _)| c),
     );
+    // A vector's letter met only alone in subscripts labels (`\sigma_n`).
+    indices.retain(|c| in_longer.contains(c) || !tensors.vectors.contains(c));
     atoms
         .into_iter()
         .filter_map(|(a, squared)| {
@@ -196,6 +233,9 @@ fn symbol(
     // A subscript of one Greek letter (`\mu_\tau`) names: the language's indices are
     // Latin letters, so it never holds a slot.
     let greek = greek_subscript(slots).is_some() && !derivative;
+    // An upright subscript (`\sigma_{\mathrm{I}}`, `\sigma_{\text{eq}}`, `\tau_{\max}`)
+    // names too.
+    let roman = upright(slots).filter(|_| !derivative);
     let one_letter = slots.len() == 1 && slots.chars().all(|c| c.is_ascii_alphanumeric());
     let stem = format!(
         "{}|{}|{}|{}",
@@ -214,6 +254,7 @@ fn symbol(
         && tensors.stray.contains(&stem);
     let suffix = !stray
         && (greek
+            || roman.is_some()
             || (one_letter
                 && !derivative
                 && !of_a_tensor
@@ -235,7 +276,8 @@ fn symbol(
     }
     name.push_str(&"p".repeat(a.primes));
     let (rank, key_letters) = if suffix {
-        name = format!("{name}_{}", slots.trim().trim_start_matches('\\'));
+        let label = roman.unwrap_or_else(|| slots.trim().trim_start_matches('\\'));
+        name = format!("{name}_{label}");
         (0, Vec::new())
     } else if stray {
         (0, Vec::new())
@@ -271,7 +313,7 @@ fn symbol(
             rank,
             field: derivative,
             key,
-            entry: !plain || stray,
+            entry: !plain || stray || roman.is_some(),
             component: false,
             squared: false,
             doubt,
@@ -280,6 +322,30 @@ fn symbol(
             printed,
         },
     ))
+}
+
+/// The vector of `symbols` whose component `key` is (`n_1` where the paper writes
+/// `n_i`): the same printed symbol, with one index slot for the one digit of its
+/// subscript.
+pub fn vector_of(key: &Key, symbols: &BTreeMap<Key, Symbol>) -> Option<Key> {
+    let fields: Vec<&str> = key.split('|').collect();
+    let [accent, base, sup, primes, suffix, "0"] = fields[..] else {
+        return None;
+    };
+    let digit = suffix.len() == 1 && suffix.bytes().all(|b| b.is_ascii_digit());
+    let vector = format!("{accent}|{base}|{sup}|{primes}||1");
+    (digit && symbols.contains_key(&vector)).then_some(vector)
+}
+
+/// The name an upright subscript gives (`\mathrm{eq}` → `eq`, `\max` → `max`): a
+/// roman label, or one command that is no Greek letter.
+fn upright(sub: &str) -> Option<&str> {
+    let sub = sub.trim();
+    roman_label(sub).or_else(|| {
+        let name = sub.strip_prefix('\\')?;
+        let word = !name.is_empty() && name.chars().all(|c| c.is_ascii_alphabetic());
+        (word && crate::lang::latex::greek_letter(name).is_none()).then_some(name)
+    })
 }
 
 /// The Greek letter a subscript is, alone (`\tau`, `{\tau}`), or `None`.
