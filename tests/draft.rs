@@ -856,13 +856,16 @@ fn an_incompressible_body_explains_a_divergence_at_any_power() {
 }
 
 /// Readings a second reviewer's papers called for, each a class with a control where
-/// one is possible: a subscript that is a vector's letter labels (`\sigma_n`); one that
-/// may label or index leaves its equation to complete, not accused; a clause "where $p =
-/// …$ is …" defines the symbol its equation first writes; a law set to zero (`\sigma_{ij,j}
-/// + b_i = 0`) ties the symbols it first writes; a relation of the text ties the symbols
-/// it introduces, not those read before; a variant defined from a symbol does not tie it;
-/// a word of a trace names the formula after it; a component in the text ties its
-/// vector; a symmetric tensor removes a difference found modulo a square root.
+/// one is possible:
+/// - a subscript that is a vector's letter labels (`\sigma_n`); one that may label or
+///   index leaves its equation to complete, not accused;
+/// - a clause "where $p = …$ is …" defines the symbol its equation first writes;
+/// - a law set to zero (`\sigma_{ij,j} + b_i = 0`) ties the symbols it first writes;
+/// - a relation of the text ties the symbols it introduces, not those read before;
+/// - a variant defined from a symbol does not tie it;
+/// - a word of a trace names the formula after it;
+/// - a component in the text ties its vector;
+/// - a symmetric tensor removes a difference found modulo a square root.
 #[test]
 fn readings_of_textbook_papers_a_second_reviewer_wrote() {
     use Verdict::{Fails as F, Holds as H, Undecided as U};
