@@ -42,7 +42,7 @@ pub const GUIDE: [&str; 16] = [
 #[derive(Debug, Parser)]
 #[command(name = "cosserat-check", version, about, long_about = None)]
 #[command(
-    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs, 2 for malformed input (nothing is written then), 3 when the checker itself failed on some claim (that claim is `undecided (internal error)`; the others are decided and written).\nThe guide (the derivation-file format, every strategy, the JSON contract): `cosserat-check guide`; files to start from: `cosserat-check examples --out DIR`; this help as a manual page: `cosserat-check manpage`."
+    after_help = "Exit status: 0 when every verdict equals the one declared in the derivation files, 1 when any differs or a claim without a declared verdict fails, 2 for malformed input (nothing is written then), 3 when the checker itself failed on some claim (that claim is `undecided (internal error)`; the others are decided and written).\nThe guide (the derivation-file format, every strategy, the JSON contract): `cosserat-check guide`; files to start from: `cosserat-check examples --out DIR`; this help as a manual page: `cosserat-check manpage`."
 )]
 #[command(args_conflicts_with_subcommands = true)]
 pub struct Cli {
