@@ -865,7 +865,11 @@ fn an_incompressible_body_explains_a_divergence_at_any_power() {
 /// - a variant defined from a symbol does not tie it;
 /// - a word of a trace names the formula after it;
 /// - a component in the text ties its vector;
-/// - a symmetric tensor removes a difference found modulo a square root.
+/// - a symmetric tensor removes a difference found modulo a square root;
+/// - a subscript of vector letters labels (`\sigma_{nn}`); a law may be written `=
+///   -b_i`, or read defined symbols only; a plain symbol named beside the normal may
+///   parametrise it; "incompressible" anywhere in the text makes every vector field's
+///   divergence a tie; a clause may define the symbol whose square its equation states.
 #[test]
 fn readings_of_textbook_papers_a_second_reviewer_wrote() {
     use Verdict::{Fails as F, Holds as H, Undecided as U};
@@ -954,6 +958,73 @@ fn readings_of_textbook_papers_a_second_reviewer_wrote() {
                 eq("R^2 = \\frac14(\\sigma_{11} + \\sigma_{22})^2 + \\sigma_{12}\\sigma_{21}")
             ),
             vec![H, U, F],
+        ),
+        (
+            "normal-stress",
+            format!(
+                "Let $n_i$ be the unit normal and $t_i = \\sigma_{{ij}} n_j$ the traction.\n{}",
+                eq("\\sigma_{nn} = t_i n_i")
+            ),
+            vec![H],
+        ),
+        // A law written other ways, or of defined symbols only; a wrong coefficient of a
+        // derivative beside it still fails.
+        (
+            "law-forms",
+            format!(
+                "{}{}{}{}",
+                eq("\\sigma_{ij} = \\mu(u_{i,j} + u_{j,i})"),
+                eq("\\sigma_{ij,j} = -b_i"),
+                eq("\\mu u_{i,jj} + \\mu u_{j,ji} + b_i = 0"),
+                eq("\\sigma_{ij,j} = 2\\mu u_{i,jj} + \\mu u_{j,ji}")
+            ),
+            vec![H, U, U, F],
+        ),
+        (
+            "law-of-defined-symbols",
+            format!(
+                "{}{}{}",
+                eq("\\sigma_{ij} = \\mu(u_{i,j} + u_{j,i})"),
+                eq("\\sigma_{ij,j} = 0"),
+                eq("\\mu u_{i,jj} + \\mu u_{j,ji} = 0")
+            ),
+            vec![H, U, U],
+        ),
+        (
+            "angle-beside-the-normal",
+            format!(
+                "Let $n_i$ be the unit normal of a plane at angle $\\theta$ to the first axis.\n{}{}",
+                eq("N = \\sigma_{ij} n_i n_j"),
+                eq("N = \\sigma_{11}\\cos^2\\theta + \\sigma_{22}\\sin^2\\theta + (\\sigma_{12} + \\sigma_{21})\\sin\\theta\\cos\\theta")
+            ),
+            vec![H, U],
+        ),
+        (
+            "incompressible-throughout",
+            format!(
+                "Throughout, the material is incompressible.\n\nLet $u_i$ be the displacement.\n{}{}",
+                eq("\\varepsilon_{ij} = \\frac12(u_{i,j} + u_{j,i})"),
+                eq("(\\varepsilon_{ij} - \\frac13\\varepsilon_{kk}\\delta_{ij})(\\varepsilon_{ij} - \\frac13\\varepsilon_{ll}\\delta_{ij}) = \\varepsilon_{ij}\\varepsilon_{ij}")
+            ),
+            vec![H, U],
+        ),
+        (
+            "square-then-where",
+            format!(
+                "{}{}with $\\sigma_{{\\mathrm{{e}}}} = \\sqrt{{3J_2}}$.\n",
+                eq("J_2 = \\frac12 s_{ij}s_{ij}"),
+                eq("\\sigma_{\\mathrm{e}}^2 = \\frac12 s_{ij}s_{ij}")
+            ),
+            vec![H, F],
+        ),
+        (
+            "square-then-where-true",
+            format!(
+                "{}{}with $\\sigma_{{\\mathrm{{e}}}} = \\sqrt{{3J_2}}$.\n",
+                eq("J_2 = \\frac12 s_{ij}s_{ij}"),
+                eq("\\sigma_{\\mathrm{e}}^2 = \\frac32 s_{ij}s_{ij}")
+            ),
+            vec![H, H],
         ),
     ];
     for (name, body, want) in cases {

@@ -213,6 +213,22 @@ const DICTIONARY: &[&str] = &[
     "\\[",
     "\\]",
     "%",
+    "\\sin 2\\theta",
+    "\\cos^2",
+    "_{\\mathrm{I}}",
+    "_{\\max}",
+    "_n",
+    "where $p = ",
+    "$ is the ",
+    " = 0",
+    "\\det(",
+    "incompressible",
+    "deviatoric ",
+    ", tie = 'divergence'",
+    ", tie = 'law'",
+    "_{nn}",
+    " = -b_i",
+    "\\sin k\\theta",
 ];
 
 fn seeds(root: &Path) -> Vec<Vec<u8>> {
@@ -222,6 +238,7 @@ fn seeds(root: &Path) -> Vec<Vec<u8>> {
         "derivations/examples",
         "tests/bad",
         "tests/soundness",
+        "tests/papers",
     ] {
         if let Ok(entries) = std::fs::read_dir(root.join(dir)) {
             let mut paths: Vec<PathBuf> =

@@ -81,9 +81,9 @@ pub fn judged(decls: &Decls, check: &Check, outcome: Outcome) -> Outcome {
             Some(e) => (e.reads(&e.left), e.reads(&e.right)),
             None => named.clone(),
         };
-        // Only a symbol the paper's text may tie to others (`tied`, for any tie, not a
-        // trace only) explains sides that read different symbols.
-        let any_tie = |n: &String| tied.get(n).is_some_and(|t| t.kind == TieKind::Any);
+        // Only a symbol the paper's text may tie to others (`tied`, for any tie or a law,
+        // not a trace only) explains sides that read different symbols.
+        let any_tie = |n: &String| tied.get(n).is_some_and(|t| t.kind >= TieKind::Law);
         if l != r && l.symmetric_difference(&r).any(any_tie) {
             let shown = |only: BTreeSet<&String>| {
                 only.into_iter()
@@ -373,7 +373,9 @@ impl<'a> Exact<'a> {
     ) -> Option<String> {
         let last = decls.dim.checked_sub(1)?;
         let said = |t: &TiedSymbol| format!(" (the paper may say so: {})", t.why);
-        for (name, t) in tied {
+        // (A law explains no zero trace: a wrong coefficient of a divergence stays an
+        // error.)
+        for (name, t) in tied.iter().filter(|(_, t)| t.kind != TieKind::Law) {
             let mut map: BTreeMap<Var, Poly> = BTreeMap::new();
             let field = decls.fields.contains_key(name);
             match decls.symbols.get(name) {
@@ -422,7 +424,7 @@ impl<'a> Exact<'a> {
             // Linear in the trace only: a wrong coefficient of a trace squared (`p²` with
             // p = σ_kk/3) is an error a zero trace would hide, not a tie. A field the
             // text calls incompressible has a zero divergence outright, at any power.
-            let outright = field && t.kind >= TieKind::Divergence;
+            let outright = field && t.kind == TieKind::Divergence;
             let linear = map
                 .keys()
                 .all(|&v| difference.terms().all(|(m, _)| m.exponent(v) <= 1));

@@ -463,10 +463,11 @@ impl Loader {
                 Some(k) => match k.get_ref().as_str() {
                     "trace" => TieKind::Trace,
                     "divergence" => TieKind::Divergence,
+                    "law" => TieKind::Law,
                     other => {
                         return Err(self
                             .diag(k.span(), format!("`{other}` is not a kind of tie"))
-                            .with_help("`tie = \"trace\"` limits the tie to a zero trace, and `tie = \"divergence\"` to a zero trace or a divergence zero at any power; without it, any tie counts"))
+                            .with_help("`tie = \"trace\"` limits the tie to a zero trace, `tie = \"divergence\"` to a zero trace or a divergence zero at any power, `tie = \"law\"` to sides that read different symbols; without it, any tie counts"))
                     }
                 },
             };

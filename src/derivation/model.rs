@@ -293,6 +293,12 @@ pub enum TieKind {
     /// difference that vanishes with it at any power (`(u_k,k)²`); a tensor's trace is
     /// as for [`TieKind::Trace`].
     Divergence,
+    /// `tie = "law"` (an equation that may be a law the paper posits, such as
+    /// equilibrium `\sigma_{ij,j} + b_i = 0`): explains sides that read different
+    /// symbols (Navier's equations, on the solutions of the law) and nothing else: no
+    /// relation between components, no zero trace (a wrong coefficient of a derivative
+    /// stays an error).
+    Law,
     /// No `tie`: any tie (a relation, a symmetry, a unit length, a zero trace).
     Any,
 }

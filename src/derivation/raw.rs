@@ -81,7 +81,7 @@ pub struct RawTied {
     pub line: Option<Spanned<i64>>,
     pub why: S,
     /// `"trace"`: the reason speaks of a trace only (a deviator); `"divergence"`: of an
-    /// incompressible body (see `TieKind`).
+    /// incompressible body; `"law"`: an equation the paper may posit (see `TieKind`).
     pub tie: Option<S>,
 }
 

@@ -1022,17 +1022,27 @@ impl<'a> Reader<'a> {
                 } else {
                     None
                 };
+                self.skip();
+                let bracketed =
+                    matches!(self.peek(), Some('(' | '{' | '[')) || self.command() == Some("left");
                 let mut arg = self.factor()?;
-                // `\sin 2\theta` is sin(2θ): a number and the factor right after it are
-                // one argument. A third factor (`\sin 2\theta x`) could belong to either.
-                if matches!(arg.kind, MathKind::Number(_)) && self.continues_product() {
+                // A bare argument followed by more factors (`\sin k\theta`, `\sin\omega
+                // t`) could be the argument or a factor beside the function: not guessed.
+                // `\sin 2\theta` is sin(2θ), as every table of identities prints it; a
+                // function after the argument (`\sin\theta\cos\theta`) ends it.
+                let ambiguous = |r: &mut Self| {
+                    r.continues_product() && !r.command().is_some_and(|c| FUNCTIONS.contains(&c))
+                };
+                let two_ways = format!(
+                    "the argument of `\\{name}` can be read two ways; bracket it, `\\{name}(…)`"
+                );
+                if !bracketed && ambiguous(self) {
+                    if !matches!(arg.kind, MathKind::Number(_)) {
+                        return self.err(start, self.pos, two_ways);
+                    }
                     let next = self.factor()?;
-                    if self.continues_product() {
-                        return self.err(
-                            start,
-                            self.pos,
-                            format!("the argument of `\\{name}` can be read two ways; bracket it, `\\{name}(…)`"),
-                        );
+                    if ambiguous(self) {
+                        return self.err(start, self.pos, two_ways);
                     }
                     let span = Span::new(arg.span.start, next.span.end);
                     arg = Math {
@@ -1273,12 +1283,19 @@ mod tests {
             ("\\cos^2\\theta", "pow(cos(theta), 2)"),
             ("\\sin^{2} 2\\theta", "pow(sin(2 theta), 2)"),
             ("\\sin 2", "sin(2)"),
+            ("\\sin 2\\theta\\cos\\theta", "sin(2 theta) cos(theta)"),
+            ("\\sin(\\theta) x", "sin(theta) x"),
+            ("x\\sin\\theta", "x sin(theta)"),
         ] {
             let m = one(src).unwrap_or_else(|e| panic!("{src}: {}", e.message));
             assert_eq!(shape(&m), want, "{src}");
         }
         for (src, why) in [
             ("\\sin 2\\theta x", "can be read two ways"),
+            ("\\sin k\\theta", "can be read two ways"),
+            ("\\sin\\omega t", "can be read two ways"),
+            ("\\cos kx", "can be read two ways"),
+            ("\\cos\\theta\\,\\sigma_{11}", "can be read two ways"),
             ("\\cos^{-1} x", "other than a whole power"),
             ("\\cos^n x", "other than a whole power"),
             ("\\cos_k x", "a subscript on"),

@@ -195,6 +195,11 @@ pub fn draft(
             }
         }
     }
+    rounds.incompressible = lines.iter().enumerate().find_map(|(k, l)| {
+        tie_word(l)
+            .filter(|w| tie_kind(w) == TieKind::Divergence)
+            .map(|w| (k + 1, w))
+    });
     rounds.vectors.extend(normal.and_then(|n| {
         let mut c = n.chars();
         c.next().filter(|_| c.next().is_none())
@@ -260,6 +265,7 @@ pub fn draft(
             refused_text: prose.iter().map(|f| f.line).collect(),
             stray: BTreeSet::new(),
             vectors: rounds.vectors,
+            incompressible: rounds.incompressible,
         },
     )
     .expect("with every claim to complete, nothing is read");
@@ -772,6 +778,7 @@ fn write(
         refused_text,
         stray,
         vectors,
+        incompressible,
     } = rounds;
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
@@ -970,7 +977,11 @@ fn write(
         .iter()
         .filter_map(|c| Some((c.q, c.stated.as_ref()?.instead_of.clone()?)))
         .collect();
-    candidates.retain(|c| c.stated.is_some() || !instead.contains(&(c.q, c.key.clone())));
+    // (The square of such a symbol too: "$\sigma_e^2 = …$, with $\sigma_e = \sqrt{3J_2}$".)
+    candidates.retain(|c| {
+        let of = c.key.strip_suffix("^2").unwrap_or(&c.key).to_owned();
+        c.stated.is_some() || !instead.contains(&(c.q, of))
+    });
     // A definition the text states comes before the equation that follows it.
     candidates.sort_by_key(|c| (c.q, c.stated.as_ref().is_none_or(|s| s.line.is_none())));
     // The first candidate of each symbol defines it, unless its body leads back to it
@@ -1107,11 +1118,39 @@ fn write(
                 .iter()
                 .filter(|f| !text_lines.contains(&f.line))
                 .collect();
-            let tied = tied(
+            let mut tied = tied(
                 (equations, &symbols, &chosen, &squares),
                 (&open, &opaque),
                 &said,
             );
+            // A trace speaks of a tensor of rank 2, a divergence of a vector field: on
+            // any other symbol such a reason ties nothing.
+            tied.retain(|name, (_, _, kind)| {
+                *kind >= TieKind::Law
+                    || symbols.values().any(|s| {
+                        s.name == *name && ((s.rank == 2 && !s.field) || (s.rank == 1 && s.field))
+                    })
+            });
+            // "Throughout, the material is incompressible": every vector field's
+            // divergence, wherever the words stand.
+            if let Some((line, word)) = incompressible {
+                for (k, s) in &symbols {
+                    if !s.field || s.rank != 1 || s.component || defined.contains_key(k) {
+                        continue;
+                    }
+                    let why = format!("the text says \"{word}\"");
+                    let entry = tied.entry(s.name.clone()).or_insert((
+                        Some(*line),
+                        why,
+                        TieKind::Divergence,
+                    ));
+                    if entry.2 < TieKind::Divergence {
+                        entry.2 = TieKind::Divergence;
+                        entry.0 = Some(*line);
+                        entry.1 = format!("the text says \"{word}\"");
+                    }
+                }
+            }
             first_written(equations, (&symbols, &defined), (&open, prose));
             tied
         }
@@ -1392,6 +1431,9 @@ struct Rounds {
     refused_text: BTreeSet<usize>,
     stray: BTreeSet<String>,
     vectors: BTreeSet<char>,
+    /// The first line of the text, and its word, that calls the body incompressible or
+    /// its motion isochoric.
+    incompressible: Option<(usize, String)>,
 }
 
 /// A symbol's definition on its way into the file.
@@ -1834,6 +1876,11 @@ struct Said {
     relation: bool,
     /// It writes a trace (`\varepsilon_{kk}`, `u_{k,k}`).
     trace: bool,
+    /// It reads the normal (`$n_1 = \cos\theta$`).
+    normal: bool,
+    /// It is one plain symbol (no script, accent or prime) in a sentence that names the
+    /// normal by a formula ("the unit normal $n_i$ … at angle $\theta$").
+    beside_normal: bool,
 }
 
 /// What each equation of the text says ([`Said`]); a formula the reader cannot read, or
@@ -1846,11 +1893,29 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
             .map(|(k, _)| k)
             .collect()
     };
+    // Whether a formula reads the normal (`$n_i$`, `$n_1 = \cos\theta$`).
+    let reads_normal = |read: &latex::Printed| {
+        let mut letters = BTreeSet::new();
+        for part in &read.parts {
+            for m in &part.members {
+                symbols::vector_letters(m, &mut letters);
+            }
+        }
+        normal.is_some_and(|n| n.chars().count() == 1 && n.chars().all(|c| letters.contains(&c)))
+    };
+    // The sentences that name the normal by a formula.
+    let of_normal: BTreeSet<&str> = prose
+        .iter()
+        .filter(|f| normal.is_some_and(|n| f.body.contains(n)))
+        .filter(|f| latex::read(&f.body, &options).is_ok_and(|r| reads_normal(&r)))
+        .map(|f| f.words.as_str())
+        .collect();
     prose
         .iter()
         .filter_map(|f| {
             let word = tie_word(&f.words);
-            if word.is_none() && !f.body.contains('=') {
+            let beside_normal = of_normal.contains(f.words.as_str());
+            if word.is_none() && !f.body.contains('=') && !beside_normal {
                 return None;
             }
             let read = latex::read(&f.body, &options).ok()?;
@@ -1882,6 +1947,10 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
                     .iter()
                     .any(|p| p.relations.contains(&latex::Rel::Eq)),
                 trace: repeated_index(&f.body),
+                normal: reads_normal(&read),
+                beside_normal: beside_normal
+                    && matches!(&read.parts[..], [p] if matches!(&p.members[..], [m] if matches!(&m.kind,
+                        MathKind::Atom(a) if a.sub.is_none() && a.sup.is_none() && a.accent.is_none() && a.primes == 0))),
             })
         })
         .collect()
@@ -1943,16 +2012,27 @@ fn formula_after<'w>(words: &'w str, word: &str) -> Option<&'w str> {
     None
 }
 
-/// Whether an equation sets an expression to zero (`\sigma_{ij,j} + b_i = 0`): its
-/// last member is 0.
-fn sets_zero(latex_text: &str) -> bool {
-    latex::read(latex_text, &ReadOptions::default()).is_ok_and(|r| {
-        r.parts.last().is_some_and(|p| {
-            p.members.len() > 1
-                && p.relations.last() == Some(&latex::Rel::Eq)
-                && matches!(&p.members.last().map(|m| &m.kind), Some(MathKind::Number(n)) if n == "0")
+/// Whether an equation has the form of a law (`\sigma_{ij,j} + b_i = 0`, `\sigma_{ij,j} =
+/// -b_i`): it reads a comma derivative, and one of its two members is 0 or a lone
+/// symbol, negated or not.
+fn law_form(latex_text: &str) -> bool {
+    let derivative = latex_text
+        .split("_{")
+        .skip(1)
+        .any(|rest| rest.split('}').next().is_some_and(|sub| sub.contains(',')));
+    // A source term: a symbol, not a derivative (`u_{i,j} = …` is no law).
+    let source = |m: &latex::Math| matches!(&m.kind, MathKind::Atom(a) if !a.sub.as_ref().is_some_and(|s| s.text.contains(',')));
+    let lone = |m: &latex::Math| match &m.kind {
+        MathKind::Number(n) => n == "0",
+        MathKind::Sum(terms) => matches!(&terms[..], [(_, t)] if source(t)),
+        _ => source(m),
+    };
+    derivative
+        && latex::read(latex_text, &ReadOptions::default()).is_ok_and(|r| {
+            matches!(&r.parts[..], [p] if p.relations[..] == [latex::Rel::Eq]
+                && p.members.len() == 2
+                && p.members.iter().any(lone))
         })
-    })
 }
 
 /// Whether a formula has a subscript of two or more letters, or a comma derivative
@@ -2123,14 +2203,16 @@ fn tied(
             );
         }
     }
-    // A law the paper may posit (`\sigma_{ij,j} + b_i = 0`, equilibrium): an equation
-    // that sets an expression of two or more symbols to zero and defines nothing ties
-    // the symbols no equation defines that it is the first to write (the body force):
-    // later equations may hold only where it does (Navier's equations). One of a single
+    // A law the paper may posit (equilibrium: `\sigma_{ij,j} + b_i = 0`, `\sigma_{ij,j} =
+    // -b_i`, `\sigma_{ij,j} = 0`): an equation that defines nothing, reads a derivative,
+    // and sets an expression of two or more symbols to zero or to a lone source term.
+    // Later equations may hold only where it does (Navier's equations): the fields it
+    // reads, through definitions, and the symbols it is the first to write are tied to
+    // it, for sides that read different symbols only (`tie = 'law'`). One of a single
     // symbol (`e_{ijk}\phi_{,jk} = 0`) relates it to no other.
-    for (k, q) in first_readers(equations, open) {
-        let e = &equations[q];
-        if e.unread.is_some() || !e.defines.is_empty() || !sets_zero(&e.latex) {
+    let first = first_readers(equations, open);
+    for (q, e) in equations.iter().enumerate() {
+        if e.unread.is_some() || !e.defines.is_empty() || !law_form(&e.latex) {
             continue;
         }
         let related: BTreeSet<&str> = e
@@ -2142,16 +2224,15 @@ fn tied(
         if related.len() < 2 {
             continue;
         }
-        if let Some(s) = declared(k) {
-            add(
-                &s.name,
-                Some(e.line),
-                format!(
-                    "equation ({}), the first to write it, sets an expression to zero, which may be a law the paper posits",
-                    e.number
-                ),
-                TieKind::Any,
-            );
+        let why = format!(
+            "equation ({}) may be a law the paper posits, which later equations use",
+            e.number
+        );
+        for k in &e.reads {
+            let new = first.get(k) == Some(&q);
+            for s in through(k).into_iter().filter(|s| s.field || new) {
+                add(&s.name, Some(e.line), why.clone(), TieKind::Law);
+            }
         }
     }
     // What the reader cannot read at all is searched for each symbol's printed base.
@@ -2228,6 +2309,22 @@ fn tied(
                 && !right.is_empty()
                 && right.iter().all(|k| chosen.contains_key(k))
         });
+        // `$n_1 = \cos\theta$`: an equation of the text that relates the normal to other
+        // symbols ties them (a claim may read the normal on one side, θ on the other).
+        if f.relation && f.normal {
+            for s in named(&f.found) {
+                let why = "an equation in the text relates it to the normal".to_owned();
+                add(&s.name, Some(f.line), why, TieKind::Any);
+            }
+        }
+        // "… the unit normal $n_i$ … at angle $\theta$": a scalar named beside the
+        // normal may parametrise it.
+        if f.beside_normal {
+            for s in named(&f.found).into_iter().filter(|s| s.rank == 0) {
+                let why = "its sentence names it beside the normal".to_owned();
+                add(&s.name, Some(f.line), why, TieKind::Any);
+            }
+        }
         if f.relation && !new && !backwards {
             // An equation with one symbol alone on its left (`$K = \lambda +
             // \frac23\mu$`) says what that symbol is, and ties it only; `$u_{k,k} = 0$`,
@@ -2458,6 +2555,7 @@ fn render(r: Render<'_>) -> String {
             out.push_str(match kind {
                 TieKind::Trace => ", tie = 'trace'",
                 TieKind::Divergence => ", tie = 'divergence'",
+                TieKind::Law => ", tie = 'law'",
                 TieKind::Any => "",
             });
             out.push_str(" },\n");

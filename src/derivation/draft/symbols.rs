@@ -67,6 +67,12 @@ pub struct Stems {
     pub vectors: BTreeSet<char>,
 }
 
+/// Whether a subscript is two or more of the paper's vector letters and nothing else
+/// (`nn`, `nt`).
+fn vector_letters_only(sub: &str, tensors: &Stems) -> bool {
+    sub.chars().count() > 1 && sub.chars().all(|c| tensors.vectors.contains(&c))
+}
+
 /// The letters that name vectors in `m`: a plain Latin letter with a subscript of one
 /// index letter or digit (`n` in `n_i`, `n_1`).
 pub fn vector_letters(m: &Math, out: &mut BTreeSet<char>) {
@@ -112,6 +118,10 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
     // Letters met in a subscript of more than one character (`\delta_{nm}`): indices
     // whatever they name elsewhere.
     let mut in_longer: BTreeSet<char> = BTreeSet::new();
+    // Letters of subscripts made only of the paper's vector letters (`\sigma_{nn}`, the
+    // normal stress), and letters of every other subscript: the first label unless
+    // the equation also has them in the second.
+    let (mut of_vectors, mut elsewhere): (BTreeSet<char>, BTreeSet<char>) = Default::default();
     let mut atoms = Vec::new();
     for m in members {
         let mut own = Vec::new();
@@ -123,6 +133,11 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
                 .as_ref()
                 .filter(|s| greek_subscript(&s.text).is_none() && upright(&s.text).is_none())
             {
+                if vector_letters_only(&sub.text, tensors) {
+                    of_vectors.extend(sub.text.chars());
+                    continue;
+                }
+                elsewhere.extend(sub.text.chars().filter(char::is_ascii_alphabetic));
                 let letters = sub.text.chars().filter(char::is_ascii_alphanumeric);
                 if letters.count() > 1 {
                     in_longer.extend(sub.text.chars().filter(char::is_ascii_alphabetic));
@@ -147,7 +162,12 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
             .filter(|(_, b)| b.len() > 1)
             .map(|(c, _)| c),
     );
-    // A vector's letter met only alone in subscripts labels (`\sigma_n`).
+    // A vector's letter met only alone in subscripts labels (`\sigma_n`), and so does
+    // one met only in subscripts of vector letters (`\sigma_{nn}`); met elsewhere too
+    // (`\sigma_{mn} n_m n_n`), it indexes.
+    let shared: Vec<char> = of_vectors.intersection(&elsewhere).copied().collect();
+    in_longer.extend(shared.iter().copied());
+    indices.extend(shared);
     indices.retain(|c| in_longer.contains(c) || !tensors.vectors.contains(c));
     atoms
         .into_iter()
@@ -252,9 +272,14 @@ fn symbol(
         && !derivative
         && slots.chars().all(|c| c.is_ascii_lowercase())
         && tensors.stray.contains(&stem);
+    // `\sigma_{nn}`: a subscript of vector letters that index nothing here.
+    let of_vectors = !derivative
+        && vector_letters_only(slots, tensors)
+        && !slots.chars().any(|c| indices.contains(&c));
     let suffix = !stray
         && (greek
             || roman.is_some()
+            || of_vectors
             || (one_letter
                 && !derivative
                 && !of_a_tensor
