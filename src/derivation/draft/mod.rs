@@ -277,8 +277,6 @@ pub fn draft(
     }
 }
 
-/// Marks the claims the loader's diagnostics point into as to complete; `false` when
-/// none of them is a claim's.
 /// The first message of a loader's refusal.
 fn first_message(e: &super::LoadError) -> Option<String> {
     match e {
@@ -287,6 +285,8 @@ fn first_message(e: &super::LoadError) -> Option<String> {
     }
 }
 
+/// Marks the claims the loader's diagnostics point into as to complete; `false` when
+/// none of them is a claim's.
 fn refuse_claims(
     toml: &str,
     e: &super::LoadError,
@@ -1138,16 +1138,10 @@ fn write(
                     if !s.field || s.rank != 1 || s.component || defined.contains_key(k) {
                         continue;
                     }
-                    let why = format!("the text says \"{word}\"");
-                    let entry = tied.entry(s.name.clone()).or_insert((
-                        Some(*line),
-                        why,
-                        TieKind::Divergence,
-                    ));
+                    let said = (Some(*line), format!("the text says \"{word}\""), TieKind::Divergence);
+                    let entry = tied.entry(s.name.clone()).or_insert_with(|| said.clone());
                     if entry.2 < TieKind::Divergence {
-                        entry.2 = TieKind::Divergence;
-                        entry.0 = Some(*line);
-                        entry.1 = format!("the text says \"{word}\"");
+                        *entry = said;
                     }
                 }
             }
@@ -2131,7 +2125,7 @@ fn tied(
         out
     };
     let mut out: BTreeMap<String, (Option<usize>, String, TieKind)> = BTreeMap::new();
-    // A reason that allows more ties prevails (for a trace only, then any tie).
+    // A reason that allows more ties prevails ([`TieKind`], from the narrowest).
     let mut add = |name: &str, line: Option<usize>, why: String, kind: TieKind| {
         let entry = out
             .entry(name.to_owned())
@@ -2265,9 +2259,9 @@ fn tied(
             .collect()
     };
     // The line of the first equation to read each symbol.
-    let first_line: BTreeMap<&Key, usize> = first_readers(equations, open)
-        .into_iter()
-        .map(|(k, q)| (k, equations[q].line))
+    let first_line: BTreeMap<&Key, usize> = first
+        .iter()
+        .map(|(&k, &q)| (k, equations[q].line))
         .collect();
     for f in said {
         // A component of a vector the equations write with an index (`$n_1 =
