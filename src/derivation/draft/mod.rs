@@ -1138,7 +1138,11 @@ fn write(
                     if !s.field || s.rank != 1 || s.component || defined.contains_key(k) {
                         continue;
                     }
-                    let said = (Some(*line), format!("the text says \"{word}\""), TieKind::Divergence);
+                    let said = (
+                        Some(*line),
+                        format!("the text says \"{word}\""),
+                        TieKind::Divergence,
+                    );
                     let entry = tied.entry(s.name.clone()).or_insert_with(|| said.clone());
                     if entry.2 < TieKind::Divergence {
                         *entry = said;
