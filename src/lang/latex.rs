@@ -1030,8 +1030,16 @@ impl<'a> Reader<'a> {
                 // t`) could be the argument or a factor beside the function: not guessed.
                 // `\sin 2\theta` is sin(2θ), as every table of identities prints it; a
                 // function after the argument (`\sin\theta\cos\theta`) ends it.
+                // A space after the argument (`\det A \, A^{-1}`, `\sin\theta\,d\theta`)
+                // ends it, as authors set it.
                 let ambiguous = |r: &mut Self| {
-                    r.continues_product() && !r.command().is_some_and(|c| FUNCTIONS.contains(&c))
+                    let rest = r.src[r.pos..].trim_start();
+                    let spaced = ["\\,", "\\;", "\\:", "\\ ", "~", "\\quad", "\\qquad"]
+                        .iter()
+                        .any(|s| rest.starts_with(s));
+                    !spaced
+                        && r.continues_product()
+                        && !r.command().is_some_and(|c| FUNCTIONS.contains(&c))
                 };
                 let two_ways = format!(
                     "the argument of `\\{name}` can be read two ways; bracket it, `\\{name}(…)`"
@@ -1286,6 +1294,9 @@ mod tests {
             ("\\sin 2\\theta\\cos\\theta", "sin(2 theta) cos(theta)"),
             ("\\sin(\\theta) x", "sin(theta) x"),
             ("x\\sin\\theta", "x sin(theta)"),
+            ("\\cos\\theta\\,\\sigma_{11}", "cos(theta) sigma"),
+            ("\\det A \\, B", "det(A) B"),
+            ("\\sin 2\\theta\\, x", "sin(2 theta) x"),
         ] {
             let m = one(src).unwrap_or_else(|e| panic!("{src}: {}", e.message));
             assert_eq!(shape(&m), want, "{src}");
@@ -1295,7 +1306,6 @@ mod tests {
             ("\\sin k\\theta", "can be read two ways"),
             ("\\sin\\omega t", "can be read two ways"),
             ("\\cos kx", "can be read two ways"),
-            ("\\cos\\theta\\,\\sigma_{11}", "can be read two ways"),
             ("\\cos^{-1} x", "other than a whole power"),
             ("\\cos^n x", "other than a whole power"),
             ("\\cos_k x", "a subscript on"),
