@@ -12,9 +12,10 @@
 //!   (`t_k` where the paper has `t_i`); so does a subscript of one Greek letter
 //!   (`\mu_\tau`), since the language's indices are Latin letters;
 //! - a subscript found stray ([`Stems::stray`]) is read as the bare scalar;
-//! - a one-letter subscript that is also the letter of a vector of the paper (`n` where
-//!   it has `n_i`) labels, unless the equation has it in a longer subscript
-//!   (`\sigma_n + \tau_n`, but `\delta_{nm} a_n`);
+//! - a subscript of the letters of the paper's vectors (`n` where it has `n_i`) labels,
+//!   unless the equation indexes with them elsewhere (`\sigma_n + \tau_n`,
+//!   `\sigma_{nn}`, but `\delta_{nm} a_n`); so does an upright one (`\sigma_{\mathrm{I}}`,
+//!   `\tau_{\max}`, `\tau_{\rm max}`);
 //! - δ_{ij}, e_{ijk} and ε_{ijk} are Kronecker's and Levi-Civita's symbols.
 
 use crate::lang::latex::{roman_label, Atom, Math, MathKind};
@@ -369,6 +370,8 @@ fn upright(sub: &str) -> Option<&str> {
     roman_label(sub).or_else(|| {
         let name = sub.strip_prefix('\\')?;
         let word = !name.is_empty() && name.chars().all(|c| c.is_ascii_alphabetic());
+        // `{\rm max}`, its space gone from the script: the label after `\rm`.
+        let name = name.strip_prefix("rm").filter(|r| !r.is_empty()).unwrap_or(name);
         (word && crate::lang::latex::greek_letter(name).is_none()).then_some(name)
     })
 }
