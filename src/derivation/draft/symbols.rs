@@ -371,7 +371,10 @@ fn upright(sub: &str) -> Option<&str> {
         let name = sub.strip_prefix('\\')?;
         let word = !name.is_empty() && name.chars().all(|c| c.is_ascii_alphabetic());
         // `{\rm max}`, its space gone from the script: the label after `\rm`.
-        let name = name.strip_prefix("rm").filter(|r| !r.is_empty()).unwrap_or(name);
+        let name = name
+            .strip_prefix("rm")
+            .filter(|r| !r.is_empty())
+            .unwrap_or(name);
         (word && crate::lang::latex::greek_letter(name).is_none()).then_some(name)
     })
 }
