@@ -1992,7 +1992,8 @@ fn defines_in_clause(clause: &str, formula: &str) -> bool {
 /// The inline formula that follows `word` in `words` within three words ("deviatoric
 /// strain $e_{ij} = …$"), without its dollars.
 fn formula_after<'w>(words: &'w str, word: &str) -> Option<&'w str> {
-    let at = words.to_lowercase().find(word)?;
+    // ASCII case only: the offset must stay an offset of `words`.
+    let at = words.to_ascii_lowercase().find(word)?;
     let mut rest = words.get(at + word.len()..)?;
     for _ in 0..4 {
         rest = rest.trim_start();
