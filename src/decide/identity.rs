@@ -162,36 +162,51 @@ fn decide_recording(
             }
         }
     }
-    // A large tensor is first tried in symbolic indices (`indices.rs`): equal
-    // canonical forms prove it without expanding a component. Below the threshold the
-    // component route is already fast, and its evidence (every component compared) is
-    // the more direct; it also decides whatever the symbolic route leaves open.
+    // A tensor statement is first tried in symbolic indices (`indices.rs`): equal
+    // canonical forms find it without expanding a component, and the kernel then
+    // checks it component by component. A scalar statement has one component; below
+    // the threshold ε pairs are faster contracted by components, and `explain` (which
+    // records) shows every component; the component route also decides whatever the
+    // symbolic route leaves open.
+    let size = largest_tensor(decls, check);
+    let large = size > COMPONENT_ROUTE_UP_TO;
     if symbolic
         && matches!(check.strategy, Strategy::Exact { .. })
-        && largest_tensor(decls, check) > COMPONENT_ROUTE_UP_TO
+        && (large || (size > 1 && record.is_none()))
     {
-        match indices::decide(decls, check) {
-            // The kernel checks the identity component by component: the symbolic
-            // route found it, it does not prove it.
+        // The kernel checks what the symbolic route found, component by component: the
+        // route does not prove it. What the kernel refuses, the component route decides.
+        let refused = |o: &Outcome| matches!(o.finding, Some(Finding::KernelRefused { .. }));
+        match indices::decide(decls, check, large) {
             Symbolic::Proved(_) => {
                 let fact = Fact::Identity { roots: Vec::new() };
-                return by_kernel(decls, check, fact, (Method::Exact, 0), |mut o| {
-                    // The components the kernel compared.
-                    o.checks = o
-                        .proofs()
-                        .iter()
-                        .flat_map(|p| p.summary())
-                        .find_map(|c| match c {
-                            Checked::PolynomialIdentity { components, .. } => Some(*components),
-                            _ => None,
-                        })
-                        .unwrap_or(0);
+                let outcome = by_kernel(decls, check, fact, (Method::Exact, 0), |mut o| {
+                    // The components the kernel compared, and whether one needed
+                    // n·n = 1.
+                    let compared =
+                        o.proofs()
+                            .iter()
+                            .flat_map(|p| p.summary())
+                            .find_map(|c| match c {
+                                Checked::PolynomialIdentity {
+                                    components,
+                                    modulo_unit_normal,
+                                    ..
+                                } => Some((*components, *modulo_unit_normal > 0)),
+                                _ => None,
+                            });
+                    (o.checks, o.used_unit_normal) = compared.unwrap_or((0, false));
                     o
-                });
+                })?;
+                if !refused(&outcome) {
+                    return Ok(outcome);
+                }
             }
             Symbolic::Differs(d) => {
                 if let Some(outcome) = constant_counterexample(decls, check, &d)? {
-                    return Ok(outcome);
+                    if !refused(&outcome) {
+                        return Ok(outcome);
+                    }
                 }
             }
             Symbolic::Open => {}
@@ -725,9 +740,9 @@ pub(crate) fn constant_counterexample(
     .map(Some)
 }
 
-/// Components beyond which an identity is first tried in symbolic indices: 243 is
-/// rank 5 in 3D (the largest tensor of the paper, the odd averages), rank 7 in 2D.
-/// Up to there the component route takes about a millisecond.
+/// Components beyond which an identity with ε is first tried in symbolic indices: 243
+/// is rank 5 in 3D (the largest tensor of the paper, the odd averages), rank 7 in 2D.
+/// Up to there the component route contracts ε pairs faster than the algebra.
 const COMPONENT_ROUTE_UP_TO: usize = 243;
 
 /// The most components a side of `check` has: d to the number of its free indices.

@@ -58,8 +58,9 @@ pub struct Difference {
 }
 
 /// Decides every equality of `check` by canonical forms in symbolic indices, as far as
-/// it can.
-pub fn decide(decls: &Decls, check: &Check) -> Symbolic {
+/// it can. Without `read_eps`, a side with ε leaves it open: below a few hundred
+/// components, contracting ε pairs in the algebra costs more than the component route.
+pub fn decide(decls: &Decls, check: &Check, read_eps: bool) -> Symbolic {
     // A polynomial constraint or a differential hypothesis has no form in symbolic
     // indices.
     // Hypotheses on derived quantities restrict where a counterexample may lie.
@@ -73,7 +74,7 @@ pub fn decide(decls: &Decls, check: &Check) -> Symbolic {
     if decls.normal_in_plane || constrained {
         return Symbolic::Open;
     }
-    let mut reader = Reader::new(decls, check);
+    let mut reader = Reader::new(decls, check, read_eps);
     let mut certificate: Option<Certificate> = None;
     let mut components = 0usize;
     for (ci, chain) in check.chains.iter().enumerate() {
@@ -143,10 +144,12 @@ struct Reader<'a> {
     /// Symbol numbers, shared by every side so that their forms compare.
     ids: BTreeMap<String, u32>,
     next: Label,
+    /// Whether ε is read (else a side with ε is outside the algebra).
+    read_eps: bool,
 }
 
 impl<'a> Reader<'a> {
-    fn new(decls: &'a Decls, check: &'a Check) -> Self {
+    fn new(decls: &'a Decls, check: &'a Check, read_eps: bool) -> Self {
         let mut ids = BTreeMap::new();
         let mut props = Properties::default();
         if let Some(n) = &decls.normal {
@@ -173,6 +176,7 @@ impl<'a> Reader<'a> {
             algebra: Algebra::new(decls.dim, props),
             ids,
             next: FIRST_SUMMED,
+            read_eps,
         }
     }
 
@@ -214,7 +218,8 @@ impl<'a> Reader<'a> {
                         [a, b] => Sum::factor(Factor::Delta(a, b)),
                         _ => return None,
                     },
-                    Target::Eps => Sum::factor(Factor::Eps(labels)),
+                    Target::Eps if self.read_eps => Sum::factor(Factor::Eps(labels)),
+                    Target::Eps => return None,
                     Target::Normal => {
                         let id = intern(&mut self.ids, self.decls.normal.as_deref()?);
                         Sum::factor(Factor::Symbol { id, slots: labels })
