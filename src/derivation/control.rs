@@ -26,7 +26,7 @@ pub fn first_control(text: &str) -> Option<(usize, String)> {
             None => {
                 if c == '#' {
                     comment = true;
-                } else {
+                } else if matches!(c, '"' | '\'') {
                     for quote in ["\"\"\"", "'''", "\"", "'"] {
                         if rest.starts_with(quote) {
                             string = Some(quote);
@@ -40,7 +40,7 @@ pub fn first_control(text: &str) -> Option<(usize, String)> {
                 }
             }
             Some(quote) => {
-                if rest.starts_with(quote) {
+                if matches!(c, '"' | '\'') && rest.starts_with(quote) {
                     string = None;
                     k += quote.len();
                     continue;

@@ -23,6 +23,7 @@ pub use super::term::{children, component_name, EvalError};
 use super::term::{Leaf, Letters, Ranks, Slot, Term};
 use num_traits::{One, Zero};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::rc::Rc;
 
 /// Term products one statement may spend in all.
 pub const WORK: usize = 50_000_000;
@@ -284,7 +285,10 @@ pub struct Env<'c> {
     pub vars: VarTable,
     normal: Vec<Var>,
     varying: HashMap<Var, Varying>,
-    symbols: HashMap<String, Vec<Frac>>,
+    /// The components of each symbol read so far, shared by every reading.
+    symbols: HashMap<String, Rc<[Frac]>>,
+    /// Those of δ, ε and the normal, once read.
+    constants: [Option<Rc<[Frac]>>; 3],
     cache: HashMap<String, Value>,
     /// Definitions made by `grad`: the derivatives of definitions, by name.
     derived: HashMap<String, Definition>,
@@ -349,6 +353,7 @@ impl<'c> Env<'c> {
             normal: Vec::new(),
             varying: HashMap::new(),
             symbols: HashMap::new(),
+            constants: Default::default(),
             cache: HashMap::new(),
             derived: HashMap::new(),
             defined: ctx
@@ -424,7 +429,7 @@ impl<'c> Env<'c> {
                     s.symbol
                 )));
             }
-            env.symbols.insert(s.symbol.clone(), t);
+            env.symbols.insert(s.symbol.clone(), t.into());
             // Definitions read so far may have read the symbol before it was replaced.
             env.cache.clear();
             env.certified.clear();
@@ -476,9 +481,6 @@ impl<'c> Env<'c> {
     /// A symbol's components, after the assumptions: each eliminated component is its
     /// value in the free ones.
     fn symbol(&mut self, name: &str) -> R<Vec<Frac>> {
-        if let Some(t) = self.symbols.get(name) {
-            return Ok(t.clone());
-        }
         let rank = self.rank(name)?;
         let mut t = Vec::new();
         for idx in assignments(self.ctx.dim, rank) {
@@ -486,7 +488,6 @@ impl<'c> Env<'c> {
             let p = self.pivots.get(&v).cloned().unwrap_or_else(|| Poly::var(v));
             t.push(Frac::from(p));
         }
-        self.symbols.insert(name.to_owned(), t.clone());
         Ok(t)
     }
 
@@ -984,8 +985,35 @@ impl<'c> Env<'c> {
         })
     }
 
-    /// A leaf's components in slot order.
-    fn leaf(&mut self, of: &Leaf) -> R<Vec<Frac>> {
+    /// A leaf's components in slot order; those of δ, ε, the normal and the symbols
+    /// are formed once.
+    fn leaf(&mut self, of: &Leaf) -> R<Rc<[Frac]>> {
+        let known = match of {
+            Leaf::Def(name) => return Ok(self.def_value(name)?.comps.into()),
+            Leaf::Delta => self.constants[0].as_ref(),
+            Leaf::Eps => self.constants[1].as_ref(),
+            Leaf::Normal => self.constants[2].as_ref(),
+            Leaf::Symbol(s) => self.symbols.get(s),
+        };
+        if let Some(t) = known {
+            return Ok(Rc::clone(t));
+        }
+        let t: Rc<[Frac]> = self.leaf_components(of)?.into();
+        let slot = match of {
+            Leaf::Delta => &mut self.constants[0],
+            Leaf::Eps => &mut self.constants[1],
+            Leaf::Normal => &mut self.constants[2],
+            Leaf::Symbol(s) => {
+                self.symbols.insert(s.clone(), Rc::clone(&t));
+                return Ok(t);
+            }
+            Leaf::Def(_) => return Ok(t),
+        };
+        *slot = Some(Rc::clone(&t));
+        Ok(t)
+    }
+
+    fn leaf_components(&mut self, of: &Leaf) -> R<Vec<Frac>> {
         let d = self.ctx.dim;
         Ok(match of {
             Leaf::Delta => assignments(d, 2)
