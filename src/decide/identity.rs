@@ -15,7 +15,7 @@ use crate::algebra::certificate::{scaled_by, Difference, Identities};
 use crate::algebra::sign::Interval;
 use crate::algebra::{assignments, Quotient, RatFunc};
 use crate::derivation::parametrisation::product_value;
-use crate::derivation::{statement, Check, Strategy};
+use crate::derivation::{statement, Check, Strategy, Verdict};
 use crate::eval::exact::env::{component_name, ExactEnv, Labeled};
 use crate::kernel::check::{check as kernel_check, Checked, Evaluation, Fact, Factor};
 use crate::kernel::{Poly, PolyError, Rational, Var, VarTable};
@@ -176,28 +176,9 @@ fn decide_recording(
     {
         // The kernel checks what the symbolic route found, component by component: the
         // route does not prove it. What the kernel refuses, the component route decides.
-        let refused = |o: &Outcome| matches!(o.finding, Some(Finding::KernelRefused { .. }));
         match indices::decide(decls, check, large) {
             Symbolic::Proved(_) => {
-                let fact = Fact::Identity { roots: Vec::new() };
-                let outcome = by_kernel(decls, check, fact, (Method::Exact, 0), |mut o| {
-                    // The components the kernel compared, and whether one needed
-                    // n·n = 1.
-                    let compared =
-                        o.proofs()
-                            .iter()
-                            .flat_map(|p| p.summary())
-                            .find_map(|c| match c {
-                                Checked::PolynomialIdentity {
-                                    components,
-                                    modulo_unit_normal,
-                                    ..
-                                } => Some((*components, *modulo_unit_normal > 0)),
-                                _ => None,
-                            });
-                    (o.checks, o.used_unit_normal) = compared.unwrap_or((0, false));
-                    o
-                })?;
+                let outcome = identity_by_kernel(decls, check)?;
                 if !refused(&outcome) {
                     return Ok(outcome);
                 }
@@ -210,6 +191,30 @@ fn decide_recording(
                 }
             }
             Symbolic::Open => {}
+        }
+    }
+    // A plain identity (no hypothesis, polynomial constraint or differential hypothesis)
+    // is then offered to the kernel as it stands: where it holds, the component route's
+    // own evaluation would only repeat the kernel's. The kernel's proof is taken only
+    // when it compared polynomials alone (no square root taken, no constraint); else,
+    // and where it refuses, the component route decides, finds the counterexample, and
+    // has the kernel check that.
+    let plain = matches!(&check.strategy, Strategy::Exact { hypotheses, .. } if hypotheses.is_empty())
+        && !check.assumptions.iter().any(|a| {
+            matches!(
+                a.kind,
+                crate::derivation::AssumptionKind::Constraint { .. }
+                    | crate::derivation::AssumptionKind::Differential { .. }
+            )
+        });
+    if symbolic && plain && record.is_none() {
+        let outcome = identity_by_kernel(decls, check)?;
+        let polynomial = |o: &Outcome| {
+            let summary: Vec<&Checked> = o.proofs().iter().flat_map(|p| p.summary()).collect();
+            matches!(&summary[..], [Checked::PolynomialIdentity { components, .. }] if *components > 0)
+        };
+        if outcome.verdict() == Verdict::Holds && polynomial(&outcome) {
+            return Ok(outcome);
         }
     }
     let mut env = match ExactEnv::on(
@@ -629,6 +634,33 @@ fn nowhere_defined(env: &ExactEnv<'_>) -> Option<Vec<String>> {
         }
     }
     Some(roots.iter().map(|r| r.value.display(&env.vars)).collect())
+}
+
+/// Whether the kernel refused the fact it was given.
+fn refused(o: &Outcome) -> bool {
+    matches!(o.finding, Some(Finding::KernelRefused { .. }))
+}
+
+/// The kernel's check of `check` as an identity, with no square root offered: the
+/// components it compared, and whether one needed n·n = 1, are the evidence.
+fn identity_by_kernel(decls: &Decls, check: &Check) -> Result<Outcome, Diagnostic> {
+    let fact = Fact::Identity { roots: Vec::new() };
+    by_kernel(decls, check, fact, (Method::Exact, 0), |mut o| {
+        let compared = o
+            .proofs()
+            .iter()
+            .flat_map(|p| p.summary())
+            .find_map(|c| match c {
+                Checked::PolynomialIdentity {
+                    components,
+                    modulo_unit_normal,
+                    ..
+                } => Some((*components, *modulo_unit_normal > 0)),
+                _ => None,
+            });
+        (o.checks, o.used_unit_normal) = compared.unwrap_or((0, false));
+        o
+    })
 }
 
 /// The outcome of the kernel's check of `fact` against the statement of `check`: the

@@ -1166,7 +1166,9 @@ impl<'c> Env<'c> {
             comps: match into {
                 Some(comps) if comps.len() == count(d, out.len())? => comps,
                 Some(_) => return Err(EvalError::IllFormed("a sum of different ranks".into())),
-                None => vec![Frac::default(); count(d, out.len())?],
+                None => std::iter::repeat_with(Frac::default)
+                    .take(count(d, out.len())?)
+                    .collect(),
             },
         };
         self.visit(&mut walk, 0, &mut vec![Frac::one()])?;

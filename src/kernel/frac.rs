@@ -359,7 +359,8 @@ impl Frac {
     ) -> Result<Frac, FracError> {
         Ok(Frac {
             num: f(&self.num)?,
-            ..self.clone()
+            den: self.den.clone(),
+            conds: self.conds.clone(),
         })
     }
 }
