@@ -197,8 +197,9 @@ fn decide_recording(
     // is then offered to the kernel as it stands: where it holds, the component route's
     // own evaluation would only repeat the kernel's. The kernel's proof is taken only
     // when it compared polynomials alone (no square root taken, no constraint); else,
-    // and where it refuses, the component route decides, finds the counterexample, and
-    // has the kernel check that.
+    // and where it refuses or the trial's work runs out, the component route decides,
+    // finds the counterexample, and has the kernel check that. The trial is bounded so
+    // that a statement past a resource limit does not spend the budget twice.
     let plain = matches!(&check.strategy, Strategy::Exact { hypotheses, .. } if hypotheses.is_empty())
         && !check.assumptions.iter().any(|a| {
             matches!(
@@ -208,13 +209,17 @@ fn decide_recording(
             )
         });
     if symbolic && plain && record.is_none() {
-        let outcome = identity_by_kernel(decls, check)?;
-        let polynomial = |o: &Outcome| {
-            let summary: Vec<&Checked> = o.proofs().iter().flat_map(|p| p.summary()).collect();
-            matches!(&summary[..], [Checked::PolynomialIdentity { components, .. }] if *components > 0)
-        };
-        if outcome.verdict() == Verdict::Holds && polynomial(&outcome) {
-            return Ok(outcome);
+        let trial =
+            crate::kernel::interrupt::within(KERNEL_TRIAL, || identity_by_kernel(decls, check));
+        if let Ok(outcome) = trial {
+            let outcome = outcome?;
+            let polynomial = |o: &Outcome| {
+                let summary: Vec<&Checked> = o.proofs().iter().flat_map(|p| p.summary()).collect();
+                matches!(&summary[..], [Checked::PolynomialIdentity { components, .. }] if *components > 0)
+            };
+            if outcome.verdict() == Verdict::Holds && polynomial(&outcome) {
+                return Ok(outcome);
+            }
         }
     }
     let mut env = match ExactEnv::on(
@@ -771,6 +776,13 @@ pub(crate) fn constant_counterexample(
     })
     .map(Some)
 }
+
+/// The kernel's work (in its ticks) that a plain identity is offered before the
+/// component route decides it: past the largest identity the examples and tests prove
+/// (211,200 ticks for a Hessian in `tests/soundness/second-derivatives.toml`; at most
+/// 2,100 for a claim of the paper), and a fraction of what a statement past the work
+/// budget spends (0.7 to 1.5 million in `tests/soundness/resource-limits.toml`).
+const KERNEL_TRIAL: u64 = 250_000;
 
 /// Components beyond which an identity with ε is first tried in symbolic indices: 243
 /// is rank 5 in 3D (the largest tensor of the paper, the odd averages), rank 7 in 2D.

@@ -287,7 +287,7 @@ pub struct Env<'c> {
     varying: HashMap<Var, Varying>,
     /// The components of each symbol read so far, shared by every reading.
     symbols: HashMap<String, Rc<[Frac]>>,
-    /// Those of δ, ε and the normal, once read.
+    /// Those of δ, ε and the normal (in this order), once read.
     constants: [Option<Rc<[Frac]>>; 3],
     cache: HashMap<String, Value>,
     /// Definitions made by `grad`: the derivatives of definitions, by name.
@@ -988,31 +988,31 @@ impl<'c> Env<'c> {
     /// A leaf's components in slot order; those of δ, ε, the normal and the symbols
     /// are formed once.
     fn leaf(&mut self, of: &Leaf) -> R<Rc<[Frac]>> {
-        let known = match of {
+        let constant = match of {
             Leaf::Def(name) => return Ok(self.def_value(name)?.comps.into()),
-            Leaf::Delta => self.constants[0].as_ref(),
-            Leaf::Eps => self.constants[1].as_ref(),
-            Leaf::Normal => self.constants[2].as_ref(),
-            Leaf::Symbol(s) => self.symbols.get(s),
+            Leaf::Symbol(s) => match self.symbols.get(s) {
+                Some(t) => return Ok(Rc::clone(t)),
+                None => None,
+            },
+            Leaf::Delta => Some(0),
+            Leaf::Eps => Some(1),
+            Leaf::Normal => Some(2),
         };
-        if let Some(t) = known {
+        if let Some(t) = constant.and_then(|k| self.constants[k].as_ref()) {
             return Ok(Rc::clone(t));
         }
         let t: Rc<[Frac]> = self.leaf_components(of)?.into();
-        let slot = match of {
-            Leaf::Delta => &mut self.constants[0],
-            Leaf::Eps => &mut self.constants[1],
-            Leaf::Normal => &mut self.constants[2],
-            Leaf::Symbol(s) => {
+        match (constant, of) {
+            (Some(k), _) => self.constants[k] = Some(Rc::clone(&t)),
+            (None, Leaf::Symbol(s)) => {
                 self.symbols.insert(s.clone(), Rc::clone(&t));
-                return Ok(t);
             }
-            Leaf::Def(_) => return Ok(t),
-        };
-        *slot = Some(Rc::clone(&t));
+            (None, _) => {}
+        }
         Ok(t)
     }
 
+    /// A leaf's components, formed anew.
     fn leaf_components(&mut self, of: &Leaf) -> R<Vec<Frac>> {
         let d = self.ctx.dim;
         Ok(match of {

@@ -71,6 +71,22 @@ pub fn tick_by(work: usize) {
     }
 }
 
+/// Runs `f` as a trial of at most `work` units of ticked work, under the current stop
+/// condition too: `Err(Stopped)` when either stopped it. The units are the ticks of the
+/// computation itself, not time: the same input stops within the same 1,024 ticks on
+/// any machine, however loaded.
+pub fn within<T>(work: u64, f: impl FnOnce() -> T) -> Result<T, Stopped> {
+    let start = TICKS.with(std::cell::Cell::get);
+    let outer = CONDITION.with(|c| c.borrow().clone());
+    let stop: Stop = Arc::new(move || {
+        TICKS.with(std::cell::Cell::get).wrapping_sub(start) > work
+            || outer.as_ref().is_some_and(|s| s())
+    });
+    // `stoppable` inside `under`: the unwinding stops before `under` restores the
+    // condition.
+    under(stop, || stoppable(f))
+}
+
 /// Runs `f`; `Err(Stopped)` when a [`tick`] inside it stopped it. Any other panic goes
 /// on unwinding.
 pub fn stoppable<T>(f: impl FnOnce() -> T) -> Result<T, Stopped> {
@@ -116,5 +132,40 @@ mod tests {
             assert!(requested());
         });
         assert!(!requested());
+    }
+
+    #[test]
+    fn a_trial_stops_at_its_work_and_under_the_outer_condition() {
+        // Within its work: the value. Past it: stopped, and nothing is requested after.
+        assert_eq!(
+            within(10_000, || (0..5_000).map(|_| tick()).count()).ok(),
+            Some(5_000)
+        );
+        assert!(within(10_000, || loop {
+            tick();
+        })
+        .is_err());
+        assert!(!requested());
+        // The same work stops at the same tick each time (the condition is asked once
+        // per 1,024 ticks).
+        let count = || {
+            let n = std::cell::Cell::new(0u64);
+            let _ = within(50_000, || loop {
+                tick();
+                n.set(n.get() + 1);
+            });
+            n.get()
+        };
+        let first = count();
+        assert!((50_000..=51_024).contains(&first), "{first}");
+        assert_eq!(count(), first);
+        // An outer condition that holds stops the trial, and is in force after it.
+        under(Arc::new(|| true), || {
+            assert!(within(u64::MAX, || loop {
+                tick();
+            })
+            .is_err());
+            assert!(requested());
+        });
     }
 }
