@@ -13,7 +13,8 @@
 //!
 //! A stopped computation returns a value that means nothing. That is sound only
 //! because whoever set the condition discards everything computed after it became
-//! true: the time-limit watch makes such a decision `undecided (time limit)`.
+//! true: the time-limit watch makes such a decision `undecided (time limit)`, and a
+//! trial bounded by [`within`] is abandoned for another route.
 //! Outside [`under`] nothing ever stops.
 
 use std::cell::RefCell;
