@@ -777,12 +777,13 @@ pub(crate) fn constant_counterexample(
     .map(Some)
 }
 
-/// The kernel's work (in its ticks) that a plain identity is offered before the
-/// component route decides it: past the largest identity the examples and tests prove
-/// (211,200 ticks for a Hessian in `tests/soundness/second-derivatives.toml`; at most
-/// 2,100 for a claim of the paper), and a fraction of what a statement past the work
-/// budget spends (0.7 to 1.5 million in `tests/soundness/resource-limits.toml`).
-const KERNEL_TRIAL: u64 = 250_000;
+/// The kernel's work (in its ticks: product rows and charged limb products) that a
+/// plain identity is offered before the component route decides it: twice the largest
+/// identity the examples and tests prove (243,613 ticks for a Hessian in
+/// `tests/soundness/second-derivatives.toml`; at most 5,580 for a claim of the paper),
+/// and a third or less of what a statement past the work budget spends (1.5 to 34
+/// million in `tests/soundness/resource-limits.toml`).
+const KERNEL_TRIAL: u64 = 500_000;
 
 /// Components beyond which an identity with ε is first tried in symbolic indices: 243
 /// is rank 5 in 3D (the largest tensor of the paper, the odd averages), rank 7 in 2D.

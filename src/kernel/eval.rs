@@ -758,8 +758,12 @@ impl<'c> Env<'c> {
             .collect()
     }
 
+    /// Spends `cost` of the statement's work, which is also what a stop condition
+    /// counts ([`super::interrupt::tick_by`]): a product of large coefficients is long
+    /// in limbs, not in terms.
     fn charge(&mut self, cost: usize) -> R<()> {
         self.work = self.work.checked_sub(cost).ok_or(EvalError::Limit)?;
+        super::interrupt::tick_by(cost);
         Ok(())
     }
 
