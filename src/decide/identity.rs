@@ -178,9 +178,10 @@ fn decide_recording(
         // route does not prove it. What the kernel refuses, the component route decides.
         match indices::decide(decls, check, large) {
             Symbolic::Proved(_) => {
-                let outcome = identity_by_kernel(decls, check)?;
-                if !refused(&outcome) {
-                    return Ok(outcome);
+                if let Ok(outcome) = identity_by_kernel(decls, check) {
+                    if !refused(&outcome) {
+                        return Ok(outcome);
+                    }
                 }
             }
             Symbolic::Differs(d) => {
@@ -211,8 +212,9 @@ fn decide_recording(
     if symbolic && plain && record.is_none() {
         let trial =
             crate::kernel::interrupt::within(KERNEL_TRIAL, || identity_by_kernel(decls, check));
-        if let Ok(outcome) = trial {
-            let outcome = outcome?;
+        // A statement the kernel cannot take, or a trial stopped: the component route
+        // decides, and reports why.
+        if let Ok(Ok(outcome)) = trial {
             let polynomial = |o: &Outcome| {
                 let summary: Vec<&Checked> = o.proofs().iter().flat_map(|p| p.summary()).collect();
                 matches!(&summary[..], [Checked::PolynomialIdentity { components, .. }] if *components > 0)
