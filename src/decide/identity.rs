@@ -201,14 +201,7 @@ fn decide_recording(
     // and where it refuses or the trial's work runs out, the component route decides,
     // finds the counterexample, and has the kernel check that. The trial is bounded so
     // that a statement past a resource limit does not spend the budget twice.
-    let plain = matches!(&check.strategy, Strategy::Exact { hypotheses, .. } if hypotheses.is_empty())
-        && !check.assumptions.iter().any(|a| {
-            matches!(
-                a.kind,
-                crate::derivation::AssumptionKind::Constraint { .. }
-                    | crate::derivation::AssumptionKind::Differential { .. }
-            )
-        });
+    let plain = matches!(check.strategy, Strategy::Exact { .. }) && !check.constrained();
     if symbolic && plain && record.is_none() {
         let trial =
             crate::kernel::interrupt::within(KERNEL_TRIAL, || identity_by_kernel(decls, check));

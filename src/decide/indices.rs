@@ -62,15 +62,8 @@ pub struct Difference {
 /// components, contracting ε pairs in the algebra costs more than the component route.
 pub fn decide(decls: &Decls, check: &Check, read_eps: bool) -> Symbolic {
     // A polynomial constraint or a differential hypothesis has no form in symbolic
-    // indices.
-    // Hypotheses on derived quantities restrict where a counterexample may lie.
-    let constrained = check.assumptions.iter().any(|a| {
-        matches!(
-            a.kind,
-            crate::derivation::AssumptionKind::Constraint { .. }
-                | crate::derivation::AssumptionKind::Differential { .. }
-        )
-    }) || matches!(&check.strategy, crate::derivation::Strategy::Exact { hypotheses, .. } if !hypotheses.is_empty());
+    // indices; hypotheses on derived quantities restrict where a counterexample may lie.
+    let constrained = check.constrained();
     if decls.normal_in_plane || constrained {
         return Symbolic::Open;
     }

@@ -304,6 +304,19 @@ pub enum TieKind {
 }
 
 impl Check {
+    /// Whether the check is constrained beyond its symbols' assumptions: a polynomial
+    /// constraint, a differential hypothesis, or (for the exact strategy) a hypothesis
+    /// on derived quantities. Neither symbolic indices nor the kernel's plain identity
+    /// decide such a check.
+    pub fn constrained(&self) -> bool {
+        self.assumptions.iter().any(|a| {
+            matches!(
+                a.kind,
+                AssumptionKind::Constraint { .. } | AssumptionKind::Differential { .. }
+            )
+        }) || matches!(&self.strategy, Strategy::Exact { hypotheses, .. } if !hypotheses.is_empty())
+    }
+
     /// Where the statement is written (file:line:col of its first side).
     pub fn location(&self) -> String {
         self.chains
