@@ -18,8 +18,8 @@ fn identities_hold_and_their_twins_fail_confirmed_by_differences() {
 
 #[test]
 fn differential_hypotheses_are_decided_and_refuted_at_fields_that_satisfy_them() {
-    common::assert_as_declared("tests/soundness/differential.toml", 20, |rows| {
-        common::assert_failures_confirmed(rows, 10, Reverified::TaylorDifferences);
+    common::assert_as_declared("tests/soundness/differential.toml", 24, |rows| {
+        common::assert_failures_confirmed(rows, 12, Reverified::TaylorDifferences);
     });
 }
 

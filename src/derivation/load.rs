@@ -1093,7 +1093,27 @@ impl Loader {
         let left = Scope { decls, defs: sigs }
             .check(&e)
             .map_err(|e| self.lang(&sub, e))?;
-        let right = self.rhs(origin, text, eq, decls, sigs, &[])?;
+        // `sigma_ij,j = 0`, `w_i,jk = 0`: a zero right side is the zero tensor of the
+        // left side's free indices, every component of the left side zero.
+        let zero = text[eq + 1..].trim() == "0" && !left.free.is_empty();
+        let right = if zero {
+            let span = Span::new(0, eq);
+            let times = crate::lang::parser::Expr {
+                kind: ExprKind::Mul(
+                    Box::new(crate::lang::parser::Expr {
+                        kind: ExprKind::Number(Rational::int(0)),
+                        span,
+                    }),
+                    Box::new(e.clone()),
+                ),
+                span,
+            };
+            Scope { decls, defs: sigs }
+                .check(&times)
+                .map_err(|e| self.lang(&sub, e))?
+        } else {
+            self.rhs(origin, text, eq, decls, sigs, &[])?
+        };
         no_matrix(&sub, &left, "a constraint")?;
         no_matrix(origin, &right, "a constraint")?;
         if left.free_letters() != right.free_letters() {

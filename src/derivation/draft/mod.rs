@@ -91,6 +91,10 @@ struct Equation {
     verbatim: bool,
     /// The names of the declared symbols it is the first to write (`introduces`).
     introduces: BTreeSet<String>,
+    /// The fields the text linearises that it reads, through definitions, with the
+    /// number of the equation the sentence that says so leads into
+    /// ([`linearised_fields`]).
+    linear: (Vec<Key>, String),
 }
 
 /// Drafts a derivation file from `source` (named `label` in the file's header); the
@@ -137,6 +141,21 @@ pub fn draft(
             words,
         }
     }));
+    // The clause of a numbered equation the reader cannot read, `(\mathbf{K}_2 -
+    // \mathbf{K}_1)_i = 2\ell_i \quad\text{with}\quad \ell_i = R_g n_i`, still states a
+    // definition, as a sentence would ("with $\ell_i = R_g n_i$"); the equation itself
+    // is left to complete.
+    prose.extend(found.iter().filter_map(|d| {
+        let clause = with_clause(&d.latex)?;
+        latex::read(&d.latex, &ReadOptions::default())
+            .is_err()
+            .then(|| displays::Inline {
+                line: d.line,
+                body: clause.to_owned(),
+                words: "with".to_owned(),
+                at: "with".len(),
+            })
+    }));
     // What the text's own equations say, read in the first round.
     let mut said = None;
     let mut seen_ids = BTreeSet::new();
@@ -173,6 +192,7 @@ pub fn draft(
                 stray: BTreeSet::new(),
                 verbatim: false,
                 introduces: BTreeSet::new(),
+                linear: (Vec::new(), String::new()),
             }
         })
         .collect();
@@ -275,6 +295,306 @@ pub fn draft(
         claims: 0,
         unnumbered: unnumbered.0,
     }
+}
+
+/// The degree of `m` in the atoms `is_symbol` accepts, when it is at most 1 (a linear
+/// body, `v_{j,i} - e_{ijk} w_k`), else `None`.
+fn degree(m: &latex::Math, is_symbol: &dyn Fn(&latex::Math) -> bool) -> Option<u8> {
+    let constant = |x: &latex::Math| (degree(x, is_symbol)? == 0).then_some(0);
+    match &m.kind {
+        MathKind::Number(_) => Some(0),
+        MathKind::Atom(_) => Some(u8::from(is_symbol(m))),
+        MathKind::Sum(terms) => terms
+            .iter()
+            .try_fold(0, |d, (_, t)| Some(d.max(degree(t, is_symbol)?))),
+        MathKind::Product(fs) => fs
+            .iter()
+            .try_fold(0, |d: u8, f| d.checked_add(degree(f, is_symbol)?))
+            .filter(|&d| d <= 1),
+        MathKind::Quotient(a, b) => {
+            constant(b)?;
+            degree(a, is_symbol)
+        }
+        MathKind::Average(a) => degree(a, is_symbol),
+        MathKind::Power(a, b) => {
+            constant(a)?;
+            constant(b)
+        }
+        MathKind::Sqrt(a) | MathKind::Abs(a) | MathKind::Apply(_, a) => constant(a),
+        MathKind::Partial { .. } | MathKind::Matrix(_) | MathKind::Tuple(_) => None,
+    }
+}
+
+/// Words of a sentence that linearises fields about a point ("linearise these fields
+/// around the contact point"): a Taylor expansion cut after its first derivatives.
+fn linearises(words: &str) -> bool {
+    let words = words.to_lowercase();
+    words.contains("lineari") && (words.contains("around") || words.contains("about"))
+}
+
+/// The fields the text linearises, in each equation that reads one (`Equation::linear`):
+/// in the equations a sentence that linearises about a point leads into (that one, and
+/// the displays right after it with no text between), each field written there both
+/// with its value and with its first derivatives, a Taylor expansion cut after them
+/// (`w_i^c - \ell_m w_{i,m}^c`), whose second derivatives the paper never writes; not a
+/// defined one. A strain linearised about the reference configuration (`\varepsilon_{ij}
+/// = \frac12 (u_{i,j} + u_{j,i})`) writes no value of its field, and makes none linear.
+/// Each exact claim that reads one, through definitions, assumes its second
+/// derivatives vanish.
+fn linearised_fields(
+    equations: &mut [Equation],
+    symbols: &BTreeMap<Key, Symbol>,
+    chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+    (normal, tensors): (Option<&str>, &Stems),
+) {
+    let mut fields: BTreeSet<Key> = BTreeSet::new();
+    let mut number = String::new();
+    let mut group = false;
+    for eq in equations.iter() {
+        if linearises(&eq.lead_in) {
+            group = true;
+            number.clone_from(&eq.number);
+        } else if !eq.lead_in.trim().is_empty() {
+            group = false;
+        }
+        if !group || eq.unread.is_some() {
+            continue;
+        }
+        let Ok(printed) = latex::read(&eq.latex, &ReadOptions::default()) else {
+            continue;
+        };
+        for part in &printed.parts {
+            let members: Vec<&latex::Math> = part.members.iter().collect();
+            let found = symbols::occurrences(&members, normal, tensors);
+            let valued: BTreeSet<&Key> = found
+                .iter()
+                .filter(|(_, s)| s.order == 0)
+                .map(|(k, _)| k)
+                .collect();
+            for (k, s) in &found {
+                let once = symbols.get(k).is_some_and(|all| all.order == 1);
+                if s.order == 1 && once && valued.contains(k) && !chosen.contains_key(k) {
+                    fields.insert(k.clone());
+                }
+            }
+        }
+    }
+    if fields.is_empty() {
+        return;
+    }
+    for eq in equations.iter_mut() {
+        if eq.unread.is_some() || eq.numeric {
+            continue;
+        }
+        let mut seen: BTreeSet<&Key> = BTreeSet::new();
+        let mut stack: Vec<&Key> = eq.reads.iter().collect();
+        while let Some(k) = stack.pop() {
+            if seen.insert(k) {
+                stack.extend(chosen.get(k).into_iter().flat_map(|(_, body)| body));
+            }
+        }
+        let read: Vec<Key> = fields
+            .iter()
+            .filter(|f| seen.contains(f))
+            .cloned()
+            .collect();
+        eq.linear = (read, number.clone());
+    }
+}
+
+/// A labelled symbol that no equation defines, read where its unlabelled symbol is
+/// defined linearly (`K_{mi}^{(1)}` beside `K_{ij} = w_{j,i}`), and whose every
+/// symbol of that definition the paper also writes with the same label (`w_i^{(1)}`).
+struct Variant {
+    key: Key,
+    /// The unlabelled symbol, whose definition it takes.
+    of: Key,
+    label: String,
+    /// Each symbol of that definition, with its labelled variant.
+    renamed: Vec<(Key, Key)>,
+}
+
+/// The labelled variants that take their unlabelled symbol's definition: the same
+/// definition of the same-labelled symbols (eq. (2) at the centre of grain (1):
+/// `K_{ij}^{(1)} = w_{j,i}^{(1)}`). Only for a definition linear in what it reads: a
+/// label that marks where a quantity is evaluated, or a term of an expansion, commutes
+/// with it (`\frac12 e_{ij} e_{ij}` has no such variant). A variant a field is
+/// differentiated in needs that variant to be a field or defined; one that an equation
+/// left to complete may define is not taken.
+fn labelled_variants(
+    symbols: &BTreeMap<Key, Symbol>,
+    chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+    linear: &BTreeSet<(usize, Key)>,
+    blocked: &BTreeMap<Key, usize>,
+) -> Vec<Variant> {
+    // accent|base|sup|primes|suffix|rank, with another label (sup).
+    let with_label = |key: &Key, label: &str| -> Option<Key> {
+        let mut fields: Vec<&str> = key.split('|').collect();
+        (fields.len() == 6).then_some(())?;
+        fields[2] = label;
+        Some(fields.join("|"))
+    };
+    let label_of = |key: &Key| key.split('|').nth(2).unwrap_or("").to_owned();
+    let mut out = Vec::new();
+    for key in symbols.keys() {
+        let label = label_of(key);
+        if label.is_empty() || chosen.contains_key(key) || blocked.contains_key(key) {
+            continue;
+        }
+        let Some(of) = with_label(key, "") else {
+            continue;
+        };
+        let Some((q, body)) = chosen.get(&of) else {
+            continue;
+        };
+        if body.is_empty() || !linear.contains(&(*q, of.clone())) {
+            continue;
+        }
+        let renamed: Option<Vec<(Key, Key)>> = body
+            .iter()
+            .map(|y| {
+                if !label_of(y).is_empty() {
+                    return None;
+                }
+                let labelled = with_label(y, &label)?;
+                let (from, to) = (symbols.get(y)?, symbols.get(&labelled)?);
+                let differentiable = !from.field || to.field || chosen.contains_key(&labelled);
+                (differentiable && labelled != *key).then_some((y.clone(), labelled))
+            })
+            .collect();
+        if let Some(renamed) = renamed {
+            out.push(Variant {
+                key: key.clone(),
+                of,
+                label,
+                renamed,
+            });
+        }
+    }
+    out
+}
+
+/// A variant's definition, `head = body`, from its unlabelled symbol's
+/// (`K_ij = w_j,i` → `K1_ij = d(w1_j)/dx_i`): each symbol renamed, and a comma
+/// derivative of one that is defined, not a field, written `d(…)/dx_i`.
+fn relabelled(
+    text: &str,
+    v: &Variant,
+    symbols: &BTreeMap<Key, Symbol>,
+    defined: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+    position: Option<&str>,
+) -> Option<String> {
+    use crate::lang::parser::parse_expr;
+    let (head, body) = text.split_once(" = ")?;
+    let head = format!(
+        "{}{}",
+        symbols.get(&v.key)?.name,
+        head.strip_prefix(symbols.get(&v.of)?.name.as_str())?
+    );
+    // Language name → (its variant's name, whether that variant is defined).
+    let names: BTreeMap<&str, (&str, bool)> = v
+        .renamed
+        .iter()
+        .filter_map(|(from, to)| {
+            let (a, b) = (symbols.get(from)?, symbols.get(to)?);
+            Some((a.name.as_str(), (b.name.as_str(), defined.contains_key(to))))
+        })
+        .collect();
+    let expr = parse_expr(body).ok()?;
+    let mut edits: Vec<(usize, usize, String)> = Vec::new();
+    relabel_walk(&expr, (&names, position), &mut edits)?;
+    let mut body = body.to_owned();
+    edits.sort_by_key(|(start, _, _)| std::cmp::Reverse(*start));
+    for (start, end, to) in edits {
+        body.get(start..end)?;
+        body.replace_range(start..end, &to);
+    }
+    Some(format!("{head} = {body}"))
+}
+
+/// The edits (byte range, new text) that rename the symbols of `e` ([`relabelled`]);
+/// `None` where a defined variant is differentiated and the file has no position.
+fn relabel_walk(
+    e: &crate::lang::parser::Expr,
+    (names, position): (&BTreeMap<&str, (&str, bool)>, Option<&str>),
+    edits: &mut Vec<(usize, usize, String)>,
+) -> Option<()> {
+    use crate::lang::parser::{ExprKind, IndexTok};
+    let slots = |indices: &[IndexTok]| -> String { indices.iter().map(|t| t.ch).collect() };
+    let renamed = |kind: &ExprKind| -> Option<(String, bool)> {
+        let ExprKind::Name {
+            full,
+            base,
+            indices,
+        } = kind
+        else {
+            return None;
+        };
+        if let Some((to, def)) = names.get(full.as_str()) {
+            return Some(((*to).to_owned(), *def));
+        }
+        let (to, def) = names.get(base.as_str()).filter(|_| !indices.is_empty())?;
+        Some((format!("{to}_{}", slots(indices)), *def))
+    };
+    let mut go = |x: &crate::lang::parser::Expr| relabel_walk(x, (names, position), edits);
+    match &e.kind {
+        ExprKind::Name { .. } => {
+            if let Some((to, _)) = renamed(&e.kind) {
+                edits.push((e.span.start, e.span.end, to));
+            }
+        }
+        ExprKind::Deriv {
+            inner,
+            indices,
+            wrt: None,
+        } => match renamed(&inner.kind) {
+            Some((to, true)) => {
+                let by = format!("d{}_{}", position?, slots(indices));
+                edits.push((e.span.start, e.span.end, format!("d({to})/{by}")));
+            }
+            _ => go(inner)?,
+        },
+        ExprKind::Number(_) => {}
+        ExprKind::Neg(a)
+        | ExprKind::Pow(a, _)
+        | ExprKind::Call(_, a)
+        | ExprKind::Entry(a, _)
+        | ExprKind::Deriv { inner: a, .. } => go(a)?,
+        ExprKind::Add(a, b)
+        | ExprKind::Sub(a, b)
+        | ExprKind::Mul(a, b)
+        | ExprKind::Div(a, b)
+        | ExprKind::Call2(_, a, b)
+        | ExprKind::Wrt {
+            body: a, symbol: b, ..
+        } => {
+            go(a)?;
+            go(b)?;
+        }
+        ExprKind::Matrix(rows) => rows.iter().flatten().try_for_each(go)?,
+        ExprKind::MatCall(_, args) => args.iter().try_for_each(go)?,
+    }
+    Some(())
+}
+
+/// The clause after the last `\text{with}` or `\text{where}` of a display
+/// (`\ell_i = R_g n_i`), when it is one equation that reads on its own.
+fn with_clause(latex: &str) -> Option<&str> {
+    let at = ["\\text{with}", "\\text{where}"]
+        .iter()
+        .filter_map(|w| latex.rfind(w).map(|k| k + w.len()))
+        .max()?;
+    let mut tail = latex[at..].trim_start();
+    while let Some(rest) = ["\\quad", "\\qquad", "\\;", ","]
+        .iter()
+        .find_map(|s| tail.strip_prefix(s))
+    {
+        tail = rest.trim_start();
+    }
+    let tail = tail.trim_end().trim_end_matches(['.', ',']).trim_end();
+    let read = latex::read(tail, &ReadOptions::default()).ok()?;
+    let [part] = &read.parts[..] else { return None };
+    (part.relations[..] == [latex::Rel::Eq]).then_some(tail)
 }
 
 /// The first message of a loader's refusal.
@@ -459,6 +779,7 @@ fn defined_symbol(
                 name: format!("{}2", s.name.split('_').next().unwrap_or(&s.name)),
                 rank: s.rank,
                 field: false,
+                order: 0,
                 key: (format!("{printed}^2"), letters),
                 entry: true,
                 component: false,
@@ -785,6 +1106,10 @@ fn write(
     let mut symbols: BTreeMap<Key, Symbol> = BTreeMap::new();
     let mut order: Vec<Key> = Vec::new();
     let mut candidates: Vec<Candidate> = Vec::new();
+    // Numbered definitions whose body is linear in the symbols it reads (`K_{ij} =
+    // w_{j,i}`), by equation and symbol: a labelled variant follows them
+    // ([`labelled_variants`]).
+    let mut linear: BTreeSet<(usize, Key)> = BTreeSet::new();
     // Equations left to complete that the reader cannot read: what they define is
     // unknown, so a symbol they mention is defined by no later equation.
     let mut opaque: Vec<(usize, String)> = Vec::new();
@@ -923,6 +1248,7 @@ fn write(
                     s.clone()
                 });
                 entry.field |= s.field;
+                entry.order = entry.order.max(s.order);
                 entry.derivatives.extend(s.derivatives.iter().cloned());
                 entry.printed.extend(s.printed.iter().cloned());
                 entry.entry |= s.entry;
@@ -955,6 +1281,11 @@ fn write(
                 .unwrap_or("")
                 .trim()
                 .to_owned();
+            let is_symbol =
+                |m: &latex::Math| !symbols::occurrences(&[m], normal, &tensors).is_empty();
+            if members.len() == 2 && degree(members[1], &is_symbol).is_some() {
+                linear.insert((q, key.clone()));
+            }
             candidates.push(Candidate {
                 q,
                 key,
@@ -1031,6 +1362,12 @@ fn write(
         }
         chosen.insert(key, (q, body));
     }
+    let variants = labelled_variants(&symbols, &chosen, &linear, &blocked);
+    for v in &variants {
+        let body = v.renamed.iter().map(|(_, to)| to.clone()).collect();
+        chosen.insert(v.key.clone(), (chosen[&v.of].0, body));
+    }
+    linearised_fields(equations, &symbols, &chosen, (normal, &tensors));
     // A square that defines nothing is its base times itself (`x^2` after `x = 1`),
     // not a symbol of its own that no equation ties to its base.
     symbols.retain(|k, _| !k.ends_with("^2") || chosen.contains_key(k));
@@ -1377,6 +1714,17 @@ fn write(
             format!("{}_{formal}", s.name)
         };
         texts.insert(key.clone(), (format!("{head} = {body}"), origin));
+    }
+    // Each labelled variant, from its unlabelled symbol's definition.
+    for v in &variants {
+        let Some((text, origin)) = texts.get(&v.of).cloned() else {
+            continue;
+        };
+        let Some(text) = relabelled(&text, v, &symbols, &chosen, position.as_deref()) else {
+            continue;
+        };
+        let origin = format!("{origin}, with the label {}", comment(&v.label));
+        texts.insert(v.key.clone(), (text, origin));
     }
     // In an order where each definition uses only those above it.
     let mut define_lines: Vec<(String, String)> = Vec::new();
@@ -2503,9 +2851,17 @@ fn render(r: Render<'_>) -> String {
     out.push_str(
         "# announces; an equation that reads a symbol an earlier equation left to complete may\n",
     );
-    out.push_str("# define is left to complete too. Check each reading\n");
     out.push_str(
-        "# before trusting a verdict. Every declared symbol is taken as independent, so a\n",
+        "# define is left to complete too; a labelled symbol takes its unlabelled symbol's\n",
+    );
+    out.push_str(
+        "# linear definition on the same labels (K^{(1)} from K = w_{j,i} and w^{(1)}); a\n",
+    );
+    out.push_str(
+        "# field the text linearises about a point has no second derivatives. Check each\n",
+    );
+    out.push_str(
+        "# reading before trusting a verdict. Every declared symbol is taken as independent, so a\n",
     );
     out.push_str("# failure that a common tie between symbols would remove (one side reads what\n");
     out.push_str("# the other does not, a relation, a symmetric tensor, a unit vector) is left\n");
@@ -2671,6 +3027,28 @@ fn render(r: Render<'_>) -> String {
             notes.push(format!(
                 "Read with a stray subscript: {} carries an index that its equation does not, and is read as the scalar the paper also prints without it.",
                 printed.join(", ")
+            ));
+        }
+        let (linear, number) = &e.linear;
+        let linear: Vec<&Symbol> = linear.iter().filter_map(|k| r.symbols.get(k)).collect();
+        if !linear.is_empty() {
+            let hypotheses: Vec<String> = linear
+                .iter()
+                .map(|s| {
+                    let letters: Vec<char> = "ijklpqrs".chars().take(s.rank + 2).collect();
+                    let (own, by) = letters.split_at(s.rank);
+                    let own: String = own.iter().collect();
+                    let by: String = by.iter().collect();
+                    toml_string(&format!("{}_{own},{by} = 0", s.name))
+                })
+                .collect();
+            table.push_str(&format!("assume = [{}]\n", hypotheses.join(", ")));
+            let names: Vec<&str> = linear.iter().map(|s| s.key.0.as_str()).collect();
+            notes.push(format!(
+                "The text before equation ({}) linearises {} about a point: {} second derivatives vanish.",
+                comment(number),
+                names.join(", "),
+                if names.len() == 1 { "its" } else { "their" }
             ));
         }
         if !notes.is_empty() {

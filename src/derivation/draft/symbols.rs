@@ -30,6 +30,8 @@ pub struct Symbol {
     pub rank: usize,
     /// A comma derivative of it occurs: a field of the position.
     pub field: bool,
+    /// The highest order of its comma derivatives (2 for `u_{i,jk}`), 0 for none.
+    pub order: usize,
     /// The printed symbol as a notation key, with its first occurrence's index letters.
     pub key: (String, Vec<char>),
     /// Whether it needs a notation entry: it cannot be read as written (a label, an
@@ -338,6 +340,9 @@ fn symbol(
             name,
             rank,
             field: derivative,
+            order: sub.split_once(',').map_or(0, |(_, d)| {
+                d.chars().filter(char::is_ascii_alphanumeric).count()
+            }),
             key,
             entry: !plain || stray || roman.is_some(),
             component: false,
