@@ -577,6 +577,64 @@ fn relabel_walk(
     Some(())
 }
 
+/// Words of a sentence that says the quantities before it take another form from
+/// there on ("The invariants presented in Section 3.4 assume a different form in two
+/// dimensions"); in three dimensions, a sentence that turns to two does too.
+fn another_form(words: &str, dimension: usize) -> bool {
+    let words = words.to_lowercase();
+    let form = ["different form", "another form", "other form"]
+        .iter()
+        .any(|w| words.contains(w));
+    let plane = [
+        "two dimensions",
+        "two-dimensional",
+        "plane strain",
+        "plane stress",
+    ]
+    .iter()
+    .any(|w| words.contains(w));
+    form || (dimension == 3 && plane)
+}
+
+/// Leaves to complete each equation that, after a sentence saying the quantities take
+/// another form ([`another_form`]), restates alone on its left a symbol an equation
+/// before that sentence defines (`p = \frac12(\sigma_{11} + \sigma_{22})` after `p =
+/// \frac13\sigma_{kk}`): read with the earlier definition, a true equation of the new
+/// form would fail. Whether any was left.
+fn restated_in_another_form(
+    equations: &mut [Equation],
+    lone_left: &[(usize, Key)],
+    chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+    dimension: usize,
+) -> bool {
+    let Some(from) = equations
+        .iter()
+        .position(|e| another_form(&e.lead_in, dimension))
+    else {
+        return false;
+    };
+    let (line, number) = (equations[from].line, equations[from].number.clone());
+    let mut left = false;
+    for (q, key) in lone_left {
+        let Some((by, _)) = chosen.get(key).filter(|(by, _)| *by < from && *q >= from) else {
+            continue;
+        };
+        let (by, eq) = (equations[*by].id.clone(), &mut equations[*q]);
+        if eq.unread.is_some() {
+            continue;
+        }
+        eq.unread = Some(format!(
+            "the text before equation ({}), line {line}, says the quantities take another form from there on, and this equation restates one that {by} defines",
+            comment(&number)
+        ));
+        eq.edit = Some(format!(
+            "draft the text from line {line} on by itself (with `--dimension` if it changes), or give this claim its own definitions"
+        ));
+        left = true;
+    }
+    left
+}
+
 /// The clause after the last `\text{with}` or `\text{where}` of a display
 /// (`\ell_i = R_g n_i`), when it is one equation that reads on its own.
 fn with_clause(latex: &str) -> Option<&str> {
@@ -1322,6 +1380,16 @@ fn write(
     // Symbols whose square an equation states alone on its left (`T^2 = …` where the
     // paper writes `T` too): the first such equation of each.
     let mut squares: BTreeMap<Key, usize> = BTreeMap::new();
+    // Symbols some equation (or sentence) may define: the square of one of them is its
+    // square, never a symbol of its own.
+    let candidate_keys: BTreeSet<Key> = candidates.iter().map(|c| c.key.clone()).collect();
+    // Each numbered equation's lone left side, for a restatement after the text says
+    // the quantities take another form (below).
+    let lone_left: Vec<(usize, Key)> = candidates
+        .iter()
+        .filter(|c| c.stated.is_none())
+        .map(|c| (c.q, c.key.clone()))
+        .collect();
     for Candidate {
         q,
         key,
@@ -1337,7 +1405,11 @@ fn write(
                     .any(|(o, latex)| *o < q && mentions(latex, &text))
         };
         let base = key.strip_suffix("^2");
-        let square_of_plain = base.is_some_and(|b| plain.contains(b) || before(b));
+        // `T^2 = \langle … \rangle` beside `\sqrt{2}T`, where no equation defines T:
+        // the square is defined, T stays a symbol of its own, tied by that equation.
+        let plain_base = base.is_some_and(|b| plain.contains(b) || before(b));
+        let square_of_plain =
+            base.is_some_and(|b| before(b) || (plain.contains(b) && candidate_keys.contains(b)));
         // Said of the symbol, or of its base for a square (`$q = \sqrt{3J_2}$` before
         // `q^2 = …`).
         let said_before = by.is_none()
@@ -1346,7 +1418,7 @@ fn write(
                     *line < equations[q].line && !texts.contains(&spaceless(&equations[q].latex))
                 })
             });
-        if let Some(b) = base.filter(|_| square_of_plain && by.is_none()) {
+        if let Some(b) = base.filter(|_| plain_base && by.is_none()) {
             squares.entry(b.to_owned()).or_insert(q);
         }
         if chosen.contains_key(&key)
@@ -1408,7 +1480,7 @@ fn write(
         }
     }
     let ids: Vec<String> = equations.iter().map(|e| e.id.clone()).collect();
-    let mut left = false;
+    let mut left = restated_in_another_form(equations, &lone_left, &chosen, dimension);
     for (q, eq) in equations.iter_mut().enumerate() {
         if eq.unread.is_some() {
             continue;
@@ -2852,23 +2924,27 @@ fn render(r: Render<'_>) -> String {
         "# announces; an equation that reads a symbol an earlier equation left to complete may\n",
     );
     out.push_str(
-        "# define is left to complete too; a labelled symbol takes its unlabelled symbol's\n",
+        "# define is left to complete too, and so is one that restates a symbol defined\n",
+    );
+    out.push_str("# before the text says it takes another form; a labelled symbol takes its\n");
+    out.push_str(
+        "# unlabelled symbol's linear definition on the same labels (K^{(1)} from K = w_{j,i}\n",
     );
     out.push_str(
-        "# linear definition on the same labels (K^{(1)} from K = w_{j,i} and w^{(1)}); a\n",
+        "# and w^{(1)}); a field the text linearises about a point has no second derivatives.\n",
     );
     out.push_str(
-        "# field the text linearises about a point has no second derivatives. Check each\n",
+        "# Check each reading before trusting a verdict. Every declared symbol is taken as\n",
     );
-    out.push_str(
-        "# reading before trusting a verdict. Every declared symbol is taken as independent, so a\n",
-    );
-    out.push_str("# failure that a common tie between symbols would remove (one side reads what\n");
-    out.push_str("# the other does not, a relation, a symmetric tensor, a unit vector) is left\n");
-    out.push_str(
-        "# undecided, naming the tie; delete `drafted = true` once the declarations are\n",
-    );
-    out.push_str("# checked, to decide every claim strictly.\n");
+    for line in [
+        "# independent, so a failure that a common tie between symbols would remove (one",
+        "# side reads what the other does not, a relation, a symmetric tensor, a unit",
+        "# vector) is left undecided, naming the tie; delete `drafted = true` once the",
+        "# declarations are checked, to decide every claim strictly.",
+    ] {
+        out.push_str(line);
+        out.push('\n');
+    }
     out.push_str(&format!("section = \"{}\"\n", "1"));
     if !todo.is_empty() {
         out.push_str(
