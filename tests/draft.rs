@@ -1094,7 +1094,7 @@ fn a_drafted_side_reads_through_assumptions_and_not_cancelled_divisors() {
 }
 
 /// A continuum embedment, as Section 3.2 of the paper has one, in a paper written
-/// apart: a clause `\text{with}` of an equation the reader cannot read still defines
+/// apart (`tests/draft/embedment.tex`): a clause `\text{with}` of an equation the reader cannot read still defines
 /// (`a_i = h n_i`); a labelled symbol takes its unlabelled symbol's linear definition
 /// on the same-labelled symbols (`D_{mi}^{(1)}` from `D_{ij} = v_{j,i}` and
 /// `v_i^{(1)}`), and a quadratic one gives no such reading (`W^{(1)}`), nor does a
@@ -1104,40 +1104,8 @@ fn a_drafted_side_reads_through_assumptions_and_not_cancelled_divisors() {
 /// field whose second derivative the paper writes, make no field linear.
 #[test]
 fn an_embedment_reads_a_with_clause_labelled_definitions_and_linearised_fields() {
-    let source = r"The rate of deformation of a continuum with velocity v_i is
-
-$$D_{ij} = v_{j,i} \quad (1)$$
-
-Two particles sit at the ends of a segment,
-
-$$(\mathbf{X}_2 - \mathbf{X}_1)_i = 2 a_i \quad \text{with} \quad a_i = h n_i \quad (2)$$
-
-We linearise the velocity field around the midpoint to obtain
-
-$$v_i^{(1)} = v_i^c - a_m v_{i,m}^c, \quad v_i^{(2)} = v_i^c + a_m v_{i,m}^c \quad (3)$$
-
-so that the relative velocity is
-
-$$v_i^{(2)} - v_i^{(1)} = 2 a_m v_{i,m}^c = 2 a_m D_{mi}^{(1)} \quad (4)$$
-
-and, with the half-length h,
-
-$$v_i^{(2)} - v_i^{(1)} = 2 h n_m D_{mi}^{(2)} \quad (5)$$
-
-A misprint:
-
-$$v_i^{(2)} - v_i^{(1)} = a_m D_{mi}^{(1)} \quad (6)$$
-
-The stored energy is
-
-$$W = \frac{1}{2} D_{ij} D_{ij} \quad (7)$$
-
-$$2 W^{(1)} = D_{ij}^{(1)} D_{ij}^{(1)} \quad (8)$$
-
-$$a_m D_{mi}^{(3)} = 0 \quad (9)$$
-";
-    let path = written("embedment.md", source);
-    let (toml, verdicts) = drafted(&[&path, "--normal", "n"]);
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/draft/embedment.tex");
+    let (toml, verdicts) = drafted(&[path, "--normal", "n"]);
     let verdict = |id: &str| verdicts.iter().find(|(c, _)| c == id).map(|(_, v)| *v);
     for id in ["eq1", "eq3", "eq4", "eq5", "eq7"] {
         assert_eq!(verdict(id), Some(Verdict::Holds), "{id}\n{toml}");
@@ -1145,7 +1113,7 @@ $$a_m D_{mi}^{(3)} = 0 \quad (9)$$
     // (2) stays to complete; its clause defines a.
     assert_eq!(verdict("eq2"), None, "{toml}");
     assert!(
-        toml.contains("'a_i = h n_i',  # from the text, line 7"),
+        toml.contains("'a_i = h n_i',  # from the text, line 8"),
         "{toml}"
     );
     assert!(
@@ -1183,7 +1151,8 @@ $$u_{i,mm}^{c} = 0 \quad (2)$$
     }
 }
 
-/// A square stated alone on its left (`J^2 = \langle … \rangle = …`) defines the square
+/// A square stated alone on its left (`J^2 = \langle … \rangle = …`,
+/// `tests/draft/forms.tex`) defines the square
 /// where no equation defines its base, which stays a symbol of its own (`\sqrt{3} J`);
 /// after a sentence saying the quantities take another form ("in two dimensions"), an
 /// equation that restates one defined before it is left to complete, not read with the
@@ -1191,37 +1160,25 @@ $$u_{i,mm}^{c} = 0 \quad (2)$$
 /// and fail.
 #[test]
 fn a_square_defines_and_a_restatement_in_another_form_is_left_to_complete() {
-    let forms = r"The mean square of the normal component of a is
-
-$$J^2 = \langle a_i a_j n_i n_j \rangle = \frac{1}{3} a_k a_k \quad (1)$$
-
-and the yield function is
-
-$$F = \sqrt{3} J + c \quad (2)$$
-
-The invariants assume a different form in two dimensions
-
-$$J^2 = \frac{1}{2} a_k a_k \quad (3)$$
-
-$$F = \sqrt{3} J + 2 c \quad (4)$$
-";
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/draft/forms.tex");
+    let forms = std::fs::read_to_string(path).unwrap();
     let holds = |id: &str| (id.to_owned(), Verdict::Holds);
     let fails = |id: &str| (id.to_owned(), Verdict::Fails);
-    let (toml, verdicts) = drafted(&[&written("forms.md", forms), "--normal", "n"]);
+    let (toml, verdicts) = drafted(&[path, "--normal", "n"]);
     assert_eq!(verdicts, vec![holds("eq1"), holds("eq2")], "{toml}");
     assert!(
         toml.contains("'J2 = avg(a_i a_j n_i n_j)',  # from eq1"),
         "{toml}"
     );
     assert!(
-        toml.contains("{ id = 'eq3', line = 11, reason = 'the text before equation (3), line 11, says the quantities take another form from there on, and this equation restates one that eq1 defines'"),
+        toml.contains("{ id = 'eq3', line = 12, reason = 'the text before equation (3), line 12, says the quantities take another form from there on, and this equation restates one that eq1 defines'"),
         "{toml}"
     );
     let slip = forms.replace(
         "The invariants assume a different form in two dimensions",
         "Hence, by a slip,",
     );
-    let (toml, verdicts) = drafted(&[&written("forms-slip.md", &slip), "--normal", "n"]);
+    let (toml, verdicts) = drafted(&[&written("forms-slip.tex", &slip), "--normal", "n"]);
     assert_eq!(
         verdicts,
         vec![holds("eq1"), holds("eq2"), fails("eq3"), fails("eq4")],

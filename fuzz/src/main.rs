@@ -229,6 +229,12 @@ const DICTIONARY: &[&str] = &[
     "_{nn}",
     " = -b_i",
     "\\sin k\\theta",
+    " \\quad \\text{with} \\quad ",
+    "We linearise the field around the point ",
+    "assume a different form in two dimensions ",
+    "^{(1)}",
+    "_{i,m}^c",
+    " = 0\"]",
 ];
 
 fn seeds(root: &Path) -> Vec<Vec<u8>> {
@@ -239,6 +245,7 @@ fn seeds(root: &Path) -> Vec<Vec<u8>> {
         "tests/bad",
         "tests/soundness",
         "tests/papers",
+        "tests/draft",
     ] {
         if let Ok(entries) = std::fs::read_dir(root.join(dir)) {
             let mut paths: Vec<PathBuf> =
