@@ -1154,10 +1154,11 @@ $$u_{i,mm}^{c} = 0 \quad (2)$$
 /// A square stated alone on its left (`J^2 = \langle … \rangle = …`,
 /// `tests/draft/forms.tex`) defines the square
 /// where no equation defines its base, which stays a symbol of its own (`\sqrt{3} J`);
-/// after a sentence saying the quantities take another form ("in two dimensions"), an
-/// equation that restates one defined before it is left to complete, not read with the
-/// earlier definition. Control: without that sentence, the same equations are claims,
-/// and fail.
+/// after a sentence that turns to another number of dimensions ("a different form in two
+/// dimensions"), an equation that restates one defined before it is left to complete,
+/// not read with the earlier definition. Controls: without that sentence, the same
+/// equations are claims, and fail; an alternative form of the same quantity ("can be
+/// written in a different form") is a claim, and holds.
 #[test]
 fn a_square_defines_and_a_restatement_in_another_form_is_left_to_complete() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/draft/forms.tex");
@@ -1182,6 +1183,18 @@ fn a_square_defines_and_a_restatement_in_another_form_is_left_to_complete() {
     assert_eq!(
         verdicts,
         vec![holds("eq1"), holds("eq2"), fails("eq3"), fails("eq4")],
+        "{toml}"
+    );
+    let alternative = forms
+        .replace(
+            "The invariants assume a different form in two dimensions",
+            "which can be written in a different form",
+        )
+        .replace("\\frac{1}{2} a_k a_k", "\\frac{1}{3} a_i a_i");
+    let (toml, verdicts) = drafted(&[&written("forms-alt.tex", &alternative), "--normal", "n"]);
+    assert_eq!(
+        verdicts,
+        vec![holds("eq1"), holds("eq2"), holds("eq3"), fails("eq4")],
         "{toml}"
     );
 }

@@ -577,23 +577,24 @@ fn relabel_walk(
     Some(())
 }
 
-/// Words of a sentence that says the quantities before it take another form from
-/// there on ("The invariants presented in Section 3.4 assume a different form in two
-/// dimensions"); in three dimensions, a sentence that turns to two does too.
+/// Words of a sentence that says the quantities before it take another form in
+/// another number of dimensions ("The invariants presented in Section 3.4 assume a
+/// different form in two dimensions", "in plane strain"), for a draft in `dimension`.
+/// An alternative form alone ("which can be written in a different form") is no such
+/// sentence: it restates the same quantity, a claim to check.
 fn another_form(words: &str, dimension: usize) -> bool {
     let words = words.to_lowercase();
-    let form = ["different form", "another form", "other form"]
-        .iter()
-        .any(|w| words.contains(w));
-    let plane = [
-        "two dimensions",
-        "two-dimensional",
-        "plane strain",
-        "plane stress",
-    ]
-    .iter()
-    .any(|w| words.contains(w));
-    form || (dimension == 3 && plane)
+    let other: &[&str] = match dimension {
+        3 => &[
+            "two dimensions",
+            "two-dimensional",
+            "2d ",
+            "plane strain",
+            "plane stress",
+        ],
+        _ => &["three dimensions", "three-dimensional", "3d "],
+    };
+    other.iter().any(|w| words.contains(w))
 }
 
 /// Leaves to complete each equation that, after a sentence saying the quantities take
