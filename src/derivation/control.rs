@@ -60,7 +60,7 @@ pub fn first_control(text: &str) -> Option<(usize, String)> {
     None
 }
 
-fn forbidden(c: char) -> bool {
+pub(crate) fn forbidden(c: char) -> bool {
     (c.is_control() && !matches!(c, '\t' | '\n' | '\r')) || invisible(c) || noncharacter(c)
 }
 
@@ -78,7 +78,7 @@ fn invisible(c: char) -> bool {
     matches!(c, '\u{61C}' | '\u{200E}' | '\u{200F}' | '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}' | '\u{2028}' | '\u{2029}')
 }
 
-fn describe(c: char) -> String {
+pub(crate) fn describe(c: char) -> String {
     if invisible(c) {
         format!(
             "the invisible formatting character U+{:04X} (a bidirectional control or a line separator)",

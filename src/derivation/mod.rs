@@ -3,7 +3,7 @@
 //! [`model`] types; [`notation`] reads the printed LaTeX of each claim through the
 //! file's notation table, for the transcription check.
 
-mod control;
+pub(crate) mod control;
 pub mod draft;
 pub mod edit;
 mod fields;

@@ -100,7 +100,57 @@ struct Equation {
 /// Drafts a derivation file from `source` (named `label` in the file's header); the
 /// claims `refused` names (id → why) are left to complete, and those `numeric` names are
 /// decided by sampling.
+///
+/// A character no derivation file may hold (a control character, a bidirectional
+/// control that reorders what a reader sees, a noncharacter) is written U+FFFD, and the
+/// file's header says where each was: the equation that held one is read as it then
+/// stands, or left to complete.
 pub fn draft(
+    label: &str,
+    source: &str,
+    options: &Options,
+    refused_numeric: (&BTreeMap<String, String>, &BTreeSet<String>),
+) -> Draft {
+    use crate::derivation::control::{describe, forbidden};
+    if !source.chars().any(forbidden) {
+        return draft_clean(label, source, options, refused_numeric);
+    }
+    // Where each was (the first few, and how many in all).
+    const LISTED: usize = 20;
+    let found: Vec<(usize, usize, char)> = source
+        .lines()
+        .enumerate()
+        .flat_map(|(n, line)| {
+            line.chars()
+                .enumerate()
+                .filter(|(_, c)| forbidden(*c))
+                .map(move |(col, c)| (n + 1, col + 1, c))
+        })
+        .collect();
+    let mut notes = String::new();
+    for (line, col, c) in found.iter().take(LISTED) {
+        notes.push_str(&format!(
+            "# The paper's line {line}, column {col}: {}, written U+FFFD here.\n",
+            describe(*c)
+        ));
+    }
+    if found.len() > LISTED {
+        notes.push_str(&format!(
+            "# … and {} more such characters, each written U+FFFD.\n",
+            found.len() - LISTED
+        ));
+    }
+    let clean: String = source
+        .chars()
+        .map(|c| if forbidden(c) { '\u{FFFD}' } else { c })
+        .collect();
+    let mut d = draft_clean(label, &clean, options, refused_numeric);
+    let at = d.toml.find('\n').map_or(0, |k| k + 1);
+    d.toml.insert_str(at, &notes);
+    d
+}
+
+fn draft_clean(
     label: &str,
     source: &str,
     options: &Options,
@@ -325,6 +375,24 @@ fn degree(m: &latex::Math, is_symbol: &dyn Fn(&latex::Math) -> bool) -> Option<u
     }
 }
 
+/// Whether every term of `m` is of degree 1 in the atoms `is_symbol` accepts: linear and
+/// homogeneous (`v_{j,i} - e_{ijk} w_k`, not `\delta_{ij} + u_{i,j}`, whose first-order
+/// term in an expansion has no δ).
+fn homogeneous(m: &latex::Math, is_symbol: &dyn Fn(&latex::Math) -> bool) -> bool {
+    match &m.kind {
+        MathKind::Atom(_) => is_symbol(m),
+        MathKind::Sum(terms) => terms.iter().all(|(_, t)| homogeneous(t, is_symbol)),
+        MathKind::Product(fs) => {
+            let (one, rest): (Vec<&latex::Math>, Vec<&latex::Math>) =
+                fs.iter().partition(|f| homogeneous(f, is_symbol));
+            one.len() == 1 && rest.iter().all(|f| degree(f, is_symbol) == Some(0))
+        }
+        MathKind::Quotient(a, b) => homogeneous(a, is_symbol) && degree(b, is_symbol) == Some(0),
+        MathKind::Average(a) => homogeneous(a, is_symbol),
+        _ => false,
+    }
+}
+
 /// Words of a sentence that linearises fields about a point ("linearise these fields
 /// around the contact point"): a Taylor expansion cut after its first derivatives.
 fn linearises(words: &str) -> bool {
@@ -334,13 +402,15 @@ fn linearises(words: &str) -> bool {
 
 /// The fields the text linearises, in each equation that reads one (`Equation::linear`):
 /// in the equations a sentence that linearises about a point leads into (that one, and
-/// the displays right after it with no text between), each field written there both
-/// with its value and with its first derivatives, a Taylor expansion cut after them
-/// (`w_i^c - \ell_m w_{i,m}^c`), whose second derivatives the paper never writes; not a
-/// defined one. A strain linearised about the reference configuration (`\varepsilon_{ij}
-/// = \frac12 (u_{i,j} + u_{j,i})`) writes no value of its field, and makes none linear.
-/// Each exact claim that reads one, through definitions, assumes its second
-/// derivatives vanish.
+/// the displays right after it with no text between), each field written, in a
+/// definition there, both with its value and with its first derivatives: a Taylor
+/// expansion cut after them (`w_i^{(1)} = w_i^c - \ell_m w_{i,m}^c`). Not a defined
+/// field, nor one whose second derivatives the paper writes, itself or through a
+/// definition it differentiates (`L_{ij} = v_{i,j}` and `L_{ij,j}`). A strain linearised
+/// about the reference configuration (`\varepsilon_{ij} = \frac12 (u_{i,j} + u_{j,i})`)
+/// writes no value of its field, and linearised equations of motion define nothing:
+/// neither makes a field linear. Each exact claim from the first of those equations on
+/// that reads one, through definitions, assumes its second derivatives vanish.
 fn linearised_fields(
     equations: &mut [Equation],
     symbols: &BTreeMap<Key, Symbol>,
@@ -349,8 +419,9 @@ fn linearised_fields(
 ) {
     let mut fields: BTreeSet<Key> = BTreeSet::new();
     let mut number = String::new();
+    let mut first = None;
     let mut group = false;
-    for eq in equations.iter() {
+    for (q, eq) in equations.iter().enumerate() {
         if linearises(&eq.lead_in) {
             group = true;
             number.clone_from(&eq.number);
@@ -366,6 +437,13 @@ fn linearised_fields(
         for part in &printed.parts {
             let members: Vec<&latex::Math> = part.members.iter().collect();
             let found = symbols::occurrences(&members, normal, tensors);
+            let defines = members.first().and_then(|m| {
+                let (k, _) = defined_symbol(m, found.first(), tensors)?;
+                chosen.get(&k).filter(|(by, _)| *by == q)
+            });
+            if defines.is_none() {
+                continue;
+            }
             let valued: BTreeSet<&Key> = found
                 .iter()
                 .filter(|(_, s)| s.order == 0)
@@ -375,24 +453,26 @@ fn linearised_fields(
                 let once = symbols.get(k).is_some_and(|all| all.order == 1);
                 if s.order == 1 && once && valued.contains(k) && !chosen.contains_key(k) {
                     fields.insert(k.clone());
+                    first.get_or_insert(q);
                 }
             }
         }
     }
-    if fields.is_empty() {
+    // A definition that reads the field and is differentiated in the paper writes a
+    // second derivative of it.
+    fields.retain(|f| {
+        !chosen
+            .keys()
+            .any(|d| symbols.get(d).is_some_and(|s| s.order > 0) && through(d, chosen).contains(f))
+    });
+    let Some(first) = first.filter(|_| !fields.is_empty()) else {
         return;
-    }
-    for eq in equations.iter_mut() {
+    };
+    for eq in equations.iter_mut().skip(first) {
         if eq.unread.is_some() || eq.numeric {
             continue;
         }
-        let mut seen: BTreeSet<&Key> = BTreeSet::new();
-        let mut stack: Vec<&Key> = eq.reads.iter().collect();
-        while let Some(k) = stack.pop() {
-            if seen.insert(k) {
-                stack.extend(chosen.get(k).into_iter().flat_map(|(_, body)| body));
-            }
-        }
+        let seen: BTreeSet<&Key> = eq.reads.iter().flat_map(|k| through(k, chosen)).collect();
         let read: Vec<Key> = fields
             .iter()
             .filter(|f| seen.contains(f))
@@ -416,16 +496,21 @@ struct Variant {
 
 /// The labelled variants that take their unlabelled symbol's definition: the same
 /// definition of the same-labelled symbols (eq. (2) at the centre of grain (1):
-/// `K_{ij}^{(1)} = w_{j,i}^{(1)}`). Only for a definition linear in what it reads: a
-/// label that marks where a quantity is evaluated, or a term of an expansion, commutes
-/// with it (`\frac12 e_{ij} e_{ij}` has no such variant). A variant a field is
-/// differentiated in needs that variant to be a field or defined; one that an equation
-/// left to complete may define is not taken.
+/// `K_{ij}^{(1)} = w_{j,i}^{(1)}`). Only for a tensor whose definition is linear and
+/// homogeneous in what it reads (`linear`): a label that marks where a quantity is
+/// evaluated, or a term of an expansion, commutes with it (`\frac12 e_{ij} e_{ij}` and
+/// `\delta_{ij} + u_{i,j}` have no such variant). Not for a superscript that may be an
+/// operation (`A^{-T}`, `A^{T}`), nor a label the paper also writes on the normal (its own
+/// normal, which the definition does not rename), nor a symbol an equation states
+/// something of on its left (`stated_of`: `2 K_{ij}^{(1)} = …`), nor one an equation left
+/// to complete may define. A variant a field is differentiated in needs that variant to
+/// be a field or defined.
 fn labelled_variants(
     symbols: &BTreeMap<Key, Symbol>,
     chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
-    linear: &BTreeSet<(usize, Key)>,
+    (linear, stated_of): (&BTreeSet<(usize, Key)>, &BTreeSet<Key>),
     blocked: &BTreeMap<Key, usize>,
+    normal: Option<&str>,
 ) -> Vec<Variant> {
     // accent|base|sup|primes|suffix|rank, with another label (sup).
     let with_label = |key: &Key, label: &str| -> Option<Key> {
@@ -435,10 +520,30 @@ fn labelled_variants(
         Some(fields.join("|"))
     };
     let label_of = |key: &Key| key.split('|').nth(2).unwrap_or("").to_owned();
+    // A superscript that may be an operation rather than a label: a transpose or an
+    // inverse (`A^{-T}`, `A^{T}`), a sign or a conjugate.
+    let operation = |label: &str| {
+        label.contains(['-', '+', '*', '\\']) || matches!(label.trim(), "T" | "t" | "H")
+    };
+    // The paper writes the normal with this label (`n_i^{(1)}`): each labelled world
+    // has its own normal, which a definition reading δ, ε and n does not rename.
+    let own_normal = |label: &str| {
+        symbols.keys().any(|k| {
+            let f: Vec<&str> = k.split('|').collect();
+            f.len() == 6 && Some(f[1]) == normal && f[2] == label
+        })
+    };
     let mut out = Vec::new();
-    for key in symbols.keys() {
+    for (key, s) in symbols {
         let label = label_of(key);
-        if label.is_empty() || chosen.contains_key(key) || blocked.contains_key(key) {
+        if label.is_empty()
+            || s.rank == 0
+            || operation(&label)
+            || own_normal(&label)
+            || chosen.contains_key(key)
+            || blocked.contains_key(key)
+            || stated_of.contains(key)
+        {
             continue;
         }
         let Some(of) = with_label(key, "") else {
@@ -577,73 +682,105 @@ fn relabel_walk(
     Some(())
 }
 
-/// Words of a sentence that says the quantities before it take another form in
-/// another number of dimensions ("The invariants presented in Section 3.4 assume a
-/// different form in two dimensions", "in plane strain"), for a draft in `dimension`.
-/// An alternative form alone ("which can be written in a different form") is no such
-/// sentence: it restates the same quantity, a claim to check.
-fn another_form(words: &str, dimension: usize) -> bool {
+/// Words of a sentence that turns to a number of dimensions ("The invariants presented
+/// in Section 3.4 assume a different form in two dimensions", "in plane strain", "In
+/// three dimensions, … is instead"): what follows may take another form than what
+/// precedes. An alternative form alone ("which can be written in a different form") is
+/// no such sentence: it restates the same quantity, a claim to check.
+fn another_form(words: &str) -> bool {
     let words = words.to_lowercase();
-    let other: &[&str] = match dimension {
-        3 => &[
-            "two dimensions",
-            "two-dimensional",
-            "2d ",
-            "plane strain",
-            "plane stress",
-        ],
-        _ => &["three dimensions", "three-dimensional", "3d "],
-    };
-    other.iter().any(|w| words.contains(w))
+    [
+        "two dimensions",
+        "two-dimensional",
+        "three dimensions",
+        "three-dimensional",
+        "plane strain",
+        "plane stress",
+    ]
+    .iter()
+    .any(|w| words.contains(w))
 }
 
-/// Leaves to complete each equation that, after a sentence saying the quantities take
-/// another form ([`another_form`]), restates alone on its left a symbol an equation
-/// before that sentence defines (`p = \frac12(\sigma_{11} + \sigma_{22})` after `p =
+/// What `k` reads, through the definitions `chosen` (itself included).
+fn through<'a>(k: &'a Key, chosen: &'a BTreeMap<Key, (usize, BTreeSet<Key>)>) -> BTreeSet<&'a Key> {
+    let mut seen: BTreeSet<&Key> = BTreeSet::new();
+    let mut stack: Vec<&Key> = vec![k];
+    while let Some(k) = stack.pop() {
+        if seen.insert(k) {
+            stack.extend(chosen.get(k).into_iter().flat_map(|(_, body)| body));
+        }
+    }
+    seen
+}
+
+/// Leaves to complete each equation that, after a sentence that turns to another number
+/// of dimensions ([`another_form`]; the latest such sentence before it), reads a symbol
+/// an equation before that sentence defines, directly or through definitions (`p =
+/// \frac12(\sigma_{11} + \sigma_{22})` or `2p = \sigma_{11} + \sigma_{22}` after `p =
 /// \frac13\sigma_{kk}`): read with the earlier definition, a true equation of the new
-/// form would fail. Whether any was left.
+/// form could fail. An equation that only defines new symbols (`F^* = q + r\cos\phi + p
+/// \sin\phi`) states nothing to check, and stays. Whether any was left.
 fn restated_in_another_form(
     equations: &mut [Equation],
-    lone_left: &[(usize, Key)],
     chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
-    dimension: usize,
 ) -> bool {
-    let Some(from) = equations
-        .iter()
-        .position(|e| another_form(&e.lead_in, dimension))
-    else {
-        return false;
-    };
-    let (line, number) = (equations[from].line, equations[from].number.clone());
+    let mut scope: Option<usize> = None;
     let mut left = false;
-    for (q, key) in lone_left {
-        let Some((by, _)) = chosen.get(key).filter(|(by, _)| *by < from && *q >= from) else {
-            continue;
-        };
-        let (by, eq) = (equations[*by].id.clone(), &mut equations[*q]);
-        if eq.unread.is_some() {
+    for q in 0..equations.len() {
+        if another_form(&equations[q].lead_in) {
+            scope = Some(q);
+        }
+        let Some(from) = scope else { continue };
+        if equations[q].unread.is_some() {
             continue;
         }
+        // Reading `T` (or `T^2`) reads what defines `T^2`.
+        let squares: Vec<Key> = equations[q]
+            .reads
+            .iter()
+            .map(|k| format!("{k}^2"))
+            .collect();
+        let older = equations[q]
+            .reads
+            .iter()
+            .chain(&squares)
+            .flat_map(|k| through(k, chosen))
+            .find_map(|k| chosen.get(k).map(|(by, _)| *by).filter(|by| *by < from));
+        let Some(by) = older else { continue };
+        // Each part `X = …`, X defined here.
+        let defines_here = chosen.values().filter(|(by, _)| *by == q).count();
+        let pure = latex::read(&equations[q].latex, &ReadOptions::default()).is_ok_and(|p| {
+            p.parts.len() == defines_here && p.parts.iter().all(|part| part.members.len() == 2)
+        });
+        if pure {
+            continue;
+        }
+        let (line, number, by) = (
+            equations[from].line,
+            comment(&equations[from].number),
+            equations[by].id.clone(),
+        );
+        let eq = &mut equations[q];
         eq.unread = Some(format!(
-            "the text before equation ({}), line {line}, says the quantities take another form from there on, and this equation restates one that {by} defines",
-            comment(&number)
+            "the text before equation ({number}), line {line}, turns to another number of dimensions, and this equation reads what {by} defines before it"
         ));
         eq.edit = Some(format!(
-            "draft the text from line {line} on by itself (with `--dimension` if it changes), or give this claim its own definitions"
+            "draft the text from line {line} on by itself (with `--dimension`), or give this claim its own definitions"
         ));
         left = true;
     }
     left
 }
 
-/// The clause after the last `\text{with}` or `\text{where}` of a display
-/// (`\ell_i = R_g n_i`), when it is one equation that reads on its own.
+/// The clause after the last `\text{with}` of a display (`\ell_i = R_g n_i`), when it is
+/// one equation that reads on its own, `X = …`, of a symbol the rest of the display
+/// writes (`2\ell_i`): it says what that symbol is. A clause of a symbol the rest does
+/// not write (`(\sigma n)_i = 0 \quad\text{with}\quad r = c + h`) may say where the
+/// equation holds, and defines nothing.
 fn with_clause(latex: &str) -> Option<&str> {
-    let at = ["\\text{with}", "\\text{where}"]
-        .iter()
-        .filter_map(|w| latex.rfind(w).map(|k| k + w.len()))
-        .max()?;
-    let mut tail = latex[at..].trim_start();
+    let word = "\\text{with}";
+    let start = latex.rfind(word)?;
+    let mut tail = latex[start + word.len()..].trim_start();
     while let Some(rest) = ["\\quad", "\\qquad", "\\;", ","]
         .iter()
         .find_map(|s| tail.strip_prefix(s))
@@ -653,7 +790,21 @@ fn with_clause(latex: &str) -> Option<&str> {
     let tail = tail.trim_end().trim_end_matches(['.', ',']).trim_end();
     let read = latex::read(tail, &ReadOptions::default()).ok()?;
     let [part] = &read.parts[..] else { return None };
-    (part.relations[..] == [latex::Rel::Eq]).then_some(tail)
+    let MathKind::Atom(defined) = &part.members.first()?.kind else {
+        return None;
+    };
+    let head = &latex[..start];
+    // A command (`\ell`) starts a token whatever precedes it (`2\ell_i`).
+    let written = match defined.base.strip_prefix('\\') {
+        Some(_) => head.match_indices(defined.base.as_str()).any(|(at, b)| {
+            !head[at + b.len()..]
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_alphabetic())
+        }),
+        None => mentions(head, &defined.base),
+    };
+    (part.relations[..] == [latex::Rel::Eq] && written).then_some(tail)
 }
 
 /// The first message of a loader's refusal.
@@ -1169,6 +1320,10 @@ fn write(
     // w_{j,i}`), by equation and symbol: a labelled variant follows them
     // ([`labelled_variants`]).
     let mut linear: BTreeSet<(usize, Key)> = BTreeSet::new();
+    // Symbols some equation states something of on its left, not alone (`2
+    // K_{ij}^{(1)} = …`): what the paper says of them, which a labelled variant's
+    // definition would override.
+    let mut on_the_left: BTreeSet<Key> = BTreeSet::new();
     // Equations left to complete that the reader cannot read: what they define is
     // unknown, so a symbol they mention is defined by no later equation.
     let mut opaque: Vec<(usize, String)> = Vec::new();
@@ -1315,6 +1470,13 @@ fn write(
                     eq.stray.insert(s.key.0.clone());
                 }
             }
+            if members.len() > 1 {
+                on_the_left.extend(
+                    symbols::occurrences(&members[..1], normal, &tensors)
+                        .into_iter()
+                        .map(|(k, _)| k),
+                );
+            }
             if part.relations.first() != Some(&latex::Rel::Eq) || members.len() < 2 {
                 continue;
             }
@@ -1342,7 +1504,7 @@ fn write(
                 .to_owned();
             let is_symbol =
                 |m: &latex::Math| !symbols::occurrences(&[m], normal, &tensors).is_empty();
-            if members.len() == 2 && degree(members[1], &is_symbol).is_some() {
+            if members.len() == 2 && homogeneous(members[1], &is_symbol) {
                 linear.insert((q, key.clone()));
             }
             candidates.push(Candidate {
@@ -1384,13 +1546,6 @@ fn write(
     // Symbols some equation (or sentence) may define: the square of one of them is its
     // square, never a symbol of its own.
     let candidate_keys: BTreeSet<Key> = candidates.iter().map(|c| c.key.clone()).collect();
-    // Each numbered equation's lone left side, for a restatement after the text says
-    // the quantities take another form (below).
-    let lone_left: Vec<(usize, Key)> = candidates
-        .iter()
-        .filter(|c| c.stated.is_none())
-        .map(|c| (c.q, c.key.clone()))
-        .collect();
     for Candidate {
         q,
         key,
@@ -1435,7 +1590,7 @@ fn write(
         }
         chosen.insert(key, (q, body));
     }
-    let variants = labelled_variants(&symbols, &chosen, &linear, &blocked);
+    let variants = labelled_variants(&symbols, &chosen, (&linear, &on_the_left), &blocked, normal);
     for v in &variants {
         let body = v.renamed.iter().map(|(_, to)| to.clone()).collect();
         chosen.insert(v.key.clone(), (chosen[&v.of].0, body));
@@ -1481,7 +1636,7 @@ fn write(
         }
     }
     let ids: Vec<String> = equations.iter().map(|e| e.id.clone()).collect();
-    let mut left = restated_in_another_form(equations, &lone_left, &chosen, dimension);
+    let mut left = restated_in_another_form(equations, &chosen);
     for (q, eq) in equations.iter_mut().enumerate() {
         if eq.unread.is_some() {
             continue;
@@ -3184,9 +3339,15 @@ fn toml_string(text: &str) -> String {
 /// `text` on one comment line: control characters (a newline would end the comment)
 /// and the bidirectional controls (which reorder what a reader sees) shown as spaces.
 fn comment(text: &str) -> String {
-    let bidi = |c: char| matches!(c, '\u{200E}' | '\u{200F}' | '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}');
+    use crate::derivation::control::forbidden;
     text.chars()
-        .map(|c| if c.is_control() || bidi(c) { ' ' } else { c })
+        .map(|c| {
+            if c.is_control() || forbidden(c) {
+                ' '
+            } else {
+                c
+            }
+        })
         .collect()
 }
 
