@@ -83,7 +83,7 @@ fn the_papers_markdown_drafts_into_a_file_verify_accepts() {
         "{toml}"
     );
     assert!(
-        toml.contains("{ id = 'eq41', line = 256, reason = 'the text before equation (40), line 254, turns to another number of dimensions, and this equation reads what eq29 defines before it'"),
+        toml.contains("{ id = 'eq41', line = 256, reason = 'the text before equation (40), line 254, turns to two dimensions, while the draft has three, and this equation reads what eq29 defines before it'"),
         "{toml}"
     );
     assert!(toml.contains("# 62 numbered equations: "), "{toml}");
@@ -1174,7 +1174,7 @@ fn a_square_defines_and_a_restatement_in_another_form_is_left_to_complete() {
         "{toml}"
     );
     assert!(
-        toml.contains("{ id = 'eq3', line = 12, reason = 'the text before equation (3), line 12, turns to another number of dimensions, and this equation reads what eq1 defines before it'"),
+        toml.contains("{ id = 'eq3', line = 12, reason = 'the text before equation (3), line 12, turns to two dimensions, while the draft has three, and this equation reads what eq1 defines before it'"),
         "{toml}"
     );
     let slip = forms.replace(
@@ -1207,7 +1207,8 @@ fn a_square_defines_and_a_restatement_in_another_form_is_left_to_complete() {
 /// variants; a second derivative through a definition, and linearised equations of
 /// motion, read as linear fields; a `\text{where}` condition read as a definition; a
 /// restatement in two dimensions not alone on its left, and one in three in a plane
-/// paper, read with the earlier definition. Each false equation is now never `holds`,
+/// paper, read with the earlier definition; and those of a second adversary, below.
+/// Each false equation is now never `holds`,
 /// each true one never `fails`. A bidirectional control in a display is written U+FFFD,
 /// the header says where, and the file loads.
 #[test]
@@ -1215,7 +1216,7 @@ fn readings_an_adversary_attacked_give_no_wrong_verdict() {
     use Verdict::{Fails, Holds, Undecided};
     // (fixture, flags of `draft`, the verdicts of its claims)
     type Case<'a> = (&'a str, &'a [&'a str], &'a [(&'a str, Verdict)]);
-    let cases: [Case; 10] = [
+    let cases: [Case; 17] = [
         (
             "letter-exponent",
             &[],
@@ -1269,6 +1270,33 @@ fn readings_an_adversary_attacked_give_no_wrong_verdict() {
         ("where-clause", &[], &[("eq2", Holds), ("eq3", Undecided)]),
         ("restated-not-alone", &[], &[("eq1", Holds), ("eq2", Holds)]),
         ("plane-to-space", &[], &[("eq1", Holds)]),
+        // A second adversary: a scalar `\text{with}` clause (where the equation is
+        // evaluated), a variant stated on a right side, a chained label, another
+        // letter for a labelled normal, a negated linearisation, "two space
+        // dimensions", and a two-dimensional section read in three.
+        ("with-scalar", &[], &[("eq2", Holds), ("eq3", Undecided)]),
+        (
+            "stated-on-the-right",
+            &[],
+            &[("eq1", Holds), ("eq2", Undecided), ("eq3", Undecided)],
+        ),
+        (
+            "chained-label",
+            &[],
+            &[("eq1", Holds), ("eq2", Holds), ("eq3", Undecided)],
+        ),
+        (
+            "other-normal-letter",
+            &["--normal", "n"],
+            &[("eq1", Holds), ("eq2", Undecided), ("eq3", Undecided)],
+        ),
+        (
+            "negated-linearisation",
+            &[],
+            &[("eq1", Holds), ("eq2", Holds), ("eq3", Undecided)],
+        ),
+        ("spatial-dimensions", &[], &[("eq1", Holds)]),
+        ("plane-section", &[], &[("eq1", Holds), ("eq2", Holds)]),
     ];
     for (name, flags, want) in cases {
         let path = format!(

@@ -77,6 +77,8 @@ struct Equation {
     /// The sentence of the text that leads into it ([`displays::lead_in`]), and the one
     /// that follows it ([`displays::lead_out`]: "where n is the unit normal").
     lead_in: String,
+    /// All the text since the numbered display before it (headings included).
+    before: String,
     lead_out: String,
     /// The symbols it reads (identities).
     reads: BTreeSet<Key>,
@@ -209,9 +211,12 @@ fn draft_clean(
     // What the text's own equations say, read in the first round.
     let mut said = None;
     let mut seen_ids = BTreeSet::new();
+    // The line where the numbered display before each ends (0 for the first).
+    let mut previous_end = 0usize;
     let mut equations: Vec<Equation> = found
         .into_iter()
         .map(|d| {
+            let since = std::mem::replace(&mut previous_end, d.end);
             let mut id = format!(
                 "eq{}",
                 d.number
@@ -235,6 +240,10 @@ fn draft_clean(
                 unread,
                 edit: None,
                 lead_in: displays::lead_in(&lines, d.line),
+                before: lines
+                    .get(since.min(d.line.saturating_sub(1))..d.line.saturating_sub(1))
+                    .map(|l| l.join(" "))
+                    .unwrap_or_default(),
                 lead_out: displays::lead_out(&lines, d.end),
                 reads: BTreeSet::new(),
                 names: BTreeSet::new(),
@@ -397,7 +406,25 @@ fn homogeneous(m: &latex::Math, is_symbol: &dyn Fn(&latex::Math) -> bool) -> boo
 /// around the contact point"): a Taylor expansion cut after its first derivatives.
 fn linearises(words: &str) -> bool {
     let words = words.to_lowercase();
-    words.contains("lineari") && (words.contains("around") || words.contains("about"))
+    let tokens: Vec<&str> = words
+        .split(|c: char| !c.is_alphanumeric() && c != '-')
+        .filter(|w| !w.is_empty())
+        .collect();
+    // "linearise", "linearized", "linearisation"; not "nonlinearity", not "do not
+    // linearise".
+    let Some(at) = tokens
+        .iter()
+        .position(|w| w.starts_with("linearis") || w.starts_with("lineariz"))
+    else {
+        return false;
+    };
+    let negated = tokens[..at]
+        .iter()
+        .any(|w| matches!(*w, "not" | "no" | "without" | "never" | "nor" | "cannot"));
+    !negated
+        && tokens[at..]
+            .iter()
+            .any(|w| matches!(*w, "around" | "about"))
 }
 
 /// The fields the text linearises, in each equation that reads one (`Equation::linear`):
@@ -505,10 +532,11 @@ struct Variant {
 /// something of on its left (`stated_of`: `2 K_{ij}^{(1)} = …`), nor one an equation left
 /// to complete may define. A variant a field is differentiated in needs that variant to
 /// be a field or defined.
+#[allow(clippy::type_complexity)]
 fn labelled_variants(
     symbols: &BTreeMap<Key, Symbol>,
     chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
-    (linear, stated_of): (&BTreeSet<(usize, Key)>, &BTreeSet<Key>),
+    (linear, stated_of, parts): (&BTreeSet<(usize, Key)>, &BTreeSet<Key>, &[BTreeSet<Key>]),
     blocked: &BTreeMap<Key, usize>,
     normal: Option<&str>,
 ) -> Vec<Variant> {
@@ -567,7 +595,26 @@ fn labelled_variants(
                 (differentiable && labelled != *key).then_some((y.clone(), labelled))
             })
             .collect();
-        if let Some(renamed) = renamed {
+        // A label that extends one with a definition of its own (`K^{(1)c}` beside `K^{(1)}
+        // = …`): which definition it takes is not clear.
+        let chained = symbols.keys().any(|k| {
+            let other = label_of(k);
+            !other.is_empty()
+                && other != label
+                && label.contains(other.as_str())
+                && chosen.contains_key(k)
+                && with_label(k, "").as_ref() == Some(&of)
+        });
+        // A part that relates the variant to its would-be body alone (`w_{j,i}^{(1)} +
+        // w_{i,j}^{(1)} = 2 K_{ij}^{(1)}`) states what the paper takes it to be.
+        let stated = |renamed: &[(Key, Key)]| {
+            parts.iter().any(|p| {
+                p.contains(key)
+                    && p.iter()
+                        .all(|k| k == key || renamed.iter().any(|(_, to)| to == k))
+            })
+        };
+        if let Some(renamed) = renamed.filter(|r| !chained && !stated(r)) {
             out.push(Variant {
                 key: key.clone(),
                 of,
@@ -682,23 +729,47 @@ fn relabel_walk(
     Some(())
 }
 
-/// Words of a sentence that turns to a number of dimensions ("The invariants presented
-/// in Section 3.4 assume a different form in two dimensions", "in plane strain", "In
-/// three dimensions, … is instead"): what follows may take another form than what
-/// precedes. An alternative form alone ("which can be written in a different form") is
-/// no such sentence: it restates the same quantity, a claim to check.
-fn another_form(words: &str) -> bool {
-    let words = words.to_lowercase();
-    [
+/// The number of dimensions a sentence turns to ("The invariants presented in Section
+/// 3.4 assume a different form in two dimensions", "in plane strain", "In three
+/// dimensions, … is instead"), if it names one. An alternative form alone ("which can be
+/// written in a different form") names none: it restates the same quantity, a claim to
+/// check; a sentence that names both contrasts them, and turns to neither.
+fn dimension_named(words: &str) -> Option<usize> {
+    let words = format!(" {} ", words.to_lowercase().replace(['\n', '\t'], " "));
+    const TWO: [&str; 13] = [
         "two dimensions",
         "two-dimensional",
-        "three dimensions",
-        "three-dimensional",
+        "two spatial dimensions",
+        "two space dimensions",
+        " 2d ",
+        " 2-d ",
+        "in the plane",
+        "planar problem",
+        "planar case",
+        "plane problem",
         "plane strain",
         "plane stress",
-    ]
-    .iter()
-    .any(|w| words.contains(w))
+        "plane case",
+    ];
+    const THREE: [&str; 7] = [
+        "three dimensions",
+        "three-dimensional",
+        "three spatial dimensions",
+        "three space dimensions",
+        " 3d ",
+        " 3-d ",
+        "in space",
+    ];
+    // Both named ("Unlike the two-dimensional case of [4], we work in space"): a
+    // contrast, no turn.
+    match (
+        TWO.iter().any(|w| words.contains(w)),
+        THREE.iter().any(|w| words.contains(w)),
+    ) {
+        (true, false) => Some(2),
+        (false, true) => Some(3),
+        _ => None,
+    }
 }
 
 /// What `k` reads, through the definitions `chosen` (itself included).
@@ -713,24 +784,36 @@ fn through<'a>(k: &'a Key, chosen: &'a BTreeMap<Key, (usize, BTreeSet<Key>)>) ->
     seen
 }
 
-/// Leaves to complete each equation that, after a sentence that turns to another number
-/// of dimensions ([`another_form`]; the latest such sentence before it), reads a symbol
-/// an equation before that sentence defines, directly or through definitions (`p =
-/// \frac12(\sigma_{11} + \sigma_{22})` or `2p = \sigma_{11} + \sigma_{22}` after `p =
-/// \frac13\sigma_{kk}`): read with the earlier definition, a true equation of the new
-/// form could fail. An equation that only defines new symbols (`F^* = q + r\cos\phi + p
-/// \sin\phi`) states nothing to check, and stays. Whether any was left.
+/// Leaves to complete each equation after a sentence that turns to a number of
+/// dimensions ([`dimension_named`]; the latest such sentence before it) that could be
+/// read wrongly in the draft's `dimension`:
+/// - after one that names another number than the draft's (the text before the
+///   equation, headings included), every equation: the file has one dimension, and
+///   `\delta_{kk} = 2` is true in the plane;
+/// - after one that names the draft's own (the sentence that leads into the equation),
+///   an equation that reads a symbol an equation before the sentence defines, directly
+///   or through definitions (`2p = \sigma_{11} + \sigma_{22}` after `p =
+///   \frac13\sigma_{kk}`), read with the earlier definition.
+///
+/// An equation that only defines new symbols (`F^* = q + r\cos\phi + p\sin\phi`)
+/// states nothing to check, and stays. Whether any was left.
 fn restated_in_another_form(
     equations: &mut [Equation],
     chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+    dimension: usize,
 ) -> bool {
-    let mut scope: Option<usize> = None;
+    let mut scope: Option<(usize, usize)> = None;
     let mut left = false;
     for q in 0..equations.len() {
-        if another_form(&equations[q].lead_in) {
-            scope = Some(q);
+        let named = dimension_named(&equations[q].before).filter(|&d| d != dimension);
+        let own = dimension_named(&equations[q].lead_in).filter(|&d| d == dimension);
+        if let Some(d) = named.or(own) {
+            scope = Some((q, d));
         }
-        let Some(from) = scope else { continue };
+        let Some((from, turned)) = scope else {
+            continue;
+        };
+        let other = turned != dimension;
         if equations[q].unread.is_some() {
             continue;
         }
@@ -746,7 +829,9 @@ fn restated_in_another_form(
             .chain(&squares)
             .flat_map(|k| through(k, chosen))
             .find_map(|k| chosen.get(k).map(|(by, _)| *by).filter(|by| *by < from));
-        let Some(by) = older else { continue };
+        if older.is_none() && !other {
+            continue;
+        }
         // Each part `X = …`, X defined here.
         let defines_here = chosen.values().filter(|(by, _)| *by == q).count();
         let pure = latex::read(&equations[q].latex, &ReadOptions::default()).is_ok_and(|p| {
@@ -755,15 +840,23 @@ fn restated_in_another_form(
         if pure {
             continue;
         }
-        let (line, number, by) = (
-            equations[from].line,
-            comment(&equations[from].number),
-            equations[by].id.clone(),
+        let (line, number) = (equations[from].line, comment(&equations[from].number));
+        let word = |d: usize| if d == 2 { "two" } else { "three" };
+        let mut why = format!(
+            "the text before equation ({number}), line {line}, turns to {} dimensions",
+            word(turned)
         );
+        if other {
+            why.push_str(&format!(", while the draft has {}", word(dimension)));
+        }
+        if let Some(by) = older {
+            why.push_str(&format!(
+                ", and this equation reads what {} defines before it",
+                equations[by].id
+            ));
+        }
         let eq = &mut equations[q];
-        eq.unread = Some(format!(
-            "the text before equation ({number}), line {line}, turns to another number of dimensions, and this equation reads what {by} defines before it"
-        ));
+        eq.unread = Some(why);
         eq.edit = Some(format!(
             "draft the text from line {line} on by itself (with `--dimension`), or give this claim its own definitions"
         ));
@@ -773,10 +866,10 @@ fn restated_in_another_form(
 }
 
 /// The clause after the last `\text{with}` of a display (`\ell_i = R_g n_i`), when it is
-/// one equation that reads on its own, `X = …`, of a symbol the rest of the display
-/// writes (`2\ell_i`): it says what that symbol is. A clause of a symbol the rest does
-/// not write (`(\sigma n)_i = 0 \quad\text{with}\quad r = c + h`) may say where the
-/// equation holds, and defines nothing.
+/// one equation that reads on its own, `X_i = …`, of a symbol with index slots the rest
+/// of the display writes (`2\ell_i`): it says what that symbol is. A clause of a symbol
+/// the rest does not write, or of a scalar (`(\sigma(r) n)_i = 0 \quad\text{with}\quad r
+/// = c + h`), may say where the equation holds, and defines nothing.
 fn with_clause(latex: &str) -> Option<&str> {
     let word = "\\text{with}";
     let start = latex.rfind(word)?;
@@ -793,6 +886,15 @@ fn with_clause(latex: &str) -> Option<&str> {
     let MathKind::Atom(defined) = &part.members.first()?.kind else {
         return None;
     };
+    // A scalar may be where the equation is evaluated (`\sigma(r) n = 0 \quad\text{with}
+    // \quad r = c + h`); a clause defines a symbol with index slots only.
+    if !defined
+        .sub
+        .as_ref()
+        .is_some_and(|s| s.text.chars().any(|c| c.is_ascii_alphabetic()))
+    {
+        return None;
+    }
     let head = &latex[..start];
     // A command (`\ell`) starts a token whatever precedes it (`2\ell_i`).
     let written = match defined.base.strip_prefix('\\') {
@@ -1324,6 +1426,8 @@ fn write(
     // K_{ij}^{(1)} = …`): what the paper says of them, which a labelled variant's
     // definition would override.
     let mut on_the_left: BTreeSet<Key> = BTreeSet::new();
+    // The symbols of each part of each equation read.
+    let mut part_reads: Vec<BTreeSet<Key>> = Vec::new();
     // Equations left to complete that the reader cannot read: what they define is
     // unknown, so a symbol they mention is defined by no later equation.
     let mut opaque: Vec<(usize, String)> = Vec::new();
@@ -1470,6 +1574,7 @@ fn write(
                     eq.stray.insert(s.key.0.clone());
                 }
             }
+            part_reads.push(found.iter().map(|(k, _)| k.clone()).collect());
             if members.len() > 1 {
                 on_the_left.extend(
                     symbols::occurrences(&members[..1], normal, &tensors)
@@ -1504,7 +1609,14 @@ fn write(
                 .to_owned();
             let is_symbol =
                 |m: &latex::Math| !symbols::occurrences(&[m], normal, &tensors).is_empty();
-            if members.len() == 2 && homogeneous(members[1], &is_symbol) {
+            // A body that reads the normal is not taken over by a label: a labelled
+            // world may have a normal of its own, under any letter.
+            let reads_normal = normal.is_some_and(|n| {
+                eq.latex
+                    .get(members[1].span.start..members[1].span.end)
+                    .is_none_or(|body| mentions(body, n))
+            });
+            if members.len() == 2 && !reads_normal && homogeneous(members[1], &is_symbol) {
                 linear.insert((q, key.clone()));
             }
             candidates.push(Candidate {
@@ -1590,7 +1702,13 @@ fn write(
         }
         chosen.insert(key, (q, body));
     }
-    let variants = labelled_variants(&symbols, &chosen, (&linear, &on_the_left), &blocked, normal);
+    let variants = labelled_variants(
+        &symbols,
+        &chosen,
+        (&linear, &on_the_left, &part_reads),
+        &blocked,
+        normal,
+    );
     for v in &variants {
         let body = v.renamed.iter().map(|(_, to)| to.clone()).collect();
         chosen.insert(v.key.clone(), (chosen[&v.of].0, body));
@@ -1636,7 +1754,7 @@ fn write(
         }
     }
     let ids: Vec<String> = equations.iter().map(|e| e.id.clone()).collect();
-    let mut left = restated_in_another_form(equations, &chosen);
+    let mut left = restated_in_another_form(equations, &chosen, dimension);
     for (q, eq) in equations.iter_mut().enumerate() {
         if eq.unread.is_some() {
             continue;
