@@ -3197,24 +3197,16 @@ fn render(r: Render<'_>) -> String {
     out.push_str(
         "# announces; an equation that reads a symbol an earlier equation left to complete may\n",
     );
-    out.push_str(
-        "# define is left to complete too, and so is one that restates a symbol defined\n",
-    );
-    out.push_str("# before the text says it takes another form; a labelled symbol takes its\n");
-    out.push_str(
-        "# unlabelled symbol's linear definition on the same labels (K^{(1)} from K = w_{j,i}\n",
-    );
-    out.push_str(
-        "# and w^{(1)}); a field the text linearises about a point has no second derivatives.\n",
-    );
-    out.push_str(
-        "# Check each reading before trusting a verdict. Every declared symbol is taken as\n",
-    );
     for line in [
-        "# independent, so a failure that a common tie between symbols would remove (one",
-        "# side reads what the other does not, a relation, a symmetric tensor, a unit",
-        "# vector) is left undecided, naming the tie; delete `drafted = true` once the",
-        "# declarations are checked, to decide every claim strictly.",
+        "# define is left to complete too, and so is one after the text turns to another",
+        "# number of dimensions; a labelled symbol takes its unlabelled symbol's linear",
+        "# definition on the same labels (K^{(1)} from K = w_{j,i} and w^{(1)}); a field the",
+        "# text linearises about a point has no second derivatives. Check each reading",
+        "# before trusting a verdict. Every declared symbol is taken as independent, so a",
+        "# failure that a common tie between symbols would remove (one side reads what the",
+        "# other does not, a relation, a symmetric tensor, a unit vector) is left",
+        "# undecided, naming the tie; delete `drafted = true` once the declarations are",
+        "# checked, to decide every claim strictly.",
     ] {
         out.push_str(line);
         out.push('\n');
