@@ -800,6 +800,7 @@ fn through<'a>(k: &'a Key, chosen: &'a BTreeMap<Key, (usize, BTreeSet<Key>)>) ->
 fn restated_in_another_form(
     equations: &mut [Equation],
     chosen: &BTreeMap<Key, (usize, BTreeSet<Key>)>,
+    variants: &BTreeSet<&Key>,
     dimension: usize,
 ) -> bool {
     let mut scope: Option<(usize, usize)> = None;
@@ -833,7 +834,11 @@ fn restated_in_another_form(
             continue;
         }
         // Each part `X = …`, X defined here.
-        let defines_here = chosen.values().filter(|(by, _)| *by == q).count();
+        // (A labelled variant is counted with no equation: it takes its definition.)
+        let defines_here = chosen
+            .iter()
+            .filter(|(k, (by, _))| *by == q && !variants.contains(k))
+            .count();
         let pure = latex::read(&equations[q].latex, &ReadOptions::default()).is_ok_and(|p| {
             p.parts.len() == defines_here && p.parts.iter().all(|part| part.members.len() == 2)
         });
@@ -1754,7 +1759,8 @@ fn write(
         }
     }
     let ids: Vec<String> = equations.iter().map(|e| e.id.clone()).collect();
-    let mut left = restated_in_another_form(equations, &chosen, dimension);
+    let variant_keys: BTreeSet<&Key> = variants.iter().map(|v| &v.key).collect();
+    let mut left = restated_in_another_form(equations, &chosen, &variant_keys, dimension);
     for (q, eq) in equations.iter_mut().enumerate() {
         if eq.unread.is_some() {
             continue;
