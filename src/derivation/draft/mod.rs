@@ -445,13 +445,15 @@ fn linearised_fields(
     (normal, tensors): (Option<&str>, &Stems),
 ) {
     let mut fields: BTreeSet<Key> = BTreeSet::new();
-    let mut number = String::new();
+    // The number of the equation the current sentence leads into, and of the first
+    // that linearises a field.
+    let (mut leads, mut number) = (String::new(), String::new());
     let mut first = None;
     let mut group = false;
     for (q, eq) in equations.iter().enumerate() {
         if linearises(&eq.lead_in) {
             group = true;
-            number.clone_from(&eq.number);
+            leads.clone_from(&eq.number);
         } else if !eq.lead_in.trim().is_empty() {
             group = false;
         }
@@ -480,18 +482,23 @@ fn linearised_fields(
                 let once = symbols.get(k).is_some_and(|all| all.order == 1);
                 if s.order == 1 && once && valued.contains(k) && !chosen.contains_key(k) {
                     fields.insert(k.clone());
-                    first.get_or_insert(q);
+                    if first.is_none() {
+                        first = Some(q);
+                        number.clone_from(&leads);
+                    }
                 }
             }
         }
     }
     // A definition that reads the field and is differentiated in the paper writes a
     // second derivative of it.
-    fields.retain(|f| {
-        !chosen
-            .keys()
-            .any(|d| symbols.get(d).is_some_and(|s| s.order > 0) && through(d, chosen).contains(f))
-    });
+    // (Each such definition's reach found once: a paper has at most 500 equations.)
+    let differentiated: BTreeSet<&Key> = chosen
+        .keys()
+        .filter(|d| symbols.get(*d).is_some_and(|s| s.order > 0))
+        .flat_map(|d| through(d, chosen))
+        .collect();
+    fields.retain(|f| !differentiated.contains(f));
     let Some(first) = first.filter(|_| !fields.is_empty()) else {
         return;
     };
