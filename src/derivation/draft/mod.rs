@@ -21,6 +21,7 @@
 //! dropped silently. The draft is deterministic: the same source and
 //! options give the same bytes.
 
+mod analogy;
 mod displays;
 mod symbols;
 
@@ -523,9 +524,24 @@ struct Variant {
     key: Key,
     /// The unlabelled symbol, whose definition it takes.
     of: Key,
-    label: String,
+    /// How it takes that definition, for the file's comment ("with the label (1)").
+    how: String,
     /// Each symbol of that definition, with its labelled variant.
     renamed: Vec<(Key, Key)>,
+}
+
+/// Whether a superscript is no label of place or order: one that may be an operation (a
+/// transpose or an inverse, `A^{-T}`, `A^{T}`, a sign or a conjugate), or one the paper
+/// also writes on the normal (`n_i^{(1)}`: each labelled world has its own normal, which
+/// a definition reading δ, ε and n does not rename).
+fn no_label(symbols: &BTreeMap<Key, Symbol>, normal: Option<&str>, label: &str) -> bool {
+    let operation =
+        label.contains(['-', '+', '*', '\\']) || matches!(label.trim(), "T" | "t" | "H");
+    operation
+        || symbols.keys().any(|k| {
+            let f: Vec<&str> = k.split('|').collect();
+            f.len() == 6 && Some(f[1]) == normal && f[2] == label
+        })
 }
 
 /// The labelled variants that take their unlabelled symbol's definition: the same
@@ -555,26 +571,12 @@ fn labelled_variants(
         Some(fields.join("|"))
     };
     let label_of = |key: &Key| key.split('|').nth(2).unwrap_or("").to_owned();
-    // A superscript that may be an operation rather than a label: a transpose or an
-    // inverse (`A^{-T}`, `A^{T}`), a sign or a conjugate.
-    let operation = |label: &str| {
-        label.contains(['-', '+', '*', '\\']) || matches!(label.trim(), "T" | "t" | "H")
-    };
-    // The paper writes the normal with this label (`n_i^{(1)}`): each labelled world
-    // has its own normal, which a definition reading δ, ε and n does not rename.
-    let own_normal = |label: &str| {
-        symbols.keys().any(|k| {
-            let f: Vec<&str> = k.split('|').collect();
-            f.len() == 6 && Some(f[1]) == normal && f[2] == label
-        })
-    };
     let mut out = Vec::new();
     for (key, s) in symbols {
         let label = label_of(key);
         if label.is_empty()
             || s.rank == 0
-            || operation(&label)
-            || own_normal(&label)
+            || no_label(symbols, normal, &label)
             || chosen.contains_key(key)
             || blocked.contains_key(key)
             || stated_of.contains(key)
@@ -625,7 +627,7 @@ fn labelled_variants(
             out.push(Variant {
                 key: key.clone(),
                 of,
-                label,
+                how: format!("with the label {label}"),
                 renamed,
             });
         }
@@ -789,6 +791,32 @@ fn through<'a>(k: &'a Key, chosen: &'a BTreeMap<Key, (usize, BTreeSet<Key>)>) ->
         }
     }
     seen
+}
+
+/// The ranges of the text's lines (from, to: to excluded) that speak of another number
+/// of dimensions than the draft's: from the text before an equation that names another
+/// ([`dimension_named`]) to the text before one whose own sentence turns back.
+/// What the paper states there, of the plane problem, ties no symbol of the draft:
+/// `\mu_\tau = 0` in two dimensions says nothing of the μ of three.
+fn in_other_dimensions(equations: &[Equation], dimension: usize) -> Vec<(usize, usize)> {
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    let mut open: Option<usize> = None;
+    // The first line of the text before equation q.
+    let start = |q: usize| q.checked_sub(1).map_or(0, |p| equations[p].line + 1);
+    for (q, e) in equations.iter().enumerate() {
+        let other = dimension_named(&e.before).is_some_and(|d| d != dimension);
+        let own = dimension_named(&e.lead_in).is_some_and(|d| d == dimension);
+        match open {
+            None if other => open = Some(start(q)),
+            Some(from) if own && !other => {
+                out.push((from, start(q)));
+                open = None;
+            }
+            _ => {}
+        }
+    }
+    out.extend(open.map(|from| (from, usize::MAX)));
+    out
 }
 
 /// Leaves to complete each equation after a sentence that turns to a number of
@@ -1725,6 +1753,24 @@ fn write(
         let body = v.renamed.iter().map(|(_, to)| to.clone()).collect();
         chosen.insert(v.key.clone(), (chosen[&v.of].0, body));
     }
+    let mut variants = variants;
+    let analogies = {
+        let excluded = |k: &Key| blocked.contains_key(k);
+        let context = analogy::Context {
+            equations,
+            prose,
+            refused: refused_text,
+            excluded: &excluded,
+            normal,
+            tensors: &tensors,
+        };
+        analogy::by_analogy(&context, &mut symbols, &mut order, &mut chosen, &mut stated)
+    };
+    for v in analogies {
+        let body = v.renamed.iter().map(|(_, to)| to.clone()).collect();
+        chosen.insert(v.key.clone(), (chosen[&v.of].0, body));
+        variants.push(v);
+    }
     linearised_fields(equations, &symbols, &chosen, (normal, &tensors));
     // A square that defines nothing is its base times itself (`x^2` after `x = 1`),
     // not a symbol of its own that no equation ties to its base.
@@ -1818,6 +1864,7 @@ fn write(
                 (equations, &symbols, &chosen, &squares),
                 (&open, &opaque),
                 &said,
+                &in_other_dimensions(equations, dimension),
             );
             // A trace speaks of a tensor of rank 2, a divergence of a vector field: on
             // any other symbol such a reason ties nothing.
@@ -2082,7 +2129,7 @@ fn write(
         let Some(text) = relabelled(&text, v, &symbols, &chosen, position.as_deref()) else {
             continue;
         };
-        let origin = format!("{origin}, with the label {}", comment(&v.label));
+        let origin = format!("{origin}, {}", comment(&v.how));
         texts.insert(v.key.clone(), (text, origin));
     }
     // In an order where each definition uses only those above it.
@@ -2813,6 +2860,7 @@ fn tied(
     ),
     (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
     said: &[&Said],
+    elsewhere: &[(usize, usize)],
 ) -> BTreeMap<String, (Option<usize>, String, TieKind)> {
     let declared = |k: &Key| {
         symbols
@@ -2839,6 +2887,10 @@ fn tied(
     let mut out: BTreeMap<String, (Option<usize>, String, TieKind)> = BTreeMap::new();
     // A reason that allows more ties prevails ([`TieKind`], from the narrowest).
     let mut add = |name: &str, line: Option<usize>, why: String, kind: TieKind| {
+        // What the paper says in another number of dimensions ties nothing here.
+        if line.is_some_and(|l| elsewhere.iter().any(|&(from, to)| from <= l && l < to)) {
+            return;
+        }
         let entry = out
             .entry(name.to_owned())
             .or_insert((line, why.clone(), kind));
@@ -3213,8 +3265,9 @@ fn render(r: Render<'_>) -> String {
     for line in [
         "# define is left to complete too, and so is one after the text turns to another",
         "# number of dimensions; a labelled symbol takes its unlabelled symbol's linear",
-        "# definition on the same labels (K^{(1)} from K = w_{j,i} and w^{(1)}); a field the",
-        "# text linearises about a point has no second derivatives. Check each reading",
+        "# definition on the same labels (K^{(1)} from K = w_{j,i} and w^{(1)}), and one",
+        "# whose decomposition the text repeats (\"similarly\") the analogous definition; a",
+        "# field the text linearises about a point has no second derivatives. Check each reading",
         "# before trusting a verdict. Every declared symbol is taken as independent, so a",
         "# failure that a common tie between symbols would remove (one side reads what the",
         "# other does not, a relation, a symmetric tensor, a unit vector) is left",
