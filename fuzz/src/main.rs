@@ -235,6 +235,9 @@ const DICTIONARY: &[&str] = &[
     "^{(1)}",
     "_{i,m}^c",
     " = 0\"]",
+    ")_{,i}",
+    "Similarly, the vector $m_i = \\mu_{ki} n_k$ has a normal component $m^{(n)}$ ",
+    "In two dimensions, ",
 ];
 
 fn seeds(root: &Path) -> Vec<Vec<u8>> {

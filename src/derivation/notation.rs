@@ -529,6 +529,10 @@ fn printed_letters(m: &Math, out: &mut BTreeSet<char>) {
             printed_letters(of, out);
             printed_letters(by, out);
         }
+        MathKind::Comma { of, indices } => {
+            printed_letters(of, out);
+            out.extend(indices.chars().filter(char::is_ascii_alphabetic));
+        }
         MathKind::Sqrt(a) | MathKind::Average(a) | MathKind::Abs(a) | MathKind::Apply(_, a) => {
             printed_letters(a, out)
         }
@@ -689,6 +693,15 @@ impl Translator<'_> {
                 Piece::atom(format!("{name}({})", self.math(a)?.text))
             }
             MathKind::Partial { of, by } => self.partial(of, by)?,
+            MathKind::Comma { of, indices } => {
+                let Some(x) = self.decls.position.as_deref() else {
+                    return refuse(
+                        m.span,
+                        "a comma derivative of a bracketed expression needs the position (`position = \"x\"`)",
+                    );
+                };
+                Piece::atom(format!("d({})/d{x}_{indices}", self.math(of)?.text))
+            }
             MathKind::Matrix(rows) => {
                 let rows = rows
                     .iter()

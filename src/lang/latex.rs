@@ -142,6 +142,12 @@ pub enum MathKind {
         of: Box<Math>,
         by: Box<Math>,
     },
+    /// `(\sigma_{ij} v_j)_{,i}`: the derivative of a bracketed expression along the
+    /// position, once per index after the comma (`ij` for a second derivative).
+    Comma {
+        of: Box<Math>,
+        indices: String,
+    },
     /// `\begin{pmatrix} … \end{pmatrix}`: rows of cells.
     Matrix(Vec<Vec<Math>>),
     /// `(a, b, c)`.
@@ -746,6 +752,22 @@ impl<'a> Reader<'a> {
                     self.skip();
                     let script = self.script()?;
                     let MathKind::Atom(atom) = &mut m.kind else {
+                        // `(\sigma_{ij} v_j)_{,i}`: a comma derivative, the one subscript
+                        // a bracket may carry (a component, `(\sigma n)_i`, would need a
+                        // product the reader does not guess).
+                        let comma = script.text.strip_prefix(',').filter(|d| {
+                            !d.is_empty() && d.chars().all(|c| c.is_ascii_alphanumeric())
+                        });
+                        if let (true, Some(d)) = (is_sub, comma) {
+                            m = Math {
+                                kind: MathKind::Comma {
+                                    of: Box::new(m),
+                                    indices: d.to_owned(),
+                                },
+                                span: Span::new(start, self.pos),
+                            };
+                            continue;
+                        }
                         if is_sub {
                             return self.err(at, self.pos, "a subscript on a bracketed expression");
                         }
@@ -753,10 +775,23 @@ impl<'a> Reader<'a> {
                         continue;
                     };
                     if is_sub {
-                        if atom.sub.is_some() {
-                            return self.err(at, self.pos, "a second subscript");
+                        // `(u_k)_{,j}`, a bracketed symbol differentiated: `u_{k,j}`.
+                        let derivative = script.text.starts_with(',')
+                            && script.text[1..].chars().all(|c| c.is_ascii_alphanumeric())
+                            && script.text.len() > 1;
+                        match &mut atom.sub {
+                            Some(sub) if derivative => {
+                                let more = if sub.text.contains(',') {
+                                    &script.text[1..]
+                                } else {
+                                    &script.text
+                                };
+                                sub.text.push_str(more);
+                                sub.span = Span::new(sub.span.start, script.span.end);
+                            }
+                            Some(_) => return self.err(at, self.pos, "a second subscript"),
+                            None => atom.sub = Some(script),
                         }
-                        atom.sub = Some(script);
                     } else if self.is_power(&script.text) {
                         m = self.power(m, script, start)?;
                     } else {
@@ -1275,6 +1310,38 @@ mod tests {
             MathKind::Apply(f, x) => format!("{f}({})", shape(x)),
             MathKind::Power(b, e) => format!("pow({}, {})", shape(b), shape(e)),
             _ => "?".to_owned(),
+        }
+    }
+
+    /// A comma on a bracket differentiates it (`(\sigma_{ij} v_j)_{,i}`), and on a
+    /// bracketed symbol extends its subscript (`(u_k)_{,j}` is `u_{k,j}`); a component
+    /// of a bracket (`(\sigma n)_i`) or a second plain subscript is refused.
+    #[test]
+    fn a_comma_on_a_bracket_is_a_derivative() {
+        let m = one("(\\sigma_{ij} v_j)_{,ik}").unwrap();
+        let MathKind::Comma { of, indices } = &m.kind else {
+            panic!("{m:?}");
+        };
+        assert_eq!((shape(of).as_str(), indices.as_str()), ("sigma v", "ik"));
+        for (src, sub) in [
+            ("(u_k)_{,j}", "k,j"),
+            ("(u_{k,i})_{,j}", "k,ij"),
+            ("(u)_{,1}", ",1"),
+        ] {
+            let m = one(src).unwrap_or_else(|e| panic!("{src}: {}", e.message));
+            let MathKind::Atom(a) = &m.kind else {
+                panic!("{src}: {m:?}");
+            };
+            assert_eq!(a.sub.as_ref().map(|s| s.text.as_str()), Some(sub), "{src}");
+        }
+        for (src, why) in [
+            ("(\\sigma n)_i", "a subscript on a bracketed expression"),
+            ("(a + b)_{,}", "a subscript on a bracketed expression"),
+            ("(u_k)_j", "a second subscript"),
+            ("(u_k)_{,j+1}", "outside the subset"),
+        ] {
+            let e = one(src).expect_err(src);
+            assert!(e.message.contains(why), "{src}: {}", e.message);
         }
     }
 

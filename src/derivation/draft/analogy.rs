@@ -122,7 +122,10 @@ fn congruent(a: &Math, b: &Math, map: &mut BTreeMap<String, String>, fixed: &[&s
         (MathKind::Sqrt(p), MathKind::Sqrt(q))
         | (MathKind::Average(p), MathKind::Average(q))
         | (MathKind::Abs(p), MathKind::Abs(q)) => congruent(p, q, map, fixed),
-        (MathKind::Apply(f, p), MathKind::Apply(g, q)) => f == g && congruent(p, q, map, fixed),
+        (MathKind::Apply(f, p), MathKind::Apply(g, q))
+        | (MathKind::Comma { indices: f, of: p }, MathKind::Comma { indices: g, of: q }) => {
+            f == g && congruent(p, q, map, fixed)
+        }
         (MathKind::Matrix(x), MathKind::Matrix(y)) => {
             x.len() == y.len() && x.iter().zip(y).all(|(r, s)| same(r, s, map))
         }

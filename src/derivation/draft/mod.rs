@@ -94,6 +94,9 @@ struct Equation {
     verbatim: bool,
     /// The names of the declared symbols it is the first to write (`introduces`).
     introduces: BTreeSet<String>,
+    /// The symbols it reads inside a bracket a comma differentiates (`(\sigma_{ij}
+    /// v_j)_{,i}`).
+    differentiated: BTreeSet<Key>,
     /// The fields the text linearises that it reads, through definitions, with the
     /// number of the equation the sentence that says so leads into
     /// ([`linearised_fields`]).
@@ -252,6 +255,7 @@ fn draft_clean(
                 stray: BTreeSet::new(),
                 verbatim: false,
                 introduces: BTreeSet::new(),
+                differentiated: BTreeSet::new(),
                 linear: (Vec::new(), String::new()),
             }
         })
@@ -381,7 +385,12 @@ fn degree(m: &latex::Math, is_symbol: &dyn Fn(&latex::Math) -> bool) -> Option<u
             constant(b)
         }
         MathKind::Sqrt(a) | MathKind::Abs(a) | MathKind::Apply(_, a) => constant(a),
-        MathKind::Partial { .. } | MathKind::Matrix(_) | MathKind::Tuple(_) => None,
+        // A derivative of a linear body is linear, but a label would have to commute
+        // with it through the position: no labelled variant takes such a definition.
+        MathKind::Partial { .. }
+        | MathKind::Comma { .. }
+        | MathKind::Matrix(_)
+        | MathKind::Tuple(_) => None,
     }
 }
 
@@ -1140,6 +1149,7 @@ fn defined_symbol(
                 derivatives: BTreeSet::new(),
                 stray: false,
                 printed: BTreeSet::new(),
+                differentiated: false,
             };
             Some((format!("{key}^2"), Some(square)))
         }
@@ -1545,6 +1555,7 @@ fn write(
         eq.defines.clear();
         eq.stray.clear();
         eq.introduces.clear();
+        eq.differentiated.clear();
         if eq.unread.is_some() {
             if let Ok(p) = latex::read(&eq.latex, &options) {
                 for part in &p.parts {
@@ -1598,6 +1609,9 @@ fn write(
             let found = symbols::occurrences(&members, normal, &tensors);
             for (key, s) in found.iter().cloned() {
                 eq.reads.insert(key.clone());
+                if s.differentiated {
+                    eq.differentiated.insert(key.clone());
+                }
                 if !s.squared {
                     plain.insert(key.clone());
                 }
@@ -1814,6 +1828,25 @@ fn write(
     let ids: Vec<String> = equations.iter().map(|e| e.id.clone()).collect();
     let variant_keys: BTreeSet<&Key> = variants.iter().map(|v| &v.key).collect();
     let mut left = restated_in_another_form(equations, &chosen, &variant_keys, dimension);
+    // `(E u_{i,j})_{,j}` where the paper never writes a derivative of E: a field, or a
+    // constant whose derivative is 0? The reader does not guess.
+    for eq in equations.iter_mut().filter(|e| e.unread.is_none()) {
+        let constant = eq
+            .differentiated
+            .iter()
+            .filter(|k| !chosen.contains_key(*k))
+            .find_map(|k| symbols.get(k).filter(|s| !s.field));
+        if let Some(s) = constant {
+            eq.unread = Some(format!(
+                "`{}` is differentiated inside a bracket with a comma, and the paper writes no derivative of it elsewhere: a field or a constant?",
+                s.key.0
+            ));
+            eq.edit = Some(
+                "declare it among the fields (`fields`) if it varies with the position, or expand the derivative".to_owned(),
+            );
+            left = true;
+        }
+    }
     for (q, eq) in equations.iter_mut().enumerate() {
         if eq.unread.is_some() {
             continue;

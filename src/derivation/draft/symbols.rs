@@ -50,6 +50,9 @@ pub struct Symbol {
     pub derivatives: BTreeSet<(String, String)>,
     /// This occurrence carries a stray subscript ([`Stems::stray`]).
     pub stray: bool,
+    /// This occurrence is inside a bracket a comma differentiates (`(\sigma_{ij}
+    /// v_j)_{,i}`): it varies with the position only if it is a field.
+    pub differentiated: bool,
     /// For a scalar, the printed forms it is read from (`t^{(n)}`, and `t_{i}^{(n)}` with
     /// a stray subscript), each a notation key.
     pub printed: BTreeSet<String>,
@@ -126,10 +129,19 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
     // the equation also has them in the second.
     let (mut of_vectors, mut elsewhere): (BTreeSet<char>, BTreeSet<char>) = Default::default();
     let mut atoms = Vec::new();
+    // The atoms a comma differentiates, through the bracket it follows.
+    let mut differentiated: Vec<*const Atom> = Vec::new();
     for m in members {
         let mut own = Vec::new();
         atoms_of(m, false, &mut own);
         let mut in_member: BTreeMap<char, usize> = BTreeMap::new();
+        // A letter after a comma (`(\sigma_{ij} v_j)_{,i}`) is an index.
+        let mut commas = Vec::new();
+        comma_letters(m, &mut commas, &mut differentiated);
+        for c in commas {
+            in_longer.insert(c);
+            *in_member.entry(c).or_default() += 1;
+        }
         for (a, _) in &own {
             if let Some(sub) = a
                 .sub
@@ -177,9 +189,41 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
         .filter_map(|(a, squared)| {
             let (k, mut s) = symbol(a, &indices, normal, tensors)?;
             s.squared = squared;
+            s.differentiated = differentiated.contains(&std::ptr::from_ref(a));
             Some((k, s))
         })
         .collect()
+}
+
+/// The letters after the comma of each bracket `m` differentiates (`(\sigma_{ij}
+/// v_j)_{,i}`: `i`), and the atoms inside such a bracket.
+fn comma_letters(m: &Math, letters: &mut Vec<char>, atoms: &mut Vec<*const Atom>) {
+    fn walk(m: &Math, inside: bool, letters: &mut Vec<char>, atoms: &mut Vec<*const Atom>) {
+        let mut go = |x: &Math, inside: bool| walk(x, inside, letters, atoms);
+        match &m.kind {
+            MathKind::Comma { of, indices } => {
+                letters.extend(indices.chars().filter(char::is_ascii_alphabetic));
+                walk(of, true, letters, atoms);
+            }
+            MathKind::Atom(a) if inside => atoms.push(std::ptr::from_ref(a)),
+            MathKind::Number(_) | MathKind::Atom(_) => {}
+            MathKind::Sum(terms) => terms.iter().for_each(|(_, t)| go(t, inside)),
+            MathKind::Product(fs) | MathKind::Tuple(fs) => fs.iter().for_each(|f| go(f, inside)),
+            MathKind::Power(a, b) | MathKind::Quotient(a, b) => {
+                go(a, inside);
+                go(b, inside);
+            }
+            MathKind::Partial { of, by } => {
+                go(of, inside);
+                go(by, inside);
+            }
+            MathKind::Sqrt(a) | MathKind::Average(a) | MathKind::Abs(a) | MathKind::Apply(_, a) => {
+                go(a, inside)
+            }
+            MathKind::Matrix(rows) => rows.iter().flatten().for_each(|c| go(c, inside)),
+        }
+    }
+    walk(m, false, letters, atoms);
 }
 
 /// The atoms of `m`, in reading order, each with whether it is the base of a square
@@ -187,6 +231,7 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
 fn atoms_of<'m>(m: &'m Math, squared: bool, out: &mut Vec<(&'m Atom, bool)>) {
     let mut go = |x: &'m Math| atoms_of(x, false, out);
     match &m.kind {
+        MathKind::Comma { of, .. } => go(of),
         MathKind::Number(_) => {}
         MathKind::Atom(a) => out.push((a, squared)),
         MathKind::Sum(terms) => terms.iter().for_each(|(_, t)| go(t)),
@@ -351,6 +396,7 @@ fn symbol(
             derivatives,
             stray,
             printed,
+            differentiated: false,
         },
     ))
 }
