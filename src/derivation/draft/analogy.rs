@@ -10,8 +10,10 @@
 //! wrong verdict: the two unlabelled symbols are defined by the same formula up to a
 //! renaming of symbols (`t_i = \sigma_{ki} n_k` and `m_i = \mu_{ki} n_k`), the labelled
 //! one carries the same label as the defined one, which reads only its unlabelled symbol,
-//! the normal and other such labels, the text names the labelled symbol in a formula,
-//! and a word between the two says the analogy ("similarly", "likewise", …).
+//! the normal and other such labels, the text names the labelled symbol in a formula
+//! with the words that lead into the defined one ("a normal component $m^{(n)}$", as
+//! "into a normal component" leads into (30)), no formula of the text states it, and a
+//! word between the two says the analogy ("similarly", "likewise", …).
 
 use super::symbols::{self, Key, Stems, Symbol};
 use super::{defined_symbol, displays, Equation, Stated, Variant};
@@ -70,6 +72,40 @@ fn cue(equations: &[Equation], from: usize, to: usize) -> Option<&'static str> {
         words.split_whitespace().collect::<Vec<_>>().join(" ")
     );
     CUES.into_iter().find(|c| words.contains(&format!(" {c} ")))
+}
+
+/// The name the text gives what follows `words`: their last two words after the last
+/// formula, lowercase ("into a normal component", "a shear (i.e. tangential)
+/// component": `normal component`, `tangential component`).
+fn naming(words: &str) -> Option<[String; 2]> {
+    // After the last display the words hold, up to the one they lead into, after the
+    // last formula.
+    let after = ["\\end{", "$$", "\\]"]
+        .iter()
+        .filter_map(|c| {
+            let at = words.rfind(c)? + c.len();
+            Some(match *c {
+                "\\end{" => words[at..].find('}').map_or(at, |k| at + k + 1),
+                _ => at,
+            })
+        })
+        .max()
+        .unwrap_or(0);
+    let words = &words[after..];
+    let display = ["\\begin{", "$$", "\\["]
+        .iter()
+        .filter_map(|o| words.find(o))
+        .min()
+        .unwrap_or(words.len());
+    let words = &words[..display];
+    let text = words.rsplit('$').next().unwrap_or(words);
+    let mut last = text
+        .split(|c: char| !c.is_alphabetic())
+        .filter(|w| !w.is_empty())
+        .rev()
+        .map(str::to_lowercase);
+    let (b, a) = (last.next()?, last.next()?);
+    Some([a, b])
 }
 
 /// Whether `a` and `b` are one formula up to a renaming of symbols, one to one (the
@@ -181,6 +217,9 @@ pub(super) struct Context<'a> {
     /// Symbols that must not be defined so: those an equation left to complete may
     /// define.
     pub excluded: &'a dyn Fn(&Key) -> bool,
+    /// Symbols a formula of the text states (`$m^{(n)} = m_i m_i$`): no analogy says
+    /// what they are.
+    pub said: &'a dyn Fn(&Key) -> bool,
     pub normal: Option<&'a str>,
     pub tensors: &'a Stems,
 }
@@ -201,6 +240,7 @@ pub(super) fn by_analogy(
         prose,
         refused,
         excluded,
+        said,
         normal,
         tensors,
     } = *cx;
@@ -209,8 +249,9 @@ pub(super) fn by_analogy(
         .chain(normal)
         .collect();
     let first_read = |k: &Key| equations.iter().position(|e| e.reads.contains(k));
-    // The symbols each formula of the text names, with its line.
-    let named: Vec<(usize, BTreeSet<Key>)> = prose
+    // The symbols each formula of the text names, with its line and the name the words
+    // before it give.
+    let named: Vec<(usize, BTreeSet<Key>, Option<[String; 2]>)> = prose
         .iter()
         .filter_map(|f| {
             let read = latex::read(&f.body, &ReadOptions::default()).ok()?;
@@ -223,7 +264,7 @@ pub(super) fn by_analogy(
                 })
                 .map(|(k, _)| k)
                 .collect();
-            Some((f.line, keys))
+            Some((f.line, keys, naming(f.words.get(..f.at).unwrap_or(""))))
         })
         .collect();
     let mut out = Vec::new();
@@ -236,17 +277,22 @@ pub(super) fn by_analogy(
         if l.is_empty()
             || super::no_label(symbols, normal, &l)
             || excluded(&k)
+            || said(&k)
             || chosen.contains_key(&k)
         {
             continue;
         }
         let Some(at) = first_read(&k) else { continue };
         let line = equations[at].line;
-        // The text names it before its first equation, or in that equation's sentence.
-        if !named
+        // The text names it before its first equation, or in that equation's sentence,
+        // with the words it names the analogous symbol ("a normal component
+        // $m^{(n)}$", as "into a normal component" leads into `t^{(n)} = t_i n_i`).
+        let names: Vec<&[String; 2]> = named
             .iter()
-            .any(|(l, keys)| *l <= line && keys.contains(&k))
-        {
+            .filter(|(l, keys, _)| *l <= line && keys.contains(&k))
+            .filter_map(|(_, _, name)| name.as_ref())
+            .collect();
+        if names.is_empty() {
             continue;
         }
         // The defined symbols of the same label and rank, of another stem.
@@ -315,6 +361,18 @@ pub(super) fn by_analogy(
         let Some(word) = cue(equations, qy, at) else {
             continue;
         };
+        // The words that lead into the analogous definition: its sentence's, or its
+        // equation's.
+        let lead = match stated.get(&v.of).and_then(|st| st.line) {
+            Some(l) => prose
+                .iter()
+                .find(|f| f.line == l)
+                .and_then(|f| naming(f.words.get(..f.at).unwrap_or(""))),
+            None => naming(&equations[qy].lead_in),
+        };
+        if !lead.as_ref().is_some_and(|lead| names.contains(&lead)) {
+            continue;
+        }
         // The unlabelled symbol's definition: an equation's, or a sentence's before
         // the labelled symbol's first equation.
         let sentence = || {

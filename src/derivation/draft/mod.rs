@@ -751,7 +751,9 @@ fn relabel_walk(
 /// 3.4 assume a different form in two dimensions", "in plane strain", "In three
 /// dimensions, … is instead"), if it names one. An alternative form alone ("which can be
 /// written in a different form") names none: it restates the same quantity, a claim to
-/// check; a sentence that names both contrasts them, and turns to neither.
+/// check; a sentence that names both contrasts them, and turns to neither; a number
+/// named in a comparison or a negation ("as in three dimensions", "unlike plane
+/// stress", "we do not consider plane strain") is no turn.
 fn dimension_named(words: &str) -> Option<usize> {
     let words = format!(" {} ", words.to_lowercase().replace(['\n', '\t'], " "));
     const TWO: [&str; 13] = [
@@ -778,12 +780,38 @@ fn dimension_named(words: &str) -> Option<usize> {
         " 3-d ",
         "in space",
     ];
+    // A comparison or a negation names a number without turning to it ("as in three
+    // dimensions", "unlike the familiar plane stress solutions", "we do not consider
+    // plane strain"): the three words before the phrase say so.
+    const ASIDE: [&str; 15] = [
+        "as",
+        "like",
+        "unlike",
+        "than",
+        "compared",
+        "comparison",
+        "contrary",
+        "opposed",
+        "versus",
+        "vs",
+        "not",
+        "no",
+        "nor",
+        "without",
+        "except",
+    ];
+    let turns = |phrase: &str| {
+        words.match_indices(phrase).any(|(at, _)| {
+            let before: Vec<&str> = words[..at]
+                .split(|c: char| !c.is_alphanumeric())
+                .filter(|w| !w.is_empty())
+                .collect();
+            !before.iter().rev().take(3).any(|w| ASIDE.contains(w))
+        })
+    };
     // Both named ("Unlike the two-dimensional case of [4], we work in space"): a
     // contrast, no turn.
-    match (
-        TWO.iter().any(|w| words.contains(w)),
-        THREE.iter().any(|w| words.contains(w)),
-    ) {
+    match (TWO.iter().any(|w| turns(w)), THREE.iter().any(|w| turns(w))) {
         (true, false) => Some(2),
         (false, true) => Some(3),
         _ => None,
@@ -800,32 +828,6 @@ fn through<'a>(k: &'a Key, chosen: &'a BTreeMap<Key, (usize, BTreeSet<Key>)>) ->
         }
     }
     seen
-}
-
-/// The ranges of the text's lines (from, to: to excluded) that speak of another number
-/// of dimensions than the draft's: from the text before an equation that names another
-/// ([`dimension_named`]) to the text before one whose own sentence turns back.
-/// What the paper states there, of the plane problem, ties no symbol of the draft:
-/// `\mu_\tau = 0` in two dimensions says nothing of the μ of three.
-fn in_other_dimensions(equations: &[Equation], dimension: usize) -> Vec<(usize, usize)> {
-    let mut out: Vec<(usize, usize)> = Vec::new();
-    let mut open: Option<usize> = None;
-    // The first line of the text before equation q.
-    let start = |q: usize| q.checked_sub(1).map_or(0, |p| equations[p].line + 1);
-    for (q, e) in equations.iter().enumerate() {
-        let other = dimension_named(&e.before).is_some_and(|d| d != dimension);
-        let own = dimension_named(&e.lead_in).is_some_and(|d| d == dimension);
-        match open {
-            None if other => open = Some(start(q)),
-            Some(from) if own && !other => {
-                out.push((from, start(q)));
-                open = None;
-            }
-            _ => {}
-        }
-    }
-    out.extend(open.map(|from| (from, usize::MAX)));
-    out
 }
 
 /// Leaves to complete each equation after a sentence that turns to a number of
@@ -1770,11 +1772,13 @@ fn write(
     let mut variants = variants;
     let analogies = {
         let excluded = |k: &Key| blocked.contains_key(k);
+        let said = |k: &Key| in_prose.contains_key(k);
         let context = analogy::Context {
             equations,
             prose,
             refused: refused_text,
             excluded: &excluded,
+            said: &said,
             normal,
             tensors: &tensors,
         };
@@ -1897,7 +1901,6 @@ fn write(
                 (equations, &symbols, &chosen, &squares),
                 (&open, &opaque),
                 &said,
-                &in_other_dimensions(equations, dimension),
             );
             // A trace speaks of a tensor of rank 2, a divergence of a vector field: on
             // any other symbol such a reason ties nothing.
@@ -2893,7 +2896,6 @@ fn tied(
     ),
     (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
     said: &[&Said],
-    elsewhere: &[(usize, usize)],
 ) -> BTreeMap<String, (Option<usize>, String, TieKind)> {
     let declared = |k: &Key| {
         symbols
@@ -2920,10 +2922,6 @@ fn tied(
     let mut out: BTreeMap<String, (Option<usize>, String, TieKind)> = BTreeMap::new();
     // A reason that allows more ties prevails ([`TieKind`], from the narrowest).
     let mut add = |name: &str, line: Option<usize>, why: String, kind: TieKind| {
-        // What the paper says in another number of dimensions ties nothing here.
-        if line.is_some_and(|l| elsewhere.iter().any(|&(from, to)| from <= l && l < to)) {
-            return;
-        }
         let entry = out
             .entry(name.to_owned())
             .or_insert((line, why.clone(), kind));
@@ -3213,11 +3211,32 @@ fn tied(
                 && !reaches(j, k)
                 && !reaches(k, j)
         });
+        // Or a formula of the text writes one (`$m_i = \mu_{ki} n_k$` beside `m^{(n)}`,
+        // which the text may name in words only: "its squared magnitude $m^{(n)}$").
+        let in_text = || {
+            said.iter().find_map(|f| {
+                f.found
+                    .iter()
+                    .find(|j| {
+                        !symbols.contains_key(*j)
+                            && parts(j).is_some_and(|(st, la)| st == stem && la != label)
+                    })
+                    .map(|j| (f.line, j))
+            })
+        };
         if let Some((_, t)) = variant {
             add(
                 &s.name,
                 None,
                 format!("the paper also writes {}", t.key.0),
+                TieKind::Any,
+            );
+        } else if let Some((line, j)) = in_text() {
+            let base = j.split('|').nth(1).unwrap_or("");
+            add(
+                &s.name,
+                Some(line),
+                format!("a formula of the text writes {base} with another label"),
                 TieKind::Any,
             );
         }
