@@ -75,11 +75,11 @@ enum Axis {
 
 /// A contraction under way ([`Env::contract`]): each factor's components, axes and
 /// how many letters must have values before it is known; the letters' values so far,
-/// the first `out` of them the result's; the result's components.
+/// and where the result's letters are among them; the result's components.
 struct Walk<'f> {
     factors: Vec<(&'f [Frac], Vec<Axis>, usize)>,
     values: Vec<usize>,
-    out: usize,
+    out: Vec<usize>,
     comps: Vec<Frac>,
 }
 
@@ -1115,13 +1115,16 @@ impl<'c> Env<'c> {
     }
 
     /// Σ over the summed letters of Π factors (each a tensor with its axes' slots), for
-    /// every value of `out`. The letters take their values in order, those of `out`
-    /// first and the last fastest, so that each component adds its terms in one fixed
-    /// order, each term the product of the factors from left to right. The values are
-    /// walked as a tree: a factor is read once its letters have values, a factor that
-    /// is 0 there cuts off every term below (each would be 0), and the product of the
-    /// leading factors known so far is formed once for all the terms that share it.
-    /// The terms are added to the components `into` when given, else to zeros.
+    /// every value of `out`. The letters take their values in a fixed order, each
+    /// factor's letters together, factor after factor (the last fastest), so that each
+    /// component adds its terms in one fixed order, each term the product of the
+    /// factors from left to right. The values are walked as a tree: a factor is read
+    /// once its letters have values, a factor that is 0 there cuts off every term below
+    /// (each would be 0: `\delta_{it}\delta_{jk}…` is cut at `t ≠ i`, not after every
+    /// other letter), and the product of the leading factors known so far is formed once
+    /// for all the terms that share it. Where a term lands is its values of `out`, in
+    /// the order of `out`, whatever the walk's order. The terms are added to the
+    /// components `into` when given, else to zeros.
     fn contract(
         &mut self,
         factors: &[(&[Frac], Vec<Slot>)],
@@ -1129,7 +1132,13 @@ impl<'c> Env<'c> {
         into: Option<Vec<Frac>>,
     ) -> R<Value> {
         let d = self.ctx.dim;
-        let mut all: Vec<char> = out.to_vec();
+        // A result letter no factor carries (none in a well-formed product) first, then
+        // each factor's letters in the order of the factors.
+        let mut all: Vec<char> = out
+            .iter()
+            .copied()
+            .filter(|c| !factors.iter().any(|(_, slots)| slots.contains(&Slot::Letter(*c))))
+            .collect();
         for (_, slots) in factors {
             for s in slots {
                 if let Slot::Letter(c) = s {
@@ -1140,6 +1149,11 @@ impl<'c> Env<'c> {
             }
         }
         count(d, all.len()).map_err(|_| EvalError::Limit)?;
+        let out_at: Vec<usize> = out
+            .iter()
+            .map(|c| all.iter().position(|x| x == c))
+            .collect::<Option<_>>()
+            .ok_or_else(|| EvalError::IllFormed("a result letter no factor carries".into()))?;
         let factors = factors
             .iter()
             .map(|(t, slots)| {
@@ -1166,7 +1180,7 @@ impl<'c> Env<'c> {
         let mut walk = Walk {
             factors,
             values: vec![0; all.len()],
-            out: out.len(),
+            out: out_at,
             comps: match into {
                 Some(comps) if comps.len() == count(d, out.len())? => comps,
                 Some(_) => return Err(EvalError::IllFormed("a sum of different ranks".into())),
@@ -1205,7 +1219,7 @@ impl<'c> Env<'c> {
             products.push(p);
         }
         if level == w.values.len() {
-            let at = w.values[..w.out].iter().fold(0, |acc, &v| acc * d + v);
+            let at = w.out.iter().fold(0, |acc, &p| acc * d + w.values[p]);
             w.comps[at] = self.add(&w.comps[at], &products[products.len() - 1])?;
         } else {
             for v in 0..d {
