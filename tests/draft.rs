@@ -1205,18 +1205,56 @@ fn a_square_defines_and_a_restatement_in_another_form_is_left_to_complete() {
     );
 }
 
+/// A chain whose first failing equality waits for a tie the text gives (`$W = K e$`,
+/// in symbols no equation writes) is decided further on: a wrong coefficient in the next
+/// equality fails there, at its own place, with a refutation `recheck` accepts; the
+/// same chain without the error stays undecided.
+#[test]
+fn a_drafted_chain_fails_past_an_equality_that_waits_for_a_tie() {
+    let source = "The energy $W = K e$ is stored.\n\\begin{equation}\nW = \\frac{1}{2} \\sigma_{ij} \\sigma_{ij} = \\frac{1}{3} \\sigma_{ij} \\sigma_{ij}\n\\end{equation}\n";
+    let (toml, verdicts) = drafted(&[&written("chain-past-a-tie.tex", source)]);
+    assert_eq!(verdicts, vec![("eq1".to_owned(), Verdict::Fails)], "{toml}");
+    let path = written("chain-past-a-tie.toml", &toml);
+    let (status, json) = run_cli(&["verify", &path, "--format", "json"], false);
+    assert_eq!(status, Status::Unexpected, "{json}");
+    assert!(json.contains("\"equality\": 2"), "{json}");
+    let report = written("chain-past-a-tie.json", &json);
+    let (status, out) = run_cli(&["recheck", &report], false);
+    assert_eq!(status, Status::AsExpected, "{out}");
+    let right = source.replace(
+        "\\frac{1}{3} \\sigma_{ij} \\sigma_{ij}\n",
+        "\\frac{1}{2} \\sigma_{kl} \\sigma_{kl}\n",
+    );
+    assert_ne!(right, source);
+    let (toml, verdicts) = drafted(&[&written("chain-past-a-tie-right.tex", &right)]);
+    assert_eq!(
+        verdicts,
+        vec![("eq1".to_owned(), Verdict::Undecided)],
+        "{toml}"
+    );
+}
+
 /// Papers an adversary wrote against the analogy and the dimension of a section
 /// (`tests/draft/attacks/*.tex`, each with its truth in its first line), each once a
 /// wrong verdict: "similarly" about something else, an analogy the text denies, a
 /// meaning stated after the equation or nearer in words, a decomposition along a fibre,
 /// a labelled symbol named only in words beside a formula of its unlabelled one; a
 /// return to three dimensions, plane stress named in a comparison or a negation, and
-/// "as in three dimensions" inside a plane section. Each false equation is now never
-/// `holds`, each true one never `fails`.
+/// "as in three dimensions" inside a plane section; a second adversary: a meaning in
+/// words after the name or in a later sentence, the analogue restated in a section; the
+/// normal differentiated in a bracket, a modulus the text calls constant that an
+/// equation differentiates, a letter reused for a field. Each false equation is now
+/// never `holds`, each true one never `fails`.
 #[test]
 fn analogies_and_sections_an_adversary_attacked_give_no_wrong_verdict() {
     use Verdict::{Holds as H, Undecided as U};
-    let cases: [(&str, &[Verdict]); 12] = [
+    let cases: [(&str, &[Verdict]); 18] = [
+        ("taken-along-a-fibre-in-words", &[H, H, H, U, U]),
+        ("named-otherwise-later", &[H, H, H, U, U]),
+        ("analogue-restated-in-a-section", &[H, H, H, U, U]),
+        ("normal-differentiated-in-a-bracket", &[H]),
+        ("modulus-constant-in-words", &[H, U, U]),
+        ("modulus-letter-reused", &[U, H]),
         ("cue-about-another-thing", &[H, H, H, U]),
         ("analogy-denied", &[H, H, H, U]),
         ("stated-after-the-equation", &[H, H, H, U]),

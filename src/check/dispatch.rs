@@ -166,7 +166,78 @@ pub(crate) fn decide_unisolated(
     if keep {
         outcome.record.get_or_insert_with(Default::default).states = sink.into_inner();
     }
-    Ok(drafted::judged(decls, check, outcome))
+    let judged = drafted::judged(decls, check, outcome);
+    Ok(past_a_tie(decls, check, judged))
+}
+
+/// The rest of `check` after equality `equality` of chain `chain` (both 1-based): the
+/// members of that chain from the equality's right side on, and the chains after it
+/// (`None` when nothing is left). A claim asserts each of its equalities, so a
+/// refutation of the rest refutes it: the rest is weaker.
+pub(crate) fn rest_of(
+    check: &crate::derivation::Check,
+    chain: usize,
+    equality: usize,
+) -> Option<crate::derivation::Check> {
+    let sides = check.chains.get(chain.checked_sub(1)?)?;
+    let mut chains = Vec::new();
+    if sides.len() > equality + 1 {
+        chains.push(sides[equality..].to_vec());
+    }
+    chains.extend(check.chains[chain..].iter().cloned());
+    (!chains.is_empty()).then(|| crate::derivation::Check {
+        chains,
+        ..check.clone()
+    })
+}
+
+/// A drafted chain whose first failing equality waits for a tie the paper may state
+/// (`drafted::judged`) may fail further on, where no tie is in question (`P = … =
+/// (\sigma_{ij} v_j)_{,i} + \sigma_{ij,i} v_j - …`, with a planted sign after an
+/// equality that needs the text's `\dot{\kappa}_{ij} = w_{j,i}`): the rest of the chain
+/// and the chains after it ([`rest_of`]) are decided on their own, and a failure there,
+/// itself past every tie, is the claim's, at its own place in the claim.
+fn past_a_tie(
+    decls: &crate::lang::Decls,
+    check: &crate::derivation::Check,
+    outcome: Outcome,
+) -> Outcome {
+    use crate::derivation::{Strategy, Verdict};
+    use finding::Finding;
+    let waits = match &outcome.finding {
+        Some(Finding::OneSided {
+            chain, equality, ..
+        })
+        | Some(Finding::Tie {
+            chain, equality, ..
+        }) => Some((*chain, *equality)),
+        _ => None,
+    };
+    let Some((chain, equality)) = waits else {
+        return outcome;
+    };
+    if check.drafted.is_none() || !matches!(check.strategy, Strategy::Exact { .. }) {
+        return outcome;
+    }
+    let Some(rest) = rest_of(check, chain, equality) else {
+        return outcome;
+    };
+    let kept = check.chains[chain - 1].len() > equality + 1;
+    let Ok(mut later) = decide_unisolated(decls, &rest, false) else {
+        return outcome;
+    };
+    if later.verdict() != Verdict::Fails {
+        return outcome;
+    }
+    if let Some(cx) = later.counterexample.as_mut() {
+        (cx.chain, cx.equality) = match (kept, cx.chain) {
+            (true, 1) => (chain, equality + cx.equality),
+            (true, r) => (chain + r - 1, cx.equality),
+            (false, r) => (chain + r, cx.equality),
+        };
+    }
+    later.record = outcome.record;
+    later
 }
 
 /// The statements a claim's proofs may be about: a `holds` proves every one of
@@ -194,6 +265,22 @@ pub fn proof_statements(
         _ => unreachable!("a part is a sign claim"),
     };
     let whole = match &check.strategy {
+        // A drafted claim may be refuted past an equality that waits for a tie
+        // ([`past_a_tie`]): by the rest of the claim after any of its equalities.
+        Strategy::Exact { .. } if check.drafted.is_some() => {
+            let mut weaker = Vec::new();
+            for (c, sides) in check.chains.iter().enumerate() {
+                for e in 1..sides.len() {
+                    if let Some(rest) = rest_of(check, c + 1, e) {
+                        weaker.push(statement::equalities(decls, &rest)?);
+                    }
+                }
+            }
+            return Ok(ProofStatements {
+                whole: vec![statement::equalities(decls, check)?],
+                weaker,
+            });
+        }
         Strategy::Exact { .. } | Strategy::Proportional { .. } => {
             vec![statement::equalities(decls, check)?]
         }

@@ -1137,7 +1137,11 @@ impl<'c> Env<'c> {
         let mut all: Vec<char> = out
             .iter()
             .copied()
-            .filter(|c| !factors.iter().any(|(_, slots)| slots.contains(&Slot::Letter(*c))))
+            .filter(|c| {
+                !factors
+                    .iter()
+                    .any(|(_, slots)| slots.contains(&Slot::Letter(*c)))
+            })
             .collect();
         for (_, slots) in factors {
             for s in slots {

@@ -12,13 +12,20 @@
 //! one carries the same label as the defined one, which reads only its unlabelled symbol,
 //! the normal and other such labels, the text names the labelled symbol in a formula
 //! with the words that lead into the defined one ("a normal component $m^{(n)}$", as
-//! "into a normal component" leads into (30)), no formula of the text states it, and a
-//! word between the two says the analogy ("similarly", "likewise", …).
+//! "into a normal component" leads into (30)) wherever it names it, with no contrast
+//! after ("rather", "but", …), no formula of the text states it or restates the defined
+//! one, and a word between the two says the analogy ("similarly", "likewise", …).
 
 use super::symbols::{self, Key, Stems, Symbol};
 use super::{defined_symbol, displays, Equation, Stated, Variant};
 use crate::lang::latex::{self, Math, MathKind, ReadOptions};
 use std::collections::{BTreeMap, BTreeSet};
+
+/// Words after a formula that may give it another meaning than the analogy's.
+const CONTRASTS: [&str; 10] = [
+    "rather", "instead", "but", "however", "although", "whereas", "unlike", "not", "except",
+    "differs",
+];
 
 /// Words that say a construction is repeated for other symbols.
 const CUES: [&str; 9] = [
@@ -208,6 +215,10 @@ fn definition(
     definition_in(key, text, context)
 }
 
+/// A formula of the text: its line, the symbols it names, the name the words before it
+/// give ([`naming`]) and whether the words after it take a contrast ([`CONTRASTS`]).
+type Mention = (usize, BTreeSet<Key>, Option<[String; 2]>, bool);
+
 /// What the draft needs to read the text's analogies.
 pub(super) struct Context<'a> {
     pub equations: &'a [Equation],
@@ -249,9 +260,10 @@ pub(super) fn by_analogy(
         .chain(normal)
         .collect();
     let first_read = |k: &Key| equations.iter().position(|e| e.reads.contains(k));
-    // The symbols each formula of the text names, with its line and the name the words
-    // before it give.
-    let named: Vec<(usize, BTreeSet<Key>, Option<[String; 2]>)> = prose
+    // The symbols each formula of the text names, with its line, the name the words
+    // before it give, and whether the words after it in its sentence take a contrast
+    // ("… $m^{(n)}$, taken along the fibre rather than the normal").
+    let named: Vec<Mention> = prose
         .iter()
         .filter_map(|f| {
             let read = latex::read(&f.body, &ReadOptions::default()).ok()?;
@@ -264,7 +276,16 @@ pub(super) fn by_analogy(
                 })
                 .map(|(k, _)| k)
                 .collect();
-            Some((f.line, keys, naming(f.words.get(..f.at).unwrap_or(""))))
+            let after = f.words.get(f.at..).unwrap_or("").to_lowercase();
+            let contrast = after
+                .split(|c: char| !c.is_alphabetic())
+                .any(|w| CONTRASTS.contains(&w));
+            Some((
+                f.line,
+                keys,
+                naming(f.words.get(..f.at).unwrap_or("")),
+                contrast,
+            ))
         })
         .collect();
     let mut out = Vec::new();
@@ -287,21 +308,27 @@ pub(super) fn by_analogy(
         // The text names it before its first equation, or in that equation's sentence,
         // with the words it names the analogous symbol ("a normal component
         // $m^{(n)}$", as "into a normal component" leads into `t^{(n)} = t_i n_i`).
-        let names: Vec<&[String; 2]> = named
+        // Every formula of the text that names it must do so, with no contrast after it
+        // ("measured by $m^{(n)}$", or a later sentence that names it otherwise, may say
+        // another meaning).
+        let mentions: Vec<(usize, Option<&[String; 2]>, bool)> = named
             .iter()
-            .filter(|(l, keys, _)| *l <= line && keys.contains(&k))
-            .filter_map(|(_, _, name)| name.as_ref())
+            .filter(|(_, keys, _, _)| keys.contains(&k))
+            .map(|(l, _, name, contrast)| (*l, name.as_ref(), *contrast))
             .collect();
-        if names.is_empty() {
+        if !mentions.iter().any(|(l, _, _)| *l <= line) {
             continue;
         }
         // The defined symbols of the same label and rank, of another stem.
         let mut found: Vec<(Variant, Key, usize)> = Vec::new();
         for (yl, (qy, _)) in chosen.iter() {
             let Some(ystem) = stem(yl) else { continue };
+            // (One the text restates, `$t^{(n)} = t_i a_i$` in a later section, is no
+            // one analogue.)
             if label(yl) != l
                 || ystem == kstem
                 || *qy >= at
+                || said(yl)
                 || symbols.get(yl).map(|y| y.rank) != Some(s.rank)
             {
                 continue;
@@ -370,7 +397,10 @@ pub(super) fn by_analogy(
                 .and_then(|f| naming(f.words.get(..f.at).unwrap_or(""))),
             None => naming(&equations[qy].lead_in),
         };
-        if !lead.as_ref().is_some_and(|lead| names.contains(&lead)) {
+        let same = |(_, name, contrast): &(usize, Option<&[String; 2]>, bool)| {
+            !contrast && lead.is_some() && *name == lead.as_ref()
+        };
+        if !mentions.iter().all(same) {
             continue;
         }
         // The unlabelled symbol's definition: an equation's, or a sentence's before

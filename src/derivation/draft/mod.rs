@@ -1594,6 +1594,20 @@ fn write(
                 continue;
             }
         };
+        // `(\sigma_{ij} n_j)_{,i}`: the normal differentiated, a field or a constant?
+        let normal_varies = printed.parts.iter().any(|part| {
+            part.members
+                .iter()
+                .any(|m| symbols::differentiates_normal(m, normal))
+        });
+        if normal_varies {
+            eq.unread = Some(
+                "the normal is differentiated inside a bracket with a comma: a field of the position or a constant?"
+                    .to_owned(),
+            );
+            eq.edit = Some("expand the derivative, writing the normal's own derivative".to_owned());
+            continue;
+        }
         let doubt = printed.parts.iter().find_map(|part| {
             let members: Vec<&latex::Math> = part.members.iter().collect();
             symbols::occurrences(&members, normal, &tensors)
@@ -2666,6 +2680,9 @@ struct Said {
     trace: bool,
     /// It reads the normal (`$n_1 = \cos\theta$`).
     normal: bool,
+    /// The words after it, up to the next formula, call it constant ("let the modulus
+    /// $E$ be a constant", "$E$ is uniform").
+    constant: bool,
     /// It is one plain symbol (no script, accent or prime) in a sentence that names the
     /// normal by a formula ("the unit normal $n_i$ … at angle $\theta$").
     beside_normal: bool,
@@ -2703,7 +2720,12 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
         .filter_map(|f| {
             let word = tie_word(&f.words);
             let beside_normal = of_normal.contains(f.words.as_str());
-            if word.is_none() && !f.body.contains('=') && !beside_normal {
+            let after = f.words.get(f.at + 3..).unwrap_or("").to_lowercase();
+            let clause = after.split(" x ").next().unwrap_or("");
+            let constant = clause
+                .split(|c: char| !c.is_alphabetic())
+                .any(|w| matches!(w, "constant" | "constants" | "uniform"));
+            if word.is_none() && !f.body.contains('=') && !beside_normal && !constant {
                 return None;
             }
             let read = latex::read(&f.body, &options).ok()?;
@@ -2736,6 +2758,7 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
                     .any(|p| p.relations.contains(&latex::Rel::Eq)),
                 trace: repeated_index(&f.body),
                 normal: reads_normal(&read),
+                constant,
                 beside_normal: beside_normal
                     && matches!(&read.parts[..], [p] if matches!(&p.members[..], [m] if matches!(&m.kind,
                         MathKind::Atom(a) if a.sub.is_none() && a.sup.is_none() && a.accent.is_none() && a.primes == 0))),
@@ -3098,6 +3121,14 @@ fn tied(
                 && !right.is_empty()
                 && right.iter().all(|k| chosen.contains_key(k))
         });
+        // "Let the Young modulus $E$ be a constant", of a symbol the equations
+        // differentiate (`E_{,j}`): its derivatives may be 0, which a failure may need.
+        if f.constant {
+            for s in named(&f.found).into_iter().filter(|s| s.field) {
+                let why = "its sentence calls it constant".to_owned();
+                add(&s.name, Some(f.line), why, TieKind::Any);
+            }
+        }
         // `$n_1 = \cos\theta$`: an equation of the text that relates the normal to other
         // symbols ties them (a claim may read the normal on one side, θ on the other).
         if f.relation && f.normal {
@@ -3112,6 +3143,20 @@ fn tied(
             for s in named(&f.found).into_iter().filter(|s| s.rank == 0) {
                 let why = "its sentence names it beside the normal".to_owned();
                 add(&s.name, Some(f.line), why, TieKind::Any);
+            }
+        }
+        // `$W = K e$`, with K and e in no numbered equation: W alone on its left is what
+        // the text says, in symbols the draft does not read, and a numbered `W = …` is
+        // then a claim about it that the text may tie.
+        if f.relation && new {
+            for (left, _) in &f.parts {
+                let Some(k) = left.as_ref().filter(|k| symbols.contains_key(*k)) else {
+                    continue;
+                };
+                for s in through(k) {
+                    let why = "an equation in the text gives it in symbols no equation writes";
+                    add(&s.name, Some(f.line), why.to_owned(), TieKind::Any);
+                }
             }
         }
         if f.relation && !new && !backwards {

@@ -130,7 +130,7 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
     let (mut of_vectors, mut elsewhere): (BTreeSet<char>, BTreeSet<char>) = Default::default();
     let mut atoms = Vec::new();
     // The atoms a comma differentiates, through the bracket it follows.
-    let mut differentiated: Vec<*const Atom> = Vec::new();
+    let mut differentiated: Vec<&Atom> = Vec::new();
     for m in members {
         let mut own = Vec::new();
         atoms_of(m, false, &mut own);
@@ -189,23 +189,34 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
         .filter_map(|(a, squared)| {
             let (k, mut s) = symbol(a, &indices, normal, tensors)?;
             s.squared = squared;
-            s.differentiated = differentiated.contains(&std::ptr::from_ref(a));
+            s.differentiated = differentiated.iter().any(|d| std::ptr::eq(*d, a));
             Some((k, s))
         })
         .collect()
 }
 
+/// Whether `m` differentiates the normal inside a bracket (`(\sigma_{ij} n_j)_{,i}`):
+/// whether the normal is a field of the position or a constant, the reader does not
+/// guess.
+pub fn differentiates_normal(m: &Math, normal: Option<&str>) -> bool {
+    let (mut letters, mut atoms) = (Vec::new(), Vec::new());
+    comma_letters(m, &mut letters, &mut atoms);
+    atoms
+        .iter()
+        .any(|a| Some(a.base.trim_start_matches('\\')) == normal)
+}
+
 /// The letters after the comma of each bracket `m` differentiates (`(\sigma_{ij}
 /// v_j)_{,i}`: `i`), and the atoms inside such a bracket.
-fn comma_letters(m: &Math, letters: &mut Vec<char>, atoms: &mut Vec<*const Atom>) {
-    fn walk(m: &Math, inside: bool, letters: &mut Vec<char>, atoms: &mut Vec<*const Atom>) {
-        let mut go = |x: &Math, inside: bool| walk(x, inside, letters, atoms);
+fn comma_letters<'m>(m: &'m Math, letters: &mut Vec<char>, atoms: &mut Vec<&'m Atom>) {
+    fn walk<'m>(m: &'m Math, inside: bool, letters: &mut Vec<char>, atoms: &mut Vec<&'m Atom>) {
+        let mut go = |x: &'m Math, inside: bool| walk(x, inside, letters, atoms);
         match &m.kind {
             MathKind::Comma { of, indices } => {
                 letters.extend(indices.chars().filter(char::is_ascii_alphabetic));
                 walk(of, true, letters, atoms);
             }
-            MathKind::Atom(a) if inside => atoms.push(std::ptr::from_ref(a)),
+            MathKind::Atom(a) if inside => atoms.push(a),
             MathKind::Number(_) | MathKind::Atom(_) => {}
             MathKind::Sum(terms) => terms.iter().for_each(|(_, t)| go(t, inside)),
             MathKind::Product(fs) | MathKind::Tuple(fs) => fs.iter().for_each(|f| go(f, inside)),
