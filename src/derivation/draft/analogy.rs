@@ -16,8 +16,9 @@
 //! after ("rather", "but", …), no formula of the text states it or restates the defined
 //! one, and a word between the two says the analogy ("similarly", "likewise", …).
 
+use super::displays;
+use super::reading::{defined_symbol, no_label, Equation, Stated, Variant};
 use super::symbols::{self, Key, Stems, Symbol};
-use super::{defined_symbol, displays, Equation, Stated, Variant};
 use crate::lang::latex::{self, Math, MathKind, ReadOptions};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -296,7 +297,7 @@ pub(super) fn by_analogy(
         };
         let l = label(&k).to_owned();
         if l.is_empty()
-            || super::no_label(symbols, normal, &l)
+            || no_label(symbols, normal, &l)
             || excluded(&k)
             || said(&k)
             || chosen.contains_key(&k)

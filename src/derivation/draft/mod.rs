@@ -23,12 +23,14 @@
 
 mod analogy;
 mod displays;
+mod reading;
 mod symbols;
 
 use super::notation::{self, Notation};
 use super::TieKind;
 use crate::lang::latex::{self, MathKind, ReadOptions};
 use crate::lang::{Decls, DefSig};
+use reading::{defined_symbol, no_label, Equation, Stated, Variant};
 use std::collections::{BTreeMap, BTreeSet};
 pub use symbols::RESERVED;
 use symbols::{Key, Stems, Symbol};
@@ -62,46 +64,6 @@ pub const MAX_SOURCE_BYTES: usize = 1 << 20;
 
 /// The most equations one draft takes.
 pub const MAX_EQUATIONS: usize = 500;
-
-/// One numbered equation on its way into the file.
-struct Equation {
-    id: String,
-    number: String,
-    line: usize,
-    latex: String,
-    /// Why it is not a claim, if it is not.
-    unread: Option<String>,
-    /// The one edit that would let it be read, where the reason says one.
-    edit: Option<String>,
-    /// Decided by sampling (its exact decision asked for it).
-    numeric: bool,
-    /// The sentence of the text that leads into it ([`displays::lead_in`]), and the one
-    /// that follows it ([`displays::lead_out`]: "where n is the unit normal").
-    lead_in: String,
-    /// All the text since the numbered display before it (headings included).
-    before: String,
-    lead_out: String,
-    /// The symbols it reads (identities).
-    reads: BTreeSet<Key>,
-    /// Their names in the file.
-    names: BTreeSet<String>,
-    /// The symbols it defines: (identity, index letters, the definition's text).
-    defines: Vec<(Key, String)>,
-    /// The printed symbols it reads with a stray subscript (`t_{i}^{(n)}`).
-    stray: BTreeSet<String>,
-    /// Its members carry different free indices as printed: it is checked as printed,
-    /// for every value of each (`verbatim`).
-    verbatim: bool,
-    /// The names of the declared symbols it is the first to write (`introduces`).
-    introduces: BTreeSet<String>,
-    /// The symbols it reads inside a bracket a comma differentiates (`(\sigma_{ij}
-    /// v_j)_{,i}`).
-    differentiated: BTreeSet<Key>,
-    /// The fields the text linearises that it reads, through definitions, with the
-    /// number of the equation the sentence that says so leads into
-    /// ([`linearised_fields`]).
-    linear: (Vec<Key>, String),
-}
 
 /// Drafts a derivation file from `source` (named `label` in the file's header); the
 /// claims `refused` names (id → why) are left to complete, and those `numeric` names are
@@ -524,33 +486,6 @@ fn linearised_fields(
             .collect();
         eq.linear = (read, number.clone());
     }
-}
-
-/// A labelled symbol that no equation defines, read where its unlabelled symbol is
-/// defined linearly (`K_{mi}^{(1)}` beside `K_{ij} = w_{j,i}`), and whose every
-/// symbol of that definition the paper also writes with the same label (`w_i^{(1)}`).
-struct Variant {
-    key: Key,
-    /// The unlabelled symbol, whose definition it takes.
-    of: Key,
-    /// How it takes that definition, for the file's comment ("with the label (1)").
-    how: String,
-    /// Each symbol of that definition, with its labelled variant.
-    renamed: Vec<(Key, Key)>,
-}
-
-/// Whether a superscript is no label of place or order: one that may be an operation (a
-/// transpose or an inverse, `A^{-T}`, `A^{T}`, a sign or a conjugate), or one the paper
-/// also writes on the normal (`n_i^{(1)}`: each labelled world has its own normal, which
-/// a definition reading δ, ε and n does not rename).
-fn no_label(symbols: &BTreeMap<Key, Symbol>, normal: Option<&str>, label: &str) -> bool {
-    let operation =
-        label.contains(['-', '+', '*', '\\']) || matches!(label.trim(), "T" | "t" | "H");
-    operation
-        || symbols.keys().any(|k| {
-            let f: Vec<&str> = k.split('|').collect();
-            f.len() == 6 && Some(f[1]) == normal && f[2] == label
-        })
 }
 
 /// The labelled variants that take their unlabelled symbol's definition: the same
@@ -1106,57 +1041,6 @@ fn line_owners(toml: &str) -> BTreeMap<usize, String> {
         }
     }
     out
-}
-
-/// The symbol a chain's first member defines, if it is one symbol (or the square of
-/// one without a label, which becomes a symbol of its own, `T^2` → `T2`): its identity,
-/// and the new symbol of a square. `symbol` is the chain's first symbol as read in the
-/// whole chain (whose letters decide what is an index).
-fn defined_symbol(
-    first: &latex::Math,
-    symbol: Option<&(Key, Symbol)>,
-    tensors: &Stems,
-) -> Option<(Key, Option<Symbol>)> {
-    let (key, s) = symbol?;
-    // A component (`\sigma_{21} = \tau`), a trace (`s_{kk} = 0`) or a derivative
-    // (`u_{i,j} = …`) defines no symbol.
-    let letters: BTreeSet<&char> = s.key.1.iter().collect();
-    let part = s.key.1.iter().any(char::is_ascii_digit) || letters.len() < s.key.1.len();
-    if s.field || (s.rank > 0 && part) {
-        return None;
-    }
-    // The chain's first symbol must be the first member's own (a constant such as π is
-    // no symbol, and the first symbol is then a later member's).
-    let own = symbols::occurrences(&[first], None, tensors);
-    if own.first().map(|(_, o)| &o.key.0) != Some(&s.key.0) {
-        return None;
-    }
-    match &first.kind {
-        MathKind::Atom(_) => Some((key.clone(), None)),
-        MathKind::Power(base, exponent)
-            if matches!(&exponent.kind, MathKind::Number(n) if n == "2")
-                && matches!(&base.kind, MathKind::Atom(a) if a.sup.is_none()) =>
-        {
-            let (printed, letters) = s.key.clone();
-            let square = Symbol {
-                name: format!("{}2", s.name.split('_').next().unwrap_or(&s.name)),
-                rank: s.rank,
-                field: false,
-                order: 0,
-                key: (format!("{printed}^2"), letters),
-                entry: true,
-                component: false,
-                squared: false,
-                doubt: None,
-                derivatives: BTreeSet::new(),
-                stray: false,
-                printed: BTreeSet::new(),
-                differentiated: false,
-            };
-            Some((format!("{key}^2"), Some(square)))
-        }
-        _ => None,
-    }
 }
 
 /// The symbol an equation the reader cannot read may define: its text before the first
@@ -2402,17 +2286,6 @@ fn names_its_value(before: &str) -> bool {
 /// Words of the sentence before a decomposition ("We decompose the stress into a
 /// spherical and a deviatoric part").
 const DECOMPOSITION_WORDS: [&str; 4] = ["decompos", "split", " part", "sum of"];
-
-/// A definition stated other than alone on the left of a numbered equation.
-struct Stated {
-    /// The text's line, for one a sentence states; `None` for a decomposition that a
-    /// numbered equation states.
-    line: Option<usize>,
-    /// The definition as LaTeX, `X = …`.
-    latex: String,
-    /// A decomposition's left side, which it defines instead of being defined by it.
-    instead_of: Option<Key>,
-}
 
 /// Definitions the paper states other than alone on the left of a numbered equation:
 /// - an equation of the text that introduces a symbol the numbered equations read only
