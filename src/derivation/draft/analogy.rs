@@ -289,6 +289,23 @@ pub(super) fn by_analogy(
             ))
         })
         .collect();
+    // What each labelled definition's first body reads, read once (a hostile paper may
+    // label hundreds of symbols alike).
+    let reads: BTreeMap<Key, Option<BTreeSet<Key>>> = chosen
+        .iter()
+        .filter(|(k, _)| !label(k).is_empty())
+        .map(|(k, (q, _))| {
+            let body =
+                definition(k, *q, (equations, stated), (normal, tensors)).map(|(l, b, _)| {
+                    symbols::occurrences(&[&l, &b], normal, tensors)
+                        .into_iter()
+                        .map(|(b, _)| b)
+                        .filter(|b| b != k)
+                        .collect()
+                });
+            (k.clone(), body)
+        })
+        .collect();
     let mut out = Vec::new();
     let targets: Vec<Key> = symbols.keys().cloned().collect();
     for k in targets {
@@ -335,15 +352,9 @@ pub(super) fn by_analogy(
                 continue;
             }
             // What its definition's first body reads (`t^{(n)} = t_i n_i = …`: `t_i`).
-            let Some((left, body, _)) = definition(yl, *qy, (equations, stated), (normal, tensors))
-            else {
+            let Some(Some(body)) = reads.get(yl) else {
                 continue;
             };
-            let body: BTreeSet<Key> = symbols::occurrences(&[&left, &body], normal, tensors)
-                .into_iter()
-                .map(|(b, _)| b)
-                .filter(|b| b != yl)
-                .collect();
             // Its unlabelled symbol, which its definition reads, once.
             let ys: Vec<&Key> = body
                 .iter()
