@@ -18,7 +18,7 @@
 
 use super::displays;
 use super::reading::{defined_symbol, no_label, Equation, Stated, Variant};
-use super::symbols::{self, Key, Stems, Symbol};
+use super::symbols::{self, fields, label, Key, Stems, Symbol};
 use crate::lang::latex::{self, Math, MathKind, ReadOptions};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -41,20 +41,10 @@ const CUES: [&str; 9] = [
     "correspondingly",
 ];
 
-/// A key's fields: accent, base, label, primes, suffix, rank.
-fn fields(k: &Key) -> Option<[&str; 6]> {
-    let f: Vec<&str> = k.split('|').collect();
-    f.try_into().ok()
-}
-
 /// A key's symbol without its label and rank: accent, base, primes, suffix.
 fn stem(k: &Key) -> Option<[&str; 4]> {
     let [accent, base, _, primes, suffix, _] = fields(k)?;
     Some([accent, base, primes, suffix])
-}
-
-fn label(k: &Key) -> &str {
-    fields(k).map_or("", |f| f[2])
 }
 
 /// The key of `stem`'s symbol with `label`, of `rank` index slots.
@@ -63,15 +53,10 @@ fn key_of(stem: [&str; 4], label: &str, rank: &str) -> Key {
     [accent, base, label, primes, suffix, rank].join("|")
 }
 
-/// Whether the text between equation `from` (exclusive) and equation `to` (inclusive)
-/// says the analogy.
-fn cue(equations: &[Equation], from: usize, to: usize) -> Option<&'static str> {
-    let text: String = equations
-        .get(from + 1..=to)?
-        .iter()
-        .map(|e| format!(" {} ", e.before.to_lowercase()))
-        .collect();
+/// The cue word of a text, if it says an analogy.
+fn cue(text: &str) -> Option<&'static str> {
     let words: String = text
+        .to_lowercase()
         .chars()
         .map(|c| if c.is_alphanumeric() { c } else { ' ' })
         .collect();
@@ -261,6 +246,8 @@ pub(super) fn by_analogy(
         .chain(normal)
         .collect();
     let first_read = |k: &Key| equations.iter().position(|e| e.reads.contains(k));
+    // The cue word of the text before each equation, read once.
+    let cues: Vec<Option<&str>> = equations.iter().map(|e| cue(&e.before)).collect();
     // The symbols each formula of the text names, with its line, the name the words
     // before it give, and whether the words after it in its sentence take a contrast
     // ("… $m^{(n)}$, taken along the fibre rather than the normal").
@@ -397,7 +384,11 @@ pub(super) fn by_analogy(
             continue;
         };
         let x = v.renamed[0].1.clone();
-        let Some(word) = cue(equations, qy, at) else {
+        // Between the analogous definition and the symbol's first equation.
+        let Some(word) = cues
+            .get(qy + 1..=at)
+            .and_then(|c| c.iter().find_map(|w| *w))
+        else {
             continue;
         };
         // The words that lead into the analogous definition: its sentence's, or its

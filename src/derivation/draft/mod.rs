@@ -507,14 +507,8 @@ fn labelled_variants(
     blocked: &BTreeMap<Key, usize>,
     normal: Option<&str>,
 ) -> Vec<Variant> {
-    // accent|base|sup|primes|suffix|rank, with another label (sup).
-    let with_label = |key: &Key, label: &str| -> Option<Key> {
-        let mut fields: Vec<&str> = key.split('|').collect();
-        (fields.len() == 6).then_some(())?;
-        fields[2] = label;
-        Some(fields.join("|"))
-    };
-    let label_of = |key: &Key| key.split('|').nth(2).unwrap_or("").to_owned();
+    use symbols::with_label;
+    let label_of = |key: &Key| symbols::label(key).to_owned();
     let mut out = Vec::new();
     for (key, s) in symbols {
         let label = label_of(key);

@@ -83,8 +83,8 @@ fn vector_letters_only(sub: &str, tensors: &Stems) -> bool {
 /// index letter or digit (`n` in `n_i`, `n_1`).
 pub fn vector_letters(m: &Math, out: &mut BTreeSet<char>) {
     let mut atoms = Vec::new();
-    atoms_of(m, false, &mut atoms);
-    for (a, _) in atoms {
+    atoms_of(m, (false, false), &mut atoms, &mut Vec::new());
+    for Occurrence { atom: a, .. } in atoms {
         let mut base = a.base.chars();
         let (Some(letter), None) = (base.next(), base.next()) else {
             continue;
@@ -102,6 +102,24 @@ pub fn vector_letters(m: &Math, out: &mut BTreeSet<char>) {
 
 /// The identity of a printed symbol: everything but its index letters.
 pub type Key = String;
+
+/// A key's fields: accent, base, label (the superscript), primes, suffix, rank.
+pub fn fields(k: &Key) -> Option<[&str; 6]> {
+    let f: Vec<&str> = k.split('|').collect();
+    f.try_into().ok()
+}
+
+/// A key's label (`(1)`, `c`), empty for none.
+pub fn label(k: &Key) -> &str {
+    fields(k).map_or("", |f| f[2])
+}
+
+/// The key of the same symbol with another label.
+pub fn with_label(k: &Key, label: &str) -> Option<Key> {
+    let mut f = fields(k)?;
+    f[2] = label;
+    Some(f.join("|"))
+}
 
 /// The part of a key that names a printed symbol whatever its subscript (accent, base,
 /// label, primes), when the key is of a symbol with index slots.
@@ -129,20 +147,17 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
     // the equation also has them in the second.
     let (mut of_vectors, mut elsewhere): (BTreeSet<char>, BTreeSet<char>) = Default::default();
     let mut atoms = Vec::new();
-    // The atoms a comma differentiates, through the bracket it follows.
-    let mut differentiated: Vec<&Atom> = Vec::new();
     for m in members {
         let mut own = Vec::new();
-        atoms_of(m, false, &mut own);
+        let mut commas = Vec::new();
+        atoms_of(m, (false, false), &mut own, &mut commas);
         let mut in_member: BTreeMap<char, usize> = BTreeMap::new();
         // A letter after a comma (`(\sigma_{ij} v_j)_{,i}`) is an index.
-        let mut commas = Vec::new();
-        comma_letters(m, &mut commas, &mut differentiated);
         for c in commas {
             in_longer.insert(c);
             *in_member.entry(c).or_default() += 1;
         }
-        for (a, _) in &own {
+        for Occurrence { atom: a, .. } in &own {
             if let Some(sub) = a
                 .sub
                 .as_ref()
@@ -186,10 +201,10 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
     indices.retain(|c| in_longer.contains(c) || !tensors.vectors.contains(c));
     atoms
         .into_iter()
-        .filter_map(|(a, squared)| {
-            let (k, mut s) = symbol(a, &indices, normal, tensors)?;
-            s.squared = squared;
-            s.differentiated = differentiated.iter().any(|d| std::ptr::eq(*d, a));
+        .filter_map(|o| {
+            let (k, mut s) = symbol(o.atom, &indices, normal, tensors)?;
+            s.squared = o.squared;
+            s.differentiated = o.differentiated;
             Some((k, s))
         })
         .collect()
@@ -199,58 +214,49 @@ pub fn occurrences(members: &[&Math], normal: Option<&str>, tensors: &Stems) -> 
 /// whether the normal is a field of the position or a constant, the reader does not
 /// guess.
 pub fn differentiates_normal(m: &Math, normal: Option<&str>) -> bool {
-    let (mut letters, mut atoms) = (Vec::new(), Vec::new());
-    comma_letters(m, &mut letters, &mut atoms);
+    let mut atoms = Vec::new();
+    atoms_of(m, (false, false), &mut atoms, &mut Vec::new());
     atoms
         .iter()
-        .any(|a| Some(a.base.trim_start_matches('\\')) == normal)
+        .any(|o| o.differentiated && Some(o.atom.base.trim_start_matches('\\')) == normal)
 }
 
-/// The letters after the comma of each bracket `m` differentiates (`(\sigma_{ij}
-/// v_j)_{,i}`: `i`), and the atoms inside such a bracket.
-fn comma_letters<'m>(m: &'m Math, letters: &mut Vec<char>, atoms: &mut Vec<&'m Atom>) {
-    fn walk<'m>(m: &'m Math, inside: bool, letters: &mut Vec<char>, atoms: &mut Vec<&'m Atom>) {
-        let mut go = |x: &'m Math, inside: bool| walk(x, inside, letters, atoms);
-        match &m.kind {
-            MathKind::Comma { of, indices } => {
-                letters.extend(indices.chars().filter(char::is_ascii_alphabetic));
-                walk(of, true, letters, atoms);
-            }
-            MathKind::Atom(a) if inside => atoms.push(a),
-            MathKind::Number(_) | MathKind::Atom(_) => {}
-            MathKind::Sum(terms) => terms.iter().for_each(|(_, t)| go(t, inside)),
-            MathKind::Product(fs) | MathKind::Tuple(fs) => fs.iter().for_each(|f| go(f, inside)),
-            MathKind::Power(a, b) | MathKind::Quotient(a, b) => {
-                go(a, inside);
-                go(b, inside);
-            }
-            MathKind::Partial { of, by } => {
-                go(of, inside);
-                go(by, inside);
-            }
-            MathKind::Sqrt(a) | MathKind::Average(a) | MathKind::Abs(a) | MathKind::Apply(_, a) => {
-                go(a, inside)
-            }
-            MathKind::Matrix(rows) => rows.iter().flatten().for_each(|c| go(c, inside)),
-        }
-    }
-    walk(m, false, letters, atoms);
+/// An atom of a formula, with where it stands.
+struct Occurrence<'m> {
+    atom: &'m Atom,
+    /// The base of a square.
+    squared: bool,
+    /// Inside a bracket a comma differentiates (`(\sigma_{ij} v_j)_{,i}`).
+    differentiated: bool,
 }
 
-/// The atoms of `m`, in reading order, each with whether it is the base of a square
-/// (`squared` says so of `m` itself).
-fn atoms_of<'m>(m: &'m Math, squared: bool, out: &mut Vec<(&'m Atom, bool)>) {
-    let mut go = |x: &'m Math| atoms_of(x, false, out);
+/// The atoms of `m`, in reading order (`squared` and `inside` say so of `m` itself),
+/// and the letters after the comma of each bracket it differentiates (`i` in
+/// `(\sigma_{ij} v_j)_{,i}`).
+fn atoms_of<'m>(
+    m: &'m Math,
+    (squared, inside): (bool, bool),
+    out: &mut Vec<Occurrence<'m>>,
+    commas: &mut Vec<char>,
+) {
+    let mut go = |x: &'m Math| atoms_of(x, (false, inside), out, commas);
     match &m.kind {
-        MathKind::Comma { of, .. } => go(of),
+        MathKind::Comma { of, indices } => {
+            commas.extend(indices.chars().filter(char::is_ascii_alphabetic));
+            atoms_of(of, (false, true), out, commas);
+        }
         MathKind::Number(_) => {}
-        MathKind::Atom(a) => out.push((a, squared)),
+        MathKind::Atom(atom) => out.push(Occurrence {
+            atom,
+            squared,
+            differentiated: inside,
+        }),
         MathKind::Sum(terms) => terms.iter().for_each(|(_, t)| go(t)),
         MathKind::Product(fs) | MathKind::Tuple(fs) => fs.iter().for_each(go),
         MathKind::Power(a, b) => {
             let square = matches!(&b.kind, MathKind::Number(n) if n == "2");
-            atoms_of(a, square, out);
-            atoms_of(b, false, out);
+            atoms_of(a, (square, inside), out, commas);
+            atoms_of(b, (false, inside), out, commas);
         }
         MathKind::Quotient(a, b) => {
             go(a);
