@@ -361,11 +361,149 @@ pub struct Inline {
 /// sentence. A `$$` (a display) is not inline, and a formula does not run past a blank
 /// line; an escaped dollar is text.
 pub fn inline_formulas(text: &str, markdown: bool) -> Vec<Inline> {
-    let live = live(text, markdown);
     let mut out = Vec::new();
-    for (mut line, paragraph) in paragraphs(&live) {
-        // (offset in the paragraph, line, body) of each formula; the words between.
-        let mut found: Vec<(usize, usize, String)> = Vec::new();
+    for Lifted { words, found, .. } in lifted(&live(text, markdown)) {
+        // Where each sentence starts, found once for the paragraph; a sentence is taken
+        // at most `SENTENCE` bytes either side of its formula.
+        let starts: Vec<usize> = std::iter::once(0).chain(sentence_starts(&words)).collect();
+        for f in found {
+            let k = starts.partition_point(|&b| b <= f.at);
+            let start =
+                starts[k.saturating_sub(1)].max(floor(&words, f.at.saturating_sub(SENTENCE)));
+            let stop = starts
+                .get(k)
+                .copied()
+                .unwrap_or(words.len())
+                .min(ceil(&words, f.at + SENTENCE));
+            out.push(Inline {
+                line: f.line,
+                body: f.body,
+                words: words[start..stop].to_owned(),
+                at: f.at - start,
+            });
+        }
+    }
+    out
+}
+
+/// A sentence of the paper's text, with or without formulas: its first line, its words
+/// (each inline formula standing as ` x `, as in [`Inline`]) and its formulas, each with
+/// where it stands in the words. A sentence longer than `2 × SENTENCE` bytes is cut.
+#[derive(Clone, Debug)]
+pub struct Sentence {
+    pub line: usize,
+    pub words: String,
+    pub formulas: Vec<(usize, String)>,
+}
+
+/// The sentences of the paper's text ([`Sentence`]), paragraph by paragraph.
+pub fn sentences(text: &str, markdown: bool) -> Vec<Sentence> {
+    let mut out = Vec::new();
+    for Lifted { line, words, found } in lifted(&live(text, markdown)) {
+        // A sentence also ends at the structure of the source: a display's `\begin{…}`,
+        // its `\end{…}`, a heading.
+        let mut starts: Vec<usize> = std::iter::once(0)
+            .chain(sentence_starts(&words))
+            .chain(structure(&words))
+            .collect();
+        starts.sort_unstable();
+        starts.dedup();
+        for (k, &start) in starts.iter().enumerate() {
+            let stop = starts
+                .get(k + 1)
+                .copied()
+                .unwrap_or(words.len())
+                .min(ceil(&words, start + 2 * SENTENCE));
+            // Its first word's line: the lines the words before it run over, and those
+            // of the formulas before it.
+            let start = start + (words[start..stop].len() - words[start..stop].trim_start().len());
+            let before = found.iter().filter(|f| f.at < start);
+            let line = line
+                + words[..start].matches('\n').count()
+                + before.map(|f| f.breaks).sum::<usize>();
+            out.push(Sentence {
+                line,
+                words: words[start..stop].to_owned(),
+                formulas: found
+                    .iter()
+                    .filter(|f| (start..stop).contains(&f.at))
+                    .map(|f| (f.at - start, f.body.clone()))
+                    .collect(),
+            });
+        }
+    }
+    out
+}
+
+/// Where a command that structures the source starts in `words`, and where its braced
+/// argument ends (`\begin{equation}`, `\end{align}`, `\section{Stress}`): neither is
+/// part of a sentence.
+fn structure(words: &str) -> Vec<usize> {
+    const COMMANDS: &[&str] = &[
+        "\\begin{",
+        "\\end{",
+        "\\section",
+        "\\subsection",
+        "\\subsubsection",
+        "\\paragraph",
+        "\\chapter",
+        "\\title",
+        "\\author",
+        "\\documentclass",
+        "\\usepackage",
+        "\\label",
+        "\\maketitle",
+        "\\item",
+    ];
+    let mut out = Vec::new();
+    for c in COMMANDS {
+        for (at, _) in words.match_indices(c) {
+            out.push(at);
+            // The end of its first braced argument, if one follows at once.
+            let rest = &words[at + c.len()..];
+            let rest_at = at + c.len();
+            let open = if c.ends_with('{') {
+                Some(0)
+            } else {
+                rest.trim_start_matches('*')
+                    .starts_with('{')
+                    .then(|| rest.find('{').map_or(0, |k| k + 1))
+            };
+            if let Some(from) = open {
+                if let Some(close) = rest[from..].find('}') {
+                    out.push(rest_at + from + close + 1);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// One paragraph of the text with its inline formulas lifted out.
+struct Lifted {
+    /// Its first line (1-based).
+    line: usize,
+    /// Its words, each formula standing as ` x `.
+    words: String,
+    found: Vec<Formula>,
+}
+
+/// An inline formula lifted out of its paragraph's words.
+struct Formula {
+    /// Where it stands in the words (a byte offset).
+    at: usize,
+    line: usize,
+    body: String,
+    /// The line breaks inside it, which its ` x ` does not keep.
+    breaks: usize,
+}
+
+/// The paragraphs of `live` with their inline formulas lifted out ([`Lifted`]).
+fn lifted(live: &str) -> Vec<Lifted> {
+    let mut out = Vec::new();
+    for (first, paragraph) in paragraphs(live) {
+        let mut line = first;
+        let mut found = Vec::new();
         let mut words = String::new();
         let mut rest = paragraph.as_str();
         while let Some((open, close, at)) = next_inline(rest) {
@@ -375,36 +513,24 @@ pub fn inline_formulas(text: &str, markdown: bool) -> Vec<Inline> {
             };
             let here = line + rest[..at].matches('\n').count();
             words.push_str(&rest[..at]);
-            found.push((
-                words.len(),
-                here,
-                rest[body_start..body_start + end].trim().to_owned(),
-            ));
+            let skip = body_start + end + close.len();
+            found.push(Formula {
+                at: words.len(),
+                line: here,
+                body: rest[body_start..body_start + end].trim().to_owned(),
+                breaks: rest[at..skip].matches('\n').count(),
+            });
             // A formula stands for a word in its sentence.
             words.push_str(" x ");
-            let skip = body_start + end + close.len();
             line += rest[..skip].matches('\n').count();
             rest = &rest[skip..];
         }
         words.push_str(rest);
-        // Where each sentence starts, found once for the paragraph; a sentence is taken
-        // at most `SENTENCE` bytes either side of its formula.
-        let starts: Vec<usize> = std::iter::once(0).chain(sentence_starts(&words)).collect();
-        for (at, line, body) in found {
-            let k = starts.partition_point(|&b| b <= at);
-            let start = starts[k.saturating_sub(1)].max(floor(&words, at.saturating_sub(SENTENCE)));
-            let stop = starts
-                .get(k)
-                .copied()
-                .unwrap_or(words.len())
-                .min(ceil(&words, at + SENTENCE));
-            out.push(Inline {
-                line,
-                body,
-                words: words[start..stop].to_owned(),
-                at: at - start,
-            });
-        }
+        out.push(Lifted {
+            line: first,
+            words,
+            found,
+        });
     }
     out
 }

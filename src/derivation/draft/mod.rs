@@ -25,6 +25,7 @@ mod analogy;
 mod displays;
 mod reading;
 mod symbols;
+mod symmetry;
 
 use super::notation::{self, Notation};
 use super::TieKind;
@@ -241,6 +242,7 @@ fn draft_clean(
             }
         }
     }
+    rounds.symmetric = symmetry::read(&displays::sentences(source, markdown));
     rounds.incompressible = lines.iter().enumerate().find_map(|(k, l)| {
         tie_word(l)
             .filter(|w| tie_kind(w) == TieKind::Divergence)
@@ -312,6 +314,7 @@ fn draft_clean(
             stray: BTreeSet::new(),
             vectors: rounds.vectors,
             incompressible: rounds.incompressible,
+            symmetric: rounds.symmetric,
         },
     )
     .expect("with every claim to complete, nothing is read");
@@ -1080,6 +1083,60 @@ fn formal_of(member: &latex::Math, rank: usize) -> Vec<char> {
         .unwrap_or_default()
 }
 
+/// The tensors the text says are symmetric ([`symmetry`]), by name, each with the line
+/// and words that say so: a symbol of rank 2 the file declares (one it defines is
+/// symmetric or not by its definition), named by the formula next to the word, by a
+/// formula `X_{ij} = X_{ji}`, or by the noun the paper writes before exactly one such
+/// symbol.
+fn symmetric_tensors(
+    said: &symmetry::Said,
+    symbols: &BTreeMap<Key, Symbol>,
+    defined: &BTreeMap<Key, String>,
+    (normal, tensors): (Option<&str>, &Stems),
+) -> BTreeMap<String, (usize, String)> {
+    let options = ReadOptions::default();
+    // The declared symbol of rank 2 a formula is (`\sigma_{ij}`, `\sigma`), or whose
+    // symmetry it states.
+    let named = |body: &str| -> Option<&Symbol> {
+        let read = latex::read(body, &options).ok()?;
+        let first = read.parts.first()?.members.first()?;
+        let (key, _) = symbols::occurrences(&[first], normal, tensors)
+            .into_iter()
+            .next()?;
+        let unranked = |k: &Key| symbols::fields(k).map(|f| f[..5].join("|"));
+        let mut matching = symbols.iter().filter(|(k, s)| {
+            s.rank == 2 && !s.component && (**k == key || unranked(k) == unranked(&key))
+        });
+        let (k, s) = matching.next()?;
+        (matching.next().is_none() && !defined.contains_key(k)).then_some(s)
+    };
+    let mut out = BTreeMap::new();
+    for st in &said.symmetries {
+        let found = match &st.subject {
+            symmetry::Subject::Formula(body) => named(body),
+            symmetry::Subject::Noun(noun) => {
+                let mut names = said
+                    .nouns
+                    .iter()
+                    .filter(|(w, _)| w == noun)
+                    .filter_map(|(_, body)| named(body))
+                    .map(|s| &s.name)
+                    .collect::<BTreeSet<_>>()
+                    .into_iter();
+                match (names.next(), names.next()) {
+                    (Some(n), None) => symbols.values().find(|s| &s.name == n),
+                    _ => None,
+                }
+            }
+        };
+        if let Some(s) = found {
+            out.entry(s.name.clone())
+                .or_insert((st.line, st.quote.clone()));
+        }
+    }
+    out
+}
+
 /// Whether `latex` has the printed symbol `symbol` as a token of its own (`a` in
 /// `a = b`, not in `\frac` or `ab`).
 fn mentions(latex: &str, symbol: &str) -> bool {
@@ -1342,6 +1399,7 @@ fn write(
         stray,
         vectors,
         incompressible,
+        symmetric,
     } = rounds;
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
@@ -2085,9 +2143,11 @@ fn write(
     for key in texts.keys() {
         place(key, &chosen, &texts, &mut placed, &mut define_lines);
     }
+    let symmetric = symmetric_tensors(symmetric, &symbols, &defined, (normal, &tensors));
     Some(render(Render {
         label,
         equations,
+        symmetric: &symmetric,
         symbols: &symbols,
         order: &order,
         defined: &defined,
@@ -2114,6 +2174,8 @@ struct Rounds {
     /// The first line of the text, and its word, that calls the body incompressible or
     /// its motion isochoric.
     incompressible: Option<(usize, String)>,
+    /// The symmetries the text states ([`symmetry`]).
+    symmetric: symmetry::Said,
 }
 
 /// A symbol's definition on its way into the file.
@@ -3171,6 +3233,8 @@ fn tied(
 struct Render<'a> {
     label: &'a str,
     equations: &'a [Equation],
+    /// The tensors the text says are symmetric, by name: the line and words that say so.
+    symmetric: &'a BTreeMap<String, (usize, String)>,
     symbols: &'a BTreeMap<Key, Symbol>,
     order: &'a [Key],
     defined: &'a BTreeMap<Key, String>,
@@ -3343,6 +3407,23 @@ fn render(r: Render<'_>) -> String {
         out.push_str("define = [\n");
         for (text, id) in r.define_lines {
             out.push_str(&format!("  {},  # from {id}\n", toml_string(text)));
+        }
+        out.push_str("]\n");
+    }
+    if !r.symmetric.is_empty() {
+        out.push_str("assume = [\n");
+        for (name, (line, quote)) in r.symmetric {
+            let short: String = quote.chars().take(100).collect();
+            let quote = if short.len() < quote.len() {
+                format!("{short}…")
+            } else {
+                short
+            };
+            out.push_str(&format!(
+                "  {},  # the text, line {line}: \"{}\"\n",
+                toml_string(&format!("symmetric({name})")),
+                comment(&quote)
+            ));
         }
         out.push_str("]\n");
     }
