@@ -323,14 +323,23 @@ impl<'a> Exact<'a> {
                     .map(|(&v, _)| v)
             };
             if rank == 2 {
-                // (Antisymmetry is no common tie: it would also remove every trace.)
-                for (sign, what) in [(1, "symmetric")] {
+                // Antisymmetry is no common tie (it would also remove every trace): only
+                // one the text gives a reason for.
+                let skew = tied.get(name).is_some_and(|t| t.kind == TieKind::Any);
+                let kinds: &[(i64, &str)] = if skew {
+                    &[(1, "symmetric"), (-1, "antisymmetric")]
+                } else {
+                    &[(1, "symmetric")]
+                };
+                for &(sign, what) in kinds {
                     let mut map: HashMap<Var, (Option<Var>, i64)> = HashMap::new();
                     for i in 0..decls.dim {
                         for j in 0..decls.dim {
                             let Some(v) = var(&[i, j]) else { continue };
                             let image = match i.cmp(&j) {
                                 std::cmp::Ordering::Greater => (var(&[j, i]), sign),
+                                // An antisymmetric tensor's diagonal is zero.
+                                std::cmp::Ordering::Equal if sign < 0 => (None, 0),
                                 _ => (Some(v), 1),
                             };
                             map.insert(v, image);
@@ -423,8 +432,10 @@ impl<'a> Exact<'a> {
             }
             // Linear in the trace only: a wrong coefficient of a trace squared (`p²` with
             // p = σ_kk/3) is an error a zero trace would hide, not a tie. A field the
-            // text calls incompressible has a zero divergence outright, at any power.
-            let outright = field && t.kind == TieKind::Divergence;
+            // text calls incompressible has a zero divergence outright, at any power, and
+            // so may one with a reason for any tie (which prevails over "incompressible"
+            // when the text gives both).
+            let outright = field && matches!(t.kind, TieKind::Divergence | TieKind::Any);
             let linear = map
                 .keys()
                 .all(|&v| difference.terms().all(|(m, _)| m.exponent(v) <= 1));

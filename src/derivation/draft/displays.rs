@@ -396,15 +396,18 @@ pub struct Sentence {
     pub formulas: Vec<(usize, String)>,
 }
 
-/// The sentences of the paper's text ([`Sentence`]), paragraph by paragraph.
+/// The sentences of the paper's text ([`Sentence`]), paragraph by paragraph; a clause
+/// after a semicolon is one too.
 pub fn sentences(text: &str, markdown: bool) -> Vec<Sentence> {
     let mut out = Vec::new();
     for Lifted { line, words, found } in lifted(&live(text, markdown)) {
         // A sentence also ends at the structure of the source: a display's `\begin{…}`,
         // its `\end{…}`, a heading.
+        // A clause after a semicolon is read as a sentence of its own.
         let mut starts: Vec<usize> = std::iter::once(0)
             .chain(sentence_starts(&words))
             .chain(structure(&words))
+            .chain(words.match_indices(';').map(|(k, _)| k + 1))
             .collect();
         starts.sort_unstable();
         starts.dedup();
@@ -416,10 +419,10 @@ pub fn sentences(text: &str, markdown: bool) -> Vec<Sentence> {
                 .min(ceil(&words, start + 2 * SENTENCE));
             // Its first word's line: the lines the words before it run over, and those
             // of the formulas before it.
-            let start = start + (words[start..stop].len() - words[start..stop].trim_start().len());
-            let before = found.iter().filter(|f| f.at < start);
+            let first = start + (words[start..stop].len() - words[start..stop].trim_start().len());
+            let before = found.iter().filter(|f| f.at < first);
             let line = line
-                + words[..start].matches('\n').count()
+                + words[..first].matches('\n').count()
                 + before.map(|f| f.breaks).sum::<usize>();
             out.push(Sentence {
                 line,

@@ -242,7 +242,28 @@ fn draft_clean(
             }
         }
     }
-    rounds.symmetric = symmetry::read(&displays::sentences(source, markdown));
+    // Where each section starts: a symmetry the text states holds in its own.
+    let headings: Vec<usize> = lines
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| {
+            let l = l.trim_start();
+            (markdown && l.starts_with('#'))
+                || [
+                    "\\part",
+                    "\\chapter",
+                    "\\section",
+                    "\\subsection",
+                    "\\subsubsection",
+                    "\\paragraph",
+                    "\\appendix",
+                ]
+                .iter()
+                .any(|h| l.starts_with(h))
+        })
+        .map(|(k, _)| k + 1)
+        .collect();
+    rounds.symmetric = symmetry::read(&displays::sentences(source, markdown), &headings);
     rounds.incompressible = lines.iter().enumerate().find_map(|(k, l)| {
         tie_word(l)
             .filter(|w| tie_kind(w) == TieKind::Divergence)
@@ -1083,58 +1104,100 @@ fn formal_of(member: &latex::Math, rank: usize) -> Vec<char> {
         .unwrap_or_default()
 }
 
-/// The tensors the text says are symmetric ([`symmetry`]), by name, each with the line
-/// and words that say so: a symbol of rank 2 the file declares (one it defines is
-/// symmetric or not by its definition), named by the formula next to the word, by a
-/// formula `X_{ij} = X_{ji}`, or by the noun the paper writes before exactly one such
-/// symbol.
+/// A symmetry the text states of a symbol the file declares ([`symmetry`]).
+struct SymmetryOf {
+    name: String,
+    /// The symbol as printed.
+    printed: String,
+    kind: symmetry::Kind,
+    line: usize,
+    quote: String,
+    /// The lines of its section: the claims it holds for.
+    section: std::ops::Range<usize>,
+}
+
+/// The symmetries the text states of symbols of rank 2 the file declares (one it
+/// defines is symmetric or not by its definition): named by the formula in the
+/// sentence, or by the noun phrase the paper writes right before one symbol and no
+/// other. A symbol said to be both symmetric and antisymmetric in one section is
+/// neither.
 fn symmetric_tensors(
     said: &symmetry::Said,
     symbols: &BTreeMap<Key, Symbol>,
     defined: &BTreeMap<Key, String>,
     (normal, tensors): (Option<&str>, &Stems),
-) -> BTreeMap<String, (usize, String)> {
+) -> Vec<SymmetryOf> {
     let options = ReadOptions::default();
-    // The declared symbol of rank 2 a formula is (`\sigma_{ij}`, `\sigma`), or whose
-    // symmetry it states.
-    let named = |body: &str| -> Option<&Symbol> {
+    let unranked = |k: &Key| symbols::fields(k).map(|f| f[..5].join("|"));
+    // The printed symbol a formula begins with, without its rank.
+    let first_symbol = |body: &str| -> Option<String> {
         let read = latex::read(body, &options).ok()?;
         let first = read.parts.first()?.members.first()?;
         let (key, _) = symbols::occurrences(&[first], normal, tensors)
             .into_iter()
             .next()?;
-        let unranked = |k: &Key| symbols::fields(k).map(|f| f[..5].join("|"));
-        let mut matching = symbols.iter().filter(|(k, s)| {
-            s.rank == 2 && !s.component && (**k == key || unranked(k) == unranked(&key))
-        });
+        unranked(&key)
+    };
+    // The declared symbol of rank 2 a formula is (`\sigma_{ij}`, `\sigma`), or whose
+    // symmetry it states.
+    let named = |body: &str| -> Option<&Symbol> {
+        let key = first_symbol(body)?;
+        let mut matching = symbols
+            .iter()
+            .filter(|(k, s)| s.rank == 2 && !s.component && unranked(k).as_ref() == Some(&key));
         let (k, s) = matching.next()?;
         (matching.next().is_none() && !defined.contains_key(k)).then_some(s)
     };
-    let mut out = BTreeMap::new();
+    let mut out: Vec<SymmetryOf> = Vec::new();
     for st in &said.symmetries {
         let found = match &st.subject {
             symmetry::Subject::Formula(body) => named(body),
+            // Every formula the paper writes right after the noun phrase, declared or
+            // not, must be one symbol, and the same one.
             symmetry::Subject::Noun(noun) => {
-                let mut names = said
+                let after: Vec<&String> = said
                     .nouns
                     .iter()
                     .filter(|(w, _)| w == noun)
-                    .filter_map(|(_, body)| named(body))
-                    .map(|s| &s.name)
-                    .collect::<BTreeSet<_>>()
-                    .into_iter();
-                match (names.next(), names.next()) {
-                    (Some(n), None) => symbols.values().find(|s| &s.name == n),
+                    .map(|(_, body)| body)
+                    .collect();
+                let keys: BTreeSet<Option<String>> =
+                    after.iter().map(|body| first_symbol(body)).collect();
+                match (keys.len(), after.first()) {
+                    (1, Some(body)) if keys.first().is_some_and(Option::is_some) => named(body),
                     _ => None,
                 }
             }
         };
         if let Some(s) = found {
-            out.entry(s.name.clone())
-                .or_insert((st.line, st.quote.clone()));
+            out.push(SymmetryOf {
+                name: s.name.clone(),
+                printed: s.key.0.clone(),
+                kind: st.kind,
+                line: st.line,
+                quote: st.quote.clone(),
+                section: st.section.clone(),
+            });
         }
     }
-    out
+    let overlap = |a: &SymmetryOf, b: &SymmetryOf| {
+        a.name == b.name && a.section.start < b.section.end && b.section.start < a.section.end
+    };
+    let contradicted: Vec<bool> = out
+        .iter()
+        .map(|a| out.iter().any(|b| b.kind != a.kind && overlap(a, b)))
+        .collect();
+    let mut kept = Vec::new();
+    for (a, bad) in out.into_iter().zip(contradicted) {
+        if !bad
+            && !kept
+                .iter()
+                .any(|b: &SymmetryOf| b.kind == a.kind && overlap(&a, b))
+        {
+            kept.push(a);
+        }
+    }
+    kept
 }
 
 /// Whether `latex` has the printed symbol `symbol` as a token of its own (`a` in
@@ -3233,8 +3296,8 @@ fn tied(
 struct Render<'a> {
     label: &'a str,
     equations: &'a [Equation],
-    /// The tensors the text says are symmetric, by name: the line and words that say so.
-    symmetric: &'a BTreeMap<String, (usize, String)>,
+    /// The symmetries the text states, each for the claims of its section.
+    symmetric: &'a [SymmetryOf],
     symbols: &'a BTreeMap<Key, Symbol>,
     order: &'a [Key],
     defined: &'a BTreeMap<Key, String>,
@@ -3295,12 +3358,13 @@ fn render(r: Render<'_>) -> String {
         "# number of dimensions; a labelled symbol takes its unlabelled symbol's linear",
         "# definition on the same labels (K^{(1)} from K = w_{j,i} and w^{(1)}), and one",
         "# whose decomposition the text repeats (\"similarly\") the analogous definition; a",
-        "# field the text linearises about a point has no second derivatives. Check each reading",
-        "# before trusting a verdict. Every declared symbol is taken as independent, so a",
-        "# failure that a common tie between symbols would remove (one side reads what the",
-        "# other does not, a relation, a symmetric tensor, a unit vector) is left",
-        "# undecided, naming the tie; delete `drafted = true` once the declarations are",
-        "# checked, to decide every claim strictly.",
+        "# field the text linearises about a point has no second derivatives; a tensor the",
+        "# text calls symmetric (or skew) in so many words is assumed so in the claims of",
+        "# its section. Check each reading before trusting a verdict. Every declared symbol",
+        "# is taken as independent, so a failure that a common tie between symbols would",
+        "# remove (one side reads what the other does not, a relation, a symmetric tensor, a",
+        "# unit vector) is left undecided, naming the tie; delete `drafted = true` once the",
+        "# declarations are checked, to decide every claim strictly.",
     ] {
         out.push_str(line);
         out.push('\n');
@@ -3410,23 +3474,6 @@ fn render(r: Render<'_>) -> String {
         }
         out.push_str("]\n");
     }
-    if !r.symmetric.is_empty() {
-        out.push_str("assume = [\n");
-        for (name, (line, quote)) in r.symmetric {
-            let short: String = quote.chars().take(100).collect();
-            let quote = if short.len() < quote.len() {
-                format!("{short}…")
-            } else {
-                short
-            };
-            out.push_str(&format!(
-                "  {},  # the text, line {line}: \"{}\"\n",
-                toml_string(&format!("symmetric({name})")),
-                comment(&quote)
-            ));
-        }
-        out.push_str("]\n");
-    }
     if !r.entries.is_empty() {
         out.push_str("\n[notation]\n");
         for (key, value) in r.entries {
@@ -3484,18 +3531,17 @@ fn render(r: Render<'_>) -> String {
         }
         let (linear, number) = &e.linear;
         let linear: Vec<&Symbol> = linear.iter().filter_map(|k| r.symbols.get(k)).collect();
+        let mut hypotheses: Vec<String> = linear
+            .iter()
+            .map(|s| {
+                let letters: Vec<char> = "ijklpqrs".chars().take(s.rank + 2).collect();
+                let (own, by) = letters.split_at(s.rank);
+                let own: String = own.iter().collect();
+                let by: String = by.iter().collect();
+                toml_string(&format!("{}_{own},{by} = 0", s.name))
+            })
+            .collect();
         if !linear.is_empty() {
-            let hypotheses: Vec<String> = linear
-                .iter()
-                .map(|s| {
-                    let letters: Vec<char> = "ijklpqrs".chars().take(s.rank + 2).collect();
-                    let (own, by) = letters.split_at(s.rank);
-                    let own: String = own.iter().collect();
-                    let by: String = by.iter().collect();
-                    toml_string(&format!("{}_{own},{by} = 0", s.name))
-                })
-                .collect();
-            table.push_str(&format!("assume = [{}]\n", hypotheses.join(", ")));
             let names: Vec<&str> = linear.iter().map(|s| s.key.0.as_str()).collect();
             notes.push(format!(
                 "The text before equation ({}) linearises {} about a point: {} second derivatives vanish.",
@@ -3503,6 +3549,24 @@ fn render(r: Render<'_>) -> String {
                 names.join(", "),
                 if names.len() == 1 { "its" } else { "their" }
             ));
+        }
+        for sym in r.symmetric.iter().filter(|s| s.section.contains(&e.line)) {
+            hypotheses.push(toml_string(&sym.kind.assumption(&sym.name)));
+            let short: String = sym.quote.chars().take(100).collect();
+            let ellipsis = if short.len() < sym.quote.len() {
+                "…"
+            } else {
+                ""
+            };
+            notes.push(format!(
+                "The text, line {}, calls {} {}: \"{short}{ellipsis}\"",
+                sym.line,
+                sym.printed,
+                sym.kind.word()
+            ));
+        }
+        if !hypotheses.is_empty() {
+            table.push_str(&format!("assume = [{}]\n", hypotheses.join(", ")));
         }
         if !notes.is_empty() {
             table.push_str(&format!("note = {}\n", toml_string(&notes.join(" "))));

@@ -1,85 +1,102 @@
-//! A symmetry the text states of a tensor: "the stress $\sigma_{ij}$ is symmetric",
-//! "let $S_{ij}$ be a symmetric tensor", "$\varepsilon_{ij} = \varepsilon_{ji}$", or "the
-//! strain tensor is symmetric" where a formula elsewhere names the strain
-//! ("small strain $\varepsilon_{ij}$").
+//! A symmetry the text states of a tensor: "The stress $\sigma_{ij}$ is symmetric.",
+//! "Let $S_{ij}$ be a symmetric tensor.", "Here $\varepsilon_{ij} = \varepsilon_{ji}$.",
+//! "The spin $W_{ij}$ is skew-symmetric.", or "The strain tensor is symmetric." where
+//! the paper writes "strain" right before one symbol ("small strain
+//! $\varepsilon_{ij}$").
 //!
-//! The draft writes such a symmetry as an assumption of the file (`symmetric(sigma)`),
-//! so that a claim true only for a symmetric stress holds, and one false for it too
-//! fails, where before either was undecided ("σ being symmetric would remove the
-//! difference"). Read wrongly, it would make a false claim hold, so the reading is
-//! narrow:
+//! The draft writes such a symmetry as an assumption of the claims of its section
+//! (`symmetric(sigma)`, `antisymmetric(W)`), so that a claim true only for a symmetric
+//! stress holds, and one false even for it fails, where before either was undecided
+//! ("σ being symmetric would remove the difference"). Read wrongly, it would make a false
+//! claim hold, so a sentence states a symmetry only in a few fixed shapes, whole:
 //!
-//! - the sentence neither qualifies nor contrasts ("if", "unless", "only", "but",
-//!   "as in", "in the classical case", "its symmetric part", …): such a sentence states
-//!   nothing;
-//! - a sentence anywhere in the text that denies a symmetry ("is not symmetric",
-//!   "neither … nor … is symmetric", "need not be", "non-symmetric", "asymmetric")
-//!   withdraws every symmetry reading of the paper: the text then tells symmetric and
-//!   non-symmetric tensors apart in ways words alone cannot settle;
-//! - the symbol is the formula next to the word (`$X$ is symmetric`, `a symmetric
-//!   stress $X$`), with only plain words between, and is not the object of a
-//!   preposition (`the square of $A$ is symmetric` says nothing of A); or, for a
-//!   sentence without a formula ("The stress is symmetric"), the one symbol of rank 2
-//!   that the paper writes right after that noun, wherever it does.
+//! - `[prefix] [the] [nouns] $X$ is symmetric [tail].`, `[prefix] the nouns is
+//!   symmetric [tail].`, `Let $X$ be a symmetric nouns [tail].`, `Let $X$ denote the
+//!   nouns, which is symmetric [tail].`, `[prefix] $X_{ij} = X_{ji}$.`; the prefix one
+//!   of "let", "here", "note that", "recall that", "by the balance of angular momentum";
+//!   the tail nothing, the same symmetry in components (`, $\sigma_{12} =
+//!   \sigma_{21}$`) or "by the balance of angular momentum"; the formula one symbol with
+//!   two index letters or none. Anything else in the sentence ("about the axis", "in
+//!   the absence of couple stresses", "for $\ell = 0$", "(see Fig. 2)", a question)
+//!   makes it state nothing.
+//! - The sentence and the two after it neither deny nor contrast ("not", "isn't",
+//!   "no longer", "but", "however", "only", "unlike", …).
+//! - No sentence of the paper speaks of a symmetry with a denial or a contrast ("σ is
+//!   not symmetric", "neither … nor … is symmetric", "non-symmetric", "symmetric in
+//!   classical media but …"): then the text tells symmetric and other tensors apart in
+//!   ways a few shapes cannot follow, and no symmetry is read at all.
+//! - A noun names the one symbol the paper writes right after the same noun phrase,
+//!   up to an article, "tensor" or "field", a plural and a few adjectives that name no
+//!   other tensor ("small", "Cauchy"): "the stress" is not "the couple stress".
+//! - It holds for the claims of its own section (from the heading before it to the
+//!   next): a later section may give the letter another meaning.
 //!
-//! Which symbol a formula names, and whether the draft declares it as a tensor of rank 2
-//! it does not define, is for the draft to settle (`mod.rs`).
+//! Which declared symbol a formula names is for the draft to settle (`mod.rs`).
 
 use super::displays::Sentence;
 use crate::lang::latex::{self, MathKind, ReadOptions};
 
-/// What a sentence says is symmetric: the formula next to the word, or a noun the paper
-/// writes elsewhere before a formula.
+/// Which symmetry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Kind {
+    Symmetric,
+    Antisymmetric,
+}
+
+impl Kind {
+    /// The file's assumption for the symbol `name`.
+    pub fn assumption(self, name: &str) -> String {
+        match self {
+            Kind::Symmetric => format!("symmetric({name})"),
+            Kind::Antisymmetric => format!("antisymmetric({name})"),
+        }
+    }
+
+    pub fn word(self) -> &'static str {
+        match self {
+            Kind::Symmetric => "symmetric",
+            Kind::Antisymmetric => "antisymmetric",
+        }
+    }
+}
+
+/// What a sentence says is symmetric: a formula (one symbol), or a noun phrase the
+/// paper writes elsewhere right before a formula.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Subject {
     Formula(String),
-    Noun(String),
+    Noun(Vec<String>),
 }
 
-/// A symmetry the text states, with its line and the words that state it.
+/// A symmetry the text states: its line, its subject, which symmetry, the sentence,
+/// and the lines of its section (the claims it holds for).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Symmetry {
     pub line: usize,
     pub subject: Subject,
+    pub kind: Kind,
     pub quote: String,
+    pub section: std::ops::Range<usize>,
 }
 
-/// What the text's sentences say: the symmetries they state, or none at all when one
-/// denies a symmetry; and each noun the paper writes right before a formula.
+/// What the text's sentences say: the symmetries they state, and the noun phrase the
+/// paper writes right before each formula.
 #[derive(Clone, Debug, Default)]
 pub struct Said {
     pub symmetries: Vec<Symmetry>,
-    /// (noun, formula) for each formula right after a word (`strain
-    /// $\varepsilon_{ij}$`).
-    pub nouns: Vec<(String, String)>,
+    pub nouns: Vec<(Vec<String>, String)>,
 }
 
-/// Words that deny: a sentence with one of them and "symmetric" withdraws every reading.
+/// Words that deny.
 const DENIALS: &[&str] = &[
     "not", "no", "nor", "neither", "never", "cannot", "non", "need", "needs", "none", "nothing",
-    "lacks", "lack", "fails", "lose", "loses", "lost",
+    "lacks", "lack", "fails", "fail", "lose", "loses", "lost", "isn", "aren", "wasn", "weren",
+    "doesn", "don", "won", "nt", "longer", "drop", "drops", "relax", "relaxed", "relaxes", "leave",
+    "aside", "violate", "violated", "violates", "break", "broken", "breaks",
 ];
 
-/// Words that qualify or contrast: a sentence with one of them states nothing.
-const QUALIFIERS: &[&str] = &[
-    "if",
-    "unless",
-    "when",
-    "whenever",
-    "were",
-    "would",
-    "could",
-    "should",
-    "might",
-    "may",
-    "suppose",
-    "supposing",
-    "assume",
-    "assuming",
-    "assumed",
-    "provided",
-    "only",
-    "except",
+/// Words that contrast or qualify.
+const CONTRASTS: &[&str] = &[
     "but",
     "however",
     "although",
@@ -87,49 +104,121 @@ const QUALIFIERS: &[&str] = &[
     "whereas",
     "while",
     "unlike",
-    "like",
-    "as",
-    "than",
-    "contrary",
-    "classical",
-    "case",
-    "cases",
-    "limit",
-    "general",
-    "generally",
-    "special",
-    "part",
-    "parts",
-    "whether",
-    "either",
-    "or",
-    "else",
-    "otherwise",
-    "instead",
+    "except",
+    "only",
     "rather",
-    "until",
-    "once",
-    "become",
-    "becomes",
-    "made",
+    "instead",
+    "contrary",
+    "differently",
+    "otherwise",
+    "unless",
+    "if",
+    "iff",
+    "when",
+    "whenever",
+    "provided",
+    "suppose",
+    "supposing",
+    "were",
+    "would",
+    "could",
+    "might",
+    "may",
+    "classical",
+    "limit",
+    "special",
+    "case",
     "approximately",
     "nearly",
     "almost",
+    "up",
+    "apart",
 ];
 
-/// Words that make a formula the object of another word: `the square of $A$`, `$A$
-/// and $B$`, `the product with $A$`.
-const PREPOSITIONS: &[&str] = &[
-    "of", "by", "to", "from", "on", "onto", "into", "times", "at", "in", "over", "under", "about",
-    "through", "between", "and", "with", "for", "plus", "minus", "per",
+/// Words that restrict a symmetry wherever it is spoken of ("symmetric only in …", "but
+/// not …"): a sentence with one of them withdraws every reading.
+const RESTRICTIONS: &[&str] = &[
+    "but",
+    "however",
+    "although",
+    "though",
+    "whereas",
+    "unlike",
+    "except",
+    "only",
+    "rather",
+    "instead",
+    "contrary",
+    "differently",
+    "unless",
+    "iff",
 ];
 
-/// Words that, between a formula and "symmetric", speak of something else than the
-/// formula: `$A$'s square is symmetric`, `$\sigma$ times $n$`.
-const OTHER_THING: &[&str] = &[
+/// Prefixes a statement may open with.
+const PREFIXES: &[&[&str]] = &[
+    &["let"],
+    &["now", "let"],
+    &["here"],
+    &["note", "that"],
+    &["recall", "that"],
+    &["we", "note", "that"],
+    &["by", "the", "balance", "of", "angular", "momentum"],
+];
+
+/// Words that end no noun phrase: the grammar around it.
+const GRAMMAR: &[&str] = &[
+    "the",
+    "a",
+    "an",
+    "of",
+    "by",
+    "to",
+    "from",
+    "on",
+    "onto",
+    "into",
+    "at",
+    "in",
+    "over",
+    "under",
+    "about",
+    "through",
+    "between",
+    "and",
+    "or",
+    "with",
+    "without",
+    "for",
+    "is",
+    "are",
+    "be",
+    "being",
+    "was",
+    "were",
+    "which",
+    "that",
+    "this",
+    "these",
+    "its",
+    "their",
+    "whose",
+    "let",
+    "here",
+    "we",
+    "denote",
+    "denotes",
+    "denoted",
+    "as",
+    "symmetric",
+    "skew-symmetric",
+    "antisymmetric",
+    "anti-symmetric",
+    "skew",
+    "anti",
     "product",
+    "part",
+    "parts",
     "derivative",
-    "derivatives",
     "gradient",
     "rate",
     "inverse",
@@ -137,131 +226,385 @@ const OTHER_THING: &[&str] = &[
     "sum",
     "difference",
     "square",
-    "power",
     "trace",
-    "its",
-    "their",
-    "whose",
-    "s",
+    "consider",
+    "under",
+    "write",
+    "take",
 ];
 
-/// Nouns a subject phrase may end on that name no quantity (`the strain tensor`).
-const KINDS: &[&str] = &["tensor", "tensors", "field", "fields", "matrix"];
+/// Words a noun phrase may carry that name no other tensor.
+const ADJECTIVES: &[&str] = &[
+    "small",
+    "infinitesimal",
+    "linear",
+    "linearised",
+    "linearized",
+    "total",
+    "true",
+    "cauchy",
+    "second-order",
+];
+
+/// Nouns that name a kind, not a quantity.
+const KINDS: &[&str] = &["tensor", "field", "matrix"];
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 enum Token {
     Word(String),
     /// The k-th formula of the sentence.
     Formula(usize),
-    /// `,`, `;`, `:`.
+    /// `,`, `;`, `:`, `(`, `)`, `?`, `!`, `.` inside the sentence.
     Mark(char),
 }
 
-/// The sentence's words, lowercase, its formulas and clause marks, in order.
-fn tokens(s: &Sentence) -> Vec<Token> {
+/// The sentence's words (lowercase; an apostrophe splits `isn't` into `isn`, `t`),
+/// formulas and marks, in order, and whether it ends as a statement (`.` or `;`).
+fn tokens(s: &Sentence) -> (Vec<Token>, bool) {
     let mut out = Vec::new();
     let mut word = String::new();
     let flush = |word: &mut String, out: &mut Vec<Token>, at: usize| {
-        if word.is_empty() {
-            return;
-        }
-        let start = at - word.len();
-        // A formula stands as ` x ` at its offset: its `x` is the formula.
-        match s.formulas.iter().position(|(f, _)| *f + 1 == start) {
-            Some(k) if word == "x" => out.push(Token::Formula(k)),
-            _ => out.push(Token::Word(word.to_ascii_lowercase())),
+        let w = word.trim_end_matches('-');
+        if !w.is_empty() {
+            let start = at - word.len();
+            // A formula stands as ` x ` at its offset: its `x` is the formula.
+            match s.formulas.iter().position(|(f, _)| *f + 1 == start) {
+                Some(k) if w == "x" => out.push(Token::Formula(k)),
+                _ => out.push(Token::Word(w.to_lowercase())),
+            }
         }
         word.clear();
     };
-    for (at, c) in s.words.char_indices() {
+    let body = s.words.trim_end();
+    let (body, statement) = match body.strip_suffix(['.', ';']) {
+        Some(b) => (b, true),
+        None => (body, false),
+    };
+    for (at, c) in body.char_indices() {
         if c.is_alphanumeric() || (c == '-' && !word.is_empty()) {
             word.push(c);
             continue;
         }
         flush(&mut word, &mut out, at);
-        if matches!(c, ',' | ';' | ':') {
+        if !c.is_whitespace() && !matches!(c, '{' | '}' | '~' | '-' | '\\') {
             out.push(Token::Mark(c));
         }
     }
-    flush(&mut word, &mut out, s.words.len());
-    out
-}
-
-fn is(t: Option<&Token>, set: &[&str]) -> bool {
-    matches!(t, Some(Token::Word(w)) if set.contains(&w.as_str()))
-}
-
-/// The symmetries `sentences` state, and the nouns before formulas.
-pub fn read(sentences: &[Sentence]) -> Said {
-    let mut said = Said::default();
-    let mut denied = false;
-    for s in sentences {
-        let tokens = tokens(s);
-        for (k, t) in tokens.iter().enumerate() {
-            if let (Token::Formula(f), Some(Token::Word(w))) =
-                (t, k.checked_sub(1).map(|j| &tokens[j]))
+    flush(&mut word, &mut out, body.len());
+    // "skew symmetric", "anti symmetric", "skew\-symmetric", "skew--symmetric": one word.
+    let mut merged: Vec<Token> = Vec::with_capacity(out.len());
+    for t in out {
+        let t = match t {
+            Token::Word(w) if w.contains("--") => {
+                let mut w = w;
+                while w.contains("--") {
+                    w = w.replace("--", "-");
+                }
+                Token::Word(w)
+            }
+            t => t,
+        };
+        if let (Some(Token::Word(prefix)), Token::Word(w)) = (merged.last(), &t) {
+            if matches!(prefix.as_str(), "skew" | "anti")
+                && w.trim_start_matches('-') == "symmetric"
             {
-                said.nouns.push((w.clone(), s.formulas[*f].1.clone()));
+                let joined = format!("{prefix}-symmetric");
+                merged.pop();
+                merged.push(Token::Word(joined));
+                continue;
             }
         }
-        let words = || {
-            tokens.iter().filter_map(|t| match t {
-                Token::Word(w) => Some(w.as_str()),
-                _ => None,
+        merged.push(t);
+    }
+    (merged, statement)
+}
+
+fn word(t: Option<&Token>) -> Option<&str> {
+    match t {
+        Some(Token::Word(w)) => Some(w),
+        _ => None,
+    }
+}
+
+/// The symmetry a word names, if it names one on its own.
+fn kind_of(w: &str) -> Option<Kind> {
+    match w {
+        "symmetric" => Some(Kind::Symmetric),
+        "skew-symmetric" | "antisymmetric" | "anti-symmetric" => Some(Kind::Antisymmetric),
+        _ => None,
+    }
+}
+
+/// A noun phrase, normalised: no article, kind or adjective, each noun singular.
+fn phrase(words: &[&str]) -> Vec<String> {
+    words
+        .iter()
+        .filter(|w| !KINDS.contains(&singular(w).as_str()) && !ADJECTIVES.contains(w))
+        .map(|w| singular(w))
+        .collect()
+}
+
+fn singular(w: &str) -> String {
+    match w.strip_suffix('s') {
+        Some(stem) if !stem.ends_with('s') && stem.len() > 2 => stem.to_owned(),
+        _ => w.to_owned(),
+    }
+}
+
+fn is_noun(t: &Token) -> bool {
+    word(Some(t)).is_some_and(|w| {
+        !GRAMMAR.contains(&w)
+            && !DENIALS.contains(&w)
+            && !CONTRASTS.contains(&w)
+            && w.chars().all(|c| c.is_alphabetic() || c == '-')
+    })
+}
+
+/// The symmetries `sentences` state ([`Symmetry`]), each held for its section
+/// (`headings`: the lines where sections start), and the noun phrases before formulas.
+pub fn read(sentences: &[Sentence], headings: &[usize]) -> Said {
+    let mut said = Said::default();
+    let read: Vec<(Vec<Token>, bool)> = sentences.iter().map(tokens).collect();
+    let speaks = |t: &[Token]| {
+        t.iter()
+            .any(|t| word(Some(t)).is_some_and(|w| w.contains("symmetr") || w == "skew"))
+    };
+    // A denial, or for a statement's own sentences any contrast or qualification too.
+    let denies = |t: &[Token], also: &[&str]| {
+        t.iter().any(|t| {
+            word(Some(t)).is_some_and(|w| {
+                DENIALS.contains(&w)
+                    || also.contains(&w)
+                    || w == "t"
+                    || ["asym", "unsym", "un-sym", "nonsym", "non-sym", "dissym"]
+                        .iter()
+                        .any(|n| w.starts_with(n))
             })
-        };
-        let negative = words().any(|w| {
-            w.contains("symmetr")
-                && !matches!(
-                    w,
-                    "symmetric"
-                        | "symmetry"
-                        | "symmetries"
-                        | "symmetrical"
-                        | "symmetrically"
-                        | "skew-symmetric"
-                        | "antisymmetric"
-                        | "anti-symmetric"
-                        | "symmetrised"
-                        | "symmetrized"
-                )
-        });
-        let positive = words().any(|w| w == "symmetric");
-        let transposes: Vec<&String> = s
-            .formulas
-            .iter()
-            .map(|(_, body)| body)
-            .filter(|body| transposed(body))
-            .collect();
-        let stated = positive || !transposes.is_empty();
-        if negative || (stated && words().any(|w| DENIALS.contains(&w))) {
-            denied = true;
-            continue;
-        }
-        if words().any(|w| QUALIFIERS.contains(&w) || DENIALS.contains(&w)) {
-            continue;
-        }
-        let quote = restored(s);
-        let mut push = |subject| {
-            said.symmetries.push(Symmetry {
-                line: s.line,
-                subject,
-                quote: quote.clone(),
-            })
-        };
-        for body in transposes {
-            push(Subject::Formula(body.clone()));
-        }
-        for p in (0..tokens.len()).filter(|&p| tokens[p] == Token::Word("symmetric".into())) {
-            if let Some(subject) = subject(&tokens, p, s) {
-                push(subject);
+        })
+    };
+    for (s, (t, _)) in sentences.iter().zip(&read) {
+        for (k, tok) in t.iter().enumerate() {
+            if let Token::Formula(f) = tok {
+                let start = t[..k]
+                    .iter()
+                    .rposition(|t| !is_noun(t))
+                    .map_or(0, |j| j + 1);
+                let words: Vec<&str> = t[start..k].iter().filter_map(|t| word(Some(t))).collect();
+                said.nouns.push((phrase(&words), s.formulas[*f].1.clone()));
             }
+        }
+        let transposes = s.formulas.iter().any(|(_, b)| transposed(b).is_some());
+        if (speaks(t) || transposes) && denies(t, RESTRICTIONS) {
+            // One denial or contrast of a symmetry anywhere: nothing is read.
+            said.symmetries.clear();
+            return said;
         }
     }
-    if denied {
-        said.symmetries.clear();
+    for (n, (s, (t, statement))) in sentences.iter().zip(&read).enumerate() {
+        // The sentence, and each of the two after it that speaks of it or of a symmetry
+        // ("this is no longer true", "it holds only for …"), neither denies nor
+        // contrasts.
+        let speaks_of_it = |t: &[Token]| {
+            speaks(t)
+                || t.iter().any(|t| {
+                    matches!(
+                        word(Some(t)),
+                        Some("this" | "it" | "that" | "these" | "those" | "such" | "which" | "so")
+                    )
+                })
+        };
+        let withdrawn = read[n..]
+            .iter()
+            .take(3)
+            .enumerate()
+            .any(|(k, (t, _))| (k == 0 || speaks_of_it(t)) && denies(t, CONTRASTS));
+        if !statement || withdrawn {
+            continue;
+        }
+        let Some((subject, kind)) = stated(t, s) else {
+            continue;
+        };
+        let from = headings
+            .iter()
+            .rev()
+            .find(|&&h| h <= s.line)
+            .copied()
+            .unwrap_or(0);
+        let to = headings
+            .iter()
+            .find(|&&h| h > s.line)
+            .copied()
+            .unwrap_or(usize::MAX);
+        said.symmetries.push(Symmetry {
+            line: s.line,
+            subject,
+            kind,
+            quote: restored(s),
+            section: from..to,
+        });
     }
     said
+}
+
+/// The subject and symmetry of a sentence in one of the fixed shapes, if it is one.
+fn stated(t: &[Token], s: &Sentence) -> Option<(Subject, Kind)> {
+    let words_at = |k: usize, w: &[&str]| {
+        w.iter()
+            .enumerate()
+            .all(|(j, w)| word(t.get(k + j)) == Some(*w))
+    };
+    let after_prefix = PREFIXES
+        .iter()
+        .filter(|p| words_at(0, p))
+        .map(|p| p.len())
+        .max()
+        .unwrap_or(0);
+    let body = &t[after_prefix..];
+    let formula = |k: usize| match body.get(k) {
+        Some(Token::Formula(f)) => Some(&s.formulas[*f].1),
+        _ => None,
+    };
+    // The whole body a formula `X_{ij} = ±X_{ji}`.
+    if let [Token::Formula(f)] = body {
+        let x = &s.formulas[*f].1;
+        return transposed(x).map(|kind| (Subject::Formula(x.clone()), kind));
+    }
+    let at = body
+        .iter()
+        .position(|t| word(Some(t)).and_then(kind_of).is_some())?;
+    let kind = word(body.get(at)).and_then(kind_of)?;
+    let (head, tail) = (&body[..at], &body[at + 1..]);
+    let is_be = |k: usize| matches!(word(head.get(k)), Some("is" | "are"));
+    let let_x = (after_prefix == 1 && word(t.first()) == Some("let"))
+        .then(|| formula(0).filter(|f| one_symbol(f)))
+        .flatten();
+    // `Let $X$ be a symmetric nouns [tail]`.
+    if let Some(x) = let_x.filter(|_| at == 3 && word(head.get(1)) == Some("be")) {
+        let nouns = tail.iter().take_while(|t| is_noun(t)).count();
+        let article = matches!(word(head.get(2)), Some("a" | "an"));
+        return (article && nouns > 0 && tail_is(&tail[nouns..], s, kind))
+            .then(|| (Subject::Formula(x.clone()), kind));
+    }
+    if !tail_is(tail, s, kind) || at < 2 || !is_be(at - 1) {
+        return None;
+    }
+    let before = &head[..at - 1];
+    // `Let $X$ denote the nouns, which is symmetric [tail]`.
+    if let Some(x) = let_x {
+        let n = before.len();
+        let denotes = n >= 6
+            && matches!(word(before.get(1)), Some("denote" | "denotes"))
+            && word(before.get(2)) == Some("the")
+            && before[3..n - 2].iter().all(is_noun)
+            && before[n - 2] == Token::Mark(',')
+            && word(before.get(n - 1)) == Some("which");
+        return denotes.then(|| (Subject::Formula(x.clone()), kind));
+    }
+    // `[the] [nouns] $X$ is symmetric [tail]`.
+    if let Some((Token::Formula(f), nouns)) = before.split_last() {
+        let x = &s.formulas[*f].1;
+        let plain = nouns.iter().enumerate().all(|(k, t)| {
+            is_noun(t) || (k == 0 && matches!(word(Some(t)), Some("the" | "a" | "an")))
+        });
+        return (plain && one_symbol(x)).then(|| (Subject::Formula(x.clone()), kind));
+    }
+    // `the nouns is symmetric[, $X_{12} = X_{21}$]`: the formula of the tail, or a noun
+    // phrase the paper writes before a formula.
+    if word(before.first()) == Some("the") && before.len() >= 2 && before[1..].iter().all(is_noun) {
+        if let Some(Token::Formula(f)) = tail.last() {
+            return Some((Subject::Formula(s.formulas[*f].1.clone()), kind));
+        }
+        let words: Vec<&str> = before[1..].iter().filter_map(|t| word(Some(t))).collect();
+        let noun = phrase(&words);
+        return (!noun.is_empty()).then_some((Subject::Noun(noun), kind));
+    }
+    None
+}
+
+/// Whether what follows the symmetry word is an allowed tail: nothing, `, $X_{12} =
+/// X_{21}$` (the same symmetry), or "by the balance of angular momentum" with or
+/// without it.
+fn tail_is(tail: &[Token], s: &Sentence, kind: Kind) -> bool {
+    let balance = ["by", "the", "balance", "of", "angular", "momentum"];
+    let rest = if tail.len() >= balance.len()
+        && balance
+            .iter()
+            .zip(tail)
+            .all(|(w, t)| word(Some(t)) == Some(*w))
+    {
+        &tail[balance.len()..]
+    } else {
+        tail
+    };
+    match rest {
+        [] => true,
+        [Token::Mark(','), Token::Formula(f)] => transposed(&s.formulas[*f].1) == Some(kind),
+        _ => false,
+    }
+}
+
+/// Whether a formula is one symbol, with two distinct index letters or none (`\sigma`,
+/// `\sigma_{ij}`), no accent or primes.
+fn one_symbol(body: &str) -> bool {
+    let Ok(read) = latex::read(body, &ReadOptions::default()) else {
+        return false;
+    };
+    match &read.parts[..] {
+        [p] if p.relations.is_empty() => match &p.members[..] {
+            [m] => matches!(&m.kind, MathKind::Atom(a) if a.accent.is_none() && a.primes == 0
+                && a.sub.as_ref().is_none_or(|s| two_letters(&s.text).is_some())),
+            _ => false,
+        },
+        _ => false,
+    }
+}
+
+fn two_letters(s: &str) -> Option<[char; 2]> {
+    let c: Vec<char> = s.chars().collect();
+    match c[..] {
+        [i, j]
+            if i != j
+                && (i.is_ascii_lowercase() || i.is_ascii_digit())
+                && (j.is_ascii_lowercase() || j.is_ascii_digit()) =>
+        {
+            Some([i, j])
+        }
+        _ => None,
+    }
+}
+
+/// The symmetry a formula states: `X_{ij} = X_{ji}` (or `X_{12} = X_{21}`), `X_{ij} =
+/// -X_{ji}`; one symbol with its two indices swapped.
+fn transposed(body: &str) -> Option<Kind> {
+    let read = latex::read(body, &ReadOptions::default()).ok()?;
+    let [part] = &read.parts[..] else {
+        return None;
+    };
+    let [a, b] = &part.members[..] else {
+        return None;
+    };
+    if part.relations != [latex::Rel::Eq] {
+        return None;
+    }
+    let (b, kind) = match &b.kind {
+        MathKind::Sum(terms) => match &terms[..] {
+            [(true, inner)] => (inner, Kind::Antisymmetric),
+            _ => return None,
+        },
+        _ => (b, Kind::Symmetric),
+    };
+    let (MathKind::Atom(a), MathKind::Atom(b)) = (&a.kind, &b.kind) else {
+        return None;
+    };
+    let [i, j] = two_letters(&a.sub.as_ref()?.text)?;
+    let other = two_letters(&b.sub.as_ref()?.text)?;
+    let label = |x: &latex::Atom| x.sup.as_ref().map(|s| s.text.clone());
+    (a.base == b.base
+        && a.accent == b.accent
+        && label(a) == label(b)
+        && a.primes == b.primes
+        && other == [j, i])
+    .then_some(kind)
 }
 
 /// The sentence as printed, its formulas back in place of their ` x `, on one line.
@@ -280,166 +623,82 @@ fn restored(s: &Sentence) -> String {
     out.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
-/// Whether `body` states a symmetry: `X_{ij} = X_{ji}`, one symbol with its two index
-/// letters swapped.
-fn transposed(body: &str) -> bool {
-    let Ok(read) = latex::read(body, &ReadOptions::default()) else {
-        return false;
-    };
-    let [part] = &read.parts[..] else {
-        return false;
-    };
-    let (MathKind::Atom(a), MathKind::Atom(b)) = (match &part.members[..] {
-        [a, b] if part.relations == [latex::Rel::Eq] => (&a.kind, &b.kind),
-        _ => return false,
-    }) else {
-        return false;
-    };
-    let letters = |x: &latex::Atom| -> Option<[char; 2]> {
-        let s: Vec<char> = x.sub.as_ref()?.text.chars().collect();
-        match s[..] {
-            [i, j] if i != j && i.is_ascii_lowercase() && j.is_ascii_lowercase() => Some([i, j]),
-            _ => None,
-        }
-    };
-    let (Some([i, j]), Some(other)) = (letters(a), letters(b)) else {
-        return false;
-    };
-    let label = |x: &latex::Atom| x.sup.as_ref().map(|s| s.text.clone());
-    a.base == b.base
-        && a.accent == b.accent
-        && label(a) == label(b)
-        && a.primes == b.primes
-        && other == [j, i]
-}
-
-/// What the word "symmetric" at `p` is said of.
-fn subject(tokens: &[Token], p: usize, s: &Sentence) -> Option<Subject> {
-    let plain = |t: &Token| match t {
-        Token::Word(w) => !OTHER_THING.contains(&w.as_str()) && !PREPOSITIONS.contains(&w.as_str()),
-        Token::Mark(c) => *c == ',',
-        Token::Formula(_) => false,
-    };
-    // `$X$ (…) is symmetric`: the nearest formula before, plain words between.
-    let back = (0..p)
-        .rev()
-        .take_while(|&j| plain(&tokens[j]) || matches!(tokens[j], Token::Formula(_)));
-    if let Some(j) = back
-        .clone()
-        .find(|&j| matches!(tokens[j], Token::Formula(_)))
-    {
-        let Token::Formula(f) = tokens[j] else {
-            return None;
-        };
-        let between = p - j - 1;
-        if between <= 8 && !is(j.checked_sub(1).map(|i| &tokens[i]), PREPOSITIONS) {
-            return Some(Subject::Formula(s.formulas[f].1.clone()));
-        }
-        return None;
-    }
-    // `a symmetric stress $X$`: a formula within four plain words after.
-    if is(
-        p.checked_sub(1).map(|i| &tokens[i]),
-        &["a", "an", "the", "is", "be", "being"],
-    ) {
-        for t in tokens.iter().skip(p + 1).take(5) {
-            match t {
-                Token::Formula(f) => return Some(Subject::Formula(s.formulas[*f].1.clone())),
-                t if plain(t) => {}
-                _ => break,
-            }
-        }
-    }
-    // `the (Cauchy) stress (tensor) is symmetric`: a noun the paper writes before a
-    // formula elsewhere.
-    if !is(p.checked_sub(1).map(|i| &tokens[i]), &["is", "are"]) {
-        return None;
-    }
-    let start = p.checked_sub(5).unwrap_or(0);
-    let phrase = &tokens[start..p - 1];
-    let the = phrase.iter().rposition(|t| is(Some(t), &["the"]))?;
-    let nouns: Vec<&str> = phrase[the + 1..]
-        .iter()
-        .map(|t| match t {
-            Token::Word(w)
-                if !PREPOSITIONS.contains(&w.as_str()) && !OTHER_THING.contains(&w.as_str()) =>
-            {
-                Some(w.as_str())
-            }
-            _ => None,
-        })
-        .collect::<Option<_>>()?;
-    let noun = nouns.iter().rev().find(|w| !KINDS.contains(w))?;
-    Some(Subject::Noun((*noun).to_owned()))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn said(text: &str) -> Vec<Subject> {
-        read(&super::super::displays::sentences(text, false))
+    fn said(text: &str) -> Vec<(Subject, Kind)> {
+        read(&super::super::displays::sentences(text, false), &[])
             .symmetries
             .into_iter()
-            .map(|s| s.subject)
+            .map(|s| (s.subject, s.kind))
             .collect()
     }
 
-    fn formula(f: &str) -> Subject {
-        Subject::Formula(f.to_owned())
+    fn formula(f: &str) -> (Subject, Kind) {
+        (Subject::Formula(f.to_owned()), Kind::Symmetric)
     }
 
     #[test]
-    fn a_symmetry_is_read_next_to_its_word() {
+    fn a_symmetry_is_read_in_a_few_whole_shapes() {
         assert_eq!(
             said("The stress $\\sigma_{ij}$ is symmetric."),
             [formula("\\sigma_{ij}")]
         );
         assert_eq!(
-            said("Let $\\sigma_{ij}$ denote the Cauchy stress tensor, which is symmetric by the balance of angular momentum."),
+            said("Let $\\sigma_{ij}$ denote the Cauchy stress tensor, which is symmetric by the balance of angular momentum, $\\sigma_{ij}=\\sigma_{ji}$."),
             [formula("\\sigma_{ij}")]
         );
         assert_eq!(said("Let $S$ be a symmetric tensor."), [formula("S")]);
         assert_eq!(
-            said("Let $\\sigma$ be a symmetric stress, with traction $t$ on it."),
-            [formula("\\sigma")]
-        );
-        assert_eq!(
             said("The strain tensor is symmetric."),
-            [Subject::Noun("strain".into())]
-        );
-        assert_eq!(
-            said("By the balance of angular momentum the Cauchy stress is symmetric."),
-            [Subject::Noun("stress".into())]
+            [(Subject::Noun(vec!["strain".into()]), Kind::Symmetric)]
         );
         assert_eq!(
             said("Here $e_{ij} = e_{ji}$."),
             [formula("e_{ij} = e_{ji}")]
         );
+        assert_eq!(
+            said("The spin $W_{ij}$ is skew-symmetric."),
+            [(Subject::Formula("W_{ij}".into()), Kind::Antisymmetric)]
+        );
+        assert_eq!(
+            said("$W_{ij} = -W_{ji}$. The spin $W$ is skew symmetric. The spin $V$ is skew\\-symmetric."),
+            [
+                (Subject::Formula("W_{ij} = -W_{ji}".into()), Kind::Antisymmetric),
+                (Subject::Formula("W".into()), Kind::Antisymmetric),
+                (Subject::Formula("V".into()), Kind::Antisymmetric),
+            ]
+        );
     }
 
     #[test]
-    fn a_qualified_or_denied_symmetry_is_not_read() {
+    fn anything_else_states_nothing() {
         for text in [
             "If $\\sigma$ is symmetric, the power simplifies.",
             "The square of $A$ is symmetric.",
-            "The product of $A$ and $B$ is symmetric.",
+            "The product $\\sigma_{ik}\\sigma_{jk}$ is symmetric.",
+            "The stress field $\\sigma_{ij}$ is symmetric about the $x_1$ axis.",
             "In the classical continuum $\\sigma$ is symmetric.",
-            "Its symmetric part is the strain $\\varepsilon$.",
-            "The stress $\\sigma$ is symmetric only for a simple material.",
-            "As in elasticity, $\\sigma$ is symmetric.",
+            "The stress $\\sigma$ is symmetric in the absence of couple stresses.",
+            "The stress $\\sigma$ is symmetric (see Fig. 2) only in Boltzmann media.",
+            "Is the stress $\\sigma_{ij}$ symmetric?",
+            "The strain $\\epsilon_{ij}$, differently from the stress $\\sigma_{ij}$, is symmetric.",
+            "The spin $W_{ij}$ is skew.",
+            "$\\sigma_{ij} = \\sigma_{ji}$ for $i, j \\le 2$.",
+            "The stress $\\sigma_{ij}$ is symmetric. In a Cosserat continuum this is no longer true.",
         ] {
             assert_eq!(said(text), [], "{text}");
         }
-        // One denial anywhere withdraws every reading.
+        // One denial of a symmetry anywhere withdraws every reading.
         for denial in [
             "The couple stress $\\mu$ is not symmetric.",
             "Neither $\\sigma$ nor $\\mu$ is symmetric.",
-            "The stress need not be symmetric.",
+            "The couple stress isn't symmetric.",
             "It is an asymmetric stress.",
-            "The tensor $A$ is non-symmetric.",
+            "The tensor $A$ is non-{}symmetric.",
         ] {
-            let text = format!("The stress $\\sigma$ is symmetric. {denial}");
+            let text = format!("The stress $\\sigma$ is symmetric.\n\n{denial}");
             assert_eq!(said(&text), [], "{text}");
         }
     }
