@@ -411,6 +411,9 @@ pub fn sentences(text: &str, markdown: bool) -> Vec<Sentence> {
             .collect();
         starts.sort_unstable();
         starts.dedup();
+        // One pass: the line breaks counted up to each sentence, the formulas (in the
+        // order of the words) taken as the sentences reach them.
+        let (mut counted, mut breaks, mut next, mut passed) = (0, 0, 0, 0);
         for (k, &start) in starts.iter().enumerate() {
             let stop = starts
                 .get(k + 1)
@@ -420,16 +423,24 @@ pub fn sentences(text: &str, markdown: bool) -> Vec<Sentence> {
             // Its first word's line: the lines the words before it run over, and those
             // of the formulas before it.
             let first = start + (words[start..stop].len() - words[start..stop].trim_start().len());
-            let before = found.iter().filter(|f| f.at < first);
-            let line = line
-                + words[..first].matches('\n').count()
-                + before.map(|f| f.breaks).sum::<usize>();
-            out.push(Sentence {
-                line,
-                words: words[start..stop].to_owned(),
-                formulas: found
+            breaks += words[counted..first].matches('\n').count();
+            counted = first;
+            while let Some(f) = found.get(next).filter(|f| f.at < start) {
+                passed += f.breaks;
+                next += 1;
+            }
+            let inside: Vec<&Formula> = found[next..].iter().take_while(|f| f.at < stop).collect();
+            let formula_breaks = passed
+                + inside
                     .iter()
-                    .filter(|f| (start..stop).contains(&f.at))
+                    .filter(|f| f.at < first)
+                    .map(|f| f.breaks)
+                    .sum::<usize>();
+            out.push(Sentence {
+                line: line + breaks + formula_breaks,
+                words: words[start..stop].to_owned(),
+                formulas: inside
+                    .iter()
                     .map(|f| (f.at - start, f.body.clone()))
                     .collect(),
             });

@@ -1129,75 +1129,85 @@ fn symmetric_tensors(
 ) -> Vec<SymmetryOf> {
     let options = ReadOptions::default();
     let unranked = |k: &Key| symbols::fields(k).map(|f| f[..5].join("|"));
-    // The printed symbol a formula begins with, without its rank.
-    let first_symbol = |body: &str| -> Option<String> {
-        let read = latex::read(body, &options).ok()?;
-        let first = read.parts.first()?.members.first()?;
-        let (key, _) = symbols::occurrences(&[first], normal, tensors)
-            .into_iter()
-            .next()?;
-        unranked(&key)
+    // The declared symbols of rank 2, by their identity without the rank.
+    let mut by_identity: BTreeMap<String, Vec<(&Key, &Symbol)>> = BTreeMap::new();
+    for (k, s) in symbols.iter().filter(|(_, s)| s.rank == 2 && !s.component) {
+        if let Some(u) = unranked(k) {
+            by_identity.entry(u).or_default().push((k, s));
+        }
+    }
+    // The printed symbol a formula begins with, without its rank; each formula read
+    // once.
+    let mut first: BTreeMap<String, Option<String>> = BTreeMap::new();
+    let mut first_symbol = |body: &str| -> Option<String> {
+        if let Some(known) = first.get(body) {
+            return known.clone();
+        }
+        let found = (|| {
+            let read = latex::read(body, &options).ok()?;
+            let member = read.parts.first()?.members.first()?;
+            let (key, _) = symbols::occurrences(&[member], normal, tensors)
+                .into_iter()
+                .next()?;
+            unranked(&key)
+        })();
+        first.insert(body.to_owned(), found.clone());
+        found
     };
-    // The declared symbol of rank 2 a formula is (`\sigma_{ij}`, `\sigma`), or whose
-    // symmetry it states.
-    let named = |body: &str| -> Option<&Symbol> {
-        let key = first_symbol(body)?;
-        let mut matching = symbols
-            .iter()
-            .filter(|(k, s)| s.rank == 2 && !s.component && unranked(k).as_ref() == Some(&key));
-        let (k, s) = matching.next()?;
-        (matching.next().is_none() && !defined.contains_key(k)).then_some(s)
+    // The one declared symbol of rank 2 with that identity, if the file does not define
+    // it.
+    let named = |key: &Option<String>| -> Option<&Symbol> {
+        match by_identity.get(key.as_ref()?)?.as_slice() {
+            [(k, s)] if !defined.contains_key(*k) => Some(*s),
+            _ => None,
+        }
     };
-    let mut out: Vec<SymmetryOf> = Vec::new();
+    // Every formula the paper writes right after a noun phrase, declared or not: the
+    // phrase names a symbol when they are all one symbol.
+    let mut after: BTreeMap<&[String], BTreeSet<Option<String>>> = BTreeMap::new();
+    for (noun, body) in &said.nouns {
+        let key = first_symbol(body);
+        after.entry(noun.as_slice()).or_default().insert(key);
+    }
+    // One statement per symbol, section and kind; a symbol said to be both symmetric
+    // and antisymmetric in a section is neither there (sections do not overlap: each
+    // runs from one heading to the next).
+    let mut found: BTreeMap<(String, usize), BTreeMap<symmetry::Kind, SymmetryOf>> =
+        BTreeMap::new();
     for st in &said.symmetries {
-        let found = match &st.subject {
-            symmetry::Subject::Formula(body) => named(body),
-            // Every formula the paper writes right after the noun phrase, declared or
-            // not, must be one symbol, and the same one.
-            symmetry::Subject::Noun(noun) => {
-                let after: Vec<&String> = said
-                    .nouns
-                    .iter()
-                    .filter(|(w, _)| w == noun)
-                    .map(|(_, body)| body)
-                    .collect();
-                let keys: BTreeSet<Option<String>> =
-                    after.iter().map(|body| first_symbol(body)).collect();
-                match (keys.len(), after.first()) {
-                    (1, Some(body)) if keys.first().is_some_and(Option::is_some) => named(body),
-                    _ => None,
-                }
-            }
+        let key = match &st.subject {
+            symmetry::Subject::Formula(body) => first_symbol(body),
+            symmetry::Subject::Noun(noun) => match after.get(noun.as_slice()) {
+                Some(keys) if keys.len() == 1 => keys.first().cloned().flatten(),
+                _ => None,
+            },
         };
-        if let Some(s) = found {
-            out.push(SymmetryOf {
+        let Some(s) = named(&key) else {
+            continue;
+        };
+        found
+            .entry((s.name.clone(), st.section.start))
+            .or_default()
+            .entry(st.kind)
+            .or_insert_with(|| SymmetryOf {
                 name: s.name.clone(),
-                printed: s.key.0.clone(),
+                // As printed, with the index letters `ij` (`\sigma_{ij}`, not the
+                // `\sigma_{kk}` of its first occurrence).
+                printed: match &s.key.1[..] {
+                    [a, b] => s.key.0.replacen(&format!("_{{{a}{b}}}"), "_{ij}", 1),
+                    _ => s.key.0.clone(),
+                },
                 kind: st.kind,
                 line: st.line,
                 quote: st.quote.clone(),
                 section: st.section.clone(),
             });
-        }
     }
-    let overlap = |a: &SymmetryOf, b: &SymmetryOf| {
-        a.name == b.name && a.section.start < b.section.end && b.section.start < a.section.end
-    };
-    let contradicted: Vec<bool> = out
-        .iter()
-        .map(|a| out.iter().any(|b| b.kind != a.kind && overlap(a, b)))
-        .collect();
-    let mut kept = Vec::new();
-    for (a, bad) in out.into_iter().zip(contradicted) {
-        if !bad
-            && !kept
-                .iter()
-                .any(|b: &SymmetryOf| b.kind == a.kind && overlap(&a, b))
-        {
-            kept.push(a);
-        }
-    }
-    kept
+    found
+        .into_values()
+        .filter(|kinds| kinds.len() == 1)
+        .flat_map(BTreeMap::into_values)
+        .collect()
 }
 
 /// Whether `latex` has the printed symbol `symbol` as a token of its own (`a` in
