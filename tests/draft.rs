@@ -1489,9 +1489,10 @@ fn readings_an_adversary_attacked_give_no_wrong_verdict() {
 /// $\sigma_{ij}$ is symmetric.") is an assumption of the file, `symmetric(sigma)`, with the
 /// sentence quoted: what holds only for a symmetric stress holds, and what is false even
 /// for one fails. Controls: a symmetry qualified, said of something else, denied anywhere
-/// in the paper, or named by a noun that names two symbols gives no assumption, and the
-/// claims that need it are undecided; the noun of a sentence without a formula ("The
-/// stress is symmetric.") names the one symbol the paper writes after it.
+/// in the paper, stated by a formula alone, or named by a noun phrase that names two
+/// symbols or none gives no assumption, and the claims that need it are undecided; the
+/// noun phrase of a sentence without a formula ("The stress is symmetric.") names the
+/// one symbol the paper writes after the same phrase.
 #[test]
 fn a_symmetry_the_text_states_is_assumed_and_a_denied_one_is_not() {
     use Verdict::{Fails as F, Holds as H, Undecided as U};
@@ -1516,13 +1517,18 @@ fn a_symmetry_the_text_states_is_assumed_and_a_denied_one_is_not() {
     let cases = [
         (
             "words-only",
-            "The Cauchy stress $\\sigma_{ij}$ acts. The stress is symmetric.",
+            "The stress $\\sigma_{ij}$ acts. The stress is symmetric.",
             &[H, H, F],
         ),
         (
-            "transposed",
+            "noun-of-another-phrase",
+            "The Cauchy stress $\\sigma_{ij}$ acts. The stress is symmetric.",
+            &[U, U, F],
+        ),
+        (
+            "a-formula-alone",
             "Here $\\sigma_{ij} = \\sigma_{ji}$.",
-            &[H, H, F],
+            &[U, U, F],
         ),
         (
             "qualified",
@@ -1568,14 +1574,16 @@ fn a_symmetry_the_text_states_is_assumed_and_a_denied_one_is_not() {
 /// product … is symmetric"), a denial in other spellings ("isn’t", "non-{}symmetric"), a
 /// condition or a retraction ("iff", "at $t=0$", "this is no longer true"), a sentence
 /// cut by an abbreviation, a noun of another stress, a section that gives the letter
-/// another meaning: no symmetry is read, and nothing is decided on one. Skew spellings
+/// another meaning; in a second round, a heading LaTeX or Markdown spells otherwise, a
+/// lemma, a quotation, a footnote, another author's theory, a medium with couple stresses,
+/// one pair of components: no symmetry is read, and nothing is decided on one. Skew spellings
 /// ("skew symmetric", "skew-{}symmetric") read as antisymmetry. And a field the text calls
 /// incompressible that an equation of the text also relates to others keeps a zero
 /// divergence at any power: the true (2) of that paper is undecided, not accused.
 #[test]
 fn symmetries_an_adversary_attacked_give_no_wrong_verdict() {
     use Verdict::{Fails as F, Holds as H, Undecided as U};
-    let cases: [(&str, &[Verdict]); 25] = [
+    let cases: [(&str, &[Verdict]); 39] = [
         ("symmetry-about-an-axis", &[U, U]),
         ("symmetry-asked", &[U, U]),
         ("symmetry-at-an-instant", &[U, U]),
@@ -1601,12 +1609,29 @@ fn symmetries_an_adversary_attacked_give_no_wrong_verdict() {
         ("symmetry-skew-in-two-words", &[H, H]),
         ("symmetry-up-to", &[U, U]),
         ("incompressible-and-related", &[H, U]),
+        // A second round, against the narrowed reading.
+        ("symmetry-absent", &[U]),
+        ("symmetry-another-theory", &[U]),
+        ("symmetry-false-after", &[U]),
+        ("symmetry-fixed-indices", &[U]),
+        ("symmetry-heading-after-newpage", &[U, U]),
+        ("symmetry-html-heading.md", &[U, U]),
+        ("symmetry-imagined", &[U]),
+        ("symmetry-in-a-footnote", &[U]),
+        ("symmetry-in-a-lemma", &[U, U]),
+        ("symmetry-one-pair", &[U]),
+        ("symmetry-quoted", &[U]),
+        ("symmetry-run-in-heading", &[U, U]),
+        ("symmetry-setext-heading.md", &[U, U]),
+        ("symmetry-total-stress", &[U]),
     ];
     for (name, want) in cases {
-        let path = format!(
-            "{}/tests/draft/attacks/{name}.tex",
-            env!("CARGO_MANIFEST_DIR")
-        );
+        let file = if name.contains('.') {
+            name.to_owned()
+        } else {
+            format!("{name}.tex")
+        };
+        let path = format!("{}/tests/draft/attacks/{file}", env!("CARGO_MANIFEST_DIR"));
         let (toml, verdicts) = drafted(&[&path]);
         let want: Vec<(String, Verdict)> = want
             .iter()

@@ -238,6 +238,10 @@ const DICTIONARY: &[&str] = &[
     ")_{,i}",
     "Similarly, the vector $m_i = \\mu_{ki} n_k$ has a normal component $m^{(n)}$ ",
     "In two dimensions, ",
+    "The stress $\\sigma_{ij}$ is symmetric. ",
+    "The strain tensor is skew symmetric; ",
+    "Let $S$ be a symmetric tensor, $S_{12} = S_{21}$. ",
+    "\\section{Cosserat} ",
 ];
 
 fn seeds(root: &Path) -> Vec<Vec<u8>> {
@@ -249,6 +253,7 @@ fn seeds(root: &Path) -> Vec<Vec<u8>> {
         "tests/soundness",
         "tests/papers",
         "tests/draft",
+        "tests/draft/attacks",
     ] {
         if let Ok(entries) = std::fs::read_dir(root.join(dir)) {
             let mut paths: Vec<PathBuf> =

@@ -242,28 +242,8 @@ fn draft_clean(
             }
         }
     }
-    // Where each section starts: a symmetry the text states holds in its own.
-    let headings: Vec<usize> = lines
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| {
-            let l = l.trim_start();
-            (markdown && l.starts_with('#'))
-                || [
-                    "\\part",
-                    "\\chapter",
-                    "\\section",
-                    "\\subsection",
-                    "\\subsubsection",
-                    "\\paragraph",
-                    "\\appendix",
-                ]
-                .iter()
-                .any(|h| l.starts_with(h))
-        })
-        .map(|(k, _)| k + 1)
-        .collect();
-    rounds.symmetric = symmetry::read(&displays::sentences(source, markdown), &headings);
+    let (headings, enclosed) = sections(&lines, markdown);
+    rounds.symmetric = symmetry::read(&displays::sentences(source, markdown), &headings, &enclosed);
     rounds.incompressible = lines.iter().enumerate().find_map(|(k, l)| {
         tie_word(l)
             .filter(|w| tie_kind(w) == TieKind::Divergence)
@@ -1102,6 +1082,86 @@ fn formal_of(member: &latex::Math, rank: usize) -> Vec<char> {
     atom.and_then(|a| a.sub.as_ref())
         .map(|t| t.text.chars().filter(char::is_ascii_alphabetic).collect())
         .unwrap_or_default()
+}
+
+/// Where each section of the text starts (its heading's line: a LaTeX sectioning
+/// command anywhere in a line, a Markdown `#` heading, quoted or not, a line underlined
+/// with `===` or `---`, an HTML `<h1>` to `<h6>`), and the lines of each environment
+/// other than the document and the displays (a lemma, a quote, a figure): a symmetry
+/// the text states holds in its section, and one stated inside an environment is not
+/// read at all.
+fn sections(lines: &[&str], markdown: bool) -> (Vec<usize>, Vec<std::ops::Range<usize>>) {
+    const COMMANDS: [&str; 9] = [
+        "\\part",
+        "\\chapter",
+        "\\section",
+        "\\subsection",
+        "\\subsubsection",
+        "\\paragraph",
+        "\\appendix",
+        "\\addsec",
+        "\\frametitle",
+    ];
+    let mut headings = Vec::new();
+    for (k, l) in lines.iter().enumerate() {
+        let t = l.trim_start().trim_start_matches('>').trim_start();
+        let underline = |c: char| t.len() >= 3 && t.trim_end().chars().all(|x| x == c);
+        // The command itself, not a longer one (`\\part`, not `\\partial`).
+        let command = |h: &str| {
+            l.match_indices(h).any(|(at, _)| {
+                !l[at + h.len()..]
+                    .chars()
+                    .next()
+                    .is_some_and(|c| c.is_ascii_alphabetic())
+            })
+        };
+        let heading = COMMANDS.iter().any(|h| command(h))
+            || (markdown && (t.starts_with('#') || l.to_ascii_lowercase().contains("<h")));
+        if heading {
+            headings.push(k + 1);
+        } else if markdown && k > 0 && (underline('=') || underline('-')) {
+            headings.push(k);
+        }
+    }
+    // Environments by their lines, nested ones included.
+    let mut enclosed = Vec::new();
+    let mut open: Vec<(String, usize)> = Vec::new();
+    let displays = [
+        "document", "equation", "align", "gather", "multline", "eqnarray", "flalign", "alignat",
+        "split", "aligned",
+    ];
+    for (k, l) in lines.iter().enumerate() {
+        let mut marks: Vec<usize> = l
+            .match_indices("\\begin{")
+            .chain(l.match_indices("\\end{"))
+            .map(|(at, _)| at)
+            .collect();
+        marks.sort_unstable();
+        for at in marks {
+            let rest = &l[at..];
+            let begin = rest.starts_with("\\begin{");
+            let name = rest[rest.find('{').map_or(0, |b| b + 1)..]
+                .split('}')
+                .next()
+                .unwrap_or("")
+                .trim_end_matches('*')
+                .to_owned();
+            if displays.contains(&name.as_str()) {
+                continue;
+            }
+            if begin {
+                open.push((name, k + 1));
+            } else if let Some(at) = open.iter().rposition(|(n, _)| *n == name) {
+                let (_, from) = open.remove(at);
+                enclosed.push(from..k + 2);
+            }
+        }
+    }
+    // One never closed runs to the end.
+    enclosed.extend(open.into_iter().map(|(_, from)| from..usize::MAX));
+    headings.sort_unstable();
+    headings.dedup();
+    (headings, enclosed)
 }
 
 /// A symmetry the text states of a symbol the file declares ([`symmetry`]).

@@ -1,35 +1,37 @@
 //! A symmetry the text states of a tensor: "The stress $\sigma_{ij}$ is symmetric.",
-//! "Let $S_{ij}$ be a symmetric tensor.", "Here $\varepsilon_{ij} = \varepsilon_{ji}$.",
-//! "The spin $W_{ij}$ is skew-symmetric.", or "The strain tensor is symmetric." where
-//! the paper writes "strain" right before one symbol ("small strain
-//! $\varepsilon_{ij}$").
+//! "Let $S_{ij}$ be a symmetric tensor.", "The spin $W_{ij}$ is skew-symmetric.", or
+//! "The strain tensor is symmetric." where the paper writes the same noun phrase right
+//! before one symbol ("small strain $\varepsilon_{ij}$").
 //!
 //! The draft writes such a symmetry as an assumption of the claims of its section
 //! (`symmetric(sigma)`, `antisymmetric(W)`), so that a claim true only for a symmetric
 //! stress holds, and one false even for it fails, where before either was undecided
 //! ("σ being symmetric would remove the difference"). Read wrongly, it would make a false
-//! claim hold, so a sentence states a symmetry only in a few fixed shapes, whole:
+//! claim hold; two adversaries broke looser versions 45 ways. So a sentence states a
+//! symmetry only in a few fixed shapes, whole:
 //!
 //! - `[prefix] [the] [nouns] $X$ is symmetric [tail].`, `[prefix] the nouns is
 //!   symmetric [tail].`, `Let $X$ be a symmetric nouns [tail].`, `Let $X$ denote the
-//!   nouns, which is symmetric [tail].`, `[prefix] $X_{ij} = X_{ji}$.`; the prefix one
-//!   of "let", "here", "note that", "recall that", "by the balance of angular momentum";
-//!   the tail nothing, the same symmetry in components (`, $\sigma_{12} =
-//!   \sigma_{21}$`) or "by the balance of angular momentum"; the formula one symbol with
-//!   two index letters or none. Anything else in the sentence ("about the axis", "in
-//!   the absence of couple stresses", "for $\ell = 0$", "(see Fig. 2)", a question)
-//!   makes it state nothing.
-//! - The sentence and the two after it neither deny nor contrast ("not", "isn't",
-//!   "no longer", "but", "however", "only", "unlike", …).
-//! - No sentence of the paper speaks of a symmetry with a denial or a contrast ("σ is
-//!   not symmetric", "neither … nor … is symmetric", "non-symmetric", "symmetric in
-//!   classical media but …"): then the text tells symmetric and other tensors apart in
-//!   ways a few shapes cannot follow, and no symmetry is read at all.
-//! - A noun names the one symbol the paper writes right after the same noun phrase,
-//!   up to an article, "tensor" or "field", a plural and a few adjectives that name no
-//!   other tensor ("small", "Cauchy"): "the stress" is not "the couple stress".
+//!   nouns, which is symmetric [tail].`; the prefix one of "let", "here", "note that",
+//!   "recall that", "by the balance of angular momentum"; the tail nothing, the same
+//!   symmetry in components (`, $\sigma_{12} = \sigma_{21}$`) or "by the balance of
+//!   angular momentum"; the formula one symbol with two index letters or none. Anything
+//!   else in the sentence ("about the axis", "in the absence of couple stresses", "for
+//!   $\ell = 0$", "(see Fig. 2)", a question) makes it state nothing, and so does a
+//!   formula alone (`$\sigma_{12} = \sigma_{21}$` is one pair of components).
+//! - The sentence and each of the two after it that speaks of it ("this", "it", a
+//!   symmetry word) neither deny nor contrast ("not", "isn't", "no longer", "differs",
+//!   "but", "only", …); it stands outside every environment (a lemma, a quotation).
+//! - No sentence of the paper speaks of a symmetry with a denial or a restriction ("σ is
+//!   not symmetric", "non-symmetric", "symmetric only in …"), and no word names a medium
+//!   with couple stresses ("couple", "polar", "Cosserat"): either tells symmetric and
+//!   other stresses apart in ways a few shapes cannot follow, and no symmetry is read.
+//! - A noun phrase names the one symbol the paper writes right after the same phrase,
+//!   up to an article, "tensor" or "field", a plural and the adjectives of a small
+//!   strain ("small", "infinitesimal", "linear"): "the stress" is neither "the Cauchy
+//!   stress" nor "the couple stress".
 //! - It holds for the claims of its own section (from the heading before it to the
-//!   next): a later section may give the letter another meaning.
+//!   next, however LaTeX or Markdown spells the heading).
 //!
 //! Which declared symbol a formula names is for the draft to settle (`mod.rs`).
 
@@ -89,10 +91,79 @@ pub struct Said {
 
 /// Words that deny.
 const DENIALS: &[&str] = &[
-    "not", "no", "nor", "neither", "never", "cannot", "non", "need", "needs", "none", "nothing",
-    "lacks", "lack", "fails", "fail", "lose", "loses", "lost", "isn", "aren", "wasn", "weren",
-    "doesn", "don", "won", "nt", "longer", "drop", "drops", "relax", "relaxed", "relaxes", "leave",
-    "aside", "violate", "violated", "violates", "break", "broken", "breaks",
+    "not",
+    "no",
+    "nor",
+    "neither",
+    "never",
+    "cannot",
+    "non",
+    "need",
+    "needs",
+    "none",
+    "nothing",
+    "lacks",
+    "lack",
+    "fails",
+    "fail",
+    "lose",
+    "loses",
+    "lost",
+    "isn",
+    "aren",
+    "wasn",
+    "weren",
+    "doesn",
+    "don",
+    "won",
+    "nt",
+    "longer",
+    "drop",
+    "drops",
+    "relax",
+    "relaxed",
+    "relaxes",
+    "leave",
+    "aside",
+    "violate",
+    "violated",
+    "violates",
+    "break",
+    "broken",
+    "breaks",
+    "absent",
+    "cease",
+    "ceases",
+    "ceased",
+    "false",
+    "wrong",
+    "incorrect",
+    "disappear",
+    "disappears",
+    "refute",
+    "refutes",
+    "refuted",
+    "unequal",
+    "differ",
+    "differs",
+    "different",
+    "nonzero",
+    "imagine",
+    "pretend",
+];
+
+/// Words that name media whose stress need not be symmetric (couple stresses act in
+/// them): a paper that uses one tells symmetric and other stresses apart in ways a few
+/// shapes of sentence cannot follow, and no symmetry is read in it.
+const POLAR: &[&str] = &[
+    "couple",
+    "couples",
+    "polar",
+    "micropolar",
+    "micro-polar",
+    "cosserat",
+    "micromorphic",
+    "strain-gradient",
 ];
 
 /// Words that contrast or qualify.
@@ -213,8 +284,6 @@ const GRAMMAR: &[&str] = &[
     "skew-symmetric",
     "antisymmetric",
     "anti-symmetric",
-    "skew",
-    "anti",
     "product",
     "part",
     "parts",
@@ -240,10 +309,6 @@ const ADJECTIVES: &[&str] = &[
     "linear",
     "linearised",
     "linearized",
-    "total",
-    "true",
-    "cauchy",
-    "second-order",
 ];
 
 /// Nouns that name a kind, not a quantity.
@@ -362,7 +427,11 @@ fn is_noun(t: &Token) -> bool {
 
 /// The symmetries `sentences` state ([`Symmetry`]), each held for its section
 /// (`headings`: the lines where sections start), and the noun phrases before formulas.
-pub fn read(sentences: &[Sentence], headings: &[usize]) -> Said {
+pub fn read(
+    sentences: &[Sentence],
+    headings: &[usize],
+    enclosed: &[std::ops::Range<usize>],
+) -> Said {
     let mut said = Said::default();
     let read: Vec<(Vec<Token>, bool)> = sentences.iter().map(tokens).collect();
     let speaks = |t: &[Token]| {
@@ -382,6 +451,13 @@ pub fn read(sentences: &[Sentence], headings: &[usize]) -> Said {
             })
         })
     };
+    let polar = read
+        .iter()
+        .flat_map(|(t, _)| t)
+        .any(|t| word(Some(t)).is_some_and(|w| POLAR.contains(&w)));
+    if polar {
+        return said;
+    }
     for (s, (t, _)) in sentences.iter().zip(&read) {
         for (k, tok) in t.iter().enumerate() {
             if let Token::Formula(f) = tok {
@@ -418,7 +494,7 @@ pub fn read(sentences: &[Sentence], headings: &[usize]) -> Said {
             .take(3)
             .enumerate()
             .any(|(k, (t, _))| (k == 0 || speaks_of_it(t)) && denies(t, CONTRASTS));
-        if !statement || withdrawn {
+        if !statement || withdrawn || enclosed.iter().any(|r| r.contains(&s.line)) {
             continue;
         }
         let Some((subject, kind)) = stated(t, s) else {
@@ -464,11 +540,6 @@ fn stated(t: &[Token], s: &Sentence) -> Option<(Subject, Kind)> {
         Some(Token::Formula(f)) => Some(&s.formulas[*f].1),
         _ => None,
     };
-    // The whole body a formula `X_{ij} = ±X_{ji}`.
-    if let [Token::Formula(f)] = body {
-        let x = &s.formulas[*f].1;
-        return transposed(x).map(|kind| (Subject::Formula(x.clone()), kind));
-    }
     let at = body
         .iter()
         .position(|t| word(Some(t)).and_then(kind_of).is_some())?;
@@ -628,7 +699,7 @@ mod tests {
     use super::*;
 
     fn said(text: &str) -> Vec<(Subject, Kind)> {
-        read(&super::super::displays::sentences(text, false), &[])
+        read(&super::super::displays::sentences(text, false), &[], &[])
             .symmetries
             .into_iter()
             .map(|s| (s.subject, s.kind))
@@ -654,18 +725,15 @@ mod tests {
             said("The strain tensor is symmetric."),
             [(Subject::Noun(vec!["strain".into()]), Kind::Symmetric)]
         );
-        assert_eq!(
-            said("Here $e_{ij} = e_{ji}$."),
-            [formula("e_{ij} = e_{ji}")]
-        );
+        // A formula alone states no symmetry: `$\sigma_{12} = \sigma_{21}$` is one pair.
+        assert_eq!(said("Here $e_{ij} = e_{ji}$."), []);
         assert_eq!(
             said("The spin $W_{ij}$ is skew-symmetric."),
             [(Subject::Formula("W_{ij}".into()), Kind::Antisymmetric)]
         );
         assert_eq!(
-            said("$W_{ij} = -W_{ji}$. The spin $W$ is skew symmetric. The spin $V$ is skew\\-symmetric."),
+            said("The spin $W$ is skew symmetric. The spin $V$ is skew\\-symmetric."),
             [
-                (Subject::Formula("W_{ij} = -W_{ji}".into()), Kind::Antisymmetric),
                 (Subject::Formula("W".into()), Kind::Antisymmetric),
                 (Subject::Formula("V".into()), Kind::Antisymmetric),
             ]
