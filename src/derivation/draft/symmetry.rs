@@ -166,25 +166,12 @@ const POLAR: &[&str] = &[
     "strain-gradient",
 ];
 
-/// Words that contrast or qualify.
-const CONTRASTS: &[&str] = &[
-    "but",
-    "however",
-    "although",
-    "though",
-    "whereas",
+/// Words that qualify, beside the [`RESTRICTIONS`]: a statement with one of them, or
+/// followed by one that speaks of it, states nothing.
+const QUALIFIERS: &[&str] = &[
     "while",
-    "unlike",
-    "except",
-    "only",
-    "rather",
-    "instead",
-    "contrary",
-    "differently",
     "otherwise",
-    "unless",
     "if",
-    "iff",
     "when",
     "whenever",
     "provided",
@@ -420,7 +407,8 @@ fn is_noun(t: &Token) -> bool {
     word(Some(t)).is_some_and(|w| {
         !GRAMMAR.contains(&w)
             && !DENIALS.contains(&w)
-            && !CONTRASTS.contains(&w)
+            && !RESTRICTIONS.contains(&w)
+            && !QUALIFIERS.contains(&w)
             && w.chars().all(|c| c.is_alphabetic() || c == '-')
     })
 }
@@ -489,11 +477,9 @@ pub fn read(
                     )
                 })
         };
-        let withdrawn = read[n..]
-            .iter()
-            .take(3)
-            .enumerate()
-            .any(|(k, (t, _))| (k == 0 || speaks_of_it(t)) && denies(t, CONTRASTS));
+        let withdrawn = read[n..].iter().take(3).enumerate().any(|(k, (t, _))| {
+            (k == 0 || speaks_of_it(t)) && (denies(t, RESTRICTIONS) || denies(t, QUALIFIERS))
+        });
         if !statement || withdrawn || enclosed.iter().any(|r| r.contains(&s.line)) {
             continue;
         }
