@@ -1151,17 +1151,27 @@ fn sections(lines: &[&str], markdown: bool) -> (Vec<usize>, Vec<std::ops::Range<
             }
             if begin {
                 open.push((name, k + 1));
-            } else if let Some(at) = open.iter().rposition(|(n, _)| *n == name) {
-                let (_, from) = open.remove(at);
+            } else if let Some(back) = open.iter().rev().take(64).position(|(n, _)| *n == name) {
+                // Environments nest: the one it closes is near the top (a stray `\end`
+                // deeper down closes nothing).
+                let (_, from) = open.remove(open.len() - 1 - back);
                 enclosed.push(from..k + 2);
             }
         }
     }
-    // One never closed runs to the end.
+    // One never closed runs to the end. The ranges, sorted and merged, do not overlap.
     enclosed.extend(open.into_iter().map(|(_, from)| from..usize::MAX));
+    enclosed.sort_unstable_by_key(|r| (r.start, r.end));
+    let mut merged: Vec<std::ops::Range<usize>> = Vec::with_capacity(enclosed.len());
+    for r in enclosed {
+        match merged.last_mut() {
+            Some(last) if r.start <= last.end => last.end = last.end.max(r.end),
+            _ => merged.push(r),
+        }
+    }
     headings.sort_unstable();
     headings.dedup();
-    (headings, enclosed)
+    (headings, merged)
 }
 
 /// A symmetry the text states of a symbol the file declares ([`symmetry`]).

@@ -414,7 +414,8 @@ fn is_noun(t: &Token) -> bool {
 }
 
 /// The symmetries `sentences` state ([`Symmetry`]), each held for its section
-/// (`headings`: the lines where sections start), and the noun phrases before formulas.
+/// (`headings`: the lines where sections start, sorted), outside the environments of
+/// `enclosed` (by lines, sorted, not overlapping), and the noun phrases before formulas.
 pub fn read(
     sentences: &[Sentence],
     headings: &[usize],
@@ -480,23 +481,15 @@ pub fn read(
         let withdrawn = read[n..].iter().take(3).enumerate().any(|(k, (t, _))| {
             (k == 0 || speaks_of_it(t)) && (denies(t, RESTRICTIONS) || denies(t, QUALIFIERS))
         });
-        if !statement || withdrawn || enclosed.iter().any(|r| r.contains(&s.line)) {
+        if !statement || withdrawn || inside(enclosed, s.line) {
             continue;
         }
         let Some((subject, kind)) = stated(t, s) else {
             continue;
         };
-        let from = headings
-            .iter()
-            .rev()
-            .find(|&&h| h <= s.line)
-            .copied()
-            .unwrap_or(0);
-        let to = headings
-            .iter()
-            .find(|&&h| h > s.line)
-            .copied()
-            .unwrap_or(usize::MAX);
+        let k = headings.partition_point(|&h| h <= s.line);
+        let from = k.checked_sub(1).map_or(0, |j| headings[j]);
+        let to = headings.get(k).copied().unwrap_or(usize::MAX);
         said.symmetries.push(Symmetry {
             line: s.line,
             subject,
@@ -506,6 +499,12 @@ pub fn read(
         });
     }
     said
+}
+
+/// Whether `line` lies in one of `ranges` (sorted, not overlapping).
+fn inside(ranges: &[std::ops::Range<usize>], line: usize) -> bool {
+    let k = ranges.partition_point(|r| r.end <= line);
+    ranges.get(k).is_some_and(|r| r.contains(&line))
 }
 
 /// The subject and symmetry of a sentence in one of the fixed shapes, if it is one.
