@@ -600,7 +600,7 @@ fn tail_is(tail: &[Token], s: &Sentence, kind: Kind) -> bool {
 }
 
 /// Whether a formula is one symbol, with two distinct index letters or none (`\sigma`,
-/// `\sigma_{ij}`), no accent or primes.
+/// `\sigma_{ij}`; not a component, `\sigma_{12}`), no accent or primes.
 fn one_symbol(body: &str) -> bool {
     let Ok(read) = latex::read(body, &ReadOptions::default()) else {
         return false;
@@ -608,7 +608,7 @@ fn one_symbol(body: &str) -> bool {
     match &read.parts[..] {
         [p] if p.relations.is_empty() => match &p.members[..] {
             [m] => matches!(&m.kind, MathKind::Atom(a) if a.accent.is_none() && a.primes == 0
-                && a.sub.as_ref().is_none_or(|s| two_letters(&s.text).is_some())),
+                && a.sub.as_ref().is_none_or(|s| two_letters(&s.text).is_some_and(|l| l.iter().all(char::is_ascii_lowercase)))),
             _ => false,
         },
         _ => false,
@@ -738,6 +738,7 @@ mod tests {
             "Is the stress $\\sigma_{ij}$ symmetric?",
             "The strain $\\epsilon_{ij}$, differently from the stress $\\sigma_{ij}$, is symmetric.",
             "The spin $W_{ij}$ is skew.",
+            "The component $\\sigma_{12}$ is symmetric.",
             "$\\sigma_{ij} = \\sigma_{ji}$ for $i, j \\le 2$.",
             "The stress $\\sigma_{ij}$ is symmetric. In a Cosserat continuum this is no longer true.",
         ] {
