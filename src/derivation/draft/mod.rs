@@ -242,7 +242,7 @@ fn draft_clean(
             }
         }
     }
-    let (headings, enclosed) = sections(&lines, markdown);
+    let (headings, enclosed) = symmetry::sections(&lines, markdown);
     rounds.symmetric = symmetry::read(&displays::sentences(source, markdown), &headings, &enclosed);
     rounds.incompressible = lines.iter().enumerate().find_map(|(k, l)| {
         tie_word(l)
@@ -1082,202 +1082,6 @@ fn formal_of(member: &latex::Math, rank: usize) -> Vec<char> {
     atom.and_then(|a| a.sub.as_ref())
         .map(|t| t.text.chars().filter(char::is_ascii_alphabetic).collect())
         .unwrap_or_default()
-}
-
-/// Where each section of the text starts (its heading's line: a LaTeX sectioning
-/// command anywhere in a line, a Markdown `#` heading, quoted or not, a line underlined
-/// with `===` or `---`, an HTML `<h1>` to `<h6>`), and the lines of each environment
-/// other than the document and the displays (a lemma, a quote, a figure): a symmetry
-/// the text states holds in its section, and one stated inside an environment is not
-/// read at all.
-fn sections(lines: &[&str], markdown: bool) -> (Vec<usize>, Vec<std::ops::Range<usize>>) {
-    const COMMANDS: [&str; 9] = [
-        "\\part",
-        "\\chapter",
-        "\\section",
-        "\\subsection",
-        "\\subsubsection",
-        "\\paragraph",
-        "\\appendix",
-        "\\addsec",
-        "\\frametitle",
-    ];
-    let mut headings = Vec::new();
-    for (k, l) in lines.iter().enumerate() {
-        let t = l.trim_start().trim_start_matches('>').trim_start();
-        let underline = |c: char| t.len() >= 3 && t.trim_end().chars().all(|x| x == c);
-        // The command itself, not a longer one (`\\part`, not `\\partial`).
-        let command = |h: &str| {
-            l.match_indices(h).any(|(at, _)| {
-                !l[at + h.len()..]
-                    .chars()
-                    .next()
-                    .is_some_and(|c| c.is_ascii_alphabetic())
-            })
-        };
-        let heading = COMMANDS.iter().any(|h| command(h))
-            || (markdown && (t.starts_with('#') || l.to_ascii_lowercase().contains("<h")));
-        if heading {
-            headings.push(k + 1);
-        } else if markdown && k > 0 && (underline('=') || underline('-')) {
-            headings.push(k);
-        }
-    }
-    // Environments by their lines, nested ones included.
-    let mut enclosed = Vec::new();
-    let mut open: Vec<(String, usize)> = Vec::new();
-    let displays = [
-        "document", "equation", "align", "gather", "multline", "eqnarray", "flalign", "alignat",
-        "split", "aligned",
-    ];
-    for (k, l) in lines.iter().enumerate() {
-        let mut marks: Vec<usize> = l
-            .match_indices("\\begin{")
-            .chain(l.match_indices("\\end{"))
-            .map(|(at, _)| at)
-            .collect();
-        marks.sort_unstable();
-        for at in marks {
-            let rest = &l[at..];
-            let begin = rest.starts_with("\\begin{");
-            let name = rest[rest.find('{').map_or(0, |b| b + 1)..]
-                .split('}')
-                .next()
-                .unwrap_or("")
-                .trim_end_matches('*')
-                .to_owned();
-            if displays.contains(&name.as_str()) {
-                continue;
-            }
-            if begin {
-                open.push((name, k + 1));
-            } else if let Some(back) = open.iter().rev().take(64).position(|(n, _)| *n == name) {
-                // Environments nest: the one it closes is near the top (a stray `\end`
-                // deeper down closes nothing).
-                let (_, from) = open.remove(open.len() - 1 - back);
-                enclosed.push(from..k + 2);
-            }
-        }
-    }
-    // One never closed runs to the end. The ranges, sorted and merged, do not overlap.
-    enclosed.extend(open.into_iter().map(|(_, from)| from..usize::MAX));
-    enclosed.sort_unstable_by_key(|r| (r.start, r.end));
-    let mut merged: Vec<std::ops::Range<usize>> = Vec::with_capacity(enclosed.len());
-    for r in enclosed {
-        match merged.last_mut() {
-            Some(last) if r.start <= last.end => last.end = last.end.max(r.end),
-            _ => merged.push(r),
-        }
-    }
-    headings.sort_unstable();
-    headings.dedup();
-    (headings, merged)
-}
-
-/// A symmetry the text states of a symbol the file declares ([`symmetry`]).
-struct SymmetryOf {
-    name: String,
-    /// The symbol as printed.
-    printed: String,
-    kind: symmetry::Kind,
-    line: usize,
-    quote: String,
-    /// The lines of its section: the claims it holds for.
-    section: std::ops::Range<usize>,
-}
-
-/// The symmetries the text states of symbols of rank 2 the file declares (one it
-/// defines is symmetric or not by its definition): named by the formula in the
-/// sentence, or by the noun phrase the paper writes right before one symbol and no
-/// other. A symbol said to be both symmetric and antisymmetric in one section is
-/// neither.
-fn symmetric_tensors(
-    said: &symmetry::Said,
-    symbols: &BTreeMap<Key, Symbol>,
-    defined: &BTreeMap<Key, String>,
-    (normal, tensors): (Option<&str>, &Stems),
-) -> Vec<SymmetryOf> {
-    let options = ReadOptions::default();
-    let unranked = |k: &Key| symbols::fields(k).map(|f| f[..5].join("|"));
-    // The declared symbols of rank 2, by their identity without the rank.
-    let mut by_identity: BTreeMap<String, Vec<(&Key, &Symbol)>> = BTreeMap::new();
-    for (k, s) in symbols.iter().filter(|(_, s)| s.rank == 2 && !s.component) {
-        if let Some(u) = unranked(k) {
-            by_identity.entry(u).or_default().push((k, s));
-        }
-    }
-    // The printed symbol a formula begins with, without its rank; each formula read
-    // once.
-    let mut first: BTreeMap<String, Option<String>> = BTreeMap::new();
-    let mut first_symbol = |body: &str| -> Option<String> {
-        if let Some(known) = first.get(body) {
-            return known.clone();
-        }
-        let found = (|| {
-            let read = latex::read(body, &options).ok()?;
-            let member = read.parts.first()?.members.first()?;
-            let (key, _) = symbols::occurrences(&[member], normal, tensors)
-                .into_iter()
-                .next()?;
-            unranked(&key)
-        })();
-        first.insert(body.to_owned(), found.clone());
-        found
-    };
-    // The one declared symbol of rank 2 with that identity, if the file does not define
-    // it.
-    let named = |key: &Option<String>| -> Option<&Symbol> {
-        match by_identity.get(key.as_ref()?)?.as_slice() {
-            [(k, s)] if !defined.contains_key(*k) => Some(*s),
-            _ => None,
-        }
-    };
-    // Every formula the paper writes right after a noun phrase, declared or not: the
-    // phrase names a symbol when they are all one symbol.
-    let mut after: BTreeMap<&[String], BTreeSet<Option<String>>> = BTreeMap::new();
-    for (noun, body) in &said.nouns {
-        let key = first_symbol(body);
-        after.entry(noun.as_slice()).or_default().insert(key);
-    }
-    // One statement per symbol, section and kind; a symbol said to be both symmetric
-    // and antisymmetric in a section is neither there (sections do not overlap: each
-    // runs from one heading to the next).
-    let mut found: BTreeMap<(String, usize), BTreeMap<symmetry::Kind, SymmetryOf>> =
-        BTreeMap::new();
-    for st in &said.symmetries {
-        let key = match &st.subject {
-            symmetry::Subject::Formula(body) => first_symbol(body),
-            symmetry::Subject::Noun(noun) => match after.get(noun.as_slice()) {
-                Some(keys) if keys.len() == 1 => keys.first().cloned().flatten(),
-                _ => None,
-            },
-        };
-        let Some(s) = named(&key) else {
-            continue;
-        };
-        found
-            .entry((s.name.clone(), st.section.start))
-            .or_default()
-            .entry(st.kind)
-            .or_insert_with(|| SymmetryOf {
-                name: s.name.clone(),
-                // As printed, with the index letters `ij` (`\sigma_{ij}`, not the
-                // `\sigma_{kk}` of its first occurrence).
-                printed: match &s.key.1[..] {
-                    [a, b] => s.key.0.replacen(&format!("_{{{a}{b}}}"), "_{ij}", 1),
-                    _ => s.key.0.clone(),
-                },
-                kind: st.kind,
-                line: st.line,
-                quote: st.quote.clone(),
-                section: st.section.clone(),
-            });
-    }
-    found
-        .into_values()
-        .filter(|kinds| kinds.len() == 1)
-        .flat_map(BTreeMap::into_values)
-        .collect()
 }
 
 /// Whether `latex` has the printed symbol `symbol` as a token of its own (`a` in
@@ -2286,7 +2090,7 @@ fn write(
     for key in texts.keys() {
         place(key, &chosen, &texts, &mut placed, &mut define_lines);
     }
-    let symmetric = symmetric_tensors(symmetric, &symbols, &defined, (normal, &tensors));
+    let symmetric = symmetry::symmetric_tensors(symmetric, &symbols, &defined, (normal, &tensors));
     Some(render(Render {
         label,
         equations,
@@ -3377,7 +3181,7 @@ struct Render<'a> {
     label: &'a str,
     equations: &'a [Equation],
     /// The symmetries the text states, each for the claims of its section.
-    symmetric: &'a [SymmetryOf],
+    symmetric: &'a [symmetry::SymmetryOf],
     symbols: &'a BTreeMap<Key, Symbol>,
     order: &'a [Key],
     defined: &'a BTreeMap<Key, String>,
