@@ -2122,7 +2122,7 @@ struct Rounds {
     /// its motion isochoric.
     incompressible: Option<(usize, String)>,
     /// The symmetries the text states ([`symmetry`]).
-    symmetric: symmetry::Said,
+    symmetric: symmetry::Statements,
 }
 
 /// A symbol's definition on its way into the file.

@@ -86,7 +86,7 @@ pub struct Symmetry {
 /// What the text's sentences say: the symmetries they state, and the noun phrase the
 /// paper writes right before each formula.
 #[derive(Clone, Debug, Default)]
-pub struct Said {
+pub struct Statements {
     pub symmetries: Vec<Symmetry>,
     pub nouns: Vec<(Vec<String>, String)>,
 }
@@ -422,8 +422,8 @@ pub fn read(
     sentences: &[Sentence],
     headings: &[usize],
     enclosed: &[std::ops::Range<usize>],
-) -> Said {
-    let mut said = Said::default();
+) -> Statements {
+    let mut said = Statements::default();
     let read: Vec<(Vec<Token>, bool)> = sentences.iter().map(tokens).collect();
     let speaks = |t: &[Token]| {
         t.iter()
@@ -789,7 +789,7 @@ pub struct SymmetryOf {
 /// other. A symbol said to be both symmetric and antisymmetric in one section is
 /// neither.
 pub fn symmetric_tensors(
-    said: &Said,
+    said: &Statements,
     symbols: &BTreeMap<Key, Symbol>,
     defined: &BTreeMap<Key, String>,
     (normal, tensors): (Option<&str>, &Stems),
