@@ -461,6 +461,7 @@ pub(super) fn by_analogy(
                     line: Some(f.line),
                     latex: f.body.clone(),
                     instead_of: None,
+                    law: false,
                 },
             );
         }

@@ -1421,7 +1421,7 @@ fn write(
     for (line, text) in equalities.map(|f| (&f.line, &f.body)) {
         let alias = text.split_once('=').is_some_and(|(_, right)| {
             latex::read(right, &options).is_ok_and(|r| {
-                matches!(&r.parts[..], [part] if matches!(&part.members[..], [m] if matches!(m.kind, MathKind::Atom(_))))
+                matches!(&r.parts[..], [part] if matches!(&part.members[..], [m] if second_name(m)))
             })
         });
         if alias {
@@ -1794,10 +1794,20 @@ fn write(
                 .iter()
                 .filter(|f| !text_lines.contains(&f.line))
                 .collect();
+            let by_law: BTreeSet<&Key> = stated
+                .iter()
+                .filter(|(_, s)| s.law)
+                .map(|(k, _)| k)
+                .collect();
+            let defined_atom = |m: &latex::Math| {
+                symbols::occurrences(&[m], normal, &tensors)
+                    .first()
+                    .is_some_and(|(k, _)| chosen.contains_key(k))
+            };
             let mut tied = tied(
                 (equations, &symbols, &chosen, &squares),
                 (&open, &opaque),
-                &said,
+                (&said, &by_law, &defined_atom),
             );
             // A trace speaks of a tensor of rank 2, a divergence of a vector field: on
             // any other symbol such a reason ties nothing.
@@ -2242,6 +2252,7 @@ fn reaction(
             line: Some(f.line),
             latex: format!("{body} = -{reversed}"),
             instead_of: None,
+            law: false,
         }),
     })
 }
@@ -2295,8 +2306,8 @@ const DECOMPOSITION_WORDS: [&str; 4] = ["decompos", "split", " part", "sum of"];
 ///   after it ("the stress vector $t_i = \sigma_{ki} n_k$"), from symbols they read,
 ///   where the words before it name its value ([`names_its_value`]) and no numbered
 ///   equation has the symbol alone on its left. Its right side must read a symbol, and
-///   not be one alone: `$f_i^{(2,1)c} = f_i^c$` gives a second name, `$x = 0$` a
-///   condition;
+///   not be one alone ([`second_name`]): `$f_i^{(2,1)c} = f_i^c$` gives a second name,
+///   `$x = 0$` a condition;
 /// - a reaction ([`reaction`]): minus its action;
 /// - a decomposition (`\sigma_{ij} = s_{ij} + p \delta_{ij}`), where the sentence before
 ///   it says so ([`DECOMPOSITION_WORDS`]): an equation `A = B` whose right side is a sum
@@ -2353,7 +2364,7 @@ fn stated_definitions(
         };
         if part.relations[..] != [latex::Rel::Eq]
             || !matches!(m0.kind, MathKind::Atom(_))
-            || matches!(m1.kind, MathKind::Atom(_))
+            || second_name(m1)
         {
             continue;
         }
@@ -2387,6 +2398,7 @@ fn stated_definitions(
                     line: Some(f.line),
                     latex: f.body.clone(),
                     instead_of: Some(key),
+                    law: false,
                 }),
             });
             continue;
@@ -2413,9 +2425,16 @@ fn stated_definitions(
                 line: Some(f.line),
                 latex: f.body.clone(),
                 instead_of: None,
+                law: false,
             }),
         });
     }
+    out.extend(posited_laws(
+        equations,
+        prose,
+        (symbols, in_prose, numbered, &first_line),
+        (normal, tensors),
+    ));
     for (q, eq) in equations.iter().enumerate() {
         // Only where its sentence says so: a new symbol added to a known one is
         // otherwise as likely an error as a definition.
@@ -2482,9 +2501,178 @@ fn stated_definitions(
                     line: None,
                     latex: format!("{text} = {left} - ({})", rest.join(" ")),
                     instead_of: keys(&[m0]).pop(),
+                    law: false,
                 }),
             });
         }
+    }
+    out
+}
+
+/// Words of the sentence before a law the paper posits ("equilibrium requires", "the
+/// balance of linear momentum reads").
+const LAW_WORDS: [&str; 7] = [
+    "equilibri",
+    "balance",
+    "conservation",
+    "of motion",
+    "momentum",
+    "governing",
+    "field equation",
+];
+
+/// Words of a sentence that derive its equation rather than posit it ("inserting this
+/// in equilibrium gives Navier's equations").
+const DERIVED_WORDS: [&str; 23] = [
+    "give", "yield", "therefore", "hence", "thus", "substitut", "insert", "obtain", "lead",
+    "become", "reduce", "combin", "follow", "so that", "find", "we get", "result", "deduce",
+    "rewrit", "taking", "in terms of", "express", "navier",
+];
+
+/// The definitions that laws the paper posits state: a numbered equation of the form of
+/// a law ([`law_form`]: equilibrium, `\sigma_{ij,j} + b_i = 0` or `\sigma_{ij,j} =
+/// -b_i`), whose sentence says it is one ([`LAW_WORDS`], and none of [`DERIVED_WORDS`]),
+/// and that has one source term, a bare symbol (no derivative, no coefficient) met there
+/// first and once, which no numbered equation and no formula of the text defines. It
+/// defines that symbol as what the law leaves it (`b_i = -(\sigma_{ij,j})`): every later
+/// equation that reads it is then checked on the law's solutions, which is what the
+/// paper asserts of it (Navier's equations), and a wrong one fails. A source term the
+/// text writes elsewhere (`$b_i = \rho g_i$`) or an equation before mentions is no new
+/// symbol, and neither is one a formula of the text relates to anything (`$\sigma_{ij,j}
+/// + b_i = 0$` said before in words): the law then ties it ([`tied`]).
+fn posited_laws(
+    equations: &[Equation],
+    prose: &[displays::Inline],
+    (symbols, in_prose, numbered, first_line): (
+        &BTreeMap<Key, Symbol>,
+        &BTreeMap<Key, (usize, BTreeSet<String>)>,
+        &BTreeSet<Key>,
+        &BTreeMap<&Key, usize>,
+    ),
+    (normal, tensors): (Option<&str>, &Stems),
+) -> Vec<Candidate> {
+    let options = ReadOptions::default();
+    let keys = |members: &[&latex::Math]| -> Vec<Key> {
+        symbols::occurrences(members, normal, tensors)
+            .into_iter()
+            .map(|(k, _)| k)
+            .collect()
+    };
+    let derivative = |m: &latex::Math| match &m.kind {
+        MathKind::Atom(a) => a.sub.as_ref().is_some_and(|s| s.text.contains(',')),
+        _ => true,
+    };
+    // The symbols a formula of the text relates to others.
+    let related: BTreeSet<Key> = prose
+        .iter()
+        .filter(|f| f.body.contains('='))
+        .filter_map(|f| latex::read(&f.body, &options).ok())
+        .flat_map(|r| {
+            r.parts
+                .iter()
+                .flat_map(|p| keys(&p.members.iter().collect::<Vec<_>>()))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let mut out = Vec::new();
+    for (q, eq) in equations.iter().enumerate() {
+        let lead_in = eq.lead_in.to_lowercase();
+        if eq.unread.is_some()
+            || !law_form(&eq.latex, &|_| false)
+            || !LAW_WORDS.iter().any(|w| lead_in.contains(w))
+            || DERIVED_WORDS.iter().any(|w| lead_in.contains(w))
+        {
+            continue;
+        }
+        let Ok(printed) = latex::read(&eq.latex, &options) else {
+            continue;
+        };
+        let [part] = &printed.parts[..] else { continue };
+        let [m0, m1] = &part.members[..] else {
+            continue;
+        };
+        if part.relations[..] != [latex::Rel::Eq] {
+            continue;
+        }
+        let found = keys(&[m0, m1]);
+        // A bare symbol met here first and once, which nothing else defines.
+        let new = |t: &latex::Math| -> Option<Key> {
+            if !matches!(t.kind, MathKind::Atom(_)) || derivative(t) {
+                return None;
+            }
+            let k = keys(&[t]).pop()?;
+            let fresh = found.iter().filter(|f| **f == k).count() == 1
+                && first_line.get(&k) == Some(&eq.line)
+                && !in_prose.contains_key(&k)
+                && !related.contains(&k)
+                && !numbered.contains(&k)
+                && symbols.contains_key(&k);
+            fresh.then_some(k)
+        };
+        let span = |m: &latex::Math| eq.latex.get(m.span.start..m.span.end).map(str::trim);
+        let terms = |m: &latex::Math| -> Vec<(bool, latex::Math)> {
+            match &m.kind {
+                MathKind::Sum(terms) => terms.clone(),
+                _ => vec![(false, m.clone())],
+            }
+        };
+        let zero = |m: &latex::Math| matches!(&m.kind, MathKind::Number(n) if n == "0");
+        // `… + X = 0` (either way round): X is minus the rest of the sum; `A = X` (or
+        // `A = -X`): X is A (or minus A).
+        let (sum, other) = if zero(m1) {
+            (terms(m0), None)
+        } else if zero(m0) {
+            (terms(m1), None)
+        } else {
+            match (terms(m1).as_slice(), terms(m0).as_slice()) {
+                ([(minus, t)], _) if new(t).is_some() => (vec![(!minus, t.clone())], Some(m0)),
+                (_, [(minus, t)]) if new(t).is_some() => (vec![(!minus, t.clone())], Some(m1)),
+                _ => continue,
+            }
+        };
+        let fresh: Vec<(usize, Key)> = sum
+            .iter()
+            .enumerate()
+            .filter_map(|(n, (_, t))| Some((n, new(t)?)))
+            .collect();
+        let [(at, key)] = &fresh[..] else { continue };
+        let (minus, source) = &sum[*at];
+        let rest = match other {
+            Some(m) => span(m).map(str::to_owned),
+            None => sum
+                .iter()
+                .enumerate()
+                .filter(|(n, _)| n != at)
+                .map(|(n, (minus, t))| {
+                    let first = n == 0 || (*at == 0 && n == 1);
+                    let sign = match (minus, first) {
+                        (true, _) => "- ",
+                        (false, true) => "",
+                        (false, false) => "+ ",
+                    };
+                    span(t).map(|t| format!("{sign}{t}"))
+                })
+                .collect::<Option<Vec<String>>>()
+                .map(|r| r.join(" ")),
+        };
+        let (Some(rest), Some(text)) = (rest.filter(|r| !r.is_empty()), span(source)) else {
+            continue;
+        };
+        // `X + R = 0` gives `X = -(R)`; `-X + R = 0` gives `X = (R)`; for `A = X` the
+        // source was moved over with its sign flipped, so the same rule holds.
+        let sign = if *minus { "" } else { "-" };
+        out.push(Candidate {
+            q,
+            key: key.clone(),
+            body: found.iter().filter(|k| *k != key).cloned().collect(),
+            text: text.to_owned(),
+            stated: Some(Stated {
+                line: None,
+                latex: format!("{text} = {sign}({rest})"),
+                instead_of: None,
+                law: true,
+            }),
+        });
     }
     out
 }
@@ -2700,16 +2888,24 @@ fn formula_after<'w>(words: &'w str, word: &str) -> Option<&'w str> {
     None
 }
 
+/// Whether a right side is a second name for its left (`$f_i^{(2,1)c} = f_i^c$`): one
+/// symbol, not differentiated. A derivative (`$\dot{\kappa}_{ij} = w_{j,i}$`) is a
+/// value.
+fn second_name(m: &latex::Math) -> bool {
+    matches!(&m.kind, MathKind::Atom(a) if !a.sub.as_ref().is_some_and(|s| s.text.contains(',')))
+}
+
 /// Whether an equation has the form of a law (`\sigma_{ij,j} + b_i = 0`, `\sigma_{ij,j} =
 /// -b_i`): it reads a comma derivative, and one of its two members is 0 or a lone
-/// symbol, negated or not.
-fn law_form(latex_text: &str) -> bool {
+/// symbol, negated or not, that no definition gives (`P = \sigma_{ij} v_{j,i}`, with `P`
+/// defined, is a claim about `P`).
+fn law_form(latex_text: &str, defined: &dyn Fn(&latex::Math) -> bool) -> bool {
     let derivative = latex_text
         .split("_{")
         .skip(1)
         .any(|rest| rest.split('}').next().is_some_and(|sub| sub.contains(',')));
     // A source term: a symbol, not a derivative (`u_{i,j} = …` is no law).
-    let source = |m: &latex::Math| matches!(&m.kind, MathKind::Atom(a) if !a.sub.as_ref().is_some_and(|s| s.text.contains(',')));
+    let source = |m: &latex::Math| second_name(m) && !defined(m);
     let lone = |m: &latex::Math| match &m.kind {
         MathKind::Number(n) => n == "0",
         MathKind::Sum(terms) => matches!(&terms[..], [(_, t)] if source(t)),
@@ -2794,7 +2990,11 @@ fn tied(
         &BTreeMap<Key, usize>,
     ),
     (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
-    said: &[&Said],
+    (said, by_law, defined_atom): (
+        &[&Said],
+        &BTreeSet<&Key>,
+        &dyn Fn(&latex::Math) -> bool,
+    ),
 ) -> BTreeMap<String, (Option<usize>, String, TieKind)> {
     let declared = |k: &Key| {
         symbols
@@ -2898,9 +3098,28 @@ fn tied(
     // reads, through definitions, and the symbols it is the first to write are tied to
     // it, for sides that read different symbols only (`tie = 'law'`). One of a single
     // symbol (`e_{ijk}\phi_{,jk} = 0`) relates it to no other.
+    // An equation that reads a symbol a law defines ([`posited_laws`]), through
+    // definitions, is checked on that law's solutions, and posits nothing more.
+    let reads_a_law = |e: &Equation| {
+        let mut stack: Vec<&Key> = e.reads.iter().collect();
+        let mut seen: BTreeSet<&Key> = BTreeSet::new();
+        while let Some(k) = stack.pop() {
+            if by_law.contains(k) {
+                return true;
+            }
+            if seen.insert(k) {
+                stack.extend(chosen.get(k).into_iter().flat_map(|(_, body)| body));
+            }
+        }
+        false
+    };
     let first = first_readers(equations, open);
     for (q, e) in equations.iter().enumerate() {
-        if e.unread.is_some() || !e.defines.is_empty() || !law_form(&e.latex) {
+        if e.unread.is_some()
+            || !e.defines.is_empty()
+            || !law_form(&e.latex, defined_atom)
+            || reads_a_law(e)
+        {
             continue;
         }
         let related: BTreeSet<&str> = e

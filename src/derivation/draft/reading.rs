@@ -134,4 +134,6 @@ pub(super) struct Stated {
     pub(super) latex: String,
     /// A decomposition's left side, which it defines instead of being defined by it.
     pub(super) instead_of: Option<Key>,
+    /// Stated by a law the paper posits, solved for its source term (`posited_laws`).
+    pub(super) law: bool,
 }
