@@ -1589,6 +1589,12 @@ fn write(
         (&symbols, &open, &in_prose, &numbered),
         (normal, &tensors),
     ));
+    candidates.extend(components_stated(
+        equations,
+        (prose, &*refused_text),
+        (&symbols, &open, &numbered),
+        (dimension, normal, &tensors),
+    ));
     // A decomposition `A = B + C` of a symbol read before defines B, not A.
     let instead: BTreeSet<(usize, Key)> = candidates
         .iter()
@@ -2257,6 +2263,27 @@ fn reaction(
     })
 }
 
+/// Words that make a formula of the text a condition or another model's, not the
+/// paper's own value ("if", "in the case", "for instance", "unlike").
+const CONDITION: [&str; 16] = [
+    "if",
+    "when",
+    "whenever",
+    "under",
+    "assuming",
+    "assume",
+    "suppose",
+    "case",
+    "state",
+    "example",
+    "instance",
+    "earlier",
+    "classical",
+    "rather",
+    "instead",
+    "unlike",
+];
+
 /// Whether the words before a formula of the text, in its sentence, introduce it as the
 /// value of what they name ("the stress vector", "the equivalent stress is", "where"),
 /// rather than as a condition or another model's ("In a hydrostatic state,", "Earlier
@@ -2266,24 +2293,6 @@ fn names_its_value(before: &str) -> bool {
     const STOP: [&str; 16] = [
         "as", "than", "of", "in", "on", "for", "at", "to", "from", "that", "and", "or", "not",
         "nor", "like", "unless",
-    ];
-    const CONDITION: [&str; 16] = [
-        "if",
-        "when",
-        "whenever",
-        "under",
-        "assuming",
-        "assume",
-        "suppose",
-        "case",
-        "state",
-        "example",
-        "instance",
-        "earlier",
-        "classical",
-        "rather",
-        "instead",
-        "unlike",
     ];
     let clause = before
         .rsplit(|c: char| ",;:.!?()".contains(c))
@@ -2509,6 +2518,142 @@ fn stated_definitions(
     out
 }
 
+/// The vectors whose every component one sentence of the text gives ("$n_1 =
+/// \cos\theta$ and $n_2 = \sin\theta$"), in the paper's number of dimensions: each
+/// defined as the sum of its components along the axes (`n_i = \cos\theta \delta_{i1} +
+/// \sin\theta \delta_{i2}`). Only a vector the numbered equations read first after that
+/// sentence, which none of them defines, whose components read neither it nor another
+/// of its components, at least one of them a symbol; each component given once, in
+/// one sentence with no word of a condition or a denial ([`CONDITION`]: "if $n_1 = 0$",
+/// "unlike").
+#[allow(clippy::type_complexity)]
+fn components_stated(
+    equations: &[Equation],
+    (prose, refused): (&[displays::Inline], &BTreeSet<usize>),
+    (symbols, open, numbered): (
+        &BTreeMap<Key, Symbol>,
+        &BTreeMap<Key, usize>,
+        &BTreeSet<Key>,
+    ),
+    (dimension, normal, tensors): (usize, Option<&str>, &Stems),
+) -> Vec<Candidate> {
+    const DENIAL: [&str; 6] = ["not", "no", "never", "nor", "neither", "except"];
+    let options = ReadOptions::default();
+    let first_line: BTreeMap<&Key, usize> = first_readers(equations, open)
+        .into_iter()
+        .map(|(k, q)| (k, equations[q].line))
+        .collect();
+    // Per vector: its components' bodies (by digit) and what they read, with the
+    // sentence and line of each.
+    struct Given<'p> {
+        bodies: BTreeMap<usize, String>,
+        reads: BTreeSet<Key>,
+        sentences: BTreeSet<&'p str>,
+        line: usize,
+        twice: bool,
+    }
+    let mut given: BTreeMap<Key, Given> = BTreeMap::new();
+    for f in prose.iter().filter(|f| !refused.contains(&f.line)) {
+        let Ok(read) = latex::read(&f.body, &options) else {
+            continue;
+        };
+        let before = f.words.get(..f.at).unwrap_or("");
+        let sentence = before
+            .rsplit(|c: char| ".!?".contains(c))
+            .next()
+            .unwrap_or("")
+            .to_lowercase();
+        let words: Vec<&str> = sentence
+            .split(|c: char| !c.is_alphanumeric())
+            .filter(|w| !w.is_empty())
+            .collect();
+        if words
+            .iter()
+            .any(|w| CONDITION.contains(w) || DENIAL.contains(w))
+        {
+            continue;
+        }
+        for part in &read.parts {
+            let [m0, m1] = &part.members[..] else {
+                continue;
+            };
+            if part.relations[..] != [latex::Rel::Eq] || !matches!(m0.kind, MathKind::Atom(_)) {
+                continue;
+            }
+            let left = symbols::occurrences(&[m0], normal, tensors);
+            let [(component, _)] = &left[..] else {
+                continue;
+            };
+            let Some(vector) = symbols::vector_of(component, symbols) else {
+                continue;
+            };
+            let Some(digit) = component
+                .split('|')
+                .nth(4)
+                .and_then(|d| d.parse::<usize>().ok())
+            else {
+                continue;
+            };
+            let Some(body) = f.body.get(m1.span.start..m1.span.end).map(str::trim) else {
+                continue;
+            };
+            let reads: BTreeSet<Key> = symbols::occurrences(&[m1], normal, tensors)
+                .into_iter()
+                .map(|(k, _)| k)
+                .collect();
+            let g = given.entry(vector).or_insert_with(|| Given {
+                bodies: BTreeMap::new(),
+                reads: BTreeSet::new(),
+                sentences: BTreeSet::new(),
+                line: f.line,
+                twice: false,
+            });
+            g.twice |= g.bodies.insert(digit, body.to_owned()).is_some();
+            g.reads.extend(reads);
+            g.sentences.insert(f.words.as_str());
+        }
+    }
+    let mut out = Vec::new();
+    for (vector, g) in given {
+        let Some(s) = symbols.get(&vector) else {
+            continue;
+        };
+        let complete = g.bodies.keys().copied().eq(1..=dimension);
+        let own =
+            |k: &Key| *k == vector || symbols::vector_of(k, symbols).as_ref() == Some(&vector);
+        let [index] = s.key.1[..] else { continue };
+        if !complete
+            || g.twice
+            || g.sentences.len() != 1
+            || numbered.contains(&vector)
+            || first_line.get(&vector).is_none_or(|&l| l <= g.line)
+            || g.reads.is_empty()
+            || g.reads.iter().any(own)
+            || !g.reads.iter().all(|k| symbols.contains_key(k))
+        {
+            continue;
+        }
+        let sum: Vec<String> = g
+            .bodies
+            .iter()
+            .map(|(d, body)| format!("\\left({body}\\right) \\delta_{{{index}{d}}}"))
+            .collect();
+        out.push(Candidate {
+            q: equations.iter().filter(|e| e.line < g.line).count(),
+            key: vector.clone(),
+            body: g.reads,
+            text: s.key.0.clone(),
+            stated: Some(Stated {
+                line: Some(g.line),
+                latex: format!("{} = {}", s.key.0, sum.join(" + ")),
+                instead_of: None,
+                law: false,
+            }),
+        });
+    }
+    out
+}
+
 /// Words of the sentence before a law the paper posits ("equilibrium requires", "the
 /// balance of linear momentum reads").
 const LAW_WORDS: [&str; 7] = [
@@ -2524,9 +2669,29 @@ const LAW_WORDS: [&str; 7] = [
 /// Words of a sentence that derive its equation rather than posit it ("inserting this
 /// in equilibrium gives Navier's equations").
 const DERIVED_WORDS: [&str; 23] = [
-    "give", "yield", "therefore", "hence", "thus", "substitut", "insert", "obtain", "lead",
-    "become", "reduce", "combin", "follow", "so that", "find", "we get", "result", "deduce",
-    "rewrit", "taking", "in terms of", "express", "navier",
+    "give",
+    "yield",
+    "therefore",
+    "hence",
+    "thus",
+    "substitut",
+    "insert",
+    "obtain",
+    "lead",
+    "become",
+    "reduce",
+    "combin",
+    "follow",
+    "so that",
+    "find",
+    "we get",
+    "result",
+    "deduce",
+    "rewrit",
+    "taking",
+    "in terms of",
+    "express",
+    "navier",
 ];
 
 /// The definitions that laws the paper posits state: a numbered equation of the form of
@@ -2990,11 +3155,7 @@ fn tied(
         &BTreeMap<Key, usize>,
     ),
     (open, opaque): (&BTreeMap<Key, usize>, &[(usize, String)]),
-    (said, by_law, defined_atom): (
-        &[&Said],
-        &BTreeSet<&Key>,
-        &dyn Fn(&latex::Math) -> bool,
-    ),
+    (said, by_law, defined_atom): (&[&Said], &BTreeSet<&Key>, &dyn Fn(&latex::Math) -> bool),
 ) -> BTreeMap<String, (Option<usize>, String, TieKind)> {
     let declared = |k: &Key| {
         symbols
