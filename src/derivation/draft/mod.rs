@@ -2705,6 +2705,7 @@ const DERIVED_WORDS: [&str; 23] = [
 /// text writes elsewhere (`$b_i = \rho g_i$`) or an equation before mentions is no new
 /// symbol, and neither is one a formula of the text relates to anything (`$\sigma_{ij,j}
 /// + b_i = 0$` said before in words): the law then ties it ([`tied`]).
+#[allow(clippy::type_complexity)]
 fn posited_laws(
     equations: &[Equation],
     prose: &[displays::Inline],
