@@ -533,7 +533,7 @@ fn stated(t: &[Token], s: &Sentence) -> Option<(Subject, Kind)> {
     let kind = word(body.get(at)).and_then(kind_of)?;
     let (head, tail) = (&body[..at], &body[at + 1..]);
     let is_be = |k: usize| matches!(word(head.get(k)), Some("is" | "are"));
-    let let_x = (after_prefix == 1 && word(t.first()) == Some("let"))
+    let let_x = (after_prefix > 0 && word(t.get(after_prefix - 1)) == Some("let"))
         .then(|| formula(0).filter(|f| one_symbol(f)))
         .flatten();
     // `Let $X$ be a symmetric nouns [tail]`.
@@ -569,7 +569,7 @@ fn stated(t: &[Token], s: &Sentence) -> Option<(Subject, Kind)> {
     // `the nouns is symmetric[, $X_{12} = X_{21}$]`: the formula of the tail, or a noun
     // phrase the paper writes before a formula.
     if word(before.first()) == Some("the") && before.len() >= 2 && before[1..].iter().all(is_noun) {
-        if let Some(Token::Formula(f)) = tail.last() {
+        if let [Token::Mark(','), Token::Formula(f), ..] = tail {
             return Some((Subject::Formula(s.formulas[*f].1.clone()), kind));
         }
         let words: Vec<&str> = before[1..].iter().filter_map(|t| word(Some(t))).collect();
@@ -597,8 +597,111 @@ fn tail_is(tail: &[Token], s: &Sentence, kind: Kind) -> bool {
     match rest {
         [] => true,
         [Token::Mark(','), Token::Formula(f)] => transposed(&s.formulas[*f].1) == Some(kind),
+        [Token::Mark(','), Token::Formula(f), Token::Mark(','), described @ ..] => {
+            transposed(&s.formulas[*f].1) == Some(kind) && describes(described, s)
+        }
+        [Token::Mark(','), described @ ..] => describes(described, s),
         _ => false,
     }
+}
+
+/// How a tail may go on to describe the tensor, after a comma: a participle or "with"
+/// ("describing the contact-force anisotropy", "with traction $t_i = \sigma_{ji} n_j$"),
+/// or "and we use this throughout".
+const DESCRIPTIONS: &[&[&str]] = &[
+    &["describing"],
+    &["representing"],
+    &["denoting"],
+    &["measuring"],
+    &["with"],
+    &["and", "we", "use", "this", "throughout"],
+];
+
+/// Words that would say where, when or for what a described symmetry holds ("for
+/// $x_3 > 0$", "away from the wall", "with the exception of").
+const PLACES: &[&str] = &[
+    "for",
+    "at",
+    "near",
+    "away",
+    "outside",
+    "inside",
+    "within",
+    "until",
+    "after",
+    "before",
+    "about",
+    "along",
+    "across",
+    "beyond",
+    "under",
+    "below",
+    "above",
+    "exception",
+    "apart",
+    "besides",
+    "save",
+];
+
+/// Whether the rest of a tail only describes the tensor: it opens with one of
+/// [`DESCRIPTIONS`], has no word of [`PLACES`] nor of a symmetry, no mark but commas,
+/// and each of its formulas is one symbol (`$n_i$`) or defines another from a right side
+/// that does not read it (`$t_i = \sigma_{ji} n_j$`): never a second statement of the
+/// tensor (`$\sigma_{12} = 2\sigma_{21}$`).
+fn describes(t: &[Token], s: &Sentence) -> bool {
+    let Some(opening) = DESCRIPTIONS.iter().find(|d| {
+        d.len() <= t.len() && d.iter().zip(t).all(|(w, tok)| word(Some(tok)) == Some(*w))
+    }) else {
+        return false;
+    };
+    t[opening.len()..].iter().all(|tok| match tok {
+        Token::Word(w) => !PLACES.contains(&w.as_str()) && !w.contains("symmetr"),
+        Token::Mark(c) => *c == ',',
+        Token::Formula(f) => {
+            let body = &s.formulas[*f].1;
+            atom(body).is_some() || defines_another(body)
+        }
+    })
+}
+
+/// The base of a formula that is one printed symbol (`n_i`, `\sigma_{ij}`), nothing
+/// else.
+fn atom(body: &str) -> Option<String> {
+    let read = latex::read(body, &ReadOptions::default()).ok()?;
+    match &read.parts[..] {
+        [p] if p.relations.is_empty() => match &p.members[..] {
+            [m] => match &m.kind {
+                MathKind::Atom(a) => Some(a.base.clone()),
+                _ => None,
+            },
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// Whether a formula is `Y = …` with `Y` one printed symbol ([`atom`]) that its right
+/// side does not read.
+fn defines_another(body: &str) -> bool {
+    let Ok(read) = latex::read(body, &ReadOptions::default()) else {
+        return false;
+    };
+    let [part] = &read.parts[..] else {
+        return false;
+    };
+    let [left, right] = &part.members[..] else {
+        return false;
+    };
+    let (Some(l), Some(r)) = (
+        body.get(left.span.start..left.span.end),
+        body.get(right.span.start..right.span.end),
+    ) else {
+        return false;
+    };
+    let MathKind::Atom(a) = &left.kind else {
+        return false;
+    };
+    part.relations == [latex::Rel::Eq] && atom(l).is_some() && !r.contains(a.base.as_str())
 }
 
 /// Whether a formula is one symbol, with two distinct index letters or none (`\sigma`,
