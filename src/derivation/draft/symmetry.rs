@@ -15,10 +15,14 @@
 //!   nouns, which is symmetric [tail].`; the prefix one of "let", "here", "note that",
 //!   "recall that", "by the balance of angular momentum"; the tail nothing, the same
 //!   symmetry in components (`, $\sigma_{12} = \sigma_{21}$`) or "by the balance of
-//!   angular momentum"; the formula one symbol with two index letters or none. Anything
-//!   else in the sentence ("about the axis", "in the absence of couple stresses", "for
-//!   $\ell = 0$", "(see Fig. 2)", a question) makes it state nothing, and so does a
-//!   formula alone (`$\sigma_{12} = \sigma_{21}$` is one pair of components).
+//!   angular momentum", then perhaps a description after a comma ("describing the
+//!   anisotropy", "with traction $t_i = \sigma_{ji} n_j$", "and we use this
+//!   throughout") with no word of place ("for", "away", …) or symmetry, whose formulas
+//!   are symbols or define other symbols; the formula one symbol with two index letters
+//!   or none. Anything else in the sentence ("about the axis", "in the absence of
+//!   couple stresses", "for $\ell = 0$", "(see Fig. 2)", a question) makes it state
+//!   nothing, and so does a formula alone (`$\sigma_{12} = \sigma_{21}$` is one pair of
+//!   components).
 //! - The sentence and each of the two after it that speaks of it ("this", "it", a
 //!   symmetry word) neither deny nor contrast ("not", "isn't", "no longer", "differs",
 //!   "but", "only", …); it stands outside every environment (a lemma, a quotation).
