@@ -243,7 +243,12 @@ fn draft_clean(
         }
     }
     let (headings, enclosed) = symmetry::sections(&lines, markdown);
-    rounds.symmetric = symmetry::read(&displays::sentences(source, markdown), &headings, &enclosed);
+    let sentences = displays::sentences(source, markdown);
+    rounds.symmetric = symmetry::read(&sentences, &headings, &enclosed);
+    rounds.text = Text {
+        headings,
+        sentences: sentences.into_iter().map(|s| (s.line, s.words)).collect(),
+    };
     rounds.incompressible = lines.iter().enumerate().find_map(|(k, l)| {
         tie_word(l)
             .filter(|w| tie_kind(w) == TieKind::Divergence)
@@ -316,6 +321,7 @@ fn draft_clean(
             vectors: rounds.vectors,
             incompressible: rounds.incompressible,
             symmetric: rounds.symmetric,
+            text: rounds.text,
         },
     )
     .expect("with every claim to complete, nothing is read");
@@ -1347,6 +1353,7 @@ fn write(
         vectors,
         incompressible,
         symmetric,
+        text,
     } = rounds;
     // Pass 1: the symbols each equation reads, and the candidates for definitions: a
     // chain `X = …` (or `X^2 = …`) with X alone on the left and nowhere else in it.
@@ -1585,13 +1592,13 @@ fn write(
     let numbered: BTreeSet<Key> = candidates.iter().map(|c| c.key.clone()).collect();
     candidates.extend(stated_definitions(
         equations,
-        (prose, &*refused_text),
+        (prose, &*refused_text, text),
         (&symbols, &open, &in_prose, &numbered),
         (normal, &tensors),
     ));
     candidates.extend(components_stated(
         equations,
-        (prose, &*refused_text),
+        (prose, &*refused_text, text),
         (&symbols, &open, &numbered),
         (dimension, normal, &tensors),
     ));
@@ -2139,6 +2146,25 @@ struct Rounds {
     incompressible: Option<(usize, String)>,
     /// The symmetries the text states ([`symmetry`]).
     symmetric: symmetry::Statements,
+    /// The text's sections and sentences, for the readings of laws and components.
+    text: Text,
+}
+
+/// The paper's text as the readings of a posited law and of a vector's components look
+/// at it: the line each section begins at, and each sentence's line and words.
+#[derive(Default)]
+struct Text {
+    headings: Vec<usize>,
+    sentences: Vec<(usize, String)>,
+}
+
+impl Text {
+    /// The lines of the section `line` is in, from its heading to the next.
+    fn section(&self, line: usize) -> std::ops::Range<usize> {
+        let k = self.headings.partition_point(|&h| h <= line);
+        let from = k.checked_sub(1).map_or(0, |j| self.headings[j]);
+        from..self.headings.get(k).copied().unwrap_or(usize::MAX)
+    }
 }
 
 /// A symbol's definition on its way into the file.
@@ -2294,7 +2320,11 @@ fn names_its_value(before: &str) -> bool {
         "as", "than", "of", "in", "on", "for", "at", "to", "from", "that", "and", "or", "not",
         "nor", "like", "unless",
     ];
+    // A formula set off by a comma ("the invariants of the stress, $I_1 = …$") is named
+    // by the clause before the comma.
     let clause = before
+        .trim_end()
+        .trim_end_matches([',', ':'])
         .rsplit(|c: char| ",;:.!?()".contains(c))
         .next()
         .unwrap_or("")
@@ -2327,7 +2357,7 @@ const DECOMPOSITION_WORDS: [&str; 4] = ["decompos", "split", " part", "sum of"];
 #[allow(clippy::type_complexity)]
 fn stated_definitions(
     equations: &[Equation],
-    (prose, refused): (&[displays::Inline], &BTreeSet<usize>),
+    (prose, refused, text): (&[displays::Inline], &BTreeSet<usize>, &Text),
     (symbols, open, in_prose, numbered): (
         &BTreeMap<Key, Symbol>,
         &BTreeMap<Key, usize>,
@@ -2367,80 +2397,86 @@ fn stated_definitions(
         let Ok(read) = latex::read(&f.body, &options) else {
             continue;
         };
-        let [part] = &read.parts[..] else { continue };
-        let [m0, m1] = &part.members[..] else {
-            continue;
-        };
-        if part.relations[..] != [latex::Rel::Eq]
-            || !matches!(m0.kind, MathKind::Atom(_))
-            || second_name(m1)
-        {
-            continue;
-        }
-        let found = symbols::occurrences(&[m0, m1], normal, tensors);
-        let Some((key, None)) = defined_symbol(m0, found.first(), tensors) else {
-            continue;
-        };
-        let body: BTreeSet<Key> = keys(&[m1]).into_iter().collect();
-        let well_formed = !body.is_empty()
-            && !body.contains(&key)
-            && body.iter().all(|k| symbols.contains_key(k));
-        // "… = K\varepsilon_{kk}, where $p = \sigma_{kk}/3$ is the mean stress": the
-        // clause that continues the first equation to read the symbol defines it there,
-        // instead of that equation (then a claim about it).
-        let clause = equations.iter().position(|e| {
-            e.unread.is_none()
-                && e.reads.contains(&key)
-                && first_line.get(&key) == Some(&e.line)
-                && defines_in_clause(&e.lead_out, &f.body)
-        });
-        if let (Some(q), true) = (clause, well_formed) {
+        // Each part of a formula that defines several (`I_1 = \sigma_{kk}, \quad I_2 =
+        // …`), with its own text.
+        for part in &read.parts {
+            let [m0, m1] = &part.members[..] else {
+                continue;
+            };
+            if part.relations[..] != [latex::Rel::Eq]
+                || !matches!(m0.kind, MathKind::Atom(_))
+                || second_name(m1)
+            {
+                continue;
+            }
+            let Some(own) = f.body.get(m0.span.start..m1.span.end) else {
+                continue;
+            };
+            let found = symbols::occurrences(&[m0, m1], normal, tensors);
+            let Some((key, None)) = defined_symbol(m0, found.first(), tensors) else {
+                continue;
+            };
+            let body: BTreeSet<Key> = keys(&[m1]).into_iter().collect();
+            let well_formed = !body.is_empty()
+                && !body.contains(&key)
+                && body.iter().all(|k| symbols.contains_key(k));
+            // "… = K\varepsilon_{kk}, where $p = \sigma_{kk}/3$ is the mean stress": the
+            // clause that continues the first equation to read the symbol defines it there,
+            // instead of that equation (then a claim about it).
+            let clause = equations.iter().position(|e| {
+                e.unread.is_none()
+                    && e.reads.contains(&key)
+                    && first_line.get(&key) == Some(&e.line)
+                    && defines_in_clause(&e.lead_out, &f.body)
+            });
+            if let (Some(q), true) = (clause, well_formed) {
+                let Some(text) = span(&f.body, m0) else {
+                    continue;
+                };
+                out.push(Candidate {
+                    q,
+                    key: key.clone(),
+                    body,
+                    text: text.to_owned(),
+                    stated: Some(Stated {
+                        line: Some(f.line),
+                        latex: own.to_owned(),
+                        instead_of: Some(key),
+                        law: false,
+                    }),
+                });
+                continue;
+            }
+            let introduced = first_line.get(&key).is_some_and(|&l| l > f.line);
+            if body.is_empty()
+                || body.contains(&key)
+                || !introduced
+                || numbered.contains(&key)
+                || !names_its_value(&f.words[..f.at.min(f.words.len())])
+                || !body.iter().all(|k| symbols.contains_key(k))
+            {
+                continue;
+            }
             let Some(text) = span(&f.body, m0) else {
                 continue;
             };
             out.push(Candidate {
-                q,
-                key: key.clone(),
+                q: equations.iter().filter(|e| e.line < f.line).count(),
+                key,
                 body,
                 text: text.to_owned(),
                 stated: Some(Stated {
                     line: Some(f.line),
-                    latex: f.body.clone(),
-                    instead_of: Some(key),
+                    latex: own.to_owned(),
+                    instead_of: None,
                     law: false,
                 }),
             });
-            continue;
         }
-        let introduced = first_line.get(&key).is_some_and(|&l| l > f.line);
-        if body.is_empty()
-            || body.contains(&key)
-            || !introduced
-            || numbered.contains(&key)
-            || !names_its_value(&f.words[..f.at.min(f.words.len())])
-            || !body.iter().all(|k| symbols.contains_key(k))
-        {
-            continue;
-        }
-        let Some(text) = span(&f.body, m0) else {
-            continue;
-        };
-        out.push(Candidate {
-            q: equations.iter().filter(|e| e.line < f.line).count(),
-            key,
-            body,
-            text: text.to_owned(),
-            stated: Some(Stated {
-                line: Some(f.line),
-                latex: f.body.clone(),
-                instead_of: None,
-                law: false,
-            }),
-        });
     }
     out.extend(posited_laws(
         equations,
-        prose,
+        (prose, text),
         (symbols, in_prose, numbered, &first_line),
         (normal, tensors),
     ));
@@ -2529,7 +2565,7 @@ fn stated_definitions(
 #[allow(clippy::type_complexity)]
 fn components_stated(
     equations: &[Equation],
-    (prose, refused): (&[displays::Inline], &BTreeSet<usize>),
+    (prose, refused, text): (&[displays::Inline], &BTreeSet<usize>, &Text),
     (symbols, open, numbered): (
         &BTreeMap<Key, Symbol>,
         &BTreeMap<Key, usize>,
@@ -2548,7 +2584,7 @@ fn components_stated(
     struct Given<'p> {
         bodies: BTreeMap<usize, String>,
         reads: BTreeSet<Key>,
-        sentences: BTreeSet<&'p str>,
+        sentences: Vec<&'p str>,
         line: usize,
         twice: bool,
     }
@@ -2567,9 +2603,10 @@ fn components_stated(
             .split(|c: char| !c.is_alphanumeric())
             .filter(|w| !w.is_empty())
             .collect();
-        if words
-            .iter()
-            .any(|w| CONDITION.contains(w) || DENIAL.contains(w))
+        if symmetry::hedged(&f.words)
+            || words
+                .iter()
+                .any(|w| CONDITION.contains(w) || DENIAL.contains(w))
         {
             continue;
         }
@@ -2604,13 +2641,15 @@ fn components_stated(
             let g = given.entry(vector).or_insert_with(|| Given {
                 bodies: BTreeMap::new(),
                 reads: BTreeSet::new(),
-                sentences: BTreeSet::new(),
+                sentences: Vec::new(),
                 line: f.line,
                 twice: false,
             });
             g.twice |= g.bodies.insert(digit, body.to_owned()).is_some();
             g.reads.extend(reads);
-            g.sentences.insert(f.words.as_str());
+            if !g.sentences.contains(&f.words.as_str()) {
+                g.sentences.push(f.words.as_str());
+            }
         }
     }
     let mut out = Vec::new();
@@ -2622,7 +2661,32 @@ fn components_stated(
         let own =
             |k: &Key| *k == vector || symbols::vector_of(k, symbols).as_ref() == Some(&vector);
         let [index] = s.key.1[..] else { continue };
+        // The words the sentence describes the vector with ("unit normal", "angle"): a
+        // later sentence with one of them may describe it again ("the angle is measured
+        // from the vertical", "now let the unit normal be arbitrary").
+        let sentence = g
+            .sentences
+            .first()
+            .map_or(String::new(), |w| w.to_lowercase());
+        let nouns: Vec<&str> = sentence
+            .split(|c: char| !c.is_alphanumeric())
+            .filter(|w| VECTOR_NOUNS.contains(w))
+            .collect();
+        let described_again = text.sentences.iter().any(|(line, words)| {
+            *line > g.line
+                && words
+                    .to_lowercase()
+                    .split(|c: char| !c.is_alphanumeric())
+                    .any(|w| nouns.contains(&w))
+        });
+        let section = text.section(g.line);
+        let scoped = equations
+            .iter()
+            .filter(|e| e.reads.contains(&vector))
+            .all(|e| section.contains(&e.line));
         if !complete
+            || described_again
+            || !scoped
             || g.twice
             || g.sentences.len() != 1
             || numbered.contains(&vector)
@@ -2654,6 +2718,18 @@ fn components_stated(
     out
 }
 
+/// Words that describe a vector whose components the text gives ("the unit normal at
+/// the angle $\theta$").
+const VECTOR_NOUNS: [&str; 7] = [
+    "normal",
+    "tangent",
+    "direction",
+    "vector",
+    "angle",
+    "orientation",
+    "unit",
+];
+
 /// Words of the sentence before a law the paper posits ("equilibrium requires", "the
 /// balance of linear momentum reads").
 const LAW_WORDS: [&str; 7] = [
@@ -2665,6 +2741,9 @@ const LAW_WORDS: [&str; 7] = [
     "governing",
     "field equation",
 ];
+
+/// Words that, beside a law word, say a law is neglected, violated or approximate.
+const LAW_HEDGES: [&str; 5] = ["neglect", "ignor", "violat", "approximat", "break"];
 
 /// Words of a sentence that derive its equation rather than posit it ("inserting this
 /// in equilibrium gives Navier's equations").
@@ -2708,7 +2787,7 @@ const DERIVED_WORDS: [&str; 23] = [
 #[allow(clippy::type_complexity)]
 fn posited_laws(
     equations: &[Equation],
-    prose: &[displays::Inline],
+    (prose, text): (&[displays::Inline], &Text),
     (symbols, in_prose, numbered, first_line): (
         &BTreeMap<Key, Symbol>,
         &BTreeMap<Key, (usize, BTreeSet<String>)>,
@@ -2740,6 +2819,18 @@ fn posited_laws(
                 .collect::<Vec<_>>()
         })
         .collect();
+    // A sentence anywhere that speaks of a law and hedges ("this balance is violated
+    // in the boundary layer", "the balance of momentum is not the equilibrium
+    // condition"): the paper tells laws apart in ways no reading follows.
+    let hedges = |words: &str| {
+        let lower = words.to_lowercase();
+        symmetry::hedged(&lower) || LAW_HEDGES.iter().any(|w| lower.contains(w))
+    };
+    if text.sentences.iter().any(|(_, words)| {
+        LAW_WORDS.iter().any(|w| words.to_lowercase().contains(w)) && hedges(words)
+    }) {
+        return Vec::new();
+    }
     let mut out = Vec::new();
     for (q, eq) in equations.iter().enumerate() {
         let lead_in = eq.lead_in.to_lowercase();
@@ -2747,6 +2838,7 @@ fn posited_laws(
             || !law_form(&eq.latex, &|_| false)
             || !LAW_WORDS.iter().any(|w| lead_in.contains(w))
             || DERIVED_WORDS.iter().any(|w| lead_in.contains(w))
+            || hedges(&lead_in)
         {
             continue;
         }
@@ -2802,6 +2894,40 @@ fn posited_laws(
             .filter_map(|(n, (_, t))| Some((n, new(t)?)))
             .collect();
         let [(at, key)] = &fresh[..] else { continue };
+        // The rest is one derivative of one symbol (`\sigma_{ij,j}`): a balance as the
+        // paper posits it, not a form derived from it (`\mu u_{i,jj} + … + b_i = 0`),
+        // which may be wrong.
+        let one_derivative = |m: &latex::Math| match &m.kind {
+            MathKind::Atom(_) => derivative(m),
+            MathKind::Sum(terms) => {
+                matches!(&terms[..], [(_, t)] if matches!(t.kind, MathKind::Atom(_)) && derivative(t))
+            }
+            _ => false,
+        };
+        let rest_is_one = match other {
+            Some(m) => one_derivative(m),
+            None => {
+                sum.len() == 2
+                    && sum
+                        .iter()
+                        .enumerate()
+                        .all(|(n, (_, t))| n == *at || one_derivative(t))
+            }
+        };
+        // Every equation that reads the source is in the law's section: another section
+        // may treat another problem (with inertia, without the body force).
+        let section = text.section(eq.line);
+        let scoped = equations
+            .iter()
+            .filter(|e| {
+                e.reads.contains(key)
+                    || (e.unread.is_some()
+                        && span(&sum[*at].1).is_some_and(|t| e.latex.contains(t)))
+            })
+            .all(|e| section.contains(&e.line));
+        if !rest_is_one || !scoped {
+            continue;
+        }
         let (minus, source) = &sum[*at];
         let rest = match other {
             Some(m) => span(m).map(str::to_owned),
@@ -3062,8 +3188,9 @@ fn second_name(m: &latex::Math) -> bool {
 }
 
 /// Whether an equation has the form of a law (`\sigma_{ij,j} + b_i = 0`, `\sigma_{ij,j} =
-/// -b_i`): it reads a comma derivative, and one of its two members is 0 or a lone
-/// symbol, negated or not, that no definition gives (`P = \sigma_{ij} v_{j,i}`, with `P`
+/// -b_i`, `\sigma_{ij,j} = \rho a_i`): it reads a comma derivative, and one of its two
+/// members is 0 or a lone symbol, negated or not, with coefficients or not, that no
+/// definition gives (`P = \sigma_{ij} v_{j,i}`, with `P`
 /// defined, is a claim about `P`).
 fn law_form(latex_text: &str, defined: &dyn Fn(&latex::Math) -> bool) -> bool {
     let derivative = latex_text
@@ -3072,10 +3199,18 @@ fn law_form(latex_text: &str, defined: &dyn Fn(&latex::Math) -> bool) -> bool {
         .any(|rest| rest.split('}').next().is_some_and(|sub| sub.contains(',')));
     // A source term: a symbol, not a derivative (`u_{i,j} = …` is no law).
     let source = |m: &latex::Math| second_name(m) && !defined(m);
+    // A source with coefficients (`\rho a_i`, `\rho\,\ddot{u}_i`): symbols, none a
+    // derivative, one of them a source.
+    let sourced = |m: &latex::Math| match &m.kind {
+        MathKind::Product(factors) => {
+            factors.iter().all(second_name) && factors.iter().any(|f| source(f))
+        }
+        _ => source(m),
+    };
     let lone = |m: &latex::Math| match &m.kind {
         MathKind::Number(n) => n == "0",
-        MathKind::Sum(terms) => matches!(&terms[..], [(_, t)] if source(t)),
-        _ => source(m),
+        MathKind::Sum(terms) => matches!(&terms[..], [(_, t)] if sourced(t)),
+        _ => sourced(m),
     };
     derivative
         && latex::read(latex_text, &ReadOptions::default()).is_ok_and(|r| {
@@ -3260,27 +3395,14 @@ fn tied(
     // reads, through definitions, and the symbols it is the first to write are tied to
     // it, for sides that read different symbols only (`tie = 'law'`). One of a single
     // symbol (`e_{ijk}\phi_{,jk} = 0`) relates it to no other.
-    // An equation that reads a symbol a law defines ([`posited_laws`]), through
-    // definitions, is checked on that law's solutions, and posits nothing more.
-    let reads_a_law = |e: &Equation| {
-        let mut stack: Vec<&Key> = e.reads.iter().collect();
-        let mut seen: BTreeSet<&Key> = BTreeSet::new();
-        while let Some(k) = stack.pop() {
-            if by_law.contains(k) {
-                return true;
-            }
-            if seen.insert(k) {
-                stack.extend(chosen.get(k).into_iter().flat_map(|(_, body)| body));
-            }
-        }
-        false
-    };
+    // A law that defines its source term ([`posited_laws`]) still ties the fields it
+    // reads: a later equation may hold only where the source takes a value the text
+    // gives in words ("from now on the body force vanishes").
     let first = first_readers(equations, open);
     for (q, e) in equations.iter().enumerate() {
+        let posits = e.defines.iter().any(|(k, _)| by_law.contains(k));
         if e.unread.is_some()
-            || !e.defines.is_empty()
-            || !law_form(&e.latex, defined_atom)
-            || reads_a_law(e)
+            || !(posits || (e.defines.is_empty() && law_form(&e.latex, defined_atom)))
         {
             continue;
         }

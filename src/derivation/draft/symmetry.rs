@@ -507,6 +507,18 @@ pub fn read(
     said
 }
 
+/// Whether a sentence hedges what it says: a denial, a restriction or a qualifier
+/// ("not", "isn't", "only", "if", "would", "classical"). The readings of a posited law
+/// and of a vector's components refuse such a sentence, as this one does.
+pub fn hedged(words: &str) -> bool {
+    words
+        .to_lowercase()
+        .split(|c: char| !c.is_alphanumeric() && c != '-')
+        .any(|w| {
+            DENIALS.contains(&w) || RESTRICTIONS.contains(&w) || QUALIFIERS.contains(&w) || w == "t"
+        })
+}
+
 /// Whether `line` lies in one of `ranges` (sorted, not overlapping).
 fn inside(ranges: &[std::ops::Range<usize>], line: usize) -> bool {
     let k = ranges.partition_point(|r| r.end <= line);
