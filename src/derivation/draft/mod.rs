@@ -3203,7 +3203,7 @@ fn law_form(latex_text: &str, defined: &dyn Fn(&latex::Math) -> bool) -> bool {
     // derivative, one of them a source.
     let sourced = |m: &latex::Math| match &m.kind {
         MathKind::Product(factors) => {
-            factors.iter().all(second_name) && factors.iter().any(|f| source(f))
+            factors.iter().all(second_name) && factors.iter().any(&source)
         }
         _ => source(m),
     };
