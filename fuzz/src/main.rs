@@ -242,6 +242,11 @@ const DICTIONARY: &[&str] = &[
     "The strain tensor is skew symmetric; ",
     "Let $S$ be a symmetric tensor, $S_{12} = S_{21}$. ",
     "\\section{Cosserat} ",
+    "Equilibrium requires \\begin{equation}\\sigma_{ij,j} + b_i = 0\\end{equation} ",
+    "The normal is $n_1 = \\cos\\theta$ and $n_2 = \\sin\\theta$. ",
+    ", describing the anisotropy",
+    ", with traction $t_i = \\sigma_{ji} n_j$",
+    "\\begin{equation*} I_1 = \\sigma_{kk}, \\qquad I_2 = \\sigma_{ij}\\sigma_{ji} \\end{equation*} ",
 ];
 
 fn seeds(root: &Path) -> Vec<Vec<u8>> {
