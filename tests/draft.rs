@@ -883,12 +883,18 @@ fn an_incompressible_body_explains_a_divergence_at_any_power() {
 /// violated, neglects inertia in, attributes to the classical theory, or denies; laws
 /// with an inertial term or two sources; a derived form posited in words; a body force
 /// the text later sets to zero; components described again in a later sentence or
-/// another section, counterfactual ("would be … had"), or conditional ("whenever",
-/// "provided"). No wrong verdict; what the readings cannot follow is undecided.
+/// another section, counterfactual ("would be … had"), conditional ("whenever",
+/// "provided") or reversed later; a second law for the same source under rapid loading.
+/// In a second round, against symmetry statements with a describing tail and text
+/// definitions: a symmetric stress that later acquires a skew part or is redefined as a
+/// general tensor; a tensor called "skew" or "a skew tensor" (antisymmetric), or written
+/// `$W_{ij} = -W_{ji}$` (a tie); the symmetries of a stiffness tensor (ties); a rate of
+/// curvature given for someone else's convention. No wrong verdict; what the readings
+/// cannot follow is undecided.
 #[test]
 fn laws_and_components_an_adversary_attacked_give_no_wrong_verdict() {
     use Verdict::{Holds as H, Undecided as U};
-    let cases: [(&str, &[Verdict]); 16] = [
+    let cases: [(&str, &[Verdict]); 30] = [
         ("law-violated", &[H, H, U, H, U, U, U]),
         ("law-neglect", &[H, U, H, U, U]),
         ("law-classical", &[H, U, H, U, U]),
@@ -905,6 +911,20 @@ fn laws_and_components_an_adversary_attacked_give_no_wrong_verdict() {
         ("components-subjunctive", &[H, U, U]),
         ("components-whenever", &[H, U, U]),
         ("components-provided", &[H, U, U]),
+        ("components-reversed-formula", &[U]),
+        ("components-reversed-words", &[U]),
+        ("law-rapid-loading", &[H, U, U, U, U]),
+        ("symmetry-reference-state", &[H, U]),
+        ("symmetry-redefined-general", &[U]),
+        ("symmetry-skew-described", &[H]),
+        ("symmetry-skew-formula", &[U]),
+        ("symmetry-a-skew-tensor", &[H]),
+        ("symmetry-skew-stress", &[H]),
+        ("symmetry-stiffness-symmetric", &[U, U, U]),
+        ("symmetry-stiffness-stated", &[U, U]),
+        ("symmetry-stiffness-minor", &[H, U]),
+        ("text-convention-unlike", &[U]),
+        ("text-convention-older", &[U]),
     ];
     for (name, want) in cases {
         let path = format!(

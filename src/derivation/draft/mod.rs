@@ -2289,6 +2289,19 @@ fn reaction(
     })
 }
 
+/// Words that give a formula of the text to someone else's convention ("in the older
+/// literature $\dot{\kappa}_{ij} = w_{i,j}$").
+const OTHERS: [&str; 8] = [
+    "literature",
+    "older",
+    "convention",
+    "traditionally",
+    "elsewhere",
+    "authors",
+    "author",
+    "others",
+];
+
 /// Words that make a formula of the text a condition or another model's, not the
 /// paper's own value ("if", "in the case", "for instance", "unlike").
 const CONDITION: [&str; 16] = [
@@ -2448,9 +2461,19 @@ fn stated_definitions(
                 continue;
             }
             let introduced = first_line.get(&key).is_some_and(|&l| l > f.line);
+            // A sentence that contrasts before the formula ("Unlike Smith's convention,
+            // where $\dot{\kappa}_{ij} = w_{i,j}$ …, we use …"), or a symbol the text
+            // sets equal to two things, is no definition.
+            let hedged = f.words[..f.at.min(f.words.len())]
+                .to_lowercase()
+                .split(|c: char| !c.is_alphanumeric())
+                .any(|w| CONDITION.contains(&w) || OTHERS.contains(&w));
+            let twice = in_prose.get(&key).is_some_and(|(_, texts)| texts.len() > 1);
             if body.is_empty()
                 || body.contains(&key)
                 || !introduced
+                || hedged
+                || twice
                 || numbered.contains(&key)
                 || !names_its_value(&f.words[..f.at.min(f.words.len())])
                 || !body.iter().all(|k| symbols.contains_key(k))
@@ -2585,6 +2608,7 @@ fn components_stated(
         bodies: BTreeMap<usize, String>,
         reads: BTreeSet<Key>,
         sentences: Vec<&'p str>,
+        formulas: Vec<&'p str>,
         line: usize,
         twice: bool,
     }
@@ -2642,11 +2666,13 @@ fn components_stated(
                 bodies: BTreeMap::new(),
                 reads: BTreeSet::new(),
                 sentences: Vec::new(),
+                formulas: Vec::new(),
                 line: f.line,
                 twice: false,
             });
             g.twice |= g.bodies.insert(digit, body.to_owned()).is_some();
             g.reads.extend(reads);
+            g.formulas.push(f.body.as_str());
             if !g.sentences.contains(&f.words.as_str()) {
                 g.sentences.push(f.words.as_str());
             }
@@ -2679,6 +2705,25 @@ fn components_stated(
                     .split(|c: char| !c.is_alphanumeric())
                     .any(|w| nouns.contains(&w))
         });
+        // A formula of the text after them that writes the vector ("the sign of $n_i$ is
+        // reversed"), or a sentence that turns it ("on the opposite face it is
+        // reversed"), may change it.
+        let written_again = prose.iter().any(|f| {
+            f.line >= g.line
+                && !g.formulas.contains(&f.body.as_str())
+                && latex::read(&f.body, &options).is_ok_and(|r| {
+                    r.parts.iter().any(|p| {
+                        let members: Vec<&latex::Math> = p.members.iter().collect();
+                        symbols::occurrences(&members, normal, tensors)
+                            .iter()
+                            .any(|(k, _)| own(k))
+                    })
+                })
+        });
+        let turned = text.sentences.iter().any(|(line, words)| {
+            let lower = words.to_lowercase();
+            *line >= g.line && REVISIONS.iter().any(|w| lower.contains(w))
+        });
         let section = text.section(g.line);
         let scoped = equations
             .iter()
@@ -2686,6 +2731,8 @@ fn components_stated(
             .all(|e| section.contains(&e.line));
         if !complete
             || described_again
+            || written_again
+            || turned
             || !scoped
             || g.twice
             || g.sentences.len() != 1
@@ -2728,6 +2775,20 @@ const VECTOR_NOUNS: [&str; 7] = [
     "angle",
     "orientation",
     "unit",
+];
+
+/// Words that say a vector is turned or replaced ("reversed", "the opposite face",
+/// "rotated").
+const REVISIONS: [&str; 9] = [
+    "revers",
+    "flip",
+    "opposite",
+    "rotat",
+    "turn",
+    "instead",
+    "otherwise",
+    "replac",
+    "negat",
 ];
 
 /// Words of the sentence before a law the paper posits ("equilibrium requires", "the
@@ -2925,7 +2986,24 @@ fn posited_laws(
                         && span(&sum[*at].1).is_some_and(|t| e.latex.contains(t)))
             })
             .all(|e| section.contains(&e.line));
-        if !rest_is_one || !scoped {
+        // Another equation that reads the source and sets it against a term of no
+        // derivative and without it (`\sigma_{ij,j} + b_i = \rho\ddot{u}_i` under rapid
+        // loading): the paper posits another law for the same source.
+        let rival = equations.iter().enumerate().any(|(r, e)| {
+            let Ok(read) = latex::read(&e.latex, &options) else {
+                return false;
+            };
+            r != q
+                && e.reads.contains(key)
+                && read.parts.iter().any(|part| match &part.members[..] {
+                    [a, b] if !zero(a) && !zero(b) => [a, b].iter().any(|m| {
+                        let text = e.latex.get(m.span.start..m.span.end).unwrap_or(",");
+                        !text.contains(',') && !keys(&[m]).contains(key)
+                    }),
+                    _ => false,
+                })
+        });
+        if !rest_is_one || !scoped || rival {
             continue;
         }
         let (minus, source) = &sum[*at];
@@ -3025,6 +3103,10 @@ struct Said {
     line: usize,
     /// The tie word of its sentence.
     word: Option<String>,
+    /// It states an antisymmetry of one tensor (`$W_{ij} = -W_{ji}$`), or a symmetry
+    /// word stands beside a tensor of three or more indices: a tie of that tensor, if
+    /// declared, and of nothing it is defined from.
+    symmetry: bool,
     /// Every symbol it names.
     found: Vec<Key>,
     /// Each equality: its left side when that is one symbol, and the right side's
@@ -3074,6 +3156,17 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
     prose
         .iter()
         .filter_map(|f| {
+            // A symmetry of a tensor the text writes as a formula (`$W_{ij} = -W_{ji}$`),
+            // or names beside a tensor of three or more indices ("$C_{ijkl}$ with the
+            // major and minor symmetries"), ties it: a difference it removes is
+            // undecided (the statements `symmetry` reads assume rank-2 symmetries).
+            let lower = f.words.to_lowercase();
+            let of_many_indices = latex::read(&f.body, &options).is_ok_and(|r| {
+                matches!(&r.parts[..], [p] if matches!(&p.members[..], [m] if matches!(&m.kind,
+                    MathKind::Atom(a) if a.sub.as_ref().is_some_and(|s| s.text.chars().filter(char::is_ascii_lowercase).count() >= 3))))
+            });
+            let symmetry = symmetry::transposed(&f.body) == Some(symmetry::Kind::Antisymmetric)
+                || ((lower.contains("symmetr") || lower.contains("skew")) && of_many_indices);
             let word = tie_word(&f.words);
             let beside_normal = of_normal.contains(f.words.as_str());
             let after = f.words.get(f.at + 3..).unwrap_or("").to_lowercase();
@@ -3081,7 +3174,7 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
             let constant = clause
                 .split(|c: char| !c.is_alphabetic())
                 .any(|w| matches!(w, "constant" | "constants" | "uniform"));
-            if word.is_none() && !f.body.contains('=') && !beside_normal && !constant {
+            if word.is_none() && !f.body.contains('=') && !beside_normal && !constant && !symmetry {
                 return None;
             }
             let read = latex::read(&f.body, &options).ok()?;
@@ -3106,6 +3199,7 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
             Some(Said {
                 line: f.line,
                 word,
+                symmetry,
                 found,
                 parts,
                 relation: read
@@ -3536,6 +3630,12 @@ fn tied(
                     let why = "an equation in the text gives it in symbols no equation writes";
                     add(&s.name, Some(f.line), why.to_owned(), TieKind::Any);
                 }
+            }
+        }
+        if f.symmetry {
+            for s in f.found.iter().filter_map(&declared) {
+                let why = "the text states a symmetry of it".to_owned();
+                add(&s.name, Some(f.line), why, TieKind::Any);
             }
         }
         if f.relation && !new && !backwards {

@@ -388,7 +388,7 @@ fn word(t: Option<&Token>) -> Option<&str> {
 fn kind_of(w: &str) -> Option<Kind> {
     match w {
         "symmetric" => Some(Kind::Symmetric),
-        "skew-symmetric" | "antisymmetric" | "anti-symmetric" => Some(Kind::Antisymmetric),
+        "skew-symmetric" | "antisymmetric" | "anti-symmetric" | "skew" => Some(Kind::Antisymmetric),
         _ => None,
     }
 }
@@ -471,6 +471,7 @@ pub fn read(
             return said;
         }
     }
+    let mut stated_at: Vec<(usize, Symmetry)> = Vec::new();
     for (n, (s, (t, statement))) in sentences.iter().zip(&read).enumerate() {
         // The sentence, and each of the two after it that speaks of it or of a symmetry
         // ("this is no longer true", "it holds only for …"), neither denies nor
@@ -496,16 +497,51 @@ pub fn read(
         let k = headings.partition_point(|&h| h <= s.line);
         let from = k.checked_sub(1).map_or(0, |j| headings[j]);
         let to = headings.get(k).copied().unwrap_or(usize::MAX);
-        said.symmetries.push(Symmetry {
-            line: s.line,
-            subject,
-            kind,
-            quote: restored(s),
-            section: from..to,
-        });
+        stated_at.push((
+            n,
+            Symmetry {
+                line: s.line,
+                subject,
+                kind,
+                quote: restored(s),
+                section: from..to,
+            },
+        ));
     }
+    // A sentence that gives a tensor stated symmetric a skew part ("once the grains
+    // rotate, the stress $\sigma_{ij}$ acquires a skew part"): the statement was of one
+    // state of it only.
+    let skewed = |t: &[Token]| {
+        t.iter()
+            .any(|t| word(Some(t)).is_some_and(|w| SKEW.iter().any(|p| w.starts_with(p))))
+    };
+    stated_at.retain(|(at, sym)| {
+        sym.kind != Kind::Symmetric
+            || !sentences
+                .iter()
+                .zip(&read)
+                .enumerate()
+                .any(|(n, (s, (t, _)))| {
+                    let names = match &sym.subject {
+                        Subject::Formula(x) => atom(x).is_some_and(|base| {
+                            s.formulas.iter().any(|(_, f)| f.contains(base.as_str()))
+                        }),
+                        Subject::Noun(noun) => noun.last().is_some_and(|head| {
+                            t.iter().any(|t| word(Some(t)) == Some(head.as_str()))
+                        }),
+                    };
+                    n != *at && skewed(t) && names
+                })
+    });
+    said.symmetries
+        .extend(stated_at.into_iter().map(|(_, sym)| sym));
     said
 }
+
+/// Beginnings of words that give a tensor a skew part.
+const SKEW: &[&str] = &[
+    "skew", "asym", "unsym", "nonsym", "non-sym", "antisym", "anti-sym",
+];
 
 /// Whether a sentence hedges what it says: a denial, a restriction or a qualifier
 /// ("not", "isn't", "only", "if", "would", "classical"). The readings of a posited law
@@ -557,6 +593,19 @@ fn stated(t: &[Token], s: &Sentence) -> Option<(Subject, Kind)> {
         let nouns = tail.iter().take_while(|t| is_noun(t)).count();
         let article = matches!(word(head.get(2)), Some("a" | "an"));
         return (article && nouns > 0 && tail_is(&tail[nouns..], s, kind))
+            .then(|| (Subject::Formula(x.clone()), kind));
+    }
+    // `[the] [nouns] $X$ is a symmetric nouns [tail]`.
+    if at >= 3 && matches!(word(head.get(at - 1)), Some("a" | "an")) && is_be(at - 2) {
+        let nouns = tail.iter().take_while(|t| is_noun(t)).count();
+        let Some((Token::Formula(f), before)) = head[..at - 2].split_last() else {
+            return None;
+        };
+        let x = &s.formulas[*f].1;
+        let plain = before.iter().enumerate().all(|(k, t)| {
+            is_noun(t) || (k == 0 && matches!(word(Some(t)), Some("the" | "a" | "an")))
+        });
+        return (plain && nouns > 0 && one_symbol(x) && tail_is(&tail[nouns..], s, kind))
             .then(|| (Subject::Formula(x.clone()), kind));
     }
     if !tail_is(tail, s, kind) || at < 2 || !is_be(at - 1) {
@@ -752,7 +801,7 @@ fn two_letters(s: &str) -> Option<[char; 2]> {
 
 /// The symmetry a formula states: `X_{ij} = X_{ji}` (or `X_{12} = X_{21}`), `X_{ij} =
 /// -X_{ji}`; one symbol with its two indices swapped.
-fn transposed(body: &str) -> Option<Kind> {
+pub fn transposed(body: &str) -> Option<Kind> {
     let read = latex::read(body, &ReadOptions::default()).ok()?;
     let [part] = &read.parts[..] else {
         return None;
@@ -1028,9 +1077,16 @@ mod tests {
         );
         // A formula alone states no symmetry: `$\sigma_{12} = \sigma_{21}$` is one pair.
         assert_eq!(said("Here $e_{ij} = e_{ji}$."), []);
+        for skew in ["skew-symmetric", "skew", "a skew tensor"] {
+            assert_eq!(
+                said(&format!("The spin $W_{{ij}}$ is {skew}.")),
+                [(Subject::Formula("W_{ij}".into()), Kind::Antisymmetric)]
+            );
+        }
+        // A later sentence that gives a symmetric tensor a skew part withdraws it.
         assert_eq!(
-            said("The spin $W_{ij}$ is skew-symmetric."),
-            [(Subject::Formula("W_{ij}".into()), Kind::Antisymmetric)]
+            said("Let $\\sigma_{ij}$ be a symmetric stress. Once the grains rotate, $\\sigma_{ij}$ acquires a skew part."),
+            []
         );
         assert_eq!(
             said("The spin $W$ is skew symmetric. The spin $V$ is skew\\-symmetric."),
@@ -1053,7 +1109,6 @@ mod tests {
             "The stress $\\sigma$ is symmetric (see Fig. 2) only in Boltzmann media.",
             "Is the stress $\\sigma_{ij}$ symmetric?",
             "The strain $\\epsilon_{ij}$, differently from the stress $\\sigma_{ij}$, is symmetric.",
-            "The spin $W_{ij}$ is skew.",
             "The component $\\sigma_{12}$ is symmetric.",
             "$\\sigma_{ij} = \\sigma_{ji}$ for $i, j \\le 2$.",
             "The stress $\\sigma_{ij}$ is symmetric. In a Cosserat continuum this is no longer true.",
