@@ -888,13 +888,13 @@ fn an_incompressible_body_explains_a_divergence_at_any_power() {
 /// In a second round, against symmetry statements with a describing tail and text
 /// definitions: a symmetric stress that later acquires a skew part or is redefined as a
 /// general tensor; a tensor called "skew" or "a skew tensor" (antisymmetric), or written
-/// `$W_{ij} = -W_{ji}$` (a tie); the symmetries of a stiffness tensor (ties); a rate of
+/// `$W_{ij} = -W_{ji}$` or "the skew stress $\tau_{ij}$" (a tie); the symmetries of a stiffness tensor (ties); a rate of
 /// curvature given for someone else's convention. No wrong verdict; what the readings
 /// cannot follow is undecided.
 #[test]
 fn laws_and_components_an_adversary_attacked_give_no_wrong_verdict() {
     use Verdict::{Holds as H, Undecided as U};
-    let cases: [(&str, &[Verdict]); 30] = [
+    let cases: [(&str, &[Verdict]); 31] = [
         ("law-violated", &[H, H, U, H, U, U, U]),
         ("law-neglect", &[H, U, H, U, U]),
         ("law-classical", &[H, U, H, U, U]),
@@ -925,6 +925,7 @@ fn laws_and_components_an_adversary_attacked_give_no_wrong_verdict() {
         ("symmetry-stiffness-minor", &[H, U]),
         ("text-convention-unlike", &[U]),
         ("text-convention-older", &[U]),
+        ("symmetry-skew-adjective", &[U]),
     ];
     for (name, want) in cases {
         let path = format!(

@@ -3103,9 +3103,9 @@ struct Said {
     line: usize,
     /// The tie word of its sentence.
     word: Option<String>,
-    /// It states an antisymmetry of one tensor (`$W_{ij} = -W_{ji}$`), or a symmetry
-    /// word stands beside a tensor of three or more indices: a tie of that tensor, if
-    /// declared, and of nothing it is defined from.
+    /// It states an antisymmetry of one tensor (`$W_{ij} = -W_{ji}$`, "the skew stress
+    /// $\tau_{ij}$"), or a symmetry word stands beside a tensor of three or more
+    /// indices: a tie of that tensor, if declared, and of nothing it is defined from.
     symmetry: bool,
     /// Every symbol it names.
     found: Vec<Key>,
@@ -3165,8 +3165,17 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
                 matches!(&r.parts[..], [p] if matches!(&p.members[..], [m] if matches!(&m.kind,
                     MathKind::Atom(a) if a.sub.as_ref().is_some_and(|s| s.text.chars().filter(char::is_ascii_lowercase).count() >= 3))))
             });
+            // "the skew stress $\tau_{ij}$": an adjective of antisymmetry right before it.
+            let before = f.words.get(..f.at).unwrap_or("").to_lowercase();
+            let skew_adjective = before
+                .split(|c: char| !c.is_alphanumeric() && c != '-')
+                .filter(|w| !w.is_empty())
+                .rev()
+                .take(2)
+                .any(|w| w.starts_with("skew") || w.starts_with("antisym"));
             let symmetry = symmetry::transposed(&f.body) == Some(symmetry::Kind::Antisymmetric)
-                || ((lower.contains("symmetr") || lower.contains("skew")) && of_many_indices);
+                || ((lower.contains("symmetr") || lower.contains("skew")) && of_many_indices)
+                || skew_adjective;
             let word = tie_word(&f.words);
             let beside_normal = of_normal.contains(f.words.as_str());
             let after = f.words.get(f.at + 3..).unwrap_or("").to_lowercase();
