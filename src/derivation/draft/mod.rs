@@ -2687,6 +2687,17 @@ fn components_stated(
         let own =
             |k: &Key| *k == vector || symbols::vector_of(k, symbols).as_ref() == Some(&vector);
         let [index] = s.key.1[..] else { continue };
+        if !complete
+            || g.twice
+            || g.sentences.len() != 1
+            || numbered.contains(&vector)
+            || first_line.get(&vector).is_none_or(|&l| l <= g.line)
+            || g.reads.is_empty()
+            || g.reads.iter().any(own)
+            || !g.reads.iter().all(|k| symbols.contains_key(k))
+        {
+            continue;
+        }
         // The words the sentence describes the vector with ("unit normal", "angle"): a
         // later sentence with one of them may describe it again ("the angle is measured
         // from the vertical", "now let the unit normal be arbitrary").
@@ -2708,40 +2719,32 @@ fn components_stated(
         // A formula of the text after them that writes the vector ("the sign of $n_i$ is
         // reversed"), or a sentence that turns it ("on the opposite face it is
         // reversed"), may change it.
-        let written_again = prose.iter().any(|f| {
-            f.line >= g.line
-                && !g.formulas.contains(&f.body.as_str())
-                && latex::read(&f.body, &options).is_ok_and(|r| {
-                    r.parts.iter().any(|p| {
-                        let members: Vec<&latex::Math> = p.members.iter().collect();
-                        symbols::occurrences(&members, normal, tensors)
-                            .iter()
-                            .any(|(k, _)| own(k))
+        let written_again = || {
+            prose.iter().any(|f| {
+                f.line >= g.line
+                    && !g.formulas.contains(&f.body.as_str())
+                    && latex::read(&f.body, &options).is_ok_and(|r| {
+                        r.parts.iter().any(|p| {
+                            let members: Vec<&latex::Math> = p.members.iter().collect();
+                            symbols::occurrences(&members, normal, tensors)
+                                .iter()
+                                .any(|(k, _)| own(k))
+                        })
                     })
-                })
-        });
-        let turned = text.sentences.iter().any(|(line, words)| {
-            let lower = words.to_lowercase();
-            *line >= g.line && REVISIONS.iter().any(|w| lower.contains(w))
-        });
+            })
+        };
+        let turned = || {
+            text.sentences.iter().any(|(line, words)| {
+                let lower = words.to_lowercase();
+                *line >= g.line && REVISIONS.iter().any(|w| lower.contains(w))
+            })
+        };
         let section = text.section(g.line);
         let scoped = equations
             .iter()
             .filter(|e| e.reads.contains(&vector))
             .all(|e| section.contains(&e.line));
-        if !complete
-            || described_again
-            || written_again
-            || turned
-            || !scoped
-            || g.twice
-            || g.sentences.len() != 1
-            || numbered.contains(&vector)
-            || first_line.get(&vector).is_none_or(|&l| l <= g.line)
-            || g.reads.is_empty()
-            || g.reads.iter().any(own)
-            || !g.reads.iter().all(|k| symbols.contains_key(k))
-        {
+        if described_again || written_again() || turned() || !scoped {
             continue;
         }
         let sum: Vec<String> = g
@@ -2892,6 +2895,11 @@ fn posited_laws(
     }) {
         return Vec::new();
     }
+    // Every equation read once, for the rivals of each law.
+    let parsed: Vec<Option<latex::Printed>> = equations
+        .iter()
+        .map(|e| latex::read(&e.latex, &options).ok())
+        .collect();
     let mut out = Vec::new();
     for (q, eq) in equations.iter().enumerate() {
         let lead_in = eq.lead_in.to_lowercase();
@@ -2989,20 +2997,22 @@ fn posited_laws(
         // Another equation that reads the source and sets it against a term of no
         // derivative and without it (`\sigma_{ij,j} + b_i = \rho\ddot{u}_i` under rapid
         // loading): the paper posits another law for the same source.
-        let rival = equations.iter().enumerate().any(|(r, e)| {
-            let Ok(read) = latex::read(&e.latex, &options) else {
-                return false;
-            };
-            r != q
-                && e.reads.contains(key)
-                && read.parts.iter().any(|part| match &part.members[..] {
+        let rival = equations
+            .iter()
+            .zip(&parsed)
+            .enumerate()
+            .any(|(r, (e, read))| {
+                let Some(read) = read.as_ref().filter(|_| r != q && e.reads.contains(key)) else {
+                    return false;
+                };
+                read.parts.iter().any(|part| match &part.members[..] {
                     [a, b] if !zero(a) && !zero(b) => [a, b].iter().any(|m| {
                         let text = e.latex.get(m.span.start..m.span.end).unwrap_or(",");
                         !text.contains(',') && !keys(&[m]).contains(key)
                     }),
                     _ => false,
                 })
-        });
+            });
         if !rest_is_one || !scoped || rival {
             continue;
         }
