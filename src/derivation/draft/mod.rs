@@ -2540,20 +2540,7 @@ fn stated_definitions(
                 })
                 .collect();
             let [(at, key)] = &new[..] else { continue };
-            let Some(rest) = terms
-                .iter()
-                .enumerate()
-                .filter(|(n, _)| n != at)
-                .map(|(n, (minus, t))| {
-                    let sign = match (minus, n == 0 || (*at == 0 && n == 1)) {
-                        (true, _) => "- ",
-                        (false, true) => "",
-                        (false, false) => "+ ",
-                    };
-                    span(&eq.latex, t).map(|t| format!("{sign}{t}"))
-                })
-                .collect::<Option<Vec<String>>>()
-            else {
+            let Some(rest) = signed_rest(&eq.latex, terms, *at) else {
                 continue;
             };
             let (Some(text), Some(left)) = (span(&eq.latex, &terms[*at].1), span(&eq.latex, m0))
@@ -2567,7 +2554,7 @@ fn stated_definitions(
                 text: text.to_owned(),
                 stated: Some(Stated {
                     line: None,
-                    latex: format!("{text} = {left} - ({})", rest.join(" ")),
+                    latex: format!("{text} = {left} - ({rest})"),
                     instead_of: keys(&[m0]).pop(),
                     law: false,
                 }),
@@ -2766,6 +2753,26 @@ fn components_stated(
         });
     }
     out
+}
+
+/// The terms of a sum but the one at `at`, as printed, each with its sign (`a - b + c`
+/// without `b` is `a + c`); `None` when a term's text cannot be cut out.
+fn signed_rest(latex_text: &str, terms: &[(bool, latex::Math)], at: usize) -> Option<String> {
+    let rest = terms
+        .iter()
+        .enumerate()
+        .filter(|(n, _)| *n != at)
+        .map(|(n, (minus, t))| {
+            let sign = match (minus, n == 0 || (at == 0 && n == 1)) {
+                (true, _) => "- ",
+                (false, true) => "",
+                (false, false) => "+ ",
+            };
+            let text = latex_text.get(t.span.start..t.span.end)?.trim();
+            Some(format!("{sign}{text}"))
+        })
+        .collect::<Option<Vec<String>>>()?;
+    Some(rest.join(" "))
 }
 
 /// Words that describe a vector whose components the text gives ("the unit normal at
@@ -3019,21 +3026,7 @@ fn posited_laws(
         let (minus, source) = &sum[*at];
         let rest = match other {
             Some(m) => span(m).map(str::to_owned),
-            None => sum
-                .iter()
-                .enumerate()
-                .filter(|(n, _)| n != at)
-                .map(|(n, (minus, t))| {
-                    let first = n == 0 || (*at == 0 && n == 1);
-                    let sign = match (minus, first) {
-                        (true, _) => "- ",
-                        (false, true) => "",
-                        (false, false) => "+ ",
-                    };
-                    span(t).map(|t| format!("{sign}{t}"))
-                })
-                .collect::<Option<Vec<String>>>()
-                .map(|r| r.join(" ")),
+            None => signed_rest(&eq.latex, &sum, *at),
         };
         let (Some(rest), Some(text)) = (rest.filter(|r| !r.is_empty()), span(source)) else {
             continue;
