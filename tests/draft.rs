@@ -1764,6 +1764,11 @@ fn a_symmetry_the_text_states_is_assumed_and_a_denied_one_is_not() {
             &[U, U, F],
         ),
         (
+            "described-by-its-own-definition",
+            "Let $\\sigma_{ij}$ be a symmetric stress, with $\\sigma_{ij} = \\tau_{ij} - \\tau_{ji}$.",
+            &[U, U, U],
+        ),
+        (
             "described-as-another-symmetry",
             "The stress $\\sigma_{ij}$ is symmetric, with an antisymmetric part $w_{ij}$.",
             &[U, U, F],

@@ -714,6 +714,9 @@ const PLACES: &[&str] = &[
 /// that does not read it (`$t_i = \sigma_{ji} n_j$`): never a second statement of the
 /// tensor (`$\sigma_{12} = 2\sigma_{21}$`).
 fn describes(t: &[Token], s: &Sentence) -> bool {
+    // The sentence's first formula, when it is one symbol: the tensor stated symmetric,
+    // which a description may not define (`, with $\sigma_{ij} = \tau_{ij} - \tau_{ji}$`).
+    let subject = s.formulas.first().and_then(|(_, f)| atom(f));
     let Some(opening) = DESCRIPTIONS.iter().find(|d| {
         d.len() <= t.len() && d.iter().zip(t).all(|(w, tok)| word(Some(tok)) == Some(*w))
     }) else {
@@ -724,7 +727,7 @@ fn describes(t: &[Token], s: &Sentence) -> bool {
         Token::Mark(c) => *c == ',',
         Token::Formula(f) => {
             let body = &s.formulas[*f].1;
-            atom(body).is_some() || defines_another(body)
+            atom(body).is_some() || defines_another(body, subject.as_deref())
         }
     })
 }
@@ -745,9 +748,9 @@ fn atom(body: &str) -> Option<String> {
     }
 }
 
-/// Whether a formula is `Y = …` with `Y` one printed symbol ([`atom`]) that its right
-/// side does not read.
-fn defines_another(body: &str) -> bool {
+/// Whether a formula is `Y = …` with `Y` one printed symbol ([`atom`]), not `subject`,
+/// that its right side does not read.
+fn defines_another(body: &str, subject: Option<&str>) -> bool {
     let Ok(read) = latex::read(body, &ReadOptions::default()) else {
         return false;
     };
@@ -766,7 +769,10 @@ fn defines_another(body: &str) -> bool {
     let MathKind::Atom(a) = &left.kind else {
         return false;
     };
-    part.relations == [latex::Rel::Eq] && atom(l).is_some() && !r.contains(a.base.as_str())
+    part.relations == [latex::Rel::Eq]
+        && atom(l).is_some()
+        && Some(a.base.as_str()) != subject
+        && !r.contains(a.base.as_str())
 }
 
 /// Whether a formula is one symbol, with two distinct index letters or none (`\sigma`,
