@@ -2161,9 +2161,7 @@ struct Text {
 impl Text {
     /// The lines of the section `line` is in, from its heading to the next.
     fn section(&self, line: usize) -> std::ops::Range<usize> {
-        let k = self.headings.partition_point(|&h| h <= line);
-        let from = k.checked_sub(1).map_or(0, |j| self.headings[j]);
-        from..self.headings.get(k).copied().unwrap_or(usize::MAX)
+        symmetry::section(&self.headings, line)
     }
 }
 
@@ -3164,7 +3162,8 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
             // major and minor symmetries"), ties it: a difference it removes is
             // undecided (the statements `symmetry` reads assume rank-2 symmetries).
             let lower = f.words.to_lowercase();
-            let of_many_indices = latex::read(&f.body, &options).is_ok_and(|r| {
+            let parsed = latex::read(&f.body, &options);
+            let of_many_indices = parsed.as_ref().is_ok_and(|r| {
                 matches!(&r.parts[..], [p] if matches!(&p.members[..], [m] if matches!(&m.kind,
                     MathKind::Atom(a) if a.sub.as_ref().is_some_and(|s| s.text.chars().filter(char::is_ascii_lowercase).count() >= 3))))
             });
@@ -3189,7 +3188,7 @@ fn said_in_text(prose: &[displays::Inline], normal: Option<&str>, tensors: &Stem
             if word.is_none() && !f.body.contains('=') && !beside_normal && !constant && !symmetry {
                 return None;
             }
-            let read = latex::read(&f.body, &options).ok()?;
+            let read = parsed.ok()?;
             let found = read
                 .parts
                 .iter()

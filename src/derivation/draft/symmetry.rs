@@ -494,9 +494,6 @@ pub fn read(
         let Some((subject, kind)) = stated(t, s) else {
             continue;
         };
-        let k = headings.partition_point(|&h| h <= s.line);
-        let from = k.checked_sub(1).map_or(0, |j| headings[j]);
-        let to = headings.get(k).copied().unwrap_or(usize::MAX);
         stated_at.push((
             n,
             Symmetry {
@@ -504,7 +501,7 @@ pub fn read(
                 subject,
                 kind,
                 quote: restored(s),
-                section: from..to,
+                section: section(headings, s.line),
             },
         ));
     }
@@ -553,6 +550,14 @@ pub fn hedged(words: &str) -> bool {
         .any(|w| {
             DENIALS.contains(&w) || RESTRICTIONS.contains(&w) || QUALIFIERS.contains(&w) || w == "t"
         })
+}
+
+/// The lines of the section `line` is in: from the heading before it (or the start) to
+/// the next (or the end), given the headings' lines in order.
+pub fn section(headings: &[usize], line: usize) -> std::ops::Range<usize> {
+    let k = headings.partition_point(|&h| h <= line);
+    let from = k.checked_sub(1).map_or(0, |j| headings[j]);
+    from..headings.get(k).copied().unwrap_or(usize::MAX)
 }
 
 /// Whether `line` lies in one of `ranges` (sorted, not overlapping).
