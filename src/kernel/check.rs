@@ -15,7 +15,9 @@
 //! ```
 
 use super::eval::{Env, EvalError, Value, RULE_STEPS};
-pub use super::fact::{Checked, Conclusion, Evaluation, Fact, Factor, Reduced, Rejection, Summary};
+pub use super::fact::{
+    Checked, Conclusion, Evaluation, Fact, Factor, OrbitsCompared, Reduced, Rejection, Summary,
+};
 use super::frac::Frac;
 use super::poly::{Poly, Var};
 use super::rational::Rational;
@@ -288,6 +290,10 @@ fn identities(
     let normal = env.normal_vars().to_vec();
     let (mut components, mut modulo_unit_normal, mut modulo_rules) = (0, 0, 0);
     let mut nonzero: Vec<Poly> = Vec::new();
+    let mut orbits = OrbitsCompared {
+        of: 0,
+        blocks: Vec::new(),
+    };
     let mut factor_nonzero: Vec<Poly> = Vec::new();
     // A proportionality has one factor, the same in every equality (a matrix's
     // entries are one chain each) and in every component; each chain is one equality.
@@ -314,8 +320,27 @@ fn identities(
             return Err(Rejection::Mismatch("a chain of one side".into()));
         }
         for pair in chain.windows(2) {
-            let (a, b) = (env.eval(&pair[0])?, env.eval(&pair[1])?);
-            for (x, y) in pairs_of(&a, &b, env.ctx_dim()) {
+            // An identity of many components whose sides no permutation of some free
+            // letters changes is compared at one component per orbit.
+            let at_orbits = match (&factor, roots.is_empty()) {
+                (None, true) => super::symmetry::orbits(&env, &pair[0], &pair[1])
+                    .and_then(|o| orbit_pairs(&mut env, &o)),
+                _ => None,
+            };
+            let pairs = match at_orbits {
+                Some((pairs, of, blocks)) => {
+                    orbits.of += of;
+                    orbits.blocks.extend(blocks);
+                    pairs
+                }
+                None => {
+                    let (a, b) = (env.eval(&pair[0])?, env.eval(&pair[1])?);
+                    let pairs = pairs_of(&a, &b, env.ctx_dim());
+                    orbits.of += pairs.len();
+                    pairs
+                }
+            };
+            for (x, y) in pairs {
                 let y = match &factor {
                     Some(f) => y.mul(f).map_err(EvalError::from)?,
                     None => y.clone(),
@@ -360,10 +385,13 @@ fn identities(
     }
     let mut nonzero: Vec<String> = nonzero.iter().map(|p| p.display(&env.vars)).collect();
     nonzero.sort();
+    orbits.blocks.sort();
+    orbits.blocks.dedup();
     let mut out = vec![Checked::PolynomialIdentity {
         components,
         modulo_unit_normal,
         nonzero,
+        orbits: (orbits.of > components).then_some(orbits),
     }];
     // The constraints are evidence only where a comparison needed them.
     if modulo_rules > 0 {
@@ -495,6 +523,31 @@ fn pairs_of(a: &Value, b: &Value, dim: usize) -> Vec<(Frac, Frac)> {
         .collect()
 }
 
+/// Both sides' components at one index value per orbit ([`super::symmetry`]), how
+/// many components they stand for, and the blocks; `None` where a side cannot be
+/// evaluated there (every component is then compared).
+fn orbit_pairs(
+    env: &mut Env<'_>,
+    o: &super::symmetry::Orbits,
+) -> Option<(Vec<(Frac, Frac)>, usize, Vec<String>)> {
+    let mut pairs = Vec::with_capacity(o.representatives.len());
+    for values in &o.representatives {
+        let at: Vec<(char, usize)> = o.letters.iter().copied().zip(values.iter().copied()).collect();
+        let mut one = |side: &Term| -> Option<Frac> {
+            let v = env.eval(&super::symmetry::at_values(side, &at)).ok()?;
+            match v.comps() {
+                [x] => Some(x.clone()),
+                _ => None,
+            }
+        };
+        let x = one(&o.sides[0])?;
+        pairs.push((x, one(&o.sides[1])?));
+    }
+    let of = env.ctx_dim().checked_pow(u32::try_from(o.letters.len()).ok()?)?;
+    let blocks = o.blocks.iter().map(|b| b.iter().collect()).collect();
+    Some((pairs, of, blocks))
+}
+
 /// Whether two evaluations agree on every parameter both name (a parameter one of them
 /// leaves out does not enter its sides there).
 fn same_parameters(ctx: &super::statement::Context, a: &Evaluation, b: &Evaluation) -> bool {
@@ -547,10 +600,18 @@ fn component(env: &mut Env<'_>, chains: &[Vec<Term>], e: &Evaluation) -> R<(Frac
         ));
     }
     let at: Vec<(char, usize)> = letters.into_iter().zip(e.at.iter().copied()).collect();
-    let (a, b) = (
-        env.eval(&left.at_indices(&at, env)?)?,
-        env.eval(&right.at_indices(&at, env)?)?,
-    );
+    // With the definitions written out, only this component of each is formed.
+    let written = super::symmetry::written_out(env, left, right).and_then(|[l, r]| {
+        let l = env.eval(&super::symmetry::at_values(&l, &at)).ok()?;
+        Some((l, env.eval(&super::symmetry::at_values(&r, &at)).ok()?))
+    });
+    let (a, b) = match written {
+        Some(pair) => pair,
+        None => (
+            env.eval(&left.at_indices(&at, env)?)?,
+            env.eval(&right.at_indices(&at, env)?)?,
+        ),
+    };
     match (a.comps(), b.comps()) {
         ([x], [y]) => Ok((x.clone(), y.clone())),
         _ => Err(Rejection::Mismatch(

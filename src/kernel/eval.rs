@@ -852,6 +852,11 @@ impl<'c> Env<'c> {
             Term::Sum(terms) => {
                 let mut acc = self.eval(&terms[0])?;
                 for term in &terms[1..] {
+                    // A product with a δ at two different values adds 0 (and its
+                    // letters were checked with the whole sum's).
+                    if matches!(term, Term::Product(fs) if vanishes(fs)) {
+                        continue;
+                    }
                     // A product adds its terms into the sum as it forms them, in the
                     // same order: the same sum, without a tensor of its own.
                     if let Term::Product(fs) = term {
@@ -1097,7 +1102,64 @@ impl<'c> Env<'c> {
 
     /// The product of the terms `fs` over the letters `out`, its terms added to the
     /// components `into` when given (else to zeros).
-    fn product(&mut self, fs: &[Term], out: &[char], into: Option<Vec<Frac>>) -> R<Value> {
+    fn product<'t>(
+        &mut self,
+        fs: &'t [Term],
+        out: &[char],
+        into: Option<Vec<Frac>>,
+    ) -> R<Value> {
+        if vanishes(fs) {
+            let comps = match into {
+                Some(comps) => comps,
+                None => std::iter::repeat_with(Frac::default)
+                    .take(count(self.ctx.dim, out.len())?)
+                    .collect(),
+            };
+            return Ok(Value {
+                letters: out.to_vec(),
+                comps,
+            });
+        }
+        // Leaves at fixed values only: one component of each, multiplied from left to
+        // right and added as the walk below would add them.
+        let d = self.ctx.dim;
+        let fixed = |f: &'t Term| match f {
+            Term::Leaf { of, slots } => slots
+                .iter()
+                .try_fold(0usize, |acc, s| match s {
+                    Slot::Fixed(v) => acc.checked_mul(d)?.checked_add(*v),
+                    Slot::Letter(_) => None,
+                })
+                .map(|offset| (of, offset)),
+            _ => None,
+        };
+        if out.is_empty() {
+            if let Some(leaves) = fs.iter().map(fixed).collect::<Option<Vec<_>>>() {
+                let mut comps = into.unwrap_or_else(|| vec![Frac::default()]);
+                let mut p = Frac::one();
+                for (of, offset) in leaves {
+                    let base = self.leaf(of)?;
+                    let x = base.get(offset).ok_or_else(|| {
+                        EvalError::IllFormed("a slot count that is not the rank".into())
+                    })?;
+                    if x.is_zero() && x.conditions().is_empty() {
+                        return Ok(Value {
+                            letters: Vec::new(),
+                            comps,
+                        });
+                    }
+                    p = self.mul(&p, x)?;
+                }
+                let [sum] = &mut comps[..] else {
+                    return Err(EvalError::IllFormed("a sum of different ranks".into()));
+                };
+                *sum = self.add(sum, &p)?;
+                return Ok(Value {
+                    letters: Vec::new(),
+                    comps,
+                });
+            }
+        }
         let mut values = Vec::with_capacity(fs.len());
         for f in fs {
             values.push(self.eval(f)?);
@@ -1630,6 +1692,15 @@ impl<'c> Env<'c> {
 
 /// The position of component `idx` (values in `formal` order) among the components
 /// of a tensor over the sorted `letters`.
+/// Whether a product has a δ at two different fixed values: it is 0 in every
+/// component, and the walk of [`Env::contract`] would cut it at once, after forming
+/// every other factor.
+fn vanishes(fs: &[Term]) -> bool {
+    fs.iter().any(|f| {
+        matches!(f, Term::Leaf { of: Leaf::Delta, slots } if matches!(slots[..], [Slot::Fixed(a), Slot::Fixed(b)] if a != b))
+    })
+}
+
 fn position_of(letters: &[char], formal: &[char], idx: &[usize], d: usize) -> usize {
     letters.iter().fold(0, |acc, c| {
         acc * d + formal.iter().position(|f| f == c).map_or(0, |k| idx[k])
@@ -1675,7 +1746,7 @@ pub fn substitute(p: &Poly, values: &BTreeMap<Var, Poly>) -> R<Poly> {
     Ok(out)
 }
 
-impl Env<'_> {
+impl<'c> Env<'c> {
     /// The kernel's polynomial of a hint, its variables interned by name.
     pub(super) fn poly_of(&mut self, p: &PolyData) -> R<Poly> {
         let mut terms = Vec::with_capacity(p.len());
@@ -1717,6 +1788,11 @@ impl Env<'_> {
             )));
         }
         Ok(v)
+    }
+
+    /// The statement's context.
+    pub fn context(&self) -> &'c Context {
+        self.ctx
     }
 
     pub fn ctx_dim(&self) -> usize {

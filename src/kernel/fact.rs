@@ -37,6 +37,14 @@ pub enum Factor {
     Function { num: PolyData, den: PolyData },
 }
 
+/// The components an identity's compared components stand for, and the blocks of
+/// free letters (`"ijklmpqrst"`) no permutation of which changes a side.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct OrbitsCompared {
+    pub of: usize,
+    pub blocks: Vec<String>,
+}
+
 /// What a strategy found, to be checked against the statement.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
@@ -200,6 +208,10 @@ pub enum Checked {
         modulo_unit_normal: usize,
         #[serde(skip_serializing_if = "Vec::is_empty")]
         nonzero: Vec<String>,
+        /// Where an equality was compared at one component per orbit
+        /// ([`super::symmetry`]): how many components those compared stand for.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        orbits: Option<OrbitsCompared>,
     },
     /// The polynomial constraints, each solved for a power of a variable of its own,
     /// and the square roots taken as variables (`rules`, as `v^d = value`), and how many

@@ -8,7 +8,8 @@
 //!   rewrite rules ([`rules`]);
 //! - statements: the terms of index notation and their free letters ([`term`]), the
 //!   context that gives them meaning ([`statement`]), and their evaluator ([`eval`],
-//!   with [`differentiate`] for `grad`), written to be read rather than to be fast;
+//!   with [`differentiate`] for `grad`), written to be read rather than to be fast,
+//!   and the orbits of free letters that no permutation changes ([`symmetry`]);
 //! - facts: what a search hands in ([`fact`]), the checker that alone turns a fact into
 //!   a [`check::Proof`] ([`check`]), the scalar facts ([`scalar`]) and signs by
 //!   coefficients ([`sign`]); [`interrupt`] lets a claim's time limit stop a long
@@ -32,6 +33,7 @@ pub mod rules;
 pub mod scalar;
 pub mod sign;
 pub mod statement;
+pub mod symmetry;
 pub mod term;
 pub mod univariate;
 

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 
 /// One index slot: a letter (free or summed) or a fixed component, 0-based (written
 /// `"i"` or `0` in a report).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum Slot {
     Letter(char),
@@ -25,7 +25,7 @@ pub enum Slot {
 }
 
 /// What a leaf names.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Leaf {
     /// A declared symbol (tensor, scalar, field or the position).
@@ -38,8 +38,9 @@ pub enum Leaf {
     Normal,
 }
 
-/// An expression.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// An expression. Its order is structural: it sorts the parts of a canonical form
+/// ([`super::symmetry::canonical`]).
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Term {
     /// A constant in every component of the free letters `free` (the literal 0 of a

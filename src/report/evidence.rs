@@ -281,13 +281,22 @@ pub fn proof_words(o: &Outcome) -> Option<String> {
                 components,
                 modulo_unit_normal,
                 nonzero,
+                orbits,
             } => {
                 let s = if *components == 1 { "" } else { "s" };
-                let modulo = if *modulo_unit_normal > 0 {
+                let mut modulo = if *modulo_unit_normal > 0 {
                     format!(" ({modulo_unit_normal} of them modulo n·n = 1)")
                 } else {
                     String::new()
                 };
+                if let Some(o) = orbits {
+                    let blocks: Vec<String> = o.blocks.iter().map(|b| format!("`{b}`")).collect();
+                    modulo.push_str(&format!(
+                        ", one per orbit of the {} components under the permutations of the letters {}, which change neither side",
+                        o.of,
+                        blocks.join(" and ")
+                    ));
+                }
                 if nonzero.is_empty() {
                     format!("canonical polynomials identical in {components} component{s}{modulo}")
                 } else {
