@@ -933,3 +933,256 @@ fn a_term_at_fixed_index_values_is_that_component_of_the_whole() {
         }
     }
 }
+
+/// The 15 pairings of six letters, as products of three δ's.
+fn pairings(letters: &[char]) -> Vec<Vec<(char, char)>> {
+    let Some((&a, rest)) = letters.split_first() else {
+        return vec![Vec::new()];
+    };
+    let mut out = Vec::new();
+    for (k, &b) in rest.iter().enumerate() {
+        let others: Vec<char> = rest
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != k)
+            .map(|(_, &c)| c)
+            .collect();
+        for mut p in pairings(&others) {
+            p.insert(0, (a, b));
+            out.push(p);
+        }
+    }
+    out
+}
+
+fn deltas(p: &[(char, char)]) -> Term {
+    prod(
+        p.iter()
+            .map(|&(a, b)| leaf(Leaf::Delta, &format!("{a}{b}")))
+            .collect(),
+    )
+}
+
+/// `Σ c_p P_p` over pairings with nonzero coefficients, in the given order.
+fn combination(ps: &[Vec<(char, char)>], cs: &[i64], order: &[usize]) -> Term {
+    let terms: Vec<Term> = order
+        .iter()
+        .filter(|&&k| cs[k] != 0)
+        .map(|&k| prod(vec![num(cs[k]), deltas(&ps[k])]))
+        .collect();
+    if terms.is_empty() {
+        Term::Const {
+            value: q(0, 1),
+            free: "ijklmp".chars().collect(),
+        }
+    } else {
+        sum(terms)
+    }
+}
+
+/// The blocks a proof compared orbits of, if it did.
+fn orbit_blocks(st: Statement) -> Option<Vec<String>> {
+    use cosserat_check::kernel::check::Checked;
+    let proof = check(st, identity()).ok()?;
+    proof.summary().iter().find_map(|c| match c {
+        Checked::PolynomialIdentity {
+            orbits: Some(o), ..
+        } => Some(o.blocks.clone()),
+        _ => None,
+    })
+}
+
+/// An identity compared at one component per orbit must hold at every component: the
+/// kernel's verdict on sums of δ pairings (rank 6, 729 components) is the verdict of
+/// comparing every component, including for sides that agree at every index value
+/// sorted along the letters and differ elsewhere (`+ P − P'` with two pairings that
+/// only sorted values with four equal letters tell apart).
+#[test]
+fn orbits_decide_as_every_component_would() {
+    use cosserat_check::kernel::eval::Env;
+    let letters: Vec<char> = "ijklmp".chars().collect();
+    let ps = pairings(&letters);
+    assert_eq!(ps.len(), 15);
+    let ctx = context(&[]);
+    let index = |p: &[(char, char)]| ps.iter().position(|x| x == p).unwrap();
+    // (ik)(jl)(mp) and (il)(jk)(mp): equal at every sorted index value.
+    let p1 = index(&[('i', 'k'), ('j', 'l'), ('m', 'p')]);
+    let p2 = index(&[('i', 'l'), ('j', 'k'), ('m', 'p')]);
+    let (mut proved, mut orbits, mut refused) = (0, 0, 0);
+    for seed in 1..=20u64 {
+        let mut rng = cosserat_check::decide::random::Rng::new(seed);
+        let symmetric = seed % 2 == 0;
+        let cs: Vec<i64> = if symmetric {
+            vec![rng.small(); 15]
+        } else {
+            (0..15).map(|_| rng.small()).collect()
+        };
+        let mut order: Vec<usize> = (0..15).collect();
+        for k in (1..15).rev() {
+            order.swap(k, rng.below(k + 1));
+        }
+        let left = combination(&ps, &cs, &(0..15).collect::<Vec<_>>());
+        let mut twisted = cs.clone();
+        match seed % 4 {
+            // The same sum in another order.
+            0 | 1 => {}
+            // Equal at every sorted index value, different elsewhere.
+            2 => {
+                twisted[p1] += 1;
+                twisted[p2] -= 1;
+            }
+            // One coefficient changed.
+            _ => twisted[(seed as usize) % 15] += 1,
+        }
+        let right = combination(&ps, &twisted, &order);
+        let truth = {
+            let mut env = Env::new(&ctx, &[]).unwrap();
+            env.eval(&left).unwrap().comps() == env.eval(&right).unwrap().comps()
+        };
+        let st = equal(&ctx, left, right);
+        assert_eq!(holds(st.clone(), identity()), truth, "seed {seed}");
+        if truth {
+            proved += 1;
+            if let Some(blocks) = orbit_blocks(st) {
+                orbits += 1;
+                assert!(symmetric, "seed {seed}: orbits of an unsymmetric sum");
+                assert_eq!(blocks, ["ijklmp"]);
+            }
+        } else {
+            refused += 1;
+        }
+    }
+    assert_eq!((proved, orbits, refused), (10, 5, 10));
+}
+
+/// The isotropic moment of rank 6 with its right side split into definitions (one
+/// in letters of its own) is proved at its 28 orbits; an ε, which a swap of its letters changes, and a tensor of fixed δ's that
+/// agrees with ε ε at every sorted index value are compared component by component.
+#[test]
+fn a_side_is_symmetric_only_as_written_out_and_exchanged() {
+    use cosserat_check::kernel::check::Checked;
+    use cosserat_check::kernel::statement::Definition;
+    let letters: Vec<char> = "ijklmp".chars().collect();
+    let ps = pairings(&letters);
+    let mut ctx = context(&[]);
+    // P0: the first 7 pairings; P1: the other 8, written in the letters a…f.
+    let first = sum(ps[..7].iter().map(|p| deltas(p)).collect());
+    let rename = |c: char| "abcdef".chars().nth(letters.iter().position(|&x| x == c).unwrap()).unwrap();
+    let rest: Vec<Term> = ps[7..]
+        .iter()
+        .map(|p| deltas(&p.iter().map(|&(a, b)| (rename(a), rename(b))).collect::<Vec<_>>()))
+        .collect();
+    ctx.definitions = vec![
+        Definition {
+            name: "P0".into(),
+            formal: letters.clone(),
+            body: first,
+        },
+        Definition {
+            name: "P1".into(),
+            formal: "abcdef".chars().collect(),
+            body: sum(rest),
+        },
+    ];
+    let n6 = Term::Avg(Box::new(prod(
+        letters.iter().map(|c| leaf(Leaf::Normal, &c.to_string())).collect(),
+    )));
+    let right = prod(vec![
+        frac(1, 105),
+        sum(vec![
+            leaf(Leaf::Def("P0".into()), "ijklmp"),
+            leaf(Leaf::Def("P1".into()), "ijklmp"),
+        ]),
+    ]);
+    let st = equal(&ctx, n6.clone(), right.clone());
+    let proof = check(st, identity()).unwrap();
+    assert_eq!(proof.conclusion(), Conclusion::Holds);
+    assert!(matches!(
+        proof.summary(),
+        [Checked::PolynomialIdentity { components: 28, orbits: Some(o), .. }, ..]
+            if o.of == 729 && o.blocks == ["ijklmp"]
+    ));
+    // With 1/104 it is refused.
+    let wrong = prod(vec![frac(1, 104), sum(vec![
+        leaf(Leaf::Def("P0".into()), "ijklmp"),
+        leaf(Leaf::Def("P1".into()), "ijklmp"),
+    ])]);
+    assert!(!holds(equal(&ctx, n6, wrong), identity()));
+    // ε_ijk ε_lmp and δ_i1 δ_j2 δ_k3 δ_l1 δ_m2 δ_p3 agree wherever i ≤ j ≤ k and
+    // l ≤ m ≤ p, and differ at i = 2, j = 1.
+    let ee = prod(vec![leaf(Leaf::Eps, "ijk"), leaf(Leaf::Eps, "lmp")]);
+    let fixed = prod(
+        ["i1", "j2", "k3", "l1", "m2", "p3"]
+            .iter()
+            .map(|s| leaf(Leaf::Delta, s))
+            .collect(),
+    );
+    let st = equal(&context(&[]), ee.clone(), fixed);
+    assert!(!holds(st, identity()));
+    assert!(holds(equal(&context(&[]), ee.clone(), ee), identity()));
+}
+
+/// The sides with their definitions written out have, at every index value, the
+/// component the whole has there: definitions used at fixed values, with summed
+/// letters of their own that the use site also writes, through another definition,
+/// as a trace, and under a constant divisor, a power and an average.
+#[test]
+fn a_side_written_out_has_every_component_of_the_side() {
+    use cosserat_check::kernel::eval::{assignments, Env};
+    use cosserat_check::kernel::statement::Definition;
+    use cosserat_check::kernel::symmetry::{at_values, written_out};
+    let mut ctx = context(&[("a", 1), ("T", 2), ("s", 0)]);
+    let def = |name: &str, formal: &str, body: Term| Definition {
+        name: name.into(),
+        formal: formal.chars().collect(),
+        body,
+    };
+    ctx.definitions = vec![
+        // X_ij = T_ik T_jk: k is summed inside.
+        def("X", "ij", prod(vec![sym("T", "ik"), sym("T", "jk")])),
+        // Y_jk = X_jm a_m a_k + s δ_jk / 2, through X.
+        def(
+            "Y",
+            "jk",
+            sum(vec![
+                prod(vec![leaf(Leaf::Def("X".into()), "jm"), sym("a", "m"), sym("a", "k")]),
+                Term::Div(
+                    Box::new(prod(vec![sym("s", ""), leaf(Leaf::Delta, "jk")])),
+                    Box::new(num(2)),
+                ),
+            ]),
+        ),
+        def("N", "i", Term::Avg(Box::new(prod(vec![
+            leaf(Leaf::Normal, "i"),
+            leaf(Leaf::Normal, "k"),
+            sym("a", "k"),
+        ])))),
+    ];
+    let x = |slots: &str| leaf(Leaf::Def("X".into()), slots);
+    let y = |slots: &str| leaf(Leaf::Def("Y".into()), slots);
+    let terms = vec![
+        // k is also a letter of the use site.
+        prod(vec![x("ik"), sym("a", "k")]),
+        sum(vec![y("ij"), x("ji"), neg(prod(vec![y("2j"), sym("a", "i")]))]),
+        prod(vec![x("kk"), leaf(Leaf::Def("N".into()), "i"), sym("a", "j")]),
+        prod(vec![Term::Pow(Box::new(x("mm")), 2), y("i1")]),
+    ];
+    for t in &terms {
+        let mut env = Env::new(&ctx, &[]).unwrap();
+        let whole = env.eval(t).unwrap();
+        let letters = whole.letters().to_vec();
+        let [out, _] = written_out(&env, t, &num(0)).expect("in the class");
+        let mut env = Env::new(&ctx, &[]).unwrap();
+        for (k, values) in assignments(3, letters.len()).iter().enumerate() {
+            let at: Vec<(char, usize)> = letters.iter().copied().zip(values.iter().copied()).collect();
+            let one = env.eval(&at_values(&out, &at)).unwrap();
+            assert_eq!(one.comps(), &whole.comps()[k..=k], "{t:?} at {at:?}");
+        }
+    }
+    // Outside the class: a divisor that is not a constant, a square root.
+    let env = Env::new(&ctx, &[]).unwrap();
+    let div = Term::Div(Box::new(sym("a", "i")), Box::new(sym("s", "")));
+    assert!(written_out(&env, &div, &sym("a", "i")).is_none());
+    let root = Term::Sqrt(Box::new(sym("s", "")));
+    assert!(written_out(&env, &root, &num(0)).is_none());
+}
