@@ -1,7 +1,7 @@
 //! `cargo bench`: medians of repeated wall-clock timings, printed as a Markdown table.
 //!
 //! What is measured (release build): the whole-paper check (and its exact claims
-//! alone), isotropic moment identities (each with a refuted mutant) of rank 2 to 8 in 2D
+//! alone), isotropic moment identities (each with a refuted mutant) of rank 2 to 10 in 2D
 //! and 3D, the scaling of an exact proof with polynomial degree, the exact moments up to
 //! order 12, the num-dual gradient claim of F2, the symbolic A² derivation, and the
 //! whole paper in a fresh process (the user's view, when the release binary exists).
@@ -45,9 +45,11 @@ mod pairings;
 use pairings::delta_products;
 
 /// An isotropic-moment identity of even rank `rank` in dimension `dim` and a wrong
-/// version of it, as a file.
+/// version of it, as a file. Past rank 8 the right side is a sum of definitions of 35
+/// pairings each (a side holds at most 1000 tokens).
 fn moment_identity(dim: usize, rank: usize) -> String {
-    let letters: Vec<char> = "ijklmpqr".chars().take(rank).collect();
+    let letters: Vec<char> = "ijklmpqrst".chars().take(rank).collect();
+    let free: String = letters.iter().collect();
     let ns: Vec<String> = letters.iter().map(|c| format!("n_{c}")).collect();
     let terms: Vec<String> = delta_products(&letters);
     let denom: usize = (0..rank / 2).map(|m| dim + 2 * m).product();
@@ -60,12 +62,25 @@ fn moment_identity(dim: usize, rank: usize) -> String {
     };
     // The identity, and the same with its last pairing dropped (refuted), as the peers
     // in benches/peers.py do it; at rank 2, its one pairing doubled.
+    let (mut terms, mut defs) = (terms, String::new());
+    if rank > 8 {
+        let last = terms.pop().expect("pairings");
+        let mut parts: Vec<String> = terms
+            .chunks(35)
+            .enumerate()
+            .map(|(k, c)| format!("\"P{k}_{free} = {}\"", c.join(" + ")))
+            .collect();
+        parts.push(format!("\"L_{free} = {last}\""));
+        defs = format!("define = [{}]\n", parts.join(", "));
+        terms = (0..parts.len() - 1).map(|k| format!("P{k}_{free}")).collect();
+        terms.push(format!("L_{free}"));
+    }
     let wrong = match &terms[..] {
         [one] => vec![format!("2 {one}")],
         all => all[..all.len() - 1].to_vec(),
     };
     format!(
-        "section = \"b\"\ntitle = \"b\"\ndimension = {dim}\nnormal = \"n\"\n{}{}reason = \"one pairing dropped\"\n",
+        "section = \"b\"\ntitle = \"b\"\ndimension = {dim}\nnormal = \"n\"\n{defs}{}{}reason = \"one pairing dropped\"\n",
         claim("m", "holds", &terms),
         claim("wrong", "fails", &wrong)
     )
@@ -264,8 +279,8 @@ fn main() {
         return;
     }
     // `-- --task NAME REPS`: each repetition's time in milliseconds, one per line, for
-    // benches/peers.py (NAME: a claim id, decided with its correction; `rank6` or
-    // `rank8`, the isotropic moment identity of that rank in 3D and its mutant read and decided; `a2`,
+    // benches/peers.py (NAME: a claim id, decided with its correction; `rank6`, `rank8`
+    // or `rank10`, the isotropic moment identity of that rank in 3D and its mutant read and decided; `a2`,
     // Q, D^(ep) and the four A² of the Appendix file derived together, as the peers do it
     // (`a2-apart`: each A² derived from scratch); `gcd`, the gcds of [`GCD_PAIRS`] pairs with a
     // known common factor ([`gcd_pairs`]); `products`, 200 products of the tight-loop
@@ -419,7 +434,7 @@ fn main() {
         rows.push((format!("claim {} ({strategy})", c.id), format!("{t:.1} ms")));
     }
     for dim in [2, 3] {
-        for rank in [2, 4, 6, 8] {
+        for rank in [2, 4, 6, 8, 10] {
             let text = moment_identity(dim, rank);
             let t = median_ms(9, || decide_text(&text));
             rows.push((

@@ -322,16 +322,19 @@ pub fn at_values(t: &Term, at: &[(char, usize)]) -> Term {
                 .collect(),
         },
         Term::Product(fs) => {
-            let fs: Vec<Term> = fs.iter().map(|f| at_values(f, at)).collect();
+            let fixed = |s: &Slot| match s {
+                Slot::Letter(c) => value(*c),
+                Slot::Fixed(v) => Some(*v),
+            };
             let vanishes = fs.iter().any(|f| {
                 matches!(f, Term::Leaf { of: Leaf::Delta, slots }
-                    if matches!(slots[..], [Slot::Fixed(a), Slot::Fixed(b)] if a != b))
+                    if matches!(slots[..], [ref a, ref b] if fixed(a).zip(fixed(b)).is_some_and(|(a, b)| a != b)))
             });
             // Only where no letter is left: a tensor's 0 would need its letters.
-            if vanishes && fs.iter().all(|f| letters_of(f).is_empty()) {
+            if vanishes && fs.iter().all(|f| only_fixed(f, at)) {
                 return zero();
             }
-            Term::Product(fs)
+            Term::Product(fs.iter().map(|f| at_values(f, at)).collect())
         }
         Term::Sum(ts) => {
             let mut kept: Vec<Term> = ts
@@ -353,11 +356,23 @@ pub fn at_values(t: &Term, at: &[(char, usize)]) -> Term {
     }
 }
 
-/// Every letter a term writes.
-fn letters_of(t: &Term) -> BTreeSet<char> {
-    let mut out = BTreeSet::new();
-    letters_in(t, &mut out);
-    out
+/// Whether every letter a term writes is one of `at`'s.
+fn only_fixed(t: &Term, at: &[(char, usize)]) -> bool {
+    let known = |c: &char| at.iter().any(|(d, _)| d == c);
+    let slots = |slots: &[Slot]| {
+        slots.iter().all(|s| match s {
+            Slot::Letter(c) => known(c),
+            Slot::Fixed(_) => true,
+        })
+    };
+    let here = match t {
+        Term::Const { free, .. } | Term::Opaque { free, .. } => free.iter().all(known),
+        Term::Leaf { slots: s, .. } => slots(s),
+        Term::Deriv(_, s) => slots(std::slice::from_ref(s)),
+        Term::Grad { slots: s, .. } | Term::Variation { slots: s, .. } => slots(s),
+        _ => true,
+    };
+    here && super::term::children(t).into_iter().all(|c| only_fixed(c, at))
 }
 
 /// The term with the letters `a` and `b` exchanged.
@@ -415,3 +430,4 @@ pub fn canonical(t: Term) -> Term {
         other => other,
     }
 }
+
