@@ -852,11 +852,6 @@ impl<'c> Env<'c> {
             Term::Sum(terms) => {
                 let mut acc = self.eval(&terms[0])?;
                 for term in &terms[1..] {
-                    // A product with a δ at two different values adds 0 (and its
-                    // letters were checked with the whole sum's).
-                    if matches!(term, Term::Product(fs) if vanishes(fs)) {
-                        continue;
-                    }
                     // A product adds its terms into the sum as it forms them, in the
                     // same order: the same sum, without a tensor of its own.
                     if let Term::Product(fs) = term {
@@ -1108,18 +1103,6 @@ impl<'c> Env<'c> {
         out: &[char],
         into: Option<Vec<Frac>>,
     ) -> R<Value> {
-        if vanishes(fs) {
-            let comps = match into {
-                Some(comps) => comps,
-                None => std::iter::repeat_with(Frac::default)
-                    .take(count(self.ctx.dim, out.len())?)
-                    .collect(),
-            };
-            return Ok(Value {
-                letters: out.to_vec(),
-                comps,
-            });
-        }
         // Leaves at fixed values only: one component of each, multiplied from left to
         // right and added as the walk below would add them.
         let d = self.ctx.dim;
@@ -1692,15 +1675,6 @@ impl<'c> Env<'c> {
 
 /// The position of component `idx` (values in `formal` order) among the components
 /// of a tensor over the sorted `letters`.
-/// Whether a product has a δ at two different fixed values: it is 0 in every
-/// component, and the walk of [`Env::contract`] would cut it at once, after forming
-/// every other factor.
-fn vanishes(fs: &[Term]) -> bool {
-    fs.iter().any(|f| {
-        matches!(f, Term::Leaf { of: Leaf::Delta, slots } if matches!(slots[..], [Slot::Fixed(a), Slot::Fixed(b)] if a != b))
-    })
-}
-
 fn position_of(letters: &[char], formal: &[char], idx: &[usize], d: usize) -> usize {
     letters.iter().fold(0, |acc, c| {
         acc * d + formal.iter().position(|f| f == c).map_or(0, |k| idx[k])
