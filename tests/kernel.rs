@@ -1186,3 +1186,58 @@ fn a_side_written_out_has_every_component_of_the_side() {
     let root = Term::Sqrt(Box::new(sym("s", "")));
     assert!(written_out(&env, &root, &num(0)).is_none());
 }
+
+/// Two factors of a product may each sum the same letter in a scope of their own:
+/// `(δ_iq δ_q2)(δ_jq δ_q1) a_k a_l a_m a_p = 0` is false (at i = 2, j = 1), and a
+/// canonical form that flattened both scopes into one would find it symmetric in i and
+/// j and compare only i ≤ j, where it holds (a forged report found this).
+#[test]
+fn products_that_sum_the_same_letter_stay_apart() {
+    let ctx = context(&[("a", 1)]);
+    let scope = |a: &str, b: &str| prod(vec![leaf(Leaf::Delta, a), leaf(Leaf::Delta, b)]);
+    let left = prod(vec![
+        scope("iq", "q2"),
+        scope("jq", "q1"),
+        sym("a", "k"),
+        sym("a", "l"),
+        sym("a", "m"),
+        sym("a", "p"),
+    ]);
+    let zero = Term::Const {
+        value: q(0, 1),
+        free: "ijklmp".chars().collect(),
+    };
+    assert!(!holds(equal(&ctx, left.clone(), zero), identity()));
+    assert!(holds(equal(&ctx, left.clone(), left), identity()));
+}
+
+/// Definitions that each read the one before twice double when written out: at 13
+/// levels the written-out sides (8,192 terms) would cost more at each orbit than every
+/// definition evaluated in full, and every component is compared instead.
+#[test]
+fn definitions_that_double_when_written_out_are_evaluated_in_full() {
+    use cosserat_check::kernel::check::Checked;
+    use cosserat_check::kernel::statement::Definition;
+    let mut ctx = context(&[("A", 2)]);
+    let swaps = ["jiklmp", "ikjlmp", "ijlkmp", "ijkmlp", "ijklpm", "ijklmp"];
+    let d = |k: usize, slots: &str| leaf(Leaf::Def(format!("D{k}")), slots);
+    ctx.definitions.push(Definition {
+        name: "D0".into(),
+        formal: "ijklmp".chars().collect(),
+        body: prod(vec![sym("A", "ij"), sym("A", "kl"), sym("A", "mp")]),
+    });
+    for k in 1..=13 {
+        ctx.definitions.push(Definition {
+            name: format!("D{k}"),
+            formal: "ijklmp".chars().collect(),
+            body: sum(vec![d(k - 1, "ijklmp"), d(k - 1, swaps[(k - 1) % 6])]),
+        });
+    }
+    let right = sum(vec![d(12, "ijklmp"), d(12, "jiklmp")]);
+    let proof = check(equal(&ctx, d(13, "ijklmp"), right), identity()).unwrap();
+    assert_eq!(proof.conclusion(), Conclusion::Holds);
+    assert!(matches!(
+        proof.summary(),
+        [Checked::PolynomialIdentity { components: 729, orbits: None, .. }, ..]
+    ));
+}

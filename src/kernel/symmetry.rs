@@ -48,8 +48,16 @@ pub struct Orbits {
 
 /// Both sides of `left = right` with their definitions written out, when the
 /// statement is in the class above: each then has the value of its side, component by
-/// component, and no divisor that could make another component undefined.
+/// component, and no divisor that could make another component undefined. `None` too
+/// where evaluating them at one index value would cost more than evaluating the sides
+/// and every definition in full (definitions that read others twice, written out,
+/// double at each level).
 pub fn written_out(env: &Env<'_>, left: &Term, right: &Term) -> Option<[Term; 2]> {
+    let (sides, nodes) = write_out(env, left, right)?;
+    (nodes <= full_cost(env, left, right)).then_some(sides)
+}
+
+fn write_out(env: &Env<'_>, left: &Term, right: &Term) -> Option<([Term; 2], usize)> {
     let ctx = env.context();
     if !(ctx.equations.is_empty() && ctx.substitutions.is_empty() && ctx.hypotheses.is_empty())
     {
@@ -62,7 +70,37 @@ pub fn written_out(env: &Env<'_>, left: &Term, right: &Term) -> Option<[Term; 2]
             return None;
         }
     }
-    Some(sides)
+    Some((sides, inliner.nodes))
+}
+
+/// About the work of evaluating both sides and every definition in full: each one's
+/// nodes times its components.
+fn full_cost(env: &Env<'_>, left: &Term, right: &Term) -> usize {
+    let dim = env.ctx_dim();
+    let cost = |t: &Term, rank: usize| {
+        let components = u32::try_from(rank)
+            .ok()
+            .and_then(|r| dim.checked_pow(r))
+            .unwrap_or(usize::MAX);
+        nodes(t).saturating_mul(components)
+    };
+    let sides = [left, right].into_iter().map(|t| {
+        let rank = t.letters(env).map_or(0, |l| l.free.len());
+        cost(t, rank)
+    });
+    let definitions = env
+        .context()
+        .definitions
+        .iter()
+        .map(|d| cost(&d.body, d.formal.len()));
+    sides.chain(definitions).fold(0, usize::saturating_add)
+}
+
+fn nodes(t: &Term) -> usize {
+    super::term::children(t)
+        .into_iter()
+        .map(nodes)
+        .fold(1, usize::saturating_add)
 }
 
 /// The orbits of `left = right`, or `None` (compare every component).
@@ -75,7 +113,14 @@ pub fn orbits(env: &Env<'_>, left: &Term, right: &Term) -> Option<Orbits> {
     if dim.checked_pow(u32::try_from(letters.len()).ok()?)? < ORBITS_FROM {
         return None;
     }
-    let sides = written_out(env, left, right)?;
+    let (sides, nodes) = write_out(env, left, right)?;
+    // At the fewest orbits (every letter in one block), is it still cheaper?
+    let n = letters.len();
+    let fewest = (1..dim).fold(1usize, |c, k| c.saturating_mul(n + k) / k);
+    let full = full_cost(env, left, right);
+    if fewest.saturating_mul(nodes) > full {
+        return None;
+    }
     let canonical_sides = [canonical(sides[0].clone()), canonical(sides[1].clone())];
     // Neighbouring letters that both sides let exchange, joined into blocks.
     let mut blocks: Vec<Vec<char>> = Vec::new();
@@ -96,6 +141,10 @@ pub fn orbits(env: &Env<'_>, left: &Term, right: &Term) -> Option<Orbits> {
         return None;
     }
     let representatives = sorted_within(dim, &letters, &blocks);
+    // Each orbit's component evaluates the written-out sides once.
+    if representatives.len().saturating_mul(nodes) > full {
+        return None;
+    }
     Some(Orbits {
         sides,
         letters,
@@ -141,6 +190,9 @@ struct Inliner<'c> {
     next: u32,
     nodes: usize,
     active: Vec<&'c str>,
+    /// Each definition written out once (its summed letters as in its body) and its
+    /// nodes.
+    written: std::collections::HashMap<&'c str, (Term, usize)>,
 }
 
 impl<'c> Inliner<'c> {
@@ -162,6 +214,7 @@ impl<'c> Inliner<'c> {
             next: 0xE000,
             nodes: 0,
             active: Vec::new(),
+            written: std::collections::HashMap::new(),
         }
     }
 
@@ -196,21 +249,41 @@ impl<'c> Inliner<'c> {
                 slots,
             } => {
                 let def = self.definition(name)?;
-                if self.active.contains(&def.name.as_str()) || def.formal.len() != slots.len() {
+                if def.formal.len() != slots.len() {
                     return None;
                 }
-                self.active.push(&def.name);
-                let body = self.inline(&def.body);
-                self.active.pop();
-                let mut body = body?;
-                // The body's free letters are its formal letters, each once (the
-                // evaluator refuses a definition where they differ); every other
-                // letter is summed inside it and is renamed to a fresh one.
-                let mut formal = def.formal.clone();
-                formal.sort_unstable();
-                formal.dedup();
-                if formal.len() != def.formal.len() || body.letters(self.ranks).ok()?.free != formal
-                {
+                let (mut body, size) = match self.written.get(def.name.as_str()) {
+                    Some(done) => done.clone(),
+                    None => {
+                        if self.active.contains(&def.name.as_str()) {
+                            return None;
+                        }
+                        let before = self.nodes;
+                        self.active.push(&def.name);
+                        let body = self.inline(&def.body);
+                        self.active.pop();
+                        let body = body?;
+                        // The body's free letters are its formal letters, each once
+                        // (the evaluator refuses a definition where they differ);
+                        // every other letter is summed inside it and is renamed to a
+                        // fresh one at each use.
+                        let mut formal = def.formal.clone();
+                        formal.sort_unstable();
+                        formal.dedup();
+                        if formal.len() != def.formal.len()
+                            || body.letters(self.ranks).ok()?.free != formal
+                        {
+                            return None;
+                        }
+                        let done = (body, self.nodes - before);
+                        self.written.insert(&def.name, done.clone());
+                        // Counted once more below, as every later use is.
+                        self.nodes = before;
+                        done
+                    }
+                };
+                self.nodes = self.nodes.saturating_add(size);
+                if self.nodes > INLINED_NODES {
                     return None;
                 }
                 let mut inner = BTreeSet::new();
@@ -244,24 +317,42 @@ fn is_nonzero_constant(t: &Term) -> bool {
     matches!(t, Term::Const { value, free } if free.is_empty() && !value.is_zero())
 }
 
-/// Every letter a term writes, free or summed.
-fn letters_in(t: &Term, out: &mut BTreeSet<char>) {
-    let slots = |slots: &[Slot], out: &mut BTreeSet<char>| {
-        out.extend(slots.iter().filter_map(|s| match s {
-            Slot::Letter(c) => Some(*c),
-            Slot::Fixed(_) => None,
-        }))
+/// Whether no letter occurs twice among the terms.
+fn writes_each_letter_once(ts: &[Term]) -> bool {
+    let mut seen = BTreeSet::new();
+    let mut once = true;
+    for t in ts {
+        each_letter(t, &mut |c| once &= seen.insert(c));
+    }
+    once
+}
+
+/// Calls `f` on every occurrence of a letter in a term.
+fn each_letter(t: &Term, f: &mut dyn FnMut(char)) {
+    let slots = |slots: &[Slot], f: &mut dyn FnMut(char)| {
+        for s in slots {
+            if let Slot::Letter(c) = s {
+                f(*c);
+            }
+        }
     };
     match t {
-        Term::Const { free, .. } | Term::Opaque { free, .. } => out.extend(free),
-        Term::Leaf { slots: s, .. } => slots(s, out),
-        Term::Deriv(_, s) => slots(std::slice::from_ref(s), out),
-        Term::Grad { slots: s, .. } | Term::Variation { slots: s, .. } => slots(s, out),
+        Term::Const { free, .. } | Term::Opaque { free, .. } => free.iter().for_each(|&c| f(c)),
+        Term::Leaf { slots: s, .. } => slots(s, f),
+        Term::Deriv(_, s) => slots(std::slice::from_ref(s), f),
+        Term::Grad { slots: s, .. } | Term::Variation { slots: s, .. } => slots(s, f),
         _ => {}
     }
     for c in super::term::children(t) {
-        letters_in(c, out);
+        each_letter(c, f);
     }
+}
+
+/// Every letter a term writes, free or summed.
+fn letters_in(t: &Term, out: &mut BTreeSet<char>) {
+    each_letter(t, &mut |c| {
+        out.insert(c);
+    });
 }
 
 /// Every occurrence of a letter of `map` replaced by its slot, all at once. `None`
@@ -358,21 +449,9 @@ pub fn at_values(t: &Term, at: &[(char, usize)]) -> Term {
 
 /// Whether every letter a term writes is one of `at`'s.
 fn only_fixed(t: &Term, at: &[(char, usize)]) -> bool {
-    let known = |c: &char| at.iter().any(|(d, _)| d == c);
-    let slots = |slots: &[Slot]| {
-        slots.iter().all(|s| match s {
-            Slot::Letter(c) => known(c),
-            Slot::Fixed(_) => true,
-        })
-    };
-    let here = match t {
-        Term::Const { free, .. } | Term::Opaque { free, .. } => free.iter().all(known),
-        Term::Leaf { slots: s, .. } => slots(s),
-        Term::Deriv(_, s) => slots(std::slice::from_ref(s)),
-        Term::Grad { slots: s, .. } | Term::Variation { slots: s, .. } => slots(s),
-        _ => true,
-    };
-    here && super::term::children(t).into_iter().all(|c| only_fixed(c, at))
+    let mut known = true;
+    each_letter(t, &mut |c| known &= at.iter().any(|(d, _)| *d == c));
+    known
 }
 
 /// The term with the letters `a` and `b` exchanged.
@@ -383,8 +462,8 @@ fn exchanged(t: &Term, a: char, b: char) -> Term {
     t
 }
 
-/// The term with sums and products flattened and their parts sorted, and δ's two slots
-/// sorted: the same value, written one way.
+/// The term with sums and products flattened (a product only where it sums no letter)
+/// and their parts sorted, and δ's two slots sorted: the same value, written one way.
 pub fn canonical(t: Term) -> Term {
     match t {
         Term::Sum(ts) => {
@@ -402,7 +481,9 @@ pub fn canonical(t: Term) -> Term {
             let mut out = Vec::with_capacity(fs.len());
             for f in fs {
                 match canonical(f) {
-                    Term::Product(inner) => out.extend(inner),
+                    // A product that sums a letter is a scope of its own: two such
+                    // factors may sum the same letter, and flattened they would share it.
+                    Term::Product(inner) if writes_each_letter_once(&inner) => out.extend(inner),
                     other => out.push(other),
                 }
             }
