@@ -72,7 +72,9 @@ fn moment_identity(dim: usize, rank: usize) -> String {
             .collect();
         parts.push(format!("\"L_{free} = {last}\""));
         defs = format!("define = [{}]\n", parts.join(", "));
-        terms = (0..parts.len() - 1).map(|k| format!("P{k}_{free}")).collect();
+        terms = (0..parts.len() - 1)
+            .map(|k| format!("P{k}_{free}"))
+            .collect();
         terms.push(format!("L_{free}"));
     }
     let wrong = match &terms[..] {

@@ -1067,10 +1067,21 @@ fn a_side_is_symmetric_only_as_written_out_and_exchanged() {
     let mut ctx = context(&[]);
     // P0: the first 7 pairings; P1: the other 8, written in the letters a…f.
     let first = sum(ps[..7].iter().map(|p| deltas(p)).collect());
-    let rename = |c: char| "abcdef".chars().nth(letters.iter().position(|&x| x == c).unwrap()).unwrap();
+    let rename = |c: char| {
+        "abcdef"
+            .chars()
+            .nth(letters.iter().position(|&x| x == c).unwrap())
+            .unwrap()
+    };
     let rest: Vec<Term> = ps[7..]
         .iter()
-        .map(|p| deltas(&p.iter().map(|&(a, b)| (rename(a), rename(b))).collect::<Vec<_>>()))
+        .map(|p| {
+            deltas(
+                &p.iter()
+                    .map(|&(a, b)| (rename(a), rename(b)))
+                    .collect::<Vec<_>>(),
+            )
+        })
         .collect();
     ctx.definitions = vec![
         Definition {
@@ -1085,7 +1096,10 @@ fn a_side_is_symmetric_only_as_written_out_and_exchanged() {
         },
     ];
     let n6 = Term::Avg(Box::new(prod(
-        letters.iter().map(|c| leaf(Leaf::Normal, &c.to_string())).collect(),
+        letters
+            .iter()
+            .map(|c| leaf(Leaf::Normal, &c.to_string()))
+            .collect(),
     )));
     let right = prod(vec![
         frac(1, 105),
@@ -1103,10 +1117,13 @@ fn a_side_is_symmetric_only_as_written_out_and_exchanged() {
             if o.of == 729 && o.blocks == ["ijklmp"]
     ));
     // With 1/104 it is refused.
-    let wrong = prod(vec![frac(1, 104), sum(vec![
-        leaf(Leaf::Def("P0".into()), "ijklmp"),
-        leaf(Leaf::Def("P1".into()), "ijklmp"),
-    ])]);
+    let wrong = prod(vec![
+        frac(1, 104),
+        sum(vec![
+            leaf(Leaf::Def("P0".into()), "ijklmp"),
+            leaf(Leaf::Def("P1".into()), "ijklmp"),
+        ]),
+    ]);
     assert!(!holds(equal(&ctx, n6, wrong), identity()));
     // ε_ijk ε_lmp and δ_i1 δ_j2 δ_k3 δ_l1 δ_m2 δ_p3 agree wherever i ≤ j ≤ k and
     // l ≤ m ≤ p, and differ at i = 2, j = 1.
@@ -1145,26 +1162,42 @@ fn a_side_written_out_has_every_component_of_the_side() {
             "Y",
             "jk",
             sum(vec![
-                prod(vec![leaf(Leaf::Def("X".into()), "jm"), sym("a", "m"), sym("a", "k")]),
+                prod(vec![
+                    leaf(Leaf::Def("X".into()), "jm"),
+                    sym("a", "m"),
+                    sym("a", "k"),
+                ]),
                 Term::Div(
                     Box::new(prod(vec![sym("s", ""), leaf(Leaf::Delta, "jk")])),
                     Box::new(num(2)),
                 ),
             ]),
         ),
-        def("N", "i", Term::Avg(Box::new(prod(vec![
-            leaf(Leaf::Normal, "i"),
-            leaf(Leaf::Normal, "k"),
-            sym("a", "k"),
-        ])))),
+        def(
+            "N",
+            "i",
+            Term::Avg(Box::new(prod(vec![
+                leaf(Leaf::Normal, "i"),
+                leaf(Leaf::Normal, "k"),
+                sym("a", "k"),
+            ]))),
+        ),
     ];
     let x = |slots: &str| leaf(Leaf::Def("X".into()), slots);
     let y = |slots: &str| leaf(Leaf::Def("Y".into()), slots);
     let terms = vec![
         // k is also a letter of the use site.
         prod(vec![x("ik"), sym("a", "k")]),
-        sum(vec![y("ij"), x("ji"), neg(prod(vec![y("2j"), sym("a", "i")]))]),
-        prod(vec![x("kk"), leaf(Leaf::Def("N".into()), "i"), sym("a", "j")]),
+        sum(vec![
+            y("ij"),
+            x("ji"),
+            neg(prod(vec![y("2j"), sym("a", "i")])),
+        ]),
+        prod(vec![
+            x("kk"),
+            leaf(Leaf::Def("N".into()), "i"),
+            sym("a", "j"),
+        ]),
         prod(vec![Term::Pow(Box::new(x("mm")), 2), y("i1")]),
     ];
     for t in &terms {
@@ -1174,7 +1207,11 @@ fn a_side_written_out_has_every_component_of_the_side() {
         let [out, _] = written_out(&env, t, &num(0)).expect("in the class");
         let mut env = Env::new(&ctx, &[]).unwrap();
         for (k, values) in assignments(3, letters.len()).iter().enumerate() {
-            let at: Vec<(char, usize)> = letters.iter().copied().zip(values.iter().copied()).collect();
+            let at: Vec<(char, usize)> = letters
+                .iter()
+                .copied()
+                .zip(values.iter().copied())
+                .collect();
             let one = env.eval(&at_values(&out, &at)).unwrap();
             assert_eq!(one.comps(), &whole.comps()[k..=k], "{t:?} at {at:?}");
         }
@@ -1238,6 +1275,13 @@ fn definitions_that_double_when_written_out_are_evaluated_in_full() {
     assert_eq!(proof.conclusion(), Conclusion::Holds);
     assert!(matches!(
         proof.summary(),
-        [Checked::PolynomialIdentity { components: 729, orbits: None, .. }, ..]
+        [
+            Checked::PolynomialIdentity {
+                components: 729,
+                orbits: None,
+                ..
+            },
+            ..
+        ]
     ));
 }

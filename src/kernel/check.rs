@@ -532,7 +532,12 @@ fn orbit_pairs(
 ) -> Option<(Vec<(Frac, Frac)>, usize, Vec<String>)> {
     let mut pairs = Vec::with_capacity(o.representatives.len());
     for values in &o.representatives {
-        let at: Vec<(char, usize)> = o.letters.iter().copied().zip(values.iter().copied()).collect();
+        let at: Vec<(char, usize)> = o
+            .letters
+            .iter()
+            .copied()
+            .zip(values.iter().copied())
+            .collect();
         let mut one = |side: &Term| -> Option<Frac> {
             let v = env.eval(&super::symmetry::at_values(side, &at)).ok()?;
             match v.comps() {
@@ -543,7 +548,9 @@ fn orbit_pairs(
         let x = one(&o.sides[0])?;
         pairs.push((x, one(&o.sides[1])?));
     }
-    let of = env.ctx_dim().checked_pow(u32::try_from(o.letters.len()).ok()?)?;
+    let of = env
+        .ctx_dim()
+        .checked_pow(u32::try_from(o.letters.len()).ok()?)?;
     let blocks = o.blocks.iter().map(|b| b.iter().collect()).collect();
     Some((pairs, of, blocks))
 }

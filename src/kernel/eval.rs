@@ -1097,12 +1097,7 @@ impl<'c> Env<'c> {
 
     /// The product of the terms `fs` over the letters `out`, its terms added to the
     /// components `into` when given (else to zeros).
-    fn product<'t>(
-        &mut self,
-        fs: &'t [Term],
-        out: &[char],
-        into: Option<Vec<Frac>>,
-    ) -> R<Value> {
+    fn product<'t>(&mut self, fs: &'t [Term], out: &[char], into: Option<Vec<Frac>>) -> R<Value> {
         // Leaves at fixed values only: one component of each, multiplied from left to
         // right and added as the walk below would add them.
         let d = self.ctx.dim;

@@ -59,8 +59,7 @@ pub fn written_out(env: &Env<'_>, left: &Term, right: &Term) -> Option<[Term; 2]
 
 fn write_out(env: &Env<'_>, left: &Term, right: &Term) -> Option<([Term; 2], usize)> {
     let ctx = env.context();
-    if !(ctx.equations.is_empty() && ctx.substitutions.is_empty() && ctx.hypotheses.is_empty())
-    {
+    if !(ctx.equations.is_empty() && ctx.substitutions.is_empty() && ctx.hypotheses.is_empty()) {
         return None;
     }
     let mut inliner = Inliner::new(ctx, env, [left, right]);
@@ -204,7 +203,11 @@ impl<'c> Inliner<'c> {
         {
             letters_in(t, &mut used);
         }
-        used.extend(ctx.definitions.iter().flat_map(|d| d.formal.iter().copied()));
+        used.extend(
+            ctx.definitions
+                .iter()
+                .flat_map(|d| d.formal.iter().copied()),
+        );
         Inliner {
             ctx,
             ranks,
@@ -288,8 +291,12 @@ impl<'c> Inliner<'c> {
                 }
                 let mut inner = BTreeSet::new();
                 letters_in(&body, &mut inner);
-                let mut map: Vec<(char, Slot)> =
-                    def.formal.iter().copied().zip(slots.iter().copied()).collect();
+                let mut map: Vec<(char, Slot)> = def
+                    .formal
+                    .iter()
+                    .copied()
+                    .zip(slots.iter().copied())
+                    .collect();
                 for c in inner {
                     if !def.formal.contains(&c) {
                         let f = self.fresh()?;
@@ -400,7 +407,11 @@ pub fn at_values(t: &Term, at: &[(char, usize)]) -> Term {
     match t {
         Term::Const { value: v, free } => Term::Const {
             value: v.clone(),
-            free: free.iter().copied().filter(|c| value(*c).is_none()).collect(),
+            free: free
+                .iter()
+                .copied()
+                .filter(|c| value(*c).is_none())
+                .collect(),
         },
         Term::Leaf { of, slots } => Term::Leaf {
             of: of.clone(),
@@ -511,4 +522,3 @@ pub fn canonical(t: Term) -> Term {
         other => other,
     }
 }
-
