@@ -6,8 +6,9 @@
 //! - a side with its definitions written out ([`inline`]) has the value of the side: a
 //!   definition's formal letters become the slots it is used with and its summed
 //!   letters become letters the statement uses nowhere;
-//! - the canonical form ([`canonical`]) only flattens and sorts sums and products and
-//!   sorts δ's two slots, none of which changes a value;
+//! - the canonical form ([`canonical`]) only flattens sums, and products that sum no
+//!   letter of their own (two factors may each sum the same letter), sorts the parts of
+//!   both and sorts δ's two slots, none of which changes a value;
 //! - when exchanging the free letters `a` and `b` leaves a side's canonical form as it
 //!   was, its component at any index value equals its component at that value with the
 //!   values of `a` and `b` exchanged. Exchanges of neighbouring letters of a block
@@ -16,7 +17,8 @@
 //!
 //! Only sides made of constants, symbols, δ, ε, the normal, sums, products, negations,
 //! powers, averages and quotients by a constant are taken; a statement with
-//! assumptions, hypotheses or square roots is compared component by component. Where
+//! assumptions, hypotheses or square roots is compared component by component, and so
+//! is one whose written-out sides would cost more than every definition in full. Where
 //! anything here does not apply, the checker compares every component, as before.
 
 use super::eval::Env;
