@@ -876,7 +876,6 @@ fn a_square_root_in_a_hypothesis_is_held_to_its_square_at_the_point() {
 /// free letters, a slot is fixed and `grad` adds letters of its own.
 #[test]
 fn a_term_at_fixed_index_values_is_that_component_of_the_whole() {
-    use cosserat_check::kernel::eval::{assignments, Env};
     let ctx = context(&[("a", 1), ("T", 2), ("s", 0)]);
     let grad = Term::Grad {
         body: Box::new(prod(vec![sym("T", "kl"), sym("T", "kl"), sym("a", "c")])),
@@ -915,8 +914,19 @@ fn a_term_at_fixed_index_values_is_that_component_of_the_whole() {
         prod(vec![sym("T", "2j"), sym("a", "i")]),
         grad,
     ];
-    for t in &terms {
-        let mut env = Env::new(&ctx, &[]).unwrap();
+    components_agree(&ctx, &terms, |t, at, env| t.at_indices(at, env).unwrap());
+}
+
+/// Each term, rewritten by `fixed` at each index value of its free letters, has there
+/// the component the whole term has.
+fn components_agree(
+    ctx: &Context,
+    terms: &[Term],
+    fixed: impl Fn(&Term, &[(char, usize)], &cosserat_check::kernel::eval::Env) -> Term,
+) {
+    use cosserat_check::kernel::eval::{assignments, Env};
+    for t in terms {
+        let mut env = Env::new(ctx, &[]).unwrap();
         let whole = env.eval(t).unwrap();
         let letters = whole.letters().to_vec();
         assert!(!letters.is_empty());
@@ -926,34 +936,15 @@ fn a_term_at_fixed_index_values_is_that_component_of_the_whole() {
                 .copied()
                 .zip(values.iter().copied())
                 .collect();
-            let fixed = t.at_indices(&at, &env).unwrap();
-            let one = env.eval(&fixed).unwrap();
-            assert!(one.letters().is_empty(), "{fixed:?} keeps a letter");
-            assert_eq!(one.comps(), &whole.comps()[k..=k], "{t:?} at {at:?}");
+            let one = fixed(t, &at, &env);
+            let value = env.eval(&one).unwrap();
+            assert!(value.letters().is_empty(), "{one:?} keeps a letter");
+            assert_eq!(value.comps(), &whole.comps()[k..=k], "{t:?} at {at:?}");
         }
     }
 }
 
-/// The 15 pairings of six letters, as products of three δ's.
-fn pairings(letters: &[char]) -> Vec<Vec<(char, char)>> {
-    let Some((&a, rest)) = letters.split_first() else {
-        return vec![Vec::new()];
-    };
-    let mut out = Vec::new();
-    for (k, &b) in rest.iter().enumerate() {
-        let others: Vec<char> = rest
-            .iter()
-            .enumerate()
-            .filter(|&(j, _)| j != k)
-            .map(|(_, &c)| c)
-            .collect();
-        for mut p in pairings(&others) {
-            p.insert(0, (a, b));
-            out.push(p);
-        }
-    }
-    out
-}
+use crate::support::pairings::pairings;
 
 fn deltas(p: &[(char, char)]) -> Term {
     prod(
@@ -1145,7 +1136,7 @@ fn a_side_is_symmetric_only_as_written_out_and_exchanged() {
 /// as a trace, and under a constant divisor, a power and an average.
 #[test]
 fn a_side_written_out_has_every_component_of_the_side() {
-    use cosserat_check::kernel::eval::{assignments, Env};
+    use cosserat_check::kernel::eval::Env;
     use cosserat_check::kernel::statement::Definition;
     use cosserat_check::kernel::symmetry::{at_values, written_out};
     let mut ctx = context(&[("a", 1), ("T", 2), ("s", 0)]);
@@ -1200,22 +1191,10 @@ fn a_side_written_out_has_every_component_of_the_side() {
         ]),
         prod(vec![Term::Pow(Box::new(x("mm")), 2), y("i1")]),
     ];
-    for t in &terms {
-        let mut env = Env::new(&ctx, &[]).unwrap();
-        let whole = env.eval(t).unwrap();
-        let letters = whole.letters().to_vec();
-        let [out, _] = written_out(&env, t, &num(0)).expect("in the class");
-        let mut env = Env::new(&ctx, &[]).unwrap();
-        for (k, values) in assignments(3, letters.len()).iter().enumerate() {
-            let at: Vec<(char, usize)> = letters
-                .iter()
-                .copied()
-                .zip(values.iter().copied())
-                .collect();
-            let one = env.eval(&at_values(&out, &at)).unwrap();
-            assert_eq!(one.comps(), &whole.comps()[k..=k], "{t:?} at {at:?}");
-        }
-    }
+    components_agree(&ctx, &terms, |t, at, env| {
+        let [out, _] = written_out(env, t, &num(0)).expect("in the class");
+        at_values(&out, at)
+    });
     // Outside the class: a divisor that is not a constant, a square root.
     let env = Env::new(&ctx, &[]).unwrap();
     let div = Term::Div(Box::new(sym("a", "i")), Box::new(sym("s", "")));

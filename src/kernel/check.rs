@@ -328,9 +328,9 @@ fn identities(
                 _ => None,
             };
             let pairs = match at_orbits {
-                Some((pairs, of, blocks)) => {
-                    orbits.of += of;
-                    orbits.blocks.extend(blocks);
+                Some((pairs, these)) => {
+                    orbits.of += these.of;
+                    orbits.blocks.extend(these.blocks);
                     pairs
                 }
                 None => {
@@ -523,13 +523,13 @@ fn pairs_of(a: &Value, b: &Value, dim: usize) -> Vec<(Frac, Frac)> {
         .collect()
 }
 
-/// Both sides' components at one index value per orbit ([`super::symmetry`]), how
-/// many components they stand for, and the blocks; `None` where a side cannot be
+/// Both sides' components at one index value per orbit ([`super::symmetry`]), with
+/// how many components they stand for and the blocks; `None` where a side cannot be
 /// evaluated there (every component is then compared).
 fn orbit_pairs(
     env: &mut Env<'_>,
     o: &super::symmetry::Orbits,
-) -> Option<(Vec<(Frac, Frac)>, usize, Vec<String>)> {
+) -> Option<(Vec<(Frac, Frac)>, OrbitsCompared)> {
     let mut pairs = Vec::with_capacity(o.representatives.len());
     for values in &o.representatives {
         let at: Vec<(char, usize)> = o
@@ -552,7 +552,7 @@ fn orbit_pairs(
         .ctx_dim()
         .checked_pow(u32::try_from(o.letters.len()).ok()?)?;
     let blocks = o.blocks.iter().map(|b| b.iter().collect()).collect();
-    Some((pairs, of, blocks))
+    Some((pairs, OrbitsCompared { of, blocks }))
 }
 
 /// Whether two evaluations agree on every parameter both name (a parameter one of them
