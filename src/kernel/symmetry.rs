@@ -52,49 +52,44 @@ pub struct Orbits {
 /// statement is in the class above: each then has the value of its side, component by
 /// component, and no divisor that could make another component undefined. `None` too
 /// where evaluating them at one index value would cost more than evaluating the sides
-/// and every definition in full (definitions that read others twice, written out,
-/// double at each level).
+/// and the definitions they read in full (definitions that read others twice, written
+/// out, double at each level).
 pub fn written_out(env: &Env<'_>, left: &Term, right: &Term) -> Option<[Term; 2]> {
-    let (sides, nodes) = write_out(env, left, right)?;
-    (nodes <= full_cost(env, left, right)).then_some(sides)
+    let (sides, nodes, full) = write_out(env, left, right)?;
+    (nodes <= full).then_some(sides)
 }
 
-fn write_out(env: &Env<'_>, left: &Term, right: &Term) -> Option<([Term; 2], usize)> {
+/// The sides written out, their nodes, and about the work of evaluating the sides and
+/// the definitions they read in full: each one's nodes times its components.
+fn write_out(env: &Env<'_>, left: &Term, right: &Term) -> Option<([Term; 2], usize, usize)> {
     let ctx = env.context();
     if !(ctx.equations.is_empty() && ctx.substitutions.is_empty() && ctx.hypotheses.is_empty()) {
         return None;
     }
     let mut inliner = Inliner::new(ctx, env, [left, right]);
     let sides = [inliner.inline(left)?, inliner.inline(right)?];
+    let mut full = 0usize;
     for (side, original) in sides.iter().zip([left, right]) {
-        if side.letters(env).ok()?.free != original.letters(env).ok()?.free {
+        let free = original.letters(env).ok()?.free;
+        if side.letters(env).ok()?.free != free {
             return None;
         }
+        full = full.saturating_add(cost(env, original, free.len()));
     }
-    Some((sides, inliner.nodes))
+    for name in inliner.written.keys() {
+        let def = inliner.definition(name)?;
+        full = full.saturating_add(cost(env, &def.body, def.formal.len()));
+    }
+    Some((sides, inliner.nodes, full))
 }
 
-/// About the work of evaluating both sides and every definition in full: each one's
-/// nodes times its components.
-fn full_cost(env: &Env<'_>, left: &Term, right: &Term) -> usize {
-    let dim = env.ctx_dim();
-    let cost = |t: &Term, rank: usize| {
-        let components = u32::try_from(rank)
-            .ok()
-            .and_then(|r| dim.checked_pow(r))
-            .unwrap_or(usize::MAX);
-        nodes(t).saturating_mul(components)
-    };
-    let sides = [left, right].into_iter().map(|t| {
-        let rank = t.letters(env).map_or(0, |l| l.free.len());
-        cost(t, rank)
-    });
-    let definitions = env
-        .context()
-        .definitions
-        .iter()
-        .map(|d| cost(&d.body, d.formal.len()));
-    sides.chain(definitions).fold(0, usize::saturating_add)
+/// A term's nodes times its components.
+fn cost(env: &Env<'_>, t: &Term, rank: usize) -> usize {
+    let components = u32::try_from(rank)
+        .ok()
+        .and_then(|r| env.ctx_dim().checked_pow(r))
+        .unwrap_or(usize::MAX);
+    nodes(t).saturating_mul(components)
 }
 
 fn nodes(t: &Term) -> usize {
@@ -114,11 +109,10 @@ pub fn orbits(env: &Env<'_>, left: &Term, right: &Term) -> Option<Orbits> {
     if dim.checked_pow(u32::try_from(letters.len()).ok()?)? < ORBITS_FROM {
         return None;
     }
-    let (sides, nodes) = write_out(env, left, right)?;
+    let (sides, nodes, full) = write_out(env, left, right)?;
     // At the fewest orbits (every letter in one block), is it still cheaper?
     let n = letters.len();
     let fewest = (1..dim).fold(1usize, |c, k| c.saturating_mul(n + k) / k);
-    let full = full_cost(env, left, right);
     if fewest.saturating_mul(nodes) > full {
         return None;
     }
