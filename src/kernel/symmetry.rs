@@ -27,7 +27,8 @@ use super::term::{Leaf, Ranks, Slot, Term};
 use std::collections::BTreeSet;
 
 /// The fewest components an equality must have for its orbits to be compared instead:
-/// below, every component is (729 is a rank-6 tensor in 3D).
+/// below, every component is (729 is a rank-6 tensor in 3D). The most is what any value
+/// may have ([`super::eval::MAX_COMPONENTS`]).
 pub const ORBITS_FROM: usize = 729;
 
 /// The most nodes a side may have once its definitions are written out.
@@ -106,7 +107,9 @@ pub fn orbits(env: &Env<'_>, left: &Term, right: &Term) -> Option<Orbits> {
         return None;
     }
     let dim = env.ctx_dim();
-    if dim.checked_pow(u32::try_from(letters.len()).ok()?)? < ORBITS_FROM {
+    // No more components than a value may have: the orbits stand for them all.
+    let components = dim.checked_pow(u32::try_from(letters.len()).ok()?)?;
+    if !(ORBITS_FROM..=super::eval::MAX_COMPONENTS).contains(&components) {
         return None;
     }
     let (sides, nodes, full) = write_out(env, left, right)?;
