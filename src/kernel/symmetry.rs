@@ -35,9 +35,7 @@ pub const ORBITS_FROM: usize = 729;
 const INLINED_NODES: usize = 200_000;
 
 /// The blocks of free letters no permutation of which changes either side, and the
-/// index values to compare: one per orbit, sorted within each block. `None` where the
-/// sides are outside the class above, their free letters differ, or no two letters are
-/// exchangeable.
+/// index values to compare: one per orbit, sorted within each block.
 pub struct Orbits {
     /// The sides with their definitions written out.
     pub sides: [Term; 2],
@@ -100,7 +98,10 @@ fn nodes(t: &Term) -> usize {
         .fold(1, usize::saturating_add)
 }
 
-/// The orbits of `left = right`, or `None` (compare every component).
+/// The orbits of `left = right`, or `None` (compare every component): the equality
+/// has fewer than 729 or more than 59,049 components, the sides are outside the class
+/// above or their free letters differ, no two letters are exchangeable, or the orbits
+/// would cost more than every component.
 pub fn orbits(env: &Env<'_>, left: &Term, right: &Term) -> Option<Orbits> {
     let letters = left.letters(env).ok()?.free;
     if right.letters(env).ok()?.free != letters {
