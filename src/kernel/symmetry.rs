@@ -3,7 +3,7 @@
 //! `⟨n_i n_j … n_t⟩ = (1/10395) Σ δ…δ` has 59,049 components and 66 orbits.
 //!
 //! Three facts make this sound, each checked here rather than believed:
-//! - a side with its definitions written out ([`inline`]) has the value of the side: a
+//! - a side with its definitions written out ([`written_out`]) has the value of the side: a
 //!   definition's formal letters become the slots it is used with and its summed
 //!   letters become letters the statement uses nowhere;
 //! - the canonical form ([`canonical`]) only flattens sums, and products that sum no
